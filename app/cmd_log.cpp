@@ -1,0 +1,160 @@
+// `roverlab info`, `roverlab convert` and `roverlab mappings`.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/resources.h"
+#include "core/common/error.h"
+#include "importers/csv_log.h"
+#include "importers/hdf5_log.h"
+#include "importers/log_file.h"
+
+namespace roverlab::app {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+io::LoadedLog load(const std::string& file, const std::optional<std::string>& mapping) {
+  io::LoadOptions options;
+  if (mapping) {
+    options.mapping = io::load_mapping(io::find_mapping(*mapping, resource_subfolders("mappings")));
+  }
+  return io::load_log(file, options);
+}
+
+struct ChannelStats {
+  double min = NAN, max = NAN;
+  std::size_t missing = 0;
+};
+
+ChannelStats stats(const std::vector<double>& values) {
+  ChannelStats s;
+  for (double v : values) {
+    if (std::isnan(v)) {
+      ++s.missing;
+      continue;
+    }
+    if (std::isnan(s.min) || v < s.min) s.min = v;
+    if (std::isnan(s.max) || v > s.max) s.max = v;
+  }
+  return s;
+}
+
+std::string fmt(const char* format, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+}  // namespace
+
+int run_info(const InfoOptions& options) {
+  const io::LoadedLog loaded = load(options.file, options.mapping);
+  const log::Log& lg = loaded.log;
+  const auto& meta = lg.metadata;
+  if (options.json) {
+    json out;
+    out["file"] = options.file;
+    out["format"] = io::format_name(loaded.format);
+    out["metadata"] = {{"rover_id", meta.rover_id},
+                       {"source_file", meta.source_file},
+                       {"description", meta.description},
+                       {"extra", meta.extra}};
+    out["streams"] = json::array();
+    for (const auto& s : lg.streams()) {
+      json js = {{"name", s.name()},
+                 {"samples", s.size()},
+                 {"rate_hz", s.mean_rate_hz()},
+                 {"duration_s", s.duration()},
+                 {"start_s", s.empty() ? json(nullptr) : json(s.start_time())},
+                 {"end_s", s.empty() ? json(nullptr) : json(s.end_time())},
+                 {"channels", json::array()}};
+      for (const auto& c : s.channels()) {
+        const ChannelStats st = stats(c.values);
+        js["channels"].push_back({{"name", c.name},
+                                  {"unit", c.unit},
+                                  {"description", c.description},
+                                  {"min", std::isnan(st.min) ? json(nullptr) : json(st.min)},
+                                  {"max", std::isnan(st.max) ? json(nullptr) : json(st.max)},
+                                  {"missing", st.missing}});
+      }
+      out["streams"].push_back(js);
+    }
+    std::cout << out.dump(2) << "\n";
+    return kSuccess;
+  }
+
+  std::cout << "file     " << options.file << "\n"
+            << "format   " << io::format_name(loaded.format);
+  if (meta.extra.count("mapping") != 0) std::cout << " (mapping " << meta.extra.at("mapping") << ")";
+  std::cout << "\n";
+  if (!meta.rover_id.empty()) std::cout << "rover    " << meta.rover_id << "\n";
+  if (!meta.source_file.empty()) std::cout << "source   " << meta.source_file << "\n";
+  if (!meta.description.empty()) std::cout << "about    " << meta.description << "\n";
+  for (const auto& [key, value] : meta.extra) {
+    if (key != "mapping") std::cout << key << " = " << value << "\n";
+  }
+  std::cout << "streams  " << lg.streams().size() << "\n";
+  for (const auto& s : lg.streams()) {
+    std::cout << "\nstream " << s.name() << ": " << s.size() << " samples";
+    if (s.size() >= 2) {
+      std::cout << ", " << fmt("%.1f", s.mean_rate_hz()) << " Hz, " << fmt("%.2f", s.duration())
+                << " s (t = " << fmt("%.3f", s.start_time()) << " .. " << fmt("%.3f", s.end_time())
+                << " s)";
+    }
+    std::cout << "\n";
+    std::size_t width = 4;
+    for (const auto& c : s.channels()) width = std::max(width, c.name.size());
+    for (const auto& c : s.channels()) {
+      const ChannelStats st = stats(c.values);
+      std::string line = "  " + c.name + std::string(width - c.name.size() + 2, ' ');
+      std::string unit = "[" + c.unit + "]";
+      unit.resize(std::max<std::size_t>(unit.size(), 10), ' ');
+      line += unit + fmt("%12.5g", st.min) + " .. " + fmt("%-12.5g", st.max);
+      if (st.missing > 0) line += " (" + std::to_string(st.missing) + " missing)";
+      if (!c.description.empty()) line += "  " + c.description;
+      std::cout << line << "\n";
+    }
+  }
+  return kSuccess;
+}
+
+int run_convert(const ConvertOptions& options) {
+  const std::string ext = fs::path(options.output).extension().string();
+  const bool to_csv = ext == ".csv";
+  if (!to_csv && ext != ".h5" && ext != ".hdf5") {
+    std::cerr << "roverlab convert: " << options.output
+              << ": output must end in .h5 or .hdf5 (RoverLab HDF5 log) or .csv (one stream)\n";
+    return kUsageError;
+  }
+  const io::LoadedLog loaded = load(options.input, options.mapping);
+  if (to_csv) {
+    if (loaded.log.streams().size() != 1) {
+      throw InputError(options.input, "has " + std::to_string(loaded.log.streams().size()) +
+                                          " streams; CSV output holds exactly one (use .h5)");
+    }
+    io::write_csv_stream(loaded.log.streams().front(), options.output);
+  } else {
+    io::write_hdf5_log(loaded.log, options.output);
+  }
+  std::cout << "wrote " << options.output << ": " << loaded.log.streams().size() << " streams, "
+            << loaded.log.total_samples() << " values\n";
+  return kSuccess;
+}
+
+int run_list_mappings() {
+  for (const auto& folder : resource_subfolders("mappings")) {
+    for (const auto& name : io::list_mappings({folder})) {
+      std::cout << name << "  " << (folder / (name + ".json")).string() << "\n";
+    }
+  }
+  return kSuccess;
+}
+
+}  // namespace roverlab::app

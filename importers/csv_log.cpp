@@ -1,0 +1,185 @@
+#include "importers/csv_log.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "core/common/error.h"
+#include "core/log/units.h"
+#include "importers/atomic_file.h"
+
+namespace roverlab::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  std::string out(s.substr(first, last - first + 1));
+  if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
+  return out;
+}
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> cells;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', begin);
+    cells.push_back(line.substr(begin, comma == std::string_view::npos ? std::string_view::npos
+                                                                       : comma - begin));
+    if (comma == std::string_view::npos) return cells;
+    begin = comma + 1;
+  }
+}
+
+struct Column {
+  std::string name;
+  log::UnitConversion si;
+  std::vector<double> values;
+};
+
+// "name [unit]" -> name, unit ("1" when absent).
+std::pair<std::string, std::string> parse_header_cell(const std::string& cell) {
+  const auto open = cell.rfind('[');
+  if (open == std::string::npos || cell.back() != ']') return {cell, "1"};
+  return {trim(std::string_view(cell).substr(0, open)),
+          trim(std::string_view(cell).substr(open + 1, cell.size() - open - 2))};
+}
+
+}  // namespace
+
+log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open file");
+
+  std::vector<Column> columns;
+  std::size_t time_column = 0;
+  std::string line;
+  std::size_t line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string stripped = trim(line);
+    if (stripped.empty() || stripped.front() == '#') continue;
+    const auto cells = split(line);
+    const std::string where = "line " + std::to_string(line_number);
+    if (columns.empty()) {  // header
+      for (std::size_t k = 0; k < cells.size(); ++k) {
+        auto [name, unit] = parse_header_cell(trim(cells[k]));
+        if (name.empty()) throw InputError(path, where + ": empty header cell in column " + std::to_string(k + 1));
+        Column c;
+        c.name = name;
+        try {
+          c.si = log::unit_to_si(unit);
+        } catch (const DataError& e) {
+          throw InputError(path, where + ", column '" + name + "': " + e.what());
+        }
+        columns.push_back(std::move(c));
+      }
+      for (std::size_t k = 0; k < columns.size(); ++k) {
+        if (columns[k].name == "time" || columns[k].name == "t") {
+          time_column = k;
+          break;
+        }
+      }
+      if (columns[time_column].si.si_unit != "s") {
+        throw InputError(path, where + ": time column '" + columns[time_column].name +
+                                   "' has unit '" + columns[time_column].si.si_unit +
+                                   "', not a unit of time");
+      }
+      continue;
+    }
+    if (cells.size() != columns.size()) {
+      throw InputError(path, where + ": " + std::to_string(cells.size()) + " cells but the header has " +
+                                 std::to_string(columns.size()) + " (ragged row)");
+    }
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const std::string cell = trim(cells[k]);
+      double value = std::numeric_limits<double>::quiet_NaN();
+      if (!cell.empty()) {
+        const char* first = cell.data();
+        const char* last = cell.data() + cell.size();
+        if (*first == '+') ++first;
+        const auto [ptr, err] = std::from_chars(first, last, value);
+        if (err != std::errc() || ptr != last) {
+          throw InputError(path, where + ", column '" + columns[k].name + "': cannot parse '" +
+                                     cell + "' as a number");
+        }
+      }
+      Column& c = columns[k];
+      value = value * c.si.factor + c.si.offset;
+      if (k == time_column) {
+        if (!std::isfinite(value)) {
+          throw InputError(path, where + ": time is " + (cell.empty() ? "empty" : "'" + cell + "'") +
+                                     "; it must be a finite number");
+        }
+        if (!c.values.empty() && !(value > c.values.back())) {
+          std::ostringstream msg;
+          msg.precision(12);
+          msg << where << ": time " << value << " s is not after the previous " << c.values.back()
+              << " s (time must increase strictly)";
+          throw InputError(path, msg.str());
+        }
+      }
+      c.values.push_back(value);
+    }
+  }
+  if (in.bad()) throw InputError(path, "read error");
+  if (columns.empty()) throw InputError(path, "empty CSV file (no header)");
+
+  std::string name = options.stream_name;
+  if (name.empty()) {
+    name = fs::path(path).stem().string();
+    for (char& ch : name) {
+      if (ch == '/' || ch == ' ') ch = '_';
+    }
+  }
+  log::Log out;
+  out.metadata.source_file = fs::path(path).filename().string();
+  try {
+    log::Stream stream(name, std::move(columns[time_column].values));
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      if (k == time_column) continue;
+      stream.add_channel(columns[k].name, columns[k].si.si_unit, std::move(columns[k].values));
+    }
+    out.add_stream(std::move(stream));
+  } catch (const DataError& e) {
+    throw InputError(path, e.what());
+  }
+  return out;
+}
+
+namespace {
+void append_number(std::string& out, double v) {
+  if (std::isnan(v)) return;  // empty cell: missing sample
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  out.append(buffer, result.ptr);
+}
+}  // namespace
+
+void write_csv_stream(const log::Stream& stream, const std::string& path) {
+  std::string text = "time [s]";
+  for (const auto& c : stream.channels()) text += "," + c.name + " [" + c.unit + "]";
+  text += "\n";
+  for (std::size_t i = 0; i < stream.size(); ++i) {
+    append_number(text, stream.time()[i]);
+    for (const auto& c : stream.channels()) {
+      text += ',';
+      append_number(text, c.values[i]);
+    }
+    text += '\n';
+  }
+  write_text_atomically(path, text);
+}
+
+}  // namespace roverlab::io

@@ -1,0 +1,306 @@
+#include "importers/hdf5_log.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/common/error.h"
+#include "core/log/units.h"
+#include "importers/atomic_file.h"
+#include "importers/hdf5_support.h"
+
+namespace roverlab::io {
+
+namespace fs = std::filesystem;
+using h5::Handle;
+
+namespace {
+
+constexpr hsize_t kChunkSamples = 262144;  // 2 MiB of doubles: above the 1 MiB chunk cache,
+                                           // so whole-channel reads go straight to the buffer
+
+Handle make_group(hid_t parent, const std::string& name) {
+  Handle gcpl(H5Pcreate(H5P_GROUP_CREATE));
+  H5Pset_link_creation_order(gcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+  Handle group(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT));
+  if (!group.valid()) {
+    throw std::runtime_error("cannot create group '" + name + "': " + h5::last_error_text());
+  }
+  return group;
+}
+
+Handle open_or_make_group(hid_t parent, const std::string& name) {
+  if (h5::object_kind(parent, name) == h5::ObjectKind::group) {
+    return Handle(H5Gopen2(parent, name.c_str(), H5P_DEFAULT));
+  }
+  return make_group(parent, name);
+}
+
+void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
+                  const std::string& unit, const std::string& description) {
+  const hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr));
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  if (n > 0) {
+    const hsize_t chunk = std::min<hsize_t>(n, kChunkSamples);
+    H5Pset_chunk(dcpl.get(), 1, &chunk);
+  }
+  Handle dataset(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                            dcpl.get(), H5P_DEFAULT));
+  if (!dataset.valid() ||
+      (n > 0 && H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                         values.data()) < 0)) {
+    throw std::runtime_error("cannot write dataset '" + name + "': " + h5::last_error_text());
+  }
+  h5::write_string_attribute(dataset.get(), "unit", unit);
+  if (!description.empty()) h5::write_string_attribute(dataset.get(), "description", description);
+}
+
+void write_file(const log::Log& log, const std::string& path) {
+  h5::silence_errors();
+  Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
+  H5Pset_link_creation_order(fcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT));
+  if (!file.valid()) throw std::runtime_error("cannot create file: " + h5::last_error_text());
+
+  h5::write_string_attribute(file.get(), "format", kLogFormatName);
+  h5::write_int_attribute(file.get(), "format_version", kLogFormatVersion);
+  h5::write_string_attribute(file.get(), "rover_id", log.metadata.rover_id);
+  h5::write_string_attribute(file.get(), "source_file", log.metadata.source_file);
+  h5::write_string_attribute(file.get(), "description", log.metadata.description);
+  Handle metadata = make_group(file.get(), "metadata");
+  for (const auto& [key, value] : log.metadata.extra) {
+    h5::write_string_attribute(metadata.get(), key.c_str(), value);
+  }
+
+  Handle streams = make_group(file.get(), "streams");
+  for (const auto& stream : log.streams()) {
+    // Nested names ("truth/imu") become nested groups; only the last is a stream.
+    Handle group;
+    hid_t parent = streams.get();
+    std::size_t begin = 0;
+    const std::string& name = stream.name();
+    while (true) {
+      const std::size_t slash = name.find('/', begin);
+      const std::string segment = name.substr(begin, slash - begin);
+      Handle next = slash == std::string::npos ? make_group(parent, segment)
+                                               : open_or_make_group(parent, segment);
+      group = std::move(next);
+      parent = group.get();
+      if (slash == std::string::npos) break;
+      begin = slash + 1;
+    }
+    h5::write_string_attribute(group.get(), "roverlab_kind", "stream");
+    write_vector(group.get(), "time", stream.time(), "s", "");
+    Handle channels = make_group(group.get(), "channels");
+    for (const auto& c : stream.channels()) {
+      write_vector(channels.get(), c.name, c.values, c.unit, c.description);
+    }
+  }
+  if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) {
+    throw std::runtime_error("cannot flush file: " + h5::last_error_text());
+  }
+}
+
+}  // namespace
+
+struct Hdf5LogReader::File {
+  Handle file;
+  Handle streams;
+};
+
+namespace {
+
+// Collects the streams under `group` (relative names joined with '/').
+void collect_streams(hid_t group, const std::string& prefix, std::vector<std::string>& names) {
+  for (const auto& child : h5::link_names(group)) {
+    if (h5::object_kind(group, child) != h5::ObjectKind::group) continue;
+    Handle sub(H5Gopen2(group, child.c_str(), H5P_DEFAULT));
+    const std::string name = prefix.empty() ? child : prefix + "/" + child;
+    if (h5::read_string_attribute(sub.get(), "roverlab_kind") == std::string("stream")) {
+      names.push_back(name);
+    }
+    if (child != "channels") collect_streams(sub.get(), name, names);
+  }
+}
+
+}  // namespace
+
+Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new File) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
+  if (!h5::is_hdf5_file(path)) throw InputError(path, "not an HDF5 file");
+  file_->file = Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (!file_->file.valid()) {
+    const std::string why = h5::last_error_text();
+    throw InputError(path, "corrupt or truncated HDF5 file" + (why.empty() ? "" : " (" + why + ")"));
+  }
+  const hid_t f = file_->file.get();
+  if (h5::read_string_attribute(f, "format") != std::string(kLogFormatName)) {
+    throw InputError(path, "HDF5 file is not a RoverLab log (no format attribute '" +
+                               std::string(kLogFormatName) +
+                               "'); for other HDF5 or MATLAB files pass --mapping NAME|FILE");
+  }
+  const auto version = h5::read_int_attribute(f, "format_version");
+  if (!version || *version < 1) throw InputError(path, "RoverLab log without a valid format_version");
+  if (*version > kLogFormatVersion) {
+    throw InputError(path, "log format version " + std::to_string(*version) +
+                               " is newer than this RoverLab reads (" +
+                               std::to_string(kLogFormatVersion) + ")");
+  }
+  format_version_ = static_cast<int>(*version);
+  metadata_.rover_id = h5::read_string_attribute(f, "rover_id").value_or("");
+  metadata_.source_file = h5::read_string_attribute(f, "source_file").value_or("");
+  metadata_.description = h5::read_string_attribute(f, "description").value_or("");
+  if (h5::object_kind(f, "metadata") == h5::ObjectKind::group) {
+    Handle group(H5Gopen2(f, "metadata", H5P_DEFAULT));
+    const int n = H5Aget_num_attrs(group.get());
+    for (int k = 0; k < n; ++k) {
+      Handle attr(H5Aopen_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC,
+                                 static_cast<hsize_t>(k), H5P_DEFAULT, H5P_DEFAULT));
+      const ssize_t len = H5Aget_name(attr.get(), 0, nullptr);
+      if (len <= 0) continue;
+      std::string key(static_cast<std::size_t>(len) + 1, '\0');
+      H5Aget_name(attr.get(), key.size(), key.data());
+      key.resize(static_cast<std::size_t>(len));
+      metadata_.extra[key] = h5::read_string_attribute(group.get(), key.c_str()).value_or("");
+    }
+  }
+  if (h5::object_kind(f, "streams") != h5::ObjectKind::group) {
+    throw InputError(path, "RoverLab log without a 'streams' group");
+  }
+  file_->streams = Handle(H5Gopen2(f, "streams", H5P_DEFAULT));
+  std::vector<std::string> names;
+  try {
+    collect_streams(file_->streams.get(), "", names);
+    for (const auto& name : names) {
+      StreamInfo info;
+      info.name = name;
+      Handle group(H5Gopen2(file_->streams.get(), name.c_str(), H5P_DEFAULT));
+      if (h5::object_kind(group.get(), "time") != h5::ObjectKind::dataset) {
+        throw InputError(path, "stream '" + name + "' has no 'time' dataset");
+      }
+      Handle time(H5Dopen2(group.get(), "time", H5P_DEFAULT));
+      const auto shape = h5::dataset_shape(time.get());
+      if (shape.size() != 1) throw InputError(path, "stream '" + name + "': time is not 1-D");
+      info.size = shape[0];
+      if (h5::object_kind(group.get(), "channels") == h5::ObjectKind::group) {
+        Handle channels(H5Gopen2(group.get(), "channels", H5P_DEFAULT));
+        for (const auto& cname : h5::link_names(channels.get())) {
+          if (h5::object_kind(channels.get(), cname) != h5::ObjectKind::dataset) continue;
+          Handle ds(H5Dopen2(channels.get(), cname.c_str(), H5P_DEFAULT));
+          info.channels.push_back(ChannelInfo{
+              cname, h5::read_string_attribute(ds.get(), "unit").value_or("1"),
+              h5::read_string_attribute(ds.get(), "description").value_or("")});
+        }
+      }
+      catalog_.push_back(std::move(info));
+    }
+  } catch (const std::runtime_error& e) {
+    if (dynamic_cast<const InputError*>(&e) != nullptr) throw;
+    throw InputError(path, std::string("corrupt RoverLab log: ") + e.what());
+  }
+}
+
+Hdf5LogReader::~Hdf5LogReader() = default;
+
+namespace {
+
+std::vector<double> read_si(const std::string& path, hid_t dataset, const std::string& what,
+                            const std::string& expected_si = {}) {
+  std::vector<double> values;
+  try {
+    values = h5::read_doubles(dataset);
+  } catch (const std::runtime_error& e) {
+    throw InputError(path, what + ": " + e.what() + " (truncated or corrupt file?)");
+  }
+  const std::string unit = h5::read_string_attribute(dataset, "unit").value_or("1");
+  log::UnitConversion si;
+  try {
+    si = log::unit_to_si(unit);
+  } catch (const DataError& e) {
+    throw InputError(path, what + ": " + e.what());
+  }
+  if (!expected_si.empty() && si.si_unit != expected_si) {
+    throw InputError(path, what + ": unit '" + unit + "' is not a unit of " + expected_si);
+  }
+  if (si.factor != 1.0 || si.offset != 0.0) {
+    for (double& v : values) v = v * si.factor + si.offset;
+  }
+  return values;
+}
+
+}  // namespace
+
+std::vector<double> Hdf5LogReader::read_time(const std::string& stream) const {
+  Handle group(H5Gopen2(file_->streams.get(), stream.c_str(), H5P_DEFAULT));
+  if (!group.valid()) throw InputError(path_, "no stream '" + stream + "'");
+  Handle ds(H5Dopen2(group.get(), "time", H5P_DEFAULT));
+  if (!ds.valid()) throw InputError(path_, "stream '" + stream + "' has no time");
+  return read_si(path_, ds.get(), "stream '" + stream + "', time", "s");
+}
+
+std::vector<double> Hdf5LogReader::read_channel(const std::string& stream,
+                                                const std::string& channel) const {
+  const std::string where = stream + "/channels/" + channel;
+  if (h5::object_kind(file_->streams.get(), where) != h5::ObjectKind::dataset) {
+    throw InputError(path_, "no channel '" + channel + "' in stream '" + stream + "'");
+  }
+  Handle ds(H5Dopen2(file_->streams.get(), where.c_str(), H5P_DEFAULT));
+  return read_si(path_, ds.get(), "stream '" + stream + "', channel '" + channel + "'");
+}
+
+log::Stream Hdf5LogReader::read_stream(const std::string& stream) const {
+  const auto info = std::find_if(catalog_.begin(), catalog_.end(),
+                                 [&](const StreamInfo& s) { return s.name == stream; });
+  if (info == catalog_.end()) throw InputError(path_, "no stream '" + stream + "'");
+  try {
+    log::Stream out(stream, read_time(stream));
+    for (const auto& c : info->channels) {
+      out.add_channel(c.name, log::unit_to_si(c.unit).si_unit, read_channel(stream, c.name),
+                      c.description);
+    }
+    return out;
+  } catch (const DataError& e) {
+    throw InputError(path_, e.what());
+  }
+}
+
+log::Log Hdf5LogReader::read_all() const {
+  log::Log out;
+  out.metadata = metadata_;
+  for (const auto& info : catalog_) {
+    try {
+      out.add_stream(read_stream(info.name));
+    } catch (const DataError& e) {
+      throw InputError(path_, e.what());
+    }
+  }
+  return out;
+}
+
+bool is_roverlab_hdf5(const std::string& path) {
+  if (!h5::is_hdf5_file(path)) return false;
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (!file.valid()) {
+    H5Eclear2(H5E_DEFAULT);
+    return false;
+  }
+  return h5::read_string_attribute(file.get(), "format") == std::string(kLogFormatName);
+}
+
+log::Log read_hdf5_log(const std::string& path) { return Hdf5LogReader(path).read_all(); }
+
+void write_hdf5_log(const log::Log& log, const std::string& path) {
+  write_atomically(path, [&](const std::string& temporary) {
+    try {
+      write_file(log, temporary);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw InputError(path, std::string("cannot write HDF5 log: ") + e.what());
+    }
+  });
+}
+
+}  // namespace roverlab::io

@@ -1,0 +1,67 @@
+#pragma once
+// RoverLab's own HDF5 log format, version 1 (docs/log-format.md).
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/log/log.h"
+
+namespace roverlab::io {
+
+inline constexpr int kLogFormatVersion = 1;
+inline constexpr const char* kLogFormatName = "roverlab-log";
+
+struct ChannelInfo {
+  std::string name;
+  std::string unit;
+  std::string description;
+};
+
+struct StreamInfo {
+  std::string name;
+  std::size_t size = 0;
+  std::vector<ChannelInfo> channels;
+};
+
+// Opens a RoverLab HDF5 log and reads its catalogue (names, units, sizes)
+// without reading any samples; streams and single channels are then read on
+// demand. Every failure is an InputError naming the file.
+class Hdf5LogReader {
+ public:
+  explicit Hdf5LogReader(const std::string& path);
+  ~Hdf5LogReader();
+  Hdf5LogReader(const Hdf5LogReader&) = delete;
+  Hdf5LogReader& operator=(const Hdf5LogReader&) = delete;
+
+  const std::string& path() const { return path_; }
+  int format_version() const { return format_version_; }
+  const log::LogMetadata& metadata() const { return metadata_; }
+  const std::vector<StreamInfo>& catalog() const { return catalog_; }
+
+  // One channel's samples in SI units, read without touching the others.
+  std::vector<double> read_channel(const std::string& stream, const std::string& channel) const;
+  std::vector<double> read_time(const std::string& stream) const;
+  log::Stream read_stream(const std::string& stream) const;
+  log::Log read_all() const;
+
+ private:
+  struct File;
+  std::string path_;
+  std::unique_ptr<File> file_;
+  int format_version_ = 0;
+  log::LogMetadata metadata_;
+  std::vector<StreamInfo> catalog_;
+};
+
+// True when path is an HDF5 file carrying the RoverLab log format attribute.
+bool is_roverlab_hdf5(const std::string& path);
+
+log::Log read_hdf5_log(const std::string& path);
+
+// Writes atomically (temporary file, then rename). Throws InputError naming
+// the path when it cannot be written.
+void write_hdf5_log(const log::Log& log, const std::string& path);
+
+}  // namespace roverlab::io

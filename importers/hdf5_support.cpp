@@ -1,0 +1,185 @@
+#include "importers/hdf5_support.h"
+
+#include <stdexcept>
+
+namespace roverlab::io::h5 {
+
+Handle& Handle::operator=(Handle&& other) noexcept {
+  if (this != &other) {
+    reset();
+    id_ = other.id_;
+    other.id_ = H5I_INVALID_HID;
+  }
+  return *this;
+}
+
+void Handle::reset() {
+  if (id_ < 0) return;
+  switch (H5Iget_type(id_)) {
+    case H5I_FILE: H5Fclose(id_); break;
+    case H5I_GROUP: H5Gclose(id_); break;
+    case H5I_DATASET: H5Dclose(id_); break;
+    case H5I_DATASPACE: H5Sclose(id_); break;
+    case H5I_DATATYPE: H5Tclose(id_); break;
+    case H5I_ATTR: H5Aclose(id_); break;
+    case H5I_GENPROP_LST: H5Pclose(id_); break;
+    default: H5Idec_ref(id_); break;
+  }
+  id_ = H5I_INVALID_HID;
+}
+
+void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+namespace {
+herr_t keep_innermost(unsigned n, const H5E_error2_t* err, void* data) {
+  auto* text = static_cast<std::string*>(data);
+  if (n == 0 && err->desc != nullptr) *text = err->desc;  // n = 0: where the error arose
+  return 0;
+}
+}  // namespace
+
+std::string last_error_text() {
+  std::string text;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &text);
+  H5Eclear2(H5E_DEFAULT);
+  for (char& c : text) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return text;
+}
+
+bool is_hdf5_file(const std::string& path) {
+  silence_errors();
+  const htri_t r = H5Fis_hdf5(path.c_str());
+  H5Eclear2(H5E_DEFAULT);
+  return r > 0;
+}
+
+bool has_attribute(hid_t object, const char* name) { return H5Aexists(object, name) > 0; }
+
+std::optional<std::string> read_string_attribute(hid_t object, const char* name) {
+  if (!has_attribute(object, name)) return std::nullopt;
+  Handle attr(H5Aopen(object, name, H5P_DEFAULT));
+  if (!attr.valid()) return std::nullopt;
+  Handle type(H5Aget_type(attr.get()));
+  if (H5Tget_class(type.get()) != H5T_STRING) return std::nullopt;
+  Handle space(H5Aget_space(attr.get()));
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) return std::nullopt;
+  if (H5Tis_variable_str(type.get()) > 0) {
+    Handle mem(H5Tcopy(H5T_C_S1));
+    H5Tset_size(mem.get(), H5T_VARIABLE);
+    H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
+    char* value = nullptr;
+    if (H5Aread(attr.get(), mem.get(), &value) < 0) return std::nullopt;
+    std::string out = value != nullptr ? value : "";
+    H5free_memory(value);
+    return out;
+  }
+  const size_t size = H5Tget_size(type.get());
+  std::string buffer(size + 1, '\0');
+  Handle mem(H5Tcopy(H5T_C_S1));
+  H5Tset_size(mem.get(), size + 1);
+  H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
+  if (H5Aread(attr.get(), mem.get(), buffer.data()) < 0) return std::nullopt;
+  buffer.resize(buffer.find('\0') == std::string::npos ? size : buffer.find('\0'));
+  return buffer;
+}
+
+std::optional<std::int64_t> read_int_attribute(hid_t object, const char* name) {
+  if (!has_attribute(object, name)) return std::nullopt;
+  Handle attr(H5Aopen(object, name, H5P_DEFAULT));
+  if (!attr.valid()) return std::nullopt;
+  Handle type(H5Aget_type(attr.get()));
+  if (H5Tget_class(type.get()) != H5T_INTEGER) return std::nullopt;
+  Handle space(H5Aget_space(attr.get()));
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) return std::nullopt;
+  std::int64_t value = 0;
+  if (H5Aread(attr.get(), H5T_NATIVE_INT64, &value) < 0) return std::nullopt;
+  return value;
+}
+
+void write_string_attribute(hid_t object, const char* name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1));
+  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  Handle space(H5Screate(H5S_SCALAR));
+  Handle attr(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT));
+  const std::string stored = value.empty() ? std::string(1, '\0') : value;
+  if (!attr.valid() || H5Awrite(attr.get(), type.get(), stored.data()) < 0) {
+    throw std::runtime_error(std::string("cannot write attribute '") + name + "': " +
+                             last_error_text());
+  }
+}
+
+void write_int_attribute(hid_t object, const char* name, std::int64_t value) {
+  Handle space(H5Screate(H5S_SCALAR));
+  Handle attr(
+      H5Acreate2(object, name, H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT));
+  if (!attr.valid() || H5Awrite(attr.get(), H5T_NATIVE_INT64, &value) < 0) {
+    throw std::runtime_error(std::string("cannot write attribute '") + name + "': " +
+                             last_error_text());
+  }
+}
+
+namespace {
+herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+  return 0;
+}
+}  // namespace
+
+std::vector<std::string> link_names(hid_t group) {
+  std::vector<std::string> names;
+  if (H5Literate(group, H5_INDEX_CRT_ORDER, H5_ITER_INC, nullptr, collect_name, &names) < 0) {
+    H5Eclear2(H5E_DEFAULT);
+    names.clear();
+    if (H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_name, &names) < 0) {
+      throw std::runtime_error("cannot list group: " + last_error_text());
+    }
+  }
+  return names;
+}
+
+ObjectKind object_kind(hid_t location, const std::string& path) {
+  if (H5Lexists(location, path.c_str(), H5P_DEFAULT) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    return ObjectKind::none;
+  }
+  Handle object(H5Oopen(location, path.c_str(), H5P_DEFAULT));
+  if (!object.valid()) return ObjectKind::none;
+  switch (H5Iget_type(object.get())) {
+    case H5I_GROUP: return ObjectKind::group;
+    case H5I_DATASET: return ObjectKind::dataset;
+    default: return ObjectKind::other;
+  }
+}
+
+std::vector<hsize_t> dataset_shape(hid_t dataset) {
+  Handle space(H5Dget_space(dataset));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) throw std::runtime_error("cannot read dataset shape: " + last_error_text());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (rank > 0) H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  return dims;
+}
+
+std::vector<double> read_doubles(hid_t dataset) {
+  Handle type(H5Dget_type(dataset));
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) {
+    throw std::runtime_error("dataset is not numeric");
+  }
+  Handle space(H5Dget_space(dataset));
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  if (n < 0) throw std::runtime_error("cannot read dataset size: " + last_error_text());
+  std::vector<double> values(static_cast<std::size_t>(n));
+  if (n > 0 && H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                       values.data()) < 0) {
+    const std::string why = last_error_text();
+    throw std::runtime_error("cannot read dataset" + (why.empty() ? "" : ": " + why));
+  }
+  return values;
+}
+
+}  // namespace roverlab::io::h5
