@@ -206,15 +206,17 @@ Hdf5LogReader::~Hdf5LogReader() = default;
 
 namespace {
 
+// Reads a dataset and converts it from its "unit" attribute (default_unit
+// when absent) to SI.
 std::vector<double> read_si(const std::string& path, hid_t dataset, const std::string& what,
-                            const std::string& expected_si = {}) {
+                            const std::string& default_unit, const std::string& expected_si = {}) {
   std::vector<double> values;
   try {
     values = h5::read_doubles(dataset);
   } catch (const std::runtime_error& e) {
     throw InputError(path, what + ": " + e.what() + " (truncated or corrupt file?)");
   }
-  const std::string unit = h5::read_string_attribute(dataset, "unit").value_or("1");
+  const std::string unit = h5::read_string_attribute(dataset, "unit").value_or(default_unit);
   log::UnitConversion si;
   try {
     si = log::unit_to_si(unit);
@@ -222,7 +224,8 @@ std::vector<double> read_si(const std::string& path, hid_t dataset, const std::s
     throw InputError(path, what + ": " + e.what());
   }
   if (!expected_si.empty() && si.si_unit != expected_si) {
-    throw InputError(path, what + ": unit '" + unit + "' is not a unit of " + expected_si);
+    throw InputError(path, what + ": unit '" + unit + "' is not a unit of " +
+                               (expected_si == "s" ? std::string("time") : expected_si));
   }
   if (si.factor != 1.0 || si.offset != 0.0) {
     for (double& v : values) v = v * si.factor + si.offset;
@@ -237,7 +240,7 @@ std::vector<double> Hdf5LogReader::read_time(const std::string& stream) const {
   if (!group.valid()) throw InputError(path_, "no stream '" + stream + "'");
   Handle ds(H5Dopen2(group.get(), "time", H5P_DEFAULT));
   if (!ds.valid()) throw InputError(path_, "stream '" + stream + "' has no time");
-  return read_si(path_, ds.get(), "stream '" + stream + "', time", "s");
+  return read_si(path_, ds.get(), "stream '" + stream + "', time", "s", "s");
 }
 
 std::vector<double> Hdf5LogReader::read_channel(const std::string& stream,
@@ -247,7 +250,7 @@ std::vector<double> Hdf5LogReader::read_channel(const std::string& stream,
     throw InputError(path_, "no channel '" + channel + "' in stream '" + stream + "'");
   }
   Handle ds(H5Dopen2(file_->streams.get(), where.c_str(), H5P_DEFAULT));
-  return read_si(path_, ds.get(), "stream '" + stream + "', channel '" + channel + "'");
+  return read_si(path_, ds.get(), "stream '" + stream + "', channel '" + channel + "'", "1");
 }
 
 log::Stream Hdf5LogReader::read_stream(const std::string& stream) const {

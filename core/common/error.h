@@ -19,11 +19,17 @@ class DataError : public std::runtime_error {
 class InputError : public std::runtime_error {
  public:
   InputError(const std::string& file, const std::string& problem)
-      : std::runtime_error(file + ": " + problem), file_(file), problem_(problem) {}
+      : std::runtime_error(one_line(file + ": " + problem)), file_(file), problem_(problem) {}
   const std::string& file() const { return file_; }
   const std::string& problem() const { return problem_; }
 
  private:
+  static std::string one_line(std::string text) {
+    for (char& c : text) {
+      if (c == '\n' || c == '\r') c = ' ';
+    }
+    return text;
+  }
   std::string file_;
   std::string problem_;
 };

@@ -1,0 +1,106 @@
+// Writing and reading a 10-minute, 1 kHz, 64-channel log (about 300 MB of
+// doubles) in RoverLab's HDF5 format. Targets (issue 2): reading back in at
+// most 1 s, using at most 1.5 times the raw size in memory.
+//
+//   build/bench/bench_log_io [--benchmark_filter=...] [ROVERLAB_BENCH_DIR=/tmp]
+//
+// Counters: raw_MB (payload), file_MB, read_MBps, mem_ratio (bytes allocated
+// by the read, measured with mallinfo2, over the raw payload).
+#include <benchmark/benchmark.h>
+#include <malloc.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "core/log/log.h"
+#include "core/log/resample.h"
+#include "importers/hdf5_log.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace roverlab;
+
+constexpr double kSeconds = 600.0;
+constexpr double kRateHz = 1000.0;
+constexpr int kChannels = 64;
+
+std::string bench_path() {
+  const char* dir = std::getenv("ROVERLAB_BENCH_DIR");
+  return (fs::path(dir != nullptr ? dir : fs::temp_directory_path().c_str()) /
+          ("roverlab-bench-" + std::to_string(::getpid()) + ".h5"))
+      .string();
+}
+
+log::Log make_log() {
+  log::Log lg;
+  lg.metadata.description = "benchmark: 10 min, 1 kHz, 64 channels";
+  std::vector<double> t = log::uniform_times(0.0, kSeconds - 1.0 / kRateHz, kRateHz);
+  log::Stream s("imu", t);
+  for (int c = 0; c < kChannels; ++c) {
+    std::vector<double> v(t.size());
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<double>(c) + 1e-3 * static_cast<double>(i % 1000);
+    s.add_channel("ch" + std::to_string(c), "m/s^2", std::move(v));
+  }
+  lg.add_stream(std::move(s));
+  return lg;
+}
+
+std::size_t allocated_bytes() {
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+}
+
+void BM_WriteLog(benchmark::State& state) {
+  const log::Log lg = make_log();
+  const std::string path = bench_path();
+  for (auto _ : state) io::write_hdf5_log(lg, path);
+  const double raw = static_cast<double>(lg.payload_bytes());
+  state.counters["raw_MB"] = raw / 1e6;
+  state.counters["file_MB"] = static_cast<double>(fs::file_size(path)) / 1e6;
+  state.counters["write_MBps"] = benchmark::Counter(raw / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  fs::remove(path);
+}
+BENCHMARK(BM_WriteLog)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+void BM_ReadLog(benchmark::State& state) {
+  const std::string path = bench_path();
+  double raw = 0.0;
+  {
+    const log::Log lg = make_log();
+    raw = static_cast<double>(lg.payload_bytes());
+    io::write_hdf5_log(lg, path);
+  }
+  double worst_ratio = 0.0;
+  for (auto _ : state) {
+    const std::size_t before = allocated_bytes();
+    log::Log back = io::read_hdf5_log(path);
+    const std::size_t after = allocated_bytes();
+    worst_ratio = std::max(worst_ratio, static_cast<double>(after - before) / raw);
+    benchmark::DoNotOptimize(back);
+  }
+  state.counters["raw_MB"] = raw / 1e6;
+  state.counters["mem_ratio"] = worst_ratio;
+  state.counters["read_MBps"] = benchmark::Counter(raw / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  fs::remove(path);
+}
+BENCHMARK(BM_ReadLog)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
+
+// Reading one channel alone: what the chunked layout buys a plot.
+void BM_ReadOneChannel(benchmark::State& state) {
+  const std::string path = bench_path();
+  io::write_hdf5_log(make_log(), path);
+  io::Hdf5LogReader reader(path);
+  for (auto _ : state) {
+    auto v = reader.read_channel("imu", "ch17");
+    benchmark::DoNotOptimize(v);
+  }
+  fs::remove(path);
+}
+BENCHMARK(BM_ReadOneChannel)->Unit(benchmark::kMillisecond)->Iterations(10)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,299 @@
+// The roverlab command line, run as a user runs it: exit codes, one-line
+// errors naming the file, no partial output, and the convert round trip.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/common/error.h"
+#include "importers/hdf5_log.h"
+#include "importers/log_file.h"
+#include "importers/mapping.h"
+#include "importers/raw_hdf5.h"
+#include "test_support.h"
+
+using namespace roverlab;
+using namespace roverlab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kExe = ROVERLAB_EXE;
+const std::string kPathfinder = std::string(ROVERLAB_TEST_DATA) + "/test17run.mat";
+
+CommandResult run_roverlab(const std::string& args) { return run_command(quote(kExe) + " " + args); }
+
+std::size_t count_lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+std::size_t files_in(const fs::path& folder) {
+  std::size_t n = 0;
+  for (const auto& e : fs::directory_iterator(folder)) {
+    (void)e;
+    ++n;
+  }
+  return n;
+}
+
+// Runs `info` and `convert` on a bad input: both must exit 3 with one line on
+// stderr naming the file and containing `problem`, and convert must leave no
+// output (nor temporary) file.
+void expect_bad_input(const std::string& input, const std::string& problem,
+                      const std::string& extra_args = "") {
+  SCOPED_TRACE(input);
+  const CommandResult info = run_roverlab("info " + quote(input) + " " + extra_args);
+  EXPECT_EQ(info.exit_code, 3) << info.err;
+  EXPECT_EQ(count_lines(info.err), 1u) << info.err;
+  EXPECT_NE(info.err.find(input), std::string::npos) << info.err;
+  EXPECT_NE(info.err.find(problem), std::string::npos) << info.err;
+
+  TempDir out;
+  const CommandResult convert =
+      run_roverlab("convert " + quote(input) + " " + quote(out.file("out.h5")) + " " + extra_args);
+  EXPECT_EQ(convert.exit_code, 3) << convert.err;
+  EXPECT_EQ(count_lines(convert.err), 1u) << convert.err;
+  EXPECT_NE(convert.err.find(problem), std::string::npos) << convert.err;
+  EXPECT_EQ(files_in(out.path()), 0u) << "convert left a file behind";
+}
+
+// A RoverLab HDF5 log written by hand with the given time base.
+void write_log_with_time(const std::string& path, const std::vector<double>& time) {
+  RawHdf5 f(path);
+  RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
+  RawHdf5::int_attribute(f.id(), "format_version", 1);
+  f.group("streams/imu");
+  hid_t g = H5Gopen2(f.id(), "streams/imu", H5P_DEFAULT);
+  RawHdf5::string_attribute(g, "roverlab_kind", "stream");
+  H5Gclose(g);
+  H5Dclose(f.dataset("streams/imu/time", time));
+  H5Dclose(f.dataset("streams/imu/channels/x", std::vector<double>(time.size(), 1.0)));
+}
+
+}  // namespace
+
+TEST(Cli, InfoListsPathfinderStreamsWithUnitsRatesAndDurations) {
+  const CommandResult r = run_roverlab("info " + quote(kPathfinder) + " --mapping wvu_pathfinder");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("stream imu: 17611 samples, 250.0 Hz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("stream wheels: 705 samples, 10.0 Hz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[m/s^2]"), std::string::npos);
+  EXPECT_NE(r.out.find("[rad/s]"), std::string::npos);
+
+  const CommandResult j = run_roverlab("info " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const auto doc = nlohmann::json::parse(j.out);
+  const auto& streams = doc.at("streams");
+  auto find = [&](const std::string& name) {
+    return *std::find_if(streams.begin(), streams.end(),
+                         [&](const auto& s) { return s.at("name") == name; });
+  };
+  EXPECT_EQ(find("imu").at("samples"), 17611);
+  EXPECT_NEAR(find("imu").at("rate_hz").get<double>(), 250.0, 1.0);
+  EXPECT_NEAR(find("imu").at("duration_s").get<double>(), 70.44, 0.01);
+  EXPECT_EQ(find("wheels").at("samples"), 705);
+  EXPECT_NEAR(find("wheels").at("rate_hz").get<double>(), 10.0, 0.05);
+  EXPECT_EQ(find("imu").at("channels").at(0).at("unit"), "m/s^2");
+}
+
+TEST(Cli, ConvertThenInfoShowsTheSameStreamsAndIdenticalValues) {
+  TempDir dir;
+  const std::string out = dir.file("test17run.h5");
+  const CommandResult c =
+      run_roverlab("convert " + quote(kPathfinder) + " " + quote(out) + " --mapping wvu_pathfinder");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_EQ(files_in(dir.path()), 1u);
+
+  const CommandResult a = run_roverlab("info " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+  const CommandResult b = run_roverlab("info " + quote(out) + " --json");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(ja.at("streams"), jb.at("streams"));  // names, counts, rates, units, min, max
+  EXPECT_EQ(ja.at("metadata"), jb.at("metadata"));
+
+  // And every value bit for bit.
+  io::LoadOptions options;
+  options.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) +
+                                     "/mappings/wvu_pathfinder.json");
+  const log::Log original = io::load_log(kPathfinder, options).log;
+  const log::Log converted = io::load_log(out).log;
+  ASSERT_EQ(original.streams().size(), converted.streams().size());
+  for (std::size_t s = 0; s < original.streams().size(); ++s) {
+    const auto& so = original.streams()[s];
+    const auto& sc = converted.streams()[s];
+    EXPECT_EQ(so.name(), sc.name());
+    EXPECT_EQ(so.time(), sc.time());
+    ASSERT_EQ(so.channels().size(), sc.channels().size());
+    for (std::size_t k = 0; k < so.channels().size(); ++k) {
+      EXPECT_EQ(so.channels()[k].values, sc.channels()[k].values) << so.channels()[k].name;
+      EXPECT_EQ(so.channels()[k].unit, sc.channels()[k].unit);
+    }
+  }
+}
+
+TEST(Cli, ConvertToCsvAndBack) {
+  TempDir dir;
+  write_text(dir.file("in.csv"), "time [s],pitch [deg]\n0,0\n1,90\n");
+  ASSERT_EQ(run_roverlab("convert " + quote(dir.file("in.csv")) + " " + quote(dir.file("a.h5"))).exit_code, 0);
+  const CommandResult r = run_roverlab("convert " + quote(dir.file("a.h5")) + " " + quote(dir.file("b.csv")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir.file("b.csv")), "time [s],pitch [rad]\n0,0\n1,1.5707963267948966\n");
+}
+
+TEST(Cli, UsageErrorsExitTwoAndHelpExitsZero) {
+  EXPECT_EQ(run_roverlab("").exit_code, 2);
+  EXPECT_EQ(run_roverlab("frobnicate").exit_code, 2);
+  EXPECT_EQ(run_roverlab("info").exit_code, 2);
+  EXPECT_EQ(run_roverlab("info x.h5 --no-such-option").exit_code, 2);
+  EXPECT_EQ(run_roverlab("convert " + quote(kPathfinder) + " out.txt -m wvu_pathfinder").exit_code, 2);
+  for (const std::string cmd : {"", "info ", "convert ", "mappings "}) {
+    const CommandResult r = run_roverlab(cmd + "--help");
+    EXPECT_EQ(r.exit_code, 0) << cmd;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << cmd;
+  }
+  const CommandResult m = run_roverlab("mappings");
+  EXPECT_EQ(m.exit_code, 0);
+  EXPECT_NE(m.out.find("wvu_pathfinder"), std::string::npos);
+}
+
+// --- bad input: one test per case of the foundation issue -----------------
+
+TEST(CliBadInput, MissingFile) {
+  TempDir dir;
+  expect_bad_input(dir.file("nope.h5"), "no such file");
+}
+
+TEST(CliBadInput, NotAnHdf5File) {
+  TempDir dir;
+  write_text(dir.file("log.h5"), "this is not HDF5\n");
+  expect_bad_input(dir.file("log.h5"), "not an HDF5 file");
+}
+
+TEST(CliBadInput, TruncatedHdf5File) {
+  TempDir dir;
+  const std::string good = dir.file("good.h5");
+  ASSERT_EQ(run_roverlab("convert " + quote(kPathfinder) + " " + quote(good) + " -m wvu_pathfinder").exit_code, 0);
+  const auto size = fs::file_size(good);
+  const std::string cut = dir.file("cut.h5");
+  fs::copy_file(good, cut);
+  fs::resize_file(cut, size / 2);
+  expect_bad_input(cut, "truncated");
+}
+
+TEST(CliBadInput, TruncatedMatFile) {
+  TempDir dir;
+  const std::string cut = dir.file("cut.mat");
+  fs::copy_file(kPathfinder, cut);
+  fs::resize_file(cut, fs::file_size(kPathfinder) / 3);
+  expect_bad_input(cut, "truncated", "-m wvu_pathfinder");
+}
+
+TEST(CliBadInput, MatFileOlderThanV73) {
+  TempDir dir;
+  std::string header(116, ' ');
+  header.replace(0, 63, "MATLAB 5.0 MAT-file, Platform: GLNXA64, Created on: Mon Jan  1");
+  write_text(dir.file("old.mat"), header + std::string(12, '\0') + "IM" + std::string(200, 'x'));
+  expect_bad_input(dir.file("old.mat"), "older than v7.3", "-m wvu_pathfinder");
+  expect_bad_input(dir.file("old.mat"), "older than v7.3");
+}
+
+TEST(CliBadInput, MatFileWithoutMapping) {
+  const CommandResult r = run_roverlab("info " + quote(kPathfinder));
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("--mapping"), std::string::npos) << r.err;
+}
+
+TEST(CliBadInput, MappingNamesAVariableTheFileLacks) {
+  TempDir dir;
+  std::string mapping = read_text(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/wvu_pathfinder.json");
+  mapping.replace(mapping.find("\"Gz\""), 4, "\"GyroZ\"");
+  write_text(dir.file("m.json"), mapping);
+  expect_bad_input(kPathfinder, "'GyroZ'", "--mapping " + quote(dir.file("m.json")));
+}
+
+TEST(CliBadInput, UnknownMapping) {
+  const CommandResult r = run_roverlab("info " + quote(kPathfinder) + " -m no_such_rover");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("no_such_rover"), std::string::npos);
+  EXPECT_EQ(count_lines(r.err), 1u);
+}
+
+TEST(CliBadInput, ChannelLengthDiffersFromTimeBase) {
+  TempDir dir;
+  std::string mapping = read_text(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/wvu_pathfinder.json");
+  // Put a 705-sample wheel variable into the 17611-sample IMU stream.
+  mapping.replace(mapping.find("\"Gz\""), 4, "\"frontRightPos\"");
+  write_text(dir.file("m.json"), mapping);
+  expect_bad_input(kPathfinder, "705 samples but the time base has 17611",
+                   "--mapping " + quote(dir.file("m.json")));
+  // The same in a RoverLab HDF5 log.
+  {
+    RawHdf5 f(dir.file("short.h5"));
+    RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
+    RawHdf5::int_attribute(f.id(), "format_version", 1);
+    f.group("streams/imu");
+    hid_t g = H5Gopen2(f.id(), "streams/imu", H5P_DEFAULT);
+    RawHdf5::string_attribute(g, "roverlab_kind", "stream");
+    H5Gclose(g);
+    H5Dclose(f.dataset("streams/imu/time", {0.0, 1.0, 2.0}));
+    H5Dclose(f.dataset("streams/imu/channels/x", {1.0, 2.0}));
+  }
+  expect_bad_input(dir.file("short.h5"), "2 samples but the time base has 3");
+}
+
+TEST(CliBadInput, NaNTime) {
+  TempDir dir;
+  write_text(dir.file("nan.csv"), "time [s],x [m]\n0,1\nnan,2\n2,3\n");
+  expect_bad_input(dir.file("nan.csv"), "line 3: time is 'nan'");
+  write_log_with_time(dir.file("nan.h5"), {0.0, std::nan(""), 2.0});
+  expect_bad_input(dir.file("nan.h5"), "time is not finite at sample 1");
+}
+
+TEST(CliBadInput, NonIncreasingTime) {
+  TempDir dir;
+  write_text(dir.file("back.csv"), "time [s],x [m]\n0,1\n1,2\n1,3\n");
+  expect_bad_input(dir.file("back.csv"), "line 4: time 1 s is not after");
+  write_log_with_time(dir.file("back.h5"), {0.0, 1.0, 0.5});
+  expect_bad_input(dir.file("back.h5"), "not strictly increasing at sample 2");
+}
+
+TEST(CliBadInput, CsvRaggedRow) {
+  TempDir dir;
+  write_text(dir.file("ragged.csv"), "time [s],x [m],y [m]\n0,1,2\n1,2\n");
+  expect_bad_input(dir.file("ragged.csv"), "line 3: 2 cells but the header has 3");
+}
+
+TEST(CliBadInput, CsvUnparsableNumber) {
+  TempDir dir;
+  write_text(dir.file("bad.csv"), "time [s],x [m]\n0,1\n1,1.2.3\n");
+  expect_bad_input(dir.file("bad.csv"), "line 3, column 'x': cannot parse '1.2.3'");
+}
+
+TEST(CliBadInput, UnknownUnitString) {
+  TempDir dir;
+  write_text(dir.file("units.csv"), "time [s],x [furlong]\n0,1\n");
+  expect_bad_input(dir.file("units.csv"), "unknown unit 'furlong'");
+  {
+    RawHdf5 f(dir.file("units.h5"));
+    RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
+    RawHdf5::int_attribute(f.id(), "format_version", 1);
+    f.group("streams/imu");
+    hid_t g = H5Gopen2(f.id(), "streams/imu", H5P_DEFAULT);
+    RawHdf5::string_attribute(g, "roverlab_kind", "stream");
+    H5Gclose(g);
+    H5Dclose(f.dataset("streams/imu/time", {0.0, 1.0}));
+    hid_t d = f.dataset("streams/imu/channels/x", {1.0, 2.0});
+    RawHdf5::string_attribute(d, "unit", "cubits");
+    H5Dclose(d);
+  }
+  expect_bad_input(dir.file("units.h5"), "unknown unit 'cubits'");
+}
+
+TEST(CliBadInput, UnwritableOutputIsBadInputNotACrash) {
+  TempDir dir;
+  const CommandResult r = run_roverlab("convert " + quote(kPathfinder) + " " +
+                                   quote(dir.file("no/such/folder/out.h5")) + " -m wvu_pathfinder");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+}
