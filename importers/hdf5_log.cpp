@@ -15,8 +15,10 @@ using h5::Handle;
 
 namespace {
 
-constexpr hsize_t kChunkSamples = 262144;  // 2 MiB of doubles: above the 1 MiB chunk cache,
-                                           // so whole-channel reads go straight to the buffer
+// Chunks of at most 2 MiB of doubles, split evenly so that the last chunk is
+// not mostly empty (HDF5 allocates whole chunks). Chunks above the 1 MiB chunk
+// cache are read straight into the caller's buffer.
+constexpr hsize_t kMaxChunkSamples = 262144;
 
 Handle make_group(hid_t parent, const std::string& name) {
   Handle gcpl(H5Pcreate(H5P_GROUP_CREATE));
@@ -41,7 +43,8 @@ void write_vector(hid_t parent, const std::string& name, const std::vector<doubl
   Handle space(H5Screate_simple(1, &n, nullptr));
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
   if (n > 0) {
-    const hsize_t chunk = std::min<hsize_t>(n, kChunkSamples);
+    const hsize_t chunks = (n + kMaxChunkSamples - 1) / kMaxChunkSamples;
+    const hsize_t chunk = (n + chunks - 1) / chunks;
     H5Pset_chunk(dcpl.get(), 1, &chunk);
   }
   Handle dataset(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
