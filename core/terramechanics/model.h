@@ -1,0 +1,75 @@
+#pragma once
+// Rigid wheel on deformable soil: Bekker (seed 003 Eq. 2.1-2.7) and
+// Wong-Reece (Eq. 2.8-2.22) with the skid extension (Eq. 2.26-2.27) and
+// switchable extensions from the literature.
+
+#include <string>
+
+#include "core/terramechanics/soil.h"
+
+namespace roverlab::terramechanics {
+
+enum class ModelKind { bekker, wong_reece };
+enum class Integration { simpson, riemann };
+
+// Extensions of the baseline model. Each is off at its neutral value.
+struct Extensions {
+  // Slip-sinkage (Ding et al. 2011, J. Terramechanics 48(1)): the sinkage
+  // exponent grows with slip, n = n0 + n1 * |s|.
+  double slip_sinkage_n1 = 0.0;
+  // Grousers (Ding et al. 2011, "equivalent radius"): soil shears at
+  // r + lambda * h, lambda in [0, 1]; only for wheels with grousers.
+  bool grousers = false;
+  double grouser_effectiveness = 1.0;
+  // Bulldozing resistance of the soil pushed ahead of the wheel (Bekker
+  // 1960, in Wong, Theory of Ground Vehicles, Eq. 2.79), scaled.
+  bool bulldozing = false;
+  double bulldozing_scale = 1.0;
+  // Soil strength factor: multiplies c, tan(phi), kc and kphi (a uniformly
+  // weaker or stronger soil than the nominal description).
+  double soil_strength = 1.0;
+};
+
+struct ModelOptions {
+  ModelKind kind = ModelKind::wong_reece;
+  Integration integration = Integration::simpson;
+  int riemann_points = 500;
+  Extensions extensions;
+};
+
+enum class TractionStatus {
+  ok,
+  unsupported_load,  // no entry angle below pi/2 carries the load
+  invalid_input,     // non-finite or non-positive load, slip outside [-1, 1]
+};
+
+struct Traction {
+  TractionStatus status = TractionStatus::invalid_input;
+  double entry_angle = 0.0;       // theta_0, rad
+  double max_stress_angle = 0.0;  // theta_m, rad (Wong-Reece)
+  double drawbar_pull = 0.0;      // N
+  double resistive_torque = 0.0;  // N m
+  double sinkage = 0.0;           // r (1 - cos theta_0), m
+  bool ok() const { return status == TractionStatus::ok; }
+};
+
+// Traction of one wheel at normal load W (N) and slip s in [-1, 1]
+// (negative: skid, by the anti-symmetric extension Eq. 2.26-2.27).
+Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip,
+                  const ModelOptions& options = {});
+
+// Slip or skid and the direction of the traction forces from the wheel
+// centre speed v (m/s) and the wheel rate omega (rad/s): Eq. 2.23 with the
+// cases of Table 2.3.
+struct SlipState {
+  double slip = 0.0;
+  double direction = 1.0;
+  int table_case = 1;  // row of Table 2.3
+};
+SlipState slip_state(double v, double omega, double radius);
+
+const char* to_string(TractionStatus status);
+ModelKind parse_model_kind(const std::string& text);  // throws DataError
+Integration parse_integration(const std::string& text);  // throws DataError
+
+}  // namespace roverlab::terramechanics

@@ -1,0 +1,253 @@
+#pragma once
+// The wheel-soil model as templates over the scalar type, so that the same
+// code gives values (double) and derivatives (ceres::Jet) for soil
+// identification. Internal to core/terramechanics.
+
+#include <cmath>
+#include <type_traits>
+
+#include "core/terramechanics/model.h"
+
+namespace roverlab::terramechanics::detail {
+
+using std::cos;
+using std::exp;
+using std::pow;
+using std::sin;
+using std::sqrt;
+using std::tan;
+using std::atan;
+using std::log;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kGravity = 9.80665;
+
+// Parameters a fit may vary, as scalars of type T.
+template <typename T>
+struct Params {
+  T n, cohesion, tan_phi, shear_modulus, kc, kphi, c1, c2, density;
+  T slip_sinkage_n1, grouser_effectiveness, bulldozing_scale, soil_strength;
+};
+
+template <typename T>
+Params<T> make_params(const Soil& s, const Extensions& e) {
+  return Params<T>{T(s.n), T(s.cohesion), T(std::tan(s.friction_angle)), T(s.shear_modulus),
+                   T(s.kc), T(s.kphi), T(s.c1), T(s.c2), T(s.density),
+                   T(e.slip_sinkage_n1), T(e.grouser_effectiveness), T(e.bulldozing_scale),
+                   T(e.soil_strength)};
+}
+
+template <typename T>
+struct Integrals {
+  T normal;   // vertical reaction, Eq. 2.20 (2.5 for Bekker)
+  T drawbar;  // Eq. 2.21 (2.6)
+  T torque;   // Eq. 2.22 (2.7)
+};
+
+// x^n for x >= 0, with x = 0 giving exactly 0 (and a zero derivative).
+template <typename T>
+T power(const T& x, const T& n) {
+  if (!(x > 0.0)) return T(0.0);
+  return exp(n * log(x));
+}
+
+// Stress integrals for entry angle theta0 and slip s >= 0.
+template <typename T>
+Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s,
+                       const T& theta0) {
+  const double r = w.radius, b = w.width;
+  const T f = p.soil_strength;
+  const T c = f * p.cohesion, tan_phi = f * p.tan_phi;
+  const T kc = f * p.kc, kphi = f * p.kphi;
+  const T n = p.n + p.slip_sinkage_n1 * s;  // slip-sinkage, Ding et al. 2011
+  const bool grousers = o.extensions.grousers && w.grouser_count > 0 && w.grouser_height > 0.0;
+  const T rs = grousers ? r + p.grouser_effectiveness * w.grouser_height : T(r);
+  const T cos0 = cos(theta0), sin0 = sin(theta0);
+  Integrals<T> out{T(0.0), T(0.0), T(0.0)};
+
+  if (o.kind == ModelKind::bekker) {
+    const T modulus = kc / b + kphi;
+    auto sample = [&](const T& th, T& sigma, T& tau) {
+      sigma = modulus * power(T(r) * (cos(th) - cos0), n);  // Eq. 2.1, seed 003
+      tau = c + sigma * tan_phi;                             // Eq. 2.4
+    };
+    auto add = [&](const T& th, const T& weight) {
+      T sigma, tau;
+      sample(th, sigma, tau);
+      out.normal += weight * sigma * cos(th);                  // Eq. 2.5
+      out.drawbar += weight * (tau * cos(th) - sigma * sin(th));  // Eq. 2.6
+      out.torque += weight * tau;                              // Eq. 2.7
+    };
+    if (o.integration == Integration::simpson) {
+      const T h = theta0 / 4.0;  // composite Simpson, two panels (five points)
+      const double wts[5] = {1, 4, 2, 4, 1};
+      for (int k = 0; k < 5; ++k) add(h * double(k), h / 3.0 * wts[k]);
+    } else {
+      const T h = theta0 / double(o.riemann_points);
+      for (int k = 0; k < o.riemann_points; ++k) add(h * (k + 0.5), h);
+    }
+    out.normal *= b * r;
+    out.drawbar *= b * r;
+    out.torque *= b * r * r;
+    return out;
+  }
+
+  // Wong-Reece.
+  const T modulus = (kc + kphi * b) * pow(T(b), n - 1.0);  // k1 + k2 b, Eq. 2.12-2.13
+  const T theta_m = theta0 * (p.c1 + p.c2 * s);          // Eq. 2.10
+  auto sample = [&](const T& th, T& sigma, T& tau) {
+    // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front).
+    const T th_eq = th >= theta_m ? th : theta0 - th / theta_m * (theta0 - theta_m);
+    sigma = modulus * power(T(r / b) * (cos(th_eq) - cos0), n);
+    const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - sin(th)));  // Eq. 2.18
+    tau = (c + sigma * tan_phi) * (1.0 - exp(-j / p.shear_modulus));  // Eq. 2.19
+  };
+  T i_sigma_cos(0.0), i_sigma_sin(0.0), i_tau_cos(0.0), i_tau_sin(0.0), i_tau(0.0);
+  auto add = [&](const T& th, const T& weight) {
+    T sigma, tau;
+    sample(th, sigma, tau);
+    const T ct = cos(th), st = sin(th);
+    i_sigma_cos += weight * sigma * ct;
+    i_sigma_sin += weight * sigma * st;
+    i_tau_cos += weight * tau * ct;
+    i_tau_sin += weight * tau * st;
+    i_tau += weight * tau;
+  };
+  if (o.integration == Integration::simpson) {
+    // Eq. 2.25: Simpson on [theta_m, theta_0] and on [0, theta_m].
+    const T front = (theta0 - theta_m) / 6.0, rear = theta_m / 6.0;
+    add(theta0, front);
+    add((theta0 + theta_m) * 0.5, 4.0 * front);
+    add(theta_m, front + rear);
+    add(theta_m * 0.5, 4.0 * rear);
+    add(T(0.0), rear);
+  } else {
+    const T h = theta0 / double(o.riemann_points);
+    for (int k = 0; k < o.riemann_points; ++k) add(h * (k + 0.5), h);
+  }
+  out.normal = b * (r * i_sigma_cos + rs * i_tau_sin);   // Eq. 2.20
+  out.drawbar = b * (rs * i_tau_cos - r * i_sigma_sin);  // Eq. 2.21
+  out.torque = b * rs * rs * i_tau;                      // Eq. 2.22
+  return out;
+}
+
+// Bulldozing resistance for sinkage z (Bekker; Wong, Theory of Ground
+// Vehicles, Eq. 2.79) with Terzaghi/Vesic bearing-capacity factors.
+template <typename T>
+T bulldozing_resistance(const Params<T>& p, double width, const T& z) {
+  const T tan_phi = p.soil_strength * p.tan_phi;
+  const T c = p.soil_strength * p.cohesion;
+  const T phi = atan(tan_phi);
+  const T nq = exp(kPi * tan_phi) * pow(tan(kPi / 4.0 + phi / 2.0), 2.0);
+  const T nc = (nq - 1.0) / tan_phi;
+  const T ngamma = 2.0 * (nq + 1.0) * tan_phi;
+  const T cos2 = cos(phi) * cos(phi);
+  const T kc = (nc - tan_phi) * cos2;
+  const T kgamma = (2.0 * ngamma / tan_phi + 1.0) * cos2;
+  const T gamma = p.density * kGravity;
+  return width * (0.67 * c * z * kc + 0.5 * z * z * gamma * kgamma);
+}
+
+template <typename T>
+struct Solution {
+  TractionStatus status = TractionStatus::invalid_input;
+  T theta0, theta_m, drawbar, torque, sinkage;
+};
+
+inline double value_of(double x) { return x; }
+template <typename J>
+double value_of(const J& x) { return x.a; }
+
+// Entry angle theta0 from vertical equilibrium (Eq. 2.24) and the traction
+// at slip s >= 0. The root is bracketed in (0, pi/2] and found by secant
+// steps on log(normal force) against log(theta0), which is nearly linear,
+// safeguarded by bisection. For Jets, one Newton step from the converged
+// root carries d theta0 / d parameters (implicit function theorem).
+template <typename T>
+Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s,
+                  double load) {
+  Solution<T> out;
+  Params<double> pv;
+  if constexpr (std::is_same_v<T, double>) {
+    pv = p;
+  } else {
+    pv = Params<double>{value_of(p.n), value_of(p.cohesion), value_of(p.tan_phi),
+                        value_of(p.shear_modulus), value_of(p.kc), value_of(p.kphi),
+                        value_of(p.c1), value_of(p.c2), value_of(p.density),
+                        value_of(p.slip_sinkage_n1), value_of(p.grouser_effectiveness),
+                        value_of(p.bulldozing_scale), value_of(p.soil_strength)};
+  }
+  auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
+  double hi = kPi / 2.0;
+  double n_hi = normal(hi);
+  if (!(n_hi >= load)) {
+    out.status = TractionStatus::unsupported_load;
+    return out;
+  }
+  double lo = 0.0, n_lo = 0.0;
+  // Start from the small-angle power law N ~ theta^(2n+1) through (hi, n_hi).
+  const double exponent0 = 2.0 * value_of(pv.n) + 1.0;
+  double th = hi * std::pow(load / n_hi, 1.0 / exponent0);
+  double prev_th = hi, prev_n = n_hi;
+  double root = th;
+  for (int it = 0; it < 60; ++it) {
+    if (!(th > lo && th < hi)) th = 0.5 * (lo + hi);
+    const double nv = normal(th);
+    root = th;
+    if (std::abs(nv - load) <= 1e-10 * load || hi - lo < 1e-13) break;
+    if (nv < load) {
+      lo = th;
+      n_lo = nv;
+    } else {
+      hi = th;
+      n_hi = nv;
+    }
+    double next;
+    if (nv > 0.0 && prev_n > 0.0 && prev_th != th && std::abs(std::log(nv / prev_n)) > 1e-300) {
+      const double slope = std::log(nv / prev_n) / std::log(th / prev_th);
+      next = th * std::exp(std::log(load / nv) / slope);
+    } else {
+      next = 0.5 * (lo + hi);
+    }
+    prev_th = th;
+    prev_n = nv;
+    th = next;
+  }
+  (void)n_lo;
+  T theta0 = T(root);
+  if constexpr (!std::is_same_v<T, double>) {
+    const double h = 1e-7 * std::max(root, 1e-3);
+    const double dn = (normal(root + h) - normal(root - h)) / (2.0 * h);
+    const Integrals<T> at = integrals<T>(p, w, o, s, theta0);
+    theta0 = theta0 - (at.normal - load) / dn;
+  }
+  const Integrals<T> in = integrals<T>(p, w, o, s, theta0);
+  out.status = TractionStatus::ok;
+  out.theta0 = theta0;
+  out.theta_m = theta0 * (p.c1 + p.c2 * s);
+  out.sinkage = w.radius * (1.0 - cos(theta0));
+  out.drawbar = in.drawbar;
+  out.torque = in.torque;
+  if (o.extensions.bulldozing) {
+    out.drawbar -= p.bulldozing_scale * bulldozing_resistance(p, w.width, out.sinkage);
+  }
+  return out;
+}
+
+// Any slip in [-1, 1]: skid by anti-symmetry about the s = 0 value
+// (Eq. 2.26-2.27, seed 003). Entry angle and sinkage of a skidding wheel are
+// those of the mirrored slip.
+template <typename T>
+Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s,
+                           double load) {
+  if (s >= 0.0) return solve(p, w, o, s, load);
+  Solution<T> mirrored = solve(p, w, o, -s, load);
+  if (mirrored.status != TractionStatus::ok) return mirrored;
+  const Solution<T> zero = solve(p, w, o, 0.0, load);
+  if (zero.status != TractionStatus::ok) return zero;
+  mirrored.drawbar = -mirrored.drawbar + 2.0 * zero.drawbar;  // Eq. 2.26
+  mirrored.torque = -mirrored.torque + 2.0 * zero.torque;     // Eq. 2.27
+  return mirrored;
+}
+
+}  // namespace roverlab::terramechanics::detail
