@@ -3,11 +3,19 @@
 // thrown (InputError -> 3, anything else -> 4) and reported by main.
 
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace roverlab::app {
 
 enum ExitCode : int { kSuccess = 0, kUsageError = 2, kBadInput = 3, kInternalFailure = 4 };
+
+// Options that parse but make no sense together (exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct InfoOptions {
   std::string file;
@@ -24,5 +32,51 @@ struct ConvertOptions {
 int run_convert(const ConvertOptions& options);
 
 int run_list_mappings();
+
+}  // namespace roverlab::app
+
+namespace roverlab::app {
+
+struct TerramechanicsOptions {
+  std::string soil;
+  double radius = 0.0, width = 0.0;
+  int grousers = 0;
+  double grouser_height = 0.0;
+  std::vector<double> loads, slips;
+  std::string model = "wong";
+  std::string integration = "simpson";
+  int riemann_points = 500;
+  double slip_sinkage_n1 = 0.3;
+  double grouser_effectiveness = 1.0;
+  double bulldozing_scale = 1.0;
+  double soil_strength = 1.0;
+  std::string format = "csv";
+};
+int run_terramechanics(const TerramechanicsOptions& options);
+
+struct SurfaceOptions {
+  TerramechanicsOptions model;
+  double load_min = 0.1, load_max = 200.0, slip_min = 0.0, slip_max = 1.0;
+  int grid = 100;
+  std::string order = "4";  // 1..6 or auto
+  bool json = false;
+};
+int run_terramechanics_surface(const SurfaceOptions& options);
+
+struct FitOptions {
+  std::string file;
+  std::string order = "auto";
+  int grid_bins = 10;
+  bool json = false;
+};
+int run_terramechanics_fit(const FitOptions& options);
+
+struct SingleWheelDiscrepancyOptions {
+  std::string file;
+  std::string soil;
+  std::string integration = "simpson";
+  bool json = false;
+};
+int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& options);
 
 }  // namespace roverlab::app

@@ -38,6 +38,73 @@ int dispatch(int argc, char** argv) {
 
   auto* mappings_cmd = cli.add_subcommand("mappings", "List the importer mappings RoverLab knows");
 
+  // terramechanics: evaluate the wheel-soil model; `surface` and `fit` fit polynomials.
+  TerramechanicsOptions tm;
+  auto* tm_cmd = cli.add_subcommand(
+      "terramechanics", "Drawbar pull, resistive torque, sinkage and entry angle of a rigid wheel");
+  // The parent command's options are checked in run_terramechanics, so that
+  // `terramechanics fit FILE` does not ask for them.
+  auto add_model_options = [](CLI::App* cmd, TerramechanicsOptions& o, bool need_lists) {
+    auto* soil = cmd->add_option("--soil", o.soil, "Soil NAME (resources/soils/NAME.json) or FILE");
+    auto* radius = cmd->add_option("--radius", o.radius, "Wheel radius, m");
+    auto* width = cmd->add_option("--width", o.width, "Wheel width, m");
+    if (!need_lists) {
+      soil->required();
+      radius->required();
+      width->required();
+    }
+    cmd->add_option("--grousers", o.grousers, "Number of grousers");
+    cmd->add_option("--grouser-height", o.grouser_height, "Grouser height, m");
+    if (need_lists) {
+      cmd->add_option("--load", o.loads, "Normal loads W, N (comma separated)")->delimiter(',');
+      cmd->add_option("--slip", o.slips, "Slips s in [-1, 1] (comma separated)")->delimiter(',');
+      cmd->add_option("--format", o.format, "csv or json")->capture_default_str();
+    }
+    cmd->add_option("--model", o.model,
+                    "bekker | wong, with +slip-sinkage, +grousers, +bulldozing (e.g. wong+slip-sinkage)")
+        ->capture_default_str();
+    cmd->add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
+    cmd->add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")->capture_default_str();
+    cmd->add_option("--slip-sinkage-n1", o.slip_sinkage_n1, "n = n0 + n1 |s| (with +slip-sinkage)")->capture_default_str();
+    cmd->add_option("--grouser-effectiveness", o.grouser_effectiveness, "shear radius r + lambda h (with +grousers)")
+        ->capture_default_str();
+    cmd->add_option("--bulldozing-scale", o.bulldozing_scale, "scale of the bulldozing resistance (with +bulldozing)")
+        ->capture_default_str();
+    cmd->add_option("--soil-strength", o.soil_strength, "factor on c, tan(phi), kc, kphi")->capture_default_str();
+  };
+  SurfaceOptions surface;
+  auto* surface_cmd = tm_cmd->add_subcommand(
+      "surface", "Fit DP(W, s) and tau_R(W, s) polynomials (Eq. 2.28) to a model grid, as in seed 003 Appendix A");
+  add_model_options(surface_cmd, surface.model, false);
+  surface_cmd->add_option("--load-min", surface.load_min, "N")->capture_default_str();
+  surface_cmd->add_option("--load-max", surface.load_max, "N")->capture_default_str();
+  surface_cmd->add_option("--slip-min", surface.slip_min)->capture_default_str();
+  surface_cmd->add_option("--slip-max", surface.slip_max)->capture_default_str();
+  surface_cmd->add_option("--grid", surface.grid, "Grid points per axis")->capture_default_str();
+  surface_cmd->add_option("--order", surface.order, "Polynomial order 1..6, or auto (cross-validated)")->capture_default_str();
+  surface_cmd->add_flag("--json", surface.json, "Print JSON");
+  FitOptions fit;
+  auto* fit_cmd = tm_cmd->add_subcommand(
+      "fit", "Fit traction-surface polynomials to a CSV of points (load_N, slip, drawbar_pull_N / resistive_torque_Nm)");
+  fit_cmd->add_option("FILE", fit.file, "CSV of points")->required();
+  fit_cmd->add_option("--order", fit.order, "Polynomial order 1..6, or auto (cross-validated)")->capture_default_str();
+  fit_cmd->add_option("--grid", fit.grid_bins, "Occupancy grid bins per axis")->capture_default_str();
+  fit_cmd->add_flag("--json", fit.json, "Print JSON");
+  add_model_options(tm_cmd, tm, true);
+  tm_cmd->require_subcommand(0, 1);
+
+  auto* discrepancy_cmd = cli.add_subcommand(
+      "discrepancy", "Where a model disagrees with measured data, why, and what an extended model gains");
+  discrepancy_cmd->require_subcommand(1);
+  SingleWheelDiscrepancyOptions sw;
+  auto* sw_cmd = discrepancy_cmd->add_subcommand(
+      "single-wheel", "Baseline Wong-Reece against measured single-wheel points: residuals, cause, gain");
+  sw_cmd->add_option("FILE", sw.file, "CSV: radius_m, width_m, load_N, slip and drawbar_pull_N / torque_Nm / sinkage_m")
+      ->required();
+  sw_cmd->add_option("--soil", sw.soil, "Soil NAME (resources/soils/NAME.json) or FILE")->required();
+  sw_cmd->add_option("--integration", sw.integration, "simpson | riemann")->capture_default_str();
+  sw_cmd->add_flag("--json", sw.json, "Print JSON");
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -53,6 +120,10 @@ int dispatch(int argc, char** argv) {
   if (info_cmd->parsed()) return run_info(info);
   if (convert_cmd->parsed()) return run_convert(convert);
   if (mappings_cmd->parsed()) return run_list_mappings();
+  if (surface_cmd->parsed()) return run_terramechanics_surface(surface);
+  if (fit_cmd->parsed()) return run_terramechanics_fit(fit);
+  if (tm_cmd->parsed()) return run_terramechanics(tm);
+  if (sw_cmd->parsed()) return run_discrepancy_single_wheel(sw);
   return kUsageError;
 }
 
@@ -61,6 +132,9 @@ int dispatch(int argc, char** argv) {
 int main(int argc, char** argv) {
   try {
     return dispatch(argc, argv);
+  } catch (const roverlab::app::UsageError& e) {
+    std::cerr << "roverlab: " << e.what() << "\n";
+    return roverlab::app::kUsageError;
   } catch (const roverlab::InputError& e) {
     std::cerr << "roverlab: " << e.what() << "\n";
     return roverlab::app::kBadInput;

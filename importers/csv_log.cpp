@@ -10,33 +10,13 @@
 #include "core/common/error.h"
 #include "core/log/units.h"
 #include "importers/atomic_file.h"
+#include "importers/csv_text.h"
 
 namespace roverlab::io {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  std::string out(s.substr(first, last - first + 1));
-  if (out.size() >= 2 && out.front() == '"' && out.back() == '"') out = out.substr(1, out.size() - 2);
-  return out;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> cells;
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', begin);
-    cells.push_back(line.substr(begin, comma == std::string_view::npos ? std::string_view::npos
-                                                                       : comma - begin));
-    if (comma == std::string_view::npos) return cells;
-    begin = comma + 1;
-  }
-}
 
 struct Column {
   std::string name;
@@ -48,8 +28,8 @@ struct Column {
 std::pair<std::string, std::string> parse_header_cell(const std::string& cell) {
   const auto open = cell.rfind('[');
   if (open == std::string::npos || cell.back() != ']') return {cell, "1"};
-  return {trim(std::string_view(cell).substr(0, open)),
-          trim(std::string_view(cell).substr(open + 1, cell.size() - open - 2))};
+  return {csv::trim(std::string_view(cell).substr(0, open)),
+          csv::trim(std::string_view(cell).substr(open + 1, cell.size() - open - 2))};
 }
 
 }  // namespace
@@ -68,13 +48,13 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
   while (std::getline(in, line)) {
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::string stripped = trim(line);
+    const std::string stripped = csv::trim(line);
     if (stripped.empty() || stripped.front() == '#') continue;
-    const auto cells = split(line);
+    const auto cells = csv::split(line);
     const std::string where = "line " + std::to_string(line_number);
     if (columns.empty()) {  // header
       for (std::size_t k = 0; k < cells.size(); ++k) {
-        auto [name, unit] = parse_header_cell(trim(cells[k]));
+        auto [name, unit] = parse_header_cell(csv::trim(cells[k]));
         if (name.empty()) throw InputError(path, where + ": empty header cell in column " + std::to_string(k + 1));
         Column c;
         c.name = name;
@@ -103,17 +83,13 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
                                  std::to_string(columns.size()) + " (ragged row)");
     }
     for (std::size_t k = 0; k < cells.size(); ++k) {
-      const std::string cell = trim(cells[k]);
+      const std::string cell = csv::trim(cells[k]);
       double value = std::numeric_limits<double>::quiet_NaN();
-      if (!cell.empty()) {
-        const char* first = cell.data();
-        const char* last = cell.data() + cell.size();
-        if (*first == '+') ++first;
-        const auto [ptr, err] = std::from_chars(first, last, value);
-        if (err != std::errc() || ptr != last) {
-          throw InputError(path, where + ", column '" + columns[k].name + "': cannot parse '" +
-                                     cell + "' as a number");
-        }
+      try {
+        value = csv::parse_number(cell).value_or(value);
+      } catch (const std::invalid_argument&) {
+        throw InputError(path, where + ", column '" + columns[k].name + "': cannot parse '" +
+                                   cell + "' as a number");
       }
       Column& c = columns[k];
       value = value * c.si.factor + c.si.offset;

@@ -1,0 +1,121 @@
+// `roverlab discrepancy single-wheel`: what the baseline terramechanics model
+// gets wrong on measured single-wheel points, the cause, and the gain.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/resources.h"
+#include "core/analysis/single_wheel_discrepancy.h"
+#include "core/common/error.h"
+#include "importers/soil_file.h"
+#include "importers/wheel_test_csv.h"
+
+namespace roverlab::app {
+
+using nlohmann::json;
+using namespace roverlab::terramechanics;
+
+namespace {
+
+json nullable(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
+  json j = json::object();
+  for (const auto& s : stats) {
+    j[to_string(s.quantity)] = {{"count", s.count}, {"rmse", s.rmse}, {"bias", s.bias},
+                                {"slope_vs_slip", s.slope_vs_slip}, {"t_slip", s.t_slip},
+                                {"slope_vs_load", s.slope_vs_load}, {"t_load", s.t_load},
+                                {"unit", unit_of(s.quantity)}};
+  }
+  return j;
+}
+
+}  // namespace
+
+int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
+  const auto points = io::read_wheel_test_csv(o.file);
+  const Soil soil = io::find_soil(o.soil, resource_subfolders("soils"));
+  analysis::DiscrepancyOptions options;
+  try {
+    options.baseline.integration = parse_integration(o.integration);
+  } catch (const DataError& e) {
+    throw UsageError(e.what());
+  }
+  const analysis::DiscrepancyReport r = analysis::study_single_wheel(soil, points, options);
+
+  if (o.json) {
+    json j = {{"file", o.file}, {"soil", soil.name}, {"points", r.points},
+              {"measurements", r.measurements}, {"unsupported", r.unsupported},
+              {"baseline", {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score},
+                            {"bic", r.baseline_bic}}},
+              {"significant", r.significant},
+              {"cause", r.significant ? json(r.candidates[static_cast<std::size_t>(r.best)].name) : json(nullptr)},
+              {"what_is_wrong", r.what_is_wrong}, {"verdict", r.verdict}};
+    j["candidates"] = json::array();
+    for (const auto& c : r.candidates) {
+      json cj = {{"name", c.name}, {"cause", c.cause}, {"applicable", c.applicable}};
+      if (!c.applicable) {
+        cj["not_applicable_because"] = c.not_applicable_because;
+      } else {
+        cj["parameters"] = json::array();
+        for (const auto& p : c.fit.parameters) {
+          cj["parameters"].push_back({{"name", to_string(p.parameter)}, {"value", p.value},
+                                      {"sigma", nullable(p.sigma)}, {"at_bound", p.at_bound}});
+        }
+        cj["bic"] = c.bic;
+        cj["delta_bic"] = c.delta_bic;
+        cj["in_sample_residuals"] = stats_json(c.in_sample);
+        cj["held_out_score_sigma"] = c.held_out_score;
+        json ho = json::object(), base = json::object();
+        for (std::size_t i = 0; i < r.quantities.size(); ++i) {
+          ho[to_string(r.quantities[i])] = nullable(c.held_out_rmse[i]);
+        }
+        cj["held_out_rmse"] = ho;
+      }
+      j["candidates"].push_back(cj);
+    }
+    json base = json::object();
+    for (std::size_t i = 0; i < r.quantities.size(); ++i) base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
+    j["baseline"]["held_out_rmse"] = base;
+    std::cout << j.dump(2) << "\n";
+    return kSuccess;
+  }
+
+  std::printf("%s: %zu points, %zu measurements, soil %s, baseline Wong-Reece (%s)\n", o.file.c_str(), r.points,
+              r.measurements, soil.name.c_str(), o.integration.c_str());
+  if (r.unsupported > 0) std::printf("  %zu measurements at loads the model cannot carry (skipped)\n", r.unsupported);
+  std::printf("\nbaseline residuals (predicted - measured):\n");
+  std::printf("  %-13s %5s %12s %12s %16s %16s\n", "quantity", "n", "RMSE", "bias", "trend/slip (t)", "trend/100N (t)");
+  for (const auto& s : r.baseline) {
+    const double k = s.quantity == Quantity::sinkage ? 1000.0 : 1.0;
+    const char* u = s.quantity == Quantity::sinkage ? "mm" : unit_of(s.quantity);
+    std::printf("  %-13s %5zu %9.3f %-3s %8.3f %-3s %9.3f (%5.1f) %9.3f (%5.1f)\n", to_string(s.quantity), s.count,
+                s.rmse * k, u, s.bias * k, u, s.slope_vs_slip * k, s.t_slip, s.slope_vs_load * k * 100.0, s.t_load);
+  }
+  std::printf("\ncandidate causes (each fitted with Ceres; held-out = leave-one-out):\n");
+  std::printf("  %-14s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC", "held-out sigma");
+  std::printf("  %-14s %-24s %22s %10s %14.3f\n", "(baseline)", "-", "-", "0", r.baseline_score);
+  for (const auto& c : r.candidates) {
+    if (!c.applicable) {
+      std::printf("  %-14s not applicable: %s\n", c.name.c_str(), c.not_applicable_because.c_str());
+      continue;
+    }
+    for (std::size_t i = 0; i < c.fit.parameters.size(); ++i) {
+      const auto& p = c.fit.parameters[i];
+      char value[64];
+      std::snprintf(value, sizeof value, "%.4g +- %.2g%s", p.value, p.sigma, p.at_bound ? " (bound)" : "");
+      if (i == 0) {
+        std::printf("  %-14s %-24s %22s %10.1f %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
+                    c.delta_bic, c.held_out_score);
+      } else {
+        std::printf("  %-14s %-24s %22s\n", "", to_string(p.parameter), value);
+      }
+    }
+  }
+  std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
+  return kSuccess;
+}
+
+}  // namespace roverlab::app

@@ -1,0 +1,268 @@
+// `roverlab terramechanics` (evaluate), `... surface` and `... fit`.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/commands.h"
+#include "app/resources.h"
+#include "core/common/error.h"
+#include "core/terramechanics/model.h"
+#include "core/terramechanics/traction_surface.h"
+#include "importers/soil_file.h"
+#include "importers/table_csv.h"
+
+namespace roverlab::app {
+
+using nlohmann::json;
+using namespace roverlab::terramechanics;
+
+namespace {
+
+// "wong", "bekker", "wong+slip-sinkage+grousers", ...
+ModelOptions model_options(const TerramechanicsOptions& o) try {
+  ModelOptions m;
+  std::stringstream parts(o.model);
+  std::string part;
+  bool first = true;
+  while (std::getline(parts, part, '+')) {
+    if (first) {
+      m.kind = parse_model_kind(part);
+      first = false;
+    } else if (part == "slip-sinkage") {
+      m.extensions.slip_sinkage_n1 = o.slip_sinkage_n1;
+    } else if (part == "grousers") {
+      m.extensions.grousers = true;
+      m.extensions.grouser_effectiveness = o.grouser_effectiveness;
+    } else if (part == "bulldozing") {
+      m.extensions.bulldozing = true;
+      m.extensions.bulldozing_scale = o.bulldozing_scale;
+    } else {
+      throw DataError("unknown model extension '" + part + "' (slip-sinkage, grousers, bulldozing)");
+    }
+  }
+  m.extensions.soil_strength = o.soil_strength;
+  m.integration = parse_integration(o.integration);
+  m.riemann_points = o.riemann_points;
+  if (o.riemann_points < 2) throw DataError("--riemann-points must be at least 2");
+  return m;
+} catch (const DataError& e) {
+  throw UsageError(e.what());
+}
+
+Wheel wheel_of(const TerramechanicsOptions& o) {
+  if (!(o.radius > 0.0) || !(o.width > 0.0)) throw UsageError("--radius and --width must be positive (metres)");
+  Wheel w;
+  w.radius = o.radius;
+  w.width = o.width;
+  w.grouser_count = o.grousers;
+  w.grouser_height = o.grouser_height;
+  return w;
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", v);
+  return buffer;
+}
+
+std::vector<double> poly_json(const PolynomialSurface& p) { return p.coefficients(); }
+
+json surface_json(const SurfaceFit& fit) {
+  json j = {{"order", fit.surface.order()},
+            {"coefficients", poly_json(fit.surface)},
+            {"mean_abs_error", fit.error.mean_abs},
+            {"rmse", fit.error.rmse},
+            {"max_abs_error", fit.error.max_abs}};
+  j["cross_validation"] = json::array();
+  for (const auto& s : fit.orders) {
+    j["cross_validation"].push_back({{"order", s.order}, {"train_rmse", s.train_rmse}, {"cv_rmse", s.cv_rmse}});
+  }
+  return j;
+}
+
+void print_surface(const std::string& title, const char* unit, const SurfaceFit& fit) {
+  std::printf("%s: order %d, mean |error| %.6g %s, RMSE %.6g %s, max |error| %.6g %s\n", title.c_str(),
+              fit.surface.order(), fit.error.mean_abs, unit, fit.error.rmse, unit, fit.error.max_abs, unit);
+  if (!fit.orders.empty()) {
+    std::printf("  order  train RMSE   5-fold CV RMSE\n");
+    for (const auto& s : fit.orders) {
+      std::printf("  %5d  %11.5g  %11.5g%s\n", s.order, s.train_rmse, s.cv_rmse,
+                  s.order == fit.surface.order() ? "  <- chosen" : "");
+    }
+  }
+  std::printf("  coefficients p_kl of s^k W^l (Eq. 2.28 order):\n");
+  for (std::size_t i = 0; i < fit.surface.coefficients().size(); ++i) {
+    const auto [k, l] = PolynomialSurface::exponents(i);
+    std::printf("    p%d%d = % .10e\n", k, l, fit.surface.coefficients()[i]);
+  }
+}
+
+SurfaceFit fit_with(const std::vector<SurfaceSample>& samples, const std::string& order) {
+  if (order == "auto") return fit_surface_cross_validated(samples);
+  int o = 0;
+  try {
+    o = std::stoi(order);
+  } catch (const std::exception&) {
+    throw UsageError("--order must be 1..6 or auto");
+  }
+  SurfaceFit fit;
+  fit.surface = fit_surface(samples, o);
+  fit.error = fit_error(fit.surface, samples);
+  return fit;
+}
+
+}  // namespace
+
+int run_terramechanics(const TerramechanicsOptions& o) {
+  if (o.soil.empty()) throw UsageError("terramechanics: --soil is required (or use the surface / fit subcommands)");
+  const Soil soil = io::find_soil(o.soil, resource_subfolders("soils"));
+  const Wheel wheel = wheel_of(o);
+  const ModelOptions m = model_options(o);
+  if (o.format != "csv" && o.format != "json") throw UsageError("--format must be csv or json");
+  if (o.loads.empty() || o.slips.empty()) throw UsageError("give at least one --load and one --slip");
+  json rows = json::array();
+  if (o.format == "csv") {
+    std::cout << "load_N,slip,drawbar_pull_N,resistive_torque_Nm,sinkage_m,entry_angle_rad,status\n";
+  }
+  for (double load : o.loads) {
+    for (double slip : o.slips) {
+      const Traction t = evaluate(soil, wheel, load, slip, m);
+      if (o.format == "csv") {
+        std::cout << num(load) << "," << num(slip) << ","
+                  << (t.ok() ? num(t.drawbar_pull) + "," + num(t.resistive_torque) + "," +
+                                   num(t.sinkage) + "," + num(t.entry_angle)
+                             : std::string(",,,"))
+                  << "," << (t.ok() ? "ok" : t.status == TractionStatus::unsupported_load ? "unsupported_load" : "invalid_input")
+                  << "\n";
+      } else {
+        json r = {{"load_N", load}, {"slip", slip}, {"status", to_string(t.status)}};
+        if (t.ok()) {
+          r["drawbar_pull_N"] = t.drawbar_pull;
+          r["resistive_torque_Nm"] = t.resistive_torque;
+          r["sinkage_m"] = t.sinkage;
+          r["entry_angle_rad"] = t.entry_angle;
+        }
+        rows.push_back(r);
+      }
+    }
+  }
+  if (o.format == "json") {
+    std::cout << json{{"soil", soil.name}, {"model", o.model}, {"integration", o.integration}, {"rows", rows}}.dump(2)
+              << "\n";
+  }
+  return kSuccess;
+}
+
+int run_terramechanics_surface(const SurfaceOptions& o) {
+  const Soil soil = io::find_soil(o.model.soil, resource_subfolders("soils"));
+  const Wheel wheel = wheel_of(o.model);
+  const ModelOptions m = model_options(o.model);
+  if (o.grid < 2 || !(o.load_max > o.load_min) || !(o.slip_max > o.slip_min)) {
+    throw UsageError("the grid needs at least 2 points per axis and non-empty ranges");
+  }
+  std::vector<SurfaceSample> dp, tau;
+  std::size_t unsupported = 0;
+  const bool show_progress = isatty(2);
+  for (int i = 0; i < o.grid; ++i) {
+    const double load = o.load_min + (o.load_max - o.load_min) * i / (o.grid - 1);
+    for (int k = 0; k < o.grid; ++k) {
+      const double slip = o.slip_min + (o.slip_max - o.slip_min) * k / (o.grid - 1);
+      const Traction t = evaluate(soil, wheel, load, slip, m);
+      if (!t.ok()) {
+        ++unsupported;
+        continue;
+      }
+      dp.push_back({load, slip, t.drawbar_pull});
+      tau.push_back({load, slip, t.resistive_torque});
+    }
+    if (show_progress) std::fprintf(stderr, "\rgrid %3d %%", (i + 1) * 100 / o.grid);
+  }
+  if (show_progress) std::fprintf(stderr, "\r          \r");
+  if (dp.size() < 30) throw DataError("fewer than 30 supported grid points: the soil cannot carry these loads");
+  const SurfaceFit fdp = fit_with(dp, o.order);
+  const SurfaceFit ftau = fit_with(tau, o.order);
+  if (o.json) {
+    std::cout << json{{"soil", soil.name},
+                      {"grid", o.grid},
+                      {"load_range_N", {o.load_min, o.load_max}},
+                      {"slip_range", {o.slip_min, o.slip_max}},
+                      {"unsupported_points", unsupported},
+                      {"drawbar_pull", surface_json(fdp)},
+                      {"resistive_torque", surface_json(ftau)}}
+                     .dump(2)
+              << "\n";
+  } else {
+    std::printf("soil %s, wheel r = %g m, b = %g m, %s integration\n", soil.name.c_str(), wheel.radius,
+                wheel.width, o.model.integration.c_str());
+    std::printf("grid %d x %d over W = %g..%g N, s = %g..%g; %zu points unsupported (entry angle would exceed 90 deg)\n",
+                o.grid, o.grid, o.load_min, o.load_max, o.slip_min, o.slip_max, unsupported);
+    print_surface("drawbar pull DP(W, s)", "N", fdp);
+    print_surface("resistive torque tau_R(W, s)", "N m", ftau);
+  }
+  return kSuccess;
+}
+
+int run_terramechanics_fit(const FitOptions& o) {
+  const io::NumericTable t = io::read_numeric_table(o.file, {"load_N", "slip"});
+  const auto& load = *t.find("load_N");
+  const auto& slip = *t.find("slip");
+  json out = {{"file", o.file}};
+  bool any = false;
+  for (const auto& [column, title, unit] :
+       {std::tuple<std::string, std::string, const char*>{"drawbar_pull_N", "drawbar pull DP(W, s)", "N"},
+        {"resistive_torque_Nm", "resistive torque tau_R(W, s)", "N m"},
+        {"torque_Nm", "torque tau(W, s)", "N m"}}) {
+    const auto* values = t.find(column);
+    if (values == nullptr) continue;
+    std::vector<SurfaceSample> samples;
+    for (std::size_t i = 0; i < values->size(); ++i) {
+      if (std::isfinite((*values)[i]) && std::isfinite(load[i]) && std::isfinite(slip[i])) {
+        samples.push_back({load[i], slip[i], (*values)[i]});
+      }
+    }
+    if (samples.empty()) continue;
+    any = true;
+    const SurfaceFit fit = fit_with(samples, o.order);
+    double lmin = INFINITY, lmax = -INFINITY, smin = INFINITY, smax = -INFINITY;
+    for (const auto& s : samples) {
+      lmin = std::min(lmin, s.load);
+      lmax = std::max(lmax, s.load);
+      smin = std::min(smin, s.slip);
+      smax = std::max(smax, s.slip);
+    }
+    if (!(lmax > lmin)) lmax = lmin + 1.0;
+    if (!(smax > smin)) smax = smin + 1.0;
+    const OccupancyGrid grid = OccupancyGrid::build(samples, lmin, lmax, smin, smax, o.grid_bins, o.grid_bins);
+    if (o.json) {
+      json j = surface_json(fit);
+      j["points"] = samples.size();
+      j["occupancy"] = {{"load_range_N", {lmin, lmax}}, {"slip_range", {smin, smax}},
+                        {"bins", {o.grid_bins, o.grid_bins}}, {"counts", grid.counts},
+                        {"coverage", grid.coverage()}};
+      out[column] = j;
+    } else {
+      std::printf("%s from %zu points\n", title.c_str(), samples.size());
+      print_surface(title, unit, fit);
+      std::printf("  occupancy grid (%d x %d cells, loads %g..%g N down, slips %g..%g across): %.0f %% of cells hold data\n",
+                  o.grid_bins, o.grid_bins, lmin, lmax, smin, smax, 100.0 * grid.coverage());
+      for (int l = 0; l < o.grid_bins; ++l) {
+        std::printf("    ");
+        for (int s = 0; s < o.grid_bins; ++s) {
+          const int c = grid.count(l, s);
+          std::printf("%c", c == 0 ? '.' : c < 10 ? static_cast<char>('0' + c) : '#');
+        }
+        std::printf("\n");
+      }
+    }
+  }
+  if (!any) throw InputError(o.file, "no drawbar_pull_N, resistive_torque_Nm or torque_Nm values to fit");
+  if (o.json) std::cout << out.dump(2) << "\n";
+  return kSuccess;
+}
+
+}  // namespace roverlab::app

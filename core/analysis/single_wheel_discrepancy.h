@@ -1,0 +1,71 @@
+#pragma once
+// What the baseline Wong-Reece model gets wrong on measured single-wheel
+// points, which known cause explains it, and what the extended model gains on
+// held-out points.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/terramechanics/soil_identification.h"
+
+namespace roverlab::analysis {
+
+using terramechanics::Quantity;
+
+struct QuantityResiduals {
+  Quantity quantity;
+  std::size_t count = 0;
+  double rmse = 0.0;
+  double bias = 0.0;           // mean(predicted - measured)
+  double slope_vs_slip = 0.0;  // residual trend per unit slip (least squares)
+  double t_slip = 0.0;         // t statistic of that slope
+  double slope_vs_load = 0.0;  // per N
+  double t_load = 0.0;
+};
+
+// Residual statistics per measured quantity, for given predictions.
+std::vector<QuantityResiduals> residual_statistics(
+    const std::vector<terramechanics::PointResidual>& residuals,
+    const std::vector<terramechanics::WheelTestPoint>& points);
+
+struct CandidateResult {
+  std::string name;         // slip-sinkage, grousers, bulldozing, soil-strength
+  std::string cause;        // plain words
+  bool applicable = true;
+  std::string not_applicable_because;
+  terramechanics::IdentificationResult fit;  // on all points
+  double bic = 0.0;
+  double delta_bic = 0.0;                    // against the baseline; negative is better
+  std::vector<QuantityResiduals> in_sample;  // residuals of the fit on all points
+  std::vector<double> held_out_rmse;         // per quantity (order of `quantities`), leave-one-out
+  double held_out_score = 0.0;               // RMS of held-out residuals in sigmas
+};
+
+struct DiscrepancyOptions {
+  terramechanics::ModelOptions baseline;  // Wong-Reece, Simpson, no extensions
+  terramechanics::MeasurementSigma sigma;
+  double bic_threshold = -10.0;      // "very strong" evidence (Kass & Raftery 1995)
+  double min_held_out_gain = 0.10;   // and at least 10 % lower held-out error
+  bool leave_one_out = true;
+};
+
+struct DiscrepancyReport {
+  std::vector<Quantity> quantities;             // measured in the file
+  std::vector<QuantityResiduals> baseline;      // baseline residuals
+  std::vector<double> baseline_held_out_rmse;   // = in-sample: nothing is fitted
+  double baseline_score = 0.0;                  // RMS residual in sigmas
+  double baseline_bic = 0.0;
+  std::size_t points = 0, measurements = 0, unsupported = 0;
+  std::vector<CandidateResult> candidates;
+  int best = -1;             // index of the winning candidate, -1 when none is significant
+  bool significant = false;
+  std::string what_is_wrong;  // one sentence on the baseline's residuals
+  std::string verdict;        // one sentence: the cause and the gain, or "no significant discrepancy"
+};
+
+DiscrepancyReport study_single_wheel(const terramechanics::Soil& soil,
+                                     const std::vector<terramechanics::WheelTestPoint>& points,
+                                     const DiscrepancyOptions& options = {});
+
+}  // namespace roverlab::analysis

@@ -1,0 +1,261 @@
+#include "core/terramechanics/soil_identification.h"
+
+#include <ceres/ceres.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/common/error.h"
+#include "core/terramechanics/model_impl.h"
+
+namespace roverlab::terramechanics {
+
+const char* to_string(Quantity q) {
+  switch (q) {
+    case Quantity::drawbar_pull: return "drawbar_pull";
+    case Quantity::torque: return "torque";
+    case Quantity::sinkage: return "sinkage";
+  }
+  return "?";
+}
+
+const char* unit_of(Quantity q) {
+  switch (q) {
+    case Quantity::drawbar_pull: return "N";
+    case Quantity::torque: return "N*m";
+    case Quantity::sinkage: return "m";
+  }
+  return "?";
+}
+
+namespace {
+struct ParameterName {
+  Parameter p;
+  const char* name;
+  Bounds bounds;
+};
+const ParameterName kParameters[] = {
+    {Parameter::n, "n", {0.2, 2.5}},
+    {Parameter::cohesion, "cohesion", {0.0, 20000.0}},
+    {Parameter::friction_angle, "friction_angle", {0.05, 1.2}},
+    {Parameter::shear_modulus, "shear_modulus", {1e-4, 0.2}},
+    {Parameter::kc, "kc", {-1e6, 1e7}},
+    {Parameter::kphi, "kphi", {1e3, 1e9}},
+    {Parameter::c1, "c1", {0.0, 1.0}},
+    {Parameter::c2, "c2", {-0.5, 1.0}},
+    {Parameter::slip_sinkage_n1, "slip_sinkage_n1", {-0.5, 2.0}},
+    {Parameter::grouser_effectiveness, "grouser_effectiveness", {0.0, 2.0}},
+    {Parameter::bulldozing_scale, "bulldozing_scale", {0.0, 10.0}},
+    {Parameter::soil_strength, "soil_strength", {0.1, 5.0}},
+};
+
+// Assigns one free parameter inside the model's parameter set.
+template <typename T>
+void assign(detail::Params<T>& p, Parameter which, const T& v) {
+  using std::tan;
+  switch (which) {
+    case Parameter::n: p.n = v; break;
+    case Parameter::cohesion: p.cohesion = v; break;
+    case Parameter::friction_angle: p.tan_phi = tan(v); break;
+    case Parameter::shear_modulus: p.shear_modulus = v; break;
+    case Parameter::kc: p.kc = v; break;
+    case Parameter::kphi: p.kphi = v; break;
+    case Parameter::c1: p.c1 = v; break;
+    case Parameter::c2: p.c2 = v; break;
+    case Parameter::slip_sinkage_n1: p.slip_sinkage_n1 = v; break;
+    case Parameter::grouser_effectiveness: p.grouser_effectiveness = v; break;
+    case Parameter::bulldozing_scale: p.bulldozing_scale = v; break;
+    case Parameter::soil_strength: p.soil_strength = v; break;
+  }
+}
+
+// Residuals of one measured point: one per measured quantity, each in sigmas.
+struct PointCost {
+  const Soil* soil;
+  const ModelOptions* model;
+  const WheelTestPoint* point;
+  const std::vector<Parameter>* free;
+  MeasurementSigma sigma;
+
+  template <typename T>
+  bool operator()(T const* const* x, T* residual) const {
+    detail::Params<T> p = detail::make_params<T>(*soil, model->extensions);
+    for (std::size_t k = 0; k < free->size(); ++k) assign(p, (*free)[k], x[0][k]);
+    const auto sol = detail::solve_any_slip(p, point->wheel, *model, point->slip, point->load);
+    if (sol.status != TractionStatus::ok) return false;
+    int r = 0;
+    for (Quantity q : kQuantities) {
+      const auto m = point->measured(q);
+      if (!m) continue;
+      const T& predicted = q == Quantity::drawbar_pull ? sol.drawbar
+                           : q == Quantity::torque     ? sol.torque
+                                                       : sol.sinkage;
+      residual[r++] = (predicted - *m) / sigma.of(q);
+    }
+    return true;
+  }
+};
+
+int measured_count(const WheelTestPoint& p) {
+  int n = 0;
+  for (Quantity q : kQuantities) n += p.measured(q) ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+const char* to_string(Parameter p) {
+  for (const auto& row : kParameters) {
+    if (row.p == p) return row.name;
+  }
+  return "?";
+}
+
+Parameter parse_parameter(const std::string& text) {
+  for (const auto& row : kParameters) {
+    if (text == row.name) return row.p;
+  }
+  std::string known;
+  for (const auto& row : kParameters) known += std::string(known.empty() ? "" : ", ") + row.name;
+  throw DataError("unknown parameter '" + text + "' (" + known + ")");
+}
+
+Bounds default_bounds(Parameter p) {
+  for (const auto& row : kParameters) {
+    if (row.p == p) return row.bounds;
+  }
+  return {-INFINITY, INFINITY};
+}
+
+double get_parameter(const Soil& s, const Extensions& e, Parameter p) {
+  switch (p) {
+    case Parameter::n: return s.n;
+    case Parameter::cohesion: return s.cohesion;
+    case Parameter::friction_angle: return s.friction_angle;
+    case Parameter::shear_modulus: return s.shear_modulus;
+    case Parameter::kc: return s.kc;
+    case Parameter::kphi: return s.kphi;
+    case Parameter::c1: return s.c1;
+    case Parameter::c2: return s.c2;
+    case Parameter::slip_sinkage_n1: return e.slip_sinkage_n1;
+    case Parameter::grouser_effectiveness: return e.grouser_effectiveness;
+    case Parameter::bulldozing_scale: return e.bulldozing_scale;
+    case Parameter::soil_strength: return e.soil_strength;
+  }
+  return NAN;
+}
+
+void set_parameter(Soil& s, Extensions& e, Parameter p, double v) {
+  switch (p) {
+    case Parameter::n: s.n = v; break;
+    case Parameter::cohesion: s.cohesion = v; break;
+    case Parameter::friction_angle: s.friction_angle = v; break;
+    case Parameter::shear_modulus: s.shear_modulus = v; break;
+    case Parameter::kc: s.kc = v; break;
+    case Parameter::kphi: s.kphi = v; break;
+    case Parameter::c1: s.c1 = v; break;
+    case Parameter::c2: s.c2 = v; break;
+    case Parameter::slip_sinkage_n1: e.slip_sinkage_n1 = v; break;
+    case Parameter::grouser_effectiveness: e.grouser_effectiveness = v; break;
+    case Parameter::bulldozing_scale: e.bulldozing_scale = v; break;
+    case Parameter::soil_strength: e.soil_strength = v; break;
+  }
+}
+
+IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTestPoint>& points,
+                                   const IdentificationOptions& options) {
+  IdentificationResult result;
+  result.soil = soil;
+  result.extensions = options.model.extensions;
+  const std::size_t k = options.free.size();
+  std::vector<double> x(k);
+  for (std::size_t i = 0; i < k; ++i) x[i] = get_parameter(soil, result.extensions, options.free[i]);
+
+  if (k > 0) {
+    ceres::Problem problem;
+    for (const auto& point : points) {
+      const int m = measured_count(point);
+      if (m == 0) continue;
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
+          new PointCost{&soil, &options.model, &point, &options.free, options.sigma});
+      cost->AddParameterBlock(static_cast<int>(k));
+      cost->SetNumResiduals(m);
+      ceres::LossFunction* loss =
+          options.huber_sigmas > 0.0 ? new ceres::HuberLoss(options.huber_sigmas) : nullptr;
+      problem.AddResidualBlock(cost, loss, x.data());
+    }
+    if (problem.NumResidualBlocks() == 0) throw DataError("no measured quantities to fit");
+    for (std::size_t i = 0; i < k; ++i) {
+      const Bounds b = default_bounds(options.free[i]);
+      problem.SetParameterLowerBound(x.data(), static_cast<int>(i), b.lower);
+      problem.SetParameterUpperBound(x.data(), static_cast<int>(i), b.upper);
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = options.max_iterations;
+    so.function_tolerance = 1e-12;
+    so.parameter_tolerance = 1e-12;
+    so.logging_type = ceres::SILENT;
+    so.minimizer_progress_to_stdout = false;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    result.converged = summary.termination_type == ceres::CONVERGENCE;
+    result.message = summary.message;
+
+    ceres::Covariance::Options co;
+    co.algorithm_type = ceres::DENSE_SVD;
+    co.null_space_rank = 0;
+    ceres::Covariance covariance(co);
+    std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
+    std::vector<double> cov(k * k, NAN);
+    result.covariance_ok = covariance.Compute(blocks, &problem) &&
+                           covariance.GetCovarianceBlock(x.data(), x.data(), cov.data());
+    for (std::size_t i = 0; i < k; ++i) {
+      EstimatedParameter e;
+      e.parameter = options.free[i];
+      e.value = x[i];
+      e.bounds = default_bounds(options.free[i]);
+      const double span = e.bounds.upper - e.bounds.lower;
+      e.at_bound = x[i] <= e.bounds.lower + 1e-9 * span || x[i] >= e.bounds.upper - 1e-9 * span;
+      e.sigma = result.covariance_ok ? std::sqrt(std::max(cov[i * k + i], 0.0)) : NAN;
+      result.parameters.push_back(e);
+      set_parameter(result.soil, result.extensions, options.free[i], x[i]);
+    }
+  } else {
+    result.converged = true;
+    result.covariance_ok = true;
+  }
+
+  ModelOptions fitted = options.model;
+  fitted.extensions = result.extensions;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Traction t = evaluate(result.soil, points[i].wheel, points[i].load, points[i].slip, fitted);
+    for (Quantity q : kQuantities) {
+      const auto m = points[i].measured(q);
+      if (!m) continue;
+      PointResidual r;
+      r.point = i;
+      r.quantity = q;
+      r.measured = *m;
+      r.sigma = options.sigma.of(q);
+      r.predicted = !t.ok() ? NAN
+                    : q == Quantity::drawbar_pull ? t.drawbar_pull
+                    : q == Quantity::torque       ? t.resistive_torque
+                                                  : t.sinkage;
+      const double z = (r.predicted - r.measured) / r.sigma;
+      result.chi2 += std::isfinite(z) ? z * z : 0.0;
+      ++result.measurements;
+      result.residuals.push_back(r);
+    }
+  }
+  // Scatter larger than the claimed sigmas widens the parameter sigmas.
+  if (result.measurements > k && k > 0) {
+    const double reduced = result.chi2 / static_cast<double>(result.measurements - k);
+    if (reduced > 1.0) {
+      for (auto& e : result.parameters) e.sigma *= std::sqrt(reduced);
+    }
+  }
+  return result;
+}
+
+}  // namespace roverlab::terramechanics

@@ -1,0 +1,47 @@
+#pragma once
+// Measured single-wheel test points (testbed data such as Ding et al. 2011).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/terramechanics/soil.h"
+
+namespace roverlab::terramechanics {
+
+enum class Quantity { drawbar_pull, torque, sinkage };
+inline constexpr Quantity kQuantities[] = {Quantity::drawbar_pull, Quantity::torque, Quantity::sinkage};
+const char* to_string(Quantity q);
+const char* unit_of(Quantity q);
+
+struct WheelTestPoint {
+  Wheel wheel;
+  std::string wheel_label;  // e.g. "smooth", "grousered"
+  double load = 0.0;        // N
+  double slip = 0.0;
+  std::optional<double> drawbar_pull;  // N
+  std::optional<double> torque;        // N m (driving torque = resistive torque in steady state)
+  std::optional<double> sinkage;       // m
+  int source_line = 0;
+
+  std::optional<double> measured(Quantity q) const {
+    switch (q) {
+      case Quantity::drawbar_pull: return drawbar_pull;
+      case Quantity::torque: return torque;
+      case Quantity::sinkage: return sinkage;
+    }
+    return std::nullopt;
+  }
+};
+
+// Standard deviation of a measurement of each quantity.
+struct MeasurementSigma {
+  double drawbar_pull = 0.5;  // N
+  double torque = 0.2;        // N m
+  double sinkage = 0.0005;    // m
+  double of(Quantity q) const {
+    return q == Quantity::drawbar_pull ? drawbar_pull : q == Quantity::torque ? torque : sinkage;
+  }
+};
+
+}  // namespace roverlab::terramechanics

@@ -1,0 +1,95 @@
+#include "importers/wheel_test_csv.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+
+#include "core/common/error.h"
+#include "importers/csv_text.h"
+
+namespace roverlab::io {
+
+namespace fs = std::filesystem;
+using terramechanics::WheelTestPoint;
+
+std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "no such file");
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open file");
+  std::map<std::string, std::size_t> column;
+  std::vector<WheelTestPoint> points;
+  std::string line;
+  int line_number = 0;
+  std::size_t columns = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string stripped = csv::trim(line);
+    if (stripped.empty() || stripped.front() == '#') continue;
+    const auto cells = csv::split(line);
+    const std::string where = "line " + std::to_string(line_number);
+    if (column.empty()) {
+      for (std::size_t k = 0; k < cells.size(); ++k) column[csv::trim(cells[k])] = k;
+      columns = cells.size();
+      for (const char* required : {"radius_m", "width_m", "load_N", "slip"}) {
+        if (column.count(required) == 0) {
+          throw InputError(path, std::string("missing column '") + required +
+                                     "' (a single-wheel file needs radius_m, width_m, load_N, slip)");
+        }
+      }
+      if (column.count("drawbar_pull_N") + column.count("torque_Nm") + column.count("sinkage_m") == 0) {
+        throw InputError(path, "no measured column (drawbar_pull_N, torque_Nm or sinkage_m)");
+      }
+      continue;
+    }
+    if (cells.size() != columns) {
+      throw InputError(path, where + ": " + std::to_string(cells.size()) + " cells but the header has " +
+                                 std::to_string(columns) + " (ragged row)");
+    }
+    auto number = [&](const char* name) -> std::optional<double> {
+      const auto it = column.find(name);
+      if (it == column.end()) return std::nullopt;
+      const std::string cell = csv::trim(cells[it->second]);
+      try {
+        const auto v = csv::parse_number(cell);
+        if (v && !std::isfinite(*v)) throw std::invalid_argument(cell);
+        return v;
+      } catch (const std::invalid_argument&) {
+        throw InputError(path, where + ", column '" + name + "': cannot parse '" + cell + "' as a finite number");
+      }
+    };
+    auto required = [&](const char* name) {
+      const auto v = number(name);
+      if (!v) throw InputError(path, where + ": empty '" + name + "'");
+      return *v;
+    };
+    WheelTestPoint p;
+    p.source_line = line_number;
+    p.wheel.radius = required("radius_m");
+    p.wheel.width = required("width_m");
+    p.load = required("load_N");
+    p.slip = required("slip");
+    if (!(p.wheel.radius > 0.0 && p.wheel.radius < 5.0) || !(p.wheel.width > 0.0 && p.wheel.width < 5.0)) {
+      throw InputError(path, where + ": wheel radius and width must be in metres, in (0, 5)");
+    }
+    if (!(p.load > 0.0)) throw InputError(path, where + ": load_N must be positive");
+    if (p.slip < -1.0 || p.slip > 1.0) throw InputError(path, where + ": slip must be a ratio in [-1, 1]");
+    p.wheel.grouser_count = static_cast<int>(number("grouser_count").value_or(0.0));
+    p.wheel.grouser_height = number("grouser_height_m").value_or(0.0);
+    if (column.count("wheel")) p.wheel_label = csv::trim(cells[column.at("wheel")]);
+    p.drawbar_pull = number("drawbar_pull_N");
+    p.torque = number("torque_Nm");
+    p.sinkage = number("sinkage_m");
+    if (p.sinkage && (*p.sinkage < 0.0 || *p.sinkage > p.wheel.radius)) {
+      throw InputError(path, where + ": sinkage_m must be in metres, between 0 and the wheel radius");
+    }
+    points.push_back(p);
+  }
+  if (points.empty()) throw InputError(path, "no data rows");
+  return points;
+}
+
+}  // namespace roverlab::io
