@@ -1,0 +1,231 @@
+// Wong-Reece and Bekker wheel models against seed 003 (Setterfield 2011),
+// chapter 2: Table 2.2, Table 2.3, Fig. 2.4 shape facts, Eq. 2.20 equilibrium.
+#include <gtest/gtest.h>
+
+#include <ceres/jet.h>
+
+#include <cmath>
+
+#include "core/terramechanics/model.h"
+#include "core/terramechanics/model_impl.h"
+#include "terramechanics_soils.h"
+
+using namespace roverlab::terramechanics;
+using roverlab::test::ding_tyii;
+using roverlab::test::kapvik_wheel;
+using roverlab::test::lunar_nominal;
+
+TEST(Soil, WongConstantsFromBekkerModuliMatchTable22) {
+  // Eq. 2.12-2.13 with the Kapvik width: Table 2.2 gives k1 = 12.0 kPa, k2 = 1845.3 kPa/m.
+  EXPECT_NEAR(k1(ding_tyii(), 0.07), 12.0e3, 0.05e3);
+  EXPECT_NEAR(k2(ding_tyii(), 0.07), 1845.3e3, 2e3);
+}
+
+TEST(WongReece, VerticalEquilibriumHoldsAtTheEntryAngle) {
+  for (double load : {1.0, 20.0, 50.0, 150.0}) {
+    for (double slip : {0.0, 0.3, 0.9}) {
+      for (Integration integration : {Integration::simpson, Integration::riemann}) {
+        ModelOptions o;
+        o.integration = integration;
+        const Traction t = evaluate(ding_tyii(), kapvik_wheel(), load, slip, o);
+        ASSERT_TRUE(t.ok());
+        const auto p = detail::make_params<double>(ding_tyii(), o.extensions);
+        const auto in = detail::integrals<double>(p, kapvik_wheel(), o, slip, t.entry_angle);
+        EXPECT_NEAR(in.normal, load, 1e-8 * load);  // Eq. 2.20
+        EXPECT_NEAR(t.sinkage, 0.075 * (1.0 - std::cos(t.entry_angle)), 1e-15);
+        EXPECT_NEAR(t.max_stress_angle, t.entry_angle * (0.18 + 0.32 * slip), 1e-12);  // Eq. 2.10
+      }
+    }
+  }
+}
+
+TEST(WongReece, EntryAngleIsTheFirstRootOfEquation220) {
+  ModelOptions o;
+  for (const Soil& soil : {ding_tyii(), lunar_nominal()}) {
+    for (double load : {5.0, 50.0}) {
+      const double slip = 0.4;
+      const Traction t = evaluate(soil, kapvik_wheel(), load, slip, o);
+      ASSERT_TRUE(t.ok());
+      const auto p = detail::make_params<double>(soil, o.extensions);
+      // A fine scan from 0: the first crossing of W is where the solver stopped.
+      double first = NAN;
+      const int steps = 20000;
+      for (int k = 1; k <= steps; ++k) {
+        const double th = M_PI / 2 * k / steps;
+        if (detail::integrals<double>(p, kapvik_wheel(), o, slip, th).normal >= load) {
+          first = th;
+          break;
+        }
+      }
+      EXPECT_NEAR(t.entry_angle, first, M_PI / 2 / steps);
+    }
+  }
+}
+
+TEST(WongReece, Figure24ShapeFacts) {
+  // W = 50 N, Kapvik wheel r = 75 mm, b = 70 mm, TYII soil (seed 003 Fig. 2.4).
+  ModelOptions simpson, riemann;
+  riemann.integration = Integration::riemann;
+  const double load = 50.0;
+  auto dp = [&](double s, const ModelOptions& o) { return evaluate(ding_tyii(), kapvik_wheel(), load, s, o).drawbar_pull; };
+  auto tau = [&](double s, const ModelOptions& o) { return evaluate(ding_tyii(), kapvik_wheel(), load, s, o).resistive_torque; };
+  // Compaction resistance: a free-rolling wheel (s = 0) is pulled back.
+  EXPECT_LT(dp(0.0, simpson), 0.0);
+  // Resistive torque rises with slip over the whole range [-1, 1], and is
+  // negative (braking) for a strongly skidding wheel.
+  double previous = -INFINITY;
+  for (int k = -20; k <= 20; ++k) {
+    const double s = 0.05 * k;
+    const double t = tau(s, simpson);
+    EXPECT_GT(t, previous) << "s = " << s;
+    previous = t;
+  }
+  EXPECT_LT(tau(-1.0, simpson), 0.0);
+  // Drawbar pull rises with slip from s = -0.8 to 0.6, crosses zero once in
+  // (0, 0.3), and saturates: the gain from 0.3 to 0.6 is less than half that
+  // from 0 to 0.3. (Beyond |s| = 0.8 the growing sinkage makes it fall
+  // slightly: DP peaks near s = 0.8.)
+  previous = -INFINITY;
+  int crossings = 0;
+  for (int k = -16; k <= 12; ++k) {
+    const double s = 0.05 * k;
+    const double d = dp(s, simpson);
+    EXPECT_GT(d, previous) << "s = " << s;
+    if (previous < 0.0 && d >= 0.0) {
+      ++crossings;
+      EXPECT_GT(s, 0.0);
+      EXPECT_LT(s, 0.3);
+    }
+    previous = d;
+  }
+  EXPECT_EQ(crossings, 1);
+  EXPECT_LT(dp(0.6, simpson) - dp(0.3, simpson), 0.5 * (dp(0.3, simpson) - dp(0.0, simpson)));
+  // Skid is anti-symmetric about the s = 0 value (Eq. 2.26-2.27), continuous at 0.
+  for (double s : {0.1, 0.5, 1.0}) {
+    EXPECT_NEAR(dp(-s, simpson) + dp(s, simpson), 2.0 * dp(0.0, simpson), 1e-9);
+    EXPECT_NEAR(tau(-s, simpson) + tau(s, simpson), 2.0 * tau(0.0, simpson), 1e-9);
+  }
+  EXPECT_NEAR(dp(-1e-6, simpson), dp(1e-6, simpson), 1e-3);
+  // Simpson's five points and a 500-point Riemann sum "nearly identical".
+  for (int k = -10; k <= 10; ++k) {
+    const double s = 0.1 * k;
+    EXPECT_NEAR(dp(s, simpson), dp(s, riemann), 0.25) << "s = " << s;
+    EXPECT_NEAR(tau(s, simpson), tau(s, riemann), 0.01) << "s = " << s;
+  }
+}
+
+TEST(WongReece, ReportsLoadsTheSoilCannotCarry) {
+  // 600 N on the small Kapvik wheel in lunar soil needs theta0 > 90 deg.
+  const Traction t = evaluate(lunar_nominal(), kapvik_wheel(), 600.0, 0.5);
+  EXPECT_EQ(t.status, TractionStatus::unsupported_load);
+  EXPECT_FALSE(t.ok());
+  EXPECT_EQ(evaluate(ding_tyii(), kapvik_wheel(), -1.0, 0.5).status, TractionStatus::invalid_input);
+  EXPECT_EQ(evaluate(ding_tyii(), kapvik_wheel(), 10.0, 1.5).status, TractionStatus::invalid_input);
+  EXPECT_EQ(evaluate(ding_tyii(), kapvik_wheel(), NAN, 0.5).status, TractionStatus::invalid_input);
+}
+
+TEST(Bekker, EquilibriumAndSlipIndependence) {
+  ModelOptions o;
+  o.kind = ModelKind::bekker;
+  o.integration = Integration::riemann;
+  const Traction a = evaluate(ding_tyii(), kapvik_wheel(), 50.0, 0.1, o);
+  const Traction b = evaluate(ding_tyii(), kapvik_wheel(), 50.0, 0.7, o);
+  ASSERT_TRUE(a.ok());
+  EXPECT_DOUBLE_EQ(a.drawbar_pull, b.drawbar_pull);  // Bekker has no slip
+  const auto p = detail::make_params<double>(ding_tyii(), o.extensions);
+  EXPECT_NEAR(detail::integrals<double>(p, kapvik_wheel(), o, 0.1, a.entry_angle).normal, 50.0, 1e-7);  // Eq. 2.5
+  // Bekker's shear stress is c + sigma tan(phi) everywhere: more thrust than Wong-Reece at low slip.
+  EXPECT_GT(a.drawbar_pull, evaluate(ding_tyii(), kapvik_wheel(), 50.0, 0.1).drawbar_pull);
+}
+
+TEST(SlipState, CasesOfTable23) {
+  const double r = 0.1;
+  auto st = slip_state(0.05, 1.0, r);  // r w = 0.1 > v: slipping
+  EXPECT_EQ(st.table_case, 1);
+  EXPECT_NEAR(st.slip, 0.5, 1e-12);  // Eq. 2.8
+  EXPECT_EQ(st.direction, 1.0);
+  st = slip_state(-0.05, 1.0, r);
+  EXPECT_EQ(st.table_case, 2);
+  EXPECT_EQ(st.slip, 1.0);
+  st = slip_state(0.2, 1.0, r);  // skidding
+  EXPECT_EQ(st.table_case, 3);
+  EXPECT_NEAR(st.slip, -0.5, 1e-12);  // Eq. 2.9
+  st = slip_state(-0.2, 1.0, r);
+  EXPECT_EQ(st.table_case, 4);
+  st = slip_state(-0.2, 0.0, r);
+  EXPECT_EQ(st.table_case, 5);
+  EXPECT_EQ(st.slip, -1.0);
+  EXPECT_EQ(st.direction, -1.0);
+  st = slip_state(0.0, -2.0, r);
+  EXPECT_EQ(st.table_case, 6);
+  EXPECT_EQ(st.slip, 1.0);
+  EXPECT_EQ(st.direction, -1.0);
+  EXPECT_EQ(slip_state(0.0, 0.0, r).table_case, 7);
+}
+
+TEST(Extensions, EachChangesWhatItsPhysicsSays) {
+  const Wheel smooth{0.157, 0.165, 0, 0.0};
+  const Wheel lugged{0.157, 0.165, 30, 0.01};
+  const double load = 80.0;
+  const Traction base0 = evaluate(ding_tyii(), smooth, load, 0.0);
+  const Traction base5 = evaluate(ding_tyii(), smooth, load, 0.5);
+
+  ModelOptions ss;
+  ss.extensions.slip_sinkage_n1 = 0.4;
+  EXPECT_DOUBLE_EQ(evaluate(ding_tyii(), smooth, load, 0.0, ss).sinkage, base0.sinkage);  // no slip, no change
+  EXPECT_GT(evaluate(ding_tyii(), smooth, load, 0.5, ss).sinkage, 1.3 * base5.sinkage);
+
+  ModelOptions gr;
+  gr.extensions.grousers = true;
+  EXPECT_DOUBLE_EQ(evaluate(ding_tyii(), smooth, load, 0.5, gr).drawbar_pull, base5.drawbar_pull);
+  const Traction g = evaluate(ding_tyii(), lugged, load, 0.5, gr);
+  EXPECT_GT(g.drawbar_pull, base5.drawbar_pull);
+  EXPECT_GT(g.resistive_torque, base5.resistive_torque);
+
+  ModelOptions bd;
+  bd.extensions.bulldozing = true;
+  const Traction b = evaluate(ding_tyii(), smooth, load, 0.5, bd);
+  EXPECT_LT(b.drawbar_pull, base5.drawbar_pull);
+  EXPECT_DOUBLE_EQ(b.resistive_torque, base5.resistive_torque);
+  EXPECT_DOUBLE_EQ(b.sinkage, base5.sinkage);
+
+  ModelOptions weak;
+  weak.extensions.soil_strength = 0.7;
+  const Traction w = evaluate(ding_tyii(), smooth, load, 0.5, weak);
+  EXPECT_GT(w.sinkage, base5.sinkage);
+  EXPECT_LT(w.drawbar_pull, base5.drawbar_pull);
+}
+
+TEST(WongReece, JetDerivativesThroughTheRootSolveMatchFiniteDifferences) {
+  using J = ceres::Jet<double, 3>;
+  ModelOptions o;
+  o.extensions.slip_sinkage_n1 = 0.2;
+  const Wheel w{0.157, 0.165, 0, 0.0};
+  auto p = detail::make_params<J>(ding_tyii(), o.extensions);
+  p.soil_strength = J(1.0, 0);
+  p.slip_sinkage_n1 = J(0.2, 1);
+  p.n = J(1.1, 2);
+  const auto sol = detail::solve(p, w, o, 0.4, 80.0);
+  ASSERT_EQ(sol.status, TractionStatus::ok);
+  auto value = [&](double strength, double n1, double n) {
+    auto q = detail::make_params<double>(ding_tyii(), o.extensions);
+    q.soil_strength = strength;
+    q.slip_sinkage_n1 = n1;
+    q.n = n;
+    const auto s = detail::solve(q, w, o, 0.4, 80.0);
+    return std::array<double, 3>{s.drawbar, s.torque, s.sinkage};
+  };
+  const double h = 1e-6;
+  const double base[3] = {1.0, 0.2, 1.1};
+  for (int k = 0; k < 3; ++k) {
+    double up[3] = {base[0], base[1], base[2]}, down[3] = {base[0], base[1], base[2]};
+    up[k] += h;
+    down[k] -= h;
+    const auto a = value(up[0], up[1], up[2]);
+    const auto b = value(down[0], down[1], down[2]);
+    const double fd[3] = {(a[0] - b[0]) / (2 * h), (a[1] - b[1]) / (2 * h), (a[2] - b[2]) / (2 * h)};
+    EXPECT_NEAR(sol.drawbar.v[k], fd[0], 1e-4 * (1.0 + std::abs(fd[0]))) << "parameter " << k;
+    EXPECT_NEAR(sol.torque.v[k], fd[1], 1e-4 * (1.0 + std::abs(fd[1]))) << "parameter " << k;
+    EXPECT_NEAR(sol.sinkage.v[k], fd[2], 1e-4 * (1e-3 + std::abs(fd[2]))) << "parameter " << k;
+  }
+}
