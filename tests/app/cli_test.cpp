@@ -297,3 +297,82 @@ TEST(CliBadInput, UnwritableOutputIsBadInputNotACrash) {
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
 }
+
+// --- terramechanics and discrepancy ----------------------------------------
+
+TEST(CliTerramechanics, EvaluatePrintsOneRowPerLoadAndSlip) {
+  const CommandResult r = run_roverlab(
+      "terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 10,50 --slip -0.5,0,0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("load_N,slip,drawbar_pull_N,resistive_torque_Nm,sinkage_m,entry_angle_rad", 0), 0u);
+  EXPECT_EQ(count_lines(r.out), 7u);
+  const CommandResult j = run_roverlab(
+      "terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 50 --slip 0.2 --format json "
+      "--integration riemann --model wong+slip-sinkage --slip-sinkage-n1 0.3");
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const auto doc = nlohmann::json::parse(j.out);
+  EXPECT_EQ(doc.at("rows").size(), 1u);
+  EXPECT_GT(doc.at("rows")[0].at("drawbar_pull_N").get<double>(), 0.0);  // past the zero crossing at s = 0.2
+  // A load the soil cannot carry is reported, not extrapolated.
+  const CommandResult u = run_roverlab(
+      "terramechanics --soil lunar_nominal --radius 0.075 --width 0.07 --load 600 --slip 0.5");
+  EXPECT_EQ(u.exit_code, 0);
+  EXPECT_NE(u.out.find(",,,,unsupported_load"), std::string::npos) << u.out;
+}
+
+TEST(CliTerramechanics, UsageAndInputErrors) {
+  EXPECT_EQ(run_roverlab("terramechanics --radius 0.075 --width 0.07 --load 1 --slip 0").exit_code, 2);
+  EXPECT_EQ(run_roverlab("terramechanics --soil ding_tyii --radius -1 --width 0.07 --load 1 --slip 0").exit_code, 2);
+  EXPECT_EQ(run_roverlab("terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 1 --slip 0 --model wong+magic").exit_code, 2);
+  const CommandResult r = run_roverlab("terramechanics --soil nowhere --radius 0.075 --width 0.07 --load 1 --slip 0");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("no soil of that name"), std::string::npos) << r.err;
+  EXPECT_EQ(run_roverlab("terramechanics --help").exit_code, 0);
+  EXPECT_EQ(run_roverlab("terramechanics fit --help").exit_code, 0);
+  EXPECT_EQ(run_roverlab("discrepancy single-wheel --help").exit_code, 0);
+}
+
+TEST(CliTerramechanics, FitRecoversTheSurfaceOfItsOwnGrid) {
+  TempDir dir;
+  const std::string points = dir.file("grid.csv");
+  const CommandResult g = run_roverlab(
+      "terramechanics --soil dry_sand --radius 0.075 --width 0.07 --load 10,30,50,70,90,110 "
+      "--slip 0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  write_text(points, g.out);
+  const CommandResult f = run_roverlab("terramechanics fit " + quote(points) + " --json --grid 5");
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const auto doc = nlohmann::json::parse(f.out);
+  const auto& dp = doc.at("drawbar_pull_N");
+  EXPECT_EQ(dp.at("points"), 66);
+  EXPECT_LT(dp.at("rmse").get<double>(), 0.5);
+  EXPECT_GE(dp.at("order").get<int>(), 3);
+  EXPECT_EQ(dp.at("occupancy").at("counts").size(), 25u);
+  EXPECT_DOUBLE_EQ(dp.at("occupancy").at("coverage").get<double>(), 1.0);
+  EXPECT_TRUE(doc.contains("resistive_torque_Nm"));
+}
+
+TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
+  const std::string file = std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv";
+  const CommandResult r = run_roverlab("discrepancy single-wheel " + quote(file) + " --soil ding_tyii --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc.at("points"), 12);
+  EXPECT_EQ(doc.at("measurements"), 34);  // two cells of the file are empty
+  const auto& base = doc.at("baseline").at("residuals");
+  // Measured sinkage grows with slip much faster than the static model's.
+  EXPECT_LT(base.at("sinkage").at("slope_vs_slip").get<double>(), -0.01);
+  EXPECT_LT(base.at("sinkage").at("t_slip").get<double>(), -3.0);
+  EXPECT_EQ(doc.at("candidates").size(), 4u);
+  EXPECT_FALSE(doc.at("verdict").get<std::string>().empty());
+  const CommandResult text = run_roverlab("discrepancy single-wheel " + quote(file) + " --soil ding_tyii");
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_NE(text.out.find("baseline residuals"), std::string::npos);
+  // Bad input: a file without the measured columns.
+  TempDir dir;
+  write_text(dir.file("bad.csv"), "radius_m,width_m,load_N,slip\n0.1,0.1,80,0.2\n");
+  const CommandResult bad = run_roverlab("discrepancy single-wheel " + quote(dir.file("bad.csv")) + " --soil ding_tyii");
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_EQ(count_lines(bad.err), 1u);
+  EXPECT_NE(bad.err.find("bad.csv"), std::string::npos);
+}

@@ -1,0 +1,94 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/common/error.h"
+#include "importers/named_file.h"
+#include "importers/soil_file.h"
+#include "importers/wheel_test_csv.h"
+#include "test_support.h"
+
+using namespace roverlab;
+using roverlab::test::TempDir;
+using roverlab::test::write_text;
+
+namespace {
+const std::vector<std::filesystem::path> kSoils{std::string(ROVERLAB_RESOURCES_DIR) + "/soils"};
+}
+
+TEST(SoilFile, ShippedSoilsLoadWithSources) {
+  const auto names = io::list_named_files(kSoils);
+  for (const char* required : {"ding_tyii", "lunar_nominal", "dry_sand", "lete_sand"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
+  }
+  EXPECT_GE(names.size(), 6u);
+  for (const auto& name : names) {
+    const auto soil = io::find_soil(name, kSoils);
+    EXPECT_EQ(soil.name, name);
+    EXPECT_FALSE(soil.source.empty()) << name;
+  }
+  const auto tyii = io::find_soil("ding_tyii", kSoils);  // seed 003 Table 2.2
+  EXPECT_DOUBLE_EQ(tyii.n, 1.1);
+  EXPECT_DOUBLE_EQ(tyii.cohesion, 250.0);
+  EXPECT_NEAR(tyii.friction_angle, 31.9 * M_PI / 180.0, 1e-15);
+  EXPECT_DOUBLE_EQ(tyii.shear_modulus, 0.0114);
+  EXPECT_DOUBLE_EQ(tyii.kc, 15600.0);
+  EXPECT_DOUBLE_EQ(tyii.kphi, 2407400.0);
+}
+
+TEST(SoilFile, BadSoilFilesNameTheFileAndTheProblem) {
+  TempDir dir;
+  write_text(dir.file("a.json"), R"({"format": "roverlab-soil", "n": 1.1})");
+  try {
+    io::load_soil(dir.file("a.json"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'cohesion_Pa'"), std::string::npos) << e.what();
+  }
+  write_text(dir.file("b.json"),
+             R"({"format": "roverlab-soil", "n": 1.1, "cohesion_Pa": 250, "friction_angle_deg": 0.55,
+                 "shear_modulus_m": 11.4, "kc": 1, "kphi": 1, "c1": 0.18, "c2": 0.32})");
+  EXPECT_THROW(io::load_soil(dir.file("b.json")), InputError);  // K in mm instead of m: out of range
+  EXPECT_THROW(io::find_soil("martian_regolith_x", kSoils), InputError);
+}
+
+TEST(WheelTestCsv, ReadsTheDing2011File) {
+  const auto points = io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
+  ASSERT_EQ(points.size(), 12u);
+  EXPECT_EQ(points[0].wheel_label, "smooth");
+  EXPECT_DOUBLE_EQ(points[0].wheel.radius, 0.15735);
+  EXPECT_DOUBLE_EQ(points[0].load, 80.0);
+  EXPECT_DOUBLE_EQ(*points[1].drawbar_pull, 11.0);
+  EXPECT_EQ(points[6].wheel.grouser_count, 30);
+  EXPECT_DOUBLE_EQ(points[6].wheel.grouser_height, 0.010);
+  EXPECT_FALSE(points[11].torque.has_value());  // empty cell: not readable from the source figure
+  EXPECT_FALSE(points[11].sinkage.has_value());
+  EXPECT_DOUBLE_EQ(*points[11].drawbar_pull, 24.5);
+}
+
+TEST(WheelTestCsv, BadFilesNameLineAndProblem) {
+  TempDir dir;
+  const std::string head = "radius_m,width_m,load_N,slip,sinkage_m\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"width_m,load_N,slip,sinkage_m\n0.1,80,0.1,0.01\n", "missing column 'radius_m'"},
+      {"radius_m,width_m,load_N,slip\n0.1,0.1,80,0.1\n", "no measured column"},
+      {head + "0.1,0.1,80,0.1,0.01\n0.1,0.1,80,abc,0.01\n", "line 3, column 'slip'"},
+      {head + "0.1,0.1,80,0.1\n", "ragged row"},
+      {head + "157,0.1,80,0.1,0.01\n", "in metres"},
+      {head + "0.1,0.1,80,30,0.01\n", "slip must be a ratio"},
+      {head + "0.1,0.1,80,0.1,5\n", "sinkage_m must be in metres"},
+      {head + "0.1,0.1,nan,0.1,0.01\n", "finite number"},
+      {head, "no data rows"},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string path = dir.file("p" + std::to_string(k) + ".csv");
+    write_text(path, cases[k].first);
+    try {
+      io::read_wheel_test_csv(path);
+      ADD_FAILURE() << "accepted case " << k;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(cases[k].second), std::string::npos) << "case " << k << ": " << e.what();
+      EXPECT_EQ(e.file(), path);
+    }
+  }
+}
