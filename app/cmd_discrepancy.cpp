@@ -53,6 +53,10 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
               {"significant", r.significant},
               {"cause", r.significant ? json(r.candidates[static_cast<std::size_t>(r.best)].name) : json(nullptr)},
               {"what_is_wrong", r.what_is_wrong}, {"verdict", r.verdict}};
+    j["partial"] = json::array();
+    for (const auto& [q, index] : r.partial) {
+      j["partial"].push_back({{"quantity", to_string(q)}, {"candidate", r.candidates[static_cast<std::size_t>(index)].name}});
+    }
     j["candidates"] = json::array();
     for (const auto& c : r.candidates) {
       json cj = {{"name", c.name}, {"cause", c.cause}, {"applicable", c.applicable}};

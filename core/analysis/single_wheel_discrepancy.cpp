@@ -276,7 +276,33 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
       s += ", and the error changes with load (" + std::string(worst->slope_vs_load > 0 ? "+" : "-") +
            show(worst->quantity, std::abs(worst->slope_vs_load) * 100.0) + " per 100 N)";
     }
+    // Other quantities with a strong slip trend (|t| >= 5) are named too.
+    for (const auto& o : report.baseline) {
+      if (&o == worst || std::abs(o.t_slip) < 5.0) continue;
+      s += "; its " + words(o.quantity) + " error trends with slip (" + (o.slope_vs_slip > 0 ? "+" : "-") +
+           show(o.quantity, std::abs(o.slope_vs_slip)) + " per unit slip, t = " + fmt("%.1f", o.t_slip) +
+           (o.slope_vs_slip < 0 ? ": measured " + words(o.quantity) + " grows faster with slip than predicted"
+                                : ": predicted " + words(o.quantity) + " grows faster with slip than measured") +
+           ")";
+    }
     report.what_is_wrong = s + ".";
+  }
+
+  // Per quantity: the candidate that best predicts it on held-out points, when
+  // it cuts that quantity's held-out RMSE by at least 30 %.
+  for (std::size_t qi = 0; qi < report.quantities.size(); ++qi) {
+    int best_q = -1;
+    for (std::size_t i = 0; i < report.candidates.size(); ++i) {
+      const auto& c = report.candidates[i];
+      if (!c.applicable || !std::isfinite(c.held_out_rmse[qi])) continue;
+      if (best_q < 0 || c.held_out_rmse[qi] < report.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi]) {
+        best_q = static_cast<int>(i);
+      }
+    }
+    if (best_q >= 0 && report.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi] <
+                           0.7 * report.baseline_held_out_rmse[qi]) {
+      report.partial.push_back({report.quantities[qi], best_q});
+    }
   }
 
   if (report.significant) {
@@ -298,7 +324,15 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     report.verdict = "No significant discrepancy: the best candidate, " + c.name + ", changes BIC by " +
                      fmt("%.1f", c.delta_bic) + " (needs < " + fmt("%.0f", options.bic_threshold) +
                      ") and the held-out error from " + fmt("%.2f", report.baseline_score) + " to " +
-                     fmt("%.2f", c.held_out_score) + " sigma.";
+                     fmt("%.2f", c.held_out_score) + " sigma";
+    for (const auto& [q, index] : report.partial) {
+      const std::size_t qi = static_cast<std::size_t>(
+          std::find(report.quantities.begin(), report.quantities.end(), q) - report.quantities.begin());
+      const auto& pc = report.candidates[static_cast<std::size_t>(index)];
+      report.verdict += "; for " + words(q) + " alone, " + pc.name + " cuts the held-out RMSE from " +
+                        show(q, report.baseline_held_out_rmse[qi]) + " to " + show(q, pc.held_out_rmse[qi]);
+    }
+    report.verdict += ".";
   } else {
     report.verdict = "No candidate could be fitted.";
   }

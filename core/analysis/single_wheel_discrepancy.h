@@ -60,6 +60,10 @@ struct DiscrepancyReport {
   std::vector<CandidateResult> candidates;
   int best = -1;             // index of the winning candidate, -1 when none is significant
   bool significant = false;
+  // Quantities that one candidate predicts much better on held-out points
+  // (>= 30 % lower RMSE) even when no candidate explains everything:
+  // (quantity, candidate index).
+  std::vector<std::pair<Quantity, int>> partial;
   std::string what_is_wrong;  // one sentence on the baseline's residuals
   std::string verdict;        // one sentence: the cause and the gain, or "no significant discrepancy"
 };

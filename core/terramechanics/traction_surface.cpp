@@ -12,6 +12,7 @@ namespace roverlab::terramechanics {
 
 PolynomialSurface::PolynomialSurface(int order, std::vector<double> coefficients)
     : order_(order), coefficients_(std::move(coefficients)) {
+  if (order < 0 || order > 6) throw DataError("polynomial order must be 0..6");
   if (coefficients_.size() != term_count(order)) {
     throw DataError("polynomial of order " + std::to_string(order) + " needs " +
                     std::to_string(term_count(order)) + " coefficients");
@@ -30,10 +31,16 @@ std::pair<int, int> PolynomialSurface::exponents(std::size_t i) {
 }
 
 double PolynomialSurface::operator()(double load, double slip) const {
+  double slip_power[7], load_power[7];  // order <= 6
+  slip_power[0] = load_power[0] = 1.0;
+  for (int k = 1; k <= order_; ++k) {
+    slip_power[k] = slip_power[k - 1] * slip;
+    load_power[k] = load_power[k - 1] * load;
+  }
   double sum = 0.0;
-  for (std::size_t i = 0; i < coefficients_.size(); ++i) {
-    const auto [k, l] = exponents(i);
-    sum += coefficients_[i] * std::pow(slip, k) * std::pow(load, l);
+  std::size_t i = 0;
+  for (int degree = 0; degree <= order_; ++degree) {
+    for (int l = 0; l <= degree; ++l, ++i) sum += coefficients_[i] * slip_power[degree - l] * load_power[l];
   }
   return sum;
 }

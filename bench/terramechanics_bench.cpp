@@ -1,0 +1,84 @@
+// Wong-Reece evaluation speed (issue 3 targets): one evaluation with the root
+// solve, Simpson <= 2 us and 500-point Riemann <= 300 us; a 100 x 100
+// traction grid <= 50 ms (Simpson), all on one core.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "core/terramechanics/model.h"
+#include "core/terramechanics/traction_surface.h"
+
+namespace {
+
+using namespace roverlab::terramechanics;
+
+Soil tyii() {
+  Soil s;
+  s.n = 1.1;
+  s.cohesion = 250.0;
+  s.friction_angle = 31.9 * M_PI / 180.0;
+  s.shear_modulus = 0.0114;
+  s.kc = 15.6e3;
+  s.kphi = 2407.4e3;
+  return s;
+}
+
+void BM_WongReeceSimpson(benchmark::State& state) {
+  const Soil soil = tyii();
+  const Wheel wheel{0.075, 0.07, 0, 0.0};
+  ModelOptions o;
+  int i = 0;
+  for (auto _ : state) {
+    // Loads 1..200 N and slips 0..0.99: the root solve starts cold every time.
+    const Traction t = evaluate(soil, wheel, 1.0 + (i % 200), (i % 100) / 100.0, o);
+    benchmark::DoNotOptimize(t);
+    ++i;
+  }
+}
+BENCHMARK(BM_WongReeceSimpson)->Unit(benchmark::kMicrosecond);
+
+void BM_WongReeceRiemann500(benchmark::State& state) {
+  const Soil soil = tyii();
+  const Wheel wheel{0.075, 0.07, 0, 0.0};
+  ModelOptions o;
+  o.integration = Integration::riemann;
+  o.riemann_points = 500;
+  int i = 0;
+  for (auto _ : state) {
+    const Traction t = evaluate(soil, wheel, 1.0 + (i % 200), (i % 100) / 100.0, o);
+    benchmark::DoNotOptimize(t);
+    ++i;
+  }
+}
+BENCHMARK(BM_WongReeceRiemann500)->Unit(benchmark::kMicrosecond);
+
+void BM_TractionGrid100x100(benchmark::State& state) {
+  const Soil soil = tyii();
+  const Wheel wheel{0.075, 0.07, 0, 0.0};
+  ModelOptions o;
+  for (auto _ : state) {
+    double sum = 0.0;
+    for (int a = 0; a < 100; ++a) {
+      for (int b = 0; b < 100; ++b) {
+        sum += evaluate(soil, wheel, 0.1 + 199.9 * a / 99.0, b / 99.0, o).drawbar_pull;
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_TractionGrid100x100)->Unit(benchmark::kMillisecond);
+
+void BM_PolynomialSurfaceEvaluation(benchmark::State& state) {
+  std::vector<double> c(PolynomialSurface::term_count(4), 0.1);
+  const PolynomialSurface p(4, c);
+  int i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(p(1.0 + (i % 200), (i % 100) / 100.0));
+    ++i;
+  }
+}
+BENCHMARK(BM_PolynomialSurfaceEvaluation)->Unit(benchmark::kNanosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
