@@ -1,0 +1,104 @@
+#pragma once
+// Proprioceptive slip detection of seed 002 (Kilic, Gu, Gross 2022): an
+// error-state EKF over a strapdown INS with zero-velocity (ZUPT),
+// zero-angular-rate (ZARU) and non-holonomic (NHC) pseudo-measurements,
+// optional wheel-odometry aiding, and the slip ratio of INS speed against
+// wheel speed.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/estimation/ins.h"
+#include "core/estimation/skid_steer_odometry.h"
+#include "core/estimation/slip.h"
+#include "core/log/log.h"
+
+namespace roverlab::estimation {
+
+struct ImuNoise {
+  double gyro_arw = 2.9e-4;         // rad/sqrt(s): angular random walk (datasheet 0.1 deg/sqrt(h), x10 for vibration)
+  double accel_vrw = 1.3e-3;        // m/s/sqrt(s): velocity random walk (0.008 m/s/sqrt(h), x10 for vibration)
+  double gyro_bias_walk = 1e-6;     // rad/s/sqrt(s)
+  double accel_bias_walk = 1e-5;    // m/s^2/sqrt(s)
+  double initial_gyro_bias = 2e-3;  // rad/s, 1 sigma
+  double initial_accel_bias = 0.05; // m/s^2, 1 sigma
+  double initial_attitude = 0.01;   // rad, roll and pitch after levelling
+  double initial_heading = 0.02;    // rad
+};
+
+struct StandstillOptions {
+  double window = 0.5;            // s, centred window for the IMU statistics
+  double gyro_std_max = 0.005;    // rad/s, std of |w|
+  double accel_std_max = 0.05;    // m/s^2, std of |f|
+  double wheel_rate_max = 0.05;   // rad/s, |left| and |right| wheel rates
+};
+
+struct InsSlipOptions {
+  bool zupt = true, zaru = true, nhc = true;
+  bool odometry_aiding = false;  // forward speed from the wheels (blinds slip detection; off by default)
+  InsOptions ins;
+  ImuNoise noise;
+  StandstillOptions standstill;
+  SkidSteerGeometry rover;
+  Eigen::Vector3d nhc_lever_arm = Eigen::Vector3d::Zero();  // body frame, IMU to wheel-axle centre, m
+  double update_interval = 0.1;     // s between pseudo-measurement updates
+  double zupt_sigma = 0.01;         // m/s
+  double zaru_sigma = 2e-4;         // rad/s, on the mean rate over the update interval
+  double nhc_sigma = 0.05;          // m/s
+  double odometry_sigma = 0.05;     // m/s
+  double heading_distance = 5.0;    // m of GPS track that set the initial heading
+  std::optional<double> initial_heading;  // rad clockwise from north; overrides the GPS heading
+  double no_slip = 0.02;            // |s| at or below which a sample counts as no slip
+  double min_slip_speed = 0.1;      // m/s: below it (wheel and body speed both) slip is undefined and reported as 0
+  std::function<void(double)> progress;  // fraction done, called now and then
+};
+
+struct AxisErrors {
+  double east = 0, north = 0, up = 0;
+};
+
+struct InsSlipMetrics {
+  bool has_reference = false;
+  double final_position_error = 0;  // horizontal, m, at the last GPS sample
+  double final_position_error_3d = 0;
+  double position_rmse = 0;         // horizontal, m
+  AxisErrors position_rmse_axes;    // as in seed 002 Table 1
+  double velocity_rmse = 0;         // horizontal, m/s, against GPS-differenced velocity
+  double heading_drift = 0;         // rad, heading minus GPS course over the last 5 s of driving
+  double distance = 0;              // m along the GPS track
+  ConfusionMatrix confusion;        // estimated vs reference slip classes
+  double standstill_fraction = 0;
+  double duration = 0;              // s of IMU data processed
+};
+
+struct OdometryMetrics {
+  double final_position_error = 0;  // horizontal, m
+  double position_rmse = 0;
+};
+
+struct InsSlipResult {
+  log::Log estimates;  // streams estimate/ins/..., estimate/odometry/pose
+  InsSlipMetrics metrics;
+  OdometryMetrics odometry;  // plain wheel odometry, same initial pose
+};
+
+// Channel names the estimator reads (RoverLab's conventions; see
+// resources/mappings/wvu_pathfinder.json).
+struct InsSlipChannels {
+  std::string imu = "imu";
+  std::string wheels = "wheels";
+  std::string gps = "gps";
+  std::string truth_slip = "truth/slip";  // slip_ratio: used as the reference when present (simulated logs)
+};
+
+// Runs the filter over a log with streams imu (specific_force_x..z,
+// angular_rate_x..z, body axes forward-right-down), wheels (angle_FL, angle_FR,
+// angle_RL, angle_RR, rad, forward positive) and optionally gps (east, north,
+// up from the first fix; latitude, longitude, height). Throws DataError when
+// a stream or channel is missing or the log is too short.
+InsSlipResult run_ins_slip(const log::Log& log, const InsSlipOptions& options,
+                           const InsSlipChannels& channels = {});
+
+}  // namespace roverlab::estimation
