@@ -44,12 +44,8 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
   std::vector<Column> columns;
   std::size_t time_column = 0;
   std::string line;
-  std::size_t line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::string stripped = csv::trim(line);
-    if (stripped.empty() || stripped.front() == '#') continue;
+  int line_number = 0;
+  while (csv::next_content_line(in, line, line_number)) {
     const auto cells = csv::split(line);
     const std::string where = "line " + std::to_string(line_number);
     if (columns.empty()) {  // header

@@ -14,6 +14,16 @@ std::string trim(std::string_view s) {
   return out;
 }
 
+bool next_content_line(std::istream& in, std::string& line, int& line_number) {
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string stripped = trim(line);
+    if (!stripped.empty() && stripped.front() != '#') return true;
+  }
+  return false;
+}
+
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> cells;
   std::size_t begin = 0;

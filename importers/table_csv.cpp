@@ -24,11 +24,7 @@ NumericTable read_numeric_table(const std::string& path, const std::vector<std::
   NumericTable t;
   std::string line;
   int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::string stripped = csv::trim(line);
-    if (stripped.empty() || stripped.front() == '#') continue;
+  while (csv::next_content_line(in, line, line_number)) {
     const auto cells = csv::split(line);
     if (t.names.empty()) {
       for (const auto& c : cells) {

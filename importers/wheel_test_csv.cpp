@@ -24,11 +24,7 @@ std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) {
   std::string line;
   int line_number = 0;
   std::size_t columns = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::string stripped = csv::trim(line);
-    if (stripped.empty() || stripped.front() == '#') continue;
+  while (csv::next_content_line(in, line, line_number)) {
     const auto cells = csv::split(line);
     const std::string where = "line " + std::to_string(line_number);
     if (column.empty()) {

@@ -58,8 +58,10 @@ void expect_bad_input(const std::string& input, const std::string& problem,
   EXPECT_EQ(files_in(out.path()), 0u) << "convert left a file behind";
 }
 
-// A RoverLab HDF5 log written by hand with the given time base.
-void write_log_with_time(const std::string& path, const std::vector<double>& time) {
+// A RoverLab HDF5 log written by hand: one stream "imu" with the given time
+// base and one channel "x" (its unit attribute set when `unit` is not empty).
+void write_raw_log(const std::string& path, const std::vector<double>& time, const std::vector<double>& x,
+                   const std::string& unit = "") {
   RawHdf5 f(path);
   RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
   RawHdf5::int_attribute(f.id(), "format_version", 1);
@@ -68,7 +70,13 @@ void write_log_with_time(const std::string& path, const std::vector<double>& tim
   RawHdf5::string_attribute(g, "roverlab_kind", "stream");
   H5Gclose(g);
   H5Dclose(f.dataset("streams/imu/time", time));
-  H5Dclose(f.dataset("streams/imu/channels/x", std::vector<double>(time.size(), 1.0)));
+  hid_t d = f.dataset("streams/imu/channels/x", x);
+  if (!unit.empty()) RawHdf5::string_attribute(d, "unit", unit);
+  H5Dclose(d);
+}
+
+void write_log_with_time(const std::string& path, const std::vector<double>& time) {
+  write_raw_log(path, time, std::vector<double>(time.size(), 1.0));
 }
 
 }  // namespace
@@ -228,17 +236,7 @@ TEST(CliBadInput, ChannelLengthDiffersFromTimeBase) {
   expect_bad_input(kPathfinder, "705 samples but the time base has 17611",
                    "--mapping " + quote(dir.file("m.json")));
   // The same in a RoverLab HDF5 log.
-  {
-    RawHdf5 f(dir.file("short.h5"));
-    RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
-    RawHdf5::int_attribute(f.id(), "format_version", 1);
-    f.group("streams/imu");
-    hid_t g = H5Gopen2(f.id(), "streams/imu", H5P_DEFAULT);
-    RawHdf5::string_attribute(g, "roverlab_kind", "stream");
-    H5Gclose(g);
-    H5Dclose(f.dataset("streams/imu/time", {0.0, 1.0, 2.0}));
-    H5Dclose(f.dataset("streams/imu/channels/x", {1.0, 2.0}));
-  }
+  write_raw_log(dir.file("short.h5"), {0.0, 1.0, 2.0}, {1.0, 2.0});
   expect_bad_input(dir.file("short.h5"), "2 samples but the time base has 3");
 }
 
@@ -274,19 +272,7 @@ TEST(CliBadInput, UnknownUnitString) {
   TempDir dir;
   write_text(dir.file("units.csv"), "time [s],x [furlong]\n0,1\n");
   expect_bad_input(dir.file("units.csv"), "unknown unit 'furlong'");
-  {
-    RawHdf5 f(dir.file("units.h5"));
-    RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
-    RawHdf5::int_attribute(f.id(), "format_version", 1);
-    f.group("streams/imu");
-    hid_t g = H5Gopen2(f.id(), "streams/imu", H5P_DEFAULT);
-    RawHdf5::string_attribute(g, "roverlab_kind", "stream");
-    H5Gclose(g);
-    H5Dclose(f.dataset("streams/imu/time", {0.0, 1.0}));
-    hid_t d = f.dataset("streams/imu/channels/x", {1.0, 2.0});
-    RawHdf5::string_attribute(d, "unit", "cubits");
-    H5Dclose(d);
-  }
+  write_raw_log(dir.file("units.h5"), {0.0, 1.0}, {1.0, 2.0}, "cubits");
   expect_bad_input(dir.file("units.h5"), "unknown unit 'cubits'");
 }
 
