@@ -70,11 +70,9 @@ std::string num(double v) {
   return buffer;
 }
 
-std::vector<double> poly_json(const PolynomialSurface& p) { return p.coefficients(); }
-
 json surface_json(const SurfaceFit& fit) {
   json j = {{"order", fit.surface.order()},
-            {"coefficients", poly_json(fit.surface)},
+            {"coefficients", fit.surface.coefficients()},
             {"mean_abs_error", fit.error.mean_abs},
             {"rmse", fit.error.rmse},
             {"max_abs_error", fit.error.max_abs}};

@@ -68,6 +68,16 @@ inline CommandResult run_command(const std::string& command) {
   return r;
 }
 
+// Number of entries in a folder.
+inline std::size_t files_in(const fs::path& folder) {
+  std::size_t n = 0;
+  for (const auto& e : fs::directory_iterator(folder)) {
+    (void)e;
+    ++n;
+  }
+  return n;
+}
+
 inline std::string quote(const std::string& s) { return "'" + s + "'"; }
 
 }  // namespace roverlab::test

@@ -28,15 +28,6 @@ std::size_t count_lines(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
-std::size_t files_in(const fs::path& folder) {
-  std::size_t n = 0;
-  for (const auto& e : fs::directory_iterator(folder)) {
-    (void)e;
-    ++n;
-  }
-  return n;
-}
-
 // Runs `info` and `convert` on a bad input: both must exit 3 with one line on
 // stderr naming the file and containing `problem`, and convert must leave no
 // output (nor temporary) file.
@@ -63,12 +54,8 @@ void expect_bad_input(const std::string& input, const std::string& problem,
 void write_raw_log(const std::string& path, const std::vector<double>& time, const std::vector<double>& x,
                    const std::string& unit = "") {
   RawHdf5 f(path);
-  RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
-  RawHdf5::int_attribute(f.id(), "format_version", 1);
-  f.group("streams/imu");
-  hid_t g = H5Gopen2(f.id(), "streams/imu", H5P_DEFAULT);
-  RawHdf5::string_attribute(g, "roverlab_kind", "stream");
-  H5Gclose(g);
+  f.roverlab_header(1);
+  f.roverlab_stream("imu");
   H5Dclose(f.dataset("streams/imu/time", time));
   hid_t d = f.dataset("streams/imu/channels/x", x);
   if (!unit.empty()) RawHdf5::string_attribute(d, "unit", unit);

@@ -107,12 +107,7 @@ TEST(Hdf5Log, OverwritesAtomicallyAndLeavesNoTemporaryFiles) {
   small.add_stream(log::Stream("gps", {0.0, 1.0}));
   io::write_hdf5_log(small, path);
   EXPECT_EQ(io::read_hdf5_log(path).streams().size(), 1u);
-  std::size_t files = 0;
-  for (const auto& e : fs::directory_iterator(dir.path())) {
-    (void)e;
-    ++files;
-  }
-  EXPECT_EQ(files, 1u);
+  EXPECT_EQ(roverlab::test::files_in(dir.path()), 1u);
   EXPECT_THROW(io::write_hdf5_log(small, dir.file("missing/folder/log.h5")), InputError);
 }
 
@@ -121,12 +116,8 @@ TEST(Hdf5Log, ConvertsDeclaredUnitsToSI) {
   const std::string path = dir.file("foreign-units.h5");
   {
     RawHdf5 f(path);
-    RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
-    RawHdf5::int_attribute(f.id(), "format_version", 1);
-    f.group("streams/joints");
-    hid_t g = H5Gopen2(f.id(), "streams/joints", H5P_DEFAULT);
-    RawHdf5::string_attribute(g, "roverlab_kind", "stream");
-    H5Gclose(g);
+    f.roverlab_header(1);
+    f.roverlab_stream("joints");
     hid_t t = f.dataset("streams/joints/time", {0.0, 500.0, 1000.0});
     RawHdf5::string_attribute(t, "unit", "ms");
     H5Dclose(t);
@@ -146,8 +137,7 @@ TEST(Hdf5Log, RejectsNewerFormatVersion) {
   const std::string path = dir.file("future.h5");
   {
     RawHdf5 f(path);
-    RawHdf5::string_attribute(f.id(), "format", "roverlab-log");
-    RawHdf5::int_attribute(f.id(), "format_version", 99);
+    f.roverlab_header(99);
     f.group("streams");
   }
   try {

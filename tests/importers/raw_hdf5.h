@@ -42,6 +42,21 @@ class RawHdf5 {
     return ds;  // caller closes (after adding attributes) with H5Dclose
   }
 
+  // The root attributes of a RoverLab log of the given format version.
+  void roverlab_header(long long version) {
+    string_attribute(file_, "format", "roverlab-log");
+    int_attribute(file_, "format_version", version);
+  }
+
+  // A group streams/<name> marked as a RoverLab stream.
+  void roverlab_stream(const std::string& name) {
+    const std::string path = "streams/" + name;
+    group(path);
+    hid_t g = H5Gopen2(file_, path.c_str(), H5P_DEFAULT);
+    string_attribute(g, "roverlab_kind", "stream");
+    H5Gclose(g);
+  }
+
   static void string_attribute(hid_t object, const char* name, const std::string& value) {
     hid_t type = H5Tcopy(H5T_C_S1);
     H5Tset_size(type, value.size());
