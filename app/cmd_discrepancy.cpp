@@ -123,3 +123,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
 }
 
 }  // namespace roverlab::app
+
+namespace roverlab::app {
+int run_discrepancy_odometry(const OdometryDiscrepancyOptions&) { throw UsageError("discrepancy odometry: not built yet"); }
+}  // namespace roverlab::app

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/log_input.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "importers/csv_log.h"
@@ -19,14 +20,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-io::LoadedLog load(const std::string& file, const std::optional<std::string>& mapping) {
-  io::LoadOptions options;
-  if (mapping) {
-    options.mapping = io::load_mapping(io::find_mapping(*mapping, resource_subfolders("mappings")));
-  }
-  return io::load_log(file, options);
-}
 
 struct ChannelStats {
   double min = NAN, max = NAN;
@@ -55,7 +48,7 @@ std::string fmt(const char* format, double v) {
 }  // namespace
 
 int run_info(const InfoOptions& options) {
-  const io::LoadedLog loaded = load(options.file, options.mapping);
+  const io::LoadedLog loaded = load_input(options.file, options.mapping);
   const log::Log& lg = loaded.log;
   const auto& meta = lg.metadata;
   if (options.json) {
@@ -133,13 +126,21 @@ int run_convert(const ConvertOptions& options) {
               << ": output must end in .h5 or .hdf5 (RoverLab HDF5 log) or .csv (one stream)\n";
     return kUsageError;
   }
-  const io::LoadedLog loaded = load(options.input, options.mapping);
+  const io::LoadedLog loaded = load_input(options.input, options.mapping);
   if (to_csv) {
-    if (loaded.log.streams().size() != 1) {
-      throw InputError(options.input, "has " + std::to_string(loaded.log.streams().size()) +
-                                          " streams; CSV output holds exactly one (use .h5)");
+    const log::Log& lg = loaded.log;
+    if (options.stream) {
+      const log::Stream* s = lg.find_stream(*options.stream);
+      if (s == nullptr) throw InputError(options.input, "has no stream '" + *options.stream + "'");
+      io::write_csv_stream(*s, options.output);
+      std::cout << "wrote " << options.output << ": stream " << s->name() << ", " << s->size() << " samples\n";
+      return kSuccess;
     }
-    io::write_csv_stream(loaded.log.streams().front(), options.output);
+    if (lg.streams().size() != 1) {
+      throw InputError(options.input, "has " + std::to_string(lg.streams().size()) +
+                                          " streams; CSV output holds exactly one (choose it with --stream, or use .h5)");
+    }
+    io::write_csv_stream(lg.streams().front(), options.output);
   } else {
     io::write_hdf5_log(loaded.log, options.output);
   }

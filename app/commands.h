@@ -28,6 +28,7 @@ struct ConvertOptions {
   std::string input;
   std::string output;
   std::optional<std::string> mapping;
+  std::optional<std::string> stream;  // the one stream a CSV output takes
 };
 int run_convert(const ConvertOptions& options);
 
@@ -78,5 +79,31 @@ struct SingleWheelDiscrepancyOptions {
   bool json = false;
 };
 int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& options);
+
+struct InsSlipCommandOptions {
+  std::string file;
+  std::optional<std::string> mapping;
+  bool no_zupt = false, no_zaru = false, no_nhc = false;
+  bool no_odometry_aiding = false;  // no wheel forward-speed update in the localisation filter
+  bool no_smoother = false;         // forward filter only (what the rover had on board)
+  double odometry_sigma = 0.05;  // m/s
+  std::optional<std::string> output;
+  bool json = false;
+};
+int run_estimate_ins_slip(const InsSlipCommandOptions& options);
+
+struct SkidSteerScenarioOptions {
+  unsigned seed = 1;
+  std::string output;
+};
+int run_scenario_skid_steer(const SkidSteerScenarioOptions& options);
+
+struct OdometryDiscrepancyOptions {
+  std::string file;
+  std::optional<std::string> mapping;
+  double fit_fraction = 0.5;
+  bool json = false;
+};
+int run_discrepancy_odometry(const OdometryDiscrepancyOptions& options);
 
 }  // namespace roverlab::app

@@ -36,6 +36,8 @@ int dispatch(int argc, char** argv) {
   convert_cmd->add_option("--mapping,-m", convert.mapping,
                           "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5 input");
 
+  convert_cmd->add_option("--stream,-s", convert.stream, "For .csv output: the stream to write");
+
   auto* mappings_cmd = cli.add_subcommand("mappings", "List the importer mappings RoverLab knows");
 
   // terramechanics: evaluate the wheel-soil model; `surface` and `fit` fit polynomials.
@@ -105,6 +107,42 @@ int dispatch(int argc, char** argv) {
   sw_cmd->add_option("--integration", sw.integration, "simpson | riemann")->capture_default_str();
   sw_cmd->add_flag("--json", sw.json, "Print JSON");
 
+  auto* estimate_cmd = cli.add_subcommand("estimate", "Run an estimator over a log");
+  estimate_cmd->require_subcommand(1);
+  InsSlipCommandOptions ins;
+  auto* ins_cmd = estimate_cmd->add_subcommand(
+      "ins-slip", "Error-state INS with ZUPT/ZARU/NHC pseudo-measurements and slip detection (seed 002)");
+  ins_cmd->add_option("LOG", ins.file, "Log with imu and wheels streams (gps or truth/slip for metrics)")->required();
+  ins_cmd->add_option("--mapping,-m", ins.mapping, "Mapping NAME or FILE for .mat/HDF5 input (e.g. wvu_pathfinder)");
+  ins_cmd->add_flag("--no-zupt", ins.no_zupt, "No zero-velocity updates");
+  ins_cmd->add_flag("--no-zaru", ins.no_zaru, "No zero-angular-rate updates");
+  ins_cmd->add_flag("--no-nhc", ins.no_nhc, "No non-holonomic constraints");
+  ins_cmd->add_flag("--no-odometry-aiding", ins.no_odometry_aiding,
+                    "No wheel forward-speed update in the localisation filter (pseudo-measurements only)");
+  ins_cmd->add_flag("--no-smoother", ins.no_smoother,
+                    "Forward filter only, as on board (default: RTS smoothing over the whole log)");
+  ins_cmd->add_option("--odometry-sigma", ins.odometry_sigma, "Standard deviation of the wheel-speed update, m/s")
+      ->capture_default_str();
+  ins_cmd->add_option("--output,-o", ins.output, "Write the log with the estimate streams to OUT.h5");
+  ins_cmd->add_flag("--json", ins.json, "Print JSON");
+
+  auto* scenario_cmd = cli.add_subcommand("scenario", "Write a simulated log with truth streams");
+  scenario_cmd->require_subcommand(1);
+  SkidSteerScenarioOptions skid;
+  auto* skid_cmd = scenario_cmd->add_subcommand(
+      "skid-steer-slip", "Four-wheel skid-steer drive with slip episodes of every class, IMU, wheels, GPS (seed 002)");
+  skid_cmd->add_option("--seed", skid.seed, "Noise seed")->capture_default_str();
+  skid_cmd->add_option("--output,-o", skid.output, "OUT.h5")->required();
+
+  OdometryDiscrepancyOptions odo;
+  auto* odo_cmd = discrepancy_cmd->add_subcommand(
+      "odometry", "Wheel-odometry dead reckoning against the GPS track: cause of the disagreement, fitted correction, gain");
+  odo_cmd->add_option("LOG", odo.file, "Log with wheels and gps streams")->required();
+  odo_cmd->add_option("--mapping,-m", odo.mapping, "Mapping NAME or FILE for .mat/HDF5 input");
+  odo_cmd->add_option("--fit-fraction", odo.fit_fraction, "Share of the drive (by distance) used to fit; the rest tests")
+      ->capture_default_str()->check(CLI::Range(0.1, 0.9));
+  odo_cmd->add_flag("--json", odo.json, "Print JSON");
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -124,6 +162,9 @@ int dispatch(int argc, char** argv) {
   if (fit_cmd->parsed()) return run_terramechanics_fit(fit);
   if (tm_cmd->parsed()) return run_terramechanics(tm);
   if (sw_cmd->parsed()) return run_discrepancy_single_wheel(sw);
+  if (odo_cmd->parsed()) return run_discrepancy_odometry(odo);
+  if (ins_cmd->parsed()) return run_estimate_ins_slip(ins);
+  if (skid_cmd->parsed()) return run_scenario_skid_steer(skid);
   return kUsageError;
 }
 

@@ -70,6 +70,21 @@ Reference reference_from_gps(const log::Log& lg, const std::string& name) {
   return r;
 }
 
+// Filter outputs at the IMU samples.
+struct Track {
+  explicit Track(std::size_t n)
+      : roll(n), pitch(n), yaw(n), east(n), north(n), up(n), vn(n), ve(n), vd(n), vx(n), vy(n), vz(n),
+        bias(6, std::vector<double>(n)) {}
+  std::vector<double> roll, pitch, yaw, east, north, up, vn, ve, vd, vx, vy, vz;
+  std::vector<std::vector<double>> bias;  // accel x y z, gyro x y z
+};
+
+struct Epoch {
+  std::size_t index;  // IMU sample
+  Mat15 P_prior, P_post, Phi;  // Phi: transition from the previous epoch
+  Vec15 correction;            // error correction applied at this epoch
+};
+
 }  // namespace
 
 InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const InsSlipChannels& names) {
@@ -132,118 +147,211 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
     if (std::hypot(ref.east[k], ref.north[k]) > 1.0) heading0 = std::atan2(ref.east[k], ref.north[k]);
   }
 
-  InsState s;
-  s.C_bn = dcm_from_euler(roll0, pitch0, heading0);
-  s.latitude = ref.latitude;
-  s.longitude = ref.longitude;
-  s.height = ref.height;
-  const double L0 = s.latitude, lon0 = s.longitude, h0 = s.height;
+  const double L0 = ref.latitude, lon0 = ref.longitude, h0 = ref.height;
   const double rn0 = meridian_radius(L0) + h0, re0 = transverse_radius(L0) + h0;
+  // One filter pass; `aiding` adds the wheels' forward speed as an update.
+  auto run_filter = [&](bool aiding, double progress_base, double progress_share) {
+    InsState s;
+    s.C_bn = dcm_from_euler(roll0, pitch0, heading0);
+    s.latitude = ref.latitude;
+    s.longitude = ref.longitude;
+    s.height = ref.height;
 
-  Mat15 P = Mat15::Zero();
-  P.block<2, 2>(0, 0).diagonal().setConstant(o.noise.initial_attitude * o.noise.initial_attitude);
-  P(2, 2) = o.noise.initial_heading * o.noise.initial_heading;
-  P.block<3, 3>(3, 3).diagonal().setConstant(0.01 * 0.01);
-  P(6, 6) = std::pow(0.05 / rn0, 2);
-  P(7, 7) = std::pow(0.05 / (re0 * std::max(std::cos(L0), 1e-6)), 2);
-  P(8, 8) = 0.05 * 0.05;
-  P.block<3, 3>(9, 9).diagonal().setConstant(std::pow(o.noise.initial_accel_bias, 2));
-  P.block<3, 3>(12, 12).diagonal().setConstant(std::pow(o.noise.initial_gyro_bias, 2));
-  Eigen::MatrixXd Pd = P;
+    Mat15 P = Mat15::Zero();
+    P.block<2, 2>(0, 0).diagonal().setConstant(o.noise.initial_attitude * o.noise.initial_attitude);
+    P(2, 2) = o.noise.initial_heading * o.noise.initial_heading;
+    P.block<3, 3>(3, 3).diagonal().setConstant(0.01 * 0.01);
+    P(6, 6) = std::pow(0.05 / rn0, 2);
+    P(7, 7) = std::pow(0.05 / (re0 * std::max(std::cos(L0), 1e-6)), 2);
+    P(8, 8) = 0.05 * 0.05;
+    P.block<3, 3>(9, 9).diagonal().setConstant(std::pow(o.noise.initial_accel_bias, 2));
+    P.block<3, 3>(12, 12).diagonal().setConstant(std::pow(o.noise.initial_gyro_bias, 2));
+    Eigen::MatrixXd Pd = P;
 
-  // Outputs at IMU rate.
-  std::vector<double> roll(n), pitch(n), yaw(n), east(n), north(n), up(n), vn(n), ve(n), vd(n), vx(n), vy(n), vz(n);
-  std::vector<std::vector<double>> bias(6, std::vector<double>(n));
-  std::vector<double> still(n);
-  auto record = [&](std::size_t i) {
-    const Eigen::Vector3d e = euler_from_dcm(s.C_bn);
-    roll[i] = e.x();
-    pitch[i] = e.y();
-    yaw[i] = e.z();
-    north[i] = (s.latitude - L0) * rn0;
-    east[i] = (s.longitude - lon0) * re0 * std::cos(L0);
-    up[i] = s.height - h0;
-    vn[i] = s.v_n.x();
-    ve[i] = s.v_n.y();
-    vd[i] = s.v_n.z();
-    const Eigen::Vector3d vb = s.C_bn.transpose() * s.v_n;  // Eq. 29
-    vx[i] = vb.x();
-    vy[i] = vb.y();
-    vz[i] = vb.z();
-    for (int k = 0; k < 3; ++k) {
-      bias[k][i] = s.accel_bias[k];
-      bias[3 + k][i] = s.gyro_bias[k];
+    // Outputs at IMU rate.
+    Track tr(n);
+    auto& roll = tr.roll;
+    auto& pitch = tr.pitch;
+    auto& yaw = tr.yaw;
+    auto& east = tr.east;
+    auto& north = tr.north;
+    auto& up = tr.up;
+    auto& vn = tr.vn;
+    auto& ve = tr.ve;
+    auto& vd = tr.vd;
+    auto& vx = tr.vx;
+    auto& vy = tr.vy;
+    auto& vz = tr.vz;
+    auto& bias = tr.bias;
+    auto record = [&](std::size_t i, const InsState& s) {
+      const Eigen::Vector3d e = euler_from_dcm(s.C_bn);
+      roll[i] = e.x();
+      pitch[i] = e.y();
+      yaw[i] = e.z();
+      north[i] = (s.latitude - L0) * rn0;
+      east[i] = (s.longitude - lon0) * re0 * std::cos(L0);
+      up[i] = s.height - h0;
+      vn[i] = s.v_n.x();
+      ve[i] = s.v_n.y();
+      vd[i] = s.v_n.z();
+      const Eigen::Vector3d vb = s.C_bn.transpose() * s.v_n;  // Eq. 29
+      vx[i] = vb.x();
+      vy[i] = vb.y();
+      vz[i] = vb.z();
+      for (int k = 0; k < 3; ++k) {
+        bias[k][i] = s.accel_bias[k];
+        bias[3 + k][i] = s.gyro_bias[k];
+      }
+    };
+    // For the smoother: the nominal state at every IMU sample, and at every
+    // update epoch the prior and posterior covariance, the transition from
+    // the previous epoch and the error correction applied.
+    std::vector<InsState> states;
+    if (o.smooth) states.reserve(n);
+    std::vector<Epoch> epochs;
+    Mat15 Phi_acc = Mat15::Identity();
+    Vec15 c_epoch = Vec15::Zero();
+    if (o.smooth) {
+      states.push_back(s);
+      epochs.push_back({0, P, P, Mat15::Identity(), Vec15::Zero()});
     }
-    still[i] = standstill[i] ? 1.0 : 0.0;
-  };
-  record(0);
+    record(0, s);
 
-  auto apply = [&](const Eigen::MatrixXd& H, const Eigen::MatrixXd& R, const Eigen::VectorXd& y) {
-    const UpdateResult u = kalman_update(Pd, H, R, y);
-    if (u.ok) correct(s, Vec15(u.correction));
-  };
+    auto apply = [&](const Eigen::MatrixXd& H, const Eigen::MatrixXd& R, const Eigen::VectorXd& y,
+                     double gate = HUGE_VAL) {
+      const UpdateResult u = kalman_update(Pd, H, R, y, gate);
+      if (!u.ok) return;
+      correct(s, Vec15(u.correction));
+      c_epoch += u.correction;
+    };
 
-  double last_update = t[0];
-  Eigen::Vector3d w_sum = Eigen::Vector3d::Zero();  // raw rates since the last update (ZARU uses their mean)
-  int w_count = 0;
-  for (std::size_t i = 1; i < n; ++i) {
-    w_sum += Eigen::Vector3d(wx[i], wy[i], wz[i]);
-    ++w_count;
-    const double dt = t[i] - t[i - 1];
-    const Eigen::Vector3d f = Eigen::Vector3d(fx[i - 1], fy[i - 1], fz[i - 1]) - s.accel_bias;
-    const Eigen::Vector3d w = Eigen::Vector3d(wx[i - 1], wy[i - 1], wz[i - 1]) - s.gyro_bias;
-    const Mat15 F = error_system_matrix(s, f, o.ins);
-    mechanize(s, f, w, dt, o.ins);
-    // Eq. 11 (first-order transition) and a first-order Q (Eq. 14's diagonal terms).
-    const Mat15 Phi = Mat15::Identity() + F * dt;
-    Mat15 Q = Mat15::Zero();
-    Q.block<3, 3>(0, 0).diagonal().setConstant(o.noise.gyro_arw * o.noise.gyro_arw * dt);
-    Q.block<3, 3>(3, 3).diagonal().setConstant(o.noise.accel_vrw * o.noise.accel_vrw * dt);
-    Q.block<3, 3>(9, 9).diagonal().setConstant(o.noise.accel_bias_walk * o.noise.accel_bias_walk * dt);
-    Q.block<3, 3>(12, 12).diagonal().setConstant(o.noise.gyro_bias_walk * o.noise.gyro_bias_walk * dt);
-    propagate_covariance(Pd, Phi, Q);
+    double last_update = t[0];
+    Eigen::Vector3d w_sum = Eigen::Vector3d::Zero();  // raw rates since the last update (ZARU uses their mean)
+    int w_count = 0;
+    for (std::size_t i = 1; i < n; ++i) {
+      w_sum += Eigen::Vector3d(wx[i], wy[i], wz[i]);
+      ++w_count;
+      const double dt = t[i] - t[i - 1];
+      const Eigen::Vector3d f = Eigen::Vector3d(fx[i - 1], fy[i - 1], fz[i - 1]) - s.accel_bias;
+      const Eigen::Vector3d w = Eigen::Vector3d(wx[i - 1], wy[i - 1], wz[i - 1]) - s.gyro_bias;
+      const Mat15 F = error_system_matrix(s, f, o.ins);
+      mechanize(s, f, w, dt, o.ins);
+      // Eq. 11 (first-order transition) and a first-order Q (Eq. 14's diagonal terms).
+      const Mat15 Phi = Mat15::Identity() + F * dt;
+      Mat15 Q = Mat15::Zero();
+      Q.block<3, 3>(0, 0).diagonal().setConstant(o.noise.gyro_arw * o.noise.gyro_arw * dt);
+      Q.block<3, 3>(3, 3).diagonal().setConstant(o.noise.accel_vrw * o.noise.accel_vrw * dt);
+      Q.block<3, 3>(9, 9).diagonal().setConstant(o.noise.accel_bias_walk * o.noise.accel_bias_walk * dt);
+      Q.block<3, 3>(12, 12).diagonal().setConstant(o.noise.gyro_bias_walk * o.noise.gyro_bias_walk * dt);
+      propagate_covariance(Pd, Phi, Q);
+      Phi_acc = Phi * Phi_acc;
 
-    if (t[i] - last_update >= o.update_interval - 1e-9) {
-      last_update = t[i];
-      const Eigen::Vector3d w_now = Eigen::Vector3d(wx[i], wy[i], wz[i]) - s.gyro_bias;
-      if (standstill[i]) {
-        if (o.zupt) {  // Eq. 17-18: the velocity is zero
-          Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, 15);
-          H.block<3, 3>(0, 3).setIdentity();
-          apply(H, Eigen::MatrixXd::Identity(3, 3) * o.zupt_sigma * o.zupt_sigma, -s.v_n);
+      const bool last = i + 1 == n;
+      if (t[i] - last_update >= o.update_interval - 1e-9 || last) {
+        last_update = t[i];
+        const Mat15 P_prior = Pd;
+        c_epoch.setZero();
+        const Eigen::Vector3d w_now = Eigen::Vector3d(wx[i], wy[i], wz[i]) - s.gyro_bias;
+        if (standstill[i]) {
+          if (o.zupt) {  // Eq. 17-18: the velocity is zero
+            Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, 15);
+            H.block<3, 3>(0, 3).setIdentity();
+            apply(H, Eigen::MatrixXd::Identity(3, 3) * o.zupt_sigma * o.zupt_sigma, -s.v_n);
+          }
+          if (o.zaru) {  // Eq. 19-20: the angular rate is zero
+            Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, 15);
+            H.block<3, 3>(0, 12) = -Eigen::Matrix3d::Identity();
+            const Eigen::Vector3d w_meas = w_sum / std::max(w_count, 1) - s.gyro_bias;
+            apply(H, Eigen::MatrixXd::Identity(3, 3) * o.zaru_sigma * o.zaru_sigma, -w_meas);
+          }
+        } else {
+          const Eigen::Matrix3d Cnb = s.C_bn.transpose();
+          if (o.nhc) {  // Eq. 21-23: no lateral or vertical velocity at the wheels
+            const Eigen::Vector3d v_wheel = Cnb * s.v_n - skew(w_now) * o.nhc_lever_arm;
+            Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, 15);
+            H.block<2, 3>(0, 0) = (Cnb * skew(s.v_n)).bottomRows<2>();  // attitude term, dropped in Eq. 22
+            H.block<2, 3>(0, 3) = Cnb.bottomRows<2>();
+            apply(H, Eigen::MatrixXd::Identity(2, 2) * o.nhc_sigma * o.nhc_sigma, -v_wheel.tail<2>());
+          }
+          if (aiding) {  // forward speed from the wheels
+            const std::size_t k = std::min(wheels.nearest_index(t[i]), wr.time.size() - 1);
+            const double v_odo = o.rover.wheel_radius * 0.5 * (wr.left_rate[k] + wr.right_rate[k]);
+            Eigen::MatrixXd H = Eigen::MatrixXd::Zero(1, 15);
+            H.block<1, 3>(0, 0) = (Cnb * skew(s.v_n)).topRows<1>();
+            H.block<1, 3>(0, 3) = Cnb.topRows<1>();
+            Eigen::VectorXd y(1);
+            y(0) = v_odo - (Cnb * s.v_n).x();
+            apply(H, Eigen::MatrixXd::Identity(1, 1) * o.odometry_sigma * o.odometry_sigma, y, o.odometry_gate);
+          }
         }
-        if (o.zaru) {  // Eq. 19-20: the angular rate is zero
-          Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, 15);
-          H.block<3, 3>(0, 12) = -Eigen::Matrix3d::Identity();
-          const Eigen::Vector3d w_meas = w_sum / std::max(w_count, 1) - s.gyro_bias;
-          apply(H, Eigen::MatrixXd::Identity(3, 3) * o.zaru_sigma * o.zaru_sigma, -w_meas);
-        }
-      } else {
-        const Eigen::Matrix3d Cnb = s.C_bn.transpose();
-        if (o.nhc) {  // Eq. 21-23: no lateral or vertical velocity at the wheels
-          const Eigen::Vector3d v_wheel = Cnb * s.v_n - skew(w_now) * o.nhc_lever_arm;
-          Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, 15);
-          H.block<2, 3>(0, 0) = (Cnb * skew(s.v_n)).bottomRows<2>();  // attitude term, dropped in Eq. 22
-          H.block<2, 3>(0, 3) = Cnb.bottomRows<2>();
-          apply(H, Eigen::MatrixXd::Identity(2, 2) * o.nhc_sigma * o.nhc_sigma, -v_wheel.tail<2>());
-        }
-        if (o.odometry_aiding) {  // forward speed from the wheels
-          const std::size_t k = std::min(wheels.nearest_index(t[i]), wr.time.size() - 1);
-          const double v_odo = o.rover.wheel_radius * 0.5 * (wr.left_rate[k] + wr.right_rate[k]);
-          Eigen::MatrixXd H = Eigen::MatrixXd::Zero(1, 15);
-          H.block<1, 3>(0, 0) = (Cnb * skew(s.v_n)).topRows<1>();
-          H.block<1, 3>(0, 3) = Cnb.topRows<1>();
-          Eigen::VectorXd y(1);
-          y(0) = v_odo - (Cnb * s.v_n).x();
-          apply(H, Eigen::MatrixXd::Identity(1, 1) * o.odometry_sigma * o.odometry_sigma, y);
+        w_sum.setZero();
+        w_count = 0;
+        if (o.smooth) epochs.push_back({i, P_prior, Mat15(Pd), Phi_acc, c_epoch});
+        Phi_acc.setIdentity();
+      }
+      if (o.smooth) states.push_back(s);
+      record(i, s);
+      if (o.progress && i % 2000 == 0) o.progress(progress_base + progress_share * static_cast<double>(i) / static_cast<double>(n));
+    }
+    if (o.smooth) {
+      // Rauch-Tung-Striebel smoother in error-state form: with the filter's
+      // error reset after each epoch, the smoothed error at epoch j (about
+      // its posterior nominal state) is e_j = A_j (c_{j+1} + e_{j+1}),
+      // A_j = P+_j Phi_{j+1}^T (P-_{j+1})^-1, e_last = 0. Position states are
+      // scaled to metres for the inversion.
+      Vec15 scale = Vec15::Ones();
+      scale(6) = rn0;
+      scale(7) = re0 * std::max(std::cos(L0), 1e-6);
+      const auto S = scale.asDiagonal();
+      const auto S_inv = scale.cwiseInverse().asDiagonal();
+      const std::size_t m = epochs.size();
+      std::vector<Vec15> e(m, Vec15::Zero());  // scaled
+      for (std::size_t j = m - 1; j-- > 0;) {
+        const Epoch& a = epochs[j];
+        const Epoch& b = epochs[j + 1];
+        const Mat15 Pp = S * a.P_post * S, Pm = S * b.P_prior * S;
+        const Mat15 Phi = S * b.Phi * S_inv;
+        const Eigen::LDLT<Mat15> ldlt(Pm);
+        const Mat15 A = ldlt.solve(Phi * Pp).transpose();  // Pm and Pp symmetric
+        e[j] = A * (S * b.correction + e[j + 1]);
+      }
+      // Between epochs the error moves from e_j to c_{j+1} + e_{j+1} (both
+      // about the nominal trajectory the filter propagated); interpolate.
+      for (std::size_t j = 0; j + 1 < m; ++j) {
+        const Epoch& a = epochs[j];
+        const Epoch& b = epochs[j + 1];
+        const Vec15 from = S_inv * e[j], to = S_inv * (S * b.correction + e[j + 1]);
+        for (std::size_t i = a.index; i < b.index; ++i) {
+          const double w = (t[i] - t[a.index]) / (t[b.index] - t[a.index]);
+          InsState smoothed = states[i];
+          correct(smoothed, Vec15((1.0 - w) * from + w * to));
+          record(i, smoothed);
         }
       }
-      w_sum.setZero();
-      w_count = 0;
     }
-    record(i);
-    if (o.progress && i % 2000 == 0) o.progress(static_cast<double>(i) / static_cast<double>(n));
-  }
+    return tr;
+  };
+  // The localisation filter (with wheel-speed aiding if asked), and the slip
+  // detector: a filter that never sees the wheel speed it is judged against.
+  const double share = o.odometry_aiding ? 0.5 : 1.0;
+  const Track track = run_filter(o.odometry_aiding, 0.0, share);
+  const Track detector_track = o.odometry_aiding ? run_filter(false, 0.5, 0.5) : Track(0);
+  const Track& detector = o.odometry_aiding ? detector_track : track;
+  const auto& roll = track.roll;
+  const auto& pitch = track.pitch;
+  const auto& yaw = track.yaw;
+  const auto& east = track.east;
+  const auto& north = track.north;
+  const auto& up = track.up;
+  const auto& vn = track.vn;
+  const auto& ve = track.ve;
+  const auto& vd = track.vd;
+  const auto& vx = track.vx;
+  const auto& vy = track.vy;
+  const auto& vz = track.vz;
+  const auto& bias = track.bias;
+  std::vector<double> still(n);
+  for (std::size_t i = 0; i < n; ++i) still[i] = standstill[i] ? 1.0 : 0.0;
 
   InsSlipResult result;
   result.estimates.metadata = lg.metadata;
@@ -283,13 +391,17 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
     const double tk = wr.time[k];
     if (tk < t.front() || tk > t.back()) continue;
     const double wheel_speed = o.rover.wheel_radius * 0.5 * (wr.left_rate[k] + wr.right_rate[k]);
-    const double v = log::interpolate_linear(t, vx, tk);
-    // Slip is undefined at standstill (Eq. 1's third case); below min_slip_speed it is reported as 0.
+    const double v = log::interpolate_linear(t, detector.vx, tk);
+    // At standstill slip is 0 (Eq. 1's third case). Between standstill and
+    // min_slip_speed the ratio is ill-conditioned: reported as NaN and left
+    // out of the confusion matrix.
     const bool slow_wheels = std::abs(wheel_speed) < o.min_slip_speed;
-    const double s_e = (slow_wheels && std::abs(v) < o.min_slip_speed) ? 0.0 : slip_ratio(v, wheel_speed);
+    const bool at_rest = standstill[std::min(imu.nearest_index(tk), n - 1)] != 0;
+    const bool undefined = !at_rest && slow_wheels && std::abs(v) < o.min_slip_speed;
+    const double s_e = at_rest ? 0.0 : undefined ? NAN : slip_ratio(v, wheel_speed);
     st_.push_back(tk);
     s_est.push_back(s_e);
-    c_est.push_back(static_cast<double>(classify_slip(s_e, o.no_slip)));
+    c_est.push_back(undefined ? NAN : static_cast<double>(classify_slip(s_e, o.no_slip)));
     wspeed.push_back(wheel_speed);
     vfwd.push_back(v);
     if (truth_slip != nullptr) {
@@ -298,21 +410,21 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
       s_ref.push_back(s_r);
       c_ref.push_back(static_cast<double>(classify_slip(s_r, o.no_slip)));
       vref.push_back(NAN);
-      confusion.add(classify_slip(s_e, o.no_slip), classify_slip(s_r, o.no_slip));
+      if (!undefined) confusion.add(classify_slip(s_e, o.no_slip), classify_slip(s_r, o.no_slip));
     } else if (ref.present) {
-      const double psi = log::interpolate_linear(t, yaw, tk);
+      const double psi = log::interpolate_linear(t, detector.yaw, tk);
       const double v_r = log::interpolate_linear(ref.time, ref.v_east, tk) * std::sin(psi) +
                          log::interpolate_linear(ref.time, ref.v_north, tk) * std::cos(psi);
       const double s_r = (slow_wheels && std::abs(v_r) < o.min_slip_speed) ? 0.0 : slip_ratio(v_r, wheel_speed);
       s_ref.push_back(s_r);
       c_ref.push_back(static_cast<double>(classify_slip(s_r, o.no_slip)));
       vref.push_back(v_r);
-      if (std::isfinite(v_r)) confusion.add(classify_slip(s_e, o.no_slip), classify_slip(s_r, o.no_slip));
+      if (std::isfinite(v_r) && !undefined) confusion.add(classify_slip(s_e, o.no_slip), classify_slip(s_r, o.no_slip));
     }
   }
   {
     log::Stream slip("estimate/ins/slip", st_);
-    slip.add_channel("slip_ratio", "1", s_est, "Eq. 1: INS forward speed against wheel speed");
+    slip.add_channel("slip_ratio", "1", s_est, "Eq. 1: INS forward speed against wheel speed (NaN: too slow to tell)");
     slip.add_channel("slip_class", "1", c_est, "0 none, 1 low, 2 medium, 3 high, 4 extreme");
     slip.add_channel("wheel_speed", "m/s", wspeed, "r omega, mean of the four wheels");
     slip.add_channel("forward_speed", "m/s", vfwd, "INS body forward speed");

@@ -37,7 +37,12 @@ struct StandstillOptions {
 
 struct InsSlipOptions {
   bool zupt = true, zaru = true, nhc = true;
-  bool odometry_aiding = false;  // forward speed from the wheels (blinds slip detection; off by default)
+  // Forward speed from the wheels as an update of the localisation filter
+  // (seed 002 section 5.1). Slip is then judged by a second pass without it.
+  bool odometry_aiding = true;
+  // Offline: a Rauch-Tung-Striebel pass that carries each update (a stop's
+  // ZUPT above all) back over the drive before it.
+  bool smooth = true;
   InsOptions ins;
   ImuNoise noise;
   StandstillOptions standstill;
@@ -48,6 +53,7 @@ struct InsSlipOptions {
   double zaru_sigma = 2e-4;         // rad/s, on the mean rate over the update interval
   double nhc_sigma = 0.05;          // m/s
   double odometry_sigma = 0.05;     // m/s
+  double odometry_gate = 6.63;      // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
   double heading_distance = 5.0;    // m of GPS track that set the initial heading
   std::optional<double> initial_heading;  // rad clockwise from north; overrides the GPS heading
   double no_slip = 0.02;            // |s| at or below which a sample counts as no slip

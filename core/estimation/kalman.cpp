@@ -8,14 +8,18 @@ void propagate_covariance(Eigen::MatrixXd& P, const Eigen::MatrixXd& Phi, const 
 }
 
 UpdateResult kalman_update(Eigen::MatrixXd& P, const Eigen::MatrixXd& H, const Eigen::MatrixXd& R,
-                           const Eigen::VectorXd& innovation) {
+                           const Eigen::VectorXd& innovation, double gate) {
   UpdateResult r;
   const Eigen::MatrixXd S = H * P * H.transpose() + R;
   const Eigen::LLT<Eigen::MatrixXd> llt(S);
   if (llt.info() != Eigen::Success) return r;
+  r.nis = innovation.dot(llt.solve(innovation));
+  if (!(r.nis <= gate)) {
+    r.rejected = true;
+    return r;
+  }
   const Eigen::MatrixXd K = llt.solve(H * P).transpose();  // P H^T S^-1 (S symmetric)
   r.correction = K * innovation;
-  r.nis = innovation.dot(llt.solve(innovation));
   const Eigen::MatrixXd I_KH = Eigen::MatrixXd::Identity(P.rows(), P.cols()) - K * H;
   P = I_KH * P * I_KH.transpose() + K * R * K.transpose();
   P = 0.5 * (P + P.transpose());

@@ -15,14 +15,16 @@ SkidSteerScenario default_slip_scenario(unsigned seed) {
   // duration, speed, yaw rate, slip. Driving on loose soil always slips a
   // little: the "nominal" runs, and braking into a stop, slip 6 % (low
   // class); a stop segment's slip applies only while the rover still moves.
+  // Two stretches of firm ground (slip 0) give the no-slip class moving samples.
   const double base = 0.06;
   s.segments = {
       {5.0, 0.0, 0.0, 0.0},     {15.0, 0.5, 0.0, base},   {3.0, 0.0, 0.0, base},
+      {8.0, 0.5, 0.0, 0.0},     {3.0, 0.0, 0.0, 0.0},
       {8.0, 0.5, 0.05, base},   {6.0, 0.5, 0.0, 0.12},    {6.0, 0.5, 0.0, base}, {3.0, 0.0, 0.0, base},
       {6.0, 0.5, 0.0, 0.3},     {6.0, 0.5, -0.05, base},  {5.0, 0.5, 0.0, 0.15}, {3.0, 0.0, 0.0, base},
       {5.0, 0.4, 0.0, 0.55},    {8.0, 0.5, 0.0, base},    {3.0, 0.0, 0.0, base},
       {4.0, 0.2, 0.0, 0.85},    {10.0, 0.5, 0.03, base},  {6.0, 0.5, 0.0, 0.08}, {3.0, 0.0, 0.0, base},
-      {12.0, 0.5, 0.0, base},   {5.0, 0.0, 0.0, base},
+      {12.0, 0.5, 0.0, base},   {3.0, 0.0, 0.0, base},   {10.0, 0.5, -0.03, 0.0}, {5.0, 0.0, 0.0, 0.0},
   };
   return s;
 }
