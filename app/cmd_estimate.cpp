@@ -143,7 +143,25 @@ int run_estimate_ins_slip(const InsSlipCommandOptions& o) {
 }
 
 int run_scenario_skid_steer(const SkidSteerScenarioOptions& o) {
-  const log::Log lg = simulation::simulate_skid_steer(simulation::default_slip_scenario(o.seed));
+  simulation::SkidSteerScenario scenario = simulation::default_slip_scenario(o.seed);
+  for (const auto& e : o.effects) {
+    const auto eq = e.find('=');
+    if (eq == std::string::npos) throw UsageError("--effect " + e + ": expected NAME=VALUE");
+    double value = NAN;
+    try {
+      std::size_t used = 0;
+      value = std::stod(e.substr(eq + 1), &used);
+      if (used != e.size() - eq - 1) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+      throw UsageError("--effect " + e + ": the value is not a number");
+    }
+    try {
+      simulation::set_effect(scenario, e.substr(0, eq), value);
+    } catch (const DataError& err) {
+      throw UsageError(std::string("--effect: ") + err.what());
+    }
+  }
+  const log::Log lg = simulation::simulate_skid_steer(scenario);
   io::write_hdf5_log(lg, o.output);
   std::printf("wrote %s: %zu streams, %.1f s, seed %u\n", o.output.c_str(), lg.streams().size(),
               lg.stream("imu").duration(), o.seed);

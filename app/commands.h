@@ -94,6 +94,7 @@ int run_estimate_ins_slip(const InsSlipCommandOptions& options);
 
 struct SkidSteerScenarioOptions {
   unsigned seed = 1;
+  std::vector<std::string> effects;  // NAME=VALUE
   std::string output;
 };
 int run_scenario_skid_steer(const SkidSteerScenarioOptions& options);

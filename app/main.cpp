@@ -132,6 +132,9 @@ int dispatch(int argc, char** argv) {
   auto* skid_cmd = scenario_cmd->add_subcommand(
       "skid-steer-slip", "Four-wheel skid-steer drive with slip episodes of every class, IMU, wheels, GPS (seed 002)");
   skid_cmd->add_option("--seed", skid.seed, "Noise seed")->capture_default_str();
+  skid_cmd->add_option("--effect", skid.effects,
+                       "Hidden effect NAME=VALUE: left-radius-scale, right-radius-scale, radius-scale, "
+                       "turning-track-factor, wheel-time-offset (s), slip (0: firm ground)");
   skid_cmd->add_option("--output,-o", skid.output, "OUT.h5")->required();
 
   OdometryDiscrepancyOptions odo;

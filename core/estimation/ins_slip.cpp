@@ -5,6 +5,7 @@
 
 #include "core/common/error.h"
 #include "core/estimation/kalman.h"
+#include "core/estimation/reference_track.h"
 
 namespace roverlab::estimation {
 
@@ -32,42 +33,6 @@ std::vector<double> moving_std(const std::vector<double>& x, std::size_t half) {
     out[i] = std::sqrt(std::max(0.0, (s2[b] - s2[a]) / m - mean * mean));
   }
   return out;
-}
-
-struct Reference {
-  std::vector<double> time, east, north, up, v_east, v_north;
-  bool present = false;
-  double latitude = 0, longitude = 0, height = 0;
-};
-
-Reference reference_from_gps(const log::Log& lg, const std::string& name) {
-  Reference r;
-  const log::Stream* gps = lg.find_stream(name);
-  if (gps == nullptr || gps->find_channel("east") == nullptr || gps->find_channel("north") == nullptr) return r;
-  r.present = gps->size() >= 3;
-  r.time = gps->time();
-  r.east = values(*gps, "east");
-  r.north = values(*gps, "north");
-  r.up = gps->find_channel("up") ? values(*gps, "up") : std::vector<double>(r.time.size(), 0.0);
-  if (gps->find_channel("latitude") && gps->find_channel("longitude") && !gps->empty()) {
-    r.latitude = values(*gps, "latitude").front();
-    r.longitude = values(*gps, "longitude").front();
-    r.height = gps->find_channel("height") ? values(*gps, "height").front() : 0.0;
-  }
-  // Velocity by central differences over about +-0.5 s.
-  const std::size_t n = r.time.size();
-  r.v_east.assign(n, 0.0);
-  r.v_north.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t a = i, b = i;
-    while (a > 0 && r.time[i] - r.time[a - 1] <= 0.5) --a;
-    while (b + 1 < n && r.time[b + 1] - r.time[i] <= 0.5) ++b;
-    if (b > a) {
-      r.v_east[i] = (r.east[b] - r.east[a]) / (r.time[b] - r.time[a]);
-      r.v_north[i] = (r.north[b] - r.north[a]) / (r.time[b] - r.time[a]);
-    }
-  }
-  return r;
 }
 
 // Filter outputs at the IMU samples.
@@ -100,7 +65,7 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
   const auto& wz = values(imu, "angular_rate_z");
   const WheelSamples wr = wheel_rates(wheels.time(), values(wheels, "angle_FL"), values(wheels, "angle_FR"),
                                       values(wheels, "angle_RL"), values(wheels, "angle_RR"));
-  const Reference ref = reference_from_gps(lg, names.gps);
+  const ReferenceTrack ref = reference_from_gps(lg, names.gps);
   const auto& t = imu.time();
   const std::size_t n = t.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -142,9 +107,8 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
   if (o.initial_heading) {
     heading0 = *o.initial_heading;
   } else if (ref.present) {
-    std::size_t k = 0;
-    while (k + 1 < ref.time.size() && std::hypot(ref.east[k], ref.north[k]) < o.heading_distance) ++k;
-    if (std::hypot(ref.east[k], ref.north[k]) > 1.0) heading0 = std::atan2(ref.east[k], ref.north[k]);
+    heading0 = initial_course(ref, o.heading_distance);
+    if (!std::isfinite(heading0)) heading0 = 0.0;
   }
 
   const double L0 = ref.latitude, lon0 = ref.longitude, h0 = ref.height;

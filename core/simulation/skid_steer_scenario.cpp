@@ -29,6 +29,30 @@ SkidSteerScenario default_slip_scenario(unsigned seed) {
   return s;
 }
 
+void set_effect(SkidSteerScenario& s, const std::string& name, double value) {
+  if (!std::isfinite(value)) throw DataError("effect " + name + ": value is not a number");
+  if (name == "left-radius-scale") {
+    s.left_radius_scale = value;
+  } else if (name == "right-radius-scale") {
+    s.right_radius_scale = value;
+  } else if (name == "radius-scale") {
+    s.left_radius_scale = s.right_radius_scale = value;
+  } else if (name == "turning-track-factor") {
+    s.turning_track_factor = value;
+  } else if (name == "wheel-time-offset") {
+    s.wheel_time_offset = value;
+  } else if (name == "slip") {
+    s.slip = value != 0.0;
+  } else {
+    throw DataError("unknown effect '" + name +
+                    "' (left-radius-scale, right-radius-scale, radius-scale, turning-track-factor, "
+                    "wheel-time-offset, slip)");
+  }
+  if ((name.find("scale") != std::string::npos || name == "turning-track-factor") && !(value > 0.1 && value < 10.0)) {
+    throw DataError("effect " + name + " = " + std::to_string(value) + ": outside 0.1 .. 10");
+  }
+}
+
 log::Log simulate_skid_steer(const SkidSteerScenario& sc) {
   if (sc.segments.empty()) throw DataError("skid-steer scenario without segments");
   std::mt19937 rng(sc.seed);
@@ -63,14 +87,15 @@ log::Log simulate_skid_steer(const SkidSteerScenario& sc) {
       north.push_back(n);
       yaw.push_back(psi);
       speed.push_back(v);
-      slip_now.push_back(v > 1e-6 ? seg.slip : 0.0);
+      const double seg_slip = sc.slip ? seg.slip : 0.0;
+      slip_now.push_back(v > 1e-6 ? seg_slip : 0.0);
       left_angle.push_back(al);
       right_angle.push_back(ar);
       // Wheels: ground speed of each side, turned faster by slip s (v = r w (1 - s)).
-      const double keep = 1.0 - (v > 1e-6 ? seg.slip : 0.0);
-      const double vl = v + 0.5 * yaw_rate * track, vr = v - 0.5 * yaw_rate * track;
-      al += vl / (r * keep) * dt;
-      ar += vr / (r * keep) * dt;
+      const double keep = 1.0 - (v > 1e-6 ? seg_slip : 0.0);
+      const double half = 0.5 * yaw_rate * track * sc.turning_track_factor;
+      al += (v + half) / (r * sc.left_radius_scale * keep) * dt;
+      ar += (v - half) / (r * sc.right_radius_scale * keep) * dt;
       // Motion over the step (exact for constant acceleration and yaw rate, to second order).
       const double v_next = v + a * dt;
       const double mid_psi = psi + 0.5 * yaw_rate * dt;
@@ -93,6 +118,14 @@ log::Log simulate_skid_steer(const SkidSteerScenario& sc) {
     out.metadata.extra[std::string("truth/gyro_bias_") + axis] = std::to_string(bg[k]);
     out.metadata.extra[std::string("truth/accel_bias_") + axis] = std::to_string(ba[k]);
   }
+  auto effect = [&](const char* name, double value, double neutral) {
+    if (value != neutral) out.metadata.extra[std::string("truth/effect/") + name] = std::to_string(value);
+  };
+  effect("left-radius-scale", sc.left_radius_scale, 1.0);
+  effect("right-radius-scale", sc.right_radius_scale, 1.0);
+  effect("turning-track-factor", sc.turning_track_factor, 1.0);
+  effect("wheel-time-offset", sc.wheel_time_offset, 0.0);
+  if (!sc.slip) out.metadata.extra["truth/effect/slip"] = "0";
   {
     log::Stream imu("imu", t);
     imu.add_channel("specific_force_x", "m/s^2", fx);
@@ -112,9 +145,10 @@ log::Log simulate_skid_steer(const SkidSteerScenario& sc) {
   // Wheels, GPS and slip truth at their own rates, sampled from the IMU-rate truth.
   const auto every = [&](double rate) { return static_cast<std::size_t>(std::llround(sc.imu_rate / rate)); };
   {
-    std::vector<double> tw, fl, fr, rl, rr, s, c;
+    std::vector<double> tw, tt, fl, fr, rl, rr, s, c;
     for (std::size_t i = 0; i < t.size(); i += every(sc.wheel_rate)) {
-      tw.push_back(t[i]);
+      tw.push_back(t[i] + sc.wheel_time_offset);
+      tt.push_back(t[i]);
       fl.push_back(left_angle[i]);
       rl.push_back(left_angle[i]);
       fr.push_back(right_angle[i]);
@@ -128,7 +162,7 @@ log::Log simulate_skid_steer(const SkidSteerScenario& sc) {
     w.add_channel("angle_RL", "rad", rl);
     w.add_channel("angle_RR", "rad", rr);
     out.add_stream(std::move(w));
-    log::Stream ts("truth/slip", tw);
+    log::Stream ts("truth/slip", tt);
     ts.add_channel("slip_ratio", "1", s);
     ts.add_channel("slip_class", "1", c);
     out.add_stream(std::move(ts));

@@ -3,6 +3,7 @@
 // the log generator behind the slip-detection tests (seed 002). It writes the
 // streams a real Pathfinder log has (imu, wheels, gps) plus truth/ streams.
 
+#include <string>
 #include <vector>
 
 #include "core/estimation/skid_steer_odometry.h"
@@ -33,11 +34,24 @@ struct SkidSteerScenario {
   double accel_bias = 0.003;           // m/s^2, per axis, sign drawn from the seed (0.3 mg)
   double gps_sigma = 0.01;             // m
   unsigned seed = 1;
+  // Hidden effects, recorded only in the truth/ metadata: true wheel radius
+  // of each side against the nominal one, effective track of skid-steer
+  // turning (wheels must skid: wider than the geometric track), and an
+  // offset added to the wheel stream's time stamps.
+  double left_radius_scale = 1.0, right_radius_scale = 1.0;
+  double turning_track_factor = 1.0;
+  double wheel_time_offset = 0.0;  // s
+  bool slip = true;                // false: firm ground, every segment's slip is 0
 };
 
 // The default test drive: 5 s at rest, then straight runs and turns at
 // 0.5 m/s with 3 s stops every 20 s, and slip episodes of every class.
 SkidSteerScenario default_slip_scenario(unsigned seed);
+
+// Sets a hidden effect by name: left-radius-scale, right-radius-scale,
+// radius-scale (both sides), turning-track-factor, wheel-time-offset, or
+// slip (0 or 1). Throws DataError for an unknown name.
+void set_effect(SkidSteerScenario& scenario, const std::string& name, double value);
 
 // Streams: imu, wheels, gps, truth/motion (IMU rate: east, north, yaw,
 // forward_speed), truth/slip (wheel rate: slip_ratio, slip_class).
