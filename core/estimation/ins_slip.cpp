@@ -439,8 +439,8 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
       m.final_position_error = std::hypot(de, dn);
       m.final_position_error_3d = std::sqrt(de * de + dn * dn + du * du);
       result.odometry.final_position_error = std::isfinite(oe + on) ? std::hypot(oe, on) : result.odometry.final_position_error;
-      if (g > 0) m.distance += std::hypot(ref.east[g] - ref.east[g - 1], ref.north[g] - ref.north[g - 1]);
     }
+    m.distance = distance_along(ref).back();
     if (count > 0) {
       const double c = static_cast<double>(count);
       m.position_rmse_axes = {std::sqrt(se / c), std::sqrt(sn / c), std::sqrt(su / c)};

@@ -50,10 +50,19 @@ double course_at(const ReferenceTrack& ref, double t, double min_speed) {
   return std::atan2(ve, vn);
 }
 
-std::vector<double> distance_along(const ReferenceTrack& ref) {
+std::vector<double> distance_along(const ReferenceTrack& ref, double step) {
+  // Summing every 10 Hz increment would add the position noise to the
+  // distance; count a segment only once it is `step` long.
   std::vector<double> d(ref.time.size(), 0.0);
+  std::size_t anchor = 0;
+  double total = 0.0;
   for (std::size_t i = 1; i < d.size(); ++i) {
-    d[i] = d[i - 1] + std::hypot(ref.east[i] - ref.east[i - 1], ref.north[i] - ref.north[i - 1]);
+    const double seg = std::hypot(ref.east[i] - ref.east[anchor], ref.north[i] - ref.north[anchor]);
+    if (seg >= step) {
+      total += seg;
+      anchor = i;
+    }
+    d[i] = total;
   }
   return d;
 }

@@ -26,7 +26,8 @@ double initial_course(const ReferenceTrack& ref, double distance, std::size_t fr
 // Course over ground at time t from the differenced velocity; NaN when slower than min_speed.
 double course_at(const ReferenceTrack& ref, double t, double min_speed = 0.1);
 
-// Cumulative horizontal distance along the track at each sample.
-std::vector<double> distance_along(const ReferenceTrack& ref);
+// Cumulative horizontal distance along the track at each sample, counted in
+// segments at least `step` metres long (so that position noise does not add up).
+std::vector<double> distance_along(const ReferenceTrack& ref, double step = 0.5);
 
 }  // namespace roverlab::estimation

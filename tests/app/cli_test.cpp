@@ -349,3 +349,91 @@ TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   EXPECT_EQ(count_lines(bad.err), 1u);
   EXPECT_NE(bad.err.find("bad.csv"), std::string::npos);
 }
+
+// --- seed 002: INS slip detection and the odometry discrepancy study -------
+
+TEST(CliInsSlip, OnThePathfinderLogThePseudoMeasurementInsBeatsPureInsAndWheelOdometry) {
+  const CommandResult full = run_roverlab("estimate ins-slip " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  const CommandResult pure = run_roverlab("estimate ins-slip " + quote(kPathfinder) +
+                                          " -m wvu_pathfinder --no-zupt --no-zaru --no-nhc --no-odometry-aiding "
+                                          "--no-smoother --json");
+  ASSERT_EQ(pure.exit_code, 0) << pure.err;
+  const auto f = nlohmann::json::parse(full.out), p = nlohmann::json::parse(pure.out);
+  const double ins = f.at("ins").at("final_position_error_m").get<double>();
+  const double odometry = f.at("wheel_odometry").at("final_position_error_m").get<double>();
+  const double inertial = p.at("ins").at("final_position_error_m").get<double>();
+  EXPECT_NEAR(f.at("distance_m").get<double>(), 34.3, 0.5);
+  EXPECT_LT(ins, 2.0);
+  EXPECT_LT(ins, 0.25 * odometry);
+  EXPECT_GT(inertial, 50.0 * ins);
+  EXPECT_EQ(f.at("slip_confusion").at("counts").size(), 5u);
+}
+
+TEST(CliInsSlip, WritesEstimateStreamsAndReadsItsOwnSimulatedLogs) {
+  TempDir dir;
+  const std::string sim = dir.file("sim.h5"), out = dir.file("est.h5");
+  ASSERT_EQ(run_roverlab("scenario skid-steer-slip --seed 2 -o " + quote(sim)).exit_code, 0);
+  const CommandResult r = run_roverlab("estimate ins-slip " + quote(sim) + " -o " + quote(out) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  const auto& diag = doc.at("slip_confusion").at("column_normalised");
+  EXPECT_GE(diag.at(0).at(0).get<double>(), 0.983);
+  EXPECT_GE(diag.at(1).at(1).get<double>(), 0.96);
+  const log::Log lg = io::read_hdf5_log(out);
+  for (const char* s : {"imu", "wheels", "gps", "estimate/ins/pose", "estimate/ins/velocity", "estimate/ins/bias",
+                        "estimate/ins/standstill", "estimate/ins/slip", "estimate/odometry/pose"}) {
+    EXPECT_NE(lg.find_stream(s), nullptr) << s;
+  }
+  const auto& slip = lg.stream("estimate/ins/slip");
+  EXPECT_NE(slip.find_channel("slip_class"), nullptr);
+  EXPECT_NE(slip.find_channel("reference_slip"), nullptr);
+}
+
+TEST(CliInsSlip, BadInputAndUsage) {
+  TempDir dir;
+  // A log without an imu stream.
+  write_raw_log(dir.file("noimu.h5"), {0.0, 1.0, 2.0}, {1.0, 2.0, 3.0});
+  {
+    RawHdf5 f(dir.file("wheels_only.h5"));
+    f.roverlab_header(1);
+    f.roverlab_stream("wheels");
+    H5Dclose(f.dataset("streams/wheels/time", std::vector<double>{0.0, 0.1, 0.2}));
+    H5Dclose(f.dataset("streams/wheels/channels/angle_FL", std::vector<double>{0.0, 0.1, 0.2}));
+  }
+  for (const std::string name : {"noimu.h5", "wheels_only.h5", "missing.h5"}) {
+    const CommandResult r = run_roverlab("estimate ins-slip " + quote(dir.file(name)) + " -o " + quote(dir.file("o.h5")));
+    EXPECT_EQ(r.exit_code, 3) << name << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("o.h5")));
+  }
+  EXPECT_EQ(run_roverlab("scenario skid-steer-slip --effect wheel-size=2 -o " + quote(dir.file("s.h5"))).exit_code, 2);
+  EXPECT_EQ(run_roverlab("scenario skid-steer-slip --effect radius-scale=big -o " + quote(dir.file("s.h5"))).exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir.file("s.h5")));
+}
+
+TEST(CliDiscrepancy, OdometryOnThePathfinderLogNamesACauseAndItsGain) {
+  const CommandResult r = run_roverlab("discrepancy odometry " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_FALSE(doc.at("cause").is_null()) << doc.at("verdict");
+  EXPECT_EQ(doc.at("candidates").size(), 5u);
+  double best = 1e9;
+  for (const auto& c : doc.at("candidates")) {
+    if (c.at("name") == doc.at("cause")) best = c.at("held_out_rmse_m").get<double>();
+  }
+  // The named correction at least halves the held-out error of the nominal model.
+  EXPECT_LT(best, 0.5 * doc.at("baseline").at("held_out_rmse_m").get<double>());
+}
+
+TEST(CliDiscrepancy, OdometryFindsAHiddenEffectInASimulatedLog) {
+  TempDir dir;
+  const std::string sim = dir.file("sim.h5");
+  ASSERT_EQ(run_roverlab("scenario skid-steer-slip --seed 9 --effect slip=0 --effect right-radius-scale=1.03 -o " +
+                         quote(sim)).exit_code, 0);
+  const CommandResult r = run_roverlab("discrepancy odometry " + quote(sim) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc.at("cause"), "per-side scale") << doc.at("verdict");
+}
