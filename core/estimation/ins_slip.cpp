@@ -235,7 +235,10 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
             Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, 15);
             H.block<2, 3>(0, 0) = (Cnb * skew(s.v_n)).bottomRows<2>();  // attitude term, dropped in Eq. 22
             H.block<2, 3>(0, 3) = Cnb.bottomRows<2>();
-            apply(H, Eigen::MatrixXd::Identity(2, 2) * o.nhc_sigma * o.nhc_sigma, -v_wheel.tail<2>());
+            Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2, 2);
+            R(0, 0) = o.nhc_lateral_sigma * o.nhc_lateral_sigma;
+            R(1, 1) = o.nhc_vertical_sigma * o.nhc_vertical_sigma;
+            apply(H, R, -v_wheel.tail<2>());
           }
           if (aiding) {  // forward speed from the wheels
             const std::size_t k = std::min(wheels.nearest_index(t[i]), wr.time.size() - 1);

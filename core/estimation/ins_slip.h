@@ -51,7 +51,11 @@ struct InsSlipOptions {
   double update_interval = 0.1;     // s between pseudo-measurement updates
   double zupt_sigma = 0.01;         // m/s
   double zaru_sigma = 2e-4;         // rad/s, on the mean rate over the update interval
-  double nhc_sigma = 0.05;          // m/s
+  double nhc_lateral_sigma = 0.05;  // m/s
+  // Vertical wheel velocity is further from zero than lateral on rough ground
+  // (bumps, and the IMU's mounting pitch: 2 deg at 0.7 m/s is 0.025 m/s);
+  // see docs/validation/ins-slip.md for the sensitivity on the Pathfinder log.
+  double nhc_vertical_sigma = 0.2;  // m/s
   double odometry_sigma = 0.05;     // m/s
   double odometry_gate = 6.63;      // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
   double heading_distance = 5.0;    // m of GPS track that set the initial heading
