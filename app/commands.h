@@ -107,4 +107,27 @@ struct OdometryDiscrepancyOptions {
 };
 int run_discrepancy_odometry(const OdometryDiscrepancyOptions& options);
 
+struct RenderOptions {
+  std::string file;
+  std::optional<std::string> mapping;
+  std::string view = "rover";
+  std::optional<double> time;
+  std::optional<std::string> channels;
+  std::optional<std::string> soil;
+  std::string quantity = "drawbar-pull";
+  std::string size = "1280x800";
+  std::string output;
+};
+int run_render(const RenderOptions& options);
+
+struct ReportOptions {
+  std::string file;
+  std::optional<std::string> mapping;
+  std::optional<std::string> soil;
+  std::string quantity = "drawbar-pull";
+  std::string size = "1280x800";
+  std::string output;
+};
+int run_report(const ReportOptions& options);
+
 }  // namespace roverlab::app

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "views/x_display.h"
 #include "core/common/error.h"
 
 #ifndef ROVERLAB_VERSION
@@ -146,6 +147,29 @@ int dispatch(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.1, 0.9));
   odo_cmd->add_flag("--json", odo.json, "Print JSON");
 
+  RenderOptions render;
+  auto* render_cmd = cli.add_subcommand(
+      "render", "Render one view of a log to PNG, headless (starts a private Xvfb when DISPLAY is unset)");
+  render_cmd->add_option("FILE", render.file, "Log (HDF5, .mat with --mapping, CSV) or single-wheel CSV")->required();
+  render_cmd->add_option("--mapping,-m", render.mapping, "Mapping NAME or FILE for .mat/HDF5 input");
+  render_cmd->add_option("--view", render.view, "rover | traction-surface | contact-angles | timeseries")
+      ->capture_default_str();
+  render_cmd->add_option("--time,-t", render.time, "Time shown, s (default: mid-log)");
+  render_cmd->add_option("--channels", render.channels, "timeseries: stream:channel,... (a stream alone: all its channels)");
+  render_cmd->add_option("--soil", render.soil, "traction-surface: draw the Wong-Reece model surface of soil NAME|FILE");
+  render_cmd->add_option("--quantity", render.quantity, "traction-surface: drawbar-pull | torque")->capture_default_str();
+  render_cmd->add_option("--size", render.size, "WxH pixels")->capture_default_str();
+  render_cmd->add_option("--output,-o", render.output, "OUT.png")->required();
+
+  ReportOptions report;
+  auto* report_cmd = cli.add_subcommand(
+      "report", "Write an HTML report (views as PNG, metric tables, CSV and JSON) for a log into a folder");
+  report_cmd->add_option("FILE", report.file, "Log (HDF5, .mat with --mapping, CSV) or single-wheel CSV")->required();
+  report_cmd->add_option("--mapping,-m", report.mapping, "Mapping NAME or FILE for .mat/HDF5 input");
+  report_cmd->add_option("--soil", report.soil, "Add the traction surfaces of soil NAME|FILE");
+  report_cmd->add_option("--size", report.size, "WxH pixels of the 3D views")->capture_default_str();
+  report_cmd->add_option("--output,-o", report.output, "Report folder (created if missing)")->required();
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -168,6 +192,8 @@ int dispatch(int argc, char** argv) {
   if (odo_cmd->parsed()) return run_discrepancy_odometry(odo);
   if (ins_cmd->parsed()) return run_estimate_ins_slip(ins);
   if (skid_cmd->parsed()) return run_scenario_skid_steer(skid);
+  if (render_cmd->parsed()) return run_render(render);
+  if (report_cmd->parsed()) return run_report(report);
   return kUsageError;
 }
 
@@ -185,6 +211,9 @@ int main(int argc, char** argv) {
   } catch (const roverlab::DataError& e) {
     std::cerr << "roverlab: " << e.what() << "\n";
     return roverlab::app::kBadInput;
+  } catch (const roverlab::views::EnvironmentError& e) {
+    std::cerr << "roverlab: " << e.what() << "\n";
+    return roverlab::app::kInternalFailure;
   } catch (const std::exception& e) {
     std::cerr << "roverlab: internal error: " << e.what() << "\n";
     return roverlab::app::kInternalFailure;

@@ -1,0 +1,80 @@
+#pragma once
+// The rover view: a four-wheel skid-steer rover (seed 002's Pathfinder
+// geometry) posed by the log's attitude and position at a time, wheels
+// coloured by slip class, a velocity arrow, and the tracks of every pose
+// source in the log (INS estimate, wheel odometry, GPS, truth) on a ground
+// plane. Truth, when present, is drawn as a ghost rover beside the estimate.
+// World axes: x east, y north, z up; height is not shown (the ground is flat).
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <vtkSmartPointer.h>
+
+#include "core/estimation/skid_steer_odometry.h"
+#include "core/log/log.h"
+
+class vtkActor;
+class vtkRenderer;
+class vtkTextActor;
+class vtkTransform;
+
+namespace roverlab::views {
+
+// A pose track from one stream: east/north (m) and roll/pitch/yaw (rad, yaw
+// clockwise from north). Missing angles are 0; yaw from the course when the
+// stream has none.
+struct PoseTrack {
+  std::string source;  // stream name
+  std::vector<double> time, east, north, roll, pitch, yaw;
+  bool empty() const { return time.empty(); }
+  // Pose at t (linear interpolation, yaw unwrapped; clamped to the ends).
+  struct Pose {
+    double east = 0, north = 0, roll = 0, pitch = 0, yaw = 0;
+  };
+  Pose at(double t) const;
+};
+
+// The pose tracks a log holds, best first: estimate/ins/pose, truth/motion,
+// estimate/odometry/pose, gps.
+std::vector<PoseTrack> pose_tracks(const log::Log& log);
+
+// Class colours of seed 002's five slip classes (none .. extreme), RGB 0..1;
+// grey for undefined.
+Eigen::Vector3d slip_class_colour(int slip_class);
+
+class RoverScene {
+ public:
+  explicit RoverScene(const log::Log& log, const estimation::SkidSteerGeometry& rover = {});
+  ~RoverScene();
+  RoverScene(const RoverScene&) = delete;
+  RoverScene& operator=(const RoverScene&) = delete;
+
+  vtkRenderer* renderer() const;
+  // Poses the rover(s), colours the wheels and moves the chase camera.
+  void set_time(double t);
+  double start_time() const { return start_; }
+  double end_time() const { return end_; }
+  // What the log lacks for this view, one sentence each.
+  const std::vector<std::string>& notes() const { return notes_; }
+  const std::string& pose_source() const { return pose_source_; }
+  // Slip class shown on the wheels at the last set_time (-1: none).
+  int shown_slip_class() const { return shown_class_; }
+  // World position of the rover body centre at the last set_time.
+  Eigen::Vector3d rover_position() const { return position_; }
+  // Colour the body is drawn in (RGB 0..1): tests look for it.
+  static Eigen::Vector3d body_colour() { return {0.93, 0.93, 0.95}; }
+
+ private:
+  struct Parts;
+  Parts* parts_;
+  std::vector<PoseTrack> tracks_;
+  std::vector<std::string> notes_;
+  std::string pose_source_;
+  double start_ = 0, end_ = 0;
+  int shown_class_ = -1;
+  Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace roverlab::views

@@ -1,0 +1,62 @@
+#pragma once
+// Time-series plots: channels of a log as lines on one vtkChartXY sharing the
+// time axis, decimated for display (min/max per pixel column, never from the
+// model), with a cursor line at the timeline's time.
+
+#include <string>
+#include <vector>
+
+#include <vtkSmartPointer.h>
+
+#include "core/log/log.h"
+
+class vtkChartXY;
+class vtkContextView;
+class vtkPlot;
+class vtkTable;
+
+namespace roverlab::views {
+
+struct ChannelRef {
+  std::string stream, channel;
+};
+
+// "stream:channel" (stream names may hold '/'); a bare stream name means all
+// of its channels. Throws DataError naming what the log lacks.
+std::vector<ChannelRef> parse_channels(const log::Log& log, const std::string& spec);
+
+// Channels a plot shows when none are asked for: up to four of the first
+// stream that has any.
+std::vector<ChannelRef> default_channels(const log::Log& log);
+
+// Distinct line colours (RGB 0..255) for plot i.
+void line_colour(std::size_t i, unsigned char rgb[3]);
+
+class TimeSeriesChart {
+ public:
+  TimeSeriesChart(const log::Log& log, std::vector<ChannelRef> channels);
+  ~TimeSeriesChart();
+  vtkContextView* view() const;
+  vtkChartXY* chart() const;
+  // Shown window in time; redecimates to about `columns` buckets.
+  void set_window(double t0, double t1, std::size_t columns = 1000);
+  void set_cursor(double t);
+  double start_time() const { return start_; }
+  double end_time() const { return end_; }
+  const std::vector<ChannelRef>& channels() const { return channels_; }
+  // Points drawn for each channel in the current window (after decimation).
+  std::vector<std::size_t> drawn_points() const;
+
+ private:
+  void rebuild();
+  const log::Log& log_;
+  std::vector<ChannelRef> channels_;
+  vtkSmartPointer<vtkContextView> view_;
+  std::vector<vtkSmartPointer<vtkTable>> tables_;
+  vtkSmartPointer<vtkTable> cursor_;
+  double start_ = 0, end_ = 0, t0_ = 0, t1_ = 0, cursor_t_ = 0;
+  double y_min_ = 0, y_max_ = 1;
+  std::size_t columns_ = 1000;
+};
+
+}  // namespace roverlab::views

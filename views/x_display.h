@@ -1,0 +1,19 @@
+#pragma once
+// An X display for VTK's GLX rendering when none is set: a private Xvfb,
+// started on a free display number and stopped when the process exits.
+
+#include <stdexcept>
+#include <string>
+
+namespace roverlab::views {
+
+// Returns the DISPLAY in use. Throws EnvironmentError (one line, says how to
+// run headless) when DISPLAY is unset and Xvfb cannot be started.
+std::string ensure_display();
+
+class EnvironmentError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace roverlab::views
