@@ -1,0 +1,228 @@
+// Headless rendering, run as a user runs it: `roverlab render` and
+// `roverlab report` on known logs, with the pictures' content checked —
+// not blank, the rover's pixels where the chase camera puts them, its wheels
+// in the slip class's colour, a plot's line where its data is, the surface's
+// colour range. Each run starts its own private Xvfb when DISPLAY is unset.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+#include "views/offscreen.h"
+
+using namespace roverlab;
+using namespace roverlab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kExe = ROVERLAB_EXE;
+const std::string kData = ROVERLAB_TEST_DATA;
+const std::string kPathfinder = kData + "/test17run.mat";
+
+CommandResult run_roverlab(const std::string& args) { return run_command(quote(kExe) + " " + args); }
+
+struct Region {
+  int count = 0;
+  double mean_x = 0, mean_y = 0;
+};
+
+// Pixels matching `pred` in columns [x0, x1), their count and centroid.
+Region find(const views::Image& img, const std::function<bool(int, int, int)>& pred, int x0 = 0, int x1 = -1,
+            int y0 = 0, int y1 = -1) {
+  Region r;
+  if (x1 < 0) x1 = img.width;
+  if (y1 < 0) y1 = img.height;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const unsigned char* p = img.pixel(x, y);
+      if (pred(p[0], p[1], p[2])) {
+        ++r.count;
+        r.mean_x += x;
+        r.mean_y += y;
+      }
+    }
+  }
+  if (r.count > 0) {
+    r.mean_x /= r.count;
+    r.mean_y /= r.count;
+  }
+  return r;
+}
+
+double distinct_colours(const views::Image& img) {
+  std::vector<int> seen;
+  for (int y = 0; y < img.height; y += 4) {
+    for (int x = 0; x < img.width; x += 4) {
+      const unsigned char* p = img.pixel(x, y);
+      seen.push_back((p[0] >> 3) << 10 | (p[1] >> 3) << 5 | (p[2] >> 3));
+    }
+  }
+  std::sort(seen.begin(), seen.end());
+  return static_cast<double>(std::unique(seen.begin(), seen.end()) - seen.begin());
+}
+
+views::Image render(const std::string& args, const std::string& png) {
+  const CommandResult r = run_roverlab("render " + args + " -o " + quote(png));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return views::read_png(png);
+}
+
+}  // namespace
+
+TEST(Render, RoverViewPutsThePathfinderAtTheCentreWithWheelsInItsSlipClassColour) {
+  TempDir dir;
+  // Driving at 30 s: the INS says low slip (yellow-green wheels).
+  const views::Image img = render(quote(kPathfinder) + " -m wvu_pathfinder --view rover -t 30 --size 640x400",
+                                  dir.file("rover.png"));
+  ASSERT_EQ(img.width, 640);
+  ASSERT_EQ(img.height, 400);
+  EXPECT_GT(distinct_colours(img), 50);  // not blank
+  // Yellow-green wheels: green well above blue and at least red.
+  const Region wheels = find(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
+  EXPECT_GT(wheels.count, 400);
+  EXPECT_NEAR(wheels.mean_x, 320, 64);  // the chase camera centres the rover
+  EXPECT_NEAR(wheels.mean_y, 200, 80);
+  // The light body beside them, in the middle of the picture (the legend's
+  // white box is in a corner, the sky at the top).
+  const Region body = find(img, [&](int r, int g, int b) { return r > 200 && g > 200 && b > 200; }, 160, 480, 100, 320);
+  EXPECT_GT(body.count, 300);
+  EXPECT_NEAR(body.mean_x, 320, 64);
+  // At rest (2 s) the slip class is none: pure green, no yellow.
+  const views::Image still = render(quote(kPathfinder) + " -m wvu_pathfinder --view rover -t 2 --size 640x400",
+                                    dir.file("still.png"));
+  const Region green = find(still, [](int r, int g, int b) { return g - r > 50 && g - b > 50; });
+  EXPECT_GT(green.count, 400);
+  EXPECT_NEAR(green.mean_x, 320, 64);
+}
+
+TEST(Render, TimeSeriesDrawsTheLineWhereItsDataIsAndTheCursorAtItsTime) {
+  TempDir dir;
+  // A step: 0 for t < 5 s, then 1, sampled at 100 Hz for 10 s.
+  std::string csv = "time [s],x [m]\n";
+  for (int i = 0; i <= 1000; ++i) csv += std::to_string(i * 0.01) + "," + (i < 500 ? "0" : "1") + "\n";
+  write_text(dir.file("step.csv"), csv);
+  const views::Image img = render(quote(dir.file("step.csv")) + " --view timeseries --channels step:x -t 7.5 --size 800x400",
+                                  dir.file("ts.png"));
+  // The first plot colour, (31, 119, 180).
+  auto line = [](int r, int g, int b) { return std::abs(r - 31) < 40 && std::abs(g - 119) < 40 && std::abs(b - 180) < 40; };
+  // Split the line's pixels at the middle column.
+  int n_left = 0, n_right = 0;
+  double y_left = 0, y_right = 0;
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      const unsigned char* p = img.pixel(x, y);
+      if (!line(p[0], p[1], p[2])) continue;
+      if (x < img.width * 0.4) {
+        ++n_left;
+        y_left += y;
+      } else if (x > img.width * 0.6) {
+        ++n_right;
+        y_right += y;
+      }
+    }
+  }
+  ASSERT_GT(n_left, 50);
+  ASSERT_GT(n_right, 50);
+  EXPECT_GT(y_left / n_left - y_right / n_right, 150.0);  // after the step the line is far higher on screen
+  // The cursor: the column with the most black pixels right of the value
+  // axis, three quarters across the plot.
+  int best_x = -1, best = 0;
+  for (int x = img.width / 8; x < img.width; ++x) {
+    int k = 0;
+    for (int y = 0; y < img.height; ++y) {
+      const unsigned char* p = img.pixel(x, y);
+      k += p[0] < 40 && p[1] < 40 && p[2] < 40;
+    }
+    if (k > best) {
+      best = k;
+      best_x = x;
+    }
+  }
+  EXPECT_GT(best, 150);
+  EXPECT_NEAR(best_x, 0.75 * img.width, 0.12 * img.width);
+}
+
+TEST(Render, TractionSurfaceSpansItsColourMapAndShowsTheMeasuredPoints) {
+  TempDir dir;
+  const views::Image img =
+      render(quote(kData + "/single_wheel/ding2011_tyii.csv") + " --view traction-surface --soil ding_tyii --size 800x600",
+             dir.file("surface.png"));
+  const Region red = find(img, [](int r, int g, int b) { return r > 170 && g < 110 && b < 110; });
+  const Region blue = find(img, [](int r, int g, int b) { return b > 170 && r < 120 && g < 150; });
+  const Region black = find(img, [](int r, int g, int b) { return r < 40 && g < 40 && b < 40; });
+  EXPECT_GT(red.count, 2000);   // high drawbar pull (high slip)
+  EXPECT_GT(blue.count, 2000);  // negative drawbar pull (low slip)
+  EXPECT_GT(black.count, 200);  // points, residual lines and axis text
+  // Torque surface from the same points with their own fit would need two loads.
+  const CommandResult one_load = run_roverlab("render " + quote(kData + "/single_wheel/ding2011_tyii.csv") +
+                                              " --view traction-surface -o " + quote(dir.file("x.png")));
+  EXPECT_EQ(one_load.exit_code, 3);
+  EXPECT_NE(one_load.err.find("one load"), std::string::npos) << one_load.err;
+  EXPECT_FALSE(fs::exists(dir.file("x.png")));
+}
+
+TEST(Render, ErrorsAreOneLineAndLeaveNoFile) {
+  TempDir dir;
+  const std::string out = quote(dir.file("o.png"));
+  const CommandResult missing = run_roverlab("render " + quote(dir.file("nope.h5")) + " -o " + out);
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_NE(missing.err.find("nope.h5"), std::string::npos);
+  const CommandResult contact = run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --view contact-angles -o " + out);
+  EXPECT_EQ(contact.exit_code, 3);
+  EXPECT_NE(contact.err.find("contact-angle"), std::string::npos) << contact.err;
+  EXPECT_EQ(std::count(contact.err.begin(), contact.err.end(), '\n'), 1);
+  EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --size 12x9000 -o " + out).exit_code, 2);
+  EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --view spaceship -o " + out).exit_code, 2);
+  EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --channels imu:nothing --view timeseries -o " + out).exit_code, 3);
+  // No display and no Xvfb: a one-line message saying how to run headless.
+  const CommandResult headless = run_command("/usr/bin/env -u DISPLAY PATH=/nonexistent " + quote(kExe) + " render " +
+                                             quote(kPathfinder) + " -m wvu_pathfinder -o " + out);
+  EXPECT_EQ(headless.exit_code, 4);
+  EXPECT_NE(headless.err.find("xvfb-run"), std::string::npos) << headless.err;
+  EXPECT_EQ(files_in(dir.path()), 0u);
+}
+
+TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
+  TempDir dir;
+  const std::string folder = dir.file("report");
+  const CommandResult r = run_roverlab("report " + quote(kPathfinder) + " -m wvu_pathfinder --size 640x400 -o " + quote(folder));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = read_text(folder + "/index.html");
+  for (const char* s : {"<h2>Rover</h2>", "rover.png", "timeseries.png", "slip.png", "INS slip detection",
+                        "Slip classes", "What the wheel odometry gets wrong", "turning track"}) {
+    EXPECT_NE(html.find(s), std::string::npos) << s;
+  }
+  for (const char* f : {"rover.png", "timeseries.png", "slip.png"}) {
+    const views::Image img = views::read_png(folder + "/" + f);
+    EXPECT_GT(distinct_colours(img), 20) << f;
+  }
+  const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
+  EXPECT_LT(metrics.at("ins_slip").at("final_position_error_m").get<double>(),
+            metrics.at("ins_slip").at("wheel_odometry_final_error_m").get<double>());
+  EXPECT_EQ(metrics.at("odometry_discrepancy").at("cause"), "turning track");
+  EXPECT_EQ(metrics.at("ins_slip").at("slip_confusion").size(), 5u);
+  EXPECT_TRUE(fs::exists(folder + "/slip_confusion.csv"));
+  EXPECT_TRUE(fs::exists(folder + "/odometry_candidates.csv"));
+  // No temporary files left behind.
+  for (const auto& e : fs::directory_iterator(folder)) {
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  }
+}
+
+TEST(Report, SingleWheelReportHasBothSurfacesAndTheirCoefficients) {
+  TempDir dir;
+  const std::string folder = dir.file("r");
+  const CommandResult r = run_roverlab("report " + quote(kData + "/single_wheel/ding2011_tyii.csv") +
+                                       " --soil ding_tyii --size 640x480 -o " + quote(folder));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(folder + "/surface_drawbar-pull.png"));
+  EXPECT_TRUE(fs::exists(folder + "/surface_torque.png"));
+  const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
+  EXPECT_EQ(metrics.at("traction_surface_drawbar-pull").at("coefficients").size(), 15u);  // order 4
+  EXPECT_LT(metrics.at("traction_surface_drawbar-pull").at("fit_rmse").get<double>(), 1.0);
+}
