@@ -130,4 +130,14 @@ struct ReportOptions {
 };
 int run_report(const ReportOptions& options);
 
+struct GuiOptions {
+  std::optional<std::string> file;
+  std::optional<std::string> mapping;
+  std::optional<std::string> screenshot;  // save the window as PNG and exit
+  std::optional<double> time;
+  std::optional<std::string> tab;  // Rover, Plots, Traction surface, Analysis
+  int width = 1400, height = 900;
+};
+int run_gui(const GuiOptions& options);
+
 }  // namespace roverlab::app

@@ -170,6 +170,16 @@ int dispatch(int argc, char** argv) {
   report_cmd->add_option("--size", report.size, "WxH pixels of the 3D views")->capture_default_str();
   report_cmd->add_option("--output,-o", report.output, "Report folder (created if missing)")->required();
 
+  GuiOptions gui;
+  auto* gui_cmd = cli.add_subcommand("gui", "The desktop application (Qt + VTK)");
+  gui_cmd->add_option("FILE", gui.file, "Log to open");
+  gui_cmd->add_option("--mapping,-m", gui.mapping, "Mapping NAME or FILE for .mat/HDF5 input (default: try the known ones)");
+  gui_cmd->add_option("--screenshot", gui.screenshot, "Save the window as PNG once FILE is loaded and analysed, then exit");
+  gui_cmd->add_option("--time,-t", gui.time, "With --screenshot: the timeline's time, s");
+  gui_cmd->add_option("--tab", gui.tab, "With --screenshot: Rover | Plots | Traction surface | Analysis");
+  gui_cmd->add_option("--width", gui.width, "Window width")->capture_default_str();
+  gui_cmd->add_option("--height", gui.height, "Window height")->capture_default_str();
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -194,6 +204,7 @@ int dispatch(int argc, char** argv) {
   if (skid_cmd->parsed()) return run_scenario_skid_steer(skid);
   if (render_cmd->parsed()) return run_render(render);
   if (report_cmd->parsed()) return run_report(report);
+  if (gui_cmd->parsed()) return run_gui(gui);
   return kUsageError;
 }
 

@@ -1,0 +1,81 @@
+// `roverlab gui [FILE]`: the desktop application. With --screenshot it opens
+// FILE, waits for its jobs, shows the given time and tab, saves a picture of
+// the whole window and exits (headless: a private Xvfb when DISPLAY is unset).
+#include <QApplication>
+#include <QDir>
+#include <QPixmap>
+#include <QSurfaceFormat>
+#include <QTimer>
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "app/commands.h"
+#include "app/gui/main_window.h"
+#include "importers/atomic_file.h"
+#include "views/x_display.h"
+
+namespace roverlab::app {
+
+int run_gui(const GuiOptions& o) {
+  if (o.screenshot) {
+    views::ensure_display();
+  } else {
+    const char* d = std::getenv("DISPLAY");
+    if (d == nullptr || *d == '\0') {
+      throw views::EnvironmentError("no X display for the GUI: set DISPLAY (or use --screenshot, which runs headless)");
+    }
+  }
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  int argc = 1;
+  char name[] = "roverlab";
+  char* argv[] = {name, nullptr};
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName("RoverLab");
+  QApplication::setApplicationName("RoverLab");
+  gui::MainWindow window;
+  int code = kSuccess;
+  if (o.screenshot) {
+    window.set_quiet(true);
+    window.resize(o.width, o.height);
+  }
+  window.show();
+  if (o.file) {
+    window.open_file(QString::fromStdString(*o.file),
+                     o.mapping ? std::optional<QString>(QString::fromStdString(*o.mapping)) : std::nullopt);
+  }
+  if (o.screenshot) {
+    // Poll until the load and the estimator are done, then take the picture.
+    auto* poll = new QTimer(&window);
+    int waited = 0;
+    QObject::connect(poll, &QTimer::timeout, &window, [&] {
+      waited += 100;
+      if (!window.last_error().isEmpty()) {
+        std::fprintf(stderr, "roverlab: %s\n", window.last_error().toStdString().c_str());
+        code = kBadInput;
+        app.quit();
+        return;
+      }
+      const bool ready = !o.file || (window.has_log() && !window.jobs().busy());
+      if (!ready && waited < 120000) return;
+      poll->stop();
+      if (o.tab) window.select_tab(QString::fromStdString(*o.tab));
+      window.set_time(o.time ? *o.time : 0.5 * (window.start_time() + window.end_time()));
+      QTimer::singleShot(500, &window, [&] {
+        window.set_time(window.current_time());
+        const QPixmap shot = window.grab();
+        io::write_atomically(*o.screenshot, [&](const std::string& tmp) {
+          if (!shot.save(QString::fromStdString(tmp), "PNG")) throw std::runtime_error("could not save the screenshot");
+        });
+        std::printf("wrote %s (%dx%d)\n", o.screenshot->c_str(), shot.width(), shot.height());
+        app.quit();
+      });
+    });
+    poll->start(100);
+  }
+  const int rc = app.exec();
+  return code != kSuccess ? code : rc;
+}
+
+}  // namespace roverlab::app

@@ -1,0 +1,121 @@
+#pragma once
+// RoverLab's main window: open a log (menu, command line, drag and drop), a
+// tree of its streams and channels, a timeline (play, pause, speed,
+// scrubbing) that drives every view, the rover view, linked time-series
+// plots, the traction-surface view, the analysis tables; estimators run as
+// background jobs with progress and cancel. Layout, recent files and the last
+// folder are kept between runs (QSettings).
+
+#include <QMainWindow>
+#include <QString>
+
+#include <memory>
+#include <optional>
+
+#include "app/gui/job_runner.h"
+#include "app/views_input.h"
+
+class QComboBox;
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QSlider;
+class QTabWidget;
+class QTableWidget;
+class QTimer;
+class QToolButton;
+class QTreeWidget;
+class QTreeWidgetItem;
+class QVTKOpenGLNativeWidget;
+class QMenu;
+
+namespace roverlab::views {
+class RoverScene;
+class TimeSeriesChart;
+}  // namespace roverlab::views
+
+namespace roverlab::gui {
+
+using app::ViewInput;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // Loads FILE in the background (a .mat file tries the known mappings);
+  // afterwards runs the INS slip estimator when the log has imu and wheels.
+  void open_file(const QString& path, const std::optional<QString>& mapping = std::nullopt);
+
+  JobRunner& jobs() { return *jobs_; }
+  bool has_log() const { return input_ != nullptr; }
+  const ViewInput* input() const { return input_.get(); }
+  double current_time() const { return time_; }
+  void set_time(double t);
+  double start_time() const { return t0_; }
+  double end_time() const { return t1_; }
+  views::RoverScene* rover_scene() const { return rover_.get(); }
+  views::TimeSeriesChart* chart() const { return chart_.get(); }
+  // The last error shown in a dialog (empty when none).
+  QString last_error() const { return last_error_; }
+  // Errors go to a modal dialog unless quiet (tests, screenshots): then only to last_error.
+  void set_quiet(bool quiet) { quiet_ = quiet; }
+  void select_tab(const QString& name);
+  void add_plot_channel(const QString& stream, const QString& channel);
+
+ signals:
+  void log_loaded();
+  void time_changed(double t);
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+
+ private:
+  void build_ui();
+  void install(std::unique_ptr<ViewInput> input);
+  void rebuild_views();
+  void rebuild_tree();
+  void rebuild_analysis();
+  void rebuild_surface();
+  void render_views();
+  void run_estimator();
+  void show_error(const QString& text);
+  void remember_recent(const QString& path);
+  void refresh_recent_menu();
+  void on_tick();
+
+  std::unique_ptr<JobRunner> jobs_;
+  std::unique_ptr<ViewInput> input_;
+  std::unique_ptr<views::RoverScene> rover_;
+  std::unique_ptr<views::TimeSeriesChart> chart_;
+  std::vector<std::pair<std::string, std::string>> plot_channels_;
+  QTabWidget* tabs_ = nullptr;
+  QTreeWidget* tree_ = nullptr;
+  QVTKOpenGLNativeWidget* rover_widget_ = nullptr;
+  QVTKOpenGLNativeWidget* plot_widget_ = nullptr;
+  QVTKOpenGLNativeWidget* surface_widget_ = nullptr;
+  QComboBox* surface_soil_ = nullptr;
+  QComboBox* surface_quantity_ = nullptr;
+  QLabel* surface_note_ = nullptr;
+  QTableWidget* confusion_ = nullptr;
+  QTableWidget* candidates_ = nullptr;
+  QLabel* analysis_text_ = nullptr;
+  QSlider* slider_ = nullptr;
+  QToolButton* play_ = nullptr;
+  QComboBox* speed_ = nullptr;
+  QLabel* time_label_ = nullptr;
+  QProgressBar* progress_ = nullptr;
+  QPushButton* cancel_ = nullptr;
+  QLabel* status_ = nullptr;
+  QMenu* recent_menu_ = nullptr;
+  QTimer* player_ = nullptr;
+  double time_ = 0, t0_ = 0, t1_ = 1;
+  qint64 last_tick_ms_ = 0;
+  QString last_error_;
+  bool quiet_ = false;
+};
+
+}  // namespace roverlab::gui
