@@ -65,8 +65,7 @@ void line_colour(std::size_t i, unsigned char rgb[3]) {
   for (int k = 0; k < 3; ++k) rgb[k] = table[i % 8][k];
 }
 
-TimeSeriesChart::TimeSeriesChart(const log::Log& lg, std::vector<ChannelRef> channels)
-    : log_(lg), channels_(std::move(channels)) {
+TimeSeriesChart::TimeSeriesChart(const log::Log& lg, std::vector<ChannelRef> channels) {
   view_ = vtkSmartPointer<vtkContextView>::New();
   view_->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   auto chart = vtkSmartPointer<vtkChartXY>::New();
@@ -75,6 +74,13 @@ TimeSeriesChart::TimeSeriesChart(const log::Log& lg, std::vector<ChannelRef> cha
   chart->GetLegend()->SetInline(true);
   chart->GetLegend()->GetLabelProperties()->SetFontSize(14);
   chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("time (s)");
+  reset(lg, std::move(channels));
+}
+
+void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels) {
+  log_ = &lg;
+  channels_ = std::move(channels);
+  vtkChartXY* chart = this->chart();
   bool first = true;
   for (const auto& c : channels_) {
     const log::Stream& s = lg.stream(c.stream);
@@ -119,7 +125,7 @@ void TimeSeriesChart::rebuild() {
   y_max_ = -INFINITY;
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     const auto& c = channels_[i];
-    const log::Stream& s = log_.stream(c.stream);
+    const log::Stream& s = log_->stream(c.stream);
     auto table = make_display_table(s, c.channel, t0_, t1_, columns_);
     const std::string label = c.stream + ":" + c.channel + " [" + s.channel(c.channel).unit + "]";
     table->GetColumn(1)->SetName(label.c_str());

@@ -36,6 +36,9 @@ class TimeSeriesChart {
  public:
   TimeSeriesChart(const log::Log& log, std::vector<ChannelRef> channels);
   ~TimeSeriesChart();
+  // Shows other channels (of this or another log) in the same view and chart;
+  // the whole time range, cursor at the start.
+  void reset(const log::Log& log, std::vector<ChannelRef> channels);
   vtkContextView* view() const;
   vtkChartXY* chart() const;
   // Shown window in time; redecimates to about `columns` buckets.
@@ -49,7 +52,7 @@ class TimeSeriesChart {
 
  private:
   void rebuild();
-  const log::Log& log_;
+  const log::Log* log_;
   std::vector<ChannelRef> channels_;
   vtkSmartPointer<vtkContextView> view_;
   std::vector<vtkSmartPointer<vtkTable>> tables_;

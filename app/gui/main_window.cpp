@@ -33,6 +33,7 @@
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkRendererCollection.h>
+#include <vtkRenderWindowInteractor.h>
 
 #include <cmath>
 #include <filesystem>
@@ -81,7 +82,6 @@ MainWindow::~MainWindow() {
   jobs_->wait();
   // The scenes own VTK objects the widgets render: drop them first.
   rover_.reset();
-  chart_.reset();
 }
 
 void MainWindow::build_ui() {
@@ -348,8 +348,8 @@ void MainWindow::run_estimator() {
 
 void MainWindow::install(std::unique_ptr<ViewInput> in) {
   play_->setChecked(false);
+  if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
   rover_.reset();
-  chart_.reset();
   plot_channels_.clear();
   input_ = std::move(in);
   rebuild_tree();
@@ -382,6 +382,9 @@ void MainWindow::add_plot_channel(const QString& stream, const QString& channel)
   const log::Stream* s = input_->log.find_stream(stream.toStdString());
   if (s == nullptr || s->find_channel(channel.toStdString()) == nullptr) return;
   const std::pair<std::string, std::string> ref{stream.toStdString(), channel.toStdString()};
+  if (plot_channels_.empty() && chart_) {  // the first pick adds to what is shown
+    for (const auto& c : chart_->channels()) plot_channels_.push_back({c.stream, c.channel});
+  }
   if (std::find(plot_channels_.begin(), plot_channels_.end(), ref) != plot_channels_.end()) return;
   plot_channels_.push_back(ref);
   rebuild_views();
@@ -412,12 +415,17 @@ void MainWindow::rebuild_views() {
       } catch (const DataError&) {
       }
     }
-    for (const auto& r : refs) plot_channels_.push_back({r.stream, r.channel});
   }
   if (!refs.empty()) {
-    chart_ = std::make_unique<views::TimeSeriesChart>(lg, refs);
-    chart_->view()->SetRenderWindow(plot_widget_->renderWindow());
-    chart_->view()->SetInteractor(plot_widget_->interactor());
+    // One chart (and context view) for the widget's lifetime: its interactor
+    // style keeps timers that must not outlive it.
+    if (chart_) {
+      chart_->reset(lg, refs);
+    } else {
+      chart_ = std::make_unique<views::TimeSeriesChart>(lg, refs);
+      chart_->view()->SetRenderWindow(plot_widget_->renderWindow());
+      chart_->view()->SetInteractor(plot_widget_->interactor());
+    }
     chart_->set_window(chart_->start_time(), chart_->end_time(), static_cast<std::size_t>(std::max(400, plot_widget_->width())));
   }
   // Timeline over every stream.
