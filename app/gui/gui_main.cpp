@@ -7,6 +7,7 @@
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkOpenGLRenderWindow.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -27,6 +28,8 @@ int run_gui(const GuiOptions& o) {
       throw views::EnvironmentError("no X display for the GUI: set DISPLAY (or use --screenshot, which runs headless)");
     }
   }
+  // No multisampling: under Xvfb every sample is drawn in software.
+  vtkOpenGLRenderWindow::SetGlobalMaximumNumberOfMultiSamples(0);
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   int argc = 1;
   char name[] = "roverlab";
@@ -57,13 +60,14 @@ int run_gui(const GuiOptions& o) {
         app.quit();
         return;
       }
-      const bool ready = !o.file || (window.has_log() && !window.jobs().busy());
+      const bool ready = !o.file || (window.has_log() && !window.busy());
       if (!ready && waited < 120000) return;
       poll->stop();
       if (o.tab) window.select_tab(QString::fromStdString(*o.tab));
       window.set_time(o.time ? *o.time : 0.5 * (window.start_time() + window.end_time()));
       QTimer::singleShot(500, &window, [&] {
         window.set_time(window.current_time());
+        window.render_now();
         const QPixmap shot = window.grab();
         io::write_atomically(*o.screenshot, [&](const std::string& tmp) {
           if (!shot.save(QString::fromStdString(tmp), "PNG")) throw std::runtime_error("could not save the screenshot");

@@ -206,6 +206,11 @@ void MainWindow::build_ui() {
     const double t = t0_ + (t1_ - t0_) * v / kSliderSteps;
     if (std::abs(t - time_) > 1e-9) set_time(t);
   });
+  render_timer_ = new QTimer(this);
+  render_timer_->setSingleShot(true);
+  render_timer_->setInterval(16);
+  connect(render_timer_, &QTimer::timeout, this, &MainWindow::render_now);
+  connect(tabs_, &QTabWidget::currentChanged, this, [this] { render_views(); });
   player_ = new QTimer(this);
   player_->setInterval(33);
   connect(player_, &QTimer::timeout, this, &MainWindow::on_tick);
@@ -301,7 +306,11 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
       // Estimates arrive as new streams when the log can be estimated.
       const log::Log& lg = input_->log;
       if (lg.find_stream("imu") && lg.find_stream("wheels") && !lg.find_stream("estimate/ins/pose")) {
-        QTimer::singleShot(0, this, &MainWindow::run_estimator);
+        estimator_pending_ = true;
+        QTimer::singleShot(0, this, [this] {
+          estimator_pending_ = false;
+          run_estimator();
+        });
       }
     };
   });
@@ -527,10 +536,15 @@ void MainWindow::set_time(double t) {
 }
 
 void MainWindow::render_views() {
-  if (tabs_->currentWidget() == rover_widget_ && rover_) rover_widget_->renderWindow()->Render();
-  if (tabs_->currentWidget() == plot_widget_ && chart_) plot_widget_->renderWindow()->Render();
-  rover_widget_->update();
-  plot_widget_->update();
+  // Coalesced: however fast the timeline moves, the visible view renders at
+  // most about 60 times a second, and hidden views not at all.
+  if (!render_timer_->isActive()) render_timer_->start();
+}
+
+void MainWindow::render_now() {
+  QWidget* page = tabs_->currentWidget();
+  if (page == rover_widget_ && rover_) rover_widget_->renderWindow()->Render();
+  if (page == plot_widget_ && chart_) plot_widget_->renderWindow()->Render();
 }
 
 void MainWindow::select_tab(const QString& name) {

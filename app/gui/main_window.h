@@ -49,6 +49,10 @@ class MainWindow : public QMainWindow {
   void open_file(const QString& path, const std::optional<QString>& mapping = std::nullopt);
 
   JobRunner& jobs() { return *jobs_; }
+  // A job runs or is about to start (the estimator follows a load).
+  bool busy() const { return jobs_->busy() || estimator_pending_; }
+  // Renders the visible view now (the timeline otherwise coalesces renders).
+  void render_now();
   bool has_log() const { return input_ != nullptr; }
   const ViewInput* input() const { return input_.get(); }
   double current_time() const { return time_; }
@@ -112,6 +116,8 @@ class MainWindow : public QMainWindow {
   QLabel* status_ = nullptr;
   QMenu* recent_menu_ = nullptr;
   QTimer* player_ = nullptr;
+  QTimer* render_timer_ = nullptr;
+  bool estimator_pending_ = false;
   double time_ = 0, t0_ = 0, t1_ = 1;
   qint64 last_tick_ms_ = 0;
   QString last_error_;
