@@ -28,14 +28,23 @@ DisplaySeries decimate_min_max(const std::vector<double>& time, const std::vecto
   for (std::size_t b = 0; b < buckets; ++b) {
     const std::size_t lo = begin + n * b / buckets;
     const std::size_t hi = begin + n * (b + 1) / buckets;
+    // NaN compares false both ways, so missing samples are skipped.
     std::size_t imin = hi, imax = hi;
+    double vmin = HUGE_VAL, vmax = -HUGE_VAL;
     for (std::size_t i = lo; i < hi; ++i) {
       const double v = values[i];
-      if (std::isnan(v)) continue;
-      if (imin == hi || v < values[imin]) imin = i;
-      if (imax == hi || v > values[imax]) imax = i;
+      if (v < vmin) {
+        vmin = v;
+        imin = i;
+      }
+      if (v > vmax) {
+        vmax = v;
+        imax = i;
+      }
     }
-    if (imin == hi) continue;  // bucket of missing samples: a gap
+    if (imin == hi && imax == hi) continue;  // bucket of missing samples: a gap
+    if (imin == hi) imin = imax;  // all equal to +inf
+    if (imax == hi) imax = imin;
     const std::size_t first = std::min(imin, imax), second = std::max(imin, imax);
     out.time.push_back(time[first]);
     out.value.push_back(values[first]);

@@ -2,6 +2,7 @@
 
 #include <vtkAxis.h>
 #include <vtkChartLegend.h>
+#include <vtkChartMatrix.h>
 #include <vtkChartXY.h>
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
@@ -12,6 +13,7 @@
 #include <vtkRenderer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
+#include <vtkVector.h>
 
 #include <algorithm>
 #include <cmath>
@@ -68,19 +70,39 @@ void line_colour(std::size_t i, unsigned char rgb[3]) {
 TimeSeriesChart::TimeSeriesChart(const log::Log& lg, std::vector<ChannelRef> channels) {
   view_ = vtkSmartPointer<vtkContextView>::New();
   view_->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-  auto chart = vtkSmartPointer<vtkChartXY>::New();
-  view_->GetScene()->AddItem(chart);
-  chart->SetShowLegend(true);
-  chart->GetLegend()->SetInline(true);
-  chart->GetLegend()->GetLabelProperties()->SetFontSize(14);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("time (s)");
+  auto matrix = vtkSmartPointer<vtkChartMatrix>::New();
+  view_->GetScene()->AddItem(matrix);
   reset(lg, std::move(channels));
 }
 
 void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels) {
   log_ = &lg;
   channels_ = std::move(channels);
-  vtkChartXY* chart = this->chart();
+  // One plot per unit, in the order the units first appear.
+  groups_.clear();
+  std::vector<std::string> units;
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    const std::string& unit = lg.stream(channels_[i].stream).channel(channels_[i].channel).unit;
+    const auto it = std::find(units.begin(), units.end(), unit);
+    if (it == units.end()) {
+      units.push_back(unit);
+      groups_.push_back({i});
+    } else {
+      groups_[static_cast<std::size_t>(it - units.begin())].push_back(i);
+    }
+  }
+  auto* matrix = vtkChartMatrix::SafeDownCast(view_->GetScene()->GetItem(0));
+  matrix->SetSize(vtkVector2i(1, static_cast<int>(std::max<std::size_t>(groups_.size(), 1))));
+  matrix->SetGutterY(30.0f);
+  matrix->Allocate();
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    vtkChartXY* c = chart(g);
+    c->SetShowLegend(true);
+    c->GetLegend()->SetInline(true);
+    c->GetLegend()->GetLabelProperties()->SetFontSize(13);
+    c->GetAxis(vtkAxis::BOTTOM)->SetTitle(g + 1 == groups_.size() ? "time (s)" : "");
+    c->GetAxis(vtkAxis::LEFT)->SetTitle(units[g].empty() ? "value" : "(" + units[g] + ")");
+  }
   bool first = true;
   for (const auto& c : channels_) {
     const log::Stream& s = lg.stream(c.stream);
@@ -88,11 +110,6 @@ void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels
     start_ = first ? s.start_time() : std::min(start_, s.start_time());
     end_ = first ? s.end_time() : std::max(end_, s.end_time());
     first = false;
-  }
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle("value (units in the legend)");
-  if (channels_.size() == 1) {
-    const auto& ch = lg.stream(channels_[0].stream).channel(channels_[0].channel);
-    chart->GetAxis(vtkAxis::LEFT)->SetTitle(channels_[0].channel + " (" + ch.unit + ")");
   }
   t0_ = start_;
   t1_ = end_;
@@ -104,7 +121,12 @@ TimeSeriesChart::~TimeSeriesChart() = default;
 
 vtkContextView* TimeSeriesChart::view() const { return view_; }
 
-vtkChartXY* TimeSeriesChart::chart() const { return vtkChartXY::SafeDownCast(view_->GetScene()->GetItem(0)); }
+vtkChartXY* TimeSeriesChart::chart(std::size_t i) const {
+  auto* matrix = vtkChartMatrix::SafeDownCast(view_->GetScene()->GetItem(0));
+  const int rows = matrix->GetSize().GetY();
+  // vtkChartMatrix counts rows from the bottom.
+  return vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(0, rows - 1 - static_cast<int>(i))));
+}
 
 void TimeSeriesChart::set_window(double t0, double t1, std::size_t columns) {
   t0_ = std::max(t0, start_);
@@ -114,80 +136,97 @@ void TimeSeriesChart::set_window(double t0, double t1, std::size_t columns) {
     t1_ = end_;
   }
   columns_ = std::max<std::size_t>(columns, 16);
-  rebuild();
+  refresh();
 }
 
 void TimeSeriesChart::rebuild() {
-  vtkChartXY* chart = this->chart();
-  chart->ClearPlots();
-  tables_.clear();
-  y_min_ = INFINITY;
-  y_max_ = -INFINITY;
-  for (std::size_t i = 0; i < channels_.size(); ++i) {
-    const auto& c = channels_[i];
-    const log::Stream& s = log_->stream(c.stream);
-    auto table = make_display_table(s, c.channel, t0_, t1_, columns_);
-    const std::string label = c.stream + ":" + c.channel + " [" + s.channel(c.channel).unit + "]";
-    table->GetColumn(1)->SetName(label.c_str());
-    for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r) {
-      const double v = table->GetValue(r, 1).ToDouble();
-      if (std::isfinite(v)) {
-        y_min_ = std::min(y_min_, v);
-        y_max_ = std::max(y_max_, v);
-      }
+  tables_.assign(channels_.size(), nullptr);
+  plots_.assign(channels_.size(), nullptr);
+  cursors_.clear();
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    vtkChartXY* chart = this->chart(g);
+    chart->ClearPlots();
+    for (std::size_t i : groups_[g]) {
+      vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+      unsigned char rgb[3];
+      line_colour(i, rgb);
+      line->SetColor(rgb[0], rgb[1], rgb[2], 255);
+      line->SetWidth(2.0);
+      plots_[i] = line;
     }
-    vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-    line->SetInputData(table, 0, 1);
-    unsigned char rgb[3];
-    line_colour(i, rgb);
-    line->SetColor(rgb[0], rgb[1], rgb[2], 255);
-    line->SetWidth(2.0);
-    tables_.push_back(table);
+    // Cursor: a vertical black line over the plot's value range.
+    auto cursor = vtkSmartPointer<vtkTable>::New();
+    auto ct = vtkSmartPointer<vtkDoubleArray>::New();
+    ct->SetName("cursor time");
+    auto cy = vtkSmartPointer<vtkDoubleArray>::New();
+    cy->SetName("cursor");
+    cursor->AddColumn(ct);
+    cursor->AddColumn(cy);
+    cursor->SetNumberOfRows(2);
+    vtkPlot* cp = chart->AddPlot(vtkChart::LINE);
+    cp->SetInputData(cursor, 0, 1);
+    cp->SetColor(0, 0, 0, 255);
+    cp->SetWidth(1.5);
+    cp->SetLegendVisibility(false);
+    cursors_.push_back(cursor);
   }
-  if (!std::isfinite(y_min_)) {
-    y_min_ = 0;
-    y_max_ = 1;
+  refresh();
+}
+
+void TimeSeriesChart::refresh() {
+  ranges_.clear();
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    vtkChartXY* chart = this->chart(g);
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i : groups_[g]) {
+      const auto& c = channels_[i];
+      const log::Stream& s = log_->stream(c.stream);
+      auto table = make_display_table(s, c.channel, t0_, t1_, columns_);
+      const std::string label = c.stream + ":" + c.channel + " (" + s.channel(c.channel).unit + ")";
+      table->GetColumn(1)->SetName(label.c_str());
+      for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r) {
+        const double v = table->GetValue(r, 1).ToDouble();
+        if (std::isfinite(v)) {
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+      }
+      plots_[i]->SetInputData(table, 0, 1);
+      tables_[i] = table;
+    }
+    if (!std::isfinite(lo)) {
+      lo = 0;
+      hi = 1;
+    }
+    if (hi - lo < 1e-12) {
+      lo -= 0.5;
+      hi += 0.5;
+    }
+    const double pad = 0.05 * (hi - lo);
+    ranges_.push_back({lo - pad, hi + pad});
+    chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
+    chart->GetAxis(vtkAxis::LEFT)->SetRange(lo - pad, hi + pad);
+    chart->GetAxis(vtkAxis::BOTTOM)->SetBehavior(vtkAxis::FIXED);
+    chart->GetAxis(vtkAxis::BOTTOM)->SetRange(t0_, t1_);
   }
-  if (y_max_ - y_min_ < 1e-12) {
-    y_min_ -= 0.5;
-    y_max_ += 0.5;
-  }
-  const double pad = 0.05 * (y_max_ - y_min_);
-  chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
-  chart->GetAxis(vtkAxis::LEFT)->SetRange(y_min_ - pad, y_max_ + pad);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetBehavior(vtkAxis::FIXED);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetRange(t0_, t1_);
-  // Cursor: a vertical black line over the full value range.
-  cursor_ = vtkSmartPointer<vtkTable>::New();
-  auto ct = vtkSmartPointer<vtkDoubleArray>::New();
-  ct->SetName("cursor time");
-  auto cy = vtkSmartPointer<vtkDoubleArray>::New();
-  cy->SetName("cursor");
-  cursor_->AddColumn(ct);
-  cursor_->AddColumn(cy);
-  cursor_->SetNumberOfRows(2);
-  vtkPlot* cursor = chart->AddPlot(vtkChart::LINE);
-  cursor->SetInputData(cursor_, 0, 1);
-  cursor->SetColor(0, 0, 0, 255);
-  cursor->SetWidth(1.5);
-  cursor->SetLabel("");
-  cursor->SetLegendVisibility(false);
   set_cursor(cursor_t_);
 }
 
 void TimeSeriesChart::set_cursor(double t) {
   cursor_t_ = t;
-  const double pad = 0.05 * (y_max_ - y_min_);
-  cursor_->SetValue(0, 0, t);
-  cursor_->SetValue(1, 0, t);
-  cursor_->SetValue(0, 1, y_min_ - pad);
-  cursor_->SetValue(1, 1, y_max_ + pad);
-  cursor_->Modified();
+  for (std::size_t g = 0; g < cursors_.size(); ++g) {
+    auto& c = cursors_[g];
+    c->SetValue(0, 0, t);
+    c->SetValue(1, 0, t);
+    c->SetValue(0, 1, ranges_[g].first);
+    c->SetValue(1, 1, ranges_[g].second);
+    c->Modified();
+  }
 }
 
 std::vector<std::size_t> TimeSeriesChart::drawn_points() const {
   std::vector<std::size_t> out;
-  for (const auto& t : tables_) out.push_back(static_cast<std::size_t>(t->GetNumberOfRows()));
+  for (const auto& t : tables_) out.push_back(t ? static_cast<std::size_t>(t->GetNumberOfRows()) : 0u);
   return out;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// Time-series plots: channels of a log as lines on one vtkChartXY sharing the
-// time axis, decimated for display (min/max per pixel column, never from the
-// model), with a cursor line at the timeline's time.
+// Time-series plots: channels of a log as lines, one plot per unit stacked
+// in a vtkChartMatrix and sharing the time axis, decimated for display
+// (min/max per pixel column, never from the model), with a cursor line at
+// the timeline's time in every plot.
 
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 
 #include "core/log/log.h"
 
+class vtkChartMatrix;
 class vtkChartXY;
 class vtkContextView;
 class vtkPlot;
@@ -40,7 +42,9 @@ class TimeSeriesChart {
   // the whole time range, cursor at the start.
   void reset(const log::Log& log, std::vector<ChannelRef> channels);
   vtkContextView* view() const;
-  vtkChartXY* chart() const;
+  // Plot i from the top (one per unit).
+  vtkChartXY* chart(std::size_t i = 0) const;
+  std::size_t plot_count() const { return groups_.size(); }
   // Shown window in time; redecimates to about `columns` buckets.
   void set_window(double t0, double t1, std::size_t columns = 1000);
   void set_cursor(double t);
@@ -51,14 +55,17 @@ class TimeSeriesChart {
   std::vector<std::size_t> drawn_points() const;
 
  private:
-  void rebuild();
+  void rebuild();   // plots and cursors, after the channels changed
+  void refresh();   // decimated data and axis ranges, after the window changed
   const log::Log* log_;
   std::vector<ChannelRef> channels_;
   vtkSmartPointer<vtkContextView> view_;
   std::vector<vtkSmartPointer<vtkTable>> tables_;
-  vtkSmartPointer<vtkTable> cursor_;
+  std::vector<vtkPlot*> plots_;  // per channel, owned by their chart
+  std::vector<std::vector<std::size_t>> groups_;  // channel indices per plot
+  std::vector<vtkSmartPointer<vtkTable>> cursors_;
+  std::vector<std::pair<double, double>> ranges_;  // value range per plot
   double start_ = 0, end_ = 0, t0_ = 0, t1_ = 0, cursor_t_ = 0;
-  double y_min_ = 0, y_max_ = 1;
   std::size_t columns_ = 1000;
 };
 
