@@ -33,6 +33,7 @@
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkRendererCollection.h>
+#include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkRenderWindowInteractor.h>
 
 #include <cmath>
@@ -139,6 +140,7 @@ void MainWindow::build_ui() {
   rover_widget_ = new QVTKOpenGLNativeWidget;
   plot_widget_ = new QVTKOpenGLNativeWidget;
   surface_widget_ = new QVTKOpenGLNativeWidget;
+  rover_widget_->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New());
   tabs_->addTab(rover_widget_, "Rover");
   tabs_->addTab(plot_widget_, "Plots");
   auto* surface_page = new QWidget;
