@@ -140,4 +140,27 @@ struct GuiOptions {
 };
 int run_gui(const GuiOptions& options);
 
+struct FlyingRoverOptions {
+  std::string scenario;
+  std::string rover = "exomars_bb2";
+  unsigned seed = 1;
+  double rate = 1000.0;
+  std::string output;
+};
+int run_scenario_flying_rover(const FlyingRoverOptions& options);
+
+struct ContactAngleCommandOptions {
+  std::string file;
+  std::optional<std::string> mapping;
+  std::optional<std::string> rover;  // default: the log's rover id, else exomars_bb2
+  std::string model = "c", filter = "ekf", angle_model = "random-walk";
+  bool reset_cross_covariance = false;
+  std::string process_noise = "seed";  // seed (1e-5 per step, section 6.2) | imu (from the IMU noise alone)
+  std::optional<double> velocity_variance, attitude_variance, slip_variance, angle_variance;
+  double joint_rate_window = 0.0;
+  std::optional<std::string> output;
+  bool json = false;
+};
+int run_estimate_contact_angle(const ContactAngleCommandOptions& options);
+
 }  // namespace roverlab::app

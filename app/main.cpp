@@ -138,6 +138,47 @@ int dispatch(int argc, char** argv) {
                        "turning-track-factor, wheel-time-offset (s), slip (0: firm ground)");
   skid_cmd->add_option("--output,-o", skid.output, "OUT.h5")->required();
 
+  ContactAngleCommandOptions contact;
+  auto* contact_cmd = estimate_cmd->add_subcommand(
+      "contact-angle", "Contact angles, side slip, slip and velocity of a six-wheel DH rover with an EKF or UKF (seed 000)");
+  contact_cmd->add_option("LOG", contact.file, "Log with imu, joints and wheels streams (truth/ streams for errors)")->required();
+  contact_cmd->add_option("--mapping,-m", contact.mapping, "Mapping NAME or FILE for .mat/HDF5 input");
+  contact_cmd->add_option("--rover", contact.rover, "Rover NAME (resources/rovers) or FILE (default: the log's rover)");
+  contact_cmd->add_option("--model", contact.model, "smooth | c | c+ss")->capture_default_str();
+  contact_cmd->add_option("--filter", contact.filter, "ekf | ukf")->capture_default_str();
+  contact_cmd->add_option("--angle-model", contact.angle_model, "random-walk | damped")->capture_default_str();
+  contact_cmd->add_flag("--reset-cross-covariance", contact.reset_cross_covariance,
+                        "Zero P's off-diagonal elements every step (the seed's workaround)");
+  contact_cmd->add_option("--process-noise", contact.process_noise,
+                          "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
+      ->capture_default_str();
+  contact_cmd->add_option("--velocity-variance", contact.velocity_variance, "Velocity process noise per step, m^2/s^2");
+  contact_cmd->add_option("--attitude-variance", contact.attitude_variance, "Attitude process noise per step, rad^2");
+  contact_cmd->add_option("--slip-variance", contact.slip_variance, "Slip process noise per step");
+  contact_cmd->add_option("--angle-variance", contact.angle_variance, "Contact / side-slip angle process noise per step, rad^2");
+  contact_cmd->add_option("--joint-rate-window", contact.joint_rate_window,
+                          "Fuse joint rates with the slope of the joint angles over this window, s (0: measured rates, as the seed)")
+      ->capture_default_str();
+  contact_cmd->add_option("--output,-o", contact.output, "Write the log with the estimate streams to OUT.h5");
+  contact_cmd->add_flag("--json", contact.json, "Print JSON");
+
+  std::vector<CLI::App*> flying_cmds;
+  std::vector<FlyingRoverOptions> flying(3);
+  const char* flying_names[3] = {"fl-bogie-rotation", "rear-bogie-rotation", "bump-crossing"};
+  const char* flying_help[3] = {
+      "Flying ExoMars BB2, front-left bogie turning 0.06 rad/s for 10 s, 3 cm/s forward (seed 000 section 6.3)",
+      "Flying ExoMars BB2, rear bogie turning 0.06 rad/s for 10 s, 3 cm/s forward (seed 000 section 6.4)",
+      "Flying ExoMars BB2: bogie motion of the left wheels crossing an 8 cm bump, all wheels steering (RoverLab)"};
+  for (int k = 0; k < 3; ++k) {
+    flying[static_cast<std::size_t>(k)].scenario = flying_names[k];
+    auto* c = scenario_cmd->add_subcommand(flying_names[k], flying_help[k]);
+    c->add_option("--seed", flying[static_cast<std::size_t>(k)].seed, "Noise seed")->capture_default_str();
+    c->add_option("--rate", flying[static_cast<std::size_t>(k)].rate, "Sample rate, Hz")->capture_default_str();
+    c->add_option("--rover", flying[static_cast<std::size_t>(k)].rover, "Rover NAME or FILE")->capture_default_str();
+    c->add_option("--output,-o", flying[static_cast<std::size_t>(k)].output, "OUT.h5")->required();
+    flying_cmds.push_back(c);
+  }
+
   OdometryDiscrepancyOptions odo;
   auto* odo_cmd = discrepancy_cmd->add_subcommand(
       "odometry", "Wheel-odometry dead reckoning against the GPS track: cause of the disagreement, fitted correction, gain");
@@ -201,6 +242,10 @@ int dispatch(int argc, char** argv) {
   if (sw_cmd->parsed()) return run_discrepancy_single_wheel(sw);
   if (odo_cmd->parsed()) return run_discrepancy_odometry(odo);
   if (ins_cmd->parsed()) return run_estimate_ins_slip(ins);
+  if (contact_cmd->parsed()) return run_estimate_contact_angle(contact);
+  for (std::size_t k = 0; k < flying_cmds.size(); ++k) {
+    if (flying_cmds[k]->parsed()) return run_scenario_flying_rover(flying[k]);
+  }
   if (skid_cmd->parsed()) return run_scenario_skid_steer(skid);
   if (render_cmd->parsed()) return run_render(render);
   if (report_cmd->parsed()) return run_report(report);

@@ -1,0 +1,68 @@
+#pragma once
+// The contact-angle, side-slip, slip and velocity estimator of seed 000
+// (Vijayan 2018, chapters 4-6) for a rover described by DH parameters: state
+// Euler angles, body velocity, wheel slips and (model C) contact angles,
+// (model C+SS) side-slip angles; strapdown process model (Eq. 4.13-4.14),
+// damped slip (Eq. 4.15), random-walk or damped angles (Eq. 5.3-5.6);
+// measurement: wheel rates and zero lateral / normal wheel velocity in the
+// drive, contact or side-slip frame (Eq. 4.20, Table 5.1). EKF (Jacobians by
+// ceres::Jet) or UKF.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/kinematics/rover_model.h"
+#include "core/log/log.h"
+
+namespace roverlab::estimation {
+
+enum class ContactModel { smooth, contact, contact_side_slip };
+enum class FilterKind { ekf, ukf };
+enum class AngleModel { random_walk, damped };
+
+ContactModel parse_contact_model(const std::string& s);  // smooth | c | c+ss
+FilterKind parse_filter_kind(const std::string& s);      // ekf | ukf
+AngleModel parse_angle_model(const std::string& s);      // random-walk | damped
+
+struct ContactAngleOptions {
+  ContactModel model = ContactModel::contact;
+  FilterKind filter = FilterKind::ekf;
+  AngleModel angle_model = AngleModel::random_walk;
+  bool reset_cross_covariance = false;  // the seed's workaround (section 6.3)
+  double angle_damping = 1e-3;           // 1/s, A_gamma = A_beta (section 6.2)
+  double slip_damping = 1e-3;            // 1/s, A of Eq. 4.15
+  // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).
+  double attitude_variance = 1e-5, velocity_variance = 1e-5, slip_variance = 1e-6, angle_variance = 1e-5;
+  double lateral_variance = 1e-5;        // n_vy, n_vz
+  double standstill_wheel_rate = 1e-3;   // rad/s: all wheels slower -> standstill, states held
+  // Offline extension (not in the seed): joint rates fused with the slope of
+  // a least-squares line through the joint angles over this centred window
+  // (s); 0 uses the measured rates alone as the seed does.
+  double joint_rate_window = 0.0;
+  std::function<void(double)> progress;  // fraction done
+};
+
+struct StateErrors {
+  std::vector<double> velocity;  // x y z, m/s
+  std::vector<double> slip, contact_angle, side_slip;  // per wheel (rad for the angles)
+  std::size_t samples = 0;       // moving samples compared
+};
+
+struct ContactAngleResult {
+  log::Log estimates;  // estimate/contact/body, estimate/contact/wheels
+  bool has_truth = false;
+  StateErrors rms;     // against truth/body and truth/wheels, moving samples only
+  double seconds = 0;  // of log processed
+  std::size_t standstill_samples = 0;
+  double max_cross_correlation = 0;  // largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end
+};
+
+// Needs streams imu (angular_rate_*, specific_force_* in the rover's body
+// axes), joints (one channel per joint and <joint>_rate), wheels
+// (rate_<wheel>); truth/body and truth/wheels are used for the errors when
+// present. Throws DataError naming what is missing.
+ContactAngleResult run_contact_angle(const log::Log& log, const kinematics::RoverModel& rover,
+                                     const ContactAngleOptions& options = {});
+
+}  // namespace roverlab::estimation

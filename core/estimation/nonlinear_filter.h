@@ -1,0 +1,49 @@
+#pragma once
+// Generic nonlinear Kalman filters over Eigen types (seed 000 section 2.5):
+// an EKF with non-additive process and measurement noise (Eq. 2.14-2.17,
+// Jacobians F, L, H, M supplied by the model, e.g. through ceres::Jet) and an
+// augmented-state UKF (Eq. 2.18-2.20). Models stay outside the filters.
+
+#include <functional>
+
+#include <Eigen/Dense>
+
+#include "core/estimation/kalman.h"
+
+namespace roverlab::estimation {
+
+// A function's value and its Jacobians with respect to the state (dx) and
+// the noise (dn) at the current estimate and zero noise.
+struct Linearized {
+  Eigen::VectorXd value;
+  Eigen::MatrixXd dx, dn;
+};
+
+class ExtendedKalmanFilter {
+ public:
+  Eigen::VectorXd x;
+  Eigen::MatrixXd P;
+  // Eq. 2.14-2.15: x <- f(x, 0), P <- F P F^T + L Q L^T.
+  void predict(const Linearized& f, const Eigen::MatrixXd& Q);
+  // Eq. 2.16-2.17 with the Joseph form: S = H P H^T + M R M^T.
+  UpdateResult update(const Linearized& h, const Eigen::MatrixXd& R, const Eigen::VectorXd& y);
+  // The seed's workaround: zero P's off-diagonal elements.
+  void reset_cross_covariance();
+};
+
+class UnscentedKalmanFilter {
+ public:
+  // f(x, process noise) -> next state; h(x, measurement noise) -> measurement.
+  using Function = std::function<Eigen::VectorXd(const Eigen::VectorXd&, const Eigen::VectorXd&)>;
+  Eigen::VectorXd x;
+  Eigen::MatrixXd P;
+  double alpha = 1.0, beta = 2.0, kappa = 0.0;  // scaled unscented transform
+  // One predict-update cycle on sigma points of the augmented state
+  // [x; n_p; n_m] (Eq. 2.18-2.20). Returns false when a covariance is not
+  // positive definite (the state is then left as predicted).
+  bool step(const Function& f, const Eigen::MatrixXd& Q, const Function& h, const Eigen::MatrixXd& R,
+            const Eigen::VectorXd& y);
+  void reset_cross_covariance();
+};
+
+}  // namespace roverlab::estimation

@@ -1,0 +1,203 @@
+// Seed 000: DH kinematics of the ExoMars BB2 and the contact-angle estimator
+// on the flying-rover scenarios.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/estimation/contact_angle.h"
+#include "core/kinematics/rover_model.h"
+#include "core/simulation/flying_rover.h"
+#include "importers/rover_file.h"
+
+using namespace roverlab;
+using kinematics::WheelFrame;
+
+namespace {
+
+const kinematics::RoverModel& bb2() {
+  static const kinematics::RoverModel m =
+      *io::load_rover(std::string(ROVERLAB_RESOURCES_DIR) + "/rovers/exomars_bb2.json").dh;
+  return m;
+}
+
+double mean_over(const log::Stream& s, const std::string& channel, double t0, double t1) {
+  double sum = 0;
+  int k = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double v = s.channel(channel).values[i];
+    if (s.time()[i] >= t0 && s.time()[i] <= t1 && std::isfinite(v)) {
+      sum += v;
+      ++k;
+    }
+  }
+  return k ? sum / k : NAN;
+}
+
+}  // namespace
+
+TEST(Kinematics, Bb2WheelCentresAtZeroJointAnglesMatchTable42ByHand) {
+  // By hand from Table 4.2: the side bogie pivots sit at (0.3305, 0, 0.16)
+  // (g -> b: d along z_g, a along x rotated by theta = pi or 0), the rear one
+  // at (0, 0, 0.23); b -> s adds the along-bogie offset a and the lateral d;
+  // s -> d drops the drive frame 0.216 m (0.286 m at the rear) down the
+  // steering axis, from z = 0.16 (0.23) to -0.056.
+  const double expected[6][3] = {{0.6505, 0.5933, -0.056}, {0.0105, 0.6013, -0.056}, {-0.698, 0.6043, -0.056},
+                                 {-0.698, -0.5963, -0.056}, {0.0105, -0.5933, -0.056}, {0.6505, -0.6013, -0.056}};
+  const std::vector<double> q(9, 0.0);
+  for (int w = 0; w < 6; ++w) {
+    const auto p = kinematics::wheel_pose<double>(bb2(), w, q.data(), 0.0, 0.0, WheelFrame::drive);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.r[k], expected[w][k], 1e-9) << bb2().wheels[static_cast<std::size_t>(w)].name;
+    // Drive frame: x forward, y down, z along the axle (left).
+    EXPECT_NEAR(p.R(0, 0), 1.0, 1e-12);
+    EXPECT_NEAR(p.R(2, 1), -1.0, 1e-12);
+    EXPECT_NEAR(p.R(1, 2), 1.0, 1e-12);
+  }
+  EXPECT_EQ(bb2().wheels[0].bogie_joint, bb2().joint_index("bogie_FL"));
+  EXPECT_EQ(bb2().wheels[0].steer_joint, bb2().joint_index("steer_FL"));
+  EXPECT_EQ(bb2().wheels[2].bogie_joint, bb2().joint_index("bogie_R"));
+}
+
+TEST(Kinematics, RotationsAreOrthonormalAndTheJacobianEqualsFiniteDifferences) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-0.5, 0.5);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<double> q(9), qd(9), gamma(6), beta(6);
+    for (auto* v : {&q, &qd, &gamma, &beta}) {
+      for (double& x : *v) x = angle(rng);
+    }
+    for (auto frame : {WheelFrame::drive, WheelFrame::contact, WheelFrame::side_slip}) {
+      const Eigen::Vector3d v(angle(rng), angle(rng), angle(rng)), w(angle(rng), angle(rng), angle(rng));
+      const Eigen::MatrixXd J = kinematics::rover_jacobian(bb2(), q, gamma, beta, frame);
+      Eigen::VectorXd u(15);
+      u << v, w, Eigen::Map<Eigen::VectorXd>(qd.data(), 9);
+      const Eigen::VectorXd Ju = J * u;
+      for (int n = 0; n < 6; ++n) {
+        const auto p = kinematics::wheel_pose<double>(bb2(), n, q.data(), gamma[static_cast<std::size_t>(n)],
+                                                      beta[static_cast<std::size_t>(n)], frame);
+        EXPECT_NEAR((p.R.transpose() * p.R - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+        EXPECT_NEAR(p.R.determinant(), 1.0, 1e-12);
+        // Eq. 4.10 times the rates equals the wheel velocity (Eq. 4.8).
+        const Eigen::Vector3d vel = kinematics::wheel_velocity<double>(bb2(), n, q.data(), qd.data(), v, w,
+                                                                       gamma[static_cast<std::size_t>(n)],
+                                                                       beta[static_cast<std::size_t>(n)], frame);
+        EXPECT_NEAR((Ju.segment<3>(3 * n) - vel).norm(), 0.0, 1e-12);
+        // dr/dq by central differences.
+        const auto& c = bb2().wheels[static_cast<std::size_t>(n)];
+        for (int j : {c.bogie_joint, c.steer_joint}) {
+          std::vector<double> qp = q, qm = q;
+          qp[static_cast<std::size_t>(j)] += 1e-6;
+          qm[static_cast<std::size_t>(j)] -= 1e-6;
+          const Eigen::Vector3d fd = (kinematics::wheel_pose<double>(bb2(), n, qp.data(), 0.0, 0.0, frame).r -
+                                      kinematics::wheel_pose<double>(bb2(), n, qm.data(), 0.0, 0.0, frame).r) / 2e-6;
+          const Eigen::Vector3d an = j == c.bogie_joint ? p.dr_dbogie : p.dr_dsteer;
+          EXPECT_NEAR((fd - an).norm(), 0.0, 1e-8);
+        }
+      }
+    }
+  }
+}
+
+TEST(Kinematics, ContactAndSideSlipAnglesOfAWheelVelocity) {
+  // Upward wheel velocity: positive contact angle (section 5.1); leftward: positive side slip.
+  const auto up = kinematics::wheel_angles(Eigen::Vector3d(1.0, -1.0, 0.0));  // y_d points down
+  EXPECT_NEAR(up.contact, M_PI / 4, 1e-12);
+  EXPECT_NEAR(up.speed_in_plane, std::sqrt(2.0), 1e-12);
+  const auto left = kinematics::wheel_angles(Eigen::Vector3d(1.0, 0.0, 1.0));  // z_d along the axle, left
+  EXPECT_NEAR(left.side_slip, M_PI / 4, 1e-12);
+  EXPECT_NEAR(left.contact, 0.0, 1e-12);
+}
+
+namespace {
+
+estimation::ContactAngleResult run(const std::string& scenario, double rate, estimation::ContactModel model,
+                                   estimation::FilterKind filter, bool reset, log::Log* keep = nullptr) {
+  auto s = simulation::flying_rover_scenario(scenario, bb2());
+  s.rate = rate;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  if (keep) *keep = lg;
+  estimation::ContactAngleOptions o;
+  o.model = model;
+  o.filter = filter;
+  o.reset_cross_covariance = reset;
+  return estimation::run_contact_angle(lg, bb2(), o);
+}
+
+}  // namespace
+
+TEST(ContactAngle, FrontLeftBogieRotationAsSection63Describes) {
+  log::Log lg;
+  const auto r = run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, true, &lg);
+  const auto& est = r.estimates.stream("estimate/contact/wheels");
+  const auto& ref = lg.stream("truth/wheels");
+  // Wheels on unrotated bogies keep (near) zero contact angles.
+  for (const char* w : {"MR", "FR"}) EXPECT_LT(r.rms.contact_angle[w[0] == 'M' ? 4 : 5], 3.0 * M_PI / 180) << w;
+  // After the bogie stops (15 s), FL and ML settle to the bogie angle's contact angle.
+  for (const char* w : {"FL", "ML"}) {
+    const double e = mean_over(est, std::string("contact_angle_") + w, 20.0, 30.0);
+    const double t = mean_over(ref, std::string("contact_angle_") + w, 20.0, 30.0);
+    EXPECT_GT(std::abs(t), 0.5) << w;  // 0.6 rad of bogie rotation
+    EXPECT_NEAR(e, t, 3.0 * M_PI / 180) << w;
+  }
+}
+
+TEST(ContactAngle, CrossCovariancesGrowWithoutTheResetAndTheResetBoundsSlip) {
+  const auto original = run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, false);
+  const auto reset = run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, true);
+  // Velocity and slips share the wheel rates' scale: their correlation goes to 1.
+  EXPECT_GT(original.max_cross_correlation, 0.99);
+  EXPECT_GT(original.rms.slip[5], 10.0 * reset.rms.slip[5]);
+  EXPECT_LT(reset.rms.velocity[0], 0.01);
+}
+
+TEST(ContactAngle, EkfAndUkfAgree) {
+  log::Log lg;
+  const auto e = run("rear-bogie-rotation", 50.0, estimation::ContactModel::contact_side_slip, estimation::FilterKind::ekf, true, &lg);
+  const auto u = run("rear-bogie-rotation", 50.0, estimation::ContactModel::contact_side_slip, estimation::FilterKind::ukf, true);
+  const auto& a = e.estimates.stream("estimate/contact/wheels");
+  const auto& b = u.estimates.stream("estimate/contact/wheels");
+  double worst = 0;
+  for (const char* c : {"contact_angle_RL", "contact_angle_RR", "side_slip_RL", "side_slip_RR", "slip_FL"}) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const double d = a.channel(c).values[i] - b.channel(c).values[i];
+      if (std::isfinite(d) && a.time()[i] > 1.0) worst = std::max(worst, std::abs(d));
+    }
+  }
+  EXPECT_LT(worst, 1.0 * M_PI / 180);  // within a degree (slip within 0.017) everywhere after the first second
+  // Their error tables agree too (side slip of every wheel within 0.6 deg RMS).
+  for (int w = 0; w < 6; ++w) EXPECT_NEAR(e.rms.side_slip[static_cast<std::size_t>(w)], u.rms.side_slip[static_cast<std::size_t>(w)], 0.6 * M_PI / 180);
+}
+
+TEST(ContactAngle, StandstillHoldsTheStatesAndMarksThemInvalid) {
+  auto s = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
+  s.rate = 100.0;
+  log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  log::Log stopped;
+  for (const auto& st : lg.streams()) {
+    if (st.name() != "wheels") {
+      stopped.add_stream(st);
+      continue;
+    }
+    log::Stream w("wheels", st.time());
+    for (const auto& c : st.channels()) {
+      std::vector<double> v = c.values;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        if (st.time()[i] >= 20.0 && st.time()[i] < 22.0) v[i] = 0.0;
+      }
+      w.add_channel(c.name, c.unit, v);
+    }
+    stopped.add_stream(std::move(w));
+  }
+  const auto r = estimation::run_contact_angle(stopped, bb2(), {});
+  EXPECT_NEAR(static_cast<double>(r.standstill_samples), 200.0, 1.0);
+  const auto& est = r.estimates.stream("estimate/contact/wheels");
+  const std::size_t k = est.nearest_index(21.0);
+  EXPECT_EQ(est.channel("valid").values[k], 0.0);
+  EXPECT_TRUE(std::isnan(est.channel("slip_FL").values[k]));
+  EXPECT_TRUE(std::isnan(est.channel("contact_angle_FL").values[k]));
+}
+
+TEST(ContactAngle, MissingStreamsAreDataErrors) {
+  log::Log lg;
+  EXPECT_THROW(estimation::run_contact_angle(lg, bb2(), {}), std::exception);
+}
