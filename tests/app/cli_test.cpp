@@ -443,3 +443,35 @@ TEST(CliDiscrepancy, OdometryFindsAHiddenEffectInASimulatedLog) {
   const auto doc = nlohmann::json::parse(r.out);
   EXPECT_EQ(doc.at("cause"), "per-side scale") << doc.at("verdict");
 }
+
+// --- seed 000: contact-angle estimation ------------------------------------
+
+TEST(CliContactAngle, ScenarioThenEstimatePrintsTheErrorTable) {
+  TempDir dir;
+  const std::string sim = dir.file("fl.h5"), out = dir.file("est.h5");
+  ASSERT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 100 -o " + quote(sim)).exit_code, 0);
+  const CommandResult r = run_roverlab("estimate contact-angle " + quote(sim) +
+                                       " --model c --reset-cross-covariance -o " + quote(out) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc.at("rover"), "exomars_bb2");
+  EXPECT_EQ(doc.at("rms").at("contact_angle_deg").size(), 6u);
+  EXPECT_LT(doc.at("rms").at("velocity_mps").at(0).get<double>(), 0.01);
+  // Unmoved bogies: contact angles of MR and FR stay near zero.
+  EXPECT_LT(doc.at("rms").at("contact_angle_deg").at(5).get<double>(), 3.0);
+  const log::Log lg = io::read_hdf5_log(out);
+  EXPECT_NE(lg.find_stream("estimate/contact/wheels"), nullptr);
+  EXPECT_NE(lg.stream("estimate/contact/wheels").find_channel("contact_angle_FL"), nullptr);
+  const CommandResult text = run_roverlab("estimate contact-angle " + quote(sim) + " --model c");
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_NE(text.out.find("Tables 6.2-6.5"), std::string::npos);
+}
+
+TEST(CliContactAngle, BadInputAndUsage) {
+  TempDir dir;
+  EXPECT_EQ(run_roverlab("estimate contact-angle " + quote(kPathfinder) + " -m wvu_pathfinder --model c").exit_code, 3);
+  EXPECT_EQ(run_roverlab("estimate contact-angle " + quote(kPathfinder) + " -m wvu_pathfinder --model z").exit_code, 2);
+  EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rover wvu_pathfinder -o " + quote(dir.file("x.h5"))).exit_code, 3);
+  EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 0 -o " + quote(dir.file("x.h5"))).exit_code, 2);
+  EXPECT_EQ(files_in(dir.path()), 0u);
+}
