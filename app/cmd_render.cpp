@@ -1,6 +1,7 @@
 // `roverlab render`: one view of a log as a PNG, headless; `roverlab report`:
 // an HTML page with the views and the metric tables (also CSV and JSON).
 #include <cmath>
+#include <memory>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include "core/common/error.h"
 #include "core/estimation/slip.h"
 #include "importers/atomic_file.h"
+#include "views/contact_angle_scene.h"
 #include "views/offscreen.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
@@ -94,8 +96,18 @@ Rendered render_view(const ViewInput& in, const std::string& view, std::optional
     const views::TractionSurfaceScene scene = views::make_traction_surface_scene(d);
     r.image = render_renderer(scene.renderer, w, h);
   } else if (view == "contact-angles") {
-    throw InputError(in.file, "no contact-angle estimates (streams estimate/contact-angle/...): the seed 000 "
-                              "estimator has not been run on this log");
+    if (in.is_wheel_test()) throw InputError(in.file, "single-wheel test points have no contact angles");
+    std::unique_ptr<views::ContactAngleScene> scene;
+    try {
+      scene = std::make_unique<views::ContactAngleScene>(in.log);
+    } catch (const DataError& e) {
+      throw InputError(in.file, std::string(e.what()) + " (the log needs imu, joints and wheels of a DH rover)");
+    }
+    r.time = time.value_or(0.5 * (scene->start_time() + scene->end_time()));
+    auto window = views::make_offscreen_window(w, h);
+    for (const auto& ren : scene->renderers()) window->AddRenderer(ren);
+    scene->set_time(r.time);
+    r.image = views::capture(window);
   } else {
     throw UsageError("--view " + view + ": expected rover, traction-surface, contact-angles or timeseries");
   }
@@ -129,7 +141,8 @@ int run_render(const RenderOptions& o) {
   }
   if (fs::path(o.output).extension() != ".png") throw UsageError("--output " + o.output + ": must end in .png");
   ViewInputOptions vo;
-  vo.run_estimator = o.view == "rover" || o.view == "contact-angles";
+  vo.run_estimator = o.view == "rover";
+  vo.run_contact_estimator = o.view == "contact-angles";
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
   views::ensure_display();
   const Rendered r = render_view(in, o.view, o.time, o.channels, o.soil, o.quantity, w, h);
@@ -145,6 +158,7 @@ int run_report(const ReportOptions& o) {
   const auto [w, h] = parse_size(o.size);
   ViewInputOptions vo;
   vo.run_odometry_study = true;
+  vo.run_contact_estimator = true;
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
   const fs::path dir(o.output);
   std::error_code ec;
@@ -185,6 +199,10 @@ int run_report(const ReportOptions& o) {
       image("rover.png", "Rover", render_view(in, "rover", std::nullopt, std::nullopt, std::nullopt, o.quantity, w, h));
     } else {
       html << "<p class=\"note\">No rover view: " << html_escape(probe.notes().front()) << "</p>\n";
+    }
+    if (in.log.find_stream("estimate/contact/wheels") != nullptr) {
+      image("contact_angles.png", "Contact and side-slip angles",
+            render_view(in, "contact-angles", std::nullopt, std::nullopt, std::nullopt, o.quantity, w, h));
     }
     std::optional<std::string> slip_channels;
     if (in.log.find_stream("estimate/ins/slip") && in.log.stream("estimate/ins/slip").find_channel("reference_slip")) {
@@ -248,6 +266,25 @@ int run_report(const ReportOptions& o) {
       ins["slip_accuracy"] = m.confusion.accuracy();
     }
     metrics["ins_slip"] = ins;
+  }
+  if (in.contact && in.contact->has_truth) {
+    const auto& e = in.contact->rms;
+    html << "<h2>Contact-angle estimator (seed 000, model C+SS, EKF)</h2>\n<table><tr><th>wheel</th><th>slip RMS</th>"
+            "<th>contact angle RMS (deg)</th><th>side slip RMS (deg)</th></tr>\n";
+    json rows = json::array();
+    const auto& names = in.contact->estimates.stream("estimate/contact/wheels").channels();
+    for (std::size_t k = 0; k < e.slip.size(); ++k) {
+      const std::string wheel = names[k].name.substr(5);
+      html << "<tr><td>" << html_escape(wheel) << "</td><td>" << fmt(e.slip[k], "%.4f") << "</td><td>"
+           << fmt(e.contact_angle.empty() ? NAN : e.contact_angle[k] * 180 / M_PI, "%.3f") << "</td><td>"
+           << fmt(e.side_slip.empty() ? NAN : e.side_slip[k] * 180 / M_PI, "%.3f") << "</td></tr>\n";
+      rows.push_back({{"wheel", wheel}, {"slip", e.slip[k]},
+                      {"contact_angle_deg", e.contact_angle.empty() ? json(nullptr) : json(e.contact_angle[k] * 180 / M_PI)},
+                      {"side_slip_deg", e.side_slip.empty() ? json(nullptr) : json(e.side_slip[k] * 180 / M_PI)}});
+    }
+    html << "</table>\n<p>Velocity RMS x / y / z: " << fmt(e.velocity[0], "%.4f") << " / " << fmt(e.velocity[1], "%.4f")
+         << " / " << fmt(e.velocity[2], "%.4f") << " m/s over " << e.samples << " moving samples.</p>\n";
+    metrics["contact_angle"] = {{"wheels", rows}, {"velocity_rms_mps", e.velocity}};
   }
   if (in.odometry) {
     const auto& r = *in.odometry;

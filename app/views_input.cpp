@@ -10,6 +10,7 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
+#include "importers/rover_file.h"
 #include "importers/soil_file.h"
 #include "importers/wheel_test_csv.h"
 
@@ -51,6 +52,23 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     in.notes.push_back("ran the INS slip estimator (seed 002) on the log: estimate/ streams added");
   } else if (o.run_estimator && !has_estimate) {
     in.notes.push_back("no INS estimate: the log lacks an imu or wheels stream");
+  }
+  if (o.run_contact_estimator && in.log.find_stream("joints") != nullptr && has_imu && has_wheels &&
+      in.log.find_stream("estimate/contact/wheels") == nullptr) {
+    const std::string rover = in.log.metadata.rover_id.empty() ? "exomars_bb2" : in.log.metadata.rover_id;
+    const io::RoverDescription d = io::find_rover(rover, resource_subfolders("rovers"));
+    if (d.dh) {
+      estimation::ContactAngleOptions co;
+      co.model = estimation::ContactModel::contact_side_slip;
+      co.reset_cross_covariance = true;
+      try {
+        in.contact = estimation::run_contact_angle(in.log, *d.dh, co);
+      } catch (const DataError& e) {
+        throw InputError(file, e.what());
+      }
+      for (const auto& s : in.contact->estimates.streams()) in.log.add_stream(s);
+      in.notes.push_back("ran the contact-angle estimator (seed 000, model C+SS, EKF, cross-covariances reset) for rover " + rover);
+    }
   }
   if (o.run_odometry_study && has_wheels && in.log.find_stream("gps") != nullptr) {
     try {

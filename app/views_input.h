@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/analysis/odometry_discrepancy.h"
+#include "core/estimation/contact_angle.h"
 #include "core/estimation/ins_slip.h"
 #include "core/log/log.h"
 #include "core/terramechanics/traction_surface.h"
@@ -21,6 +22,7 @@ struct ViewInput {
   log::Log log;
   std::optional<estimation::InsSlipResult> ins;  // when the INS was run here
   std::optional<analysis::OdometryDiscrepancyReport> odometry;
+  std::optional<estimation::ContactAngleResult> contact;
   std::vector<terramechanics::WheelTestPoint> wheel_points;  // single-wheel CSV input
   std::vector<std::string> notes;  // what was computed or is missing, one line each
   bool is_wheel_test() const { return !wheel_points.empty(); }
@@ -29,6 +31,7 @@ struct ViewInput {
 struct ViewInputOptions {
   bool run_estimator = true;   // INS slip when imu and wheels are present and no estimate is
   bool run_odometry_study = false;
+  bool run_contact_estimator = false;  // contact angles (seed 000) when the log has joints and no estimate
 };
 
 // Loads FILE (log formats, or a single-wheel CSV with load_N and slip

@@ -43,6 +43,8 @@
 #include "core/common/error.h"
 #include "core/estimation/slip.h"
 #include "importers/mapping.h"
+#include "importers/rover_file.h"
+#include "views/contact_angle_scene.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
 #include "views/traction_surface_scene.h"
@@ -83,6 +85,7 @@ MainWindow::~MainWindow() {
   jobs_->wait();
   // The scenes own VTK objects the widgets render: drop them first.
   rover_.reset();
+  contact_.reset();
 }
 
 void MainWindow::build_ui() {
@@ -106,6 +109,8 @@ void MainWindow::build_ui() {
   QMenu* analysis = menuBar()->addMenu("&Analysis");
   QAction* ins = analysis->addAction("Run the INS slip estimator (seed 002)");
   connect(ins, &QAction::triggered, this, &MainWindow::run_estimator);
+  QAction* contact = analysis->addAction("Run the contact-angle estimator (seed 000)");
+  connect(contact, &QAction::triggered, this, &MainWindow::run_contact_estimator);
   QAction* odo = analysis->addAction("Study the wheel odometry against GPS");
   connect(odo, &QAction::triggered, this, [this] {
     if (!input_) return;
@@ -143,6 +148,8 @@ void MainWindow::build_ui() {
   rover_widget_->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New());
   tabs_->addTab(rover_widget_, "Rover");
   tabs_->addTab(plot_widget_, "Plots");
+  contact_widget_ = new QVTKOpenGLNativeWidget;
+  tabs_->addTab(contact_widget_, "Contact angles");
   auto* surface_page = new QWidget;
   auto* surface_layout = new QVBoxLayout(surface_page);
   auto* surface_bar = new QHBoxLayout;
@@ -307,7 +314,14 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
       emit log_loaded();
       // Estimates arrive as new streams when the log can be estimated.
       const log::Log& lg = input_->log;
-      if (lg.find_stream("imu") && lg.find_stream("wheels") && !lg.find_stream("estimate/ins/pose")) {
+      if (lg.find_stream("joints") && lg.find_stream("imu") && lg.find_stream("wheels") &&
+          !lg.find_stream("estimate/contact/wheels")) {
+        estimator_pending_ = true;
+        QTimer::singleShot(0, this, [this] {
+          estimator_pending_ = false;
+          run_contact_estimator();
+        });
+      } else if (lg.find_stream("imu") && lg.find_stream("wheels") && !lg.find_stream("estimate/ins/pose")) {
         estimator_pending_ = true;
         QTimer::singleShot(0, this, [this] {
           estimator_pending_ = false;
@@ -357,10 +371,47 @@ void MainWindow::run_estimator() {
   });
 }
 
+void MainWindow::run_contact_estimator() {
+  if (!input_ || input_->is_wheel_test()) return;
+  const log::Log* lg = &input_->log;
+  if (!lg->find_stream("joints") || !lg->find_stream("imu") || !lg->find_stream("wheels")) {
+    show_error("The contact-angle estimator needs imu, joints and wheels streams of a six-wheel DH rover.");
+    return;
+  }
+  const std::string rover_name = lg->metadata.rover_id.empty() ? "exomars_bb2" : lg->metadata.rover_id;
+  jobs_->start("contact-angle estimator", [this, lg, rover_name](const JobControl& c) -> std::function<void()> {
+    const io::RoverDescription d = io::find_rover(rover_name, app::resource_subfolders("rovers"));
+    if (!d.dh) throw InputError(d.file, "rover " + d.name + " has no DH description");
+    estimation::ContactAngleOptions o;
+    o.model = estimation::ContactModel::contact_side_slip;
+    o.reset_cross_covariance = true;
+    o.progress = [&c](double f) {
+      c.report(f);
+      c.check();
+    };
+    auto result = std::make_shared<estimation::ContactAngleResult>(estimation::run_contact_angle(*lg, *d.dh, o));
+    return [this, result] {
+      for (const auto& s : result->estimates.streams()) {
+        if (input_->log.find_stream(s.name()) == nullptr) input_->log.add_stream(s);
+      }
+      input_->contact = *result;
+      const double t = time_;
+      rebuild_tree();
+      rebuild_views();
+      select_tab("Contact angles");
+      set_time(t);
+    };
+  });
+}
+
 void MainWindow::install(std::unique_ptr<ViewInput> in) {
   play_->setChecked(false);
   if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
   rover_.reset();
+  if (contact_) {
+    for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->RemoveRenderer(r);
+  }
+  contact_.reset();
   plot_channels_.clear();
   input_ = std::move(in);
   rebuild_tree();
@@ -413,6 +464,18 @@ void MainWindow::rebuild_views() {
   if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
   rover_ = std::make_unique<views::RoverScene>(lg);
   rover_widget_->renderWindow()->AddRenderer(rover_->renderer());
+  // Contact angles when estimated.
+  if (contact_) {
+    for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->RemoveRenderer(r);
+    contact_.reset();
+  }
+  if (lg.find_stream("estimate/contact/wheels") != nullptr) {
+    try {
+      contact_ = std::make_unique<views::ContactAngleScene>(lg);
+      for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->AddRenderer(r);
+    } catch (const DataError&) {
+    }
+  }
   // Plots: the chosen channels, or the defaults (slip when estimated).
   std::vector<views::ChannelRef> refs;
   for (const auto& [s, c] : plot_channels_) refs.push_back({s, c});
@@ -533,6 +596,7 @@ void MainWindow::set_time(double t) {
   time_label_->setText(QString("t = %1 s / %2 s").arg(time_, 0, 'f', 2).arg(t1_, 0, 'f', 1));
   if (rover_) rover_->set_time(time_);
   if (chart_) chart_->set_cursor(time_);
+  if (contact_) contact_->set_time(time_);
   render_views();
   emit time_changed(time_);
 }
@@ -547,6 +611,7 @@ void MainWindow::render_now() {
   QWidget* page = tabs_->currentWidget();
   if (page == rover_widget_ && rover_) rover_widget_->renderWindow()->Render();
   if (page == plot_widget_ && chart_) plot_widget_->renderWindow()->Render();
+  if (page == contact_widget_ && contact_) contact_widget_->renderWindow()->Render();
 }
 
 void MainWindow::select_tab(const QString& name) {

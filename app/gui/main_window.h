@@ -30,6 +30,7 @@ class QVTKOpenGLNativeWidget;
 class QMenu;
 
 namespace roverlab::views {
+class ContactAngleScene;
 class RoverScene;
 class TimeSeriesChart;
 }  // namespace roverlab::views
@@ -61,6 +62,7 @@ class MainWindow : public QMainWindow {
   double end_time() const { return t1_; }
   views::RoverScene* rover_scene() const { return rover_.get(); }
   views::TimeSeriesChart* chart() const { return chart_.get(); }
+  views::ContactAngleScene* contact_scene() const { return contact_.get(); }
   // The last error shown in a dialog (empty when none).
   QString last_error() const { return last_error_; }
   // Errors go to a modal dialog unless quiet (tests, screenshots): then only to last_error.
@@ -86,6 +88,7 @@ class MainWindow : public QMainWindow {
   void rebuild_surface();
   void render_views();
   void run_estimator();
+  void run_contact_estimator();
   void show_error(const QString& text);
   void remember_recent(const QString& path);
   void refresh_recent_menu();
@@ -95,12 +98,14 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<ViewInput> input_;
   std::unique_ptr<views::RoverScene> rover_;
   std::unique_ptr<views::TimeSeriesChart> chart_;
+  std::unique_ptr<views::ContactAngleScene> contact_;
   std::vector<std::pair<std::string, std::string>> plot_channels_;
   QTabWidget* tabs_ = nullptr;
   QTreeWidget* tree_ = nullptr;
   QVTKOpenGLNativeWidget* rover_widget_ = nullptr;
   QVTKOpenGLNativeWidget* plot_widget_ = nullptr;
   QVTKOpenGLNativeWidget* surface_widget_ = nullptr;
+  QVTKOpenGLNativeWidget* contact_widget_ = nullptr;
   QComboBox* surface_soil_ = nullptr;
   QComboBox* surface_quantity_ = nullptr;
   QLabel* surface_note_ = nullptr;

@@ -226,3 +226,22 @@ TEST(Report, SingleWheelReportHasBothSurfacesAndTheirCoefficients) {
   EXPECT_EQ(metrics.at("traction_surface_drawbar-pull").at("coefficients").size(), 15u);  // order 4
   EXPECT_LT(metrics.at("traction_surface_drawbar-pull").at("fit_rmse").get<double>(), 1.0);
 }
+
+TEST(Render, ContactAnglesPointWhereTheWheelsMove) {
+  TempDir dir;
+  const std::string sim = dir.file("rear.h5");
+  ASSERT_EQ(run_roverlab("scenario rear-bogie-rotation --rate 100 -o " + quote(sim)).exit_code, 0);
+  // At 12 s the rear bogie turns: RL's velocity points down (about -50 deg),
+  // RR's up (+50 deg); the other wheels roll level.
+  const views::Image img = render(quote(sim) + " --view contact-angles -t 12 --size 1200x600", dir.file("ca.png"));
+  auto blue = [](int r, int g, int b) { return b > 180 && r < 90 && g < 140; };
+  // Side-view part of each panel (panels are 400 x 300: FL ML RL on top, FR MR RR below).
+  auto centroid_y = [&](int panel_x, int panel_y) {
+    return find(img, blue, panel_x, panel_x + 240, panel_y, panel_y + 270);
+  };
+  const Region fl = centroid_y(0, 0), rl = centroid_y(800, 0), fr = centroid_y(0, 300), rr = centroid_y(800, 300);
+  for (const Region* r : {&fl, &rl, &fr, &rr}) EXPECT_GT(r->count, 300);
+  EXPECT_GT(rl.mean_y - fl.mean_y, 12.0);  // RL arrow points down
+  EXPECT_LT(rr.mean_y - fr.mean_y, -12.0); // RR's arrow points up
+  EXPECT_NEAR(fl.mean_y, 140.0, 12.0);     // FL's is level with the wheel centre
+}
