@@ -73,7 +73,7 @@ Rendered render_view(const ViewInput& in, const std::string& view, std::optional
   Rendered r;
   if (view == "rover") {
     if (in.is_wheel_test()) throw InputError(in.file, "single-wheel test points have no rover pose");
-    views::RoverScene scene(in.log);
+    views::RoverScene scene(in.log, rover_geometry(in.log));
     if (scene.pose_source().empty()) throw InputError(in.file, scene.notes().front());
     r.time = time.value_or(default_time(scene));
     scene.set_time(r.time);

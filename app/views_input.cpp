@@ -80,6 +80,16 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
   return in;
 }
 
+estimation::SkidSteerGeometry rover_geometry(const log::Log& lg) {
+  if (lg.metadata.rover_id.empty()) return {};
+  try {
+    const io::RoverDescription d = io::find_rover(lg.metadata.rover_id, resource_subfolders("rovers"));
+    if (d.skid_steer) return *d.skid_steer;
+  } catch (const InputError&) {
+  }
+  return {};
+}
+
 views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::string& quantity,
                                                const std::optional<std::string>& soil_name,
                                                terramechanics::SurfaceFit* fit_out) {

@@ -39,6 +39,11 @@ struct ViewInputOptions {
 ViewInput load_view_input(const std::string& file, const std::optional<std::string>& mapping,
                           const ViewInputOptions& options = {});
 
+// The skid-steer geometry the rover view draws: the log's rover
+// description (resources/rovers/<rover_id>.json) when it is a skid-steer
+// one, else the Pathfinder's defaults.
+estimation::SkidSteerGeometry rover_geometry(const log::Log& log);
+
 // A traction surface for the view, "drawbar-pull" or "torque": with a soil,
 // the Wong-Reece model on a grid fitted by an order-4 polynomial (seed 003
 // Appendix A) with the single-wheel points (if any) drawn against it;

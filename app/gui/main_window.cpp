@@ -462,7 +462,7 @@ void MainWindow::rebuild_views() {
   const log::Log& lg = input_->log;
   // Rover.
   if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
-  rover_ = std::make_unique<views::RoverScene>(lg);
+  rover_ = std::make_unique<views::RoverScene>(lg, app::rover_geometry(lg));
   rover_widget_->renderWindow()->AddRenderer(rover_->renderer());
   // Contact angles when estimated.
   if (contact_) {

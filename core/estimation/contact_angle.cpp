@@ -397,6 +397,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     const double ts = i == 0 ? 0.0 : t[i] - t[i - 1];
     bool still = true;
     for (double w : in.wheel_rate) still = still && std::abs(w) < o.standstill_wheel_rate;
+    still = still && in.gyro.norm() < o.standstill_gyro_rate;
     for (int w = 0; w < nw; ++w) y_meas(w) = in.wheel_rate[static_cast<std::size_t>(w)];
     Eigen::VectorXd x;
     if (o.filter == FilterKind::ekf) {

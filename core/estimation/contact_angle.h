@@ -35,7 +35,11 @@ struct ContactAngleOptions {
   // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).
   double attitude_variance = 1e-5, velocity_variance = 1e-5, slip_variance = 1e-6, angle_variance = 1e-5;
   double lateral_variance = 1e-5;        // n_vy, n_vz
-  double standstill_wheel_rate = 1e-3;   // rad/s: all wheels slower -> standstill, states held
+  // Standstill (section 4.1's and 5.1's singularities): every wheel slower
+  // than this and the body turning slower than standstill_gyro_rate; the slip
+  // and angle states are then held and marked invalid.
+  double standstill_wheel_rate = 1e-3;   // rad/s
+  double standstill_gyro_rate = 0.05;    // rad/s
   // Offline extension (not in the seed): joint rates fused with the slope of
   // a least-squares line through the joint angles over this centred window
   // (s); 0 uses the measured rates alone as the seed does.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/common/error.h"
 #include "core/estimation/contact_angle.h"
 #include "core/kinematics/rover_model.h"
 #include "core/simulation/flying_rover.h"
@@ -200,4 +201,29 @@ TEST(ContactAngle, StandstillHoldsTheStatesAndMarksThemInvalid) {
 TEST(ContactAngle, MissingStreamsAreDataErrors) {
   log::Log lg;
   EXPECT_THROW(estimation::run_contact_angle(lg, bb2(), {}), std::exception);
+}
+
+TEST(RoverDescriptions, TheThreeBundledRoversLoadWithTheirPublishedDimensions) {
+  const std::string dir = std::string(ROVERLAB_RESOURCES_DIR) + "/rovers/";
+  const auto pf = io::load_rover(dir + "wvu_pathfinder.json");
+  ASSERT_TRUE(pf.skid_steer.has_value());
+  EXPECT_DOUBLE_EQ(pf.skid_steer->track, 0.685);      // seed 002 section 5.1
+  EXPECT_DOUBLE_EQ(pf.skid_steer->wheelbase, 0.544);
+  EXPECT_DOUBLE_EQ(pf.skid_steer->wheel_radius, 0.12);  // 24 cm diameter
+  const auto kv = io::load_rover(dir + "kapvik_planar.json");
+  ASSERT_TRUE(kv.planar.has_value());
+  const auto& p = *kv.planar;
+  // Wheel centres from the rocker pivot: the footprint is 0.700 m and the
+  // overall length 0.850 m with r = 75 mm (seed 003); all three on one level.
+  const double x1 = p.rocker_to_wheel1[0], x2 = p.rocker_to_bogie[0] + p.bogie_to_wheel2[0],
+               x3 = p.rocker_to_bogie[0] + p.bogie_to_wheel3[0];
+  EXPECT_NEAR(x1 - x3, 0.700, 1e-12);
+  EXPECT_NEAR(x1 - x3 + 2 * p.wheel_radius, 0.850, 1e-12);
+  EXPECT_NEAR(p.rocker_to_wheel1[1], p.rocker_to_bogie[1] + p.bogie_to_wheel2[1], 1e-12);
+  EXPECT_NEAR(p.rocker_to_bogie[1] + p.bogie_to_wheel2[1], p.rocker_to_bogie[1] + p.bogie_to_wheel3[1], 1e-12);
+  EXPECT_GT(x1, x2);
+  EXPECT_GT(x2, x3);
+  EXPECT_EQ(bb2().wheels.size(), 6u);
+  EXPECT_NEAR(bb2().noise.gyro.x(), 3.932e-5 + 1e-12, 1e-18);  // Table 6.1 plus the seed's 1e-12
+  EXPECT_THROW(io::load_rover(dir + "missing.json"), InputError);
 }
