@@ -163,4 +163,14 @@ struct ContactAngleCommandOptions {
 };
 int run_estimate_contact_angle(const ContactAngleCommandOptions& options);
 
+struct SimulateOptions {
+  std::string path = "rolling";
+  std::string soil = "ding_tyii";
+  std::string rover = "kapvik_planar";
+  std::string traction = "polynomial";
+  double duration = 200.0, start_x = 0.0;
+  std::string output;
+};
+int run_simulate_rocker_bogie(const SimulateOptions& options);
+
 }  // namespace roverlab::app

@@ -475,3 +475,22 @@ TEST(CliContactAngle, BadInputAndUsage) {
   EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 0 -o " + quote(dir.file("x.h5"))).exit_code, 2);
   EXPECT_EQ(files_in(dir.path()), 0u);
 }
+
+// --- seed 003: planar rocker-bogie simulation ------------------------------
+
+TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
+  TempDir dir;
+  const std::string out = dir.file("rb.h5");
+  const CommandResult r = run_roverlab("simulate rocker-bogie --path flat --duration 10 -o " + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const log::Log lg = io::read_hdf5_log(out);
+  const auto& pose = lg.stream("truth/pose");
+  EXPECT_EQ(pose.size(), 501u);  // 50 Hz
+  EXPECT_GT(pose.channel("x").values.back(), pose.channel("x").values.front());
+  EXPECT_NE(lg.stream("truth/wheels").find_channel("drawbar_pull_2"), nullptr);
+  EXPECT_NE(lg.find_stream("commands"), nullptr);
+  EXPECT_EQ(run_roverlab("simulate rocker-bogie --soil no_such_soil -o " + quote(dir.file("x.h5"))).exit_code, 3);
+  EXPECT_EQ(run_roverlab("simulate rocker-bogie --path moon -o " + quote(dir.file("x.h5"))).exit_code, 2);
+  EXPECT_EQ(run_roverlab("simulate rocker-bogie --rover exomars_bb2 -o " + quote(dir.file("x.h5"))).exit_code, 3);
+  EXPECT_FALSE(fs::exists(dir.file("x.h5")));
+}

@@ -1,0 +1,71 @@
+// `roverlab simulate rocker-bogie`: the planar rocker-bogie dynamics of seed
+// 003 chapter 4 over a wheel-centre path, written as a log with truth streams.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "app/commands.h"
+#include "app/resources.h"
+#include "core/common/error.h"
+#include "core/simulation/rocker_bogie.h"
+#include "importers/hdf5_log.h"
+#include "importers/rover_file.h"
+#include "importers/soil_file.h"
+
+namespace roverlab::app {
+
+int run_simulate_rocker_bogie(const SimulateOptions& o) {
+  simulation::RockerBogieRun run;
+  if (o.path == "rolling") {
+    run.path = simulation::rolling_path();
+  } else if (o.path == "flat") {
+    run.path = simulation::flat_path();
+  } else {
+    throw UsageError("--path " + o.path + ": expected rolling or flat");
+  }
+  if (o.traction == "polynomial") {
+    run.traction = simulation::TractionSource::polynomial;
+  } else if (o.traction == "wong-reece") {
+    run.traction = simulation::TractionSource::wong_reece;
+  } else {
+    throw UsageError("--traction " + o.traction + ": expected polynomial or wong-reece");
+  }
+  if (!(o.duration > 0 && o.duration <= 100000)) throw UsageError("--duration must be positive");
+  run.duration = o.duration;
+  run.start_x = o.start_x;
+  run.soil = io::find_soil(o.soil, resource_subfolders("soils"));
+  const io::RoverDescription d = io::find_rover(o.rover, resource_subfolders("rovers"));
+  if (!d.planar) throw InputError(d.file, "rover '" + d.name + "' is not a planar rocker-bogie description");
+  simulation::PlanarRockerBogieGeometry g;
+  g.wheel_radius = d.planar->wheel_radius;
+  g.rocker_to_wheel1 = {d.planar->rocker_to_wheel1[0], d.planar->rocker_to_wheel1[1]};
+  g.rocker_to_bogie = {d.planar->rocker_to_bogie[0], d.planar->rocker_to_bogie[1]};
+  g.bogie_to_wheel2 = {d.planar->bogie_to_wheel2[0], d.planar->bogie_to_wheel2[1]};
+  g.bogie_to_wheel3 = {d.planar->bogie_to_wheel3[0], d.planar->bogie_to_wheel3[1]};
+  if (isatty(2)) {
+    run.progress = [](double f) {
+      const int n = static_cast<int>(40 * f);
+      std::fprintf(stderr, "\rsimulating [%-40s] %3d %%", std::string(static_cast<std::size_t>(n), '#').c_str(),
+                   static_cast<int>(100 * f));
+    };
+  }
+  const auto start = std::chrono::steady_clock::now();
+  simulation::RockerBogieResult r;
+  try {
+    r = simulation::simulate_rocker_bogie(g, {}, run);
+  } catch (const DataError& e) {
+    throw InputError(o.soil, e.what());
+  }
+  if (run.progress) std::fprintf(stderr, "\r%60s\r", "");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  io::write_hdf5_log(r.log, o.output);
+  const auto& pose = r.log.stream("truth/pose");
+  std::printf("wrote %s: %.0f s on the %s path, soil %s, %s traction; %.2f m driven; largest constraint error %.2g m; %.2f s\n",
+              o.output.c_str(), o.duration, run.path.name.c_str(), run.soil.name.c_str(), o.traction.c_str(),
+              pose.channel("x").values.back() - pose.channel("x").values.front(), r.max_constraint_error, wall);
+  if (r.unsupported > 0) std::printf("note: %zu traction evaluations beyond what the soil carries (set to 0)\n", r.unsupported);
+  return kSuccess;
+}
+
+}  // namespace roverlab::app

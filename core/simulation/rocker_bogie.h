@@ -1,0 +1,77 @@
+#pragma once
+// Planar dynamics of one side of a rocker-bogie rover (seed 003, Setterfield
+// 2011, chapter 4): the lumped body and rocker, the bogie and three wheels
+// (configuration Eq. 4.19 reduced to the plane: x0, z0, pitch, bogie angle,
+// three wheel angles), inertia from the velocity Jacobians (Eq. 4.20-4.29),
+// wheel centres held on a path by constraints with Baumgarte stabilisation
+// (Eq. 4.15-4.18, 4.33), normal loads from the Lagrange multipliers (Eq.
+// 4.38), drawbar pulls and resistive torques from the terramechanics model
+// through the wheel Jacobians (Eq. 4.40-4.47), the system of Eq. 4.49,
+// integrated with Boost.Odeint (adaptive Dormand-Prince) between 50 Hz PID
+// wheel-speed control steps (section 4.2.4).
+//
+// Angles are clockwise positive in the world X (forward) - Z (up) plane, as
+// in the seed; the wheels roll forward with positive rates.
+
+#include <functional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/log/log.h"
+#include "core/terramechanics/model.h"
+
+namespace roverlab::simulation {
+
+// Table 4.1 (one side of Kapvik).
+struct RockerBogieParameters {
+  double body_mass = 12.49, bogie_mass = 1.562, wheel_mass = 0.3174;  // kg
+  double body_inertia = 0.5045, bogie_inertia = 0.05248;              // kg m^2
+  double wheel_inertia = 0.003584, wheel_gear_inertia = 1.082;        // kg m^2 (gear: referred to the wheel)
+  double wheel_damping = 2.28855;                                     // N m s
+  Eigen::Vector2d bogie_com{0.0, -0.07322};                           // c_11, m (x, z)
+  double baumgarte_alpha = 500, baumgarte_beta = 500;
+  double desired_speed = 0.02;                                        // m/s
+  double kp = 25, ki = 0.5, kd = 12.5;                                // wheel-speed PID
+  double control_rate = 50;                                           // Hz
+  double gravity = 9.81;
+};
+
+// Link vectors in the body frame at rest on level ground (x forward, z up),
+// from the rocker pivot, which is taken as the body's centre of mass.
+struct PlanarRockerBogieGeometry {
+  double wheel_radius = 0.075, wheel_width = 0.07;
+  Eigen::Vector2d rocker_to_wheel1{0.350, -0.175}, rocker_to_bogie{-0.175, -0.100};
+  Eigen::Vector2d bogie_to_wheel2{0.175, -0.075}, bogie_to_wheel3{-0.175, -0.075};
+};
+
+// The path of the wheel centres z_wc(x) with its first two derivatives.
+struct WheelCentrePath {
+  std::string name;
+  std::function<double(double)> z, dz, ddz;
+};
+WheelCentrePath rolling_path();               // Eq. 4.51
+WheelCentrePath flat_path(double height = 0);
+
+enum class TractionSource { wong_reece, polynomial };
+
+struct RockerBogieRun {
+  double duration = 200.0;  // s
+  WheelCentrePath path = rolling_path();
+  double start_x = 0.0;     // wheel 1's x at t = 0
+  terramechanics::Soil soil;
+  TractionSource traction = TractionSource::polynomial;
+  std::function<void(double)> progress;  // fraction done
+};
+
+struct RockerBogieResult {
+  log::Log log;                 // truth/pose, truth/wheels, commands at the control rate
+  double max_constraint_error = 0;  // m, largest |Psi| over the run
+  std::size_t unsupported = 0;  // traction evaluations where the soil could not carry the load
+};
+
+// Throws DataError when the rover cannot be placed on the path.
+RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& geometry, const RockerBogieParameters& parameters,
+                                        const RockerBogieRun& run);
+
+}  // namespace roverlab::simulation
