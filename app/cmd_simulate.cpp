@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "app/commands.h"
@@ -11,31 +12,67 @@
 #include "core/simulation/rocker_bogie.h"
 #include "importers/hdf5_log.h"
 #include "importers/rover_file.h"
+#include "importers/scenario_file.h"
 #include "importers/soil_file.h"
 
 namespace roverlab::app {
 
 int run_simulate_rocker_bogie(const SimulateOptions& o) {
+  const io::ScenarioFile sc = io::find_scenario(o.scenario, resource_subfolders("scenarios"));
   simulation::RockerBogieRun run;
-  if (o.path == "rolling") {
+  const std::string path = sc.path;
+  if (path == "rolling") {
     run.path = simulation::rolling_path();
-  } else if (o.path == "flat") {
+  } else if (path == "flat") {
     run.path = simulation::flat_path();
+  } else if (path == "slope") {
+    if (!(std::abs(sc.slope_deg) < 45)) throw InputError(sc.file, "slope_deg must be within +-45");
+    run.path = simulation::slope_path(sc.slope_deg);
+  } else if (path == "bump") {
+    if (!(sc.bump_length > 0.05) || !(std::abs(sc.bump_height) < 0.5)) throw InputError(sc.file, "bump_length_m > 0.05 and |bump_height_m| < 0.5 needed");
+    run.path = simulation::bump_path(sc.bump_height, sc.bump_x, sc.bump_length);
   } else {
-    throw UsageError("--path " + o.path + ": expected rolling or flat");
+    throw InputError(sc.file, "path '" + path + "': expected rolling, flat, slope or bump");
   }
-  if (o.traction == "polynomial") {
+  const std::string traction = o.traction.value_or(sc.traction);
+  if (traction == "polynomial") {
     run.traction = simulation::TractionSource::polynomial;
-  } else if (o.traction == "wong-reece") {
+  } else if (traction == "wong-reece") {
     run.traction = simulation::TractionSource::wong_reece;
   } else {
-    throw UsageError("--traction " + o.traction + ": expected polynomial or wong-reece");
+    throw UsageError("traction " + traction + ": expected polynomial or wong-reece");
   }
-  if (!(o.duration > 0 && o.duration <= 100000)) throw UsageError("--duration must be positive");
-  run.duration = o.duration;
-  run.start_x = o.start_x;
-  run.soil = io::find_soil(o.soil, resource_subfolders("soils"));
-  const io::RoverDescription d = io::find_rover(o.rover, resource_subfolders("rovers"));
+  const double duration = o.duration.value_or(sc.duration);
+  if (!(duration > 0 && duration <= 100000)) throw UsageError("--duration must be positive");
+  run.duration = duration;
+  run.start_x = sc.start_x;
+  run.seed = o.seed;
+  try {
+    for (const auto& [k, v] : sc.effects) simulation::set_effect(run.effects, k, v);
+  } catch (const DataError& e) {
+    throw InputError(sc.file, e.what());
+  }
+  for (const auto& e : o.effects) {
+    const auto eq = e.find('=');
+    if (eq == std::string::npos) throw UsageError("--effect " + e + ": expected NAME=VALUE");
+    double value = NAN;
+    try {
+      std::size_t used = 0;
+      value = std::stod(e.substr(eq + 1), &used);
+      if (used != e.size() - eq - 1) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+      throw UsageError("--effect " + e + ": the value is not a number");
+    }
+    try {
+      simulation::set_effect(run.effects, e.substr(0, eq), value);
+    } catch (const DataError& err) {
+      throw UsageError(std::string("--effect: ") + err.what());
+    }
+  }
+  simulation::RockerBogieParameters params;
+  params.desired_speed = sc.desired_speed;
+  run.soil = io::find_soil(sc.soil, resource_subfolders("soils"));
+  const io::RoverDescription d = io::find_rover(sc.rover, resource_subfolders("rovers"));
   if (!d.planar) throw InputError(d.file, "rover '" + d.name + "' is not a planar rocker-bogie description");
   simulation::PlanarRockerBogieGeometry g;
   g.wheel_radius = d.planar->wheel_radius;
@@ -53,16 +90,16 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   simulation::RockerBogieResult r;
   try {
-    r = simulation::simulate_rocker_bogie(g, {}, run);
+    r = simulation::simulate_rocker_bogie(g, params, run);
   } catch (const DataError& e) {
-    throw InputError(o.soil, e.what());
+    throw InputError(sc.file, e.what());
   }
   if (run.progress) std::fprintf(stderr, "\r%60s\r", "");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   io::write_hdf5_log(r.log, o.output);
   const auto& pose = r.log.stream("truth/pose");
-  std::printf("wrote %s: %.0f s on the %s path, soil %s, %s traction; %.2f m driven; largest constraint error %.2g m; %.2f s\n",
-              o.output.c_str(), o.duration, run.path.name.c_str(), run.soil.name.c_str(), o.traction.c_str(),
+  std::printf("wrote %s: scenario %s, %.0f s on the %s path, soil %s, %s traction; %.2f m driven; largest constraint error %.2g m; %.2f s\n",
+              o.output.c_str(), sc.name.c_str(), duration, run.path.name.c_str(), run.soil.name.c_str(), traction.c_str(),
               pose.channel("x").values.back() - pose.channel("x").values.front(), r.max_constraint_error, wall);
   if (r.unsupported > 0) std::printf("note: %zu traction evaluations beyond what the soil carries (set to 0)\n", r.unsupported);
   return kSuccess;

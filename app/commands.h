@@ -164,11 +164,11 @@ struct ContactAngleCommandOptions {
 int run_estimate_contact_angle(const ContactAngleCommandOptions& options);
 
 struct SimulateOptions {
-  std::string path = "rolling";
-  std::string soil = "ding_tyii";
-  std::string rover = "kapvik_planar";
-  std::string traction = "polynomial";
-  double duration = 200.0, start_x = 0.0;
+  std::string scenario;  // NAME (resources/scenarios) or FILE
+  unsigned seed = 1;
+  std::vector<std::string> effects;  // NAME=VALUE
+  std::optional<std::string> traction;
+  std::optional<double> duration;
   std::string output;
 };
 int run_simulate_rocker_bogie(const SimulateOptions& options);

@@ -211,18 +211,17 @@ int dispatch(int argc, char** argv) {
   report_cmd->add_option("--size", report.size, "WxH pixels of the 3D views")->capture_default_str();
   report_cmd->add_option("--output,-o", report.output, "Report folder (created if missing)")->required();
 
-  auto* simulate_cmd = cli.add_subcommand("simulate", "Run a dynamic simulation and write its log with truth streams");
-  simulate_cmd->require_subcommand(1);
   SimulateOptions sim;
-  auto* rb_cmd = simulate_cmd->add_subcommand(
-      "rocker-bogie", "Planar rocker-bogie dynamics with terramechanics and PI wheel-speed control (seed 003 chapter 4)");
-  rb_cmd->add_option("--path", sim.path, "Wheel-centre path: rolling (Eq. 4.51) | flat")->capture_default_str();
-  rb_cmd->add_option("--soil", sim.soil, "Soil NAME or FILE")->capture_default_str();
-  rb_cmd->add_option("--rover", sim.rover, "Planar rover description NAME or FILE")->capture_default_str();
-  rb_cmd->add_option("--traction", sim.traction, "polynomial (order-5 surrogate) | wong-reece")->capture_default_str();
-  rb_cmd->add_option("--duration", sim.duration, "s")->capture_default_str();
-  rb_cmd->add_option("--start-x", sim.start_x, "Front wheel's x at the start, m")->capture_default_str();
-  rb_cmd->add_option("--output,-o", sim.output, "OUT.h5")->required();
+  auto* simulate_cmd = cli.add_subcommand(
+      "simulate", "Planar rocker-bogie dynamics with terramechanics (seed 003 chapter 4): a scenario to a log with truth");
+  simulate_cmd->add_option("SCENARIO", sim.scenario, "Scenario NAME (resources/scenarios) or FILE.json")->required();
+  simulate_cmd->add_option("--seed", sim.seed, "Sensor-noise seed")->capture_default_str();
+  simulate_cmd->add_option("--effect", sim.effects,
+                           "Effect NAME=VALUE: soil-strength, slip-sinkage, grousers, wheel-radius-scale, effect-start-x, "
+                           "gyro-bias, accel-bias, force-offset, force-scale, encoder-dropout, imu-time-offset");
+  simulate_cmd->add_option("--traction", sim.traction, "polynomial | wong-reece (default: the scenario's)");
+  simulate_cmd->add_option("--duration", sim.duration, "s (default: the scenario's)");
+  simulate_cmd->add_option("--output,-o", sim.output, "OUT.h5")->required();
 
   GuiOptions gui;
   auto* gui_cmd = cli.add_subcommand("gui", "The desktop application (Qt + VTK)");
@@ -263,7 +262,7 @@ int dispatch(int argc, char** argv) {
   if (render_cmd->parsed()) return run_render(render);
   if (report_cmd->parsed()) return run_report(report);
   if (gui_cmd->parsed()) return run_gui(gui);
-  if (rb_cmd->parsed()) return run_simulate_rocker_bogie(sim);
+  if (simulate_cmd->parsed()) return run_simulate_rocker_bogie(sim);
   return kUsageError;
 }
 

@@ -3,6 +3,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include <array>
+#include <random>
 #include <cmath>
 #include <vector>
 
@@ -84,6 +85,41 @@ Mat inertia(const Kinematics& k, const RockerBogieParameters& p) {
 
 }  // namespace
 
+void set_effect(RockerBogieEffects& e, const std::string& name, double v) {
+  if (!std::isfinite(v)) throw DataError("effect " + name + ": not a number");
+  if (name == "soil-strength") {
+    if (!(v > 0.1 && v < 10)) throw DataError("effect soil-strength must be 0.1..10");
+    e.soil_strength = v;
+  } else if (name == "slip-sinkage") {
+    if (!(v >= 0 && v <= 2)) throw DataError("effect slip-sinkage must be 0..2");
+    e.slip_sinkage_n1 = v;
+  } else if (name == "grousers") {
+    if (!(v >= 0 && v <= 0.05)) throw DataError("effect grousers (height, m) must be 0..0.05");
+    e.grouser_height = v;
+  } else if (name == "wheel-radius-scale") {
+    if (!(v > 0.5 && v < 2)) throw DataError("effect wheel-radius-scale must be 0.5..2");
+    e.wheel_radius_scale = v;
+  } else if (name == "effect-start-x") {
+    e.effect_start_x = v;
+  } else if (name == "gyro-bias") {
+    e.gyro_bias = v;
+  } else if (name == "accel-bias") {
+    e.accel_bias = v;
+  } else if (name == "force-offset") {
+    e.force_offset = v;
+  } else if (name == "force-scale") {
+    if (!(v > 0)) throw DataError("effect force-scale must be positive");
+    e.force_scale = v;
+  } else if (name == "encoder-dropout") {
+    e.encoder_dropout_start = v;
+  } else if (name == "imu-time-offset") {
+    e.imu_time_offset = v;
+  } else {
+    throw DataError("unknown effect '" + name + "' (soil-strength, slip-sinkage, grousers, wheel-radius-scale, "
+                    "effect-start-x, gyro-bias, accel-bias, force-offset, force-scale, encoder-dropout, imu-time-offset)");
+  }
+}
+
 WheelCentrePath rolling_path() {
   WheelCentrePath p;
   p.name = "rolling (seed 003 Eq. 4.51)";
@@ -91,6 +127,27 @@ WheelCentrePath rolling_path() {
   p.z = [k](double x) { return 0.12 * std::cos(k * x - 1.6) + 0.01 * x; };
   p.dz = [k](double x) { return -0.12 * k * std::sin(k * x - 1.6) + 0.01; };
   p.ddz = [k](double x) { return -0.12 * k * k * std::cos(k * x - 1.6); };
+  return p;
+}
+
+WheelCentrePath slope_path(double degrees) {
+  WheelCentrePath p;
+  p.name = "slope " + std::to_string(degrees) + " deg";
+  const double k = std::tan(degrees * M_PI / 180.0);
+  p.z = [k](double x) { return k * x; };
+  p.dz = [k](double) { return k; };
+  p.ddz = [](double) { return 0.0; };
+  return p;
+}
+
+WheelCentrePath bump_path(double height, double x0, double length) {
+  WheelCentrePath p;
+  p.name = "bump " + std::to_string(height) + " m at x = " + std::to_string(x0) + " m";
+  const double w = 2.0 * M_PI / length;
+  auto inside = [x0, length](double x) { return x >= x0 && x <= x0 + length; };
+  p.z = [=](double x) { return inside(x) ? 0.5 * height * (1.0 - std::cos(w * (x - x0))) : 0.0; };
+  p.dz = [=](double x) { return inside(x) ? 0.5 * height * w * std::sin(w * (x - x0)) : 0.0; };
+  p.ddz = [=](double x) { return inside(x) ? 0.5 * height * w * w * std::cos(w * (x - x0)) : 0.0; };
   return p;
 }
 
@@ -105,37 +162,57 @@ WheelCentrePath flat_path(double h) {
 
 RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, const RockerBogieParameters& p,
                                         const RockerBogieRun& run) {
-  const terramechanics::Wheel wheel{g.wheel_radius, g.wheel_width, 0, 0.0};
-  // Traction: Wong-Reece, or its order-5 polynomial surrogate (seed 003 Appendix A) fitted once.
-  terramechanics::PolynomialSurface dp_poly, tau_poly;
-  if (run.traction == TractionSource::polynomial) {
-    std::vector<terramechanics::SurfaceSample> dp, tau;
-    for (int i = 0; i < 40; ++i) {
-      for (int k = 0; k < 41; ++k) {
-        const double W = 1.0 + 149.0 * i / 39.0, s = -1.0 + 2.0 * k / 40.0;
-        const auto t = terramechanics::evaluate(run.soil, wheel, W, s);
-        if (!t.ok()) continue;
-        dp.push_back({W, s, t.drawbar_pull});
-        tau.push_back({W, s, t.resistive_torque});
+  const RockerBogieEffects& fx = run.effects;
+  // Traction before and after the effects' start: Wong-Reece, or its order-5
+  // polynomial surrogate (seed 003 Appendix A) fitted once for each.
+  struct TractionModel {
+    terramechanics::Wheel wheel;
+    terramechanics::ModelOptions options;
+    terramechanics::PolynomialSurface dp, tau;
+  };
+  auto make_model = [&](bool with_effects) {
+    TractionModel m;
+    m.wheel = {g.wheel_radius * (with_effects ? fx.wheel_radius_scale : 1.0), g.wheel_width, 0, 0.0};
+    if (with_effects) {
+      m.options.extensions.soil_strength = fx.soil_strength;
+      m.options.extensions.slip_sinkage_n1 = fx.slip_sinkage_n1;
+      if (fx.grouser_height > 0) {
+        m.wheel.grouser_count = 24;
+        m.wheel.grouser_height = fx.grouser_height;
+        m.options.extensions.grousers = true;
       }
     }
-    if (dp.size() < 50) throw DataError("soil " + run.soil.name + " cannot carry the rover's wheel loads");
-    dp_poly = terramechanics::fit_surface(dp, 5);
-    tau_poly = terramechanics::fit_surface(tau, 5);
-  }
+    if (run.traction == TractionSource::polynomial) {
+      std::vector<terramechanics::SurfaceSample> dp, tau;
+      for (int i = 0; i < 40; ++i) {
+        for (int k = 0; k < 41; ++k) {
+          const double W = 1.0 + 149.0 * i / 39.0, s = -1.0 + 2.0 * k / 40.0;
+          const auto t = terramechanics::evaluate(run.soil, m.wheel, W, s, m.options);
+          if (!t.ok()) continue;
+          dp.push_back({W, s, t.drawbar_pull});
+          tau.push_back({W, s, t.resistive_torque});
+        }
+      }
+      if (dp.size() < 50) throw DataError("soil " + run.soil.name + " cannot carry the rover's wheel loads");
+      m.dp = terramechanics::fit_surface(dp, 5);
+      m.tau = terramechanics::fit_surface(tau, 5);
+    }
+    return m;
+  };
+  const TractionModel nominal = make_model(false), changed = make_model(true);
   RockerBogieResult result;
-  auto traction = [&](double W, double s, double& dp, double& tau) {
+  auto traction = [&](const TractionModel& m, double W, double s, double& dp, double& tau) {
     if (!(W > 0.0)) {
       dp = tau = 0.0;
       return;
     }
     if (run.traction == TractionSource::polynomial) {
       W = std::min(W, 150.0);  // the surrogate's fitted range
-      dp = dp_poly(W, s);
-      tau = tau_poly(W, s);
+      dp = m.dp(W, s);
+      tau = m.tau(W, s);
       return;
     }
-    const auto t = terramechanics::evaluate(run.soil, wheel, W, s);
+    const auto t = terramechanics::evaluate(run.soil, m.wheel, W, s, m.options);
     if (!t.ok()) {
       ++result.unsupported;
       dp = tau = 0.0;
@@ -174,6 +251,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
   // Derivative of the state [qdot; q] (Eq. 4.49-4.50).
   struct Out {
     Eigen::Vector3d slip, dp, tau, gamma, lambda, rate;
+    Vec qdd;
   };
   auto dynamics = [&](const Vec& q, const Vec& qd, Vec& qdd, Out* out) {
     const Kinematics k = kinematics(g, p, q);
@@ -200,22 +278,24 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
       const Vec2 t(std::cos(gamma), std::sin(gamma));
       const double v_t = v.dot(t);
       const double omega = k.W_wheel[i] * qd;  // absolute wheel rate, clockwise = forward rolling
-      // Slip (Eq. 2.23) or skid (Eq. 2.26) of the wheel's rolling direction
-      // (a wheel rolling backwards sees the mirror image of the forward
+      // Slip (Eq. 2.23) or skid (Eq. 2.26) in the wheel's sense of rotation
+      // (a wheel turning backwards sees the mirror image of the forward
       // traction). The steady-state traction of the terramechanics model
-      // needs motion: it fades in over the first few mm/s (tanh), so that a
-      // wheel at rest is not turned backwards by its own resistive torque and
-      // the forces stay smooth through standstill.
-      const double roll_signed = omega * g.wheel_radius;
-      const double motion = roll_signed + v_t;
-      const double dir = motion < 0.0 ? -1.0 : 1.0;
-      const double fade = std::tanh(std::abs(motion) / 0.004);
+      // needs relative motion: it fades in over the first few mm/s of rim or
+      // centre speed (tanh), so that a wheel at rest is not turned backwards
+      // by its own resistive torque and the forces stay smooth through
+      // standstill; a rover sliding back with its wheels still sees full slip.
+      const bool after = c.x() >= fx.effect_start_x;
+      const TractionModel& model = after ? changed : nominal;
+      const double roll_signed = omega * model.wheel.radius;
+      const double dir = roll_signed < 0.0 ? -1.0 : 1.0;
+      const double fade = std::tanh(std::max(std::abs(roll_signed), std::abs(v_t)) / 0.004);
       const double roll = dir * roll_signed, vt = dir * v_t;
       const double den = std::max({std::abs(roll), std::abs(vt), 1e-6});
       const double s = std::clamp((roll - vt) / den, -1.0, 1.0);
       const double W = normal(i) > 0 ? normal(i) / std::cos(gamma) : 0.0;  // Eq. 4.38, held over the step
       double dp = 0, tr = 0;
-      traction(W, s, dp, tr);
+      traction(model, W, s, dp, tr);
       dp *= dir * fade;
       tr *= dir * fade;
       tau_a += k.J_wheel[i].transpose() * (dp * t);            // Eq. 4.43
@@ -238,7 +318,10 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
     b.tail<3>() = -Psidot_qd - 2 * p.baumgarte_alpha * (Psi_q * qd) - p.baumgarte_beta * p.baumgarte_beta * Psi;  // Eq. 4.17
     const Eigen::Matrix<double, N + 3, 1> x = A.partialPivLu().solve(b);
     qdd = x.head<N>();
-    if (out) out->lambda = -x.tail<3>();
+    if (out) {
+      out->lambda = -x.tail<3>();
+      out->qdd = qdd;
+    }
   };
 
   using State = std::vector<double>;
@@ -262,6 +345,13 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
   const auto steps = static_cast<std::size_t>(std::llround(run.duration * p.control_rate));
   std::vector<double> t(steps + 1);
   std::vector<std::vector<double>> rec(4 + 6 * 3 + 3, std::vector<double>(steps + 1));
+  // Sensors (Table 5.1): bogie angle, 3 wheel angles, pitch rate, 2 specific
+  // forces, forward speed, 3 loads, 3 perpendicular loads.
+  std::vector<std::vector<double>> sens(14, std::vector<double>(steps + 1));
+  std::mt19937 rng(run.seed);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  const double deg = M_PI / 180.0;
+  auto noise = [&](double sigma) { return run.sensor_noise ? sigma * unit(rng) : 0.0; };
   double step_size = 1e-3;
   for (std::size_t k = 0; k <= steps; ++k) {
     const double time = static_cast<double>(k) * dt;
@@ -288,6 +378,36 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
       last_error(i) = e;
       torque(i) = p.kp * e + p.ki * integral(i);
     }
+    {
+      // Sensor values from the true state; noise of Table 5.1, then the effects.
+      const double th = qq(2);
+      const Vec2 xb(std::cos(th), -std::sin(th)), zb(std::sin(th), std::cos(th));  // rover axes in the world
+      const Vec2 acc(out.qdd(0), out.qdd(1));
+      const Vec2 f = acc + Vec2(0.0, p.gravity);  // specific force
+      const Vec2 vel(qd(0), qd(1));
+      const bool dropped = fx.encoder_dropout_start >= 0 && time >= fx.encoder_dropout_start && time < fx.encoder_dropout_start + 2.0;
+      sens[0][k] = qq(3) + noise(9.155e-4 * deg);
+      for (int i = 0; i < 3; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        const double reading = qq(4 + i) + noise(2.143e-5 * deg);  // drawn even when dropped: same noise sequence
+        sens[1 + ii][k] = dropped && k > 0 ? sens[1 + ii][k - 1] : reading;
+      }
+      sens[4][k] = qd(2) + noise(0.56 * deg) + fx.gyro_bias;
+      sens[5][k] = f.dot(xb) + noise(1.245e-3) + fx.accel_bias;
+      sens[6][k] = f.dot(zb) + noise(1.245e-3) + fx.accel_bias;
+      sens[7][k] = vel.dot(xb) + noise(1e-3);
+      for (int i = 0; i < 3; ++i) {
+        // The soil's force on the wheel (normal load and drawbar pull) in the axes of the link carrying it.
+        const double gm = out.gamma(i), Wn = normal(i) / std::cos(gm);
+        const Vec2 n(-std::sin(gm), std::cos(gm)), tt(std::cos(gm), std::sin(gm));
+        const Vec2 F = Wn * n + out.dp(i) * tt;
+        const double a = i == 0 ? th : th + qq(3);
+        const Vec2 lx(std::cos(a), -std::sin(a)), lz(std::sin(a), std::cos(a));
+        const auto ii = static_cast<std::size_t>(i);
+        sens[8 + ii][k] = fx.force_scale * F.dot(lz) + fx.force_offset + noise(3.255e-2);
+        sens[11 + ii][k] = fx.force_scale * F.dot(lx) + fx.force_offset + noise(3.255e-2);
+      }
+    }
     t[k] = time;
     rec[0][k] = qq(0);
     rec[1][k] = qq(1);
@@ -313,6 +433,50 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
 
   log::Log& lg = result.log;
   lg.metadata.rover_id = "kapvik_planar";
+  {
+    const RockerBogieEffects none;
+    auto note = [&](const char* name, double v, double neutral) {
+      if (v != neutral) lg.metadata.extra[std::string("truth/effect/") + name] = std::to_string(v);
+    };
+    note("soil-strength", fx.soil_strength, none.soil_strength);
+    note("slip-sinkage", fx.slip_sinkage_n1, none.slip_sinkage_n1);
+    note("grousers", fx.grouser_height, none.grouser_height);
+    note("wheel-radius-scale", fx.wheel_radius_scale, none.wheel_radius_scale);
+    note("effect-start-x", fx.effect_start_x, none.effect_start_x);
+    note("gyro-bias", fx.gyro_bias, none.gyro_bias);
+    note("accel-bias", fx.accel_bias, none.accel_bias);
+    note("force-offset", fx.force_offset, none.force_offset);
+    note("force-scale", fx.force_scale, none.force_scale);
+    note("encoder-dropout", fx.encoder_dropout_start, none.encoder_dropout_start);
+    note("imu-time-offset", fx.imu_time_offset, none.imu_time_offset);
+    lg.metadata.extra["truth/seed"] = std::to_string(run.seed);
+  }
+  {
+    log::Stream st("joints", t);
+    st.add_channel("bogie_angle", "rad", sens[0], "16-bit absolute encoder");
+    for (int i = 0; i < 3; ++i) st.add_channel("wheel_angle_" + std::to_string(i + 1), "rad", sens[1 + static_cast<std::size_t>(i)], "motor encoder");
+    lg.add_stream(std::move(st));
+  }
+  {
+    std::vector<double> ti = t;
+    for (double& x : ti) x += fx.imu_time_offset;
+    log::Stream st("imu", ti);
+    st.add_channel("pitch_rate", "rad/s", sens[4], "clockwise positive");
+    st.add_channel("specific_force_x", "m/s^2", sens[5], "rover axes: x forward");
+    st.add_channel("specific_force_z", "m/s^2", sens[6], "rover axes: z up");
+    lg.add_stream(std::move(st));
+  }
+  {
+    log::Stream st("velocimeter", t);
+    st.add_channel("forward_speed", "m/s", sens[7], "rover x axis");
+    lg.add_stream(std::move(st));
+  }
+  {
+    log::Stream st("forces", t);
+    for (int i = 0; i < 3; ++i) st.add_channel("load_" + std::to_string(i + 1), "N", sens[8 + static_cast<std::size_t>(i)], "along the carrying link's z axis");
+    for (int i = 0; i < 3; ++i) st.add_channel("perpendicular_" + std::to_string(i + 1), "N", sens[11 + static_cast<std::size_t>(i)], "along the link's x axis");
+    lg.add_stream(std::move(st));
+  }
   lg.metadata.description = "planar rocker-bogie simulation (seed 003 chapter 4) on path: " + run.path.name;
   lg.metadata.extra["truth/generator"] = "rocker-bogie";
   lg.metadata.extra["truth/soil"] = run.soil.name;

@@ -52,8 +52,32 @@ struct WheelCentrePath {
 };
 WheelCentrePath rolling_path();               // Eq. 4.51
 WheelCentrePath flat_path(double height = 0);
+WheelCentrePath slope_path(double degrees);    // constant grade through x = 0
+// A raised-cosine bump of `height` and `length` starting at x0 on flat ground.
+WheelCentrePath bump_path(double height, double x0, double length);
 
 enum class TractionSource { wong_reece, polynomial };
+
+// Effects a run can switch on (seed 003's sensors and terrain, issue 5). A
+// physical effect starts where the front wheel passes effect_start_x; the
+// log records the effects only in its truth/ metadata.
+struct RockerBogieEffects {
+  double soil_strength = 1.0;       // factor on c, tan(phi), kc, kphi (a soil change)
+  double slip_sinkage_n1 = 0.0;     // n = n0 + n1 |s|
+  double grouser_height = 0.0;      // m (24 grousers)
+  double wheel_radius_scale = 1.0;  // true radius / nominal (control and encoders assume nominal)
+  double effect_start_x = -1e9;     // m
+  double gyro_bias = 0.0;           // rad/s on the pitch rate
+  double accel_bias = 0.0;          // m/s^2 on both accelerometer axes
+  double force_offset = 0.0;        // N on every force-sensor axis
+  double force_scale = 1.0;         // force-sensor scale factor
+  double encoder_dropout_start = -1;  // s: the wheel encoders hold their value for 2 s from here (< 0: none)
+  double imu_time_offset = 0.0;     // s added to the imu stream's time stamps
+};
+// Sets an effect by name (soil-strength, slip-sinkage, grousers,
+// wheel-radius-scale, effect-start-x, gyro-bias, accel-bias, force-offset,
+// force-scale, encoder-dropout, imu-time-offset). Throws DataError.
+void set_effect(RockerBogieEffects& effects, const std::string& name, double value);
 
 struct RockerBogieRun {
   double duration = 200.0;  // s
@@ -61,11 +85,19 @@ struct RockerBogieRun {
   double start_x = 0.0;     // wheel 1's x at t = 0
   terramechanics::Soil soil;
   TractionSource traction = TractionSource::polynomial;
+  RockerBogieEffects effects;
+  bool sensor_noise = true;  // Table 5.1
+  unsigned seed = 1;
   std::function<void(double)> progress;  // fraction done
 };
 
 struct RockerBogieResult {
-  log::Log log;                 // truth/pose, truth/wheels, commands at the control rate
+  // Sensors at the control rate with Table 5.1's noise: joints (bogie_angle,
+  // wheel_angle_1..3), imu (pitch_rate, specific_force_x/z in rover axes),
+  // velocimeter (forward_speed), forces (load_1..3 along the link's z axis,
+  // perpendicular_1..3 along its x axis), commands (wheel_torque_1..3); truth
+  // streams truth/pose and truth/wheels.
+  log::Log log;
   double max_constraint_error = 0;  // m, largest |Psi| over the run
   std::size_t unsupported = 0;  // traction evaluations where the soil could not carry the load
 };

@@ -481,7 +481,7 @@ TEST(CliContactAngle, BadInputAndUsage) {
 TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
   TempDir dir;
   const std::string out = dir.file("rb.h5");
-  const CommandResult r = run_roverlab("simulate rocker-bogie --path flat --duration 10 -o " + quote(out));
+  const CommandResult r = run_roverlab("simulate flat_60s --duration 10 -o " + quote(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const log::Log lg = io::read_hdf5_log(out);
   const auto& pose = lg.stream("truth/pose");
@@ -489,8 +489,15 @@ TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
   EXPECT_GT(pose.channel("x").values.back(), pose.channel("x").values.front());
   EXPECT_NE(lg.stream("truth/wheels").find_channel("drawbar_pull_2"), nullptr);
   EXPECT_NE(lg.find_stream("commands"), nullptr);
-  EXPECT_EQ(run_roverlab("simulate rocker-bogie --soil no_such_soil -o " + quote(dir.file("x.h5"))).exit_code, 3);
-  EXPECT_EQ(run_roverlab("simulate rocker-bogie --path moon -o " + quote(dir.file("x.h5"))).exit_code, 2);
-  EXPECT_EQ(run_roverlab("simulate rocker-bogie --rover exomars_bb2 -o " + quote(dir.file("x.h5"))).exit_code, 3);
+  write_text(dir.file("bad.json"), "{\"format\": \"roverlab-scenario\", \"kind\": \"rocker-bogie\", \"rover\": \"exomars_bb2\", "
+                                   "\"path\": \"flat\", \"soil\": \"ding_tyii\", \"duration_s\": 1}");
+  EXPECT_EQ(run_roverlab("simulate " + quote(dir.file("bad.json")) + " -o " + quote(dir.file("x.h5"))).exit_code, 3);
+  EXPECT_EQ(run_roverlab("simulate no_such_scenario -o " + quote(dir.file("x.h5"))).exit_code, 3);
+  EXPECT_EQ(run_roverlab("simulate flat_60s --effect warp=9 -o " + quote(dir.file("x.h5"))).exit_code, 2);
+  EXPECT_EQ(run_roverlab("simulate flat_60s --traction magic -o " + quote(dir.file("x.h5"))).exit_code, 2);
+  // Effects land in the truth metadata only.
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 2 --effect gyro-bias=0.01 -o " + quote(out)).exit_code, 0);
+  EXPECT_EQ(io::read_hdf5_log(out).metadata.extra.at("truth/effect/gyro-bias"), "0.010000");
+  fs::remove(dir.file("bad.json"));
   EXPECT_FALSE(fs::exists(dir.file("x.h5")));
 }

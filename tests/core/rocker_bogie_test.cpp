@@ -57,3 +57,84 @@ TEST(RockerBogie, DrivesForwardOnFlatGroundWithTheConstraintsHeld) {
   }
   EXPECT_NEAR(pose.channel("pitch").values.back(), 0.0, 1e-6);
 }
+
+namespace {
+
+log::Log run_with(const std::string& effect, double value, double seconds = 12.0) {
+  auto run = flat_run(seconds);
+  run.seed = 3;
+  if (!effect.empty()) simulation::set_effect(run.effects, effect, value);
+  return simulation::simulate_rocker_bogie({}, {}, run).log;
+}
+
+const std::vector<double>& ch(const log::Log& lg, const char* stream, const std::string& channel) {
+  return lg.stream(stream).channel(channel).values;
+}
+
+double mean_tail(const std::vector<double>& v, std::size_t n) {
+  double s = 0;
+  for (std::size_t i = v.size() - n; i < v.size(); ++i) s += v[i];
+  return s / static_cast<double>(n);
+}
+
+}  // namespace
+
+TEST(RockerBogieEffects, SwitchedOffTheLogIsTheBaselineBitForBit) {
+  const log::Log a = run_with("", 0), b = run_with("gyro-bias", 0.0);
+  ASSERT_EQ(a.streams().size(), b.streams().size());
+  for (std::size_t s = 0; s < a.streams().size(); ++s) {
+    const auto& x = a.streams()[s];
+    const auto& y = b.streams()[s];
+    EXPECT_EQ(x.time(), y.time()) << x.name();
+    for (std::size_t c = 0; c < x.channels().size(); ++c) EXPECT_EQ(x.channels()[c].values, y.channels()[c].values) << x.name();
+  }
+  EXPECT_EQ(a.metadata.extra.count("truth/effect/gyro-bias"), 0u);
+}
+
+TEST(RockerBogieEffects, SensorEffectsChangeOnlyTheirSensorAsTheyShould) {
+  const log::Log base = run_with("", 0);
+  const log::Log gyro = run_with("gyro-bias", 0.01), acc = run_with("accel-bias", 0.05), off = run_with("force-offset", 1.5);
+  const log::Log scale = run_with("force-scale", 1.1), drop = run_with("encoder-dropout", 5.0), shift = run_with("imu-time-offset", 0.2);
+  const auto& r0 = ch(base, "imu", "pitch_rate");
+  const auto& r1 = ch(gyro, "imu", "pitch_rate");
+  for (std::size_t i = 0; i < r0.size(); ++i) EXPECT_NEAR(r1[i] - r0[i], 0.01, 1e-12);
+  EXPECT_EQ(ch(base, "forces", "load_1"), ch(gyro, "forces", "load_1"));  // untouched
+  for (const char* c : {"specific_force_x", "specific_force_z"}) {
+    EXPECT_NEAR(ch(acc, "imu", c)[100] - ch(base, "imu", c)[100], 0.05, 1e-12);
+  }
+  EXPECT_NEAR(ch(off, "forces", "perpendicular_2")[300] - ch(base, "forces", "perpendicular_2")[300], 1.5, 1e-12);
+  // A scale error grows with the load: 10 % of about 45 N.
+  const double dl = ch(scale, "forces", "load_1")[300] - ch(base, "forces", "load_1")[300];
+  EXPECT_NEAR(dl, 0.1 * ch(base, "truth/wheels", "normal_load_1")[300], 0.2);
+  // Dropout: encoders frozen for 2 s from 5 s, then back.
+  const auto& q = ch(drop, "joints", "wheel_angle_1");
+  const auto& tq = drop.stream("joints").time();
+  const std::size_t a = drop.stream("joints").nearest_index(5.1), b = drop.stream("joints").nearest_index(6.9);
+  EXPECT_EQ(q[a], q[b]);
+  EXPECT_GT(tq[b] - tq[a], 1.7);
+  EXPECT_NE(ch(base, "joints", "wheel_angle_1")[a], ch(base, "joints", "wheel_angle_1")[b]);
+  EXPECT_EQ(q.back(), ch(base, "joints", "wheel_angle_1").back());
+  // Time offset: the IMU's clock only.
+  EXPECT_NEAR(shift.stream("imu").time()[10] - base.stream("imu").time()[10], 0.2, 1e-12);
+  EXPECT_EQ(ch(shift, "imu", "pitch_rate"), ch(base, "imu", "pitch_rate"));
+  EXPECT_EQ(shift.stream("joints").time(), base.stream("joints").time());
+}
+
+TEST(RockerBogieEffects, PhysicalEffectsMoveTheRoverAsTheirPhysicsSays) {
+  const log::Log base = run_with("", 0);
+  auto distance = [](const log::Log& lg) { const auto& x = ch(lg, "truth/pose", "x"); return x.back() - x.front(); };
+  auto slip = [](const log::Log& lg) { return mean_tail(ch(lg, "truth/wheels", "slip_2"), 100); };
+  // Larger wheels than the controller assumes: the same wheel rate covers more ground.
+  EXPECT_GT(distance(run_with("wheel-radius-scale", 1.1)), 1.05 * distance(base));
+  // A stronger soil and grousers grip better: less slip.
+  EXPECT_LT(slip(run_with("soil-strength", 2.0)), slip(base) - 0.02);
+  EXPECT_LT(slip(run_with("grousers", 0.01)), slip(base) - 0.02);
+  // Slip-sinkage digs the wheels in: more slip.
+  EXPECT_GT(slip(run_with("slip-sinkage", 0.5)), slip(base) + 0.01);
+  // An effect that starts further on leaves the beginning untouched.
+  auto run = flat_run(12.0);
+  run.seed = 3;
+  run.effects.soil_strength = 2.0;
+  run.effects.effect_start_x = 1e6;
+  EXPECT_EQ(ch(simulation::simulate_rocker_bogie({}, {}, run).log, "truth/wheels", "slip_2"), ch(base, "truth/wheels", "slip_2"));
+}
