@@ -138,3 +138,27 @@ TEST(RockerBogieEffects, PhysicalEffectsMoveTheRoverAsTheirPhysicsSays) {
   run.effects.effect_start_x = 1e6;
   EXPECT_EQ(ch(simulation::simulate_rocker_bogie({}, {}, run).log, "truth/wheels", "slip_2"), ch(base, "truth/wheels", "slip_2"));
 }
+
+TEST(RockerBogie, SteadySlipOnFlatGroundIsWhereTheTerramechanicsBalances) {
+  const simulation::RockerBogieParameters p;
+  const auto r = simulation::simulate_rocker_bogie({}, p, flat_run(60.0));
+  const auto& w = r.log.stream("truth/wheels");
+  const auto& cmd = r.log.stream("commands");
+  const std::size_t k = w.size() - 1;
+  // Constant speed: the drawbar pulls cancel (no net force on the rover) ...
+  double dp = 0;
+  for (int i = 1; i <= 3; ++i) dp += w.channel("drawbar_pull_" + std::to_string(i)).values[k];
+  EXPECT_NEAR(dp, 0.0, 0.3);
+  // ... and each motor torque equals the model's resistive torque at that
+  // wheel's load and slip plus the drivetrain's viscous loss.
+  const auto soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
+  for (int i = 1; i <= 3; ++i) {
+    const std::string n = std::to_string(i);
+    const double W = w.channel("normal_load_" + n).values[k], s = w.channel("slip_" + n).values[k];
+    const auto model = terramechanics::evaluate(soil, {0.075, 0.07, 0, 0.0}, W, s);
+    ASSERT_TRUE(model.ok());
+    const double torque = cmd.channel("wheel_torque_" + n).values[k];
+    const double expected = model.resistive_torque + p.wheel_damping * w.channel("wheel_rate_" + n).values[k];
+    EXPECT_NEAR(torque, expected, 0.05 * std::abs(expected) + 0.02) << i;
+  }
+}
