@@ -144,23 +144,7 @@ int run_estimate_ins_slip(const InsSlipCommandOptions& o) {
 
 int run_scenario_skid_steer(const SkidSteerScenarioOptions& o) {
   simulation::SkidSteerScenario scenario = simulation::default_slip_scenario(o.seed);
-  for (const auto& e : o.effects) {
-    const auto eq = e.find('=');
-    if (eq == std::string::npos) throw UsageError("--effect " + e + ": expected NAME=VALUE");
-    double value = NAN;
-    try {
-      std::size_t used = 0;
-      value = std::stod(e.substr(eq + 1), &used);
-      if (used != e.size() - eq - 1) throw std::invalid_argument("trailing text");
-    } catch (const std::exception&) {
-      throw UsageError("--effect " + e + ": the value is not a number");
-    }
-    try {
-      simulation::set_effect(scenario, e.substr(0, eq), value);
-    } catch (const DataError& err) {
-      throw UsageError(std::string("--effect: ") + err.what());
-    }
-  }
+  apply_effect_options(o.effects, [&](const std::string& name, double value) { simulation::set_effect(scenario, name, value); });
   const log::Log lg = simulation::simulate_skid_steer(scenario);
   io::write_hdf5_log(lg, o.output);
   std::printf("wrote %s: %zu streams, %.1f s, seed %u\n", o.output.c_str(), lg.streams().size(),

@@ -52,23 +52,7 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
   } catch (const DataError& e) {
     throw InputError(sc.file, e.what());
   }
-  for (const auto& e : o.effects) {
-    const auto eq = e.find('=');
-    if (eq == std::string::npos) throw UsageError("--effect " + e + ": expected NAME=VALUE");
-    double value = NAN;
-    try {
-      std::size_t used = 0;
-      value = std::stod(e.substr(eq + 1), &used);
-      if (used != e.size() - eq - 1) throw std::invalid_argument("trailing text");
-    } catch (const std::exception&) {
-      throw UsageError("--effect " + e + ": the value is not a number");
-    }
-    try {
-      simulation::set_effect(run.effects, e.substr(0, eq), value);
-    } catch (const DataError& err) {
-      throw UsageError(std::string("--effect: ") + err.what());
-    }
-  }
+  apply_effect_options(o.effects, [&](const std::string& name, double value) { simulation::set_effect(run.effects, name, value); });
   simulation::RockerBogieParameters params;
   params.desired_speed = sc.desired_speed;
   run.soil = io::find_soil(sc.soil, resource_subfolders("soils"));

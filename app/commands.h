@@ -2,6 +2,7 @@
 // The roverlab subcommands. Each returns the process exit code; errors are
 // thrown (InputError -> 3, anything else -> 4) and reported by main.
 
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,12 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Applies `--effect NAME=VALUE` options through `set` (which throws
+// DataError for an unknown name or value); malformed options and rejected
+// effects are UsageErrors.
+void apply_effect_options(const std::vector<std::string>& options,
+                          const std::function<void(const std::string& name, double value)>& set);
 
 struct InfoOptions {
   std::string file;

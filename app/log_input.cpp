@@ -1,6 +1,8 @@
 #include "app/log_input.h"
 
+#include "app/commands.h"
 #include "app/resources.h"
+#include "core/common/error.h"
 #include "importers/mapping.h"
 
 namespace roverlab::app {
@@ -11,6 +13,27 @@ io::LoadedLog load_input(const std::string& file, const std::optional<std::strin
     options.mapping = io::load_mapping(io::find_mapping(*mapping, resource_subfolders("mappings")));
   }
   return io::load_log(file, options);
+}
+
+void apply_effect_options(const std::vector<std::string>& options,
+                          const std::function<void(const std::string& name, double value)>& set) {
+  for (const auto& e : options) {
+    const auto eq = e.find('=');
+    if (eq == std::string::npos) throw UsageError("--effect " + e + ": expected NAME=VALUE");
+    double value = 0.0;
+    try {
+      std::size_t used = 0;
+      value = std::stod(e.substr(eq + 1), &used);
+      if (used != e.size() - eq - 1) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+      throw UsageError("--effect " + e + ": the value is not a number");
+    }
+    try {
+      set(e.substr(0, eq), value);
+    } catch (const DataError& err) {
+      throw UsageError(std::string("--effect: ") + err.what());
+    }
+  }
 }
 
 }  // namespace roverlab::app
