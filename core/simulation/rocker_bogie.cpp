@@ -168,7 +168,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
   struct TractionModel {
     terramechanics::Wheel wheel;
     terramechanics::ModelOptions options;
-    terramechanics::PolynomialSurface dp, tau;
+    terramechanics::PolynomialSurface dp, tau, sinkage;
   };
   auto make_model = [&](bool with_effects) {
     TractionModel m;
@@ -183,7 +183,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
       }
     }
     if (run.traction == TractionSource::polynomial) {
-      std::vector<terramechanics::SurfaceSample> dp, tau;
+      std::vector<terramechanics::SurfaceSample> dp, tau, sink;
       for (int i = 0; i < 40; ++i) {
         for (int k = 0; k < 41; ++k) {
           const double W = 1.0 + 149.0 * i / 39.0, s = -1.0 + 2.0 * k / 40.0;
@@ -191,35 +191,41 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
           if (!t.ok()) continue;
           dp.push_back({W, s, t.drawbar_pull});
           tau.push_back({W, s, t.resistive_torque});
+          sink.push_back({W, s, t.sinkage});
         }
       }
       if (dp.size() < 50) throw DataError("soil " + run.soil.name + " cannot carry the rover's wheel loads");
       m.dp = terramechanics::fit_surface(dp, 5);
       m.tau = terramechanics::fit_surface(tau, 5);
+      m.sinkage = terramechanics::fit_surface(sink, 5);
     }
     return m;
   };
   const TractionModel nominal = make_model(false), changed = make_model(true);
   RockerBogieResult result;
-  auto traction = [&](const TractionModel& m, double W, double s, double& dp, double& tau) {
+  auto traction = [&](const TractionModel& m, double W, double s, double& dp, double& tau, double* sinkage) {
     if (!(W > 0.0)) {
       dp = tau = 0.0;
+      if (sinkage) *sinkage = 0.0;
       return;
     }
     if (run.traction == TractionSource::polynomial) {
       W = std::min(W, 150.0);  // the surrogate's fitted range
       dp = m.dp(W, s);
       tau = m.tau(W, s);
+      if (sinkage) *sinkage = m.sinkage(W, s);
       return;
     }
     const auto t = terramechanics::evaluate(run.soil, m.wheel, W, s, m.options);
     if (!t.ok()) {
       ++result.unsupported;
       dp = tau = 0.0;
+      if (sinkage) *sinkage = NAN;
       return;
     }
     dp = t.drawbar_pull;
     tau = t.resistive_torque;
+    if (sinkage) *sinkage = t.sinkage;
   };
 
   // Place the rover on the path: wheel 1 at start_x, all three wheel centres on it.
@@ -250,7 +256,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
                   last_error = Eigen::Vector3d::Zero();
   // Derivative of the state [qdot; q] (Eq. 4.49-4.50).
   struct Out {
-    Eigen::Vector3d slip, dp, tau, gamma, lambda, rate;
+    Eigen::Vector3d slip, dp, tau, gamma, lambda, rate, sinkage;
     Vec qdd;
   };
   auto dynamics = [&](const Vec& q, const Vec& qd, Vec& qdd, Out* out) {
@@ -295,7 +301,8 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
       const double s = std::clamp((roll - vt) / den, -1.0, 1.0);
       const double W = normal(i) > 0 ? normal(i) / std::cos(gamma) : 0.0;  // Eq. 4.38, held over the step
       double dp = 0, tr = 0;
-      traction(model, W, s, dp, tr);
+      double z = 0;
+      traction(model, W, s, dp, tr, out ? &z : nullptr);
       dp *= dir * fade;
       tr *= dir * fade;
       tau_a += k.J_wheel[i].transpose() * (dp * t);            // Eq. 4.43
@@ -307,6 +314,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
         out->tau(i) = tr;
         out->gamma(i) = gamma;
         out->rate(i) = omega;
+        out->sinkage(i) = z;
       }
     }
     Eigen::Matrix<double, N + 3, N + 3> A = Eigen::Matrix<double, N + 3, N + 3>::Zero();
@@ -344,7 +352,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
 
   const auto steps = static_cast<std::size_t>(std::llround(run.duration * p.control_rate));
   std::vector<double> t(steps + 1);
-  std::vector<std::vector<double>> rec(4 + 6 * 3 + 3, std::vector<double>(steps + 1));
+  std::vector<std::vector<double>> rec(4 + 6 * 3 + 3 + 3, std::vector<double>(steps + 1));
   // Sensors (Table 5.1): bogie angle, 3 wheel angles, pitch rate, 2 specific
   // forces, forward speed, 3 loads, 3 perpendicular loads.
   std::vector<std::vector<double>> sens(14, std::vector<double>(steps + 1));
@@ -422,6 +430,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
       rec[16 + ii][k] = out.gamma(i);
       rec[19 + ii][k] = out.rate(i);
       rec[22 + ii][k] = torque(i);
+      rec[25 + ii][k] = out.sinkage(i);
     }
     if (k == steps) break;
     ode::integrate_adaptive(stepper, rhs, s, time, time + dt, step_size);
@@ -498,6 +507,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
         st.add_channel(std::string(names[c]) + std::to_string(i + 1), units[c], rec[4 + 3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(i)]);
       }
     }
+    for (int i = 0; i < 3; ++i) st.add_channel("sinkage_" + std::to_string(i + 1), "m", rec[25 + static_cast<std::size_t>(i)]);
     lg.add_stream(std::move(st));
   }
   {

@@ -129,8 +129,10 @@ TEST(RockerBogieEffects, PhysicalEffectsMoveTheRoverAsTheirPhysicsSays) {
   // A stronger soil and grousers grip better: less slip.
   EXPECT_LT(slip(run_with("soil-strength", 2.0)), slip(base) - 0.02);
   EXPECT_LT(slip(run_with("grousers", 0.01)), slip(base) - 0.02);
-  // Slip-sinkage digs the wheels in: more slip.
-  EXPECT_GT(slip(run_with("slip-sinkage", 0.5)), slip(base) + 0.01);
+  // Slip-sinkage digs the wheels in: deeper, and more slip.
+  const log::Log dig = run_with("slip-sinkage", 0.5);
+  EXPECT_GT(slip(dig), slip(base) + 0.01);
+  EXPECT_GT(mean_tail(ch(dig, "truth/wheels", "sinkage_2"), 100), 1.1 * mean_tail(ch(base, "truth/wheels", "sinkage_2"), 100));
   // An effect that starts further on leaves the beginning untouched.
   auto run = flat_run(12.0);
   run.seed = 3;
@@ -160,5 +162,6 @@ TEST(RockerBogie, SteadySlipOnFlatGroundIsWhereTheTerramechanicsBalances) {
     const double torque = cmd.channel("wheel_torque_" + n).values[k];
     const double expected = model.resistive_torque + p.wheel_damping * w.channel("wheel_rate_" + n).values[k];
     EXPECT_NEAR(torque, expected, 0.05 * std::abs(expected) + 0.02) << i;
+    EXPECT_NEAR(w.channel("sinkage_" + n).values[k], model.sinkage, 0.1 * model.sinkage) << i;
   }
 }
