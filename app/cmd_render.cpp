@@ -20,6 +20,7 @@
 #include "importers/atomic_file.h"
 #include "views/contact_angle_scene.h"
 #include "views/offscreen.h"
+#include "views/planar_rover_scene.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
 #include "views/traction_surface_scene.h"
@@ -71,7 +72,12 @@ Rendered render_view(const ViewInput& in, const std::string& view, std::optional
                      const std::optional<std::string>& channels, const std::optional<std::string>& soil,
                      const std::string& quantity, int w, int h) {
   Rendered r;
-  if (view == "rover") {
+  if (view == "rover" && views::is_planar_rocker_bogie_log(in.log)) {
+    views::PlanarRoverScene scene(in.log);
+    r.time = time.value_or(0.5 * (scene.start_time() + scene.end_time()));
+    scene.set_time(r.time);
+    r.image = render_renderer(scene.renderer(), w, h);
+  } else if (view == "rover") {
     if (in.is_wheel_test()) throw InputError(in.file, "single-wheel test points have no rover pose");
     views::RoverScene scene(in.log, rover_geometry(in.log));
     if (scene.pose_source().empty()) throw InputError(in.file, scene.notes().front());
@@ -195,7 +201,7 @@ int run_report(const ReportOptions& o) {
     html << "</table>\n";
     metrics["streams"] = streams;
     views::RoverScene probe(in.log);
-    if (!probe.pose_source().empty()) {
+    if (!probe.pose_source().empty() || views::is_planar_rocker_bogie_log(in.log)) {
       image("rover.png", "Rover", render_view(in, "rover", std::nullopt, std::nullopt, std::nullopt, o.quantity, w, h));
     } else {
       html << "<p class=\"note\">No rover view: " << html_escape(probe.notes().front()) << "</p>\n";

@@ -45,6 +45,7 @@
 #include "importers/mapping.h"
 #include "importers/rover_file.h"
 #include "views/contact_angle_scene.h"
+#include "views/planar_rover_scene.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
 #include "views/traction_surface_scene.h"
@@ -85,6 +86,7 @@ MainWindow::~MainWindow() {
   jobs_->wait();
   // The scenes own VTK objects the widgets render: drop them first.
   rover_.reset();
+  planar_.reset();
   contact_.reset();
 }
 
@@ -408,6 +410,8 @@ void MainWindow::install(std::unique_ptr<ViewInput> in) {
   play_->setChecked(false);
   if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
   rover_.reset();
+  if (planar_) rover_widget_->renderWindow()->RemoveRenderer(planar_->renderer());
+  planar_.reset();
   if (contact_) {
     for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->RemoveRenderer(r);
   }
@@ -460,10 +464,18 @@ void MainWindow::rebuild_views() {
     return;
   }
   const log::Log& lg = input_->log;
-  // Rover.
+  // Rover: the planar side view for rocker-bogie simulations, else the 3D one.
   if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
-  rover_ = std::make_unique<views::RoverScene>(lg, app::rover_geometry(lg));
-  rover_widget_->renderWindow()->AddRenderer(rover_->renderer());
+  if (planar_) rover_widget_->renderWindow()->RemoveRenderer(planar_->renderer());
+  rover_.reset();
+  planar_.reset();
+  if (views::is_planar_rocker_bogie_log(lg)) {
+    planar_ = std::make_unique<views::PlanarRoverScene>(lg);
+    rover_widget_->renderWindow()->AddRenderer(planar_->renderer());
+  } else {
+    rover_ = std::make_unique<views::RoverScene>(lg, app::rover_geometry(lg));
+    rover_widget_->renderWindow()->AddRenderer(rover_->renderer());
+  }
   // Contact angles when estimated.
   if (contact_) {
     for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->RemoveRenderer(r);
@@ -595,6 +607,7 @@ void MainWindow::set_time(double t) {
   }
   time_label_->setText(QString("t = %1 s / %2 s").arg(time_, 0, 'f', 2).arg(t1_, 0, 'f', 1));
   if (rover_) rover_->set_time(time_);
+  if (planar_) planar_->set_time(time_);
   if (chart_) chart_->set_cursor(time_);
   if (contact_) contact_->set_time(time_);
   render_views();
@@ -609,7 +622,7 @@ void MainWindow::render_views() {
 
 void MainWindow::render_now() {
   QWidget* page = tabs_->currentWidget();
-  if (page == rover_widget_ && rover_) rover_widget_->renderWindow()->Render();
+  if (page == rover_widget_ && (rover_ || planar_)) rover_widget_->renderWindow()->Render();
   if (page == plot_widget_ && chart_) plot_widget_->renderWindow()->Render();
   if (page == contact_widget_ && contact_) contact_widget_->renderWindow()->Render();
 }

@@ -31,6 +31,7 @@ class QMenu;
 
 namespace roverlab::views {
 class ContactAngleScene;
+class PlanarRoverScene;
 class RoverScene;
 class TimeSeriesChart;
 }  // namespace roverlab::views
@@ -99,6 +100,7 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<views::RoverScene> rover_;
   std::unique_ptr<views::TimeSeriesChart> chart_;
   std::unique_ptr<views::ContactAngleScene> contact_;
+  std::unique_ptr<views::PlanarRoverScene> planar_;
   std::vector<std::pair<std::string, std::string>> plot_channels_;
   QTabWidget* tabs_ = nullptr;
   QTreeWidget* tree_ = nullptr;

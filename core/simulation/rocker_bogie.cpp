@@ -353,6 +353,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
   const auto steps = static_cast<std::size_t>(std::llround(run.duration * p.control_rate));
   std::vector<double> t(steps + 1);
   std::vector<std::vector<double>> rec(4 + 6 * 3 + 3 + 3, std::vector<double>(steps + 1));
+  std::vector<std::vector<double>> geo(8, std::vector<double>(steps + 1));  // bogie pivot x z, wheel centres x z
   // Sensors (Table 5.1): bogie angle, 3 wheel angles, pitch rate, 2 specific
   // forces, forward speed, 3 loads, 3 perpendicular loads.
   std::vector<std::vector<double>> sens(14, std::vector<double>(steps + 1));
@@ -414,6 +415,15 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
         const auto ii = static_cast<std::size_t>(i);
         sens[8 + ii][k] = fx.force_scale * F.dot(lz) + fx.force_offset + noise(3.255e-2);
         sens[11 + ii][k] = fx.force_scale * F.dot(lx) + fx.force_offset + noise(3.255e-2);
+      }
+    }
+    {
+      const Vec2 pivot = Vec2(qq(0), qq(1)) + rot(qq(2), g.rocker_to_bogie);
+      geo[0][k] = pivot.x();
+      geo[1][k] = pivot.y();
+      for (int i = 0; i < 3; ++i) {
+        geo[2 + 2 * static_cast<std::size_t>(i)][k] = kin.wheel[i].x();
+        geo[3 + 2 * static_cast<std::size_t>(i)][k] = kin.wheel[i].y();
       }
     }
     t[k] = time;
@@ -496,6 +506,8 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
     st.add_channel("z", "m", rec[1]);
     st.add_channel("pitch", "rad", rec[2], "clockwise positive (nose down)");
     st.add_channel("bogie_angle", "rad", rec[3], "clockwise positive");
+    st.add_channel("bogie_pivot_x", "m", geo[0]);
+    st.add_channel("bogie_pivot_z", "m", geo[1]);
     lg.add_stream(std::move(st));
   }
   {
@@ -508,6 +520,11 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
       }
     }
     for (int i = 0; i < 3; ++i) st.add_channel("sinkage_" + std::to_string(i + 1), "m", rec[25 + static_cast<std::size_t>(i)]);
+    for (int i = 0; i < 3; ++i) {
+      st.add_channel("centre_x_" + std::to_string(i + 1), "m", geo[2 + 2 * static_cast<std::size_t>(i)], "wheel centre (on the path)");
+      st.add_channel("centre_z_" + std::to_string(i + 1), "m", geo[3 + 2 * static_cast<std::size_t>(i)]);
+    }
+    lg.metadata.extra["truth/wheel_radius_m"] = std::to_string(g.wheel_radius);
     lg.add_stream(std::move(st));
   }
   {

@@ -245,3 +245,17 @@ TEST(Render, ContactAnglesPointWhereTheWheelsMove) {
   EXPECT_LT(rr.mean_y - fr.mean_y, -12.0); // RR's arrow points up
   EXPECT_NEAR(fl.mean_y, 140.0, 12.0);     // FL's is level with the wheel centre
 }
+
+TEST(Render, PlanarRockerBogieSideViewShowsTheWheelsOnTheTerrain) {
+  TempDir dir;
+  const std::string sim = dir.file("rb.h5");
+  ASSERT_EQ(run_roverlab("simulate bump_crossing --duration 30 -o " + quote(sim)).exit_code, 0);
+  const views::Image img = render(quote(sim) + " --view rover -t 25 --size 800x400", dir.file("rb.png"));
+  // Low-slip wheels (yellow-green) around the centre of the picture, the brown terrain below them.
+  const Region wheels = find(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
+  EXPECT_GT(wheels.count, 3000);
+  EXPECT_NEAR(wheels.mean_x, 400, 60);
+  const Region terrain = find(img, [](int r, int g, int b) { return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g; });
+  EXPECT_GT(terrain.count, 800);
+  EXPECT_GT(terrain.mean_y, wheels.mean_y);
+}
