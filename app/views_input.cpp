@@ -42,7 +42,10 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
   in.log = load_input(file, mapping).log;
   const bool has_imu = in.log.find_stream("imu") != nullptr, has_wheels = in.log.find_stream("wheels") != nullptr;
   const bool has_estimate = in.log.find_stream("estimate/ins/pose") != nullptr;
-  if (o.run_estimator && has_imu && has_wheels && !has_estimate) {
+  // The INS slip estimator needs a skid-steer log: wheel angles of four wheels.
+  const bool skid_steer = has_wheels && in.log.stream("wheels").find_channel("angle_FL") != nullptr &&
+                          in.log.stream("wheels").find_channel("angle_RR") != nullptr;
+  if (o.run_estimator && has_imu && skid_steer && !has_estimate) {
     try {
       in.ins = estimation::run_ins_slip(in.log, estimation::InsSlipOptions{});
     } catch (const DataError& e) {
@@ -50,8 +53,8 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     }
     for (const auto& s : in.ins->estimates.streams()) in.log.add_stream(s);
     in.notes.push_back("ran the INS slip estimator (seed 002) on the log: estimate/ streams added");
-  } else if (o.run_estimator && !has_estimate) {
-    in.notes.push_back("no INS estimate: the log lacks an imu or wheels stream");
+  } else if (o.run_estimator && !has_estimate && in.log.find_stream("joints") == nullptr) {
+    in.notes.push_back("no INS estimate: the log lacks an imu stream or a skid-steer wheels stream (angle_FL .. angle_RR)");
   }
   if (o.run_contact_estimator && in.log.find_stream("joints") != nullptr && has_imu && has_wheels &&
       in.log.find_stream("estimate/contact/wheels") == nullptr) {

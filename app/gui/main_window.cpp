@@ -323,7 +323,8 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
           estimator_pending_ = false;
           run_contact_estimator();
         });
-      } else if (lg.find_stream("imu") && lg.find_stream("wheels") && !lg.find_stream("estimate/ins/pose")) {
+      } else if (lg.find_stream("imu") && lg.find_stream("wheels") && lg.stream("wheels").find_channel("angle_FL") &&
+                 !lg.find_stream("estimate/ins/pose")) {
         estimator_pending_ = true;
         QTimer::singleShot(0, this, [this] {
           estimator_pending_ = false;

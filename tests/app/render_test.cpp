@@ -259,3 +259,18 @@ TEST(Render, PlanarRockerBogieSideViewShowsTheWheelsOnTheTerrain) {
   EXPECT_GT(terrain.count, 800);
   EXPECT_GT(terrain.mean_y, wheels.mean_y);
 }
+
+TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
+  TempDir dir;
+  const std::string sim = dir.file("rear.h5"), folder = dir.file("r");
+  ASSERT_EQ(run_roverlab("scenario rear-bogie-rotation --rate 100 -o " + quote(sim)).exit_code, 0);
+  const CommandResult r = run_roverlab("report " + quote(sim) + " --size 600x400 -o " + quote(folder));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(folder + "/contact_angles.png"));
+  EXPECT_NE(read_text(folder + "/index.html").find("Contact-angle estimator"), std::string::npos);
+  const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
+  ASSERT_EQ(metrics.at("contact_angle").at("wheels").size(), 6u);
+  // The rear wheels' contact angles are estimated within a few degrees RMS (C+SS, reset).
+  EXPECT_LT(metrics.at("contact_angle").at("wheels").at(2).at("contact_angle_deg").get<double>(), 15.0);
+  EXPECT_EQ(metrics.count("ins_slip"), 0u);  // not a skid-steer log
+}
