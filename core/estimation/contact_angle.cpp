@@ -187,7 +187,6 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     rdiag(3 + nw + nq + j) = qd_var[static_cast<std::size_t>(j)];
   }
   rdiag.segment(3 + nw + 2 * nq, 2 * nw).setConstant(o.lateral_variance);
-  const Eigen::MatrixXd R = rdiag.asDiagonal();
 
   // Joint rates fused with the slope of the joint angles (offline extension).
   std::vector<std::vector<double>> fused_rate;
@@ -401,8 +400,8 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     for (int w = 0; w < nw; ++w) y_meas(w) = in.wheel_rate[static_cast<std::size_t>(w)];
     Eigen::VectorXd x;
     if (o.filter == FilterKind::ekf) {
-      if (i > 0) ekf.predict(f_linear(ekf.x, in, ts), Q);
-      if (!still) ekf.update(h_linear(ekf.x, in), R_used, y_meas);
+      if (i > 0) ekf.predict_diagonal(f_linear(ekf.x, in, ts), qdiag);
+      if (!still) ekf.update_diagonal(h_linear(ekf.x, in), rdiag, y_meas);
       if (o.reset_cross_covariance) ekf.reset_cross_covariance();
       x = ekf.x;
     } else {

@@ -15,6 +15,22 @@ UpdateResult ExtendedKalmanFilter::update(const Linearized& h, const Eigen::Matr
   return u;
 }
 
+void ExtendedKalmanFilter::predict_diagonal(const Linearized& f, const Eigen::VectorXd& q) {
+  x = f.value;
+  const Eigen::MatrixXd Ls = f.dn * q.cwiseSqrt().asDiagonal();
+  P = f.dx * P * f.dx.transpose();
+  P.noalias() += Ls * Ls.transpose();
+  P = 0.5 * (P + P.transpose());
+}
+
+UpdateResult ExtendedKalmanFilter::update_diagonal(const Linearized& h, const Eigen::VectorXd& r, const Eigen::VectorXd& y) {
+  const Eigen::MatrixXd Ms = h.dn * r.cwiseSqrt().asDiagonal();
+  const Eigen::MatrixXd MRM = Ms * Ms.transpose();
+  UpdateResult u = kalman_update(P, h.dx, MRM, y - h.value);
+  if (u.ok) x += u.correction;
+  return u;
+}
+
 void ExtendedKalmanFilter::reset_cross_covariance() { P = Eigen::MatrixXd(P.diagonal().asDiagonal()); }
 
 bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, const Function& h,

@@ -25,8 +25,12 @@ class ExtendedKalmanFilter {
   Eigen::MatrixXd P;
   // Eq. 2.14-2.15: x <- f(x, 0), P <- F P F^T + L Q L^T.
   void predict(const Linearized& f, const Eigen::MatrixXd& Q);
+  // The same with uncorrelated noises: Q = diag(q), L Q L^T = (L sqrt(q)) (L sqrt(q))^T.
+  void predict_diagonal(const Linearized& f, const Eigen::VectorXd& q);
   // Eq. 2.16-2.17 with the Joseph form: S = H P H^T + M R M^T.
   UpdateResult update(const Linearized& h, const Eigen::MatrixXd& R, const Eigen::VectorXd& y);
+  // The same with uncorrelated measurement noises R = diag(r).
+  UpdateResult update_diagonal(const Linearized& h, const Eigen::VectorXd& r, const Eigen::VectorXd& y);
   // The seed's workaround: zero P's off-diagonal elements.
   void reset_cross_covariance();
 };

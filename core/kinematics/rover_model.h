@@ -73,6 +73,26 @@ Mat4<T> dh_transform(const T& theta, double d, double a, double alpha) {
   return m;
 }
 
+// X <- X * dh_transform(theta, d, a, alpha) without the full 4x4 product:
+// the DH matrix's last row is (0 0 0 1) and d, a, alpha are constants, so
+// only the cos/sin of theta multiply X in the scalar type (what matters for
+// ceres::Jet).
+template <class T>
+void append_dh(Mat4<T>& X, const T& theta, double d, double a, double alpha) {
+  using std::cos;
+  using std::sin;
+  const T ct = cos(theta), st = sin(theta);
+  const double ca = std::cos(alpha), sa = std::sin(alpha);
+  for (int r = 0; r < 3; ++r) {
+    const T x0 = X(r, 0), x1 = X(r, 1), x2 = X(r, 2);
+    const T u = x0 * ct + x1 * st, v = x1 * ct - x0 * st;
+    X(r, 0) = u;
+    X(r, 1) = v * ca + x2 * sa;
+    X(r, 2) = x2 * ca - v * sa;
+    X(r, 3) = X(r, 3) + u * a + x2 * d;
+  }
+}
+
 // A wheel's final frame in the body frame g: rotation R (frame -> g),
 // origin r, and dr/dq for its two joints (bogie, steering; revolute, so
 // z_{i-1} x (r - o_{i-1}) as in any geometric Jacobian).
@@ -101,11 +121,11 @@ WheelPose<T> wheel_pose(const RoverModel& m, int wheel, const T* q, const T& gam
       theta += q[l.joint];
       if (nj < 4) joints[nj++] = {l.joint, X.template block<3, 1>(0, 2), X.template block<3, 1>(0, 3)};
     }
-    X = X * dh_transform<T>(theta, l.d, l.a, l.alpha);
+    append_dh<T>(X, theta, l.d, l.a, l.alpha);  // Eq. 2.8
   }
   // Table 5.2: d -> c rotates by -gamma about the axle (alpha = pi/2), c -> ss by beta.
-  if (frame != WheelFrame::drive) X = X * dh_transform<T>(-gamma, 0.0, 0.0, M_PI / 2);
-  if (frame == WheelFrame::side_slip) X = X * dh_transform<T>(beta, 0.0, 0.0, 0.0);
+  if (frame != WheelFrame::drive) append_dh<T>(X, -gamma, 0.0, 0.0, M_PI / 2);
+  if (frame == WheelFrame::side_slip) append_dh<T>(X, beta, 0.0, 0.0, 0.0);
   WheelPose<T> p;
   p.R = X.template block<3, 3>(0, 0);
   p.r = X.template block<3, 1>(0, 3);

@@ -99,6 +99,18 @@ TEST(Kinematics, RotationsAreOrthonormalAndTheJacobianEqualsFiniteDifferences) {
   }
 }
 
+TEST(Kinematics, TheShortDhProductEqualsTheFullOne) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    kinematics::Mat4<double> X = kinematics::dh_transform<double>(u(rng), u(rng), u(rng), u(rng));
+    const double th = u(rng), d = u(rng), a = u(rng), al = u(rng);
+    const kinematics::Mat4<double> full = X * kinematics::dh_transform<double>(th, d, a, al);
+    kinematics::append_dh<double>(X, th, d, a, al);
+    EXPECT_LT((X - full).cwiseAbs().maxCoeff(), 1e-12);
+  }
+}
+
 TEST(Kinematics, ContactAndSideSlipAnglesOfAWheelVelocity) {
   // Upward wheel velocity: positive contact angle (section 5.1); leftward: positive side slip.
   const auto up = kinematics::wheel_angles(Eigen::Vector3d(1.0, -1.0, 0.0));  // y_d points down
