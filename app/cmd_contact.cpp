@@ -10,6 +10,7 @@
 
 #include "app/commands.h"
 #include "app/log_input.h"
+#include "app/views_input.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/estimation/contact_angle.h"
@@ -70,7 +71,7 @@ int run_estimate_contact_angle(const ContactAngleCommandOptions& o) {
   if (o.slip_variance) options.slip_variance = *o.slip_variance;
   if (o.angle_variance) options.angle_variance = *o.angle_variance;
   const log::Log lg = load_input(o.file, o.mapping).log;
-  const std::string rover_name = o.rover ? *o.rover : (lg.metadata.rover_id.empty() ? "exomars_bb2" : lg.metadata.rover_id);
+  const std::string rover_name = o.rover ? *o.rover : rover_name_of(lg);
   const kinematics::RoverModel rover = dh_rover(rover_name);
   if (isatty(2)) {
     options.progress = [](double f) { std::fprintf(stderr, "\rcontact-angle %3d %%", static_cast<int>(100 * f)); };

@@ -58,14 +58,11 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
   }
   if (o.run_contact_estimator && in.log.find_stream("joints") != nullptr && has_imu && has_wheels &&
       in.log.find_stream("estimate/contact/wheels") == nullptr) {
-    const std::string rover = in.log.metadata.rover_id.empty() ? "exomars_bb2" : in.log.metadata.rover_id;
+    const std::string rover = rover_name_of(in.log);
     const io::RoverDescription d = io::find_rover(rover, resource_subfolders("rovers"));
     if (d.dh) {
-      estimation::ContactAngleOptions co;
-      co.model = estimation::ContactModel::contact_side_slip;
-      co.reset_cross_covariance = true;
       try {
-        in.contact = estimation::run_contact_angle(in.log, *d.dh, co);
+        in.contact = estimation::run_contact_angle(in.log, *d.dh, view_contact_options());
       } catch (const DataError& e) {
         throw InputError(file, e.what());
       }
@@ -81,6 +78,17 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     }
   }
   return in;
+}
+
+std::string rover_name_of(const log::Log& lg) {
+  return lg.metadata.rover_id.empty() ? "exomars_bb2" : lg.metadata.rover_id;
+}
+
+estimation::ContactAngleOptions view_contact_options() {
+  estimation::ContactAngleOptions o;
+  o.model = estimation::ContactModel::contact_side_slip;
+  o.reset_cross_covariance = true;
+  return o;
 }
 
 estimation::SkidSteerGeometry rover_geometry(const log::Log& lg) {

@@ -39,6 +39,13 @@ struct ViewInputOptions {
 ViewInput load_view_input(const std::string& file, const std::optional<std::string>& mapping,
                           const ViewInputOptions& options = {});
 
+// The rover a log names (its rover_id); the ExoMars BB2 when it names none.
+std::string rover_name_of(const log::Log& log);
+
+// The contact-angle estimator as the views run it on a DH-rover log:
+// model C+SS, EKF, cross-covariances reset (seed 000's workaround).
+estimation::ContactAngleOptions view_contact_options();
+
 // The skid-steer geometry the rover view draws: the log's rover
 // description (resources/rovers/<rover_id>.json) when it is a skid-steer
 // one, else the Pathfinder's defaults.

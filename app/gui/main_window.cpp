@@ -381,13 +381,11 @@ void MainWindow::run_contact_estimator() {
     show_error("The contact-angle estimator needs imu, joints and wheels streams of a six-wheel DH rover.");
     return;
   }
-  const std::string rover_name = lg->metadata.rover_id.empty() ? "exomars_bb2" : lg->metadata.rover_id;
+  const std::string rover_name = app::rover_name_of(*lg);
   jobs_->start("contact-angle estimator", [this, lg, rover_name](const JobControl& c) -> std::function<void()> {
     const io::RoverDescription d = io::find_rover(rover_name, app::resource_subfolders("rovers"));
     if (!d.dh) throw InputError(d.file, "rover " + d.name + " has no DH description");
-    estimation::ContactAngleOptions o;
-    o.model = estimation::ContactModel::contact_side_slip;
-    o.reset_cross_covariance = true;
+    estimation::ContactAngleOptions o = app::view_contact_options();
     o.progress = [&c](double f) {
       c.report(f);
       c.check();

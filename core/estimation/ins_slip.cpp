@@ -134,37 +134,24 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
 
     // Outputs at IMU rate.
     Track tr(n);
-    auto& roll = tr.roll;
-    auto& pitch = tr.pitch;
-    auto& yaw = tr.yaw;
-    auto& east = tr.east;
-    auto& north = tr.north;
-    auto& up = tr.up;
-    auto& vn = tr.vn;
-    auto& ve = tr.ve;
-    auto& vd = tr.vd;
-    auto& vx = tr.vx;
-    auto& vy = tr.vy;
-    auto& vz = tr.vz;
-    auto& bias = tr.bias;
     auto record = [&](std::size_t i, const InsState& s) {
       const Eigen::Vector3d e = euler_from_dcm(s.C_bn);
-      roll[i] = e.x();
-      pitch[i] = e.y();
-      yaw[i] = e.z();
-      north[i] = (s.latitude - L0) * rn0;
-      east[i] = (s.longitude - lon0) * re0 * std::cos(L0);
-      up[i] = s.height - h0;
-      vn[i] = s.v_n.x();
-      ve[i] = s.v_n.y();
-      vd[i] = s.v_n.z();
+      tr.roll[i] = e.x();
+      tr.pitch[i] = e.y();
+      tr.yaw[i] = e.z();
+      tr.north[i] = (s.latitude - L0) * rn0;
+      tr.east[i] = (s.longitude - lon0) * re0 * std::cos(L0);
+      tr.up[i] = s.height - h0;
+      tr.vn[i] = s.v_n.x();
+      tr.ve[i] = s.v_n.y();
+      tr.vd[i] = s.v_n.z();
       const Eigen::Vector3d vb = s.C_bn.transpose() * s.v_n;  // Eq. 29
-      vx[i] = vb.x();
-      vy[i] = vb.y();
-      vz[i] = vb.z();
+      tr.vx[i] = vb.x();
+      tr.vy[i] = vb.y();
+      tr.vz[i] = vb.z();
       for (int k = 0; k < 3; ++k) {
-        bias[k][i] = s.accel_bias[k];
-        bias[3 + k][i] = s.gyro_bias[k];
+        tr.bias[k][i] = s.accel_bias[k];
+        tr.bias[3 + k][i] = s.gyro_bias[k];
       }
     };
     // For the smoother: the nominal state at every IMU sample, and at every
@@ -304,19 +291,6 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
   const Track track = run_filter(o.odometry_aiding, 0.0, share);
   const Track detector_track = o.odometry_aiding ? run_filter(false, 0.5, 0.5) : Track(0);
   const Track& detector = o.odometry_aiding ? detector_track : track;
-  const auto& roll = track.roll;
-  const auto& pitch = track.pitch;
-  const auto& yaw = track.yaw;
-  const auto& east = track.east;
-  const auto& north = track.north;
-  const auto& up = track.up;
-  const auto& vn = track.vn;
-  const auto& ve = track.ve;
-  const auto& vd = track.vd;
-  const auto& vx = track.vx;
-  const auto& vy = track.vy;
-  const auto& vz = track.vz;
-  const auto& bias = track.bias;
   std::vector<double> still(n);
   for (std::size_t i = 0; i < n; ++i) still[i] = standstill[i] ? 1.0 : 0.0;
 
@@ -325,24 +299,24 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
   result.estimates.metadata.extra["estimator"] = "ins-slip (seed 002)";
   {
     log::Stream pose("estimate/ins/pose", t);
-    pose.add_channel("roll", "rad", roll);
-    pose.add_channel("pitch", "rad", pitch);
-    pose.add_channel("yaw", "rad", yaw, "heading, clockwise from north");
-    pose.add_channel("east", "m", east, "from the initial position");
-    pose.add_channel("north", "m", north);
-    pose.add_channel("up", "m", up);
+    pose.add_channel("roll", "rad", track.roll);
+    pose.add_channel("pitch", "rad", track.pitch);
+    pose.add_channel("yaw", "rad", track.yaw, "heading, clockwise from north");
+    pose.add_channel("east", "m", track.east, "from the initial position");
+    pose.add_channel("north", "m", track.north);
+    pose.add_channel("up", "m", track.up);
     result.estimates.add_stream(std::move(pose));
     log::Stream vel("estimate/ins/velocity", t);
-    vel.add_channel("north", "m/s", vn);
-    vel.add_channel("east", "m/s", ve);
-    vel.add_channel("down", "m/s", vd);
-    vel.add_channel("forward", "m/s", vx, "body x (Eq. 29)");
-    vel.add_channel("lateral", "m/s", vy, "body y");
-    vel.add_channel("vertical", "m/s", vz, "body z (down)");
+    vel.add_channel("north", "m/s", track.vn);
+    vel.add_channel("east", "m/s", track.ve);
+    vel.add_channel("down", "m/s", track.vd);
+    vel.add_channel("forward", "m/s", track.vx, "body x (Eq. 29)");
+    vel.add_channel("lateral", "m/s", track.vy, "body y");
+    vel.add_channel("vertical", "m/s", track.vz, "body z (down)");
     result.estimates.add_stream(std::move(vel));
     log::Stream b("estimate/ins/bias", t);
     const char* names_b[6] = {"accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"};
-    for (int k = 0; k < 6; ++k) b.add_channel(names_b[k], k < 3 ? "m/s^2" : "rad/s", bias[static_cast<std::size_t>(k)]);
+    for (int k = 0; k < 6; ++k) b.add_channel(names_b[k], k < 3 ? "m/s^2" : "rad/s", track.bias[static_cast<std::size_t>(k)]);
     result.estimates.add_stream(std::move(b));
     log::Stream st("estimate/ins/standstill", t);
     st.add_channel("standstill", "bool", still, "1 where ZUPT/ZARU applied");
@@ -426,14 +400,14 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
     for (std::size_t g = 0; g < ref.time.size(); ++g) {
       const double tg = ref.time[g];
       if (tg < t.front() || tg > t.back()) continue;
-      const double de = log::interpolate_linear(t, east, tg) - ref.east[g];
-      const double dn = log::interpolate_linear(t, north, tg) - ref.north[g];
-      const double du = log::interpolate_linear(t, up, tg) - ref.up[g];
+      const double de = log::interpolate_linear(t, track.east, tg) - ref.east[g];
+      const double dn = log::interpolate_linear(t, track.north, tg) - ref.north[g];
+      const double du = log::interpolate_linear(t, track.up, tg) - ref.up[g];
       se += de * de;
       sn += dn * dn;
       su += du * du;
-      const double dve = log::interpolate_linear(t, ve, tg) - ref.v_east[g];
-      const double dvn = log::interpolate_linear(t, vn, tg) - ref.v_north[g];
+      const double dve = log::interpolate_linear(t, track.ve, tg) - ref.v_east[g];
+      const double dvn = log::interpolate_linear(t, track.vn, tg) - ref.v_north[g];
       sv += dve * dve + dvn * dvn;
       const double oe = log::interpolate_linear(odo.time, odo.east, tg) - ref.east[g];
       const double on = log::interpolate_linear(odo.time, odo.north, tg) - ref.north[g];
@@ -461,7 +435,7 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
     for (std::size_t g = 0; g < ref.time.size(); ++g) {
       const double speed = std::hypot(ref.v_east[g], ref.v_north[g]);
       if (speed > 0.3 && ref.time[g] >= last_moving - 5.0 && ref.time[g] <= t.back()) {
-        sum += wrap(log::interpolate_linear(t, yaw, ref.time[g]) - std::atan2(ref.v_east[g], ref.v_north[g]));
+        sum += wrap(log::interpolate_linear(t, track.yaw, ref.time[g]) - std::atan2(ref.v_east[g], ref.v_north[g]));
         ++k;
       }
     }

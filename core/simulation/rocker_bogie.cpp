@@ -252,8 +252,7 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
   }
 
   const double dt = 1.0 / p.control_rate;
-  Eigen::Vector3d torque = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Constant(-1.0), integral = Eigen::Vector3d::Zero(),
-                  last_error = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Constant(-1.0), integral = Eigen::Vector3d::Zero();
   // Derivative of the state [qdot; q] (Eq. 4.49-4.50).
   struct Out {
     Eigen::Vector3d slip, dp, tau, gamma, lambda, rate, sinkage;
@@ -384,7 +383,6 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
     for (int i = 0; i < 3; ++i) {
       const double e = p.desired_speed / g.wheel_radius - qd(4 + i);
       integral(i) += e * dt;
-      last_error(i) = e;
       torque(i) = p.kp * e + p.ki * integral(i);
     }
     {

@@ -7,7 +7,7 @@
 // (Eq. 4.15-4.18, 4.33), normal loads from the Lagrange multipliers (Eq.
 // 4.38), drawbar pulls and resistive torques from the terramechanics model
 // through the wheel Jacobians (Eq. 4.40-4.47), the system of Eq. 4.49,
-// integrated with Boost.Odeint (adaptive Dormand-Prince) between 50 Hz PID
+// integrated with Boost.Odeint (adaptive Dormand-Prince) between 50 Hz PI
 // wheel-speed control steps (section 4.2.4).
 //
 // Angles are clockwise positive in the world X (forward) - Z (up) plane, as
@@ -32,7 +32,8 @@ struct RockerBogieParameters {
   Eigen::Vector2d bogie_com{0.0, -0.07322};                           // c_11, m (x, z)
   double baumgarte_alpha = 500, baumgarte_beta = 500;
   double desired_speed = 0.02;                                        // m/s
-  double kp = 25, ki = 0.5, kd = 12.5;                                // wheel-speed PID
+  double kp = 25, ki = 0.5;                                           // wheel-speed PI (Table 4.1)
+  double kd = 12.5;  // Table 4.1; not applied: it makes the 50 Hz loop unstable (docs/validation/simulation.md)
   double control_rate = 50;                                           // Hz
   double gravity = 9.81;
 };
