@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/common/error.h"
+#include "core/estimation/contact_angle_model.h"
 #include "core/estimation/nonlinear_filter.h"
 
 namespace roverlab::estimation {
@@ -33,73 +34,9 @@ AngleModel parse_angle_model(const std::string& s) {
 
 namespace {
 
-// Inputs of one step.
-struct Inputs {
-  Eigen::Vector3d gyro, accel;
-  std::vector<double> q, qdot, wheel_rate;
-};
-
-// Eq. 4.14 and 4.13 (discretised as Eq. 4.17): attitude and velocity at the
-// next step. theta = (psi, theta, phi).
-template <class T>
-void strapdown(const T* att, const T* v, const T* n_att, const T* n_v, const T* n_f, const T* n_w, const Inputs& in,
-               const Eigen::Vector3d& g_i, double ts, T* att_next, T* v_next) {
-  using std::cos;
-  using std::sin;
-  const T w[3] = {T(in.gyro.x()) - n_w[0], T(in.gyro.y()) - n_w[1], T(in.gyro.z()) - n_w[2]};
-  const T psi = att[0], th = att[1], ph = att[2];
-  const T cth = cos(th), sth = sin(th), cph = cos(ph), sph = sin(ph), cps = cos(psi), sps = sin(psi);
-  // Eq. 4.14.
-  const T d_psi = (sph * w[1] + cph * w[2]) / cth;
-  const T d_th = cph * w[1] - sph * w[2];
-  const T d_ph = w[0] + (sth * sph * w[1] + sth * cph * w[2]) / cth;
-  att_next[0] = psi + d_psi * ts + n_att[0];
-  att_next[1] = th + d_th * ts + n_att[1];
-  att_next[2] = ph + d_ph * ts + n_att[2];
-  // R_g^i = Rz(psi) Ry(theta) Rx(phi); gravity in g is R_g^i^T g^i.
-  const T R[3][3] = {{cps * cth, cps * sth * sph - sps * cph, cps * sth * cph + sps * sph},
-                     {sps * cth, sps * sth * sph + cps * cph, sps * sth * cph - cps * sph},
-                     {-sth, cth * sph, cth * cph}};
-  T g_g[3];
-  for (int k = 0; k < 3; ++k) g_g[k] = R[0][k] * g_i.x() + R[1][k] * g_i.y() + R[2][k] * g_i.z();
-  // Eq. 4.13: v' = -w x v + f - g.
-  const T wxv[3] = {w[1] * v[2] - w[2] * v[1], w[2] * v[0] - w[0] * v[2], w[0] * v[1] - w[1] * v[0]};
-  for (int k = 0; k < 3; ++k) {
-    const T dv = -wxv[k] + (T(in.accel[k]) - n_f[k]) - g_g[k];
-    v_next[k] = v[k] + dv * ts + n_v[k];
-  }
-}
-
-// One wheel's three measurements (Eq. 4.20 / Table 5.1): wheel rate and
-// the lateral and normal velocity in the final frame.
-template <class T>
-void wheel_measurement(const kinematics::RoverModel& m, int wheel, kinematics::WheelFrame frame, const T* v,
-                       const T& slip, const T& gamma, const T& beta, const T* n_w, const T& q_b, const T& q_s,
-                       const T& qd_b, const T& qd_s, const Inputs& in, T out[3]) {
-  const std::size_t nq = m.joints.size();
-  T q[16], qd[16];
-  for (std::size_t j = 0; j < nq; ++j) {
-    q[j] = T(in.q[j]);
-    qd[j] = T(in.qdot[j]);
-  }
-  const auto& c = m.wheels[static_cast<std::size_t>(wheel)];
-  if (c.bogie_joint >= 0) {
-    q[c.bogie_joint] = q_b;
-    qd[c.bogie_joint] = qd_b;
-  }
-  if (c.steer_joint >= 0) {
-    q[c.steer_joint] = q_s;
-    qd[c.steer_joint] = qd_s;
-  }
-  const Vec3<T> vel(v[0], v[1], v[2]);
-  const Vec3<T> w(T(in.gyro.x()) - n_w[0], T(in.gyro.y()) - n_w[1], T(in.gyro.z()) - n_w[2]);
-  const Vec3<T> u = kinematics::wheel_velocity<T>(m, wheel, q, qd, vel, w, gamma, beta, frame);
-  using std::cos;
-  const T scale = frame == kinematics::WheelFrame::side_slip ? cos(beta) : T(1.0);
-  out[0] = scale * u.x() / ((T(1.0) - slip) * m.wheel_radius);
-  out[1] = u.y();
-  out[2] = u.z();
-}
+using contact::Inputs;
+using contact::strapdown;
+using contact::wheel_measurement;
 
 struct Layout {
   int na = 0;  // angle states per wheel set: 0, 6 or 12
@@ -108,6 +45,177 @@ struct Layout {
   int np() const { return nx() + 6; }  // n_att, n_v, n_s, n_gamma, n_beta, n_f, n_w
   int ny() const { return 3 * nw; }
   int nm() const { return 3 + nw + 2 * nq + 2 * nw; }  // n_w(gyro), n_wheel, n_q, n_qdot, n_vy, n_vz
+};
+
+// What the fast EKF needs of the model: noises in Layout order.
+struct Setup {
+  const kinematics::RoverModel* m = nullptr;
+  kinematics::WheelFrame frame = kinematics::WheelFrame::contact;
+  Eigen::Vector3d g_i = Eigen::Vector3d::Zero();
+  double slip_decay = 0, angle_decay = 0;  // 1/s (Eq. 4.15, 5.3-5.6)
+  Eigen::VectorXd q, r;                     // process and measurement noise variances
+  int nq = 0;
+};
+
+// The EKF of Eq. 2.14-2.17 specialised to this model: fixed-size matrices,
+// the process Jacobian's block structure (only the attitude-velocity block
+// is full) and the measurement Jacobian's (each wheel sees the velocity and
+// its own slip and angles), hand-derived wheel Jacobians. Tested equal to
+// the generic ExtendedKalmanFilter with ceres::Jet Jacobians.
+template <int NA>
+class FastEkf {
+ public:
+  static constexpr int NX = 12 + NA, NY = 18, NR = NX - 6;
+  Eigen::Matrix<double, NX, 1> x;
+  Eigen::Matrix<double, NX, NX> P;
+
+  // Eq. 2.14-2.15 with F = blockdiag(A, diag(d)): P11 <- A P11 A^T + G G^T,
+  // P12 <- A P12 D, P22 <- D P22 D + Q22.
+  void predict(const Setup& s, const Inputs& in, double ts) {
+    using Jt = ceres::Jet<double, 18>;
+    Jt a[3], v[3], na[3], nv[3], nf[3], nw[3], an[3], vn[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = Jt(x(k), k);
+      v[k] = Jt(x(3 + k), 3 + k);
+      na[k] = Jt(0.0, 6 + k);
+      nv[k] = Jt(0.0, 9 + k);
+      nf[k] = Jt(0.0, 12 + k);
+      nw[k] = Jt(0.0, 15 + k);
+    }
+    strapdown<Jt>(a, v, na, nv, nf, nw, in, s.g_i, ts, an, vn);
+    Eigen::Matrix<double, 6, 6> A;
+    Eigen::Matrix<double, 6, 12> G;  // noise Jacobian times the noise standard deviations
+    for (int k = 0; k < 3; ++k) {
+      x(k) = an[k].a;
+      x(3 + k) = vn[k].a;
+      for (int c = 0; c < 6; ++c) {
+        A(k, c) = an[k].v[c];
+        A(3 + k, c) = vn[k].v[c];
+      }
+      for (int c = 0; c < 12; ++c) {
+        const double sd = std::sqrt(c < 6 ? s.q(c) : s.q(NX + c - 6));
+        G(k, c) = an[k].v[6 + c] * sd;
+        G(3 + k, c) = vn[k].v[6 + c] * sd;
+      }
+    }
+    Eigen::Matrix<double, NR, 1> d;
+    d.template head<6>().setConstant(1.0 - s.slip_decay * ts);
+    d.template tail<NA>().setConstant(1.0 - s.angle_decay * ts);
+    x.template tail<NR>() = d.cwiseProduct(x.template tail<NR>());
+    const Eigen::Matrix<double, 6, 6> P11 = A * P.template topLeftCorner<6, 6>() * A.transpose() + G * G.transpose();
+    const Eigen::Matrix<double, 6, NR> P12 = A * P.template topRightCorner<6, NR>() * d.asDiagonal();
+    P.template topLeftCorner<6, 6>() = 0.5 * (P11 + P11.transpose());
+    P.template topRightCorner<6, NR>() = P12;
+    P.template bottomLeftCorner<NR, 6>() = P12.transpose();
+    P.template bottomRightCorner<NR, NR>() = P.template bottomRightCorner<NR, NR>().cwiseProduct(d * d.transpose());
+    P.template bottomRightCorner<NR, NR>().diagonal() += s.q.segment(6, NR);
+  }
+
+  // Eq. 2.16-2.17, Joseph form (I - KH) P (I - KH)^T + K R K^T expanded as
+  // P - K H P - P H^T K^T + K S K^T with K S K^T = (K L)(K L)^T, S = L L^T.
+  // diagonal_only keeps only P's diagonal (the seed's workaround follows).
+  bool update(const Setup& s, const Inputs& in, bool diagonal_only) {
+    const kinematics::RoverModel& m = *s.m;
+    contact::WheelLinearization lin[6];
+    int priv[6][3];
+    constexpr int npriv = 1 + NA / 6;
+    Eigen::Matrix<double, NY, 1> innov;
+    for (int w = 0; w < 6; ++w) {
+      lin[w] = contact::linearize_wheel(m, w, s.frame, x.data() + 3, x(6 + w), NA >= 6 ? x(12 + w) : 0.0,
+                                        NA >= 12 ? x(18 + w) : 0.0, in);
+      innov.template segment<3>(3 * w) = Eigen::Vector3d(in.wheel_rate[w], 0.0, 0.0) - lin[w].value;
+      for (int p = 0; p < 3; ++p) priv[w][p] = 6 + 6 * p + w;
+    }
+    // P H^T and H P H^T, one wheel (three rows of H) at a time.
+    Eigen::Matrix<double, NX, NY> PHt;
+    for (int w = 0; w < 6; ++w) {
+      auto cols = PHt.template middleCols<3>(3 * w);
+      cols.noalias() = P.template middleCols<3>(3) * lin[w].d.template leftCols<3>().transpose();
+      for (int p = 0; p < npriv; ++p) cols.noalias() += P.col(priv[w][p]) * lin[w].d.col(3 + p).transpose();
+    }
+    Eigen::Matrix<double, NY, NY> S;
+    for (int w = 0; w < 6; ++w) {
+      auto rows = S.template middleRows<3>(3 * w);
+      rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
+      for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
+    }
+    add_measurement_noise(s, lin, S);
+    const Eigen::LLT<Eigen::Matrix<double, NY, NY>> llt(S);
+    if (llt.info() != Eigen::Success) return false;
+    const Eigen::Matrix<double, NY, NY> Lm = llt.matrixL();
+    // W^T = P H^T L^-T and z = L^-1 (y - h) by forward substitution, so
+    // that K = W^T L^-1 and K (y - h) = W^T z.
+    Eigen::Matrix<double, NX, NY> Wt = PHt;
+    Eigen::Matrix<double, NY, 1> z = innov;
+    for (int r = 0; r < NY; ++r) {
+      for (int c = 0; c < r; ++c) {
+        Wt.col(r) -= Lm(r, c) * Wt.col(c);
+        z(r) -= Lm(r, c) * z(c);
+      }
+      Wt.col(r) /= Lm(r, r);
+      z(r) /= Lm(r, r);
+    }
+    x.noalias() += Wt * z;
+    if (diagonal_only) {
+      // The diagonal of the Joseph form with the optimal gain:
+      // P_ii - (K H P)_ii - (P H^T K^T)_ii + (K S K^T)_ii = P_ii - |W_i|^2.
+      const Eigen::Matrix<double, NX, 1> diag = P.diagonal() - Wt.rowwise().squaredNorm();
+      if ((diag.array() > 0.0).all()) {
+        P = diag.asDiagonal();
+        return true;
+      }
+    }
+    // K from K L = W^T (backward substitution), then the Joseph form.
+    Eigen::Matrix<double, NX, NY> K = Wt;
+    for (int c = NY - 1; c >= 0; --c) {
+      for (int r = c + 1; r < NY; ++r) K.col(c) -= Lm(r, c) * K.col(r);
+      K.col(c) /= Lm(c, c);
+    }
+    Eigen::Matrix<double, NX, NY> V = Eigen::Matrix<double, NX, NY>::Zero();  // K L
+    for (int c = 0; c < NY; ++c) {
+      for (int r = c; r < NY; ++r) V.col(c) += Lm(r, c) * K.col(r);
+    }
+    const Eigen::Matrix<double, NX, NX> T = K * PHt.transpose();
+    P -= T + T.transpose();
+    P.noalias() += V * V.transpose();
+    if (diagonal_only) P = P.diagonal().asDiagonal();
+    return true;
+  }
+
+ private:
+  // S += M R M^T: wheel-rate, lateral and normal noises on their own rows;
+  // the gyro noise couples every wheel, a joint's noise the wheels it carries.
+  static void add_measurement_noise(const Setup& s, const contact::WheelLinearization* lin, Eigen::Matrix<double, NY, NY>& S) {
+    const kinematics::RoverModel& m = *s.m;
+    const int nw = 6, nq = s.nq;
+    Eigen::Matrix3d Gw[6];
+    const Eigen::Vector3d gyro_sd = s.r.head<3>().cwiseSqrt();
+    for (int w = 0; w < nw; ++w) {
+      Gw[w] = lin[w].d.template block<3, 3>(0, 6) * gyro_sd.asDiagonal();
+      S(3 * w, 3 * w) += s.r(3 + w);
+      S(3 * w + 1, 3 * w + 1) += s.r(3 + nw + 2 * nq + w);
+      S(3 * w + 2, 3 * w + 2) += s.r(3 + 2 * nw + 2 * nq + w);
+    }
+    for (int w1 = 0; w1 < nw; ++w1) {
+      const auto& c1 = m.wheels[static_cast<std::size_t>(w1)];
+      const int j1[2] = {c1.bogie_joint, c1.steer_joint};
+      for (int w2 = 0; w2 <= w1; ++w2) {
+        const auto& c2 = m.wheels[static_cast<std::size_t>(w2)];
+        const int j2[2] = {c2.bogie_joint, c2.steer_joint};
+        Eigen::Matrix3d B = Gw[w1] * Gw[w2].transpose();
+        for (int a = 0; a < 2; ++a) {
+          for (int b = 0; b < 2; ++b) {
+            if (j1[a] < 0 || j1[a] != j2[b]) continue;
+            const int j = j1[a];
+            B.noalias() += s.r(3 + nw + j) * lin[w1].d.col(9 + a) * lin[w2].d.col(9 + b).transpose();
+            B.noalias() += s.r(3 + nw + nq + j) * lin[w1].d.col(11 + a) * lin[w2].d.col(11 + b).transpose();
+          }
+        }
+        S.template block<3, 3>(3 * w1, 3 * w2) += B;
+        if (w2 != w1) S.template block<3, 3>(3 * w2, 3 * w1) += B.transpose();
+      }
+    }
+  }
 };
 
 }  // namespace
@@ -234,13 +342,11 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     const std::size_t kj = std::min(joints.nearest_index(t[i]), joints.size() - 1);
     const std::size_t kw = std::min(wheels.nearest_index(t[i]), wheels.size() - 1);
     for (int j = 0; j < nq; ++j) {
-      in.q.push_back((*q_ch[static_cast<std::size_t>(j)])[kj]);
-      in.qdot.push_back(fused_rate.empty() ? (*qd_ch[static_cast<std::size_t>(j)])[kj] : fused_rate[static_cast<std::size_t>(j)][kj]);
+      in.q[j] = (*q_ch[static_cast<std::size_t>(j)])[kj];
+      in.qdot[j] = fused_rate.empty() ? (*qd_ch[static_cast<std::size_t>(j)])[kj] : fused_rate[static_cast<std::size_t>(j)][kj];
+      if (!std::isfinite(in.q[j])) throw DataError("stream 'joints': missing sample at t = " + std::to_string(t[i]) + " s");
     }
-    for (int w = 0; w < nw; ++w) in.wheel_rate.push_back((*w_ch[static_cast<std::size_t>(w)])[kw]);
-    for (double v : in.q) {
-      if (!std::isfinite(v)) throw DataError("stream 'joints': missing sample at t = " + std::to_string(t[i]) + " s");
-    }
+    for (int w = 0; w < nw; ++w) in.wheel_rate[w] = (*w_ch[static_cast<std::size_t>(w)])[kw];
     if (!std::isfinite(in.gyro.sum() + in.accel.sum())) {
       throw DataError("stream 'imu': missing sample at t = " + std::to_string(t[i]) + " s");
     }
@@ -372,7 +478,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   x0(2) = roll0;
   {
     const Inputs in = inputs_at(0);
-    std::vector<double> r = in.wheel_rate;
+    std::vector<double> r(in.wheel_rate, in.wheel_rate + 6);
     std::nth_element(r.begin(), r.begin() + 3, r.end());
     x0(3) = r[3] * m.wheel_radius;
   }
@@ -387,6 +493,19 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   ekf.P = ukf.P = Eigen::MatrixXd(p0.asDiagonal());
   Eigen::VectorXd y_meas = Eigen::VectorXd::Zero(ny);
 
+  Setup setup;
+  setup.m = &m;
+  setup.frame = frame;
+  setup.g_i = g_i;
+  setup.slip_decay = o.slip_damping;
+  setup.angle_decay = angle_keep * o.angle_damping;
+  setup.q = qdiag;
+  setup.r = rdiag;
+  setup.nq = nq;
+  FastEkf<0> fast0;
+  FastEkf<6> fast6;
+  FastEkf<12> fast12;
+
   // Outputs.
   std::vector<std::vector<double>> out(static_cast<std::size_t>(nx), std::vector<double>(n, NAN));
   std::vector<double> valid(n, 0.0);
@@ -399,7 +518,21 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     still = still && in.gyro.norm() < o.standstill_gyro_rate;
     for (int w = 0; w < nw; ++w) y_meas(w) = in.wheel_rate[static_cast<std::size_t>(w)];
     Eigen::VectorXd x;
-    if (o.filter == FilterKind::ekf) {
+    if (o.filter == FilterKind::ekf && !o.reference_ekf) {
+      const auto step = [&](auto& fe) {
+        if (i == 0) {
+          fe.x = x0;
+          fe.P = p0.asDiagonal();
+        }
+        if (i > 0) fe.predict(setup, in, ts);
+        if (!still) fe.update(setup, in, o.reset_cross_covariance);
+        if (still && o.reset_cross_covariance) fe.P = fe.P.diagonal().asDiagonal();
+        x = fe.x;
+      };
+      if (L.na == 0) step(fast0);
+      if (L.na == 6) step(fast6);
+      if (L.na == 12) step(fast12);
+    } else if (o.filter == FilterKind::ekf) {
       if (i > 0) ekf.predict_diagonal(f_linear(ekf.x, in, ts), qdiag);
       if (!still) ekf.update_diagonal(h_linear(ekf.x, in), rdiag, y_meas);
       if (o.reset_cross_covariance) ekf.reset_cross_covariance();
@@ -422,7 +555,10 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     if (o.progress && i % 2000 == 0) o.progress(static_cast<double>(i) / static_cast<double>(n));
   }
   {
-    const Eigen::MatrixXd& P = o.filter == FilterKind::ekf ? ekf.P : ukf.P;
+    Eigen::MatrixXd P = o.filter == FilterKind::ekf ? ekf.P : ukf.P;
+    if (o.filter == FilterKind::ekf && !o.reference_ekf) {
+      P = L.na == 0 ? Eigen::MatrixXd(fast0.P) : L.na == 6 ? Eigen::MatrixXd(fast6.P) : Eigen::MatrixXd(fast12.P);
+    }
     for (int a = 0; a < nx; ++a) {
       for (int b = 0; b < a; ++b) {
         const double r = std::abs(P(a, b)) / std::sqrt(P(a, a) * P(b, b));
@@ -475,19 +611,25 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     e.slip.assign(6, 0.0);
     e.contact_angle.assign(L.na >= 6 ? 6 : 0, 0.0);
     e.side_slip.assign(L.na >= 12 ? 6 : 0, 0.0);
-    const char* vn[3] = {"velocity_x", "velocity_y", "velocity_z"};
+    const std::vector<double>* tv[3] = {&tb->channel("velocity_x").values, &tb->channel("velocity_y").values,
+                                        &tb->channel("velocity_z").values};
+    std::vector<const std::vector<double>*> ts_, tg_, tbeta_;
+    for (const auto& wc : m.wheels) {
+      ts_.push_back(&tw->channel("slip_" + wc.name).values);
+      if (L.na >= 6) tg_.push_back(&tw->channel("contact_angle_" + wc.name).values);
+      if (L.na >= 12) tbeta_.push_back(&tw->channel("side_slip_" + wc.name).values);
+    }
     for (std::size_t i = 0; i < n; ++i) {
       if (valid[i] == 0.0) continue;
       const std::size_t k = tb->nearest_index(t[i]), kw = tw->nearest_index(t[i]);
-      const double speed = std::hypot(tb->channel("velocity_x").values[k], tb->channel("velocity_y").values[k]);
+      const double speed = std::hypot((*tv[0])[k], (*tv[1])[k]);
       if (speed < 1e-3) continue;
       ++e.samples;
-      for (int c = 0; c < 3; ++c) e.velocity[static_cast<std::size_t>(c)] += std::pow(out[static_cast<std::size_t>(3 + c)][i] - tb->channel(vn[c]).values[k], 2);
-      for (int w = 0; w < nw; ++w) {
-        const std::string& name = m.wheels[static_cast<std::size_t>(w)].name;
-        e.slip[static_cast<std::size_t>(w)] += std::pow(out[static_cast<std::size_t>(6 + w)][i] - tw->channel("slip_" + name).values[kw], 2);
-        if (L.na >= 6) e.contact_angle[static_cast<std::size_t>(w)] += std::pow(out[static_cast<std::size_t>(12 + w)][i] - tw->channel("contact_angle_" + name).values[kw], 2);
-        if (L.na >= 12) e.side_slip[static_cast<std::size_t>(w)] += std::pow(out[static_cast<std::size_t>(18 + w)][i] - tw->channel("side_slip_" + name).values[kw], 2);
+      for (int c = 0; c < 3; ++c) e.velocity[static_cast<std::size_t>(c)] += std::pow(out[static_cast<std::size_t>(3 + c)][i] - (*tv[c])[k], 2);
+      for (std::size_t w = 0; w < 6; ++w) {
+        e.slip[w] += std::pow(out[6 + w][i] - (*ts_[w])[kw], 2);
+        if (L.na >= 6) e.contact_angle[w] += std::pow(out[12 + w][i] - (*tg_[w])[kw], 2);
+        if (L.na >= 12) e.side_slip[w] += std::pow(out[18 + w][i] - (*tbeta_[w])[kw], 2);
       }
     }
     const double c = static_cast<double>(std::max<std::size_t>(e.samples, 1));

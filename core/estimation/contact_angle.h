@@ -30,6 +30,9 @@ struct ContactAngleOptions {
   FilterKind filter = FilterKind::ekf;
   AngleModel angle_model = AngleModel::random_walk;
   bool reset_cross_covariance = false;  // the seed's workaround (section 6.3)
+  // The generic EKF with ceres::Jet Jacobians and dense algebra instead of
+  // the structured fast one (the reference the fast one is tested against).
+  bool reference_ekf = false;
   double angle_damping = 1e-3;           // 1/s, A_gamma = A_beta (section 6.2)
   double slip_damping = 1e-3;            // 1/s, A of Eq. 4.15
   // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).

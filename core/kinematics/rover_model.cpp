@@ -13,6 +13,12 @@ int RoverModel::joint_index(const std::string& n) const {
 
 void RoverModel::build_chains(const std::vector<std::string>& drive_frames) {
   if (drive_frames.size() != wheels.size()) throw DataError("one drive frame per wheel is needed");
+  for (DhLink& l : links) {
+    l.cos_alpha = std::cos(l.alpha);
+    l.sin_alpha = std::sin(l.alpha);
+    l.cos_theta = std::cos(l.theta);
+    l.sin_theta = std::sin(l.theta);
+  }
   for (std::size_t w = 0; w < wheels.size(); ++w) {
     WheelChain& c = wheels[w];
     c.links.clear();

@@ -19,6 +19,8 @@ struct DhLink {
   std::string from, to;
   double theta = 0, d = 0, a = 0, alpha = 0;  // theta is the offset when the link has a joint
   int joint = -1;                             // index into RoverModel::joints, -1: fixed link
+  // cos/sin of alpha and (for a fixed link) of theta, cached by RoverModel::build_chains.
+  double cos_alpha = 1, sin_alpha = 0, cos_theta = 1, sin_theta = 0;
 };
 
 struct WheelChain {
@@ -42,8 +44,9 @@ struct RoverModel {
   std::vector<WheelChain> wheels;
   SensorNoise noise;
   int joint_index(const std::string& name) const;  // -1 when absent
-  // Resolves every wheel's chain from its drive frame back to "g". Throws
-  // DataError for a frame without a parent or a loop.
+  // Resolves every wheel's chain from its drive frame back to "g" and caches
+  // the links' constant cosines and sines. Throws DataError for a frame
+  // without a parent or a loop.
   void build_chains(const std::vector<std::string>& drive_frames);
 };
 
@@ -86,6 +89,18 @@ void append_dh(Mat4<T>& X, const T& theta, double d, double a, double alpha) {
   for (int r = 0; r < 3; ++r) {
     const T x0 = X(r, 0), x1 = X(r, 1), x2 = X(r, 2);
     const T u = x0 * ct + x1 * st, v = x1 * ct - x0 * st;
+    X(r, 0) = u;
+    X(r, 1) = v * ca + x2 * sa;
+    X(r, 2) = x2 * ca - v * sa;
+    X(r, 3) = X(r, 3) + u * a + x2 * d;
+  }
+}
+
+// The same with the cosines and sines given (double only).
+inline void append_dh(Mat4<double>& X, double ct, double st, double d, double a, double ca, double sa) {
+  for (int r = 0; r < 3; ++r) {
+    const double x0 = X(r, 0), x1 = X(r, 1), x2 = X(r, 2);
+    const double u = x0 * ct + x1 * st, v = x1 * ct - x0 * st;
     X(r, 0) = u;
     X(r, 1) = v * ca + x2 * sa;
     X(r, 2) = x2 * ca - v * sa;

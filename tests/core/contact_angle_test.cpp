@@ -7,6 +7,7 @@
 
 #include "core/common/error.h"
 #include "core/estimation/contact_angle.h"
+#include "core/estimation/contact_angle_model.h"
 #include "core/kinematics/rover_model.h"
 #include "core/simulation/flying_rover.h"
 #include "importers/rover_file.h"
@@ -111,6 +112,35 @@ TEST(Kinematics, TheShortDhProductEqualsTheFullOne) {
   }
 }
 
+TEST(Kinematics, HandDerivedMeasurementJacobianEqualsTheJetOne) {
+  // The EKF's fast path linearises each wheel by hand; it must match
+  // ceres::Jet through the DH chain in every frame, wheel and column.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  const auto& m = bb2();
+  double worst = 0.0;
+  for (int trial = 0; trial < 40; ++trial) {
+    estimation::contact::Inputs in;
+    in.gyro = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    for (std::size_t j = 0; j < m.joints.size(); ++j) {
+      in.q[j] = u(rng);
+      in.qdot[j] = u(rng);
+    }
+    const double v[3] = {0.1 + u(rng), u(rng), u(rng)};
+    for (WheelFrame f : {WheelFrame::drive, WheelFrame::contact, WheelFrame::side_slip}) {
+      for (int w = 0; w < 6; ++w) {
+        const double s = 0.4 * u(rng), g = u(rng), b = u(rng);
+        const auto ref = estimation::contact::linearize_wheel_autodiff(m, w, f, v, s, g, b, in);
+        const auto fast = estimation::contact::linearize_wheel(m, w, f, v, s, g, b, in);
+        EXPECT_LT((ref.value - fast.value).cwiseAbs().maxCoeff(), 1e-12);
+        worst = std::max(worst, (ref.d - fast.d).cwiseAbs().maxCoeff() / (1.0 + ref.d.cwiseAbs().maxCoeff()));
+        EXPECT_GT(ref.d.cwiseAbs().maxCoeff(), 1e-3);
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
 TEST(Kinematics, ContactAndSideSlipAnglesOfAWheelVelocity) {
   // Upward wheel velocity: positive contact angle (section 5.1); leftward: positive side slip.
   const auto up = kinematics::wheel_angles(Eigen::Vector3d(1.0, -1.0, 0.0));  // y_d points down
@@ -179,6 +209,43 @@ TEST(ContactAngle, EkfAndUkfAgree) {
   EXPECT_LT(worst, 1.0 * M_PI / 180);  // within a degree (slip within 0.017) everywhere after the first second
   // Their error tables agree too (side slip of every wheel within 0.6 deg RMS).
   for (int w = 0; w < 6; ++w) EXPECT_NEAR(e.rms.side_slip[static_cast<std::size_t>(w)], u.rms.side_slip[static_cast<std::size_t>(w)], 0.6 * M_PI / 180);
+}
+
+TEST(ContactAngle, FastEkfEqualsTheGenericEkfWithJetJacobians) {
+  // The structured fast EKF (hand Jacobians, fixed-size block algebra,
+  // expanded Joseph form) against the generic one, every model, with and
+  // without the reset, over the whole rear-bogie run at 100 Hz.
+  auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
+  sc.rate = 100.0;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  for (auto model : {estimation::ContactModel::smooth, estimation::ContactModel::contact, estimation::ContactModel::contact_side_slip}) {
+    for (bool reset : {false, true}) {
+      estimation::ContactAngleOptions o;
+      o.model = model;
+      o.reset_cross_covariance = reset;
+      const auto fast = estimation::run_contact_angle(lg, bb2(), o);
+      o.reference_ekf = true;
+      const auto ref = estimation::run_contact_angle(lg, bb2(), o);
+      double worst = 0;
+      std::size_t compared = 0;
+      for (const char* name : {"estimate/contact/body", "estimate/contact/wheels"}) {
+        const auto& a = fast.estimates.stream(name);
+        const auto& b = ref.estimates.stream(name);
+        for (const auto& ch : a.channels()) {
+          for (std::size_t i = 0; i < a.size(); ++i) {
+            const double d = ch.values[i] - b.channel(ch.name).values[i];
+            if (std::isfinite(d)) {
+              worst = std::max(worst, std::abs(d));
+              ++compared;
+            }
+          }
+        }
+      }
+      EXPECT_GT(compared, 10000u);
+      EXPECT_LT(worst, 1e-8) << "model " << static_cast<int>(model) << " reset " << reset;
+      EXPECT_NEAR(fast.max_cross_correlation, ref.max_cross_correlation, 1e-6);
+    }
+  }
 }
 
 TEST(ContactAngle, StandstillHoldsTheStatesAndMarksThemInvalid) {
