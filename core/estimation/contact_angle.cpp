@@ -355,15 +355,14 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
 
   const double angle_keep = o.angle_model == AngleModel::damped ? 1.0 : 0.0;  // multiplies -A ts
   // Process model in double (UKF) and linearised with Jets (EKF).
-  auto f_double = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, double ts) {
-    Eigen::VectorXd y(nx);
+  auto f_double = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, double ts, Eigen::VectorXd& y) {
+    y.resize(nx);
     strapdown<double>(x.data(), x.data() + 3, nz.data(), nz.data() + 3, nz.data() + nx, nz.data() + nx + 3, in, g_i, ts,
                       y.data(), y.data() + 3);
     for (int k = 0; k < 6; ++k) y(6 + k) = x(6 + k) * (1.0 - o.slip_damping * ts) + nz(6 + k);  // Eq. 4.15
     for (int k = 0; k < L.na; ++k) {
       y(12 + k) = x(12 + k) * (1.0 - angle_keep * o.angle_damping * ts) + nz(12 + k);  // Eq. 5.3-5.6
     }
-    return y;
   };
   auto f_linear = [&](const Eigen::VectorXd& x, const Inputs& in, double ts) {
     using J = ceres::Jet<double, 18>;
@@ -378,7 +377,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     }
     strapdown<J>(a, v, na, nv, nf, nw3, in, g_i, ts, an, vn);
     Linearized r;
-    r.value = f_double(x, Eigen::VectorXd::Zero(np), in, ts);
+    f_double(x, Eigen::VectorXd::Zero(np), in, ts, r.value);
     r.dx = Eigen::MatrixXd::Zero(nx, nx);
     r.dn = Eigen::MatrixXd::Zero(nx, np);
     for (int k = 0; k < 3; ++k) {
@@ -406,23 +405,51 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     return r;
   };
   // Measurement model. Noise order: n_w (gyro 3), n_wheel (6), n_q, n_qdot, n_vy (6), n_vz (6).
-  auto h_double = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in) {
-    Eigen::VectorXd y(ny);
-    for (int w = 0; w < nw; ++w) {
-      const auto& c = m.wheels[static_cast<std::size_t>(w)];
-      const double g = L.na >= 6 ? x(12 + w) : 0.0, b = L.na >= 12 ? x(18 + w) : 0.0;
-      auto qv = [&](int j, bool rate) {
-        if (j < 0) return 0.0;
-        return (rate ? in.qdot : in.q)[static_cast<std::size_t>(j)] - nz(3 + nw + (rate ? nq : 0) + j);
-      };
-      double out[3];
-      wheel_measurement<double>(m, w, frame, x.data() + 3, x(6 + w), g, b, nz.data(), qv(c.bogie_joint, false),
-                                qv(c.steer_joint, false), qv(c.bogie_joint, true), qv(c.steer_joint, true), in, out);
-      y(w) = out[0] + nz(3 + w);
-      y(nw + w) = out[1] + nz(3 + nw + 2 * nq + w);
-      y(2 * nw + w) = out[2] + nz(3 + 2 * nw + 2 * nq + w);
+  // The same for the UKF's sigma points, from each wheel's geometry at the
+  // measured joint angles (recomputed only for a sigma point that moves one
+  // of its joints) and its final rotation (kept while gamma and beta repeat).
+  struct RotationMemo {
+    double gamma = NAN, beta = NAN;
+    Eigen::Matrix3d C;
+  };
+  contact::WheelGeometry geo0[6];
+  RotationMemo memo[6][2];
+  auto h_ukf = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, Eigen::VectorXd& y) {
+    y.resize(ny);
+    const Eigen::Vector3d omega = in.gyro - nz.head<3>();
+    double qd[contact::kMaxJoints], qn[contact::kMaxJoints];
+    for (int j = 0; j < nq; ++j) {
+      qd[j] = in.qdot[j] - nz(3 + nw + nq + j);
+      qn[j] = in.q[j] - nz(3 + nw + j);
     }
-    return y;
+    for (int w = 0; w < nw; ++w) {
+      const contact::WheelGeometry* g = &geo0[w];
+      contact::WheelGeometry moved;
+      for (int k = 0; k < g->nj; ++k) {
+        if (nz(3 + nw + g->joint[k]) != 0.0) {
+          moved = contact::wheel_geometry(m, w, qn);
+          g = &moved;
+          break;
+        }
+      }
+      const double gamma = L.na >= 6 ? x(12 + w) : 0.0, beta = L.na >= 12 ? x(18 + w) : 0.0;
+      RotationMemo* hit = nullptr;
+      for (auto& e : memo[w]) {
+        if (e.gamma == gamma && e.beta == beta) hit = &e;
+      }
+      if (hit == nullptr) {
+        hit = &memo[w][1];
+        if (std::isnan(memo[w][0].gamma)) hit = &memo[w][0];
+        hit->gamma = gamma;
+        hit->beta = beta;
+        hit->C = contact::final_rotation(frame, gamma, beta);
+      }
+      const Eigen::Vector3d u = contact::wheel_measurement(*g, hit->C, frame, m.wheel_radius, x.data() + 3, x(6 + w),
+                                                           beta, omega, qd);
+      y(w) = u(0) + nz(3 + w);
+      y(nw + w) = u(1) + nz(3 + nw + 2 * nq + w);
+      y(2 * nw + w) = u(2) + nz(3 + 2 * nw + 2 * nq + w);
+    }
   };
   auto h_linear = [&](const Eigen::VectorXd& x, const Inputs& in) {
     using J = ceres::Jet<double, 13>;  // v(3) s gamma beta n_w(3) q_b q_s qd_b qd_s
@@ -538,12 +565,22 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       if (o.reset_cross_covariance) ekf.reset_cross_covariance();
       x = ekf.x;
     } else {
-      const auto f = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz) { return f_double(xs, nz, in, ts); };
-      const auto hh = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz) { return h_double(xs, nz, in); };
+      const auto f = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_x) {
+        f_double(xs, nz, in, ts, out_x);
+      };
+      const auto hh = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_y) {
+        h_ukf(xs, nz, in, out_y);
+      };
+      for (int w = 0; w < nw; ++w) {
+        geo0[w] = contact::wheel_geometry(m, w, in.q);
+        memo[w][0].gamma = memo[w][1].gamma = NAN;
+      }
       if (i > 0 && !still) {
         ukf.step(f, Q, hh, R_used, y_meas);
       } else if (i > 0) {  // predict only: the state's mean through f with zero noise
-        ukf.x = f(ukf.x, Eigen::VectorXd::Zero(np));
+        Eigen::VectorXd next;
+        f(ukf.x, Eigen::VectorXd::Zero(np), next);
+        ukf.x = next;
       }
       if (o.reset_cross_covariance) ukf.reset_cross_covariance();
       x = ukf.x;

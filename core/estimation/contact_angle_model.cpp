@@ -30,35 +30,68 @@ WheelLinearization linearize_wheel_autodiff(const kinematics::RoverModel& m, int
   return r;
 }
 
-WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, kinematics::WheelFrame frame,
-                                   const double* v, double slip, double gamma, double beta, const Inputs& in) {
+WheelGeometry wheel_geometry(const kinematics::RoverModel& m, int wheel, const double* q) {
   const kinematics::WheelChain& c = m.wheels[static_cast<std::size_t>(wheel)];
-  // The drive frame's pose and the axes and origins of the chain's joints
-  // (first the bogie's, then the steering's), all in g.
+  WheelGeometry g;
   Eigen::Matrix4d X = Eigen::Matrix4d::Identity();
-  Eigen::Vector3d z[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}, o[2] = {z[0], z[0]};
-  double qd[2] = {0.0, 0.0};
-  int nj = 0;
   for (int li : c.links) {
     const kinematics::DhLink& l = m.links[static_cast<std::size_t>(li)];
     double ct = l.cos_theta, st = l.sin_theta;
     if (l.joint >= 0) {
-      const double theta = l.theta + in.q[l.joint];
+      const double theta = l.theta + q[l.joint];
       ct = std::cos(theta);
       st = std::sin(theta);
-      if (nj < 2) {
-        z[nj] = X.block<3, 1>(0, 2);
-        o[nj] = X.block<3, 1>(0, 3);
-        qd[nj] = in.qdot[l.joint];
-        ++nj;
+      if (g.nj < 2) {
+        g.z[g.nj] = X.block<3, 1>(0, 2);
+        g.o[g.nj] = X.block<3, 1>(0, 3);
+        g.joint[g.nj] = l.joint;
+        ++g.nj;
       }
     }
     kinematics::append_dh(X, ct, st, l.d, l.a, l.cos_alpha, l.sin_alpha);  // Eq. 2.8
   }
-  const Eigen::Matrix3d Rd = X.block<3, 3>(0, 0);
-  const Eigen::Vector3d r = X.block<3, 1>(0, 3);
-  Eigen::Vector3d Jq[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-  for (int k = 0; k < nj; ++k) Jq[k] = z[k].cross(r - o[k]);
+  g.Rd = X.block<3, 3>(0, 0);
+  g.r = X.block<3, 1>(0, 3);
+  for (int k = 0; k < 2; ++k) g.J[k] = k < g.nj ? Eigen::Vector3d(g.z[k].cross(g.r - g.o[k])) : Eigen::Vector3d::Zero();
+  return g;
+}
+
+Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double gamma, double beta) {
+  if (frame == kinematics::WheelFrame::drive) return Eigen::Matrix3d::Identity();
+  const double cg = std::cos(gamma), sg = std::sin(gamma);
+  Eigen::Matrix3d C;  // Rz(-gamma) Rx(pi/2)
+  C << cg, 0, -sg, -sg, 0, -cg, 0, 1, 0;
+  if (frame == kinematics::WheelFrame::side_slip) {
+    const double cb = std::cos(beta), sb = std::sin(beta);
+    Eigen::Matrix3d Rb;
+    Rb << cb, -sb, 0, sb, cb, 0, 0, 0, 1;
+    C = C * Rb;
+  }
+  return C;
+}
+
+Eigen::Vector3d wheel_measurement(const WheelGeometry& g, const Eigen::Matrix3d& C, kinematics::WheelFrame frame,
+                                  double wheel_radius, const double* v, double slip, double beta,
+                                  const Eigen::Vector3d& omega, const double* qdot) {
+  Eigen::Vector3d w = Eigen::Vector3d(v[0], v[1], v[2]) + omega.cross(g.r);  // Eq. 4.8
+  for (int k = 0; k < g.nj; ++k) w += g.J[k] * qdot[g.joint[k]];
+  const Eigen::Vector3d u = C.transpose() * (g.Rd.transpose() * w);
+  const double sc = frame == kinematics::WheelFrame::side_slip ? std::cos(beta) : 1.0;
+  return Eigen::Vector3d(sc * u.x() / ((1.0 - slip) * wheel_radius), u.y(), u.z());  // Eq. 4.20 / Table 5.1
+}
+
+WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, kinematics::WheelFrame frame,
+                                   const double* v, double slip, double gamma, double beta, const Inputs& in) {
+  // The drive frame's pose and the axes and origins of the chain's joints
+  // (first the bogie's, then the steering's), all in g.
+  const WheelGeometry geo = wheel_geometry(m, wheel, in.q);
+  const Eigen::Matrix3d& Rd = geo.Rd;
+  const Eigen::Vector3d& r = geo.r;
+  const int nj = geo.nj;
+  const Eigen::Vector3d* z = geo.z;
+  const Eigen::Vector3d* Jq = geo.J;
+  double qd[2] = {0.0, 0.0};
+  for (int k = 0; k < nj; ++k) qd[k] = in.qdot[geo.joint[k]];
   const Eigen::Vector3d omega = in.gyro;
   const Eigen::Vector3d vel(v[0], v[1], v[2]);
   // Eq. 4.8: the wheel's velocity in g.

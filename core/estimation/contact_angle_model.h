@@ -84,6 +84,28 @@ void wheel_measurement(const kinematics::RoverModel& m, int wheel, kinematics::W
   out[2] = u.z();
 }
 
+// The drive frame of a wheel at given joint angles, with what the velocity
+// and its derivatives need: the chain's joint axes z and origins o (first the
+// bogie's, then the steering's) and the geometric Jacobian columns J = z x (r - o).
+struct WheelGeometry {
+  Eigen::Matrix3d Rd = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();
+  Eigen::Vector3d z[2], o[2], J[2];
+  int joint[2] = {-1, -1};
+  int nj = 0;
+};
+WheelGeometry wheel_geometry(const kinematics::RoverModel& m, int wheel, const double* q);
+
+// Table 5.2: the drive -> contact (-gamma about the axle, then pi/2 about x)
+// or side-slip (beta more about z) rotation.
+Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double gamma, double beta);
+
+// wheel_measurement in double from a wheel's geometry and final rotation C:
+// the same three values (tested equal).
+Eigen::Vector3d wheel_measurement(const WheelGeometry& g, const Eigen::Matrix3d& C, kinematics::WheelFrame frame,
+                                  double wheel_radius, const double* v, double slip, double beta,
+                                  const Eigen::Vector3d& omega, const double* qdot);
+
 // One wheel's measurement and its derivatives at zero noise, columns:
 // velocity (3), slip, contact angle, side-slip angle, gyro noise (3), bogie
 // angle, steering angle, bogie rate, steering rate (the joint columns are

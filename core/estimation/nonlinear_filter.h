@@ -37,17 +37,28 @@ class ExtendedKalmanFilter {
 
 class UnscentedKalmanFilter {
  public:
-  // f(x, process noise) -> next state; h(x, measurement noise) -> measurement.
-  using Function = std::function<Eigen::VectorXd(const Eigen::VectorXd&, const Eigen::VectorXd&)>;
+  // f(x, process noise, out) writes the next state; h(x, measurement noise,
+  // out) the measurement (into preallocated vectors: no allocation per
+  // sigma point).
+  using Function = std::function<void(const Eigen::VectorXd&, const Eigen::VectorXd&, Eigen::VectorXd&)>;
   Eigen::VectorXd x;
   Eigen::MatrixXd P;
   double alpha = 1.0, beta = 2.0, kappa = 0.0;  // scaled unscented transform
   // One predict-update cycle on sigma points of the augmented state
   // [x; n_p; n_m] (Eq. 2.18-2.20). Returns false when a covariance is not
   // positive definite (the state is then left as predicted).
+  //
+  // The augmented covariance blockdiag(P, Q, R) is factorised block by block
+  // (its Cholesky factor is block diagonal; Q's and R's are kept while they
+  // do not change), and the sigma points along the measurement noises share
+  // the centre's f(x, 0), which is evaluated once.
   bool step(const Function& f, const Eigen::MatrixXd& Q, const Function& h, const Eigen::MatrixXd& R,
             const Eigen::VectorXd& y);
   void reset_cross_covariance();
+
+ private:
+  Eigen::MatrixXd Q_, R_, SQ_, SR_;  // last noise covariances and their Cholesky factors
+  Eigen::MatrixXd X_, Y_;            // sigma points through f and h
 };
 
 }  // namespace roverlab::estimation
