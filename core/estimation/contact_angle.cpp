@@ -409,7 +409,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   // measured joint angles (recomputed only for a sigma point that moves one
   // of its joints) and its final rotation (kept while gamma and beta repeat).
   struct RotationMemo {
-    double gamma = NAN, beta = NAN;
+    double gamma = NAN, beta = NAN, cos_beta = 1.0;
     Eigen::Matrix3d C;
   };
   contact::WheelGeometry geo0[6];
@@ -443,9 +443,10 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
         hit->gamma = gamma;
         hit->beta = beta;
         hit->C = contact::final_rotation(frame, gamma, beta);
+        hit->cos_beta = std::cos(beta);
       }
       const Eigen::Vector3d u = contact::wheel_measurement(*g, hit->C, frame, m.wheel_radius, x.data() + 3, x(6 + w),
-                                                           beta, omega, qd);
+                                                           hit->cos_beta, omega, qd);
       y(w) = u(0) + nz(3 + w);
       y(nw + w) = u(1) + nz(3 + nw + 2 * nq + w);
       y(2 * nw + w) = u(2) + nz(3 + 2 * nw + 2 * nq + w);

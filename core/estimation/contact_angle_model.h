@@ -100,10 +100,10 @@ WheelGeometry wheel_geometry(const kinematics::RoverModel& m, int wheel, const d
 // or side-slip (beta more about z) rotation.
 Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double gamma, double beta);
 
-// wheel_measurement in double from a wheel's geometry and final rotation C:
-// the same three values (tested equal).
+// wheel_measurement in double from a wheel's geometry, final rotation C and
+// cos(beta): the same three values (tested equal).
 Eigen::Vector3d wheel_measurement(const WheelGeometry& g, const Eigen::Matrix3d& C, kinematics::WheelFrame frame,
-                                  double wheel_radius, const double* v, double slip, double beta,
+                                  double wheel_radius, const double* v, double slip, double cos_beta,
                                   const Eigen::Vector3d& omega, const double* qdot);
 
 // One wheel's measurement and its derivatives at zero noise, columns:
