@@ -72,28 +72,27 @@ class FastEkf {
   // Eq. 2.14-2.15 with F = blockdiag(A, diag(d)): P11 <- A P11 A^T + G G^T,
   // P12 <- A P12 D, P22 <- D P22 D + Q22.
   void predict(const Setup& s, const Inputs& in, double ts) {
-    using Jt = ceres::Jet<double, 18>;
-    Jt a[3], v[3], na[3], nv[3], nf[3], nw[3], an[3], vn[3];
+    // Jacobians of Eq. 4.13-4.14 with respect to attitude, velocity and the
+    // accelerometer and gyro noises; n_att and n_v enter with identity.
+    using Jt = ceres::Jet<double, 12>;
+    const Jt zero(0.0);
+    const Jt zeros[3] = {zero, zero, zero};
+    Jt a[3], v[3], nf[3], nw[3], an[3], vn[3];
     for (int k = 0; k < 3; ++k) {
       a[k] = Jt(x(k), k);
       v[k] = Jt(x(3 + k), 3 + k);
-      na[k] = Jt(0.0, 6 + k);
-      nv[k] = Jt(0.0, 9 + k);
-      nf[k] = Jt(0.0, 12 + k);
-      nw[k] = Jt(0.0, 15 + k);
+      nf[k] = Jt(0.0, 6 + k);
+      nw[k] = Jt(0.0, 9 + k);
     }
-    strapdown<Jt>(a, v, na, nv, nf, nw, in, s.g_i, ts, an, vn);
-    Eigen::Matrix<double, 6, 6> A;
-    Eigen::Matrix<double, 6, 12> G;  // noise Jacobian times the noise standard deviations
+    strapdown<Jt>(a, v, zeros, zeros, nf, nw, in, s.g_i, ts, an, vn);
+    Eigen::Matrix<double, 6, 6> A, G;  // G: noise Jacobian times the noise standard deviations
     for (int k = 0; k < 3; ++k) {
       x(k) = an[k].a;
       x(3 + k) = vn[k].a;
       for (int c = 0; c < 6; ++c) {
         A(k, c) = an[k].v[c];
         A(3 + k, c) = vn[k].v[c];
-      }
-      for (int c = 0; c < 12; ++c) {
-        const double sd = std::sqrt(c < 6 ? s.q(c) : s.q(NX + c - 6));
+        const double sd = std::sqrt(s.q(NX + c));
         G(k, c) = an[k].v[6 + c] * sd;
         G(3 + k, c) = vn[k].v[6 + c] * sd;
       }
@@ -102,8 +101,10 @@ class FastEkf {
     d.template head<6>().setConstant(1.0 - s.slip_decay * ts);
     d.template tail<NA>().setConstant(1.0 - s.angle_decay * ts);
     x.template tail<NR>() = d.cwiseProduct(x.template tail<NR>());
-    const Eigen::Matrix<double, 6, 6> P11 = A * P.template topLeftCorner<6, 6>() * A.transpose() + G * G.transpose();
-    const Eigen::Matrix<double, 6, NR> P12 = A * P.template topRightCorner<6, NR>() * d.asDiagonal();
+    const Eigen::Matrix<double, 6, 6> AP = A.lazyProduct(P.template topLeftCorner<6, 6>());
+    Eigen::Matrix<double, 6, 6> P11 = AP.lazyProduct(A.transpose()) + G.lazyProduct(G.transpose());
+    P11.diagonal() += s.q.template head<6>();
+    const Eigen::Matrix<double, 6, NR> P12 = A.lazyProduct(P.template topRightCorner<6, NR>()) * d.asDiagonal();
     P.template topLeftCorner<6, 6>() = 0.5 * (P11 + P11.transpose());
     P.template topRightCorner<6, NR>() = P12;
     P.template bottomLeftCorner<NR, 6>() = P12.transpose();
