@@ -334,7 +334,6 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     }
     for (int j = 0; j < nq; ++j) rdiag(3 + nw + nq + j) = fused_var[static_cast<std::size_t>(j)];
   }
-  const Eigen::MatrixXd R_used = rdiag.asDiagonal();
 
   auto inputs_at = [&](std::size_t i) {
     Inputs in;
@@ -415,19 +414,24 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   };
   contact::WheelGeometry geo0[6];
   RotationMemo memo[6][2];
+  // Its noise order puts the additive noises last, in the measurement's
+  // order: n_w (gyro 3), n_q, n_qdot, then n_wheel (6), n_vy (6), n_vz (6).
+  Eigen::VectorXd r_ukf(nm);
+  r_ukf << rdiag.head(3), rdiag.segment(3 + nw, 2 * nq), rdiag.segment(3, nw), rdiag.segment(3 + nw + 2 * nq, 2 * nw);
+  const Eigen::MatrixXd R_ukf = r_ukf.asDiagonal();
   auto h_ukf = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, Eigen::VectorXd& y) {
     y.resize(ny);
     const Eigen::Vector3d omega = in.gyro - nz.head<3>();
     double qd[contact::kMaxJoints], qn[contact::kMaxJoints];
     for (int j = 0; j < nq; ++j) {
-      qd[j] = in.qdot[j] - nz(3 + nw + nq + j);
-      qn[j] = in.q[j] - nz(3 + nw + j);
+      qd[j] = in.qdot[j] - nz(3 + nq + j);
+      qn[j] = in.q[j] - nz(3 + j);
     }
     for (int w = 0; w < nw; ++w) {
       const contact::WheelGeometry* g = &geo0[w];
       contact::WheelGeometry moved;
       for (int k = 0; k < g->nj; ++k) {
-        if (nz(3 + nw + g->joint[k]) != 0.0) {
+        if (nz(3 + g->joint[k]) != 0.0) {
           moved = contact::wheel_geometry(m, w, qn);
           g = &moved;
           break;
@@ -448,9 +452,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       }
       const Eigen::Vector3d u = contact::wheel_measurement(*g, hit->C, frame, m.wheel_radius, x.data() + 3, x(6 + w),
                                                            hit->cos_beta, omega, qd);
-      y(w) = u(0) + nz(3 + w);
-      y(nw + w) = u(1) + nz(3 + nw + 2 * nq + w);
-      y(2 * nw + w) = u(2) + nz(3 + 2 * nw + 2 * nq + w);
+      for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
     }
   };
   auto h_linear = [&](const Eigen::VectorXd& x, const Inputs& in) {
@@ -518,6 +520,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   if (L.na > 0) p0.segment(12, L.na).setConstant(1e-3);
   ExtendedKalmanFilter ekf;
   UnscentedKalmanFilter ukf;
+  ukf.additive_process_noise = ukf.additive_measurement_noise = true;  // Eq. 4.15-4.17, 4.20
   ekf.x = ukf.x = x0;
   ekf.P = ukf.P = Eigen::MatrixXd(p0.asDiagonal());
   Eigen::VectorXd y_meas = Eigen::VectorXd::Zero(ny);
@@ -578,7 +581,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
         memo[w][0].gamma = memo[w][1].gamma = NAN;
       }
       if (i > 0 && !still) {
-        ukf.step(f, Q, hh, R_used, y_meas);
+        ukf.step(f, Q, hh, R_ukf, y_meas);
       } else if (i > 0) {  // predict only: the state's mean through f with zero noise
         Eigen::VectorXd next;
         f(ukf.x, Eigen::VectorXd::Zero(np), next);

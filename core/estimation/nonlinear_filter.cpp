@@ -54,57 +54,76 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
     return true;
   };
   if (!factor(Q, Q_, SQ_) || !factor(R, R_, SR_)) return false;
-  const Eigen::Index n = 2 * L + 1;
+  // Additive noises (declared by the model, used only when uncorrelated
+  // with the rest): the first nx process noises and the last ny
+  // measurement noises.
+  const Eigen::Index pa = additive_process_noise && np >= nx && Q.bottomLeftCorner(np - nx, nx).isZero(0.0) ? nx : 0;
+  const Eigen::Index ma = additive_measurement_noise && nm >= ny && R.bottomLeftCorner(ny, nm - ny).isZero(0.0) ? ny : 0;
   const double wm0 = lambda / (static_cast<double>(L) + lambda), wi = 0.5 / (static_cast<double>(L) + lambda);
   const double wc0 = wm0 + (1.0 - alpha * alpha + beta);
-  X_.resize(nx, n);
-  Y_.resize(ny, n);
-  // Sigma point i: 0 the centre, 1..L plus and L+1..2L minus a column of the
-  // factor. Eq. 2.18: X_i = f(x_i, n_p,i); Eq. 2.19: Y_i = h(X_i, n_m,i).
-  Eigen::VectorXd xs(nx), nps(np), nms(nm), fx(nx), hy(ny);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Index d = i == 0 ? -1 : (i - 1) % L;
-    const double sign = i > L ? -1.0 : 1.0;
-    xs = x;
-    nps.setZero();
-    nms.setZero();
-    if (d >= 0 && d < nx) xs += sign * Sx.col(d);
-    if (d >= nx && d < nx + np) nps += (sign * c) * SQ_.col(d - nx);
-    if (d >= nx + np) nms += (sign * c) * SR_.col(d - nx - np);
-    if (d >= nx + np) {
-      X_.col(i) = X_.col(0);  // measurement noise does not enter f
-    } else {
+
+  // Eq. 2.18: the points through f. Column 0 the centre, then a plus and a
+  // minus point per state direction and per non-additive process noise.
+  const Eigen::Index nf = 1 + 2 * (nx + np - pa);
+  X_.resize(nx, nf);
+  Eigen::VectorXd xs(nx), nps = Eigen::VectorXd::Zero(np), nms = Eigen::VectorXd::Zero(nm), fx(nx), hy(ny);
+  f(x, nps, fx);
+  X_.col(0) = fx;
+  for (Eigen::Index d = 0; d < nx; ++d) {
+    for (int k = 0; k < 2; ++k) {
+      xs = k == 0 ? Eigen::VectorXd(x + Sx.col(d)) : Eigen::VectorXd(x - Sx.col(d));
       f(xs, nps, fx);
-      X_.col(i) = fx;
+      X_.col(1 + 2 * d + k) = fx;
     }
+  }
+  for (Eigen::Index j = pa; j < np; ++j) {
+    for (int k = 0; k < 2; ++k) {
+      nps = (k == 0 ? c : -c) * SQ_.col(j);
+      f(x, nps, fx);
+      X_.col(1 + 2 * nx + 2 * (j - pa) + k) = fx;
+    }
+  }
+  nps.setZero();
+  // Eq. 2.19: the points through h. Those of f; the centre moved along each
+  // additive process noise (its sigma points are X_0 +- c SQ_j, f is not
+  // needed); the centre with each non-additive measurement noise. Additive
+  // measurement noises move h's value by +- c SR_m and are not evaluated.
+  const Eigen::Index nmh = nm - ma;
+  Eigen::MatrixXd Yf(ny, nf), Yp(ny, 2 * pa), Ym(ny, 2 * nmh), Dp(nx, pa);
+  for (Eigen::Index i = 0; i < nf; ++i) {
     fx = X_.col(i);
     h(fx, nms, hy);
-    Y_.col(i) = hy;
+    Yf.col(i) = hy;
   }
-  Eigen::VectorXd wm = Eigen::VectorXd::Constant(n, wi);
-  wm(0) = wm0;
-  const Eigen::VectorXd xm = X_ * wm, ym = Y_ * wm;
+  for (Eigen::Index j = 0; j < pa; ++j) {
+    Dp.col(j) = c * SQ_.col(j).head(nx);
+    for (int k = 0; k < 2; ++k) {
+      fx = k == 0 ? Eigen::VectorXd(X_.col(0) + Dp.col(j)) : Eigen::VectorXd(X_.col(0) - Dp.col(j));
+      h(fx, nms, hy);
+      Yp.col(2 * j + k) = hy;
+    }
+  }
+  fx = X_.col(0);
+  for (Eigen::Index j = 0; j < nmh; ++j) {
+    for (int k = 0; k < 2; ++k) {
+      nms = (k == 0 ? c : -c) * SR_.col(j);
+      h(fx, nms, hy);
+      Ym.col(2 * j + k) = hy;
+    }
+  }
+  // Means: pairs along additive noises average to the centre.
+  const double w0x = wm0 + 2.0 * wi * static_cast<double>(pa + nm);
+  const double w0y = wm0 + 2.0 * wi * static_cast<double>(ma);
+  const Eigen::VectorXd xm = w0x * X_.col(0) + wi * X_.rightCols(nf - 1).rowwise().sum();
+  const Eigen::VectorXd ym = w0y * Yf.col(0) + wi * (Yf.rightCols(nf - 1).rowwise().sum() + Yp.rowwise().sum() +
+                                                     Ym.rowwise().sum());
   X_.colwise() -= xm;
-  Y_.colwise() -= ym;
-  // The 2 nm measurement-noise points share the centre's deviation in x:
-  // in Pxx they fold into the centre's column (weight wc0 + 2 nm wi), in
-  // Pxy into dx_0 (wc0 dy_0 + wi sum of their dy)^T.
-  const Eigen::Index nd = 1 + 2 * (nx + np);
-  Eigen::MatrixXd Xd(nx, nd), Yd(ny, nd);
-  Eigen::VectorXd wd(nd);
-  Xd.col(0) = X_.col(0);
-  wd(0) = wc0 + 2.0 * static_cast<double>(nm) * wi;
-  Yd.col(0) = wc0 * Y_.col(0) + wi * (Y_.middleCols(1 + nx + np, nm).rowwise().sum() +
-                                      Y_.middleCols(L + 1 + nx + np, nm).rowwise().sum());
-  for (Eigen::Index k = 0; k < nx + np; ++k) {
-    Xd.col(1 + 2 * k) = X_.col(1 + k);
-    Xd.col(2 + 2 * k) = X_.col(1 + L + k);
-    Yd.col(1 + 2 * k) = wi * Y_.col(1 + k);
-    Yd.col(2 + 2 * k) = wi * Y_.col(1 + L + k);
-    wd(1 + 2 * k) = wd(2 + 2 * k) = wi;
-  }
-  // Weighted sums of outer products; with non-negative weights as
-  // symmetric rank updates on the square roots (half the work).
+  Yf.colwise() -= ym;
+  Yp.colwise() -= ym;
+  Ym.colwise() -= ym;
+  // Covariances. A pair along an additive noise contributes 2 wi dx0 dx0^T
+  // + 2 wi delta delta^T, and 2 wi c^2 = 1, so those pairs add Q's or R's
+  // additive block and fold the rest into the centre's weight.
   auto weighted_outer = [](const Eigen::MatrixXd& D, const Eigen::VectorXd& w) {
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(D.rows(), D.rows());
     if ((w.array() >= 0.0).all()) {
@@ -115,12 +134,25 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
     }
     return M;
   };
-  Eigen::VectorXd wc = Eigen::VectorXd::Constant(n, wi);
-  wc(0) = wc0;
-  const Eigen::MatrixXd Pxx = weighted_outer(Xd, wd);
-  const Eigen::MatrixXd Pyy = weighted_outer(Y_, wc);
+  Eigen::VectorXd wx = Eigen::VectorXd::Constant(nf, wi);
+  wx(0) = wc0 + 2.0 * wi * static_cast<double>(pa + nm);
+  Eigen::MatrixXd Pxx = weighted_outer(X_, wx);
+  if (pa > 0) Pxx += Q.topLeftCorner(nx, nx);
+  Eigen::MatrixXd Yall(ny, nf + 2 * pa + 2 * nmh);
+  Yall << Yf, Yp, Ym;
+  Eigen::VectorXd wy = Eigen::VectorXd::Constant(Yall.cols(), wi);
+  wy(0) = wc0 + 2.0 * wi * static_cast<double>(ma);
+  Eigen::MatrixXd Pyy = weighted_outer(Yall, wy);
+  if (ma > 0) Pyy += R.bottomRightCorner(ny, ny);
+  // Pxy = dx0 (w dy0 + wi sum dy of the points sharing X_0)^T
+  //     + wi sum dx dy^T over f's points + wi sum_j delta_j (dy_j+ - dy_j-)^T.
+  Eigen::MatrixXd Xa(nx, nf + pa), Ya(ny, nf + pa);
+  Xa << X_, Dp;
+  Ya.col(0) = (wc0 + 2.0 * wi * static_cast<double>(ma)) * Yf.col(0) + wi * (Yp.rowwise().sum() + Ym.rowwise().sum());
+  Ya.middleCols(1, nf - 1) = wi * Yf.rightCols(nf - 1);
+  for (Eigen::Index j = 0; j < pa; ++j) Ya.col(nf + j) = wi * (Yp.col(2 * j) - Yp.col(2 * j + 1));
   Eigen::MatrixXd Pxy(nx, ny);
-  Pxy.noalias() = Xd * Yd.transpose();
+  Pxy.noalias() = Xa * Ya.transpose();
   x = xm;
   P = 0.5 * (Pxx + Pxx.transpose());
   // Eq. 2.20.

@@ -44,6 +44,11 @@ class UnscentedKalmanFilter {
   Eigen::VectorXd x;
   Eigen::MatrixXd P;
   double alpha = 1.0, beta = 2.0, kappa = 0.0;  // scaled unscented transform
+  // The model's promise that the first nx process noises add to f's value
+  // (x' = f(x, 0 + rest) + n) and the last ny measurement noises to h's.
+  // Their sigma points then have closed forms: f is not evaluated along the
+  // former, h not along the latter; the estimates are the same.
+  bool additive_process_noise = false, additive_measurement_noise = false;
   // One predict-update cycle on sigma points of the augmented state
   // [x; n_p; n_m] (Eq. 2.18-2.20). Returns false when a covariance is not
   // positive definite (the state is then left as predicted).
