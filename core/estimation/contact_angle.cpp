@@ -414,6 +414,13 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   };
   contact::WheelGeometry geo0[6];
   RotationMemo memo[6][2];
+  constexpr int kKey = 13;  // v, slip, gamma, beta, omega, two joint rates and angles
+  struct WheelMemo {
+    bool set = false;
+    double key[kKey];
+    Eigen::Vector3d u;
+  };
+  WheelMemo wheel_memo[6];
   // Its noise order puts the additive noises last, in the measurement's
   // order: n_w (gyro 3), n_q, n_qdot, then n_wheel (6), n_vy (6), n_vz (6).
   Eigen::VectorXd r_ukf(nm);
@@ -428,6 +435,19 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       qn[j] = in.q[j] - nz(3 + j);
     }
     for (int w = 0; w < nw; ++w) {
+      // A wheel whose inputs are the first point's of this step (the
+      // centre's) gets the same value back.
+      WheelMemo& wm = wheel_memo[w];
+      double key[kKey] = {x(3), x(4), x(5), x(6 + w), L.na >= 6 ? x(12 + w) : 0.0, L.na >= 12 ? x(18 + w) : 0.0,
+                                     omega(0), omega(1), omega(2), 0.0, 0.0, 0.0, 0.0};
+      for (int k = 0; k < geo0[w].nj; ++k) {
+        key[9 + 2 * k] = qd[geo0[w].joint[k]];
+        key[10 + 2 * k] = qn[geo0[w].joint[k]];
+      }
+      if (wm.set && std::equal(key, key + kKey, wm.key)) {
+        for (int k = 0; k < 3; ++k) y(k * nw + w) = wm.u(k) + nz(3 + 2 * nq + k * nw + w);
+        continue;
+      }
       const contact::WheelGeometry* g = &geo0[w];
       contact::WheelGeometry moved;
       for (int k = 0; k < g->nj; ++k) {
@@ -453,6 +473,11 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       const Eigen::Vector3d u = contact::wheel_measurement(*g, hit->C, frame, m.wheel_radius, x.data() + 3, x(6 + w),
                                                            hit->cos_beta, omega, qd);
       for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
+      if (!wm.set) {
+        wm.set = true;
+        std::copy(key, key + kKey, wm.key);
+        wm.u = u;
+      }
     }
   };
   auto h_linear = [&](const Eigen::VectorXd& x, const Inputs& in) {
@@ -579,6 +604,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       for (int w = 0; w < nw; ++w) {
         geo0[w] = contact::wheel_geometry(m, w, in.q);
         memo[w][0].gamma = memo[w][1].gamma = NAN;
+        wheel_memo[w].set = false;
       }
       if (i > 0 && !still) {
         ukf.step(f, Q, hh, R_ukf, y_meas);

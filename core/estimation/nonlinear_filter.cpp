@@ -146,22 +146,27 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   if (ma > 0) Pyy += R.bottomRightCorner(ny, ny);
   // Pxy = dx0 (w dy0 + wi sum dy of the points sharing X_0)^T
   //     + wi sum dx dy^T over f's points + wi sum_j delta_j (dy_j+ - dy_j-)^T.
-  Eigen::MatrixXd Xa(nx, nf + pa), Ya(ny, nf + pa);
-  Xa << X_, Dp;
+  // (delta_j = c SQ_j is a column of the triangular factor.)
+  Eigen::MatrixXd Ya(ny, nf);
   Ya.col(0) = (wc0 + 2.0 * wi * static_cast<double>(ma)) * Yf.col(0) + wi * (Yp.rowwise().sum() + Ym.rowwise().sum());
-  Ya.middleCols(1, nf - 1) = wi * Yf.rightCols(nf - 1);
-  for (Eigen::Index j = 0; j < pa; ++j) Ya.col(nf + j) = wi * (Yp.col(2 * j) - Yp.col(2 * j + 1));
+  Ya.rightCols(nf - 1) = wi * Yf.rightCols(nf - 1);
   Eigen::MatrixXd Pxy(nx, ny);
-  Pxy.noalias() = Xa * Ya.transpose();
+  Pxy.noalias() = X_ * Ya.transpose();
+  if (pa > 0) {
+    Eigen::MatrixXd Yd(pa, ny);  // wi (dy_j+ - dy_j-)^T
+    for (Eigen::Index j = 0; j < pa; ++j) Yd.row(j) = (c * wi) * (Yp.col(2 * j) - Yp.col(2 * j + 1)).transpose();
+    Pxy.noalias() += SQ_.topLeftCorner(nx, pa).triangularView<Eigen::Lower>() * Yd;
+  }
   x = xm;
   P = 0.5 * (Pxx + Pxx.transpose());
-  // Eq. 2.20.
+  // Eq. 2.20 with Pyy = L L^T: K = Pxy Pyy^-1 = W^T L^-1 for W = L^-1 Pxy^T,
+  // so K (y - ym) = W^T L^-1 (y - ym) and K Pyy K^T = W^T W.
   const Eigen::LLT<Eigen::MatrixXd> syy(Pyy);
   if (syy.info() != Eigen::Success) return false;
-  const Eigen::MatrixXd K = syy.solve(Pxy.transpose()).transpose();
-  x += K * (y - ym);
-  P -= K * Pyy * K.transpose();
-  P = 0.5 * (P + P.transpose());
+  const Eigen::MatrixXd W = syy.matrixL().solve(Pxy.transpose());
+  x.noalias() += W.transpose() * syy.matrixL().solve(y - ym);
+  P.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose(), -1.0);
+  P.triangularView<Eigen::StrictlyUpper>() = P.transpose();
   return true;
 }
 
