@@ -429,20 +429,19 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   auto h_ukf = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, Eigen::VectorXd& y) {
     y.resize(ny);
     const Eigen::Vector3d omega = in.gyro - nz.head<3>();
+    const double* nzq = nz.data() + 3;        // joint-angle noises
+    const double* nzqd = nz.data() + 3 + nq;  // joint-rate noises
     double qd[contact::kMaxJoints], qn[contact::kMaxJoints];
-    for (int j = 0; j < nq; ++j) {
-      qd[j] = in.qdot[j] - nz(3 + nq + j);
-      qn[j] = in.q[j] - nz(3 + j);
-    }
     for (int w = 0; w < nw; ++w) {
       // A wheel whose inputs are the first point's of this step (the
       // centre's) gets the same value back.
       WheelMemo& wm = wheel_memo[w];
       double key[kKey] = {x(3), x(4), x(5), x(6 + w), L.na >= 6 ? x(12 + w) : 0.0, L.na >= 12 ? x(18 + w) : 0.0,
-                                     omega(0), omega(1), omega(2), 0.0, 0.0, 0.0, 0.0};
+                          omega(0), omega(1), omega(2), 0.0, 0.0, 0.0, 0.0};
       for (int k = 0; k < geo0[w].nj; ++k) {
-        key[9 + 2 * k] = qd[geo0[w].joint[k]];
-        key[10 + 2 * k] = qn[geo0[w].joint[k]];
+        const int j = geo0[w].joint[k];
+        key[9 + 2 * k] = qd[j] = in.qdot[j] - nzqd[j];
+        key[10 + 2 * k] = nzq[j];
       }
       if (wm.set && std::equal(key, key + kKey, wm.key)) {
         for (int k = 0; k < 3; ++k) y(k * nw + w) = wm.u(k) + nz(3 + 2 * nq + k * nw + w);
@@ -451,7 +450,8 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       const contact::WheelGeometry* g = &geo0[w];
       contact::WheelGeometry moved;
       for (int k = 0; k < g->nj; ++k) {
-        if (nz(3 + g->joint[k]) != 0.0) {
+        if (nzq[g->joint[k]] != 0.0) {
+          for (int j = 0; j < nq; ++j) qn[j] = in.q[j] - nzq[j];
           moved = contact::wheel_geometry(m, w, qn);
           g = &moved;
           break;

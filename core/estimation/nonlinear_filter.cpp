@@ -71,7 +71,9 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   X_.col(0) = fx;
   for (Eigen::Index d = 0; d < nx; ++d) {
     for (int k = 0; k < 2; ++k) {
-      xs = k == 0 ? Eigen::VectorXd(x + Sx.col(d)) : Eigen::VectorXd(x - Sx.col(d));
+      xs = x;
+      if (k == 0) xs += Sx.col(d);
+      if (k == 1) xs -= Sx.col(d);
       f(xs, nps, fx);
       X_.col(1 + 2 * d + k) = fx;
     }
@@ -98,7 +100,9 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   for (Eigen::Index j = 0; j < pa; ++j) {
     Dp.col(j) = c * SQ_.col(j).head(nx);
     for (int k = 0; k < 2; ++k) {
-      fx = k == 0 ? Eigen::VectorXd(X_.col(0) + Dp.col(j)) : Eigen::VectorXd(X_.col(0) - Dp.col(j));
+      fx = X_.col(0);
+      if (k == 0) fx += Dp.col(j);
+      if (k == 1) fx -= Dp.col(j);
       h(fx, nms, hy);
       Yp.col(2 * j + k) = hy;
     }
