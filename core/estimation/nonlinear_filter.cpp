@@ -1,6 +1,7 @@
 #include "core/estimation/nonlinear_filter.h"
 
 #include <cmath>
+#include <vector>
 
 namespace roverlab::estimation {
 
@@ -34,6 +35,68 @@ UpdateResult ExtendedKalmanFilter::update_diagonal(const Linearized& h, const Ei
 }
 
 void ExtendedKalmanFilter::reset_cross_covariance() { P = Eigen::MatrixXd(P.diagonal().asDiagonal()); }
+
+namespace {
+
+// Non-zero rows of a column, or -1 when there are more than kSparse.
+constexpr int kSparse = 6;
+int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {
+  int k = 0;
+  for (Eigen::Index r = 0; r < v.size(); ++r) {
+    if (v(r) != 0.0) {
+      if (k == kSparse) return -1;
+      idx[k++] = r;
+    }
+  }
+  return k;
+}
+
+// M += w sum_i e_i e_i^T (w >= 0): sparse columns entry by entry, the rest
+// as one symmetric rank update.
+void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
+  std::vector<Eigen::Index> dense;
+  Eigen::Index idx[kSparse];
+  for (Eigen::Index i = 0; i < E.cols(); ++i) {
+    const int k = nonzeros(E.col(i), idx);
+    if (k < 0) {
+      dense.push_back(i);
+      continue;
+    }
+    for (int a = 0; a < k; ++a) {
+      for (int b = 0; b < k; ++b) M(idx[a], idx[b]) += w * E(idx[a], i) * E(idx[b], i);
+    }
+  }
+  if (dense.empty()) return;
+  Eigen::MatrixXd D(E.rows(), static_cast<Eigen::Index>(dense.size()));
+  for (std::size_t i = 0; i < dense.size(); ++i) D.col(static_cast<Eigen::Index>(i)) = E.col(dense[i]);
+  Eigen::MatrixXd U = Eigen::MatrixXd::Zero(M.rows(), M.cols());
+  U.selfadjointView<Eigen::Lower>().rankUpdate(D, w);
+  U.triangularView<Eigen::StrictlyUpper>() = U.transpose();
+  M += U;
+}
+
+// M += w sum_i a_i b_i^T: columns of A that are sparse row by row.
+void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double w) {
+  std::vector<Eigen::Index> dense;
+  Eigen::Index idx[kSparse];
+  for (Eigen::Index i = 0; i < A.cols(); ++i) {
+    const int k = nonzeros(A.col(i), idx);
+    if (k < 0) {
+      dense.push_back(i);
+      continue;
+    }
+    for (int a = 0; a < k; ++a) M.row(idx[a]) += (w * A(idx[a], i)) * B.col(i).transpose();
+  }
+  if (dense.empty()) return;
+  Eigen::MatrixXd DA(A.rows(), static_cast<Eigen::Index>(dense.size())), DB(B.rows(), static_cast<Eigen::Index>(dense.size()));
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    DA.col(static_cast<Eigen::Index>(i)) = A.col(dense[i]);
+    DB.col(static_cast<Eigen::Index>(i)) = B.col(dense[i]);
+  }
+  M.noalias() += w * (DA * DB.transpose());
+}
+
+}  // namespace
 
 bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, const Function& h,
                                  const Eigen::MatrixXd& R, const Eigen::VectorXd& y) {
@@ -115,49 +178,36 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
       Ym.col(2 * j + k) = hy;
     }
   }
-  // Means: pairs along additive noises average to the centre.
-  const double w0x = wm0 + 2.0 * wi * static_cast<double>(pa + nm);
-  const double w0y = wm0 + 2.0 * wi * static_cast<double>(ma);
-  const Eigen::VectorXd xm = w0x * X_.col(0) + wi * X_.rightCols(nf - 1).rowwise().sum();
-  const Eigen::VectorXd ym = w0y * Yf.col(0) + wi * (Yf.rightCols(nf - 1).rowwise().sum() + Yp.rowwise().sum() +
-                                                     Ym.rowwise().sum());
-  X_.colwise() -= xm;
-  Yf.colwise() -= ym;
-  Yp.colwise() -= ym;
-  Ym.colwise() -= ym;
-  // Covariances. A pair along an additive noise contributes 2 wi dx0 dx0^T
-  // + 2 wi delta delta^T, and 2 wi c^2 = 1, so those pairs add Q's or R's
-  // additive block and fold the rest into the centre's weight.
-  auto weighted_outer = [](const Eigen::MatrixXd& D, const Eigen::VectorXd& w) {
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(D.rows(), D.rows());
-    if ((w.array() >= 0.0).all()) {
-      M.selfadjointView<Eigen::Lower>().rankUpdate(D * w.cwiseSqrt().asDiagonal());
-      M.triangularView<Eigen::StrictlyUpper>() = M.transpose();
-    } else {
-      M.noalias() = (D * w.asDiagonal()) * D.transpose();
-    }
-    return M;
-  };
-  Eigen::VectorXd wx = Eigen::VectorXd::Constant(nf, wi);
-  wx(0) = wc0 + 2.0 * wi * static_cast<double>(pa + nm);
-  Eigen::MatrixXd Pxx = weighted_outer(X_, wx);
+  // Deviations from the centre: e_i = X_i - X_0 and Y_i - Y_0, mostly
+  // sparse (a sigma point moves a few states or wheels). With wm = wc = wi
+  // off the centre, the means are X_0 + s_x and Y_0 + s_y with
+  // s = wi sum e (pairs along additive noises cancel), and every covariance
+  // is wi sum e e^T + (W - 2) s s^T (W = sum of wc = 2 - alpha^2 + beta),
+  // plus Q's or R's additive block: such a pair adds 2 wi delta delta^T and
+  // 2 wi c^2 = 1.
+  const Eigen::VectorXd X0 = X_.col(0), Y0 = Yf.col(0);
+  X_.colwise() -= X0;
+  Yf.colwise() -= Y0;
+  Yp.colwise() -= Y0;
+  Ym.colwise() -= Y0;
+  const Eigen::VectorXd sx = wi * X_.rowwise().sum();
+  const Eigen::VectorXd sy = wi * (Yf.rowwise().sum() + Yp.rowwise().sum() + Ym.rowwise().sum());
+  const Eigen::VectorXd xm = X0 + sx, ym = Y0 + sy;
+  const double W2 = wc0 + 2.0 * static_cast<double>(L) * wi - 2.0;
+  Eigen::MatrixXd Pxx = W2 * sx * sx.transpose();
+  add_outer(Pxx, X_, wi);
   if (pa > 0) Pxx += Q.topLeftCorner(nx, nx);
-  Eigen::MatrixXd Yall(ny, nf + 2 * pa + 2 * nmh);
-  Yall << Yf, Yp, Ym;
-  Eigen::VectorXd wy = Eigen::VectorXd::Constant(Yall.cols(), wi);
-  wy(0) = wc0 + 2.0 * wi * static_cast<double>(ma);
-  Eigen::MatrixXd Pyy = weighted_outer(Yall, wy);
+  Eigen::MatrixXd Pyy = W2 * sy * sy.transpose();
+  add_outer(Pyy, Yf, wi);
+  add_outer(Pyy, Yp, wi);
+  add_outer(Pyy, Ym, wi);
   if (ma > 0) Pyy += R.bottomRightCorner(ny, ny);
-  // Pxy = dx0 (w dy0 + wi sum dy of the points sharing X_0)^T
-  //     + wi sum dx dy^T over f's points + wi sum_j delta_j (dy_j+ - dy_j-)^T.
-  // (delta_j = c SQ_j is a column of the triangular factor.)
-  Eigen::MatrixXd Ya(ny, nf);
-  Ya.col(0) = (wc0 + 2.0 * wi * static_cast<double>(ma)) * Yf.col(0) + wi * (Yp.rowwise().sum() + Ym.rowwise().sum());
-  Ya.rightCols(nf - 1) = wi * Yf.rightCols(nf - 1);
-  Eigen::MatrixXd Pxy(nx, ny);
-  Pxy.noalias() = X_ * Ya.transpose();
+  // Pxy: f's points, and delta_j (e_j+ - e_j-)^T along the additive process
+  // noises (delta_j = c SQ_j, a column of the triangular factor).
+  Eigen::MatrixXd Pxy = W2 * sx * sy.transpose();
+  add_cross(Pxy, X_, Yf, wi);
   if (pa > 0) {
-    Eigen::MatrixXd Yd(pa, ny);  // wi (dy_j+ - dy_j-)^T
+    Eigen::MatrixXd Yd(pa, ny);
     for (Eigen::Index j = 0; j < pa; ++j) Yd.row(j) = (c * wi) * (Yp.col(2 * j) - Yp.col(2 * j + 1)).transpose();
     Pxy.noalias() += SQ_.topLeftCorner(nx, pa).triangularView<Eigen::Lower>() * Yd;
   }
