@@ -355,10 +355,16 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
 
   const double angle_keep = o.angle_model == AngleModel::damped ? 1.0 : 0.0;  // multiplies -A ts
   // Process model in double (UKF) and linearised with Jets (EKF).
+  double trig_att[3] = {NAN, NAN, NAN};  // the attitude whose cosines and sines are in trig
+  contact::AttitudeTrig<double> trig{};
   auto f_double = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, double ts, Eigen::VectorXd& y) {
     y.resize(nx);
-    strapdown<double>(x.data(), x.data() + 3, nz.data(), nz.data() + 3, nz.data() + nx, nz.data() + nx + 3, in, g_i, ts,
-                      y.data(), y.data() + 3);
+    if (!std::equal(trig_att, trig_att + 3, x.data())) {  // sigma points mostly share the attitude
+      std::copy(x.data(), x.data() + 3, trig_att);
+      trig = contact::attitude_trig<double>(x.data());
+    }
+    strapdown<double>(x.data(), trig, x.data() + 3, nz.data(), nz.data() + 3, nz.data() + nx, nz.data() + nx + 3, in, g_i,
+                      ts, y.data(), y.data() + 3);
     for (int k = 0; k < 6; ++k) y(6 + k) = x(6 + k) * (1.0 - o.slip_damping * ts) + nz(6 + k);  // Eq. 4.15
     for (int k = 0; k < L.na; ++k) {
       y(12 + k) = x(12 + k) * (1.0 - angle_keep * o.angle_damping * ts) + nz(12 + k);  // Eq. 5.3-5.6

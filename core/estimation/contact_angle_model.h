@@ -20,24 +20,39 @@ struct Inputs {
   double wheel_rate[6] = {};
 };
 
-// Eq. 4.14 and 4.13 (discretised as Eq. 4.17): attitude (psi, theta, phi)
-// and body velocity at the next step; n_* are the process noises and the
-// gyro / accelerometer noises (true = measured - noise).
+// Cosines and sines of the Euler angles (psi, theta, phi).
 template <class T>
-void strapdown(const T* att, const T* v, const T* n_att, const T* n_v, const T* n_f, const T* n_w, const Inputs& in,
-               const Eigen::Vector3d& g_i, double ts, T* att_next, T* v_next) {
+struct AttitudeTrig {
+  T cps, sps, cth, sth, cph, sph;
+};
+template <class T>
+AttitudeTrig<T> attitude_trig(const T* att) {
   using std::cos;
   using std::sin;
+  return {cos(att[0]), sin(att[0]), cos(att[1]), sin(att[1]), cos(att[2]), sin(att[2])};
+}
+
+// Eq. 4.14 and 4.13 (discretised as Eq. 4.17): attitude (psi, theta, phi)
+// and body velocity at the next step; n_* are the process noises and the
+// gyro / accelerometer noises (true = measured - noise). tr holds the
+// cosines and sines of att.
+template <class T>
+void strapdown(const T* att, const AttitudeTrig<T>& tr, const T* v, const T* n_att, const T* n_v, const T* n_f,
+               const T* n_w, const Inputs& in, const Eigen::Vector3d& g_i, double ts, T* att_next, T* v_next) {
   const T w[3] = {T(in.gyro.x()) - n_w[0], T(in.gyro.y()) - n_w[1], T(in.gyro.z()) - n_w[2]};
-  const T psi = att[0], th = att[1], ph = att[2];
-  const T cth = cos(th), sth = sin(th), cph = cos(ph), sph = sin(ph), cps = cos(psi), sps = sin(psi);
+  const T& cth = tr.cth;
+  const T& sth = tr.sth;
+  const T& cph = tr.cph;
+  const T& sph = tr.sph;
+  const T& cps = tr.cps;
+  const T& sps = tr.sps;
   // Eq. 4.14.
   const T d_psi = (sph * w[1] + cph * w[2]) / cth;
   const T d_th = cph * w[1] - sph * w[2];
   const T d_ph = w[0] + (sth * sph * w[1] + sth * cph * w[2]) / cth;
-  att_next[0] = psi + d_psi * ts + n_att[0];
-  att_next[1] = th + d_th * ts + n_att[1];
-  att_next[2] = ph + d_ph * ts + n_att[2];
+  att_next[0] = att[0] + d_psi * ts + n_att[0];
+  att_next[1] = att[1] + d_th * ts + n_att[1];
+  att_next[2] = att[2] + d_ph * ts + n_att[2];
   // R_g^i = Rz(psi) Ry(theta) Rx(phi); gravity in g is R_g^i^T g^i.
   const T R[3][3] = {{cps * cth, cps * sth * sph - sps * cph, cps * sth * cph + sps * sph},
                      {sps * cth, sps * sth * sph + cps * cph, sps * sth * cph - cps * sph},
@@ -50,6 +65,12 @@ void strapdown(const T* att, const T* v, const T* n_att, const T* n_v, const T* 
     const T dv = -wxv[k] + (T(in.accel[k]) - n_f[k]) - g_g[k];
     v_next[k] = v[k] + dv * ts + n_v[k];
   }
+}
+
+template <class T>
+void strapdown(const T* att, const T* v, const T* n_att, const T* n_v, const T* n_f, const T* n_w, const Inputs& in,
+               const Eigen::Vector3d& g_i, double ts, T* att_next, T* v_next) {
+  strapdown<T>(att, attitude_trig<T>(att), v, n_att, n_v, n_f, n_w, in, g_i, ts, att_next, v_next);
 }
 
 // One wheel's three measurements (Eq. 4.20 / Table 5.1): wheel rate and the
