@@ -415,12 +415,14 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   // measured joint angles (recomputed only for a sigma point that moves one
   // of its joints) and its final rotation (kept while gamma and beta repeat).
   struct RotationMemo {
-    double gamma = NAN, beta = NAN, cos_beta = 1.0;
+    double gamma = NAN, beta = NAN, cg = 1.0, sg = 0.0, cb = 1.0, sb = 0.0;
     Eigen::Matrix3d C;
   };
   contact::WheelGeometry geo0[6];
   RotationMemo memo[6][2];
-  constexpr int kKey = 13;  // v, slip, gamma, beta, omega, two joint rates and angles
+  constexpr int kKey = 7;  // slip, gamma, beta, two joint rates and angle noises
+  double centre_common[6];
+  bool centre_common_set = false;
   struct WheelMemo {
     bool set = false;
     double key[kKey];
@@ -438,18 +440,24 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     const double* nzq = nz.data() + 3;        // joint-angle noises
     const double* nzqd = nz.data() + 3 + nq;  // joint-rate noises
     double qd[contact::kMaxJoints], qn[contact::kMaxJoints];
+    // A wheel whose inputs are the first point's of this step (the centre's)
+    // gets the same value back: velocity and rate shared by every wheel,
+    // then each wheel's slip, angles and joints.
+    const double common[6] = {x(3), x(4), x(5), omega(0), omega(1), omega(2)};
+    if (!centre_common_set) {
+      std::copy(common, common + 6, centre_common);
+      centre_common_set = true;
+    }
+    const bool same_common = std::equal(common, common + 6, centre_common);
     for (int w = 0; w < nw; ++w) {
-      // A wheel whose inputs are the first point's of this step (the
-      // centre's) gets the same value back.
       WheelMemo& wm = wheel_memo[w];
-      double key[kKey] = {x(3), x(4), x(5), x(6 + w), L.na >= 6 ? x(12 + w) : 0.0, L.na >= 12 ? x(18 + w) : 0.0,
-                          omega(0), omega(1), omega(2), 0.0, 0.0, 0.0, 0.0};
+      double key[kKey] = {x(6 + w), L.na >= 6 ? x(12 + w) : 0.0, L.na >= 12 ? x(18 + w) : 0.0, 0.0, 0.0, 0.0, 0.0};
       for (int k = 0; k < geo0[w].nj; ++k) {
         const int j = geo0[w].joint[k];
-        key[9 + 2 * k] = qd[j] = in.qdot[j] - nzqd[j];
-        key[10 + 2 * k] = nzq[j];
+        key[3 + 2 * k] = qd[j] = in.qdot[j] - nzqd[j];
+        key[4 + 2 * k] = nzq[j];
       }
-      if (wm.set && std::equal(key, key + kKey, wm.key)) {
+      if (same_common && wm.set && std::equal(key, key + kKey, wm.key)) {
         for (int k = 0; k < 3; ++k) y(k * nw + w) = wm.u(k) + nz(3 + 2 * nq + k * nw + w);
         continue;
       }
@@ -468,18 +476,31 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       for (auto& e : memo[w]) {
         if (e.gamma == gamma && e.beta == beta) hit = &e;
       }
-      if (hit == nullptr) {
-        hit = &memo[w][1];
-        if (std::isnan(memo[w][0].gamma)) hit = &memo[w][0];
+      if (hit == nullptr) {  // a sigma point usually moves one of the two angles: keep the other's cos/sin
+        const RotationMemo& first = memo[w][0];
+        hit = std::isnan(first.gamma) ? &memo[w][0] : &memo[w][1];
+        if (first.gamma == gamma) {
+          hit->cg = first.cg;
+          hit->sg = first.sg;
+        } else {
+          hit->cg = std::cos(gamma);
+          hit->sg = std::sin(gamma);
+        }
+        if (first.beta == beta) {
+          hit->cb = first.cb;
+          hit->sb = first.sb;
+        } else {
+          hit->cb = std::cos(beta);
+          hit->sb = std::sin(beta);
+        }
         hit->gamma = gamma;
         hit->beta = beta;
-        hit->C = contact::final_rotation(frame, gamma, beta);
-        hit->cos_beta = std::cos(beta);
+        hit->C = contact::final_rotation(frame, hit->cg, hit->sg, hit->cb, hit->sb);
       }
       const Eigen::Vector3d u = contact::wheel_measurement(*g, hit->C, frame, m.wheel_radius, x.data() + 3, x(6 + w),
-                                                           hit->cos_beta, omega, qd);
+                                                           hit->cb, omega, qd);
       for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
-      if (!wm.set) {
+      if (!wm.set && same_common) {
         wm.set = true;
         std::copy(key, key + kKey, wm.key);
         wm.u = u;
@@ -611,6 +632,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
         geo0[w] = contact::wheel_geometry(m, w, in.q);
         memo[w][0].gamma = memo[w][1].gamma = NAN;
         wheel_memo[w].set = false;
+        centre_common_set = false;
       }
       if (i > 0 && !still) {
         ukf.step(f, Q, hh, R_ukf, y_meas);

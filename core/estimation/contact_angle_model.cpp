@@ -57,12 +57,14 @@ WheelGeometry wheel_geometry(const kinematics::RoverModel& m, int wheel, const d
 }
 
 Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double gamma, double beta) {
+  return final_rotation(frame, std::cos(gamma), std::sin(gamma), std::cos(beta), std::sin(beta));
+}
+
+Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double cg, double sg, double cb, double sb) {
   if (frame == kinematics::WheelFrame::drive) return Eigen::Matrix3d::Identity();
-  const double cg = std::cos(gamma), sg = std::sin(gamma);
   Eigen::Matrix3d C;  // Rz(-gamma) Rx(pi/2)
   C << cg, 0, -sg, -sg, 0, -cg, 0, 1, 0;
   if (frame == kinematics::WheelFrame::side_slip) {
-    const double cb = std::cos(beta), sb = std::sin(beta);
     Eigen::Matrix3d Rb;
     Rb << cb, -sb, 0, sb, cb, 0, 0, 0, 1;
     C = C * Rb;

@@ -120,6 +120,8 @@ WheelGeometry wheel_geometry(const kinematics::RoverModel& m, int wheel, const d
 // Table 5.2: the drive -> contact (-gamma about the axle, then pi/2 about x)
 // or side-slip (beta more about z) rotation.
 Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double gamma, double beta);
+// The same from the cosines and sines of gamma and beta.
+Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double cg, double sg, double cb, double sb);
 
 // wheel_measurement in double from a wheel's geometry, final rotation C and
 // cos(beta): the same three values (tested equal).
