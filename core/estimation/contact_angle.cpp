@@ -420,91 +420,91 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   };
   contact::WheelGeometry geo0[6];
   RotationMemo memo[6][2];
-  constexpr int kKey = 7;  // slip, gamma, beta, two joint rates and angle noises
-  double centre_common[6];
-  bool centre_common_set = false;
-  struct WheelMemo {
-    bool set = false;
-    double key[kKey];
-    Eigen::Vector3d u;
-  };
-  WheelMemo wheel_memo[6];
+  std::vector<std::vector<int>> wheels_of_joint(static_cast<std::size_t>(nq));
+  for (int w = 0; w < nw; ++w) {
+    const auto& c = m.wheels[static_cast<std::size_t>(w)];
+    for (int j : {c.bogie_joint, c.steer_joint}) {
+      if (j >= 0) wheels_of_joint[static_cast<std::size_t>(j)].push_back(w);
+    }
+  }
   // Its noise order puts the additive noises last, in the measurement's
   // order: n_w (gyro 3), n_q, n_qdot, then n_wheel (6), n_vy (6), n_vz (6).
   Eigen::VectorXd r_ukf(nm);
   r_ukf << rdiag.head(3), rdiag.segment(3 + nw, 2 * nq), rdiag.segment(3, nw), rdiag.segment(3 + nw + 2 * nq, 2 * nw);
   const Eigen::MatrixXd R_ukf = r_ukf.asDiagonal();
-  auto h_ukf = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, Eigen::VectorXd& y) {
-    y.resize(ny);
+  // One wheel's three rows of h.
+  auto h_wheel = [&](int w, const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, Eigen::VectorXd& y) {
     const Eigen::Vector3d omega = in.gyro - nz.head<3>();
     const double* nzq = nz.data() + 3;        // joint-angle noises
     const double* nzqd = nz.data() + 3 + nq;  // joint-rate noises
     double qd[contact::kMaxJoints], qn[contact::kMaxJoints];
-    // A wheel whose inputs are the first point's of this step (the centre's)
-    // gets the same value back: velocity and rate shared by every wheel,
-    // then each wheel's slip, angles and joints.
-    const double common[6] = {x(3), x(4), x(5), omega(0), omega(1), omega(2)};
-    if (!centre_common_set) {
-      std::copy(common, common + 6, centre_common);
-      centre_common_set = true;
+    const contact::WheelGeometry* g = &geo0[w];
+    contact::WheelGeometry moved;
+    for (int k = 0; k < g->nj; ++k) {
+      const int j = g->joint[k];
+      qd[j] = in.qdot[j] - nzqd[j];
+      if (nzq[j] != 0.0 && g == &geo0[w]) {
+        for (int i = 0; i < nq; ++i) qn[i] = in.q[i] - nzq[i];
+        moved = contact::wheel_geometry(m, w, qn);
+        g = &moved;
+      }
     }
-    const bool same_common = std::equal(common, common + 6, centre_common);
+    const double gamma = L.na >= 6 ? x(12 + w) : 0.0, beta = L.na >= 12 ? x(18 + w) : 0.0;
+    RotationMemo* hit = nullptr;
+    for (auto& e : memo[w]) {
+      if (e.gamma == gamma && e.beta == beta) hit = &e;
+    }
+    if (hit == nullptr) {  // a sigma point usually moves one of the two angles: keep the other's cos/sin
+      const RotationMemo& first = memo[w][0];
+      hit = std::isnan(first.gamma) ? &memo[w][0] : &memo[w][1];
+      if (first.gamma == gamma) {
+        hit->cg = first.cg;
+        hit->sg = first.sg;
+      } else {
+        hit->cg = std::cos(gamma);
+        hit->sg = std::sin(gamma);
+      }
+      if (first.beta == beta) {
+        hit->cb = first.cb;
+        hit->sb = first.sb;
+      } else {
+        hit->cb = std::cos(beta);
+        hit->sb = std::sin(beta);
+      }
+      hit->gamma = gamma;
+      hit->beta = beta;
+      hit->C = contact::final_rotation(frame, hit->cg, hit->sg, hit->cb, hit->sb);
+    }
+    const Eigen::Vector3d u = contact::wheel_measurement(*g, hit->C, frame, m.wheel_radius, x.data() + 3, x(6 + w),
+                                                         hit->cb, omega, qd);
+    for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
+  };
+  auto h_ukf = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, Eigen::VectorXd& y) {
+    y.resize(ny);
+    for (int w = 0; w < nw; ++w) h_wheel(w, x, nz, in, y);
+  };
+  // The same at a sigma point that moves only the listed entries: wheels
+  // they do not reach keep the centre's rows. Velocity and gyro reach every
+  // wheel, attitude none, a slip or angle its wheel, a joint its wheels.
+  auto h_ukf_incremental = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& nz,
+                               const std::vector<Eigen::Index>& changed_x, const std::vector<Eigen::Index>& changed_n,
+                               const Eigen::VectorXd& y0, const Inputs& in, Eigen::VectorXd& y) {
+    bool reach[6] = {false, false, false, false, false, false};
+    bool all = false;
+    for (Eigen::Index i : changed_x) {
+      if (i >= 3 && i < 6) all = true;
+      if (i >= 6) reach[(i - 6) % 6] = true;
+    }
+    for (Eigen::Index i : changed_n) {
+      if (i < 3 || i >= 3 + 2 * nq) {
+        all = true;
+      } else {
+        for (int w : wheels_of_joint[static_cast<std::size_t>((i - 3) % nq)]) reach[w] = true;
+      }
+    }
+    y = y0;
     for (int w = 0; w < nw; ++w) {
-      WheelMemo& wm = wheel_memo[w];
-      double key[kKey] = {x(6 + w), L.na >= 6 ? x(12 + w) : 0.0, L.na >= 12 ? x(18 + w) : 0.0, 0.0, 0.0, 0.0, 0.0};
-      for (int k = 0; k < geo0[w].nj; ++k) {
-        const int j = geo0[w].joint[k];
-        key[3 + 2 * k] = qd[j] = in.qdot[j] - nzqd[j];
-        key[4 + 2 * k] = nzq[j];
-      }
-      if (same_common && wm.set && std::equal(key, key + kKey, wm.key)) {
-        for (int k = 0; k < 3; ++k) y(k * nw + w) = wm.u(k) + nz(3 + 2 * nq + k * nw + w);
-        continue;
-      }
-      const contact::WheelGeometry* g = &geo0[w];
-      contact::WheelGeometry moved;
-      for (int k = 0; k < g->nj; ++k) {
-        if (nzq[g->joint[k]] != 0.0) {
-          for (int j = 0; j < nq; ++j) qn[j] = in.q[j] - nzq[j];
-          moved = contact::wheel_geometry(m, w, qn);
-          g = &moved;
-          break;
-        }
-      }
-      const double gamma = L.na >= 6 ? x(12 + w) : 0.0, beta = L.na >= 12 ? x(18 + w) : 0.0;
-      RotationMemo* hit = nullptr;
-      for (auto& e : memo[w]) {
-        if (e.gamma == gamma && e.beta == beta) hit = &e;
-      }
-      if (hit == nullptr) {  // a sigma point usually moves one of the two angles: keep the other's cos/sin
-        const RotationMemo& first = memo[w][0];
-        hit = std::isnan(first.gamma) ? &memo[w][0] : &memo[w][1];
-        if (first.gamma == gamma) {
-          hit->cg = first.cg;
-          hit->sg = first.sg;
-        } else {
-          hit->cg = std::cos(gamma);
-          hit->sg = std::sin(gamma);
-        }
-        if (first.beta == beta) {
-          hit->cb = first.cb;
-          hit->sb = first.sb;
-        } else {
-          hit->cb = std::cos(beta);
-          hit->sb = std::sin(beta);
-        }
-        hit->gamma = gamma;
-        hit->beta = beta;
-        hit->C = contact::final_rotation(frame, hit->cg, hit->sg, hit->cb, hit->sb);
-      }
-      const Eigen::Vector3d u = contact::wheel_measurement(*g, hit->C, frame, m.wheel_radius, x.data() + 3, x(6 + w),
-                                                           hit->cb, omega, qd);
-      for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
-      if (!wm.set && same_common) {
-        wm.set = true;
-        std::copy(key, key + kKey, wm.key);
-        wm.u = u;
-      }
+      if (all || reach[w]) h_wheel(w, x, nz, in, y);
     }
   };
   auto h_linear = [&](const Eigen::VectorXd& x, const Inputs& in) {
@@ -628,11 +628,13 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       const auto hh = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_y) {
         h_ukf(xs, nz, in, out_y);
       };
+      ukf.h_incremental = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, const std::vector<Eigen::Index>& cx,
+                              const std::vector<Eigen::Index>& cn, const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
+        h_ukf_incremental(xs, nz, cx, cn, y0, in, out_y);
+      };
       for (int w = 0; w < nw; ++w) {
         geo0[w] = contact::wheel_geometry(m, w, in.q);
         memo[w][0].gamma = memo[w][1].gamma = NAN;
-        wheel_memo[w].set = false;
-        centre_common_set = false;
       }
       if (i > 0 && !still) {
         ukf.step(f, Q, hh, R_ukf, y_meas);

@@ -155,27 +155,47 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   // measurement noises move h's value by +- c SR_m and are not evaluated.
   const Eigen::Index nmh = nm - ma;
   Eigen::MatrixXd Yf(ny, nf), Yp(ny, 2 * pa), Ym(ny, 2 * nmh), Dp(nx, pa);
-  for (Eigen::Index i = 0; i < nf; ++i) {
+  // Every point but the centre goes through h_incremental when the model
+  // has one, told which entries differ from the centre's.
+  fx = X_.col(0);
+  h(fx, nms, hy);
+  Yf.col(0) = hy;
+  const Eigen::VectorXd X0 = X_.col(0), Y0 = hy;
+  std::vector<Eigen::Index> changed_x, changed_n;
+  auto eval = [&](const Eigen::VectorXd& xp, const Eigen::VectorXd& np_, Eigen::Ref<Eigen::VectorXd> out) {
+    if (h_incremental) {
+      changed_x.clear();
+      changed_n.clear();
+      for (Eigen::Index r = 0; r < nx; ++r) {
+        if (xp(r) != X0(r)) changed_x.push_back(r);
+      }
+      for (Eigen::Index r = 0; r < nm; ++r) {
+        if (np_(r) != 0.0) changed_n.push_back(r);
+      }
+      h_incremental(xp, np_, changed_x, changed_n, Y0, hy);
+    } else {
+      h(xp, np_, hy);
+    }
+    out = hy;
+  };
+  for (Eigen::Index i = 1; i < nf; ++i) {
     fx = X_.col(i);
-    h(fx, nms, hy);
-    Yf.col(i) = hy;
+    eval(fx, nms, Yf.col(i));
   }
   for (Eigen::Index j = 0; j < pa; ++j) {
     Dp.col(j) = c * SQ_.col(j).head(nx);
     for (int k = 0; k < 2; ++k) {
-      fx = X_.col(0);
+      fx = X0;
       if (k == 0) fx += Dp.col(j);
       if (k == 1) fx -= Dp.col(j);
-      h(fx, nms, hy);
-      Yp.col(2 * j + k) = hy;
+      eval(fx, nms, Yp.col(2 * j + k));
     }
   }
-  fx = X_.col(0);
+  fx = X0;
   for (Eigen::Index j = 0; j < nmh; ++j) {
     for (int k = 0; k < 2; ++k) {
       nms = (k == 0 ? c : -c) * SR_.col(j);
-      h(fx, nms, hy);
-      Ym.col(2 * j + k) = hy;
+      eval(fx, nms, Ym.col(2 * j + k));
     }
   }
   // Deviations from the centre: e_i = X_i - X_0 and Y_i - Y_0, mostly
@@ -185,7 +205,6 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   // is wi sum e e^T + (W - 2) s s^T (W = sum of wc = 2 - alpha^2 + beta),
   // plus Q's or R's additive block: such a pair adds 2 wi delta delta^T and
   // 2 wi c^2 = 1.
-  const Eigen::VectorXd X0 = X_.col(0), Y0 = Yf.col(0);
   X_.colwise() -= X0;
   Yf.colwise() -= Y0;
   Yp.colwise() -= Y0;

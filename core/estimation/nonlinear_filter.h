@@ -5,6 +5,7 @@
 // augmented-state UKF (Eq. 2.18-2.20). Models stay outside the filters.
 
 #include <functional>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -49,6 +50,13 @@ class UnscentedKalmanFilter {
   // Their sigma points then have closed forms: f is not evaluated along the
   // former, h not along the latter; the estimates are the same.
   bool additive_process_noise = false, additive_measurement_noise = false;
+  // Optional: h at a sigma point that differs from the centre (X_0, 0) only
+  // in the listed state and noise entries, given h(X_0, 0) = y0; must equal
+  // h(x, n). Lets a model recompute only what those entries reach.
+  using IncrementalFunction =
+      std::function<void(const Eigen::VectorXd& x, const Eigen::VectorXd& n, const std::vector<Eigen::Index>& changed_x,
+                         const std::vector<Eigen::Index>& changed_n, const Eigen::VectorXd& y0, Eigen::VectorXd& out)>;
+  IncrementalFunction h_incremental;
   // One predict-update cycle on sigma points of the augmented state
   // [x; n_p; n_m] (Eq. 2.18-2.20). Returns false when a covariance is not
   // positive definite (the state is then left as predicted).
