@@ -1,5 +1,6 @@
 #include "core/estimation/nonlinear_filter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -40,12 +41,18 @@ namespace {
 
 // Non-zero rows of a column, or -1 when there are more than kSparse.
 constexpr int kSparse = 6;
-int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {
+int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {  // idx holds kSparse + 1
   int k = 0;
-  for (Eigen::Index r = 0; r < v.size(); ++r) {
-    if (v(r) != 0.0) {
-      if (k == kSparse) return -1;
-      idx[k++] = r;
+  for (Eigen::Index r = 0; r < v.size(); ++r) {  // branch-free: most columns are dense or very sparse
+    idx[k] = r;
+    k += v(r) != 0.0 ? 1 : 0;
+    k = std::min(k, kSparse);
+    if (k == kSparse && r + 1 < v.size()) {
+      // one more non-zero makes the column dense
+      for (Eigen::Index q = r + 1; q < v.size(); ++q) {
+        if (v(q) != 0.0) return -1;
+      }
+      return k;
     }
   }
   return k;
@@ -55,7 +62,7 @@ int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {
 // as one symmetric rank update.
 void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
   std::vector<Eigen::Index> dense;
-  Eigen::Index idx[kSparse];
+  Eigen::Index idx[kSparse + 1];
   for (Eigen::Index i = 0; i < E.cols(); ++i) {
     const int k = nonzeros(E.col(i), idx);
     if (k < 0) {
@@ -78,7 +85,7 @@ void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
 // M += w sum_i a_i b_i^T: columns of A that are sparse row by row.
 void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double w) {
   std::vector<Eigen::Index> dense;
-  Eigen::Index idx[kSparse];
+  Eigen::Index idx[kSparse + 1];
   for (Eigen::Index i = 0; i < A.cols(); ++i) {
     const int k = nonzeros(A.col(i), idx);
     if (k < 0) {
@@ -162,28 +169,31 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   Yf.col(0) = hy;
   const Eigen::VectorXd X0 = X_.col(0), Y0 = hy;
   std::vector<Eigen::Index> changed_x, changed_n;
+  changed_x.reserve(static_cast<std::size_t>(nx));
+  changed_n.reserve(static_cast<std::size_t>(nm));
+  auto pattern = [](const Eigen::Ref<const Eigen::VectorXd>& v, std::vector<Eigen::Index>& out) {
+    out.clear();
+    for (Eigen::Index r = 0; r < v.size(); ++r) {
+      if (v(r) != 0.0) out.push_back(r);
+    }
+  };
   auto eval = [&](const Eigen::VectorXd& xp, const Eigen::VectorXd& np_, Eigen::Ref<Eigen::VectorXd> out) {
     if (h_incremental) {
-      changed_x.clear();
-      changed_n.clear();
-      for (Eigen::Index r = 0; r < nx; ++r) {
-        if (xp(r) != X0(r)) changed_x.push_back(r);
-      }
-      for (Eigen::Index r = 0; r < nm; ++r) {
-        if (np_(r) != 0.0) changed_n.push_back(r);
-      }
       h_incremental(xp, np_, changed_x, changed_n, Y0, hy);
     } else {
       h(xp, np_, hy);
     }
     out = hy;
   };
+  changed_n.clear();
   for (Eigen::Index i = 1; i < nf; ++i) {
     fx = X_.col(i);
+    if (h_incremental) pattern(fx - X0, changed_x);
     eval(fx, nms, Yf.col(i));
   }
   for (Eigen::Index j = 0; j < pa; ++j) {
     Dp.col(j) = c * SQ_.col(j).head(nx);
+    if (h_incremental) pattern(Dp.col(j), changed_x);
     for (int k = 0; k < 2; ++k) {
       fx = X0;
       if (k == 0) fx += Dp.col(j);
@@ -192,7 +202,9 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
     }
   }
   fx = X0;
+  changed_x.clear();
   for (Eigen::Index j = 0; j < nmh; ++j) {
+    if (h_incremental) pattern(SR_.col(j), changed_n);
     for (int k = 0; k < 2; ++k) {
       nms = (k == 0 ? c : -c) * SR_.col(j);
       eval(fx, nms, Ym.col(2 * j + k));
