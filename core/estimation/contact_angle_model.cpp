@@ -72,16 +72,6 @@ Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double cg, double s
   return C;
 }
 
-Eigen::Vector3d wheel_measurement(const WheelGeometry& g, const Eigen::Matrix3d& C, kinematics::WheelFrame frame,
-                                  double wheel_radius, const double* v, double slip, double cos_beta,
-                                  const Eigen::Vector3d& omega, const double* qdot) {
-  Eigen::Vector3d w = Eigen::Vector3d(v[0], v[1], v[2]) + omega.cross(g.r);  // Eq. 4.8
-  for (int k = 0; k < g.nj; ++k) w += g.J[k] * qdot[g.joint[k]];
-  const Eigen::Vector3d u = C.transpose() * (g.Rd.transpose() * w);
-  const double sc = frame == kinematics::WheelFrame::side_slip ? cos_beta : 1.0;
-  return Eigen::Vector3d(sc * u.x() / ((1.0 - slip) * wheel_radius), u.y(), u.z());  // Eq. 4.20 / Table 5.1
-}
-
 WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, kinematics::WheelFrame frame,
                                    const double* v, double slip, double gamma, double beta, const Inputs& in) {
   // The drive frame's pose and the axes and origins of the chain's joints

@@ -125,9 +125,15 @@ Eigen::Matrix3d final_rotation(kinematics::WheelFrame frame, double cg, double s
 
 // wheel_measurement in double from a wheel's geometry, final rotation C and
 // cos(beta): the same three values (tested equal).
-Eigen::Vector3d wheel_measurement(const WheelGeometry& g, const Eigen::Matrix3d& C, kinematics::WheelFrame frame,
-                                  double wheel_radius, const double* v, double slip, double cos_beta,
-                                  const Eigen::Vector3d& omega, const double* qdot);
+inline Eigen::Vector3d wheel_measurement(const WheelGeometry& g, const Eigen::Matrix3d& C, kinematics::WheelFrame frame,
+                                         double wheel_radius, const double* v, double slip, double cos_beta,
+                                         const Eigen::Vector3d& omega, const double* qdot) {
+  Eigen::Vector3d w = Eigen::Vector3d(v[0], v[1], v[2]) + omega.cross(g.r);  // Eq. 4.8
+  for (int k = 0; k < g.nj; ++k) w += g.J[k] * qdot[g.joint[k]];
+  const Eigen::Vector3d u = C.transpose() * (g.Rd.transpose() * w);
+  const double sc = frame == kinematics::WheelFrame::side_slip ? cos_beta : 1.0;
+  return Eigen::Vector3d(sc * u.x() / ((1.0 - slip) * wheel_radius), u.y(), u.z());  // Eq. 4.20 / Table 5.1
+}
 
 // One wheel's measurement and its derivatives at zero noise, columns:
 // velocity (3), slip, contact angle, side-slip angle, gyro noise (3), bogie

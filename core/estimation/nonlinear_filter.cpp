@@ -41,19 +41,12 @@ namespace {
 
 // Non-zero rows of a column, or -1 when there are more than kSparse.
 constexpr int kSparse = 6;
-int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {  // idx holds kSparse + 1
+int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {
+  const Eigen::Index n = (v.array() != 0.0).count();  // vectorised: most columns are dense or very sparse
+  if (n > kSparse) return -1;
   int k = 0;
-  for (Eigen::Index r = 0; r < v.size(); ++r) {  // branch-free: most columns are dense or very sparse
-    idx[k] = r;
-    k += v(r) != 0.0 ? 1 : 0;
-    k = std::min(k, kSparse);
-    if (k == kSparse && r + 1 < v.size()) {
-      // one more non-zero makes the column dense
-      for (Eigen::Index q = r + 1; q < v.size(); ++q) {
-        if (v(q) != 0.0) return -1;
-      }
-      return k;
-    }
+  for (Eigen::Index r = 0; r < v.size() && k < n; ++r) {
+    if (v(r) != 0.0) idx[k++] = r;
   }
   return k;
 }
@@ -62,7 +55,7 @@ int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {  /
 // as one symmetric rank update.
 void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
   std::vector<Eigen::Index> dense;
-  Eigen::Index idx[kSparse + 1];
+  Eigen::Index idx[kSparse];
   for (Eigen::Index i = 0; i < E.cols(); ++i) {
     const int k = nonzeros(E.col(i), idx);
     if (k < 0) {
@@ -85,7 +78,7 @@ void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
 // M += w sum_i a_i b_i^T: columns of A that are sparse row by row.
 void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double w) {
   std::vector<Eigen::Index> dense;
-  Eigen::Index idx[kSparse + 1];
+  Eigen::Index idx[kSparse];
   for (Eigen::Index i = 0; i < A.cols(); ++i) {
     const int k = nonzeros(A.col(i), idx);
     if (k < 0) {
@@ -188,7 +181,12 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   changed_n.clear();
   for (Eigen::Index i = 1; i < nf; ++i) {
     fx = X_.col(i);
-    if (h_incremental) pattern(fx - X0, changed_x);
+    if (h_incremental) {
+      changed_x.clear();
+      for (Eigen::Index r = 0; r < nx; ++r) {
+        if (fx(r) != X0(r)) changed_x.push_back(r);
+      }
+    }
     eval(fx, nms, Yf.col(i));
   }
   for (Eigen::Index j = 0; j < pa; ++j) {
