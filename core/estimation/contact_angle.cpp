@@ -572,7 +572,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   if (L.na > 0) p0.segment(12, L.na).setConstant(1e-3);
   ExtendedKalmanFilter ekf;
   UnscentedKalmanFilter ukf;
-  ukf.additive_process_noise = ukf.additive_measurement_noise = true;  // Eq. 4.15-4.17, 4.20
+  ukf.additive_process_noise = ukf.additive_measurement_noise = !o.reference_ukf;  // Eq. 4.15-4.17, 4.20
   ekf.x = ukf.x = x0;
   ekf.P = ukf.P = Eigen::MatrixXd(p0.asDiagonal());
   Eigen::VectorXd y_meas = Eigen::VectorXd::Zero(ny);
@@ -628,7 +628,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       const auto hh = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_y) {
         h_ukf(xs, nz, in, out_y);
       };
-      ukf.h_incremental = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, const std::vector<Eigen::Index>& cx,
+      if (!o.reference_ukf) ukf.h_incremental = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, const std::vector<Eigen::Index>& cx,
                               const std::vector<Eigen::Index>& cn, const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
         h_ukf_incremental(xs, nz, cx, cn, y0, in, out_y);
       };

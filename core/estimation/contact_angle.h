@@ -33,6 +33,9 @@ struct ContactAngleOptions {
   // The generic EKF with ceres::Jet Jacobians and dense algebra instead of
   // the structured fast one (the reference the fast one is tested against).
   bool reference_ekf = false;
+  // The plain augmented UKF: every sigma point through f and h, without the
+  // closed forms for additive noises and the incremental h (the reference).
+  bool reference_ukf = false;
   double angle_damping = 1e-3;           // 1/s, A_gamma = A_beta (section 6.2)
   double slip_damping = 1e-3;            // 1/s, A of Eq. 4.15
   // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).

@@ -253,6 +253,41 @@ TEST(ContactAngle, FastEkfEqualsTheGenericEkfWithJetJacobians) {
   }
 }
 
+TEST(ContactAngle, UkfShortcutsGiveThePlainAugmentedUkfsEstimates) {
+  // Closed forms along the additive noises and the incremental h change the
+  // cost, not the estimates: against every sigma point through f and h.
+  auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
+  sc.rate = 50.0;
+  sc.duration = 20.0;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  for (bool reset : {false, true}) {
+    estimation::ContactAngleOptions o;
+    o.model = estimation::ContactModel::contact_side_slip;
+    o.filter = estimation::FilterKind::ukf;
+    o.reset_cross_covariance = reset;
+    const auto fast = estimation::run_contact_angle(lg, bb2(), o);
+    o.reference_ukf = true;
+    const auto ref = estimation::run_contact_angle(lg, bb2(), o);
+    double worst = 0;
+    std::size_t compared = 0;
+    for (const char* name : {"estimate/contact/body", "estimate/contact/wheels"}) {
+      const auto& a = fast.estimates.stream(name);
+      const auto& b = ref.estimates.stream(name);
+      for (const auto& ch : a.channels()) {
+        for (std::size_t i = 0; i < a.size(); ++i) {
+          const double d = ch.values[i] - b.channel(ch.name).values[i];
+          if (std::isfinite(d)) {
+            worst = std::max(worst, std::abs(d));
+            ++compared;
+          }
+        }
+      }
+    }
+    EXPECT_GT(compared, 10000u);
+    EXPECT_LT(worst, 1e-9) << "reset " << reset;
+  }
+}
+
 TEST(ContactAngle, StandstillHoldsTheStatesAndMarksThemInvalid) {
   auto s = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
   s.rate = 100.0;
