@@ -176,7 +176,7 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
     } else {
       h(xp, np_, hy);
     }
-    out = hy;
+    out = hy - Y0;  // stored as the deviation from the centre
   };
   changed_n.clear();
   for (Eigen::Index i = 1; i < nf; ++i) {
@@ -216,9 +216,7 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   // plus Q's or R's additive block: such a pair adds 2 wi delta delta^T and
   // 2 wi c^2 = 1.
   X_.colwise() -= X0;
-  Yf.colwise() -= Y0;
-  Yp.colwise() -= Y0;
-  Ym.colwise() -= Y0;
+  Yf.col(0).setZero();
   const Eigen::VectorXd sx = wi * X_.rowwise().sum();
   const Eigen::VectorXd sy = wi * (Yf.rowwise().sum() + Yp.rowwise().sum() + Ym.rowwise().sum());
   const Eigen::VectorXd xm = X0 + sx, ym = Y0 + sy;
