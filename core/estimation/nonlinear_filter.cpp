@@ -51,8 +51,9 @@ int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {
   return k;
 }
 
-// M += w sum_i e_i e_i^T (w >= 0): sparse columns entry by entry, the rest
-// as one symmetric rank update.
+// M += w sum_i e_i e_i^T (w >= 0) on M's lower triangle: sparse columns
+// entry by entry, the rest as one symmetric rank update. The caller fills
+// the upper triangle when done.
 void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
   std::vector<Eigen::Index> dense;
   Eigen::Index idx[kSparse];
@@ -62,17 +63,17 @@ void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
       dense.push_back(i);
       continue;
     }
+    const double* e = E.col(i).data();
     for (int a = 0; a < k; ++a) {
-      for (int b = 0; b < k; ++b) M(idx[a], idx[b]) += w * E(idx[a], i) * E(idx[b], i);
+      const double wa = w * e[idx[a]];
+      double* m = M.col(0).data() + idx[a];
+      for (int b = 0; b <= a; ++b) m[idx[b] * M.outerStride()] += wa * e[idx[b]];
     }
   }
   if (dense.empty()) return;
   Eigen::MatrixXd D(E.rows(), static_cast<Eigen::Index>(dense.size()));
   for (std::size_t i = 0; i < dense.size(); ++i) D.col(static_cast<Eigen::Index>(i)) = E.col(dense[i]);
-  Eigen::MatrixXd U = Eigen::MatrixXd::Zero(M.rows(), M.cols());
-  U.selfadjointView<Eigen::Lower>().rankUpdate(D, w);
-  U.triangularView<Eigen::StrictlyUpper>() = U.transpose();
-  M += U;
+  M.selfadjointView<Eigen::Lower>().rankUpdate(D, w);
 }
 
 // M += w sum_i a_i b_i^T: columns of A that are sparse row by row.
@@ -223,11 +224,13 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   const double W2 = wc0 + 2.0 * static_cast<double>(L) * wi - 2.0;
   Eigen::MatrixXd Pxx = W2 * sx * sx.transpose();
   add_outer(Pxx, X_, wi);
+  Pxx.triangularView<Eigen::StrictlyUpper>() = Pxx.transpose();
   if (pa > 0) Pxx += Q.topLeftCorner(nx, nx);
   Eigen::MatrixXd Pyy = W2 * sy * sy.transpose();
   add_outer(Pyy, Yf, wi);
   add_outer(Pyy, Yp, wi);
   add_outer(Pyy, Ym, wi);
+  Pyy.triangularView<Eigen::StrictlyUpper>() = Pyy.transpose();
   if (ma > 0) Pyy += R.bottomRightCorner(ny, ny);
   // Pxy: f's points, and delta_j (e_j+ - e_j-)^T along the additive process
   // noises (delta_j = c SQ_j, a column of the triangular factor).
