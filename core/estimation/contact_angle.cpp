@@ -573,6 +573,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   ExtendedKalmanFilter ekf;
   UnscentedKalmanFilter ukf;
   ukf.additive_process_noise = ukf.additive_measurement_noise = !o.reference_ukf;  // Eq. 4.15-4.17, 4.20
+  ukf.diagonal_only = o.reset_cross_covariance && !o.reference_ukf;
   ekf.x = ukf.x = x0;
   ekf.P = ukf.P = Eigen::MatrixXd(p0.asDiagonal());
   Eigen::VectorXd y_meas = Eigen::VectorXd::Zero(ny);

@@ -106,9 +106,15 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   const double lambda = alpha * alpha * (static_cast<double>(L) + kappa) - static_cast<double>(L);
   const double c = std::sqrt(static_cast<double>(L) + lambda);
   // Cholesky factor of (L + lambda) blockdiag(P, Q, R), block by block.
-  const Eigen::LLT<Eigen::MatrixXd> llt(P);
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::MatrixXd Sx = c * Eigen::MatrixXd(llt.matrixL());
+  Eigen::MatrixXd Sx;
+  if (diagonal_only) {  // P is diagonal (kept so by the previous step)
+    if (!(P.diagonal().array() > 0.0).all()) return false;
+    Sx = (c * P.diagonal().cwiseSqrt()).asDiagonal();
+  } else {
+    const Eigen::LLT<Eigen::MatrixXd> llt(P);
+    if (llt.info() != Eigen::Success) return false;
+    Sx = c * Eigen::MatrixXd(llt.matrixL());
+  }
   auto factor = [&](const Eigen::MatrixXd& M, Eigen::MatrixXd& last, Eigen::MatrixXd& S) {
     if (last.rows() == M.rows() && last.cols() == M.cols() && last == M) return true;
     const Eigen::LLT<Eigen::MatrixXd> l(M);
@@ -249,6 +255,10 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   if (syy.info() != Eigen::Success) return false;
   const Eigen::MatrixXd W = syy.matrixL().solve(Pxy.transpose());
   x.noalias() += W.transpose() * syy.matrixL().solve(y - ym);
+  if (diagonal_only) {
+    P = Eigen::VectorXd(P.diagonal() - W.colwise().squaredNorm().transpose()).asDiagonal();
+    return true;
+  }
   P.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose(), -1.0);
   P.triangularView<Eigen::StrictlyUpper>() = P.transpose();
   return true;

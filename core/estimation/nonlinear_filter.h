@@ -57,6 +57,9 @@ class UnscentedKalmanFilter {
       std::function<void(const Eigen::VectorXd& x, const Eigen::VectorXd& n, const std::vector<Eigen::Index>& changed_x,
                          const std::vector<Eigen::Index>& changed_n, const Eigen::VectorXd& y0, Eigen::VectorXd& out)>;
   IncrementalFunction h_incremental;
+  // The seed's workaround inside the step: P is diagonal on entry and only
+  // the diagonal of the updated P is computed and kept.
+  bool diagonal_only = false;
   // One predict-update cycle on sigma points of the augmented state
   // [x; n_p; n_m] (Eq. 2.18-2.20). Returns false when a covariance is not
   // positive definite (the state is then left as predicted).
