@@ -141,9 +141,8 @@ class FastEkf {
       for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
     }
     add_measurement_noise(s, lin, S);
-    const Eigen::LLT<Eigen::Matrix<double, NY, NY>> llt(S);
-    if (llt.info() != Eigen::Success) return false;
-    const Eigen::Matrix<double, NY, NY> Lm = llt.matrixL();
+    Eigen::Matrix<double, NY, NY> Lm;
+    if (!cholesky(S, Lm)) return false;
     // W^T = P H^T L^-T and z = L^-1 (y - h) by forward substitution, so
     // that K = W^T L^-1 and K (y - h) = W^T z.
     Eigen::Matrix<double, NX, NY> Wt = PHt;
@@ -184,6 +183,26 @@ class FastEkf {
   }
 
  private:
+  // S = L L^T for a small fixed-size S (Cholesky-Banachiewicz on L^T's
+  // contiguous columns; Eigen's LLT goes through dynamic-size kernels here).
+  // False when S is not positive definite.
+  static bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
+    Eigen::Matrix<double, NY, NY> U = Eigen::Matrix<double, NY, NY>::Zero();  // L^T
+    for (int i = 0; i < NY; ++i) {
+      for (int j = 0; j < i; ++j) {
+        double acc = S(i, j);
+        for (int k = 0; k < j; ++k) acc -= U(k, i) * U(k, j);
+        U(j, i) = acc / U(j, j);
+      }
+      double d = S(i, i);
+      for (int k = 0; k < i; ++k) d -= U(k, i) * U(k, i);
+      if (!(d > 0.0)) return false;
+      U(i, i) = std::sqrt(d);
+    }
+    L = U.transpose();
+    return true;
+  }
+
   // S += M R M^T: wheel-rate, lateral and normal noises on their own rows;
   // the gyro noise couples every wheel, a joint's noise the wheels it carries.
   static void add_measurement_noise(const Setup& s, const contact::WheelLinearization* lin, Eigen::Matrix<double, NY, NY>& S) {
