@@ -115,7 +115,7 @@ class FastEkf {
   // Eq. 2.16-2.17, Joseph form (I - KH) P (I - KH)^T + K R K^T expanded as
   // P - K H P - P H^T K^T + K S K^T with K S K^T = (K L)(K L)^T, S = L L^T.
   // diagonal_only keeps only P's diagonal (the seed's workaround follows).
-  bool update(const Setup& s, const Inputs& in, bool diagonal_only) {
+  bool update(const Setup& s, const Inputs& in, bool diagonal_only, bool block_diagonal = false) {
     const kinematics::RoverModel& m = *s.m;
     contact::WheelLinearization lin[6];
     int priv[6][3];
@@ -129,10 +129,24 @@ class FastEkf {
     }
     // P H^T and H P H^T, one wheel (three rows of H) at a time.
     Eigen::Matrix<double, NX, NY> PHt;
-    for (int w = 0; w < 6; ++w) {
-      auto cols = PHt.template middleCols<3>(3 * w);
-      cols.noalias() = P.template middleCols<3>(3) * lin[w].d.template leftCols<3>().transpose();
-      for (int p = 0; p < npriv; ++p) cols.noalias() += P.col(priv[w][p]) * lin[w].d.col(3 + p).transpose();
+    if (block_diagonal) {
+      // After the seed's reset P = blockdiag(P11, diag): a private row of
+      // P H^T holds its own wheel's three columns only.
+      PHt.setZero();
+      for (int w = 0; w < 6; ++w) {
+        PHt.template block<6, 3>(0, 3 * w).noalias() =
+            P.template block<6, 3>(0, 3) * lin[w].d.template leftCols<3>().transpose();
+        for (int p = 0; p < npriv; ++p) {
+          const int c = priv[w][p];
+          PHt.template block<1, 3>(c, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
+        }
+      }
+    } else {
+      for (int w = 0; w < 6; ++w) {
+        auto cols = PHt.template middleCols<3>(3 * w);
+        cols.noalias() = P.template middleCols<3>(3) * lin[w].d.template leftCols<3>().transpose();
+        for (int p = 0; p < npriv; ++p) cols.noalias() += P.col(priv[w][p]) * lin[w].d.col(3 + p).transpose();
+      }
     }
     Eigen::Matrix<double, NY, NY> S;
     for (int w = 0; w < 6; ++w) {
@@ -629,7 +643,8 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
           fe.P = p0.asDiagonal();
         }
         if (i > 0) fe.predict(setup, in, ts);
-        if (!still) fe.update(setup, in, o.reset_cross_covariance);
+        // With the reset, P is blockdiag(P11, diag) after the predict.
+        if (!still) fe.update(setup, in, o.reset_cross_covariance, o.reset_cross_covariance);
         if (still && o.reset_cross_covariance) fe.P = fe.P.diagonal().asDiagonal();
         x = fe.x;
       };
