@@ -203,13 +203,8 @@ class FastEkf {
   static bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
     Eigen::Matrix<double, NY, NY> U = Eigen::Matrix<double, NY, NY>::Zero();  // L^T
     for (int i = 0; i < NY; ++i) {
-      for (int j = 0; j < i; ++j) {
-        double acc = S(i, j);
-        for (int k = 0; k < j; ++k) acc -= U(k, i) * U(k, j);
-        U(j, i) = acc / U(j, j);
-      }
-      double d = S(i, i);
-      for (int k = 0; k < i; ++k) d -= U(k, i) * U(k, i);
+      for (int j = 0; j < i; ++j) U(j, i) = (S(i, j) - U.col(i).head(j).dot(U.col(j).head(j))) / U(j, j);
+      const double d = S(i, i) - U.col(i).head(i).squaredNorm();
       if (!(d > 0.0)) return false;
       U(i, i) = std::sqrt(d);
     }
