@@ -76,16 +76,12 @@ Mat4<T> dh_transform(const T& theta, double d, double a, double alpha) {
   return m;
 }
 
-// X <- X * dh_transform(theta, d, a, alpha) without the full 4x4 product:
-// the DH matrix's last row is (0 0 0 1) and d, a, alpha are constants, so
-// only the cos/sin of theta multiply X in the scalar type (what matters for
-// ceres::Jet).
+// X <- X * dh_transform(theta, d, a, alpha) without the full 4x4 product,
+// from the cosines and sines of theta and alpha: the DH matrix's last row is
+// (0 0 0 1) and d, a, alpha are constants, so only the cos/sin of theta
+// multiply X in the scalar type (what matters for ceres::Jet).
 template <class T>
-void append_dh(Mat4<T>& X, const T& theta, double d, double a, double alpha) {
-  using std::cos;
-  using std::sin;
-  const T ct = cos(theta), st = sin(theta);
-  const double ca = std::cos(alpha), sa = std::sin(alpha);
+void append_dh(Mat4<T>& X, const T& ct, const T& st, double d, double a, double ca, double sa) {
   for (int r = 0; r < 3; ++r) {
     const T x0 = X(r, 0), x1 = X(r, 1), x2 = X(r, 2);
     const T u = x0 * ct + x1 * st, v = x1 * ct - x0 * st;
@@ -96,16 +92,12 @@ void append_dh(Mat4<T>& X, const T& theta, double d, double a, double alpha) {
   }
 }
 
-// The same with the cosines and sines given (double only).
-inline void append_dh(Mat4<double>& X, double ct, double st, double d, double a, double ca, double sa) {
-  for (int r = 0; r < 3; ++r) {
-    const double x0 = X(r, 0), x1 = X(r, 1), x2 = X(r, 2);
-    const double u = x0 * ct + x1 * st, v = x1 * ct - x0 * st;
-    X(r, 0) = u;
-    X(r, 1) = v * ca + x2 * sa;
-    X(r, 2) = x2 * ca - v * sa;
-    X(r, 3) = X(r, 3) + u * a + x2 * d;
-  }
+// The same from theta and alpha.
+template <class T>
+void append_dh(Mat4<T>& X, const T& theta, double d, double a, double alpha) {
+  using std::cos;
+  using std::sin;
+  append_dh<T>(X, T(cos(theta)), T(sin(theta)), d, a, std::cos(alpha), std::sin(alpha));
 }
 
 // A wheel's final frame in the body frame g: rotation R (frame -> g),

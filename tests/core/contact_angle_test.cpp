@@ -216,6 +216,30 @@ TEST(ContactAngle, EkfAndUkfAgree) {
   for (int w = 0; w < 6; ++w) EXPECT_NEAR(e.rms.side_slip[static_cast<std::size_t>(w)], u.rms.side_slip[static_cast<std::size_t>(w)], 0.6 * M_PI / 180);
 }
 
+namespace {
+
+// Largest |a - b| over every estimate channel and sample both have.
+double largest_estimate_difference(const estimation::ContactAngleResult& a, const estimation::ContactAngleResult& b,
+                                   std::size_t* compared) {
+  double worst = 0;
+  for (const char* name : {"estimate/contact/body", "estimate/contact/wheels"}) {
+    const auto& sa = a.estimates.stream(name);
+    const auto& sb = b.estimates.stream(name);
+    for (const auto& ch : sa.channels()) {
+      for (std::size_t i = 0; i < sa.size(); ++i) {
+        const double d = ch.values[i] - sb.channel(ch.name).values[i];
+        if (std::isfinite(d)) {
+          worst = std::max(worst, std::abs(d));
+          ++*compared;
+        }
+      }
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
 TEST(ContactAngle, FastEkfEqualsTheGenericEkfWithJetJacobians) {
   // The structured fast EKF (hand Jacobians, fixed-size block algebra,
   // expanded Joseph form) against the generic one, every model, with and
@@ -231,21 +255,8 @@ TEST(ContactAngle, FastEkfEqualsTheGenericEkfWithJetJacobians) {
       const auto fast = estimation::run_contact_angle(lg, bb2(), o);
       o.reference_ekf = true;
       const auto ref = estimation::run_contact_angle(lg, bb2(), o);
-      double worst = 0;
       std::size_t compared = 0;
-      for (const char* name : {"estimate/contact/body", "estimate/contact/wheels"}) {
-        const auto& a = fast.estimates.stream(name);
-        const auto& b = ref.estimates.stream(name);
-        for (const auto& ch : a.channels()) {
-          for (std::size_t i = 0; i < a.size(); ++i) {
-            const double d = ch.values[i] - b.channel(ch.name).values[i];
-            if (std::isfinite(d)) {
-              worst = std::max(worst, std::abs(d));
-              ++compared;
-            }
-          }
-        }
-      }
+      const double worst = largest_estimate_difference(fast, ref, &compared);
       EXPECT_GT(compared, 10000u);
       EXPECT_LT(worst, 1e-8) << "model " << static_cast<int>(model) << " reset " << reset;
       EXPECT_NEAR(fast.max_cross_correlation, ref.max_cross_correlation, 1e-6);
@@ -268,21 +279,8 @@ TEST(ContactAngle, UkfShortcutsGiveThePlainAugmentedUkfsEstimates) {
     const auto fast = estimation::run_contact_angle(lg, bb2(), o);
     o.reference_ukf = true;
     const auto ref = estimation::run_contact_angle(lg, bb2(), o);
-    double worst = 0;
     std::size_t compared = 0;
-    for (const char* name : {"estimate/contact/body", "estimate/contact/wheels"}) {
-      const auto& a = fast.estimates.stream(name);
-      const auto& b = ref.estimates.stream(name);
-      for (const auto& ch : a.channels()) {
-        for (std::size_t i = 0; i < a.size(); ++i) {
-          const double d = ch.values[i] - b.channel(ch.name).values[i];
-          if (std::isfinite(d)) {
-            worst = std::max(worst, std::abs(d));
-            ++compared;
-          }
-        }
-      }
-    }
+    const double worst = largest_estimate_difference(fast, ref, &compared);
     EXPECT_GT(compared, 10000u);
     EXPECT_LT(worst, 1e-9) << "reset " << reset;
   }
