@@ -36,7 +36,6 @@ namespace {
 
 using contact::Inputs;
 using contact::strapdown;
-using contact::wheel_measurement;
 
 struct Layout {
   int na = 0;  // angle states per wheel set: 0, 6 or 12
@@ -438,10 +437,10 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     }
     return r;
   };
-  // Measurement model. Noise order: n_w (gyro 3), n_wheel (6), n_q, n_qdot, n_vy (6), n_vz (6).
-  // The same for the UKF's sigma points, from each wheel's geometry at the
-  // measured joint angles (recomputed only for a sigma point that moves one
-  // of its joints) and its final rotation (kept while gamma and beta repeat).
+  // The UKF's measurement model at a sigma point, from each wheel's geometry
+  // at the measured joint angles (recomputed only for a sigma point that
+  // moves one of its joints) and its final rotation (kept while gamma and
+  // beta repeat).
   struct RotationMemo {
     double gamma = NAN, beta = NAN, cg = 1.0, sg = 0.0, cb = 1.0, sb = 0.0;
     Eigen::Matrix3d C;
@@ -535,45 +534,34 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       if (all || reach[w]) h_wheel(w, x, nz, in, y);
     }
   };
+  // The generic EKF's measurement model (the fast EKF's reference), with
+  // each wheel linearised by ceres::Jet. Noise order: n_w (gyro 3),
+  // n_wheel (6), n_q, n_qdot, n_vy (6), n_vz (6).
   auto h_linear = [&](const Eigen::VectorXd& x, const Inputs& in) {
-    using J = ceres::Jet<double, 13>;  // v(3) s gamma beta n_w(3) q_b q_s qd_b qd_s
     Linearized r;
     r.value = Eigen::VectorXd(ny);
     r.dx = Eigen::MatrixXd::Zero(ny, nx);
     r.dn = Eigen::MatrixXd::Zero(ny, nm);
     for (int w = 0; w < nw; ++w) {
       const auto& c = m.wheels[static_cast<std::size_t>(w)];
-      J v[3], nw3[3];
+      const contact::WheelLinearization lin = contact::linearize_wheel_autodiff(
+          m, w, frame, x.data() + 3, x(6 + w), L.na >= 6 ? x(12 + w) : 0.0, L.na >= 12 ? x(18 + w) : 0.0, in);
       for (int k = 0; k < 3; ++k) {
-        v[k] = J(x(3 + k), k);
-        nw3[k] = J(0.0, 6 + k);
-      }
-      const J s(x(6 + w), 3), g(L.na >= 6 ? x(12 + w) : 0.0, 4), b(L.na >= 12 ? x(18 + w) : 0.0, 5);
-      auto qv = [&](int j, bool rate, int slot) {
-        return j < 0 ? J(0.0) : J((rate ? in.qdot : in.q)[static_cast<std::size_t>(j)], slot);
-      };
-      J out[3];
-      wheel_measurement<J>(m, w, frame, v, s, g, b, nw3, qv(c.bogie_joint, false, 9), qv(c.steer_joint, false, 10),
-                           qv(c.bogie_joint, true, 11), qv(c.steer_joint, true, 12), in, out);
-      const int rows[3] = {w, nw + w, 2 * nw + w};
-      for (int k = 0; k < 3; ++k) {
-        const int row = rows[k];
-        r.value(row) = out[k].a;
-        for (int c3 = 0; c3 < 3; ++c3) {
-          r.dx(row, 3 + c3) = out[k].v[c3];
-          r.dn(row, c3) = out[k].v[6 + c3];
-        }
-        r.dx(row, 6 + w) = out[k].v[3];
-        if (L.na >= 6) r.dx(row, 12 + w) = out[k].v[4];
-        if (L.na >= 12) r.dx(row, 18 + w) = out[k].v[5];
+        const int row = k * nw + w;
+        r.value(row) = lin.value(k);
+        r.dx.block<1, 3>(row, 3) = lin.d.block<1, 3>(k, 0);
+        r.dn.block<1, 3>(row, 0) = lin.d.block<1, 3>(k, 6);
+        r.dx(row, 6 + w) = lin.d(k, 3);
+        if (L.na >= 6) r.dx(row, 12 + w) = lin.d(k, 4);
+        if (L.na >= 12) r.dx(row, 18 + w) = lin.d(k, 5);
         // Joint noise enters with a minus sign (Eq. 4.16: true = measured - noise).
         if (c.bogie_joint >= 0) {
-          r.dn(row, 3 + nw + c.bogie_joint) = -out[k].v[9];
-          r.dn(row, 3 + nw + nq + c.bogie_joint) = -out[k].v[11];
+          r.dn(row, 3 + nw + c.bogie_joint) = -lin.d(k, 9);
+          r.dn(row, 3 + nw + nq + c.bogie_joint) = -lin.d(k, 11);
         }
         if (c.steer_joint >= 0) {
-          r.dn(row, 3 + nw + c.steer_joint) = -out[k].v[10];
-          r.dn(row, 3 + nw + nq + c.steer_joint) = -out[k].v[12];
+          r.dn(row, 3 + nw + c.steer_joint) = -lin.d(k, 10);
+          r.dn(row, 3 + nw + nq + c.steer_joint) = -lin.d(k, 12);
         }
       }
       r.dn(w, 3 + w) = 1.0;
@@ -602,6 +590,13 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   UnscentedKalmanFilter ukf;
   ukf.additive_process_noise = ukf.additive_measurement_noise = !o.reference_ukf;  // Eq. 4.15-4.17, 4.20
   ukf.diagonal_only = o.reset_cross_covariance && !o.reference_ukf;
+  const Inputs* ukf_inputs = nullptr;  // this step's inputs, for the incremental h
+  if (!o.reference_ukf) {
+    ukf.h_incremental = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, const std::vector<Eigen::Index>& cx,
+                            const std::vector<Eigen::Index>& cn, const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
+      h_ukf_incremental(xs, nz, cx, cn, y0, *ukf_inputs, out_y);
+    };
+  }
   ekf.x = ukf.x = x0;
   ekf.P = ukf.P = Eigen::MatrixXd(p0.asDiagonal());
   Eigen::VectorXd y_meas = Eigen::VectorXd::Zero(ny);
@@ -658,10 +653,7 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
       const auto hh = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_y) {
         h_ukf(xs, nz, in, out_y);
       };
-      if (!o.reference_ukf) ukf.h_incremental = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, const std::vector<Eigen::Index>& cx,
-                              const std::vector<Eigen::Index>& cn, const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
-        h_ukf_incremental(xs, nz, cx, cn, y0, in, out_y);
-      };
+      ukf_inputs = &in;
       for (int w = 0; w < nw; ++w) {
         geo0[w] = contact::wheel_geometry(m, w, in.q);
         memo[w][0].gamma = memo[w][1].gamma = NAN;
