@@ -5,16 +5,24 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include <CLI/CLI.hpp>
+
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/resources.h"
-#include "app/log_input.h"
-#include "core/analysis/odometry_discrepancy.h"
 #include "core/analysis/single_wheel_discrepancy.h"
 #include "core/common/error.h"
 #include "importers/soil_file.h"
 #include "importers/wheel_test_csv.h"
 
 namespace roverlab::app {
+
+struct SingleWheelDiscrepancyOptions {
+  std::string file;
+  std::string soil;
+  std::string integration = "simpson";
+  bool json = false;
+};
 
 using nlohmann::json;
 using namespace roverlab::terramechanics;
@@ -124,73 +132,21 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   return kSuccess;
 }
 
-}  // namespace roverlab::app
 
-namespace roverlab::app {
-
-int run_discrepancy_odometry(const OdometryDiscrepancyOptions& o) {
-  const log::Log lg = load_input(o.file, o.mapping).log;
-  analysis::OdometryStudyOptions options;
-  options.fit_fraction = o.fit_fraction;
-  analysis::OdometryDiscrepancyReport r;
-  try {
-    r = analysis::study_odometry(lg, options);
-  } catch (const DataError& e) {
-    throw InputError(o.file, e.what());
-  }
-  if (o.json) {
-    json j = {{"file", o.file},
-              {"distance_m", r.distance},
-              {"fit_distance_m", r.fit_distance},
-              {"split_time_s", r.split_time},
-              {"reference_samples", {{"fit", r.fit_samples}, {"test", r.test_samples}}},
-              {"baseline", {{"fit_rmse_m", r.baseline_fit_rmse}, {"held_out_rmse_m", r.baseline_held_out_rmse},
-                            {"held_out_final_m", r.baseline_held_out_final}, {"distance_ratio", r.distance_ratio},
-                            {"heading_error_rad", nullable(r.heading_error_end)},
-                            {"along_track_rmse_m", nullable(r.along_track_rmse)},
-                            {"cross_track_rmse_m", nullable(r.cross_track_rmse)}}},
-              {"cause", r.best >= 0 ? json(r.candidates[static_cast<std::size_t>(r.best)].name) : json(nullptr)},
-              {"what_is_wrong", r.what_is_wrong},
-              {"verdict", r.verdict},
-              {"candidates", json::array()}};
-    for (const auto& c : r.candidates) {
-      json cj = {{"name", c.name}, {"cause", c.cause}, {"parameters", json::array()},
-                 {"fit_rmse_m", c.fit_rmse}, {"delta_bic", c.delta_bic}, {"held_out_rmse_m", c.held_out_rmse},
-                 {"held_out_final_m", c.held_out_final}, {"significant", c.significant}};
-      for (const auto& p : c.parameters) {
-        cj["parameters"].push_back({{"name", p.name}, {"value", p.value}, {"sigma", nullable(p.sigma)}});
-      }
-      j["candidates"].push_back(cj);
-    }
-    std::cout << j.dump(2) << "\n";
-    return kSuccess;
-  }
-  std::printf("%s: %.1f m of reference track; fit on the first %.1f m (to t = %.1f s), test on the rest\n\n",
-              o.file.c_str(), r.distance, r.fit_distance, r.split_time);
-  std::printf("%s\n\n", r.what_is_wrong.c_str());
-  std::printf("  %-16s %-30s %9s %10s %13s %12s\n", "candidate", "fitted", "fit RMSE", "delta BIC", "held-out RMSE",
-              "final error");
-  std::printf("  %-16s %-30s %7.2f m %10s %11.2f m %10.2f m\n", "(baseline)", "nominal geometry", r.baseline_fit_rmse,
-              "0", r.baseline_held_out_rmse, r.baseline_held_out_final);
-  for (const auto& c : r.candidates) {
-    std::string params;
-    for (const auto& p : c.parameters) {
-      char one[80];
-      if (std::isfinite(p.sigma)) {
-        std::snprintf(one, sizeof one, "%s%.4g+-%.2g", params.empty() ? "" : " ", p.value, p.sigma);
-      } else if (p.name == "windows") {
-        std::snprintf(one, sizeof one, "%s%d windows", params.empty() ? "" : " ", static_cast<int>(p.value));
-      } else {
-        std::snprintf(one, sizeof one, "%s%s %.3g", params.empty() ? "" : ", ", p.name.c_str(), p.value);
-      }
-      params += one;
-    }
-    if (params.size() > 30) params = params.substr(0, 29) + "~";
-    std::printf("  %-16s %-30s %7.2f m %10.1f %11.2f m %10.2f m%s\n", c.name.c_str(), params.c_str(), c.fit_rmse,
-                c.delta_bic, c.held_out_rmse, c.held_out_final, c.significant ? "" : "  (not significant)");
-  }
-  std::printf("\n%s\n", r.verdict.c_str());
-  return kSuccess;
+Commands make_single_wheel_commands() {
+  Commands commands;
+  commands.push_back(make_command<SingleWheelDiscrepancyOptions>(
+      "discrepancy single-wheel", "Baseline Wong-Reece against measured single-wheel points: residuals, cause, gain",
+      [](CLI::App& cmd, SingleWheelDiscrepancyOptions& o) {
+        cmd.add_option("FILE", o.file,
+                       "CSV: radius_m, width_m, load_N, slip and drawbar_pull_N / torque_Nm / sinkage_m")
+            ->required();
+        cmd.add_option("--soil", o.soil, "Soil NAME (resources/soils/NAME.json) or FILE")->required();
+        cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
+        cmd.add_flag("--json", o.json, "Print JSON");
+      },
+      run_discrepancy_single_wheel));
+  return commands;
 }
 
 }  // namespace roverlab::app

@@ -6,6 +6,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include <CLI/CLI.hpp>
+
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/log_input.h"
 #include "app/resources.h"
@@ -15,6 +18,19 @@
 #include "importers/log_file.h"
 
 namespace roverlab::app {
+
+struct InfoOptions {
+  std::string file;
+  std::optional<std::string> mapping;
+  bool json = false;
+};
+
+struct ConvertOptions {
+  std::string input;
+  std::string output;
+  std::optional<std::string> mapping;
+  std::optional<std::string> stream;  // the one stream a CSV output takes
+};
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -156,6 +172,35 @@ int run_list_mappings() {
     }
   }
   return kSuccess;
+}
+
+
+Commands make_log_commands() {
+  Commands commands;
+  commands.push_back(make_command<InfoOptions>(
+      "info", "List a log's streams and channels with units, sample counts, rates and durations",
+      [](CLI::App& cmd, InfoOptions& o) {
+        cmd.add_option("FILE", o.file, "Log file: RoverLab HDF5, MATLAB v7.3 (.mat) or CSV")->required();
+        cmd.add_option("--mapping,-m", o.mapping,
+                       "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5 input");
+        cmd.add_flag("--json", o.json, "Print JSON instead of text");
+      },
+      run_info));
+  commands.push_back(make_command<ConvertOptions>(
+      "convert", "Convert a log to a RoverLab HDF5 log (or a one-stream CSV)",
+      [](CLI::App& cmd, ConvertOptions& o) {
+        cmd.add_option("IN", o.input, "Input log: HDF5, MATLAB v7.3 (.mat) or CSV")->required();
+        cmd.add_option("OUT", o.output, "Output file: .h5 / .hdf5, or .csv")->required();
+        cmd.add_option("--mapping,-m", o.mapping,
+                       "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5 input");
+        cmd.add_option("--stream,-s", o.stream, "For .csv output: the stream to write");
+      },
+      run_convert));
+  struct NoOptions {};
+  commands.push_back(make_command<NoOptions>(
+      "mappings", "List the importer mappings RoverLab knows", [](CLI::App&, NoOptions&) {},
+      [](const NoOptions&) { return run_list_mappings(); }));
+  return commands;
 }
 
 }  // namespace roverlab::app

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include <CLI/CLI.hpp>
+
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
@@ -16,6 +19,15 @@
 #include "importers/soil_file.h"
 
 namespace roverlab::app {
+
+struct SimulateOptions {
+  std::string scenario;  // NAME (resources/scenarios) or FILE
+  unsigned seed = 1;
+  std::vector<std::string> effects;  // NAME=VALUE
+  std::optional<std::string> traction;
+  std::optional<double> duration;
+  std::string output;
+};
 
 int run_simulate_rocker_bogie(const SimulateOptions& o) {
   const io::ScenarioFile sc = io::find_scenario(o.scenario, resource_subfolders("scenarios"));
@@ -87,6 +99,26 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
               pose.channel("x").values.back() - pose.channel("x").values.front(), r.max_constraint_error, wall);
   if (r.unsupported > 0) std::printf("note: %zu traction evaluations beyond what the soil carries (set to 0)\n", r.unsupported);
   return kSuccess;
+}
+
+
+Commands make_simulate_commands() {
+  Commands commands;
+  commands.push_back(make_command<SimulateOptions>(
+      "simulate",
+      "Planar rocker-bogie dynamics with terramechanics (seed 003 chapter 4): a scenario to a log with truth",
+      [](CLI::App& cmd, SimulateOptions& o) {
+        cmd.add_option("SCENARIO", o.scenario, "Scenario NAME (resources/scenarios) or FILE.json")->required();
+        cmd.add_option("--seed", o.seed, "Sensor-noise seed")->capture_default_str();
+        cmd.add_option("--effect", o.effects,
+                       "Effect NAME=VALUE: soil-strength, slip-sinkage, grousers, wheel-radius-scale, effect-start-x, "
+                       "gyro-bias, accel-bias, force-offset, force-scale, encoder-dropout, imu-time-offset");
+        cmd.add_option("--traction", o.traction, "polynomial | wong-reece (default: the scenario's)");
+        cmd.add_option("--duration", o.duration, "s (default: the scenario's)");
+        cmd.add_option("--output,-o", o.output, "OUT.h5")->required();
+      },
+      run_simulate_rocker_bogie));
+  return commands;
 }
 
 }  // namespace roverlab::app

@@ -7,6 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
@@ -16,6 +19,37 @@
 #include "importers/table_csv.h"
 
 namespace roverlab::app {
+
+struct TerramechanicsOptions {
+  std::string soil;
+  double radius = 0.0, width = 0.0;
+  int grousers = 0;
+  double grouser_height = 0.0;
+  std::vector<double> loads, slips;
+  std::string model = "wong";
+  std::string integration = "simpson";
+  int riemann_points = 500;
+  double slip_sinkage_n1 = 0.3;
+  double grouser_effectiveness = 1.0;
+  double bulldozing_scale = 1.0;
+  double soil_strength = 1.0;
+  std::string format = "csv";
+};
+
+struct SurfaceOptions {
+  TerramechanicsOptions model;
+  double load_min = 0.1, load_max = 200.0, slip_min = 0.0, slip_max = 1.0;
+  int grid = 100;
+  std::string order = "4";  // 1..6 or auto
+  bool json = false;
+};
+
+struct FitOptions {
+  std::string file;
+  std::string order = "auto";
+  int grid_bins = 10;
+  bool json = false;
+};
 
 using nlohmann::json;
 using namespace roverlab::terramechanics;
@@ -261,6 +295,76 @@ int run_terramechanics_fit(const FitOptions& o) {
   if (!any) throw InputError(o.file, "no drawbar_pull_N, resistive_torque_Nm or torque_Nm values to fit");
   if (o.json) std::cout << out.dump(2) << "\n";
   return kSuccess;
+}
+
+
+namespace {
+
+// The wheel-soil model's options, shared by `terramechanics` (with the load
+// and slip lists) and `terramechanics surface`. The parent command's options
+// are checked in run_terramechanics, so that `terramechanics fit FILE` does not
+// ask for them.
+void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists) {
+  auto* soil = cmd.add_option("--soil", o.soil, "Soil NAME (resources/soils/NAME.json) or FILE");
+  auto* radius = cmd.add_option("--radius", o.radius, "Wheel radius, m");
+  auto* width = cmd.add_option("--width", o.width, "Wheel width, m");
+  if (!need_lists) {
+    soil->required();
+    radius->required();
+    width->required();
+  }
+  cmd.add_option("--grousers", o.grousers, "Number of grousers");
+  cmd.add_option("--grouser-height", o.grouser_height, "Grouser height, m");
+  if (need_lists) {
+    cmd.add_option("--load", o.loads, "Normal loads W, N (comma separated)")->delimiter(',');
+    cmd.add_option("--slip", o.slips, "Slips s in [-1, 1] (comma separated)")->delimiter(',');
+    cmd.add_option("--format", o.format, "csv or json")->capture_default_str();
+  }
+  cmd.add_option("--model", o.model,
+                 "bekker | wong, with +slip-sinkage, +grousers, +bulldozing (e.g. wong+slip-sinkage)")
+      ->capture_default_str();
+  cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
+  cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")->capture_default_str();
+  cmd.add_option("--slip-sinkage-n1", o.slip_sinkage_n1, "n = n0 + n1 |s| (with +slip-sinkage)")->capture_default_str();
+  cmd.add_option("--grouser-effectiveness", o.grouser_effectiveness, "shear radius r + lambda h (with +grousers)")
+      ->capture_default_str();
+  cmd.add_option("--bulldozing-scale", o.bulldozing_scale, "scale of the bulldozing resistance (with +bulldozing)")
+      ->capture_default_str();
+  cmd.add_option("--soil-strength", o.soil_strength, "factor on c, tan(phi), kc, kphi")->capture_default_str();
+}
+
+}  // namespace
+
+Commands make_terramechanics_commands() {
+  Commands commands;
+  commands.push_back(make_command<TerramechanicsOptions>(
+      "terramechanics", "Drawbar pull, resistive torque, sinkage and entry angle of a rigid wheel",
+      [](CLI::App& cmd, TerramechanicsOptions& o) { add_model_options(cmd, o, true); }, run_terramechanics));
+  commands.push_back(make_command<SurfaceOptions>(
+      "terramechanics surface",
+      "Fit DP(W, s) and tau_R(W, s) polynomials (Eq. 2.28) to a model grid, as in seed 003 Appendix A",
+      [](CLI::App& cmd, SurfaceOptions& o) {
+        add_model_options(cmd, o.model, false);
+        cmd.add_option("--load-min", o.load_min, "N")->capture_default_str();
+        cmd.add_option("--load-max", o.load_max, "N")->capture_default_str();
+        cmd.add_option("--slip-min", o.slip_min)->capture_default_str();
+        cmd.add_option("--slip-max", o.slip_max)->capture_default_str();
+        cmd.add_option("--grid", o.grid, "Grid points per axis")->capture_default_str();
+        cmd.add_option("--order", o.order, "Polynomial order 1..6, or auto (cross-validated)")->capture_default_str();
+        cmd.add_flag("--json", o.json, "Print JSON");
+      },
+      run_terramechanics_surface));
+  commands.push_back(make_command<FitOptions>(
+      "terramechanics fit",
+      "Fit traction-surface polynomials to a CSV of points (load_N, slip, drawbar_pull_N / resistive_torque_Nm)",
+      [](CLI::App& cmd, FitOptions& o) {
+        cmd.add_option("FILE", o.file, "CSV of points")->required();
+        cmd.add_option("--order", o.order, "Polynomial order 1..6, or auto (cross-validated)")->capture_default_str();
+        cmd.add_option("--grid", o.grid_bins, "Occupancy grid bins per axis")->capture_default_str();
+        cmd.add_flag("--json", o.json, "Print JSON");
+      },
+      run_terramechanics_fit));
+  return commands;
 }
 
 }  // namespace roverlab::app

@@ -30,6 +30,46 @@ bool looks_like_wheel_test_csv(const std::string& file) {
 
 }  // namespace
 
+const nlohmann::json* ViewInput::result(const std::string& name) const {
+  for (const auto& a : analyses) {
+    if (a.name == name) return &a.document;
+  }
+  return nullptr;
+}
+
+void ViewInput::add(const Analysis& analysis, AnalysisResult r) {
+  for (const auto& s : r.estimates.streams()) {
+    if (log.find_stream(s.name()) == nullptr) log.add_stream(s);
+  }
+  AnalysisRun run{analysis.name(), analysis.title(), std::move(r.document)};
+  for (auto& a : analyses) {
+    if (a.name == run.name) {
+      a = std::move(run);
+      return;
+    }
+  }
+  // Keep registry order, so the report and the GUI list results alike.
+  const std::vector<std::string> order = all_analysis_names();
+  const auto rank = [&](const std::string& n) { return std::find(order.begin(), order.end(), n) - order.begin(); };
+  auto at = std::find_if(analyses.begin(), analyses.end(), [&](const AnalysisRun& a) { return rank(a.name) > rank(run.name); });
+  analyses.insert(at, std::move(run));
+}
+
+std::vector<std::string> all_analysis_names() {
+  std::vector<std::string> names;
+  for (const auto& a : all_analyses()) names.push_back(a->name());
+  return names;
+}
+
+AnalysisResult run_for_views(Analysis& analysis, const log::Log& lg, const std::string& file,
+                             const std::function<void(double)>& progress) {
+  try {
+    return analysis.run({lg, file, progress});
+  } catch (const DataError& e) {
+    throw InputError(file, e.what());
+  }
+}
+
 ViewInput load_view_input(const std::string& file, const std::optional<std::string>& mapping,
                           const ViewInputOptions& o) {
   ViewInput in;
@@ -40,55 +80,29 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     return in;
   }
   in.log = load_input(file, mapping).log;
-  const bool has_imu = in.log.find_stream("imu") != nullptr, has_wheels = in.log.find_stream("wheels") != nullptr;
-  const bool has_estimate = in.log.find_stream("estimate/ins/pose") != nullptr;
-  // The INS slip estimator needs a skid-steer log: wheel angles of four wheels.
-  const bool skid_steer = has_wheels && in.log.stream("wheels").find_channel("angle_FL") != nullptr &&
-                          in.log.stream("wheels").find_channel("angle_RR") != nullptr;
-  if (o.run_estimator && has_imu && skid_steer && !has_estimate) {
+  for (const auto& name : o.analyses) {
+    const std::unique_ptr<Analysis> a = make_analysis(name);
+    if (!a) throw std::logic_error("no analysis named " + name);
+    const std::string missing = a->missing(in.log);
+    if (!missing.empty()) {
+      in.notes.push_back("no " + a->title() + ": " + missing);
+      continue;
+    }
+    if (!a->runs_on_open(in.log)) continue;
+    a->use_view_defaults();
     try {
-      in.ins = estimation::run_ins_slip(in.log, estimation::InsSlipOptions{});
-    } catch (const DataError& e) {
-      throw InputError(file, e.what());
+      in.add(*a, run_for_views(*a, in.log, file));
+    } catch (const InputError& e) {
+      in.notes.push_back(a->title() + " skipped: " + e.problem());
+      continue;
     }
-    for (const auto& s : in.ins->estimates.streams()) in.log.add_stream(s);
-    in.notes.push_back("ran the INS slip estimator (seed 002) on the log: estimate/ streams added");
-  } else if (o.run_estimator && !has_estimate && in.log.find_stream("joints") == nullptr) {
-    in.notes.push_back("no INS estimate: the log lacks an imu stream or a skid-steer wheels stream (angle_FL .. angle_RR)");
-  }
-  if (o.run_contact_estimator && in.log.find_stream("joints") != nullptr && has_imu && has_wheels &&
-      in.log.find_stream("estimate/contact/wheels") == nullptr) {
-    const std::string rover = rover_name_of(in.log);
-    const io::RoverDescription d = io::find_rover(rover, resource_subfolders("rovers"));
-    if (d.dh) {
-      try {
-        in.contact = estimation::run_contact_angle(in.log, *d.dh, view_contact_options());
-      } catch (const DataError& e) {
-        throw InputError(file, e.what());
-      }
-      for (const auto& s : in.contact->estimates.streams()) in.log.add_stream(s);
-      in.notes.push_back("ran the contact-angle estimator (seed 000, model C+SS, EKF, cross-covariances reset) for rover " + rover);
-    }
-  }
-  if (o.run_odometry_study && has_wheels && in.log.find_stream("gps") != nullptr) {
-    try {
-      in.odometry = analysis::study_odometry(in.log);
-    } catch (const DataError& e) {
-      in.notes.push_back(std::string("odometry study skipped: ") + e.what());
-    }
+    in.notes.push_back("ran " + a->title() + " on the log");
   }
   return in;
 }
 
 std::string rover_name_of(const log::Log& lg) {
   return lg.metadata.rover_id.empty() ? "exomars_bb2" : lg.metadata.rover_id;
-}
-
-estimation::ContactAngleOptions view_contact_options() {
-  estimation::ContactAngleOptions o;
-  o.model = estimation::ContactModel::contact_side_slip;
-  o.reset_cross_covariance = true;
-  return o;
 }
 
 estimation::SkidSteerGeometry rover_geometry(const log::Log& lg) {

@@ -1,15 +1,17 @@
 #pragma once
 // What the views need from a file named on the command line (or opened in
-// the GUI): the log, with the INS estimate added when the log has IMU and
-// wheels but no estimate yet; or the traction points of a single-wheel CSV.
+// the GUI): the log, with the results (and estimate streams) of the analyses
+// asked for that can run on it; or the traction points of a single-wheel CSV.
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "core/analysis/odometry_discrepancy.h"
-#include "core/estimation/contact_angle.h"
-#include "core/estimation/ins_slip.h"
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "app/analysis.h"
+#include "core/estimation/skid_steer_odometry.h"
 #include "core/log/log.h"
 #include "core/terramechanics/traction_surface.h"
 #include "core/terramechanics/wheel_test.h"
@@ -17,22 +19,38 @@
 
 namespace roverlab::app {
 
+// One analysis's result as the views hold it (app/analysis.h).
+struct AnalysisRun {
+  std::string name, title;
+  nlohmann::json document;
+};
+
 struct ViewInput {
   std::string file;
   log::Log log;
-  std::optional<estimation::InsSlipResult> ins;  // when the INS was run here
-  std::optional<analysis::OdometryDiscrepancyReport> odometry;
-  std::optional<estimation::ContactAngleResult> contact;
+  std::vector<AnalysisRun> analyses;  // results of the analyses run here, in registry order
   std::vector<terramechanics::WheelTestPoint> wheel_points;  // single-wheel CSV input
   std::vector<std::string> notes;  // what was computed or is missing, one line each
   bool is_wheel_test() const { return !wheel_points.empty(); }
+  // The result document of analysis `name`, nullptr when it has not run.
+  const nlohmann::json* result(const std::string& name) const;
+  // Adds (or replaces) a result and the streams the log does not have yet.
+  void add(const Analysis& analysis, AnalysisResult result);
 };
 
 struct ViewInputOptions {
-  bool run_estimator = true;   // INS slip when imu and wheels are present and no estimate is
-  bool run_odometry_study = false;
-  bool run_contact_estimator = false;  // contact angles (seed 000) when the log has joints and no estimate
+  // Analyses (by name) to run when they can run on the log and have not yet
+  // (Analysis::runs_on_open), with the views' defaults.
+  std::vector<std::string> analyses;
 };
+
+// The names of every registered analysis: what the report runs.
+std::vector<std::string> all_analysis_names();
+
+// Runs `analysis` (already given the views' defaults) on `log`; a DataError
+// becomes an InputError naming `file`.
+AnalysisResult run_for_views(Analysis& analysis, const log::Log& log, const std::string& file,
+                             const std::function<void(double)>& progress = {});
 
 // Loads FILE (log formats, or a single-wheel CSV with load_N and slip
 // columns). Throws InputError naming the file.
@@ -41,10 +59,6 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
 
 // The rover a log names (its rover_id); the ExoMars BB2 when it names none.
 std::string rover_name_of(const log::Log& log);
-
-// The contact-angle estimator as the views run it on a DH-rover log:
-// model C+SS, EKF, cross-covariances reset (seed 000's workaround).
-estimation::ContactAngleOptions view_contact_options();
 
 // The skid-steer geometry the rover view draws: the log's rover
 // description (resources/rovers/<rover_id>.json) when it is a skid-steer

@@ -12,12 +12,24 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include <CLI/CLI.hpp>
+
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/gui/main_window.h"
 #include "importers/atomic_file.h"
 #include "views/x_display.h"
 
 namespace roverlab::app {
+
+struct GuiOptions {
+  std::optional<std::string> file;
+  std::optional<std::string> mapping;
+  std::optional<std::string> screenshot;  // save the window as PNG and exit
+  std::optional<double> time;
+  std::optional<std::string> tab;  // Rover, Plots, Traction surface, Analysis
+  int width = 1400, height = 900;
+};
 
 int run_gui(const GuiOptions& o) {
   if (o.screenshot) {
@@ -80,6 +92,26 @@ int run_gui(const GuiOptions& o) {
   }
   const int rc = app.exec();
   return code != kSuccess ? code : rc;
+}
+
+
+Commands make_gui_commands() {
+  Commands commands;
+  commands.push_back(make_command<GuiOptions>(
+      "gui", "The desktop application (Qt + VTK)",
+      [](CLI::App& cmd, GuiOptions& o) {
+        cmd.add_option("FILE", o.file, "Log to open");
+        cmd.add_option("--mapping,-m", o.mapping,
+                       "Mapping NAME or FILE for .mat/HDF5 input (default: try the known ones)");
+        cmd.add_option("--screenshot", o.screenshot,
+                       "Save the window as PNG once FILE is loaded and analysed, then exit");
+        cmd.add_option("--time,-t", o.time, "With --screenshot: the timeline's time, s");
+        cmd.add_option("--tab", o.tab, "With --screenshot: Rover | Plots | Traction surface | Analysis");
+        cmd.add_option("--width", o.width, "Window width")->capture_default_str();
+        cmd.add_option("--height", o.height, "Window height")->capture_default_str();
+      },
+      run_gui));
+  return commands;
 }
 
 }  // namespace roverlab::app

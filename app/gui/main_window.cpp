@@ -27,6 +27,7 @@
 #include <QToolBar>
 #include <QToolButton>
 #include <QTreeWidget>
+#include <QScrollArea>
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkContextView.h>
@@ -36,9 +37,13 @@
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkRenderWindowInteractor.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
+#include "app/analysis.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/estimation/slip.h"
@@ -109,24 +114,10 @@ void MainWindow::build_ui() {
   quit->setShortcut(QKeySequence::Quit);
   connect(quit, &QAction::triggered, this, &QWidget::close);
   QMenu* analysis = menuBar()->addMenu("&Analysis");
-  QAction* ins = analysis->addAction("Run the INS slip estimator (seed 002)");
-  connect(ins, &QAction::triggered, this, &MainWindow::run_estimator);
-  QAction* contact = analysis->addAction("Run the contact-angle estimator (seed 000)");
-  connect(contact, &QAction::triggered, this, &MainWindow::run_contact_estimator);
-  QAction* odo = analysis->addAction("Study the wheel odometry against GPS");
-  connect(odo, &QAction::triggered, this, [this] {
-    if (!input_) return;
-    const log::Log* lg = &input_->log;
-    jobs_->start("odometry study", [this, lg](const JobControl& c) -> std::function<void()> {
-      auto report = std::make_shared<analysis::OdometryDiscrepancyReport>(analysis::study_odometry(*lg));
-      c.check();
-      return [this, report] {
-        input_->odometry = *report;
-        rebuild_analysis();
-        select_tab("Analysis");
-      };
-    });
-  });
+  for (const auto& a : app::all_analyses()) {
+    QAction* run = analysis->addAction("Run: " + q(a->title()));
+    connect(run, &QAction::triggered, this, [this, name = a->name()] { run_analyses({name}, true); });
+  }
 
   // Streams dock.
   tree_ = new QTreeWidget;
@@ -171,28 +162,7 @@ void MainWindow::build_ui() {
   connect(surface_soil_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { rebuild_surface(); });
   connect(surface_quantity_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { rebuild_surface(); });
   tabs_->addTab(surface_page, "Traction surface");
-  auto* analysis_page = new QWidget;
-  auto* analysis_layout = new QVBoxLayout(analysis_page);
-  analysis_text_ = new QLabel("Open a log with imu, wheels and gps streams to see the INS and odometry analyses.");
-  analysis_text_->setWordWrap(true);
-  analysis_text_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  confusion_ = new QTableWidget(estimation::kSlipClasses, estimation::kSlipClasses);
-  QStringList classes;
-  for (int k = 0; k < estimation::kSlipClasses; ++k) classes << estimation::to_string(static_cast<estimation::SlipClass>(k));
-  confusion_->setHorizontalHeaderLabels(classes);
-  confusion_->setVerticalHeaderLabels(classes);
-  confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  confusion_->setMaximumHeight(200);
-  candidates_ = new QTableWidget(0, 5);
-  candidates_->setHorizontalHeaderLabels({"candidate", "fitted", "fit RMSE (m)", "held-out RMSE (m)", "held-out final (m)"});
-  candidates_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  candidates_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  analysis_layout->addWidget(analysis_text_);
-  analysis_layout->addWidget(new QLabel("Slip classes, column-normalised (rows: estimated, columns: reference)"));
-  analysis_layout->addWidget(confusion_);
-  analysis_layout->addWidget(new QLabel("What the wheel odometry gets wrong: candidate causes"));
-  analysis_layout->addWidget(candidates_, 1);
-  tabs_->addTab(analysis_page, "Analysis");
+  tabs_->addTab(build_analysis_tab(), "Analysis");
 
   // Timeline.
   auto* timeline = new QToolBar("Timeline");
@@ -272,6 +242,44 @@ void MainWindow::build_ui() {
   });
 }
 
+// The Analysis tab: each analysis's result as the command line prints it, its
+// result document as a tree, the slip-class confusion matrix and the
+// odometry candidates.
+QWidget* MainWindow::build_analysis_tab() {
+  auto* page = new QWidget;
+  auto* layout = new QVBoxLayout(page);
+  analysis_text_ = new QLabel("Open a log to run the analyses that fit it (Analysis menu: run one by hand).");
+  analysis_text_->setWordWrap(true);
+  analysis_text_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  QFont mono("monospace");
+  mono.setStyleHint(QFont::TypeWriter);
+  analysis_text_->setFont(mono);
+  results_ = new QTreeWidget;
+  results_->setHeaderLabels({"result", "value"});
+  results_->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
+  confusion_ = new QTableWidget(estimation::kSlipClasses, estimation::kSlipClasses);
+  QStringList classes;
+  for (int k = 0; k < estimation::kSlipClasses; ++k) classes << estimation::to_string(static_cast<estimation::SlipClass>(k));
+  confusion_->setHorizontalHeaderLabels(classes);
+  confusion_->setVerticalHeaderLabels(classes);
+  confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  confusion_->setMaximumHeight(200);
+  candidates_ = new QTableWidget(0, 5);
+  candidates_->setHorizontalHeaderLabels({"candidate", "fitted", "fit RMSE (m)", "held-out RMSE (m)", "held-out final (m)"});
+  candidates_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  candidates_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  auto* scroll = new QScrollArea;
+  scroll->setWidget(analysis_text_);
+  scroll->setWidgetResizable(true);
+  layout->addWidget(scroll, 1);
+  layout->addWidget(results_, 1);
+  layout->addWidget(new QLabel("Slip classes, column-normalised (rows: estimated, columns: reference)"));
+  layout->addWidget(confusion_);
+  layout->addWidget(new QLabel("What the wheel odometry gets wrong: candidate causes"));
+  layout->addWidget(candidates_, 1);
+  return page;
+}
+
 void MainWindow::show_error(const QString& text) {
   last_error_ = text;
   if (!quiet_) QMessageBox::critical(this, "RoverLab", text);
@@ -287,7 +295,6 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
   if (mapping) map = mapping->toStdString();
   jobs_->start("loading " + QFileInfo(path).fileName(), [this, file, map, path](const JobControl& c) -> std::function<void()> {
     app::ViewInputOptions o;
-    o.run_estimator = false;
     std::unique_ptr<ViewInput> in;
     const bool mat = std::filesystem::path(file).extension() == ".mat";
     if (mat && !map) {
@@ -314,92 +321,61 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
       QSettings().setValue("files/last_dir", QFileInfo(path).absolutePath());
       setWindowTitle("RoverLab - " + QFileInfo(path).fileName());
       emit log_loaded();
-      // Estimates arrive as new streams when the log can be estimated.
-      const log::Log& lg = input_->log;
-      if (lg.find_stream("joints") && lg.find_stream("imu") && lg.find_stream("wheels") &&
-          !lg.find_stream("estimate/contact/wheels")) {
+      // Estimates arrive as new streams from the analyses that fit the log.
+      std::vector<std::string> names;
+      for (const auto& an : app::all_analyses()) {
+        if (an->runs_on_open(input_->log)) names.push_back(an->name());
+      }
+      if (!names.empty()) {
         estimator_pending_ = true;
-        QTimer::singleShot(0, this, [this] {
+        QTimer::singleShot(0, this, [this, names] {
           estimator_pending_ = false;
-          run_contact_estimator();
-        });
-      } else if (lg.find_stream("imu") && lg.find_stream("wheels") && lg.stream("wheels").find_channel("angle_FL") &&
-                 !lg.find_stream("estimate/ins/pose")) {
-        estimator_pending_ = true;
-        QTimer::singleShot(0, this, [this] {
-          estimator_pending_ = false;
-          run_estimator();
+          run_analyses(names, false);
         });
       }
     };
   });
 }
 
-void MainWindow::run_estimator() {
+void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_hand) {
   if (!input_ || input_->is_wheel_test()) return;
   const log::Log* lg = &input_->log;
-  if (!lg->find_stream("imu") || !lg->find_stream("wheels")) {
-    show_error("The INS slip estimator needs imu and wheels streams; this log has "
-               + QString(lg->find_stream("imu") ? "no wheels." : "no imu."));
-    return;
-  }
-  jobs_->start("INS slip estimator", [this, lg](const JobControl& c) -> std::function<void()> {
-    estimation::InsSlipOptions o;
-    o.progress = [&c](double f) {
-      c.report(0.9 * f);
-      c.check();
-    };
-    auto result = std::make_shared<estimation::InsSlipResult>(estimation::run_ins_slip(*lg, o));
-    c.report(0.9);
-    std::shared_ptr<analysis::OdometryDiscrepancyReport> odo;
-    if (lg->find_stream("gps")) {
-      try {
-        odo = std::make_shared<analysis::OdometryDiscrepancyReport>(analysis::study_odometry(*lg));
-      } catch (const DataError&) {
-      }
+  std::vector<std::shared_ptr<app::Analysis>> todo;
+  for (const auto& name : names) {
+    std::shared_ptr<app::Analysis> a = app::make_analysis(name);
+    const std::string missing = a->missing(*lg);
+    if (!missing.empty()) {
+      if (by_hand) show_error(q(a->title() + " cannot run on this log: " + missing + "."));
+      continue;
     }
-    c.check();
-    return [this, result, odo] {
-      for (const auto& s : result->estimates.streams()) {
-        if (input_->log.find_stream(s.name()) == nullptr) input_->log.add_stream(s);
+    a->use_view_defaults();
+    todo.push_back(std::move(a));
+  }
+  if (todo.empty()) return;
+  const QString title = todo.size() == 1 ? q(todo.front()->title()) : QString("%1 analyses").arg(todo.size());
+  const std::string file = input_->file;
+  jobs_->start(title, [this, lg, todo, file](const JobControl& c) -> std::function<void()> {
+    auto results = std::make_shared<std::vector<app::AnalysisResult>>();
+    const double n = static_cast<double>(todo.size());
+    for (std::size_t k = 0; k < todo.size(); ++k) {
+      const auto progress = [&c, k, n](double f) {
+        c.report((static_cast<double>(k) + f) / n);
+        c.check();
+      };
+      results->push_back(app::run_for_views(*todo[k], *lg, file, progress));
+      c.check();
+    }
+    return [this, todo, results] {
+      bool contact = false;
+      for (std::size_t k = 0; k < todo.size(); ++k) {
+        input_->add(*todo[k], std::move((*results)[k]));
+        contact = contact || todo[k]->name() == "contact-angle";
       }
-      input_->ins = *result;
-      if (odo) input_->odometry = *odo;
       const double t = time_;
       rebuild_tree();
       rebuild_views();
       rebuild_analysis();
-      set_time(t);
-    };
-  });
-}
-
-void MainWindow::run_contact_estimator() {
-  if (!input_ || input_->is_wheel_test()) return;
-  const log::Log* lg = &input_->log;
-  if (!lg->find_stream("joints") || !lg->find_stream("imu") || !lg->find_stream("wheels")) {
-    show_error("The contact-angle estimator needs imu, joints and wheels streams of a six-wheel DH rover.");
-    return;
-  }
-  const std::string rover_name = app::rover_name_of(*lg);
-  jobs_->start("contact-angle estimator", [this, lg, rover_name](const JobControl& c) -> std::function<void()> {
-    const io::RoverDescription d = io::find_rover(rover_name, app::resource_subfolders("rovers"));
-    if (!d.dh) throw InputError(d.file, "rover " + d.name + " has no DH description");
-    estimation::ContactAngleOptions o = app::view_contact_options();
-    o.progress = [&c](double f) {
-      c.report(f);
-      c.check();
-    };
-    auto result = std::make_shared<estimation::ContactAngleResult>(estimation::run_contact_angle(*lg, *d.dh, o));
-    return [this, result] {
-      for (const auto& s : result->estimates.streams()) {
-        if (input_->log.find_stream(s.name()) == nullptr) input_->log.add_stream(s);
-      }
-      input_->contact = *result;
-      const double t = time_;
-      rebuild_tree();
-      rebuild_views();
-      select_tab("Contact angles");
+      if (contact) select_tab("Contact angles");
       set_time(t);
     };
   });
@@ -524,58 +500,103 @@ void MainWindow::rebuild_views() {
   if (!(t1_ > t0_)) t1_ = t0_ + 1.0;
 }
 
+namespace {
+
+// A JSON value as a tree item's text: numbers to 4 significant digits, short
+// arrays of numbers on one line.
+QString json_text(const nlohmann::json& v) {
+  if (v.is_number_float()) return QString::number(v.get<double>(), 'g', 4);
+  if (v.is_null()) return "-";
+  if (v.is_string()) return q(v.get<std::string>());
+  if (v.is_array() && !v.empty() && v.size() <= 8 &&
+      std::all_of(v.begin(), v.end(), [](const nlohmann::json& e) { return e.is_primitive(); })) {
+    QStringList cells;
+    for (const auto& e : v) cells << json_text(e);
+    return cells.join(", ");
+  }
+  if (v.is_structured()) return {};
+  return q(v.dump());
+}
+
+void add_json_items(QTreeWidgetItem* parent, const nlohmann::json& v) {
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    const QString key = v.is_object() ? q(it.key()) : QString("[%1]").arg(parent->childCount());
+    auto* item = new QTreeWidgetItem(parent, {key, json_text(*it)});
+    if (it->is_structured() && item->text(1).isEmpty()) add_json_items(item, *it);
+  }
+}
+
+// What Analysis::print writes, as a string.
+std::string printed(const app::Analysis& a, const nlohmann::json& document) {
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* out = open_memstream(&buffer, &size);
+  if (out == nullptr) return {};
+  a.print(document, out);
+  std::fclose(out);
+  std::string text(buffer, size);
+  std::free(buffer);
+  return text;
+}
+
+}  // namespace
+
 void MainWindow::rebuild_analysis() {
   confusion_->clearContents();
   candidates_->setRowCount(0);
+  results_->clear();
   if (!input_) return;
   QString text;
-  if (input_->ins) {
-    const auto& m = input_->ins->metrics;
-    if (m.has_reference) {
-      text += QString("INS + pseudo-measurements: final error %1 m, RMSE %2 m against GPS over %3 m; wheel odometry "
-                      "final error %4 m. Velocity RMSE %5 m/s, heading drift %6 deg.\n")
-                  .arg(m.final_position_error, 0, 'f', 2).arg(m.position_rmse, 0, 'f', 2).arg(m.distance, 0, 'f', 1)
-                  .arg(input_->ins->odometry.final_position_error, 0, 'f', 2).arg(m.velocity_rmse, 0, 'f', 3)
-                  .arg(m.heading_drift * 180.0 / M_PI, 0, 'f', 2);
-    }
-    if (m.confusion.total() > 0) {
-      text += QString("Slip-class accuracy %1 % of %2 samples.\n").arg(100.0 * m.confusion.accuracy(), 0, 'f', 1).arg(m.confusion.total());
-      for (int e = 0; e < estimation::kSlipClasses; ++e) {
-        for (int t = 0; t < estimation::kSlipClasses; ++t) {
-          const double f = m.confusion.fraction(e, t);
-          auto* item = new QTableWidgetItem(std::isfinite(f) ? QString("%1 %").arg(100.0 * f, 0, 'f', 1) : "-");
-          if (std::isfinite(f)) item->setBackground(QColor::fromRgbF(1.0 - 0.5 * f, 1.0 - 0.5 * f, 1.0));
-          confusion_->setItem(e, t, item);
-        }
+  for (const auto& run : input_->analyses) {
+    const std::unique_ptr<app::Analysis> a = app::make_analysis(run.name);
+    text += "<b>" + q(run.title).toHtmlEscaped() + "</b><pre>" + q(printed(*a, run.document)).toHtmlEscaped() + "</pre>";
+    auto* top = new QTreeWidgetItem(results_, {q(run.title), ""});
+    add_json_items(top, run.document);
+  }
+  if (const nlohmann::json* ins = input_->result("ins-slip"); ins != nullptr && ins->contains("slip_confusion")) {
+    const nlohmann::json& fractions = ins->at("slip_confusion").at("column_normalised");
+    for (int e = 0; e < estimation::kSlipClasses; ++e) {
+      for (int t = 0; t < estimation::kSlipClasses; ++t) {
+        const nlohmann::json& f = fractions.at(e).at(t);
+        auto* item = new QTableWidgetItem(f.is_number() ? QString("%1 %").arg(100.0 * f.get<double>(), 0, 'f', 1) : "-");
+        if (f.is_number()) item->setBackground(QColor::fromRgbF(1.0 - 0.5 * f.get<double>(), 1.0 - 0.5 * f.get<double>(), 1.0));
+        confusion_->setItem(e, t, item);
       }
     }
   }
-  if (input_->odometry) {
-    const auto& r = *input_->odometry;
-    text += q(r.what_is_wrong) + "\n" + q(r.verdict);
-    candidates_->setRowCount(static_cast<int>(r.candidates.size()) + 1);
-    auto row = [&](int i, const QString& name, const QString& fitted, double fit, double held, double fin, bool bold) {
-      const QStringList cells{name, fitted, QString::number(fit, 'f', 2), QString::number(held, 'f', 2), QString::number(fin, 'f', 2)};
-      for (int k = 0; k < cells.size(); ++k) {
-        auto* item = new QTableWidgetItem(cells[k]);
-        if (bold) {
-          QFont font = item->font();
-          font.setBold(true);
-          item->setFont(font);
-        }
-        candidates_->setItem(i, k, item);
-      }
-    };
-    row(0, "(nominal geometry)", "", r.baseline_fit_rmse, r.baseline_held_out_rmse, r.baseline_held_out_final, false);
-    for (std::size_t i = 0; i < r.candidates.size(); ++i) {
-      const auto& c = r.candidates[i];
-      QString fitted;
-      for (const auto& p : c.parameters) fitted += q(p.name) + " = " + QString::number(p.value, 'g', 4) + "  ";
-      row(static_cast<int>(i) + 1, q(c.name), fitted, c.fit_rmse, c.held_out_rmse, c.held_out_final, static_cast<int>(i) == r.best);
-    }
-  }
-  if (text.isEmpty()) text = "No analyses yet: the log needs imu and wheels (and gps for the metrics).";
+  if (const nlohmann::json* odo = input_->result("odometry"); odo != nullptr) fill_candidates(*odo);
+  if (text.isEmpty()) text = "No analyses yet: none of the registered analyses can run on this log.";
   analysis_text_->setText(text);
+}
+
+// The odometry study's candidates from its result document.
+void MainWindow::fill_candidates(const nlohmann::json& r) {
+  const nlohmann::json& candidates = r.at("candidates");
+  candidates_->setRowCount(static_cast<int>(candidates.size()) + 1);
+  auto row = [&](int i, const QString& name, const QString& fitted, const nlohmann::json& fit, const nlohmann::json& held,
+                 const nlohmann::json& fin, bool bold) {
+    const QStringList cells{name, fitted, json_text(fit), json_text(held), json_text(fin)};
+    for (int k = 0; k < cells.size(); ++k) {
+      auto* item = new QTableWidgetItem(cells[k]);
+      if (bold) {
+        QFont font = item->font();
+        font.setBold(true);
+        item->setFont(font);
+      }
+      candidates_->setItem(i, k, item);
+    }
+  };
+  const nlohmann::json& b = r.at("baseline");
+  row(0, "(nominal geometry)", "", b.at("fit_rmse_m"), b.at("held_out_rmse_m"), b.at("held_out_final_m"), false);
+  int i = 1;
+  for (const auto& c : candidates) {
+    QString fitted;
+    for (const auto& p : c.at("parameters")) {
+      fitted += q(p.at("name").get<std::string>()) + " = " + QString::number(p.at("value").get<double>(), 'g', 4) + "  ";
+    }
+    row(i++, q(c.at("name").get<std::string>()), fitted, c.at("fit_rmse_m"), c.at("held_out_rmse_m"),
+        c.at("held_out_final_m"), c.at("name") == r.at("cause"));
+  }
 }
 
 void MainWindow::rebuild_surface() {

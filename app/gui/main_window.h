@@ -47,7 +47,7 @@ class MainWindow : public QMainWindow {
   ~MainWindow() override;
 
   // Loads FILE in the background (a .mat file tries the known mappings);
-  // afterwards runs the INS slip estimator when the log has imu and wheels.
+  // afterwards runs every registered analysis that can run on the log.
   void open_file(const QString& path, const std::optional<QString>& mapping = std::nullopt);
 
   JobRunner& jobs() { return *jobs_; }
@@ -88,8 +88,10 @@ class MainWindow : public QMainWindow {
   void rebuild_analysis();
   void rebuild_surface();
   void render_views();
-  void run_estimator();
-  void run_contact_estimator();
+  QWidget* build_analysis_tab();
+  void fill_candidates(const nlohmann::json& odometry_result);
+  // Runs the analyses `names` in one background job; `by_hand`: say why one cannot run.
+  void run_analyses(const std::vector<std::string>& names, bool by_hand);
   void show_error(const QString& text);
   void remember_recent(const QString& path);
   void refresh_recent_menu();
@@ -114,6 +116,7 @@ class MainWindow : public QMainWindow {
   QTableWidget* confusion_ = nullptr;
   QTableWidget* candidates_ = nullptr;
   QLabel* analysis_text_ = nullptr;
+  QTreeWidget* results_ = nullptr;
   QSlider* slider_ = nullptr;
   QToolButton* play_ = nullptr;
   QComboBox* speed_ = nullptr;

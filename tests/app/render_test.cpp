@@ -202,10 +202,19 @@ TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
     EXPECT_GT(distinct_colours(img), 20) << f;
   }
   const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
-  EXPECT_LT(metrics.at("ins_slip").at("final_position_error_m").get<double>(),
-            metrics.at("ins_slip").at("wheel_odometry_final_error_m").get<double>());
-  EXPECT_EQ(metrics.at("odometry_discrepancy").at("cause"), "turning track");
-  EXPECT_EQ(metrics.at("ins_slip").at("slip_confusion").size(), 5u);
+  const auto& ins = metrics.at("analyses").at("ins-slip");
+  EXPECT_LT(ins.at("ins").at("final_position_error_m").get<double>(),
+            ins.at("wheel_odometry").at("final_position_error_m").get<double>());
+  EXPECT_EQ(metrics.at("analyses").at("odometry").at("cause"), "turning track");
+  EXPECT_EQ(ins.at("slip_confusion").at("column_normalised").size(), 5u);
+  // The report holds the very document `estimate ins-slip --json` and
+  // `discrepancy odometry --json` print for the same log and options.
+  for (const auto& [command, name] : {std::pair<std::string, std::string>{"estimate ins-slip", "ins-slip"},
+                                      {"discrepancy odometry", "odometry"}}) {
+    const CommandResult cli = run_roverlab(command + " " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+    ASSERT_EQ(cli.exit_code, 0) << cli.err;
+    EXPECT_EQ(nlohmann::json::parse(cli.out), metrics.at("analyses").at(name)) << command;
+  }
   EXPECT_TRUE(fs::exists(folder + "/slip_confusion.csv"));
   EXPECT_TRUE(fs::exists(folder + "/odometry_candidates.csv"));
   // No temporary files left behind.
@@ -269,10 +278,20 @@ TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
   EXPECT_TRUE(fs::exists(folder + "/contact_angles.png"));
   EXPECT_NE(read_text(folder + "/index.html").find("Contact-angle estimator"), std::string::npos);
   const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
-  ASSERT_EQ(metrics.at("contact_angle").at("wheels").size(), 6u);
+  auto contact = metrics.at("analyses").at("contact-angle");
+  ASSERT_EQ(contact.at("rms").at("contact_angle_deg").size(), 6u);
   // Wheels on the unmoved side bogies keep near-zero contact angles (C+SS, reset).
   for (std::size_t w : {0u, 1u, 4u, 5u}) {
-    EXPECT_LT(metrics.at("contact_angle").at("wheels").at(w).at("contact_angle_deg").get<double>(), 2.0) << w;
+    EXPECT_LT(contact.at("rms").at("contact_angle_deg").at(w).get<double>(), 2.0) << w;
   }
-  EXPECT_EQ(metrics.count("ins_slip"), 0u);  // not a skid-steer log
+  EXPECT_EQ(metrics.at("analyses").count("ins-slip"), 0u);  // not a skid-steer log
+  // The same document as the command line's for the same options (but for the wall-clock time).
+  const CommandResult cli =
+      run_roverlab("estimate contact-angle " + quote(sim) + " --model c+ss --reset-cross-covariance --json");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  auto printed = nlohmann::json::parse(cli.out);
+  EXPECT_GT(contact.at("wall_seconds").get<double>(), 0.0);
+  printed.erase("wall_seconds");
+  contact.erase("wall_seconds");
+  EXPECT_EQ(printed, contact);
 }

@@ -1,0 +1,238 @@
+// `estimate ins-slip`: the error-state INS with ZUPT/ZARU/NHC pseudo-measurements
+// and slip detection of seed 002, with its metrics against GPS or truth.
+#include <CLI/CLI.hpp>
+#include <cmath>
+
+#include "app/analysis.h"
+#include "core/estimation/ins_slip.h"
+
+namespace roverlab::app {
+
+namespace {
+
+using nlohmann::json;
+using estimation::ConfusionMatrix;
+using estimation::kSlipClasses;
+using estimation::SlipClass;
+
+const char* class_name(int k) { return estimation::to_string(static_cast<SlipClass>(k)); }
+
+json confusion_json(const ConfusionMatrix& c) {
+  json j = {{"rows", "estimated"}, {"columns", "reference"}, {"classes", json::array()},
+            {"counts", json::array()}, {"column_normalised", json::array()}};
+  for (int k = 0; k < kSlipClasses; ++k) j["classes"].push_back(class_name(k));
+  for (int e = 0; e < kSlipClasses; ++e) {
+    json counts = json::array(), fractions = json::array();
+    for (int t = 0; t < kSlipClasses; ++t) {
+      counts.push_back(c.counts[static_cast<std::size_t>(e)][static_cast<std::size_t>(t)]);
+      fractions.push_back(finite_or_null(c.fraction(e, t)));
+    }
+    j["counts"].push_back(counts);
+    j["column_normalised"].push_back(fractions);
+  }
+  j["accuracy"] = finite_or_null(c.accuracy());
+  j["total"] = c.total();
+  return j;
+}
+
+void print_confusion(const json& c, std::FILE* out) {
+  std::fprintf(out, "slip classes, column-normalised (%% of each reference class; rows: estimated):\n");
+  std::fprintf(out, "  %-10s", "");
+  for (int t = 0; t < kSlipClasses; ++t) std::fprintf(out, " %8s", class_name(t));
+  std::fprintf(out, "\n");
+  for (int e = 0; e < kSlipClasses; ++e) {
+    std::fprintf(out, "  %-10s", class_name(e));
+    for (int t = 0; t < kSlipClasses; ++t) {
+      const json& f = c.at("column_normalised").at(e).at(t);
+      if (f.is_number()) {
+        std::fprintf(out, " %7.1f%%", 100.0 * f.get<double>());
+      } else {
+        std::fprintf(out, " %8s", "-");
+      }
+    }
+    std::fprintf(out, "\n");
+  }
+  std::fprintf(out, "  %-10s", "# samples");
+  for (int t = 0; t < kSlipClasses; ++t) {
+    long column = 0;
+    for (int e = 0; e < kSlipClasses; ++e) column += c.at("counts").at(e).at(t).get<long>();
+    std::fprintf(out, " %8ld", column);
+  }
+  std::fprintf(out, "\n  overall accuracy %.1f %% of %ld samples\n", 100.0 * c.at("accuracy").get<double>(),
+               c.at("total").get<long>());
+}
+
+class InsSlipAnalysis : public Analysis {
+ public:
+  std::string name() const override { return "ins-slip"; }
+  std::string command() const override { return "estimate ins-slip"; }
+  std::string title() const override { return "INS slip detection (seed 002)"; }
+  std::string help() const override {
+    return "Error-state INS with ZUPT/ZARU/NHC pseudo-measurements and slip detection (seed 002)";
+  }
+  std::string log_help() const override { return "Log with imu and wheels streams (gps or truth/slip for metrics)"; }
+
+  std::string missing(const log::Log& lg) const override {
+    if (lg.find_stream("imu") == nullptr) return "no imu stream";
+    const log::Stream* wheels = lg.find_stream("wheels");
+    // A skid-steer log: wheel angles of four wheels.
+    if (wheels == nullptr || wheels->find_channel("angle_FL") == nullptr || wheels->find_channel("angle_RR") == nullptr) {
+      return "no skid-steer wheels stream (angle_FL .. angle_RR)";
+    }
+    return "";
+  }
+  bool runs_on_open(const log::Log& lg) const override {
+    return missing(lg).empty() && lg.find_stream("estimate/ins/pose") == nullptr;
+  }
+
+  void declare(CLI::App& cmd) override {
+    cmd.add_flag("--no-zupt", no_zupt_, "No zero-velocity updates");
+    cmd.add_flag("--no-zaru", no_zaru_, "No zero-angular-rate updates");
+    cmd.add_flag("--no-nhc", no_nhc_, "No non-holonomic constraints");
+    cmd.add_flag("--no-odometry-aiding", no_odometry_aiding_,
+                 "No wheel forward-speed update in the localisation filter (pseudo-measurements only)");
+    cmd.add_flag("--no-smoother", no_smoother_,
+                 "Forward filter only, as on board (default: RTS smoothing over the whole log)");
+    cmd.add_option("--odometry-sigma", odometry_sigma_, "Standard deviation of the wheel-speed update, m/s")
+        ->capture_default_str();
+  }
+
+  AnalysisResult run(const AnalysisInput& in) override {
+    estimation::InsSlipOptions o;
+    o.zupt = !no_zupt_;
+    o.zaru = !no_zaru_;
+    o.nhc = !no_nhc_;
+    o.odometry_aiding = !no_odometry_aiding_;
+    o.odometry_sigma = odometry_sigma_;
+    o.smooth = !no_smoother_;
+    o.progress = in.progress;
+    estimation::InsSlipResult r = estimation::run_ins_slip(in.log, o);
+    AnalysisResult out;
+    out.document = document(in.file, o, r);
+    out.estimates = std::move(r.estimates);
+    return out;
+  }
+
+  void print(const json& j, std::FILE* out) const override;
+  void report(const json& j, ReportSection& section) const override;
+
+ private:
+  static json document(const std::string& file, const estimation::InsSlipOptions& o,
+                       const estimation::InsSlipResult& r) {
+    const estimation::InsSlipMetrics& m = r.metrics;
+    json j = {{"file", file},
+              {"updates", {{"zupt", o.zupt}, {"zaru", o.zaru}, {"nhc", o.nhc},
+                           {"odometry_aiding", o.odometry_aiding}, {"smoother", o.smooth}}},
+              {"duration_s", m.duration},
+              {"standstill_fraction", m.standstill_fraction},
+              {"has_reference", m.has_reference}};
+    if (m.has_reference) {
+      j["distance_m"] = m.distance;
+      j["ins"] = {{"final_position_error_m", m.final_position_error},
+                  {"final_position_error_3d_m", m.final_position_error_3d},
+                  {"position_rmse_m", m.position_rmse},
+                  {"position_rmse_enu_m", {m.position_rmse_axes.east, m.position_rmse_axes.north, m.position_rmse_axes.up}},
+                  {"velocity_rmse_mps", m.velocity_rmse},
+                  {"heading_drift_rad", finite_or_null(m.heading_drift)}};
+      j["wheel_odometry"] = {{"final_position_error_m", r.odometry.final_position_error},
+                             {"position_rmse_m", r.odometry.position_rmse}};
+    }
+    if (m.confusion.total() > 0) j["slip_confusion"] = confusion_json(m.confusion);
+    return j;
+  }
+
+  bool no_zupt_ = false, no_zaru_ = false, no_nhc_ = false;
+  bool no_odometry_aiding_ = false;  // no wheel forward-speed update in the localisation filter
+  bool no_smoother_ = false;         // forward filter only (what the rover had on board)
+  double odometry_sigma_ = 0.05;     // m/s
+};
+
+const char* on_off(const json& b) { return b.get<bool>() ? "on" : "off"; }
+
+void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
+  const json& u = j.at("updates");
+  const bool aiding = u.at("odometry_aiding").get<bool>();
+  std::fprintf(out, "%s: %.1f s of IMU data, standstill %.0f %% of it\n", j.at("file").get<std::string>().c_str(),
+               j.at("duration_s").get<double>(), 100.0 * j.at("standstill_fraction").get<double>());
+  std::fprintf(out, "updates: ZUPT %s, ZARU %s, NHC %s, wheel-speed aiding %s; %s\n", on_off(u.at("zupt")),
+               on_off(u.at("zaru")), on_off(u.at("nhc")),
+               aiding ? "on (slip judged by a second pass without it)" : "off",
+               u.at("smoother").get<bool>() ? "RTS-smoothed" : "forward filter only");
+  if (j.at("has_reference").get<bool>()) {
+    const json& ins = j.at("ins");
+    const json& enu = ins.at("position_rmse_enu_m");
+    std::fprintf(out, "\nposition against GPS over %.1f m of track:\n", j.at("distance_m").get<double>());
+    std::fprintf(out, "  %-28s %10s %10s   %s\n", "", "final (m)", "RMSE (m)", "RMSE east / north / up (m)");
+    std::fprintf(out, "  %-28s %10.2f %10.2f   %.2f / %.2f / %.2f\n",
+                 aiding ? "INS + pseudo-meas. + wheels" : "INS + pseudo-measurements",
+                 ins.at("final_position_error_m").get<double>(), ins.at("position_rmse_m").get<double>(),
+                 enu.at(0).get<double>(), enu.at(1).get<double>(), enu.at(2).get<double>());
+    std::fprintf(out, "  %-28s %10.2f %10.2f\n", "wheel odometry",
+                 j.at("wheel_odometry").at("final_position_error_m").get<double>(),
+                 j.at("wheel_odometry").at("position_rmse_m").get<double>());
+    const json& drift = ins.at("heading_drift_rad");
+    std::fprintf(out, "velocity RMSE %.3f m/s; heading drift %.2f deg (last 5 s of driving)\n",
+                 ins.at("velocity_rmse_mps").get<double>(), drift.is_number() ? drift.get<double>() * 180.0 / M_PI : NAN);
+  } else {
+    std::fprintf(out, "no GPS stream: no position metrics\n");
+  }
+  if (j.contains("slip_confusion")) {
+    std::fprintf(out, "\n");
+    print_confusion(j.at("slip_confusion"), out);
+  }
+}
+
+void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
+  auto& html = s.html;
+  const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
+  html << "<h2>" << title() << "</h2>\n";
+  if (j.at("has_reference").get<bool>()) {
+    const json& ins = j.at("ins");
+    const json& enu = ins.at("position_rmse_enu_m");
+    const json& odo = j.at("wheel_odometry");
+    const json& drift = ins.at("heading_drift_rad");
+    html << "<table><tr><th></th><th>final error (m)</th><th>RMSE (m)</th><th>RMSE east / north / up (m)</th></tr>\n"
+         << "<tr><td style=\"text-align:left\">INS + pseudo-measurements + wheels</td><td>"
+         << n(ins.at("final_position_error_m"), "%.2f") << "</td><td>" << n(ins.at("position_rmse_m"), "%.2f")
+         << "</td><td>" << n(enu.at(0), "%.2f") << " / " << n(enu.at(1), "%.2f") << " / " << n(enu.at(2), "%.2f")
+         << "</td></tr>\n<tr><td style=\"text-align:left\">wheel odometry</td><td>"
+         << n(odo.at("final_position_error_m"), "%.2f") << "</td><td>" << n(odo.at("position_rmse_m"), "%.2f")
+         << "</td><td></td></tr></table>\n"
+         << "<p>Velocity RMSE " << n(ins.at("velocity_rmse_mps"), "%.3f") << " m/s; heading drift "
+         << ReportSection::number(drift.is_number() ? drift.get<double>() * 180.0 / M_PI : NAN, "%.2f") << " deg over "
+         << n(j.at("distance_m"), "%.1f") << " m.</p>\n";
+  }
+  if (!j.contains("slip_confusion")) return;
+  const json& c = j.at("slip_confusion");
+  html << "<h3>Slip classes (column-normalised; rows estimated, columns reference)</h3>\n<table><tr><th></th>";
+  std::string csv = "estimated\\reference";
+  for (int t = 0; t < kSlipClasses; ++t) {
+    html << "<th>" << class_name(t) << "</th>";
+    csv += std::string(",") + class_name(t);
+  }
+  html << "</tr>\n";
+  csv += "\n";
+  for (int e = 0; e < kSlipClasses; ++e) {
+    html << "<tr><th>" << class_name(e) << "</th>";
+    csv += class_name(e);
+    for (int t = 0; t < kSlipClasses; ++t) {
+      const json& f = c.at("column_normalised").at(e).at(t);
+      const bool known = f.is_number();
+      const int shade = known ? static_cast<int>(255 - 120 * f.get<double>()) : 255;
+      html << "<td style=\"background:rgb(" << shade << "," << shade << ",255)\">"
+           << (known ? ReportSection::number(100.0 * f.get<double>(), "%.1f") + " %" : "–") << "</td>";
+      csv += "," + (known ? ReportSection::number(f, "%.4f") : std::string());
+    }
+    html << "</tr>\n";
+    csv += "\n";
+  }
+  html << "</table>\n<p>Accuracy " << ReportSection::number(100.0 * c.at("accuracy").get<double>(), "%.1f") << " % of "
+       << c.at("total").get<long>() << " samples.</p>\n";
+  s.write_csv("slip_confusion.csv", csv);
+}
+
+}  // namespace
+
+std::unique_ptr<Analysis> make_ins_slip_analysis() { return std::make_unique<InsSlipAnalysis>(); }
+
+}  // namespace roverlab::app

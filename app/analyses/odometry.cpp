@@ -1,0 +1,155 @@
+// `discrepancy odometry`: what skid-steer wheel odometry gets wrong against the
+// GPS track, the cause among the candidates, the fitted correction and its
+// held-out gain.
+#include <CLI/CLI.hpp>
+#include <cmath>
+
+#include "app/analysis.h"
+#include "core/analysis/odometry_discrepancy.h"
+
+namespace roverlab::app {
+
+namespace {
+
+using nlohmann::json;
+
+class OdometryAnalysis : public Analysis {
+ public:
+  std::string name() const override { return "odometry"; }
+  std::string command() const override { return "discrepancy odometry"; }
+  std::string title() const override { return "What the wheel odometry gets wrong"; }
+  std::string help() const override {
+    return "Wheel-odometry dead reckoning against the GPS track: cause of the disagreement, fitted correction, gain";
+  }
+  std::string log_help() const override { return "Log with wheels and gps streams"; }
+  bool adds_streams() const override { return false; }
+  std::string missing(const log::Log& lg) const override {
+    if (lg.find_stream("wheels") == nullptr) return "no wheels stream";
+    if (lg.find_stream("gps") == nullptr) return "no gps stream";
+    return "";
+  }
+  void declare(CLI::App& cmd) override {
+    cmd.add_option("--fit-fraction", fit_fraction_, "Share of the drive (by distance) used to fit; the rest tests")
+        ->capture_default_str()
+        ->check(CLI::Range(0.1, 0.9));
+  }
+  AnalysisResult run(const AnalysisInput& in) override {
+    analysis::OdometryStudyOptions options;
+    options.fit_fraction = fit_fraction_;
+    if (in.progress) in.progress(0.0);
+    const analysis::OdometryDiscrepancyReport r = analysis::study_odometry(in.log, options);
+    if (in.progress) in.progress(1.0);
+    AnalysisResult out;
+    out.document = document(in.file, r);
+    return out;
+  }
+  void print(const json& j, std::FILE* out) const override;
+  void report(const json& j, ReportSection& section) const override;
+
+ private:
+  static json document(const std::string& file, const analysis::OdometryDiscrepancyReport& r);
+  double fit_fraction_ = 0.5;
+};
+
+json OdometryAnalysis::document(const std::string& file, const analysis::OdometryDiscrepancyReport& r) {
+  json j = {{"file", file},
+            {"distance_m", r.distance},
+            {"fit_distance_m", r.fit_distance},
+            {"split_time_s", r.split_time},
+            {"reference_samples", {{"fit", r.fit_samples}, {"test", r.test_samples}}},
+            {"baseline", {{"fit_rmse_m", r.baseline_fit_rmse}, {"held_out_rmse_m", r.baseline_held_out_rmse},
+                          {"held_out_final_m", r.baseline_held_out_final}, {"distance_ratio", r.distance_ratio},
+                          {"heading_error_rad", finite_or_null(r.heading_error_end)},
+                          {"along_track_rmse_m", finite_or_null(r.along_track_rmse)},
+                          {"cross_track_rmse_m", finite_or_null(r.cross_track_rmse)}}},
+            {"cause", r.best >= 0 ? json(r.candidates[static_cast<std::size_t>(r.best)].name) : json(nullptr)},
+            {"what_is_wrong", r.what_is_wrong},
+            {"verdict", r.verdict},
+            {"candidates", json::array()}};
+  for (const auto& c : r.candidates) {
+    json cj = {{"name", c.name}, {"cause", c.cause}, {"parameters", json::array()},
+               {"fit_rmse_m", c.fit_rmse}, {"delta_bic", c.delta_bic}, {"held_out_rmse_m", c.held_out_rmse},
+               {"held_out_final_m", c.held_out_final}, {"significant", c.significant}};
+    for (const auto& p : c.parameters) {
+      cj["parameters"].push_back({{"name", p.name}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}});
+    }
+    j["candidates"].push_back(cj);
+  }
+  return j;
+}
+
+// "0.9981+-0.0012", "3 windows", "name 0.5": the fitted parameters in a line.
+std::string parameters_text(const json& parameters) {
+  std::string text;
+  for (const auto& p : parameters) {
+    char one[80];
+    const std::string name = p.at("name").get<std::string>();
+    const double value = p.at("value").get<double>();
+    if (p.at("sigma").is_number()) {
+      std::snprintf(one, sizeof one, "%s%.4g+-%.2g", text.empty() ? "" : " ", value, p.at("sigma").get<double>());
+    } else if (name == "windows") {
+      std::snprintf(one, sizeof one, "%s%d windows", text.empty() ? "" : " ", static_cast<int>(value));
+    } else {
+      std::snprintf(one, sizeof one, "%s%s %.3g", text.empty() ? "" : ", ", name.c_str(), value);
+    }
+    text += one;
+  }
+  return text;
+}
+
+void OdometryAnalysis::print(const json& j, std::FILE* out) const {
+  const auto num = [&](const json& v) { return v.get<double>(); };
+  const json& b = j.at("baseline");
+  std::fprintf(out, "%s: %.1f m of reference track; fit on the first %.1f m (to t = %.1f s), test on the rest\n\n",
+               j.at("file").get<std::string>().c_str(), num(j.at("distance_m")), num(j.at("fit_distance_m")),
+               num(j.at("split_time_s")));
+  std::fprintf(out, "%s\n\n", j.at("what_is_wrong").get<std::string>().c_str());
+  std::fprintf(out, "  %-16s %-30s %9s %10s %13s %12s\n", "candidate", "fitted", "fit RMSE", "delta BIC",
+               "held-out RMSE", "final error");
+  std::fprintf(out, "  %-16s %-30s %7.2f m %10s %11.2f m %10.2f m\n", "(baseline)", "nominal geometry",
+               num(b.at("fit_rmse_m")), "0", num(b.at("held_out_rmse_m")), num(b.at("held_out_final_m")));
+  for (const auto& c : j.at("candidates")) {
+    std::string params = parameters_text(c.at("parameters"));
+    if (params.size() > 30) params = params.substr(0, 29) + "~";
+    std::fprintf(out, "  %-16s %-30s %7.2f m %10.1f %11.2f m %10.2f m%s\n", c.at("name").get<std::string>().c_str(),
+                 params.c_str(), num(c.at("fit_rmse_m")), num(c.at("delta_bic")), num(c.at("held_out_rmse_m")),
+                 num(c.at("held_out_final_m")), c.at("significant").get<bool>() ? "" : "  (not significant)");
+  }
+  std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
+}
+
+void OdometryAnalysis::report(const json& j, ReportSection& s) const {
+  const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
+  const json& b = j.at("baseline");
+  s.html << "<h2>" << title() << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
+         << "</p>\n"
+         << "<table><tr><th>candidate</th><th>fitted</th><th>fit RMSE (m)</th><th>delta BIC</th>"
+            "<th>held-out RMSE (m)</th><th>held-out final (m)</th></tr>\n"
+         << "<tr><td style=\"text-align:left\">(nominal)</td><td></td><td>" << n(b.at("fit_rmse_m"), "%.2f")
+         << "</td><td>0</td><td>" << n(b.at("held_out_rmse_m"), "%.2f") << "</td><td>"
+         << n(b.at("held_out_final_m"), "%.2f") << "</td></tr>\n";
+  std::string csv = "candidate,fit_rmse_m,delta_bic,held_out_rmse_m,held_out_final_m,significant\n";
+  for (const auto& c : j.at("candidates")) {
+    std::string params;
+    for (const auto& p : c.at("parameters")) {
+      params += p.at("name").get<std::string>() + " = " + n(p.at("value"), "%.4g") + " ";
+    }
+    const bool best = c.at("name") == j.at("cause");
+    s.html << "<tr" << (best ? " style=\"font-weight:bold\"" : "") << "><td style=\"text-align:left\">"
+           << ReportSection::escape(c.at("name").get<std::string>()) << "</td><td style=\"text-align:left\">"
+           << ReportSection::escape(params) << "</td><td>" << n(c.at("fit_rmse_m"), "%.2f") << "</td><td>"
+           << n(c.at("delta_bic"), "%.1f") << "</td><td>" << n(c.at("held_out_rmse_m"), "%.2f") << "</td><td>"
+           << n(c.at("held_out_final_m"), "%.2f") << "</td></tr>\n";
+    csv += c.at("name").get<std::string>() + "," + n(c.at("fit_rmse_m"), "%.6g") + "," + n(c.at("delta_bic"), "%.6g") +
+           "," + n(c.at("held_out_rmse_m"), "%.6g") + "," + n(c.at("held_out_final_m"), "%.6g") + "," +
+           (c.at("significant").get<bool>() ? "1" : "0") + "\n";
+  }
+  s.html << "</table>\n<p><b>" << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n";
+  s.write_csv("odometry_candidates.csv", csv);
+}
+
+}  // namespace
+
+std::unique_ptr<Analysis> make_odometry_analysis() { return std::make_unique<OdometryAnalysis>(); }
+
+}  // namespace roverlab::app

@@ -1,0 +1,135 @@
+// The command line built from the registered commands (app/commands.def), and
+// the one place where errors become exit codes.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <map>
+
+#include "app/command.h"
+#include "app/commands.h"
+#include "core/common/error.h"
+#include "views/x_display.h"
+
+#ifndef ROVERLAB_VERSION
+#define ROVERLAB_VERSION "unknown"
+#endif
+
+namespace roverlab::app {
+
+#define ROVERLAB_COMMANDS(name) Commands make_##name##_commands();
+#include "app/commands.def"
+#undef ROVERLAB_COMMANDS
+
+Commands all_commands() {
+  Commands all;
+  for (auto* make : {
+#define ROVERLAB_COMMANDS(name) &make_##name##_commands,
+#include "app/commands.def"
+#undef ROVERLAB_COMMANDS
+       }) {
+    for (auto& c : make()) all.push_back(std::move(c));
+  }
+  return all;
+}
+
+namespace {
+
+// Commands that only group others: `roverlab estimate` alone is a usage error.
+const std::map<std::string, std::string>& command_groups() {
+  static const std::map<std::string, std::string> groups = {
+      {"estimate", "Run an estimator over a log"},
+      {"discrepancy", "Where a model disagrees with measured data, why, and what an extended model gains"},
+      {"scenario", "Write a simulated log with truth streams"},
+  };
+  return groups;
+}
+
+struct Parser {
+  CLI::App cli{"RoverLab: analysis and visualisation of planetary-rover field-test logs"};
+  std::map<std::string, CLI::App*> nodes;  // by path
+
+  CLI::App* parent_of(const std::string& path) {
+    const auto space = path.rfind(' ');
+    if (space == std::string::npos) return &cli;
+    const std::string parent = path.substr(0, space);
+    if (const auto it = nodes.find(parent); it != nodes.end()) return it->second;
+    const auto group = command_groups().find(parent);
+    if (group == command_groups().end()) throw std::logic_error("command " + path + " has no parent " + parent);
+    CLI::App* node = parent_of(parent)->add_subcommand(parent.substr(parent.rfind(' ') + 1), group->second);
+    node->require_subcommand(1);
+    nodes[parent] = node;
+    return node;
+  }
+
+  void add(Command& c) {
+    const std::string path = c.path();
+    CLI::App* parent = parent_of(path);
+    CLI::App* node = parent->add_subcommand(path.substr(path.rfind(' ') + 1), c.help());
+    c.declare(*node);
+    nodes[path] = node;
+    // A command with options of its own may also have subcommands
+    // (`terramechanics surface`): at most one of them.
+    if (parent != &cli && command_groups().count(path.substr(0, path.rfind(' '))) == 0) {
+      parent->require_subcommand(0, 1);
+    }
+  }
+};
+
+int parse_and_run(int argc, char** argv) {
+  Parser p;
+  p.cli.require_subcommand(1);
+  p.cli.set_version_flag("--version", ROVERLAB_VERSION);
+  Commands commands = all_commands();
+  for (auto& c : commands) p.add(*c);
+  try {
+    p.cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return p.cli.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return p.cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return p.cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    p.cli.exit(e);
+    return kUsageError;
+  }
+  // The deepest command given runs (`terramechanics surface`, not `terramechanics`).
+  Command* chosen = nullptr;
+  std::size_t depth = 0;
+  for (auto& c : commands) {
+    const std::string path = c->path();
+    const std::size_t d = static_cast<std::size_t>(std::count(path.begin(), path.end(), ' ')) + 1;
+    if (p.nodes.at(path)->parsed() && d > depth) {
+      chosen = c.get();
+      depth = d;
+    }
+  }
+  return chosen != nullptr ? chosen->run() : kUsageError;
+}
+
+}  // namespace
+
+int run_command_line(int argc, char** argv) {
+  try {
+    return parse_and_run(argc, argv);
+  } catch (const UsageError& e) {
+    std::cerr << "roverlab: " << e.what() << "\n";
+    return kUsageError;
+  } catch (const InputError& e) {
+    std::cerr << "roverlab: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const DataError& e) {
+    std::cerr << "roverlab: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const views::EnvironmentError& e) {
+    std::cerr << "roverlab: " << e.what() << "\n";
+    return kInternalFailure;
+  } catch (const std::exception& e) {
+    std::cerr << "roverlab: internal error: " << e.what() << "\n";
+    return kInternalFailure;
+  } catch (...) {
+    std::cerr << "roverlab: internal error\n";
+    return kInternalFailure;
+  }
+}
+
+}  // namespace roverlab::app

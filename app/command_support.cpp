@@ -1,0 +1,37 @@
+#include "app/command_support.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "importers/hdf5_log.h"
+
+namespace roverlab::app {
+
+ProgressLine::ProgressLine(std::string label, Style style)
+    : label_(std::move(label)), style_(style), shown_(isatty(2) != 0) {}
+
+ProgressLine::~ProgressLine() {
+  if (shown_) std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + 48, "");
+}
+
+std::function<void(double)> ProgressLine::callback() const {
+  if (!shown_) return {};
+  if (style_ == Style::bar) {
+    return [label = label_](double f) {
+      const int n = static_cast<int>(40 * f);
+      std::fprintf(stderr, "\r%s [%-40s] %3d %%", label.c_str(), std::string(static_cast<std::size_t>(n), '#').c_str(),
+                   static_cast<int>(100 * f));
+    };
+  }
+  return [label = label_](double f) { std::fprintf(stderr, "\r%s %3d %%", label.c_str(), static_cast<int>(100 * f)); };
+}
+
+void write_log_with(const log::Log& base, const log::Log& added, const std::string& path) {
+  log::Log out = base;
+  for (const auto& s : added.streams()) out.add_stream(s);
+  for (const auto& [key, value] : added.metadata.extra) out.metadata.extra[key] = value;
+  io::write_hdf5_log(out, path);
+}
+
+}  // namespace roverlab::app

@@ -1,0 +1,47 @@
+#pragma once
+// What every command shares: a progress line on stderr, the file a DataError
+// is about, and writing a log with added streams (atomically, as every output).
+
+#include <functional>
+#include <string>
+#include <utility>
+
+#include "core/common/error.h"
+#include "core/log/log.h"
+
+namespace roverlab::app {
+
+// "\r<label> NN %" on stderr while work goes on, when stderr is a terminal;
+// cleared when the line goes out of scope. callback() is empty otherwise, so
+// batch runs and tests see no progress output.
+class ProgressLine {
+ public:
+  enum class Style { percent, bar };
+  explicit ProgressLine(std::string label, Style style = Style::percent);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+  std::function<void(double)> callback() const;
+
+ private:
+  std::string label_;
+  Style style_;
+  bool shown_ = false;
+};
+
+// Runs `work`; a DataError it throws (a missing stream, a short log) becomes
+// an InputError naming `file`.
+template <class Work>
+auto about_file(const std::string& file, Work&& work) -> decltype(work()) {
+  try {
+    return std::forward<Work>(work)();
+  } catch (const DataError& e) {
+    throw InputError(file, e.what());
+  }
+}
+
+// Writes `base` with the streams of `added` (and its metadata.extra entries)
+// to `path` as a RoverLab HDF5 log, atomically.
+void write_log_with(const log::Log& base, const log::Log& added, const std::string& path);
+
+}  // namespace roverlab::app
