@@ -70,7 +70,7 @@ int run_info(const InfoOptions& options) {
   if (options.json) {
     json out;
     out["file"] = options.file;
-    out["format"] = io::format_name(loaded.format);
+    out["format"] = loaded.format;
     out["metadata"] = {{"rover_id", meta.rover_id},
                        {"source_file", meta.source_file},
                        {"description", meta.description},
@@ -100,7 +100,7 @@ int run_info(const InfoOptions& options) {
   }
 
   std::cout << "file     " << options.file << "\n"
-            << "format   " << io::format_name(loaded.format);
+            << "format   " << loaded.format;
   if (meta.extra.count("mapping") != 0) std::cout << " (mapping " << meta.extra.at("mapping") << ")";
   std::cout << "\n";
   if (!meta.rover_id.empty()) std::cout << "rover    " << meta.rover_id << "\n";

@@ -7,20 +7,16 @@
 
 #include "core/terramechanics/model.h"
 #include "core/terramechanics/traction_surface.h"
+#include "importers/soil_file.h"
 
 namespace {
 
 using namespace roverlab::terramechanics;
 
+// Seed 003 Table 2.2, from resources/soils/ding_tyii.json.
 Soil tyii() {
-  Soil s;
-  s.n = 1.1;
-  s.cohesion = 250.0;
-  s.friction_angle = 31.9 * M_PI / 180.0;
-  s.shear_modulus = 0.0114;
-  s.kc = 15.6e3;
-  s.kphi = 2407.4e3;
-  return s;
+  static const Soil soil = roverlab::io::load_soil(ROVERLAB_SOURCE_DIR "/resources/soils/ding_tyii.json");
+  return soil;
 }
 
 void BM_WongReeceSimpson(benchmark::State& state) {

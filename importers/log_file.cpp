@@ -3,55 +3,56 @@
 #include <filesystem>
 
 #include "core/common/error.h"
-#include "importers/csv_log.h"
-#include "importers/hdf5_log.h"
-#include "importers/hdf5_support.h"
-#include "importers/matlab_importer.h"
 
 namespace roverlab::io {
 
+#define ROVERLAB_LOG_READER(NAME) std::unique_ptr<LogReader> make_##NAME##_log_reader();
+#include "importers/log_readers.def"
+#undef ROVERLAB_LOG_READER
+
 namespace fs = std::filesystem;
 
-const char* format_name(LogFormat format) {
-  switch (format) {
-    case LogFormat::roverlab_hdf5: return "RoverLab HDF5 log";
-    case LogFormat::mapped_hdf5: return "HDF5 / MATLAB v7.3 through a mapping";
-    case LogFormat::csv: return "CSV";
+bool has_extension(const std::string& path, const std::vector<std::string>& extensions) {
+  const std::string ext = fs::path(path).extension().string();
+  for (const auto& e : extensions) {
+    if (ext == e) return true;
   }
-  return "?";
+  return false;
+}
+
+const std::vector<std::unique_ptr<LogReader>>& log_readers() {
+  static const std::vector<std::unique_ptr<LogReader>> readers = [] {
+    std::vector<std::unique_ptr<LogReader>> list;
+#define ROVERLAB_LOG_READER(NAME) list.push_back(make_##NAME##_log_reader());
+#include "importers/log_readers.def"
+#undef ROVERLAB_LOG_READER
+    return list;
+  }();
+  return readers;
+}
+
+const LogReader* find_log_reader(const std::string& path, const LoadOptions& options) {
+  const LogReader* best = nullptr;
+  Confidence best_confidence = Confidence::none;
+  for (const auto& reader : log_readers()) {
+    const Confidence c = reader->can_read(path, options);
+    if (c > best_confidence) {
+      best = reader.get();
+      best_confidence = c;
+    }
+  }
+  return best;
 }
 
 LoadedLog load_log(const std::string& path, const LoadOptions& options) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path, "no such file");
   if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
-  const MatFileVersion mat = matlab_file_version(path);
-  if (h5::is_hdf5_file(path) || mat != MatFileVersion::not_matlab) {
-    if (mat == MatFileVersion::not_matlab && is_roverlab_hdf5(path)) {
-      return {read_hdf5_log(path), LogFormat::roverlab_hdf5};
-    }
-    if (!options.mapping) {
-      if (mat == MatFileVersion::older) {
-        throw InputError(path, "MAT-file older than v7.3 (not HDF5-based); re-save it in "
-                               "MATLAB with save(FILE, '-v7.3')");
-      }
-      if (mat == MatFileVersion::v7_3) {
-        throw InputError(path, "MATLAB file: pass --mapping NAME|FILE to say which variables "
-                               "form which streams (see resources/mappings/)");
-      }
-      // Not a RoverLab log: the reader explains (corrupt, truncated or foreign).
-      return {read_hdf5_log(path), LogFormat::roverlab_hdf5};
-    }
-    return {read_mapped_hdf5(path, *options.mapping), LogFormat::mapped_hdf5};
+  const LogReader* reader = find_log_reader(path, options);
+  if (!reader) {
+    throw InputError(path, "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
   }
-  const std::string ext = fs::path(path).extension().string();
-  if (ext == ".csv" || ext == ".CSV" || ext == ".txt") {
-    return {read_csv_log(path), LogFormat::csv};
-  }
-  if (ext == ".h5" || ext == ".hdf5" || ext == ".mat") {
-    throw InputError(path, "not an HDF5 file");
-  }
-  throw InputError(path, "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
+  return {reader->read(path, options), reader->name()};
 }
 
 }  // namespace roverlab::io

@@ -1,126 +1,76 @@
 #include "importers/mapping.h"
 
-#include <algorithm>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <set>
 
-#include "core/common/error.h"
 #include "core/log/stream.h"
 #include "core/log/units.h"
+#include "importers/json_resource.h"
 #include "importers/named_file.h"
 
 namespace roverlab::io {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
-
 namespace {
 
-std::string required_string(const json& object, const char* key, const std::string& where) {
-  if (!object.contains(key) || !object.at(key).is_string()) {
-    throw DataError(where + ": '" + key + "' must be a string");
-  }
-  return object.at(key).get<std::string>();
+std::string unit_field(const JsonNode& node, const std::string& field, const std::string& fallback) {
+  const std::string unit = optional_string(node, field, fallback);
+  if (!log::is_known_unit(unit)) node.fail(field, "unknown unit '" + unit + "'");
+  return unit;
 }
 
-std::string optional_string(const json& object, const char* key, const std::string& where,
-                            const std::string& fallback) {
-  if (!object.contains(key)) return fallback;
-  if (!object.at(key).is_string()) throw DataError(where + ": '" + key + "' must be a string");
-  return object.at(key).get<std::string>();
+ChannelMapping parse_channel(const JsonNode& jc, std::set<std::string>& channel_names) {
+  ChannelMapping c;
+  c.name = required_string(jc, "name");
+  if (!log::is_valid_channel_name(c.name)) jc.fail("name", "invalid channel name '" + c.name + "'");
+  if (!channel_names.insert(c.name).second) jc.fail("name", "channel '" + c.name + "' appears twice");
+  c.variable = required_string(jc, "variable");
+  c.unit = unit_field(jc, "unit", "1");
+  c.description = optional_string(jc, "description", "");
+  if (jc.has("component")) {
+    if (!jc.value().at("component").is_number_unsigned()) jc.fail("component", "expected a non-negative integer");
+    c.component = jc.value().at("component").get<std::size_t>();
+  }
+  c.scale = optional_number(jc, "scale", 1.0);
+  return c;
 }
 
-void check_unit(const std::string& unit, const std::string& where) {
-  if (!log::is_known_unit(unit)) {
-    throw DataError(where + ": unknown unit '" + unit + "'");
+StreamMapping parse_stream(const JsonNode& js, std::set<std::string>& stream_names) {
+  StreamMapping s;
+  s.name = required_string(js, "name");
+  if (!log::is_valid_stream_name(s.name)) js.fail("name", "invalid stream name '" + s.name + "'");
+  if (!stream_names.insert(s.name).second) js.fail("name", "stream '" + s.name + "' appears twice");
+  const JsonNode time = required_object(js, "time");
+  s.time_variable = required_string(time, "variable");
+  s.time_unit = unit_field(time, "unit", "s");
+  if (log::unit_to_si(s.time_unit).si_unit != "s") {
+    time.fail("unit", "unit '" + s.time_unit + "' is not a unit of time");
   }
-}
-
-Mapping parse(const json& root) {
-  Mapping m;
-  if (!root.is_object()) throw DataError("top level must be a JSON object");
-  if (root.value("format", std::string()) != "roverlab-mapping") {
-    throw DataError("not a RoverLab mapping ('format' must be \"roverlab-mapping\")");
-  }
-  if (root.value("version", 0) != 1) throw DataError("unsupported mapping version (expected 1)");
-  m.name = required_string(root, "name", "mapping");
-  m.description = optional_string(root, "description", "mapping", "");
-  m.rover_id = optional_string(root, "rover_id", "mapping", "");
-  m.time_origin = optional_string(root, "time_origin", "mapping", "first_sample");
-  if (m.time_origin != "first_sample" && m.time_origin != "none") {
-    throw DataError("'time_origin' must be \"first_sample\" or \"none\"");
-  }
-  if (!root.contains("streams") || !root.at("streams").is_array() || root.at("streams").empty()) {
-    throw DataError("'streams' must be a non-empty array");
-  }
-  std::set<std::string> stream_names;
-  for (const auto& js : root.at("streams")) {
-    StreamMapping s;
-    s.name = required_string(js, "name", "stream");
-    const std::string where = "stream '" + s.name + "'";
-    if (!log::is_valid_stream_name(s.name)) throw DataError(where + ": invalid stream name");
-    if (!stream_names.insert(s.name).second) throw DataError(where + " appears twice");
-    if (!js.contains("time") || !js.at("time").is_object()) {
-      throw DataError(where + ": 'time' must be an object with 'variable' and 'unit'");
-    }
-    s.time_variable = required_string(js.at("time"), "variable", where + ", time");
-    s.time_unit = optional_string(js.at("time"), "unit", where + ", time", "s");
-    check_unit(s.time_unit, where + ", time");
-    if (log::unit_to_si(s.time_unit).si_unit != "s") {
-      throw DataError(where + ", time: unit '" + s.time_unit + "' is not a unit of time");
-    }
-    if (!js.contains("channels") || !js.at("channels").is_array()) {
-      throw DataError(where + ": 'channels' must be an array");
-    }
-    std::set<std::string> channel_names;
-    for (const auto& jc : js.at("channels")) {
-      ChannelMapping c;
-      c.name = required_string(jc, "name", where + ", channel");
-      const std::string cwhere = where + ", channel '" + c.name + "'";
-      if (!log::is_valid_channel_name(c.name)) throw DataError(cwhere + ": invalid channel name");
-      if (!channel_names.insert(c.name).second) throw DataError(cwhere + " appears twice");
-      c.variable = required_string(jc, "variable", cwhere);
-      c.unit = optional_string(jc, "unit", cwhere, "1");
-      check_unit(c.unit, cwhere);
-      c.description = optional_string(jc, "description", cwhere, "");
-      if (jc.contains("component")) {
-        if (!jc.at("component").is_number_unsigned()) {
-          throw DataError(cwhere + ": 'component' must be a non-negative integer");
-        }
-        c.component = jc.at("component").get<std::size_t>();
-      }
-      if (jc.contains("scale")) {
-        if (!jc.at("scale").is_number()) throw DataError(cwhere + ": 'scale' must be a number");
-        c.scale = jc.at("scale").get<double>();
-      }
-      s.channels.push_back(std::move(c));
-    }
-    m.streams.push_back(std::move(s));
-  }
-  return m;
+  std::set<std::string> channel_names;
+  for (const auto& jc : required_array(js, "channels")) s.channels.push_back(parse_channel(jc, channel_names));
+  return s;
 }
 
 }  // namespace
 
 Mapping load_mapping(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open mapping file");
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(path, std::string("mapping is not valid JSON: ") + e.what());
+  const JsonResource file = read_json_resource(path, "mapping file");
+  const JsonNode root = file.root();
+  require_format(root, "roverlab-mapping", "mapping");
+  if (optional_number(root, "version", 0) != 1) root.fail("version", "unsupported mapping version (expected 1)");
+  Mapping m;
+  m.name = required_string(root, "name");
+  m.description = optional_string(root, "description", "");
+  m.rover_id = optional_string(root, "rover_id", "");
+  m.time_origin = optional_string(root, "time_origin", "first_sample");
+  if (m.time_origin != "first_sample" && m.time_origin != "none") {
+    root.fail("time_origin", "expected \"first_sample\" or \"none\"");
   }
-  try {
-    Mapping m = parse(root);
-    m.source = path;
-    return m;
-  } catch (const DataError& e) {
-    throw InputError(path, e.what());
-  } catch (const json::exception& e) {
-    throw InputError(path, std::string("malformed mapping: ") + e.what());
-  }
+  const std::vector<JsonNode> streams = required_array(root, "streams");
+  if (streams.empty()) root.fail("streams", "expected a non-empty array");
+  std::set<std::string> stream_names;
+  for (const auto& js : streams) m.streams.push_back(parse_stream(js, stream_names));
+  m.source = path;
+  return m;
 }
 
 std::string find_mapping(const std::string& name_or_file,

@@ -1,55 +1,37 @@
 #include "importers/scenario_file.h"
 
-#include <cmath>
-#include <fstream>
-#include <nlohmann/json.hpp>
-
-#include "core/common/error.h"
+#include "importers/json_resource.h"
 #include "importers/named_file.h"
 
 namespace roverlab::io {
 
-using nlohmann::json;
-
 ScenarioFile load_scenario(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open scenario");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(path, std::string("scenario is not valid JSON: ") + e.what());
-  }
-  if (!j.is_object() || j.value("format", std::string()) != "roverlab-scenario") {
-    throw InputError(path, "not a RoverLab scenario ('format' must be \"roverlab-scenario\")");
-  }
+  const JsonResource file = read_json_resource(path, "scenario");
+  const JsonNode j = file.root();
+  require_format(j, "roverlab-scenario", "scenario");
   ScenarioFile s;
   s.file = path;
-  try {
-    s.name = j.value("name", std::string());
-    s.description = j.value("description", std::string());
-    s.kind = j.at("kind").get<std::string>();
-    s.rover = j.at("rover").get<std::string>();
-    s.path = j.at("path").get<std::string>();
-    s.soil = j.at("soil").get<std::string>();
-    s.traction = j.value("traction", std::string("polynomial"));
-    s.duration = j.at("duration_s").get<double>();
-    s.start_x = j.value("start_x_m", 0.0);
-    s.desired_speed = j.value("desired_speed_mps", 0.02);
-    s.slope_deg = j.value("slope_deg", 0.0);
-    s.bump_height = j.value("bump_height_m", 0.05);
-    s.bump_x = j.value("bump_x_m", 1.0);
-    s.bump_length = j.value("bump_length_m", 0.3);
-    if (j.contains("effects")) {
-      for (const auto& [k, v] : j.at("effects").items()) s.effects[k] = v.get<double>();
-    }
-  } catch (const json::exception& e) {
-    throw InputError(path, std::string("scenario: ") + e.what());
+  s.name = optional_string(j, "name", "");
+  s.description = optional_string(j, "description", "");
+  s.kind = required_string(j, "kind");
+  s.rover = required_string(j, "rover");
+  s.path = required_string(j, "path");
+  s.soil = required_string(j, "soil");
+  s.traction = optional_string(j, "traction", "polynomial");
+  s.duration = required_number(j, "duration_s");
+  s.start_x = optional_number(j, "start_x_m", 0.0);
+  s.desired_speed = optional_number(j, "desired_speed_mps", 0.02);
+  s.slope_deg = optional_number(j, "slope_deg", 0.0);
+  s.bump_height = optional_number(j, "bump_height_m", 0.05);
+  s.bump_x = optional_number(j, "bump_x_m", 1.0);
+  s.bump_length = optional_number(j, "bump_length_m", 0.3);
+  if (j.has("effects")) {
+    const JsonNode effects = required_object(j, "effects");
+    for (const auto& item : effects.value().items()) s.effects[item.key()] = as_number(effects.child(item.key()));
   }
-  if (s.kind != "rocker-bogie") throw InputError(path, "scenario kind '" + s.kind + "' is not rocker-bogie");
-  if (!(s.duration > 0) || !std::isfinite(s.start_x) || !(s.desired_speed > 0)) {
-    throw InputError(path, "duration_s and desired_speed_mps must be positive");
-  }
+  if (s.kind != "rocker-bogie") j.fail("kind", "scenario kind '" + s.kind + "' is not rocker-bogie");
+  if (!(s.duration > 0)) j.fail("duration_s", "must be positive");
+  if (!(s.desired_speed > 0)) j.fail("desired_speed_mps", "must be positive");
   return s;
 }
 

@@ -1,52 +1,28 @@
 #pragma once
-// Soils of seed 003 (Table 2.2, Appendix A.2, A.3) and the Kapvik wheel
-// (Table 2.1), written out for the core tests (the JSON files in
-// resources/soils are read by the importer tests).
+// Soils of seed 003 (Table 2.2, Appendix A.2, A.3), read from
+// resources/soils/*.json through the soil reader, and the Kapvik wheel
+// (Table 2.1).
 
-#include <cmath>
+#include <map>
+#include <string>
 
 #include "core/terramechanics/soil.h"
+#include "importers/soil_file.h"
 
 namespace roverlab::test {
 
-inline terramechanics::Soil ding_tyii() {
-  terramechanics::Soil s;
-  s.name = "ding_tyii";
-  s.n = 1.1;
-  s.cohesion = 250.0;
-  s.friction_angle = 31.9 * M_PI / 180.0;
-  s.shear_modulus = 0.0114;
-  s.kc = 15.6e3;
-  s.kphi = 2407.4e3;
-  s.c1 = 0.18;
-  s.c2 = 0.32;
-  s.density = 1600.0;
-  return s;
+// resources/soils/NAME.json, read once per test program.
+inline const terramechanics::Soil& resource_soil(const std::string& name) {
+  static const auto folder = std::string(ROVERLAB_RESOURCES_DIR) + "/soils";
+  static std::map<std::string, terramechanics::Soil> soils;
+  auto it = soils.find(name);
+  if (it == soils.end()) it = soils.emplace(name, io::find_soil(name, {folder})).first;
+  return it->second;
 }
 
-inline terramechanics::Soil lunar_nominal() {
-  terramechanics::Soil s = ding_tyii();
-  s.name = "lunar_nominal";
-  s.n = 1.0;
-  s.cohesion = 170.0;
-  s.friction_angle = 35.0 * M_PI / 180.0;
-  s.shear_modulus = 0.0178;
-  s.kc = 1.4e3;
-  s.kphi = 820e3;
-  return s;
-}
-
-inline terramechanics::Soil dry_sand() {
-  terramechanics::Soil s = ding_tyii();
-  s.name = "dry_sand";
-  s.n = 1.1;
-  s.cohesion = 1040.0;
-  s.friction_angle = 28.0 * M_PI / 180.0;
-  s.shear_modulus = 0.0175;
-  s.kc = 0.99e3;
-  s.kphi = 1528.43e3;
-  return s;
-}
+inline terramechanics::Soil ding_tyii() { return resource_soil("ding_tyii"); }
+inline terramechanics::Soil lunar_nominal() { return resource_soil("lunar_nominal"); }
+inline terramechanics::Soil dry_sand() { return resource_soil("dry_sand"); }
 
 inline terramechanics::Wheel kapvik_wheel() { return {0.075, 0.07, 0, 0.0}; }
 

@@ -37,7 +37,7 @@ TEST(Mapping, RejectsMalformedMappingsNamingTheFile) {
       {head + R"({"name": "imu", "time": {"variable": "t", "unit": "m"}, "channels": []}]})",
        "not a unit of time"},
       {head + R"({"name": "imu", "time": {"variable": "t"}, "channels": [{"name": "x"}]}]})",
-       "'variable' must be a string"},
+       "field 'streams[0].channels[0].variable': missing, expected a string"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string path = dir.file("m" + std::to_string(k) + ".json");

@@ -1,0 +1,112 @@
+// The JSON resource helper: every error names the file and the field.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "core/common/error.h"
+#include "importers/json_resource.h"
+#include "importers/rover_file.h"
+#include "importers/scenario_file.h"
+#include "importers/soil_file.h"
+#include "test_support.h"
+
+using namespace roverlab;
+using roverlab::test::TempDir;
+using roverlab::test::write_text;
+
+namespace {
+
+// The InputError `read` throws: its file must be `path`; returns the problem.
+std::string problem_of(const std::string& path, const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    return e.problem();
+  }
+  ADD_FAILURE() << "no error for " << path;
+  return "";
+}
+
+}  // namespace
+
+TEST(JsonResource, ReadsTypedFields) {
+  TempDir dir;
+  write_text(dir.file("r.json"),
+             R"({"format": "roverlab-x", "n": 2.5, "s": "text", "o": {"v": [1, 2, 3]}, "a": [{"x": 1}, {"x": 2}]})");
+  const io::JsonResource file = io::read_json_resource(dir.file("r.json"), "resource");
+  const io::JsonNode root = file.root();
+  io::require_format(root, "roverlab-x", "thing");
+  EXPECT_DOUBLE_EQ(io::required_number(root, "n"), 2.5);
+  EXPECT_DOUBLE_EQ(io::optional_number(root, "absent", 7.0), 7.0);
+  EXPECT_EQ(io::required_string(root, "s"), "text");
+  EXPECT_EQ(io::optional_string(root, "absent", "fallback"), "fallback");
+  EXPECT_EQ(io::required_numbers(io::required_object(root, "o"), "v", 3), (std::vector<double>{1, 2, 3}));
+  const auto a = io::required_array(root, "a");
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_EQ(a[1].where(), "a[1]");
+  EXPECT_DOUBLE_EQ(io::required_number(a[1], "x"), 2.0);
+}
+
+TEST(JsonResource, ErrorsNameTheFileAndTheField) {
+  TempDir dir;
+  const std::string path = dir.file("r.json");
+  write_text(path, R"({"n": "2.5", "o": {"v": [1, "two"]}, "a": [{"x": 1}, {"y": 2}], "k": 5})");
+  const io::JsonResource file = io::read_json_resource(path, "resource");
+  const io::JsonNode root = file.root();
+  EXPECT_EQ(problem_of(path, [&] { io::required_number(root, "missing"); }),
+            "field 'missing': missing, expected a number");
+  EXPECT_EQ(problem_of(path, [&] { io::required_number(root, "n"); }),
+            "field 'n': expected a number, got a string");
+  EXPECT_EQ(problem_of(path, [&] { io::optional_string(root, "k", ""); }),
+            "field 'k': expected a string, got a number");
+  EXPECT_EQ(problem_of(path, [&] { io::required_numbers(io::required_object(root, "o"), "v", 2); }),
+            "field 'o.v[1]': expected a number, got a string");
+  EXPECT_EQ(problem_of(path, [&] { io::required_numbers(io::required_object(root, "o"), "v", 3); }),
+            "field 'o.v': expected 3 numbers, got 2");
+  EXPECT_EQ(problem_of(path, [&] { io::required_number(io::required_array(root, "a")[1], "x"); }),
+            "field 'a[1].x': missing, expected a number");
+  EXPECT_EQ(problem_of(path, [&] { io::required_number_in(root, "k", 0, 1); }),
+            "field 'k': 5 is outside [0, 1]");
+  EXPECT_EQ(problem_of(path, [&] { io::require_format(root, "roverlab-x", "thing"); }),
+            "not a RoverLab thing ('format' must be \"roverlab-x\")");
+}
+
+TEST(JsonResource, UnreadableFilesNameTheFile) {
+  TempDir dir;
+  EXPECT_EQ(problem_of(dir.file("none.json"), [&] { io::read_json_resource(dir.file("none.json"), "soil file"); }),
+            "cannot open soil file");
+  write_text(dir.file("bad.json"), "{ not json");
+  EXPECT_EQ(problem_of(dir.file("bad.json"), [&] { io::read_json_resource(dir.file("bad.json"), "soil file"); })
+                .rfind("soil file is not valid JSON: ", 0),
+            0u);
+  write_text(dir.file("list.json"), "[1, 2]");
+  EXPECT_NE(problem_of(dir.file("list.json"), [&] { io::read_json_resource(dir.file("list.json"), "rover description"); })
+                .find("expected a JSON object"),
+            std::string::npos);
+}
+
+TEST(JsonResource, ResourceReadersNameTheField) {
+  TempDir dir;
+  const std::string soil = dir.file("soil.json");
+  write_text(soil, R"({"format": "roverlab-soil", "n": 1.1, "cohesion_Pa": "250"})");
+  EXPECT_EQ(problem_of(soil, [&] { io::load_soil(soil); }), "field 'cohesion_Pa': expected a number, got a string");
+
+  const std::string rover = dir.file("rover.json");
+  write_text(rover, R"({"kind": "planar_rocker_bogie", "wheel_radius_m": 0.075,
+                        "links_m": {"rocker_pivot_to_wheel_1": [0.1]}})");
+  EXPECT_EQ(problem_of(rover, [&] { io::load_rover(rover); }),
+            "field 'links_m.rocker_pivot_to_wheel_1': expected 2 numbers, got 1");
+  write_text(rover, R"({"kind": "skid_steer", "wheel_radius_m": 0.1, "track_m": -1, "wheelbase_m": 0.3})");
+  EXPECT_EQ(problem_of(rover, [&] { io::load_rover(rover); }), "field 'track_m': must be positive");
+
+  const std::string scenario = dir.file("scenario.json");
+  write_text(scenario, R"({"format": "roverlab-scenario", "kind": "rocker-bogie", "rover": "r", "path": "flat",
+                           "soil": "s", "duration_s": 10, "effects": {"slip": "high"}})");
+  EXPECT_EQ(problem_of(scenario, [&] { io::load_scenario(scenario); }),
+            "field 'effects.slip': expected a number, got a string");
+  write_text(scenario, R"({"format": "roverlab-scenario", "kind": "rocker-bogie", "rover": "r", "path": "flat",
+                           "soil": "s"})");
+  EXPECT_EQ(problem_of(scenario, [&] { io::load_scenario(scenario); }), "field 'duration_s': missing, expected a number");
+}
