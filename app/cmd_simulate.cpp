@@ -1,7 +1,5 @@
 // `roverlab simulate rocker-bogie`: the planar rocker-bogie dynamics of seed
 // 003 chapter 4 over a wheel-centre path, written as a log with truth streams.
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +8,7 @@
 
 #include "app/command.h"
 #include "app/commands.h"
+#include "app/command_support.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/simulation/rocker_bogie.h"
@@ -59,11 +58,9 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
   run.duration = duration;
   run.start_x = sc.start_x;
   run.seed = o.seed;
-  try {
+  about_file(sc.file, [&] {
     for (const auto& [k, v] : sc.effects) simulation::set_effect(run.effects, k, v);
-  } catch (const DataError& e) {
-    throw InputError(sc.file, e.what());
-  }
+  });
   apply_effect_options(o.effects, [&](const std::string& name, double value) { simulation::set_effect(run.effects, name, value); });
   simulation::RockerBogieParameters params;
   params.desired_speed = sc.desired_speed;
@@ -76,21 +73,13 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
   g.rocker_to_bogie = {d.planar->rocker_to_bogie[0], d.planar->rocker_to_bogie[1]};
   g.bogie_to_wheel2 = {d.planar->bogie_to_wheel2[0], d.planar->bogie_to_wheel2[1]};
   g.bogie_to_wheel3 = {d.planar->bogie_to_wheel3[0], d.planar->bogie_to_wheel3[1]};
-  if (isatty(2)) {
-    run.progress = [](double f) {
-      const int n = static_cast<int>(40 * f);
-      std::fprintf(stderr, "\rsimulating [%-40s] %3d %%", std::string(static_cast<std::size_t>(n), '#').c_str(),
-                   static_cast<int>(100 * f));
-    };
-  }
   const auto start = std::chrono::steady_clock::now();
   simulation::RockerBogieResult r;
-  try {
-    r = simulation::simulate_rocker_bogie(g, params, run);
-  } catch (const DataError& e) {
-    throw InputError(sc.file, e.what());
+  {
+    const ProgressLine progress("simulating", ProgressLine::Style::bar);
+    run.progress = progress.callback();
+    r = about_file(sc.file, [&] { return simulation::simulate_rocker_bogie(g, params, run); });
   }
-  if (run.progress) std::fprintf(stderr, "\r%60s\r", "");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   io::write_hdf5_log(r.log, o.output);
   const auto& pose = r.log.stream("truth/pose");

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 
+#include "app/command_support.h"
 #include "app/log_input.h"
 #include "app/resources.h"
 #include "core/common/error.h"
@@ -63,11 +64,7 @@ std::vector<std::string> all_analysis_names() {
 
 AnalysisResult run_for_views(Analysis& analysis, const log::Log& lg, const std::string& file,
                              const std::function<void(double)>& progress) {
-  try {
-    return analysis.run({lg, file, progress});
-  } catch (const DataError& e) {
-    throw InputError(file, e.what());
-  }
+  return about_file(file, [&] { return analysis.run({lg, file, progress}); });
 }
 
 ViewInput load_view_input(const std::string& file, const std::optional<std::string>& mapping,
@@ -85,7 +82,7 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     if (!a) throw std::logic_error("no analysis named " + name);
     const std::string missing = a->missing(in.log);
     if (!missing.empty()) {
-      in.notes.push_back("no " + a->title() + ": " + missing);
+      in.notes.push_back("not run: " + a->command() + " (the log has " + missing + ")");
       continue;
     }
     if (!a->runs_on_open(in.log)) continue;
@@ -93,10 +90,10 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     try {
       in.add(*a, run_for_views(*a, in.log, file));
     } catch (const InputError& e) {
-      in.notes.push_back(a->title() + " skipped: " + e.problem());
+      in.notes.push_back("not run: " + a->command() + " (" + e.problem() + ")");
       continue;
     }
-    in.notes.push_back("ran " + a->title() + " on the log");
+    in.notes.push_back("ran " + a->command() + " on the log: " + a->title());
   }
   return in;
 }
