@@ -11,6 +11,7 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
+#include "importers/csv_text.h"
 #include "importers/rover_file.h"
 #include "importers/soil_file.h"
 #include "importers/wheel_test_csv.h"
@@ -20,12 +21,13 @@ namespace roverlab::app {
 namespace {
 
 bool looks_like_wheel_test_csv(const std::string& file) {
-  if (std::filesystem::path(file).extension() != ".csv") return false;
-  std::ifstream in(file);
+  std::error_code ec;
+  // Not a regular file: load_log says why (a pipe would block here).
+  if (std::filesystem::path(file).extension() != ".csv" || !std::filesystem::is_regular_file(file, ec)) return false;
+  std::ifstream in = io::csv::open_text_file(file);
   std::string header;
-  while (std::getline(in, header)) {
-    if (!header.empty() && header[0] != '#') break;
-  }
+  int line_number = 0;
+  if (!io::csv::next_content_line(in, header, line_number, file)) return false;
   return header.find("load_N") != std::string::npos && header.find("slip") != std::string::npos;
 }
 

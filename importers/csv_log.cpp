@@ -35,17 +35,13 @@ std::pair<std::string, std::string> parse_header_cell(const std::string& cell) {
 }  // namespace
 
 log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, "no such file");
-  if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open file");
+  std::ifstream in = csv::open_text_file(path);
 
   std::vector<Column> columns;
   std::size_t time_column = 0;
   std::string line;
   int line_number = 0;
-  while (csv::next_content_line(in, line, line_number)) {
+  while (csv::next_content_line(in, line, line_number, path)) {
     const auto cells = csv::split(line);
     const std::string where = "line " + std::to_string(line_number);
     if (columns.empty()) {  // header

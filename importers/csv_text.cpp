@@ -1,6 +1,10 @@
 #include "importers/csv_text.h"
 
 #include <charconv>
+#include <filesystem>
+#include <string>
+
+#include "core/common/error.h"
 #include <stdexcept>
 
 namespace roverlab::io::csv {
@@ -14,8 +18,45 @@ std::string trim(std::string_view s) {
   return out;
 }
 
-bool next_content_line(std::istream& in, std::string& line, int& line_number) {
-  while (std::getline(in, line)) {
+std::ifstream open_text_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "not a regular file (a pipe or a device?)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open file");
+  return in;
+}
+
+namespace {
+
+// One line without its '\n', at most kMaxLineBytes long; false at the end.
+bool read_line(std::istream& in, std::string& line, int line_number, const std::string& path) {
+  line.clear();
+  std::streambuf* buffer = in.rdbuf();
+  for (;;) {
+    const int c = buffer->sbumpc();
+    if (c == std::char_traits<char>::eof()) {
+      in.setstate(std::ios::eofbit);
+      return !line.empty();
+    }
+    if (c == '\n') return true;
+    if (c == '\0') {
+      throw InputError(path, "line " + std::to_string(line_number) + ": NUL byte: not a text file");
+    }
+    line.push_back(static_cast<char>(c));
+    if (line.size() > kMaxLineBytes) {
+      throw InputError(path, "line " + std::to_string(line_number) + " is longer than " +
+                                 std::to_string(kMaxLineBytes >> 20) + " MiB: not a text table");
+    }
+  }
+}
+
+}  // namespace
+
+bool next_content_line(std::istream& in, std::string& line, int& line_number, const std::string& path) {
+  while (read_line(in, line, line_number + 1, path)) {
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::string stripped = trim(line);

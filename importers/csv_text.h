@@ -1,6 +1,8 @@
 #pragma once
 // Line-level CSV helpers shared by the CSV readers (no quoting of commas).
 
+#include <cstddef>
+#include <fstream>
 #include <istream>
 #include <optional>
 #include <string>
@@ -12,9 +14,18 @@ namespace roverlab::io::csv {
 // Cell without surrounding blanks and without one pair of double quotes.
 std::string trim(std::string_view s);
 
+// Longest line a text table may have: a longer one (a binary file, /dev/zero
+// behind a .csv name) is refused instead of filling memory.
+inline constexpr std::size_t kMaxLineBytes = std::size_t{16} << 20;
+
+// Opens `path` for reading as text: InputError naming it when it does not
+// exist, is a folder, or is not a regular file (a pipe or a device never ends).
+std::ifstream open_text_file(const std::string& path);
+
 // Reads the next line that is neither blank nor a '#' comment, without its
 // trailing CR; counts every line read in line_number. False at the end.
-bool next_content_line(std::istream& in, std::string& line, int& line_number);
+// Throws InputError naming `path` for a NUL byte or a line over kMaxLineBytes.
+bool next_content_line(std::istream& in, std::string& line, int& line_number, const std::string& path);
 
 // Cells of one line, split at every comma.
 std::vector<std::string_view> split(std::string_view line);

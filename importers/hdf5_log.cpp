@@ -113,8 +113,15 @@ struct Hdf5LogReader::File {
 
 namespace {
 
+// Streams nest (estimate/ins/pose): deeper than this is a hard-link cycle.
+constexpr int kMaxStreamDepth = 16;
+
 // Collects the streams under `group` (relative names joined with '/').
-void collect_streams(hid_t group, const std::string& prefix, std::vector<std::string>& names) {
+void collect_streams(hid_t group, const std::string& prefix, std::vector<std::string>& names, int depth = 0) {
+  if (depth > kMaxStreamDepth) {
+    throw std::runtime_error("streams nested deeper than " + std::to_string(kMaxStreamDepth) + " levels at '" +
+                             prefix + "' (a link cycle?)");
+  }
   for (const auto& child : h5::link_names(group)) {
     if (h5::object_kind(group, child) != h5::ObjectKind::group) continue;
     Handle sub(H5Gopen2(group, child.c_str(), H5P_DEFAULT));
@@ -122,7 +129,7 @@ void collect_streams(hid_t group, const std::string& prefix, std::vector<std::st
     if (h5::read_string_attribute(sub.get(), "roverlab_kind") == std::string("stream")) {
       names.push_back(name);
     }
-    if (child != "channels") collect_streams(sub.get(), name, names);
+    if (child != "channels") collect_streams(sub.get(), name, names, depth + 1);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "importers/hdf5_support.h"
 
+#include <new>
 #include <stdexcept>
 
 namespace roverlab::io::h5 {
@@ -123,22 +124,39 @@ void write_int_attribute(hid_t object, const char* name, std::int64_t value) {
 }
 
 namespace {
-herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* data) {
-  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+
+struct LinkList {
+  std::vector<std::string> names;
+  std::string not_hard;  // the first soft or external link met
+};
+
+herr_t collect_name(hid_t, const char* name, const H5L_info_t* info, void* data) {
+  auto* list = static_cast<LinkList*>(data);
+  if (info->type != H5L_TYPE_HARD) {
+    // A soft link can make a cycle (endless walk), an external one reads
+    // another file on the machine: a log holds neither.
+    if (list->not_hard.empty()) list->not_hard = name;
+    return 0;
+  }
+  list->names.emplace_back(name);
   return 0;
 }
+
 }  // namespace
 
 std::vector<std::string> link_names(hid_t group) {
-  std::vector<std::string> names;
-  if (H5Literate(group, H5_INDEX_CRT_ORDER, H5_ITER_INC, nullptr, collect_name, &names) < 0) {
+  LinkList list;
+  if (H5Literate(group, H5_INDEX_CRT_ORDER, H5_ITER_INC, nullptr, collect_name, &list) < 0) {
     H5Eclear2(H5E_DEFAULT);
-    names.clear();
-    if (H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_name, &names) < 0) {
+    list = LinkList{};
+    if (H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_name, &list) < 0) {
       throw std::runtime_error("cannot list group: " + last_error_text());
     }
   }
-  return names;
+  if (!list.not_hard.empty()) {
+    throw std::runtime_error("link '" + list.not_hard + "' is a soft or external link (a log holds only its own data)");
+  }
+  return list.names;
 }
 
 ObjectKind object_kind(hid_t location, const std::string& path) {
@@ -173,7 +191,12 @@ std::vector<double> read_doubles(hid_t dataset) {
   Handle space(H5Dget_space(dataset));
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   if (n < 0) throw std::runtime_error("cannot read dataset size: " + last_error_text());
-  std::vector<double> values(static_cast<std::size_t>(n));
+  std::vector<double> values;
+  try {
+    values.resize(static_cast<std::size_t>(n));
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("declares " + std::to_string(n) + " values, more than memory holds");
+  }
   if (n > 0 && H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                        values.data()) < 0) {
     const std::string why = last_error_text();

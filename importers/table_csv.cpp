@@ -17,14 +17,11 @@ const std::vector<double>* NumericTable::find(const std::string& name) const {
 }
 
 NumericTable read_numeric_table(const std::string& path, const std::vector<std::string>& numeric) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open file");
+  std::ifstream in = csv::open_text_file(path);
   NumericTable t;
   std::string line;
   int line_number = 0;
-  while (csv::next_content_line(in, line, line_number)) {
+  while (csv::next_content_line(in, line, line_number, path)) {
     const auto cells = csv::split(line);
     if (t.names.empty()) {
       for (const auto& c : cells) {

@@ -15,16 +15,13 @@ namespace fs = std::filesystem;
 using terramechanics::WheelTestPoint;
 
 std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, "no such file");
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open file");
+  std::ifstream in = csv::open_text_file(path);
   std::map<std::string, std::size_t> column;
   std::vector<WheelTestPoint> points;
   std::string line;
   int line_number = 0;
   std::size_t columns = 0;
-  while (csv::next_content_line(in, line, line_number)) {
+  while (csv::next_content_line(in, line, line_number, path)) {
     const auto cells = csv::split(line);
     const std::string where = "line " + std::to_string(line_number);
     if (column.empty()) {

@@ -1,0 +1,120 @@
+// Bad input that used to crash RoverLab, hang it or fill the memory, run as a
+// user runs it: one line naming the file and the problem, exit code 3, in
+// bounded time (shared/robustness/findings.md F1, F31, F32, F36, F40, F41).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <sys/stat.h>
+
+#include <string>
+
+#include "test_support.h"
+
+namespace roverlab {
+namespace {
+
+using test::CommandResult;
+using test::quote;
+using test::TempDir;
+
+const std::string kExe = ROVERLAB_EXE;
+const std::string kData = ROVERLAB_TEST_DATA;
+
+CommandResult run_roverlab(const std::string& args) {
+  // `timeout` turns a hang into a failure instead of a stuck test.
+  return test::run_command("timeout 60 " + quote(kExe) + " " + args);
+}
+
+void expect_one_line_bad_input(const CommandResult& r, const std::string& file, const std::string& problem) {
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(problem), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;  // one line
+}
+
+// The bundled log as a RoverLab HDF5 log, opened for writing with HDF5.
+class ConvertedLog {
+ public:
+  explicit ConvertedLog(const TempDir& dir) : path_(dir.file("log.h5")) {
+    const CommandResult r = run_roverlab("convert " + quote(kData + "/test17run.mat") + " " + quote(path_) +
+                                         " -m wvu_pathfinder");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+  }
+  const std::string& path() const { return path_; }
+  // Runs `edit` on the open file, then closes it.
+  template <class Edit>
+  void edit(Edit&& edit_file) const {
+    const hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    edit_file(f);
+    H5Fclose(f);
+  }
+
+ private:
+  std::string path_;
+};
+
+TEST(Robustness, OneCorruptedByteInAnHdf5LogIsABadInputNotACrash) {
+  for (const char* name : {"segv_byte189.h5", "segv_h006_1634.h5", "segv_h150_1234.h5"}) {
+    const std::string file = kData + "/robustness/" + name;
+    for (const char* command : {"info ", "estimate ins-slip "}) {
+      expect_one_line_bad_input(run_roverlab(command + quote(file)), file, "corrupt HDF5 file");
+    }
+  }
+}
+
+TEST(Robustness, SoftLinkCycleAndExternalLinksAreRefused) {
+  TempDir dir;
+  const ConvertedLog cycle(dir);
+  cycle.edit([](hid_t f) { ASSERT_GE(H5Lcreate_soft("/streams", f, "/streams/loop", H5P_DEFAULT, H5P_DEFAULT), 0); });
+  expect_one_line_bad_input(run_roverlab("info " + quote(cycle.path())), cycle.path(), "soft or external link");
+  const std::string other = dir.file("other.h5");
+  ASSERT_EQ(run_roverlab("convert " + quote(cycle.path()) + " " + quote(other)).exit_code, 3);
+  const ConvertedLog external(dir);
+  ASSERT_EQ(test::run_command("cp " + quote(external.path()) + " " + quote(other)).exit_code, 0);
+  external.edit([&](hid_t f) {
+    ASSERT_GE(H5Lcreate_external(other.c_str(), "/streams/imu/time", f, "/streams/imu/channels/ext", H5P_DEFAULT,
+                                 H5P_DEFAULT),
+              0);
+  });
+  expect_one_line_bad_input(run_roverlab("info " + quote(external.path())), external.path(), "soft or external link");
+}
+
+TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
+  TempDir dir;
+  const ConvertedLog huge(dir);
+  huge.edit([](hid_t f) {
+    ASSERT_GE(H5Ldelete(f, "/streams/imu/channels/angular_rate_x", H5P_DEFAULT), 0);
+    const hsize_t dims = hsize_t{1} << 40, max = H5S_UNLIMITED, chunk = 1 << 16;
+    const hid_t space = H5Screate_simple(1, &dims, &max);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 1, &chunk);
+    const hid_t ds = H5Dcreate2(f, "/streams/imu/channels/angular_rate_x", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl,
+                                H5P_DEFAULT);
+    ASSERT_GE(ds, 0);
+    H5Dclose(ds);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+  });
+  const CommandResult r = run_roverlab("info " + quote(huge.path()));
+  expect_one_line_bad_input(r, huge.path(), "angular_rate_x");
+  EXPECT_NE(r.err.find("more than memory holds"), std::string::npos) << r.err;
+}
+
+TEST(Robustness, ACsvThatNeverEndsIsRefused) {
+  TempDir dir;
+  const std::string zero = dir.file("zero.csv"), fifo = dir.file("pipe.csv"), binary = dir.file("binary.csv");
+  ASSERT_EQ(symlink("/dev/zero", zero.c_str()), 0);
+  expect_one_line_bad_input(run_roverlab("info " + quote(zero)), zero, "not a regular file");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  expect_one_line_bad_input(run_roverlab("info " + quote(fifo)), fifo, "not a regular file");
+  test::write_text(binary, std::string("time [s],x [m]\n0,1\n1,\0\0\0\n", 24));
+  expect_one_line_bad_input(run_roverlab("info " + quote(binary)), binary, "NUL byte");
+  // The views look at a .csv's header first: the same answers there.
+  expect_one_line_bad_input(run_roverlab("render " + quote(fifo) + " -o " + quote(dir.file("x.png"))), fifo,
+                            "not a regular file");
+  expect_one_line_bad_input(run_roverlab("report " + quote(zero) + " -o " + quote(dir.file("r"))), zero,
+                            "not a regular file");
+}
+
+}  // namespace
+}  // namespace roverlab
