@@ -35,6 +35,7 @@ class AnalysisCommand : public Command {
 
   int run() override {
     analysis_->check_options();
+    if (output_) refuse_overwriting_input(file_, *output_, "--output");
     const log::Log lg = load_input(file_, mapping_).log;
     AnalysisResult r;
     {

@@ -10,6 +10,7 @@
 
 #include "app/command.h"
 #include "app/commands.h"
+#include "app/command_support.h"
 #include "app/log_input.h"
 #include "app/resources.h"
 #include "core/common/error.h"
@@ -142,6 +143,7 @@ int run_convert(const ConvertOptions& options) {
               << ": output must end in .h5 or .hdf5 (RoverLab HDF5 log) or .csv (one stream)\n";
     return kUsageError;
   }
+  refuse_overwriting_input(options.input, options.output, "OUT");
   const io::LoadedLog loaded = load_input(options.input, options.mapping);
   if (to_csv) {
     const log::Log& lg = loaded.log;

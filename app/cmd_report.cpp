@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -13,9 +15,11 @@
 #include "app/command.h"
 #include "app/commands.h"
 #include "app/render_view.h"
+#include "app/resources.h"
 #include "app/views_input.h"
 #include "core/common/error.h"
 #include "importers/atomic_file.h"
+#include "importers/soil_file.h"
 #include <vtkRenderer.h>
 
 #include "views/planar_rover_scene.h"
@@ -163,8 +167,27 @@ class ReportWriter {
   json metrics_;
 };
 
+// A report goes into a new or empty folder, or over a previous report; never
+// over a folder of the user's other files (their index.html would be lost).
+void check_report_folder(const std::string& output) {
+  const fs::path dir(output);
+  std::error_code ec;
+  if (output.empty()) throw UsageError("--output: the report folder's name is empty");
+  if (!fs::exists(dir, ec)) return;
+  if (!fs::is_directory(dir, ec)) throw InputError(output, "exists and is not a folder");
+  if (fs::is_empty(dir, ec)) return;
+  std::ifstream index(dir / "index.html");
+  std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
+  if (text.find("<h1>RoverLab report</h1>") != std::string::npos) return;
+  throw UsageError("--output " + output + ": the folder holds other files and no RoverLab report; "
+                   "choose a new or empty folder");
+}
+
 int run_report(const ReportOptions& o) {
   const auto [w, h] = parse_size(o.size);
+  check_report_folder(o.output);
+  // An unknown soil is an error, not a silently missing section.
+  if (o.soil) (void)io::find_soil(*o.soil, resource_subfolders("soils"));
   ViewInputOptions vo;
   vo.analyses = all_analysis_names();
   const ViewInput in = load_view_input(o.file, o.mapping, vo);

@@ -3,6 +3,9 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+
+#include "app/commands.h"
 
 #include "importers/hdf5_log.h"
 
@@ -25,6 +28,13 @@ std::function<void(double)> ProgressLine::callback() const {
     };
   }
   return [label = label_](double f) { std::fprintf(stderr, "\r%s %3d %%", label.c_str(), static_cast<int>(100 * f)); };
+}
+
+void refuse_overwriting_input(const std::string& input, const std::string& output, const std::string& option) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(input, output, ec) && !ec) {
+    throw UsageError(option + " " + output + ": that is the input file; write to another file");
+  }
 }
 
 void write_log_with(const log::Log& base, const log::Log& added, const std::string& path) {

@@ -40,6 +40,10 @@ auto about_file(const std::string& file, Work&& work) -> decltype(work()) {
   }
 }
 
+// A UsageError when `output` names the same file as `input` (through any
+// path or link): writing would replace the very data being read.
+void refuse_overwriting_input(const std::string& input, const std::string& output, const std::string& option);
+
 // Writes `base` with the streams of `added` (and its metadata.extra entries)
 // to `path` as a RoverLab HDF5 log, atomically.
 void write_log_with(const log::Log& base, const log::Log& added, const std::string& path);

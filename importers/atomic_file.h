@@ -1,7 +1,9 @@
 #pragma once
 // Atomic file writes: the content goes to a temporary file beside the target,
-// which is renamed into place only when complete. A failed write leaves
-// neither a partial target nor the temporary file behind.
+// which is renamed into place only when complete. A failed or interrupted
+// (SIGINT, SIGTERM, SIGHUP) write leaves neither a partial target nor the
+// temporary file behind. A write-protected target is refused, a replaced file
+// keeps its permissions, and a symbolic link keeps pointing at the new content.
 
 #include <functional>
 #include <string>

@@ -5,6 +5,7 @@
 #include <hdf5.h>
 #include <sys/stat.h>
 
+#include <filesystem>
 #include <string>
 
 #include "test_support.h"
@@ -114,6 +115,59 @@ TEST(Robustness, ACsvThatNeverEndsIsRefused) {
                             "not a regular file");
   expect_one_line_bad_input(run_roverlab("report " + quote(zero) + " -o " + quote(dir.file("r"))), zero,
                             "not a regular file");
+}
+
+TEST(Robustness, OutputsNeverReplaceTheInputNorWriteProtectedFiles) {
+  TempDir dir;
+  const ConvertedLog log(dir);
+  const std::string before = test::read_text(log.path());
+  // F28: the output is the input.
+  CommandResult r = run_roverlab("convert " + quote(log.path()) + " " + quote(log.path()));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("input file"), std::string::npos) << r.err;
+  r = run_roverlab("estimate ins-slip " + quote(log.path()) + " -o " + quote(dir.file("./log.h5")));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(test::read_text(log.path()) == before) << "the input was changed";
+  // F35: a write-protected file is refused, a private one stays private, a link stays a link.
+  const std::string locked = dir.file("locked.h5"), secret = dir.file("secret.h5"), target = dir.file("target.h5"),
+                    link = dir.file("link.h5");
+  test::write_text(locked, "mine");
+  chmod(locked.c_str(), 0444);
+  r = run_roverlab("convert " + quote(log.path()) + " " + quote(locked));
+  expect_one_line_bad_input(r, locked, "write-protected");
+  EXPECT_EQ(test::read_text(locked), "mine");
+  test::write_text(secret, "old");
+  chmod(secret.c_str(), 0600);
+  ASSERT_EQ(run_roverlab("convert " + quote(log.path()) + " " + quote(secret)).exit_code, 0);
+  struct stat st {};
+  ASSERT_EQ(stat(secret.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  test::write_text(target, "old");
+  ASSERT_EQ(symlink(target.c_str(), link.c_str()), 0);
+  ASSERT_EQ(run_roverlab("convert " + quote(log.path()) + " " + quote(link)).exit_code, 0);
+  struct stat lst {};
+  ASSERT_EQ(lstat(link.c_str(), &lst), 0);
+  EXPECT_TRUE(S_ISLNK(lst.st_mode));
+  EXPECT_EQ(run_roverlab("info " + quote(target)).exit_code, 0) << "the link's target holds the new log";
+}
+
+TEST(Robustness, AReportNeverOverwritesTheUsersFilesNorIgnoresAnUnknownSoil) {
+  TempDir dir;
+  const std::string mine = dir.file("mine"), wheel = kData + "/single_wheel/ding2011_tyii.csv";
+  std::filesystem::create_directories(mine);
+  test::write_text(mine + "/index.html", "<html>mine</html>");
+  CommandResult r = run_roverlab("report " + quote(wheel) + " --soil ding_tyii --size 200x150 -o " + quote(mine));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(test::read_text(mine + "/index.html"), "<html>mine</html>");
+  // Over a previous report: fine.
+  const std::string previous = dir.file("previous");
+  ASSERT_EQ(run_roverlab("report " + quote(wheel) + " --soil ding_tyii --size 200x150 -o " + quote(previous)).exit_code,
+            0);
+  r = run_roverlab("report " + quote(wheel) + " --soil ding_tyii --size 200x150 -o " + quote(previous));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_roverlab("report " + quote(wheel) + " --soil no_such_soil -o " + quote(dir.file("new")));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("no_such_soil"), std::string::npos) << r.err;
 }
 
 }  // namespace
