@@ -54,7 +54,7 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
     throw UsageError("traction " + traction + ": expected polynomial or wong-reece");
   }
   const double duration = o.duration.value_or(sc.duration);
-  if (!(duration > 0 && duration <= 100000)) throw UsageError("--duration must be positive");
+  if (!(duration > 0 && duration <= 100000)) throw UsageError("--duration must be in (0, 100000] s");
   run.duration = duration;
   run.start_x = sc.start_x;
   run.seed = o.seed;

@@ -11,6 +11,7 @@
 
 #include "app/command.h"
 #include "app/commands.h"
+#include "app/command_support.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
@@ -306,31 +307,39 @@ namespace {
 // ask for them.
 void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists) {
   auto* soil = cmd.add_option("--soil", o.soil, "Soil NAME (resources/soils/NAME.json) or FILE");
-  auto* radius = cmd.add_option("--radius", o.radius, "Wheel radius, m");
-  auto* width = cmd.add_option("--width", o.width, "Wheel width, m");
+  auto* radius = cmd.add_option("--radius", o.radius, "Wheel radius, m")->check(finite_in(1e-4, 10.0));
+  auto* width = cmd.add_option("--width", o.width, "Wheel width, m")->check(finite_in(1e-4, 10.0));
   if (!need_lists) {
     soil->required();
     radius->required();
     width->required();
   }
-  cmd.add_option("--grousers", o.grousers, "Number of grousers");
-  cmd.add_option("--grouser-height", o.grouser_height, "Grouser height, m");
+  cmd.add_option("--grousers", o.grousers, "Number of grousers")->check(CLI::Range(0, 1000));
+  cmd.add_option("--grouser-height", o.grouser_height, "Grouser height, m")->check(finite_in(0.0, 1.0));
   if (need_lists) {
-    cmd.add_option("--load", o.loads, "Normal loads W, N (comma separated)")->delimiter(',');
-    cmd.add_option("--slip", o.slips, "Slips s in [-1, 1] (comma separated)")->delimiter(',');
+    cmd.add_option("--load", o.loads, "Normal loads W, N (comma separated)")->delimiter(',')->check(finite_in(0.0, 1e6));
+    cmd.add_option("--slip", o.slips, "Slips s in [-1, 1] (comma separated)")->delimiter(',')->check(finite_in(-1.0, 1.0));
     cmd.add_option("--format", o.format, "csv or json")->capture_default_str();
   }
   cmd.add_option("--model", o.model,
                  "bekker | wong, with +slip-sinkage, +grousers, +bulldozing (e.g. wong+slip-sinkage)")
       ->capture_default_str();
   cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
-  cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")->capture_default_str();
-  cmd.add_option("--slip-sinkage-n1", o.slip_sinkage_n1, "n = n0 + n1 |s| (with +slip-sinkage)")->capture_default_str();
+  cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 100000));
+  cmd.add_option("--slip-sinkage-n1", o.slip_sinkage_n1, "n = n0 + n1 |s| (with +slip-sinkage)")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 5.0));
   cmd.add_option("--grouser-effectiveness", o.grouser_effectiveness, "shear radius r + lambda h (with +grousers)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(0.0, 1.0));
   cmd.add_option("--bulldozing-scale", o.bulldozing_scale, "scale of the bulldozing resistance (with +bulldozing)")
-      ->capture_default_str();
-  cmd.add_option("--soil-strength", o.soil_strength, "factor on c, tan(phi), kc, kphi")->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(0.0, 100.0));
+  cmd.add_option("--soil-strength", o.soil_strength, "factor on c, tan(phi), kc, kphi")
+      ->capture_default_str()
+      ->check(finite_in(0.01, 100.0));
 }
 
 }  // namespace
@@ -345,11 +354,11 @@ Commands make_terramechanics_commands() {
       "Fit DP(W, s) and tau_R(W, s) polynomials (Eq. 2.28) to a model grid, as in seed 003 Appendix A",
       [](CLI::App& cmd, SurfaceOptions& o) {
         add_model_options(cmd, o.model, false);
-        cmd.add_option("--load-min", o.load_min, "N")->capture_default_str();
-        cmd.add_option("--load-max", o.load_max, "N")->capture_default_str();
-        cmd.add_option("--slip-min", o.slip_min)->capture_default_str();
-        cmd.add_option("--slip-max", o.slip_max)->capture_default_str();
-        cmd.add_option("--grid", o.grid, "Grid points per axis")->capture_default_str();
+        cmd.add_option("--load-min", o.load_min, "N")->capture_default_str()->check(finite_in(0.0, 1e6));
+        cmd.add_option("--load-max", o.load_max, "N")->capture_default_str()->check(finite_in(0.0, 1e6));
+        cmd.add_option("--slip-min", o.slip_min)->capture_default_str()->check(finite_in(-1.0, 1.0));
+        cmd.add_option("--slip-max", o.slip_max)->capture_default_str()->check(finite_in(-1.0, 1.0));
+        cmd.add_option("--grid", o.grid, "Grid points per axis")->capture_default_str()->check(CLI::Range(2, 2000));
         cmd.add_option("--order", o.order, "Polynomial order 1..6, or auto (cross-validated)")->capture_default_str();
         cmd.add_flag("--json", o.json, "Print JSON");
       },
@@ -360,7 +369,9 @@ Commands make_terramechanics_commands() {
       [](CLI::App& cmd, FitOptions& o) {
         cmd.add_option("FILE", o.file, "CSV of points")->required();
         cmd.add_option("--order", o.order, "Polynomial order 1..6, or auto (cross-validated)")->capture_default_str();
-        cmd.add_option("--grid", o.grid_bins, "Occupancy grid bins per axis")->capture_default_str();
+        cmd.add_option("--grid", o.grid_bins, "Occupancy grid bins per axis")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 1000));
         cmd.add_flag("--json", o.json, "Print JSON");
       },
       run_terramechanics_fit));

@@ -78,6 +78,9 @@ int parse_and_run(int argc, char** argv) {
   Parser p;
   p.cli.require_subcommand(1);
   p.cli.set_version_flag("--version", ROVERLAB_VERSION);
+  p.cli.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "roverlab: " + std::string(e.what()) + "\nRun with --help for more information.\n";
+  });
   Commands commands = all_commands();
   for (auto& c : commands) p.add(*c);
   try {

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -28,6 +29,25 @@ std::function<void(double)> ProgressLine::callback() const {
     };
   }
   return [label = label_](double f) { std::fprintf(stderr, "\r%s %3d %%", label.c_str(), static_cast<int>(100 * f)); };
+}
+
+CLI::Validator finite_in(double lo, double hi) {
+  char range[96];
+  std::snprintf(range, sizeof range, "a finite number in [%g, %g]", lo, hi);
+  const std::string expected = range;
+  return CLI::Validator(
+      [lo, hi, expected](std::string& text) -> std::string {
+        double v = 0;
+        std::size_t used = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        if (used != text.size() || !std::isfinite(v) || v < lo || v > hi) return "'" + text + "': expected " + expected;
+        return {};
+      },
+      expected);
 }
 
 void refuse_overwriting_input(const std::string& input, const std::string& output, const std::string& option) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include <CLI/CLI.hpp>
+
 #include "core/common/error.h"
 #include "core/log/log.h"
 
@@ -28,6 +30,10 @@ class ProgressLine {
   Style style_;
   bool shown_ = false;
 };
+
+// An option check: a finite number in [lo, hi] (CLI11's Range lets NaN through).
+// A bad value is a usage error (exit 2) naming the option.
+CLI::Validator finite_in(double lo, double hi);
 
 // Runs `work`; a DataError it throws (a missing stream, a short log) becomes
 // an InputError naming `file`.

@@ -4,33 +4,47 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <csignal>
+#include <cstdio>
 #include <cstring>
 
 #include "core/common/error.h"
 
 namespace roverlab::io {
 
+bool has_hdf5_signature(const std::string& path) {
+  static const char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (in == nullptr) return false;
+  bool found = false;
+  // The superblock is at 0, 512, 1024, 2048, ... (a MATLAB v7.3 file has a
+  // 512-byte text header first).
+  for (long at = 0; at <= (1L << 30) && !found; at = at == 0 ? 512 : 2 * at) {
+    char head[8];
+    if (std::fseek(in, at, SEEK_SET) != 0 || std::fread(head, 1, 8, in) != 8) break;
+    found = std::memcmp(head, kSignature, 8) == 0;
+  }
+  std::fclose(in);
+  return found;
+}
+
 void survive_crash(const std::string& path, const std::function<void()>& trial) {
+  std::fflush(nullptr);  // nothing buffered is written twice
   const pid_t child = fork();
-  if (child < 0) return;  // no child to spare: read without the guard
+  if (child < 0) return;
   if (child == 0) {
-    // The child only reads: no exit handlers, no stdio flush, no destructors
-    // of the parent's objects.
     try {
       trial();
     } catch (...) {
     }
-    _exit(0);
+    _exit(0);  // no exit handlers, no destructors of the parent's objects
   }
   int status = 0;
   while (waitpid(child, &status, 0) < 0) {
     if (errno != EINTR) return;
   }
   if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    throw InputError(path, std::string("corrupt HDF5 file: the HDF5 library crashed reading it (") + strsignal(sig) +
-                               "); the file is damaged");
+    throw InputError(path, std::string("corrupt HDF5 file: the HDF5 library crashed reading it (") +
+                               strsignal(WTERMSIG(status)) + "); the file is damaged");
   }
 }
 

@@ -1,18 +1,24 @@
 #pragma once
-// Running a risky read in a child process first. Debian's libhdf5 1.10 can
-// crash (SIGSEGV, heap corruption) on a log with one corrupted byte; a crash
-// in a forked child becomes an InputError naming the file instead of taking
-// the program (or the GUI session) down.
+// Reading an untrusted HDF5 file safely. Debian's libhdf5 1.10 can crash
+// (SIGSEGV, heap corruption from a crafted file) on a log with one corrupted
+// byte. The read is tried first in a forked child: the child starts from this
+// process's exact memory state, so it meets the same fate as this process
+// would; a crash there becomes an InputError naming the file, and only a file
+// the child read without crashing is then read here.
 
 #include <functional>
 #include <string>
 
 namespace roverlab::io {
 
+// True when the file has the HDF5 signature where HDF5 puts it, read byte by
+// byte (without libhdf5, which may crash on a damaged file).
+bool has_hdf5_signature(const std::string& path);
+
 // Runs `trial` in a forked child and waits for it. Throws InputError(path,
-// ...) when the child dies by a signal; returns otherwise, whatever the trial
-// threw (the caller then does the real work in this process, where the same
-// input gives the same, clean error).
+// "corrupt HDF5 file: ...") when the child dies by a signal; returns
+// otherwise, whatever the trial threw (the real read here then gives the same,
+// clean error). Without a child to spare it returns at once.
 void survive_crash(const std::string& path, const std::function<void()>& trial);
 
 }  // namespace roverlab::io

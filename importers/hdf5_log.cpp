@@ -126,8 +126,12 @@ void collect_streams(hid_t group, const std::string& prefix, std::vector<std::st
     if (h5::object_kind(group, child) != h5::ObjectKind::group) continue;
     Handle sub(H5Gopen2(group, child.c_str(), H5P_DEFAULT));
     const std::string name = prefix.empty() ? child : prefix + "/" + child;
-    if (h5::read_string_attribute(sub.get(), "roverlab_kind") == std::string("stream")) {
+    const auto kind = h5::read_string_attribute(sub.get(), "roverlab_kind");
+    if (kind == std::string("stream")) {
       names.push_back(name);
+    } else if (kind) {
+      // A stream of a kind this RoverLab does not know would be dropped without a word.
+      throw std::runtime_error("group '" + name + "' has roverlab_kind '" + *kind + "' (this RoverLab reads 'stream')");
     }
     if (child != "channels") collect_streams(sub.get(), name, names, depth + 1);
   }

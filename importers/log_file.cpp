@@ -4,7 +4,6 @@
 
 #include "core/common/error.h"
 #include "importers/crash_guard.h"
-#include "importers/hdf5_support.h"
 
 namespace roverlab::io {
 
@@ -52,17 +51,16 @@ LoadedLog load_log(const std::string& path, const LoadOptions& options) {
   if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
   // A pipe or a device never ends (and opening a pipe blocks): not a log.
   if (!fs::is_regular_file(path, ec)) throw InputError(path, "not a regular file (a pipe or a device?)");
-  if (h5::is_hdf5_file(path)) {
-    // The HDF5 library may crash on a damaged file: try it in a child first.
-    survive_crash(path, [&] {
-      if (const LogReader* r = find_log_reader(path, options)) r->read(path, options);
-    });
-  }
-  const LogReader* reader = find_log_reader(path, options);
-  if (!reader) {
-    throw InputError(path, "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
-  }
-  return {reader->read(path, options), reader->name()};
+  const auto read = [&]() -> LoadedLog {
+    const LogReader* reader = find_log_reader(path, options);
+    if (!reader) {
+      throw InputError(path, "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
+    }
+    return {reader->read(path, options), reader->name()};
+  };
+  // The HDF5 library may crash on a damaged file: a child tries it first.
+  if (has_hdf5_signature(path)) survive_crash(path, [&] { (void)read(); });
+  return read();
 }
 
 }  // namespace roverlab::io

@@ -126,4 +126,20 @@ RoverDescription find_rover(const std::string& name_or_file, const std::vector<s
   return load_rover(find_named_file(name_or_file, folders, "rover"));
 }
 
+RoverDescription find_rover_named(const std::string& name, const std::vector<std::filesystem::path>& folders,
+                                  const std::string& source) {
+  const bool plain = !name.empty() && name.size() <= 128 && name.front() != '.' &&
+                     name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
+                         std::string::npos &&
+                     std::filesystem::path(name).extension() != ".json";
+  if (!plain) {
+    throw InputError(source, "rover_id '" + name.substr(0, 128) +
+                                 "' is not a rover name (a name from resources/rovers, never a path)");
+  }
+  for (const auto& folder : folders) {
+    if (std::filesystem::exists(folder / (name + ".json"))) return load_rover((folder / (name + ".json")).string());
+  }
+  return load_rover(find_named_file(name, folders, "rover"));  // the usual "no rover of that name" message
+}
+
 }  // namespace roverlab::io

@@ -34,4 +34,10 @@ RoverDescription load_rover(const std::string& path);
 // NAME (resources/rovers/NAME.json) or FILE.
 RoverDescription find_rover(const std::string& name_or_file, const std::vector<std::filesystem::path>& folders);
 
+// NAME only, as a log's rover_id gives it: a value inside a data file never
+// opens a file by path. Throws InputError(`source`, ...) for anything that is
+// not a plain name (a path, a .json file, empty).
+RoverDescription find_rover_named(const std::string& name, const std::vector<std::filesystem::path>& folders,
+                                  const std::string& source);
+
 }  // namespace roverlab::io

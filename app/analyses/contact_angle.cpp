@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "app/analysis.h"
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
@@ -20,8 +21,7 @@ namespace {
 using nlohmann::json;
 constexpr double kDeg = 180.0 / M_PI;
 
-kinematics::RoverModel dh_rover(const std::string& name) {
-  const io::RoverDescription d = io::find_rover(name, resource_subfolders("rovers"));
+kinematics::RoverModel dh_rover(const io::RoverDescription& d) {
   if (!d.dh) throw InputError(d.file, "rover '" + d.name + "' is not described by a DH table (kind " + d.kind + ")");
   return *d.dh;
 }
@@ -49,8 +49,12 @@ class ContactAngleAnalysis : public Analysis {
     return "";
   }
   bool runs_on_open(const log::Log& lg) const override {
-    return missing(lg).empty() && lg.find_stream("estimate/contact/wheels") == nullptr &&
-           io::find_rover(rover_of(lg), resource_subfolders("rovers")).dh.has_value();
+    if (!missing(lg).empty() || lg.find_stream("estimate/contact/wheels") != nullptr) return false;
+    try {
+      return rover_description(lg, "").dh.has_value();
+    } catch (const InputError&) {
+      return false;  // the log names no rover RoverLab knows: nothing to run by itself
+    }
   }
 
   void declare(CLI::App& cmd) override;
@@ -65,9 +69,11 @@ class ContactAngleAnalysis : public Analysis {
   void report(const json& j, ReportSection& section) const override;
 
  private:
-  std::string rover_of(const log::Log& lg) const {
-    if (rover_) return *rover_;
-    return lg.metadata.rover_id.empty() ? "exomars_bb2" : lg.metadata.rover_id;
+  // --rover NAME|FILE, else the log's rover_id (a name only), else the ExoMars BB2.
+  io::RoverDescription rover_description(const log::Log& lg, const std::string& file) const {
+    const auto folders = resource_subfolders("rovers");
+    if (rover_) return io::find_rover(*rover_, folders);
+    return io::find_rover_named(lg.metadata.rover_id.empty() ? "exomars_bb2" : lg.metadata.rover_id, folders, file);
   }
   estimation::ContactAngleOptions options() const;
   json document(const std::string& file, const kinematics::RoverModel& rover, const estimation::ContactAngleResult& r,
@@ -91,13 +97,14 @@ void ContactAngleAnalysis::declare(CLI::App& cmd) {
   cmd.add_option("--process-noise", process_noise_,
                  "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
       ->capture_default_str();
-  cmd.add_option("--velocity-variance", velocity_variance_, "Velocity process noise per step, m^2/s^2");
-  cmd.add_option("--attitude-variance", attitude_variance_, "Attitude process noise per step, rad^2");
-  cmd.add_option("--slip-variance", slip_variance_, "Slip process noise per step");
-  cmd.add_option("--angle-variance", angle_variance_, "Contact / side-slip angle process noise per step, rad^2");
+  cmd.add_option("--velocity-variance", velocity_variance_, "Velocity process noise per step, m^2/s^2")->check(finite_in(1e-15, 1.0));
+  cmd.add_option("--attitude-variance", attitude_variance_, "Attitude process noise per step, rad^2")->check(finite_in(1e-15, 1.0));
+  cmd.add_option("--slip-variance", slip_variance_, "Slip process noise per step")->check(finite_in(1e-15, 1.0));
+  cmd.add_option("--angle-variance", angle_variance_, "Contact / side-slip angle process noise per step, rad^2")->check(finite_in(1e-15, 1.0));
   cmd.add_option("--joint-rate-window", joint_rate_window_,
                  "Fuse joint rates with the slope of the joint angles over this window, s (0: measured rates, as the seed)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(0.0, 10.0));
 }
 
 estimation::ContactAngleOptions ContactAngleAnalysis::options() const {
@@ -125,7 +132,7 @@ estimation::ContactAngleOptions ContactAngleAnalysis::options() const {
 
 AnalysisResult ContactAngleAnalysis::run(const AnalysisInput& in) {
   estimation::ContactAngleOptions o = options();
-  const kinematics::RoverModel rover = dh_rover(rover_of(in.log));
+  const kinematics::RoverModel rover = dh_rover(rover_description(in.log, in.file));
   o.progress = in.progress;
   const auto start = std::chrono::steady_clock::now();
   estimation::ContactAngleResult r = estimation::run_contact_angle(in.log, rover, o);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/analysis.h"
+#include "app/command_support.h"
 #include "core/estimation/ins_slip.h"
 
 namespace roverlab::app {
@@ -94,7 +95,8 @@ class InsSlipAnalysis : public Analysis {
     cmd.add_flag("--no-smoother", no_smoother_,
                  "Forward filter only, as on board (default: RTS smoothing over the whole log)");
     cmd.add_option("--odometry-sigma", odometry_sigma_, "Standard deviation of the wheel-speed update, m/s")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(finite_in(1e-4, 10.0));
   }
 
   AnalysisResult run(const AnalysisInput& in) override {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "app/analysis.h"
+#include "app/command_support.h"
 #include "core/analysis/odometry_discrepancy.h"
 
 namespace roverlab::app {
@@ -31,7 +32,7 @@ class OdometryAnalysis : public Analysis {
   void declare(CLI::App& cmd) override {
     cmd.add_option("--fit-fraction", fit_fraction_, "Share of the drive (by distance) used to fit; the rest tests")
         ->capture_default_str()
-        ->check(CLI::Range(0.1, 0.9));
+        ->check(finite_in(0.1, 0.9));
   }
   AnalysisResult run(const AnalysisInput& in) override {
     analysis::OdometryStudyOptions options;

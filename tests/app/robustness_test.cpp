@@ -58,7 +58,14 @@ TEST(Robustness, OneCorruptedByteInAnHdf5LogIsABadInputNotACrash) {
   for (const char* name : {"segv_byte189.h5", "segv_h006_1634.h5", "segv_h150_1234.h5"}) {
     const std::string file = kData + "/robustness/" + name;
     for (const char* command : {"info ", "estimate ins-slip "}) {
-      expect_one_line_bad_input(run_roverlab(command + quote(file)), file, "corrupt HDF5 file");
+      // libhdf5 crashes on these in the reading process (or, in some memory
+      // layouts, reads garbage and finds no RoverLab log): bad input either way.
+      const CommandResult r = run_roverlab(command + quote(file));
+      EXPECT_EQ(r.exit_code, 3) << r.err;
+      EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+      EXPECT_TRUE(r.err.find("corrupt") != std::string::npos || r.err.find("not a RoverLab log") != std::string::npos)
+          << r.err;
+      EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
     }
   }
 }
