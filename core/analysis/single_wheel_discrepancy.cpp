@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/analysis/single_wheel_candidates.h"
 #include "core/common/error.h"
 
 namespace roverlab::analysis {
@@ -93,28 +94,12 @@ std::string words(Quantity q) {
   return "?";
 }
 
-// A candidate cause: the extension it switches on and the parameters it
-// fits (a negative start keeps the soil's own value as the start).
-struct CandidateSpec {
-  const char* name;
-  const char* cause;
-  std::vector<std::pair<Parameter, double>> parameters;
-  bool needs_grousers;
-  void (*configure)(Extensions&);
-};
-
-const CandidateSpec kCandidates[] = {
-    // Ding et al. 2011: n = n0 + n1 |s|; n0 is refitted with n1 since the
-    // static exponent is what the slip term grows from.
-    {"slip-sinkage", "sinkage grows with slip and the static model cannot follow it",
-     {{Parameter::slip_sinkage_n1, 0.0}, {Parameter::n, -1.0}}, false, [](Extensions&) {}},
-    {"grousers", "the grousered wheel pulls more than the smooth-wheel model predicts",
-     {{Parameter::grouser_effectiveness, 0.5}}, true, [](Extensions& e) { e.grousers = true; }},
-    {"bulldozing", "soil pushed ahead of the wheel resists its motion",
-     {{Parameter::bulldozing_scale, 1.0}}, false, [](Extensions& e) { e.bulldozing = true; }},
-    {"soil-strength", "the soil is uniformly weaker or stronger than its description",
-     {{Parameter::soil_strength, 1.0}}, false, [](Extensions&) {}},
-};
+double rmse_of(const std::vector<QuantityResiduals>& stats, Quantity q) {
+  for (const auto& s : stats) {
+    if (s.quantity == q) return s.rmse;
+  }
+  return NAN;
+}
 
 }  // namespace
 
@@ -149,194 +134,249 @@ std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidu
   return out;
 }
 
-DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
-                                     const DiscrepancyOptions& options) {
-  if (points.empty()) throw DataError("no single-wheel points");
-  DiscrepancyReport report;
-  report.points = points.size();
-  for (Quantity q : kQuantities) {
-    if (std::any_of(points.begin(), points.end(), [&](const auto& p) { return p.measured(q).has_value(); })) {
-      report.quantities.push_back(q);
-    }
-  }
-  if (report.quantities.empty()) throw DataError("no measured drawbar pull, torque or sinkage");
+namespace {
 
-  IdentificationOptions base;
-  base.model = options.baseline;
-  base.sigma = options.sigma;
-  const IdentificationResult baseline = identify_soil(soil, points, base);  // nothing free: predictions
-  report.baseline = residual_statistics(baseline.residuals, points);
-  report.baseline_score = score_of(baseline.residuals);
-  report.baseline_bic = bic_of(baseline.residuals, 0);
-  report.measurements = baseline.measurements;
-  for (const auto& r : baseline.residuals) report.unsupported += std::isfinite(r.predicted) ? 0 : 1;
-  auto rmse_of = [](const std::vector<QuantityResiduals>& stats, Quantity q) -> double {
-    for (const auto& s : stats) {
-      if (s.quantity == q) return s.rmse;
-    }
-    return NAN;
-  };
-  for (Quantity q : report.quantities) report.baseline_held_out_rmse.push_back(rmse_of(report.baseline, q));
+// The study's steps: the baseline's residuals, each candidate's fit and
+// held-out score, the winner, and the sentences on what is wrong and why.
+class SingleWheelStudy {
+ public:
+  SingleWheelStudy(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& options)
+      : soil_(soil), points_(points), o_(options) {}
+  DiscrepancyReport run();
 
-  const bool any_grousers = std::any_of(points.begin(), points.end(), [](const auto& p) {
+ private:
+  void find_quantities();
+  void score_baseline();
+  CandidateResult fit_candidate(const SingleWheelCandidate& candidate) const;
+  std::vector<PointResidual> leave_one_out(const IdentificationOptions& io, const IdentificationResult& fit) const;
+  void choose_best();
+  void write_what_is_wrong();
+  void find_partial();
+  void write_verdict();
+  void write_no_significant_verdict();
+
+  const Soil& soil_;
+  const std::vector<WheelTestPoint>& points_;
+  const DiscrepancyOptions& o_;
+  bool any_grousers_ = false;
+  DiscrepancyReport report_;
+};
+
+DiscrepancyReport SingleWheelStudy::run() {
+  if (points_.empty()) throw DataError("no single-wheel points");
+  report_.points = points_.size();
+  find_quantities();
+  score_baseline();
+  any_grousers_ = std::any_of(points_.begin(), points_.end(), [](const auto& p) {
     return p.wheel.grouser_count > 0 && p.wheel.grouser_height > 0.0;
   });
+  for (const auto& candidate : single_wheel_candidates()) report_.candidates.push_back(fit_candidate(*candidate));
+  choose_best();
+  write_what_is_wrong();
+  find_partial();
+  write_verdict();
+  return std::move(report_);
+}
 
-  for (const auto& spec : kCandidates) {
-    CandidateResult c;
-    c.name = spec.name;
-    c.cause = spec.cause;
-    if (spec.needs_grousers && !any_grousers) {
-      c.applicable = false;
-      c.not_applicable_because = "no wheel in the data has grousers";
-      report.candidates.push_back(c);
-      continue;
+void SingleWheelStudy::find_quantities() {
+  for (Quantity q : kQuantities) {
+    if (std::any_of(points_.begin(), points_.end(), [&](const auto& p) { return p.measured(q).has_value(); })) {
+      report_.quantities.push_back(q);
     }
-    IdentificationOptions io;
-    io.model = options.baseline;
-    spec.configure(io.model.extensions);
-    io.sigma = options.sigma;
-    Soil start = soil;
-    for (const auto& [parameter, value] : spec.parameters) {
-      io.free.push_back(parameter);
-      if (value >= 0.0) set_parameter(start, io.model.extensions, parameter, value);
-    }
-    c.fit = identify_soil(start, points, io);
-    c.in_sample = residual_statistics(c.fit.residuals, points);
-    c.bic = bic_of(c.fit.residuals, io.free.size());
-    c.delta_bic = c.bic - report.baseline_bic;
-
-    // Leave-one-out: refit without each point, predict it.
-    std::vector<PointResidual> held_out;
-    if (options.leave_one_out) {
-      IdentificationOptions lo = io;
-      lo.model.extensions = c.fit.extensions;
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        std::vector<WheelTestPoint> train;
-        train.reserve(points.size() - 1);
-        for (std::size_t j = 0; j < points.size(); ++j) {
-          if (j != i) train.push_back(points[j]);
-        }
-        const IdentificationResult f = identify_soil(c.fit.soil, train, lo);
-        IdentificationOptions predict_only;
-        predict_only.model = lo.model;
-        predict_only.model.extensions = f.extensions;
-        predict_only.sigma = options.sigma;
-        const IdentificationResult pred = identify_soil(f.soil, {points[i]}, predict_only);
-        for (auto r : pred.residuals) {
-          r.point = i;
-          held_out.push_back(r);
-        }
-      }
-    } else {
-      held_out = c.fit.residuals;
-    }
-    const auto held_stats = residual_statistics(held_out, points);
-    for (Quantity q : report.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
-    c.held_out_score = score_of(held_out);
-    report.candidates.push_back(std::move(c));
   }
+  if (report_.quantities.empty()) throw DataError("no measured drawbar pull, torque or sinkage");
+}
 
-  // The winner: lowest BIC among applicable candidates.
+void SingleWheelStudy::score_baseline() {
+  IdentificationOptions base;
+  base.model = o_.baseline;
+  base.sigma = o_.sigma;
+  const IdentificationResult baseline = identify_soil(soil_, points_, base);  // nothing free: predictions
+  report_.baseline = residual_statistics(baseline.residuals, points_);
+  report_.baseline_score = score_of(baseline.residuals);
+  report_.baseline_bic = bic_of(baseline.residuals, 0);
+  report_.measurements = baseline.measurements;
+  for (const auto& r : baseline.residuals) report_.unsupported += std::isfinite(r.predicted) ? 0 : 1;
+  for (Quantity q : report_.quantities) report_.baseline_held_out_rmse.push_back(rmse_of(report_.baseline, q));
+}
+
+// Fits the candidate's parameters on all points, then scores it on held-out
+// points.
+CandidateResult SingleWheelStudy::fit_candidate(const SingleWheelCandidate& candidate) const {
+  CandidateResult c;
+  c.name = candidate.name();
+  c.cause = candidate.cause();
+  if (candidate.needs_grousers() && !any_grousers_) {
+    c.applicable = false;
+    c.not_applicable_because = "no wheel in the data has grousers";
+    return c;
+  }
+  IdentificationOptions io;
+  io.model = o_.baseline;
+  candidate.configure(io.model.extensions);
+  io.sigma = o_.sigma;
+  Soil start = soil_;
+  for (const auto& [parameter, value] : candidate.parameters()) {
+    io.free.push_back(parameter);
+    if (value >= 0.0) set_parameter(start, io.model.extensions, parameter, value);
+  }
+  c.fit = identify_soil(start, points_, io);
+  c.in_sample = residual_statistics(c.fit.residuals, points_);
+  c.bic = bic_of(c.fit.residuals, io.free.size());
+  c.delta_bic = c.bic - report_.baseline_bic;
+  const std::vector<PointResidual> held_out = o_.leave_one_out ? leave_one_out(io, c.fit) : c.fit.residuals;
+  const auto held_stats = residual_statistics(held_out, points_);
+  for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
+  c.held_out_score = score_of(held_out);
+  return c;
+}
+
+// Leave-one-out: refit without each point, predict it.
+std::vector<PointResidual> SingleWheelStudy::leave_one_out(const IdentificationOptions& io,
+                                                           const IdentificationResult& fit) const {
+  std::vector<PointResidual> held_out;
+  IdentificationOptions lo = io;
+  lo.model.extensions = fit.extensions;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    std::vector<WheelTestPoint> train;
+    train.reserve(points_.size() - 1);
+    for (std::size_t j = 0; j < points_.size(); ++j) {
+      if (j != i) train.push_back(points_[j]);
+    }
+    const IdentificationResult f = identify_soil(fit.soil, train, lo);
+    IdentificationOptions predict_only;
+    predict_only.model = lo.model;
+    predict_only.model.extensions = f.extensions;
+    predict_only.sigma = o_.sigma;
+    const IdentificationResult pred = identify_soil(f.soil, {points_[i]}, predict_only);
+    for (auto r : pred.residuals) {
+      r.point = i;
+      held_out.push_back(r);
+    }
+  }
+  return held_out;
+}
+
+// The winner: lowest BIC among applicable candidates; significant when its
+// BIC gain and its held-out gain are both large enough.
+void SingleWheelStudy::choose_best() {
   double best_bic = INFINITY;
-  for (std::size_t i = 0; i < report.candidates.size(); ++i) {
-    const auto& c = report.candidates[i];
+  for (std::size_t i = 0; i < report_.candidates.size(); ++i) {
+    const auto& c = report_.candidates[i];
     if (!c.applicable || !std::isfinite(c.bic)) continue;
     if (c.bic < best_bic) {
       best_bic = c.bic;
-      report.best = static_cast<int>(i);
+      report_.best = static_cast<int>(i);
     }
   }
-  if (report.best >= 0) {
-    const auto& c = report.candidates[static_cast<std::size_t>(report.best)];
-    report.significant = c.delta_bic < options.bic_threshold &&
-                         c.held_out_score < (1.0 - options.min_held_out_gain) * report.baseline_score;
+  if (report_.best >= 0) {
+    const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
+    report_.significant = c.delta_bic < o_.bic_threshold &&
+                          c.held_out_score < (1.0 - o_.min_held_out_gain) * report_.baseline_score;
   }
+}
 
-  // What the baseline gets wrong, in one sentence.
+// What the baseline gets wrong, in one sentence.
+void SingleWheelStudy::write_what_is_wrong() {
   const QuantityResiduals* worst = nullptr;
-  for (const auto& s : report.baseline) {
-    if (worst == nullptr || s.rmse / options.sigma.of(s.quantity) > worst->rmse / options.sigma.of(worst->quantity)) {
+  for (const auto& s : report_.baseline) {
+    if (worst == nullptr || s.rmse / o_.sigma.of(s.quantity) > worst->rmse / o_.sigma.of(worst->quantity)) {
       worst = &s;
     }
   }
-  if (report.baseline_score <= 1.5) {
-    report.what_is_wrong = "The baseline Wong-Reece model fits every measured quantity within about its measurement error (RMS " +
-                           fmt("%.2f", report.baseline_score) + " sigma).";
-  } else {
-    std::string s = "The baseline Wong-Reece model " +
-                    std::string(worst->bias > 0 ? "over-predicts " : "under-predicts ") +
-                    words(worst->quantity) + " by " + show(worst->quantity, std::abs(worst->bias)) +
-                    " on average (RMSE " + show(worst->quantity, worst->rmse) + ")";
-    if (std::abs(worst->t_slip) >= 3.0) {
-      s += ", and the error " + std::string(worst->slope_vs_slip * worst->bias > 0 ? "grows" : "changes") +
-           " with slip (" + (worst->slope_vs_slip > 0 ? "+" : "-") +
-           show(worst->quantity, std::abs(worst->slope_vs_slip)) + " per unit slip)";
-    } else if (std::abs(worst->t_load) >= 3.0) {
-      s += ", and the error changes with load (" + std::string(worst->slope_vs_load > 0 ? "+" : "-") +
-           show(worst->quantity, std::abs(worst->slope_vs_load) * 100.0) + " per 100 N)";
-    }
-    // Other quantities with a strong slip trend (|t| >= 5) are named too.
-    for (const auto& o : report.baseline) {
-      if (&o == worst || std::abs(o.t_slip) < 5.0) continue;
-      s += "; its " + words(o.quantity) + " error trends with slip (" + (o.slope_vs_slip > 0 ? "+" : "-") +
-           show(o.quantity, std::abs(o.slope_vs_slip)) + " per unit slip, t = " + fmt("%.1f", o.t_slip) +
-           (o.slope_vs_slip < 0 ? ": measured " + words(o.quantity) + " grows faster with slip than predicted"
-                                : ": predicted " + words(o.quantity) + " grows faster with slip than measured") +
-           ")";
-    }
-    report.what_is_wrong = s + ".";
+  if (report_.baseline_score <= 1.5) {
+    report_.what_is_wrong =
+        "The baseline Wong-Reece model fits every measured quantity within about its measurement error (RMS " +
+        fmt("%.2f", report_.baseline_score) + " sigma).";
+    return;
   }
+  std::string s = "The baseline Wong-Reece model " + std::string(worst->bias > 0 ? "over-predicts " : "under-predicts ") +
+                  words(worst->quantity) + " by " + show(worst->quantity, std::abs(worst->bias)) +
+                  " on average (RMSE " + show(worst->quantity, worst->rmse) + ")";
+  if (std::abs(worst->t_slip) >= 3.0) {
+    s += ", and the error " + std::string(worst->slope_vs_slip * worst->bias > 0 ? "grows" : "changes") +
+         " with slip (" + (worst->slope_vs_slip > 0 ? "+" : "-") +
+         show(worst->quantity, std::abs(worst->slope_vs_slip)) + " per unit slip)";
+  } else if (std::abs(worst->t_load) >= 3.0) {
+    s += ", and the error changes with load (" + std::string(worst->slope_vs_load > 0 ? "+" : "-") +
+         show(worst->quantity, std::abs(worst->slope_vs_load) * 100.0) + " per 100 N)";
+  }
+  // Other quantities with a strong slip trend (|t| >= 5) are named too.
+  for (const auto& o : report_.baseline) {
+    if (&o == worst || std::abs(o.t_slip) < 5.0) continue;
+    s += "; its " + words(o.quantity) + " error trends with slip (" + (o.slope_vs_slip > 0 ? "+" : "-") +
+         show(o.quantity, std::abs(o.slope_vs_slip)) + " per unit slip, t = " + fmt("%.1f", o.t_slip) +
+         (o.slope_vs_slip < 0 ? ": measured " + words(o.quantity) + " grows faster with slip than predicted"
+                              : ": predicted " + words(o.quantity) + " grows faster with slip than measured") +
+         ")";
+  }
+  report_.what_is_wrong = s + ".";
+}
 
-  // Per quantity: the candidate that best predicts it on held-out points, when
-  // it cuts that quantity's held-out RMSE by at least 30 %.
-  for (std::size_t qi = 0; qi < report.quantities.size(); ++qi) {
+// Per quantity: the candidate that best predicts it on held-out points, when
+// it cuts that quantity's held-out RMSE by at least 30 %.
+void SingleWheelStudy::find_partial() {
+  for (std::size_t qi = 0; qi < report_.quantities.size(); ++qi) {
     int best_q = -1;
-    for (std::size_t i = 0; i < report.candidates.size(); ++i) {
-      const auto& c = report.candidates[i];
+    for (std::size_t i = 0; i < report_.candidates.size(); ++i) {
+      const auto& c = report_.candidates[i];
       if (!c.applicable || !std::isfinite(c.held_out_rmse[qi])) continue;
-      if (best_q < 0 || c.held_out_rmse[qi] < report.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi]) {
+      if (best_q < 0 || c.held_out_rmse[qi] < report_.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi]) {
         best_q = static_cast<int>(i);
       }
     }
-    if (best_q >= 0 && report.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi] <
-                           0.7 * report.baseline_held_out_rmse[qi]) {
-      report.partial.push_back({report.quantities[qi], best_q});
+    if (best_q >= 0 && report_.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi] <
+                           0.7 * report_.baseline_held_out_rmse[qi]) {
+      report_.partial.push_back({report_.quantities[qi], best_q});
     }
   }
+}
 
-  if (report.significant) {
-    const auto& c = report.candidates[static_cast<std::size_t>(report.best)];
-    std::string v = "Cause: " + c.name + " (" + c.cause + "),";
-    for (const auto& p : c.fit.parameters) {
-      v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) + " +- " + fmt("%.2g", p.sigma) + ";";
-    }
-    v += " held-out RMSE";
-    for (std::size_t i = 0; i < report.quantities.size(); ++i) {
-      v += std::string(i ? "," : "") + " " + words(report.quantities[i]) + " " +
-           show(report.quantities[i], report.baseline_held_out_rmse[i]) + " -> " +
-           show(report.quantities[i], c.held_out_rmse[i]);
-    }
-    v += "; delta BIC " + fmt("%.1f", c.delta_bic) + ".";
-    report.verdict = v;
-  } else if (report.best >= 0) {
-    const auto& c = report.candidates[static_cast<std::size_t>(report.best)];
-    report.verdict = "No significant discrepancy: the best candidate, " + c.name + ", changes BIC by " +
-                     fmt("%.1f", c.delta_bic) + " (needs < " + fmt("%.0f", options.bic_threshold) +
-                     ") and the held-out error from " + fmt("%.2f", report.baseline_score) + " to " +
-                     fmt("%.2f", c.held_out_score) + " sigma";
-    for (const auto& [q, index] : report.partial) {
-      const std::size_t qi = static_cast<std::size_t>(
-          std::find(report.quantities.begin(), report.quantities.end(), q) - report.quantities.begin());
-      const auto& pc = report.candidates[static_cast<std::size_t>(index)];
-      report.verdict += "; for " + words(q) + " alone, " + pc.name + " cuts the held-out RMSE from " +
-                        show(q, report.baseline_held_out_rmse[qi]) + " to " + show(q, pc.held_out_rmse[qi]);
-    }
-    report.verdict += ".";
-  } else {
-    report.verdict = "No candidate could be fitted.";
+void SingleWheelStudy::write_verdict() {
+  if (report_.best < 0) {
+    report_.verdict = "No candidate could be fitted.";
+    return;
   }
-  return report;
+  if (!report_.significant) {
+    write_no_significant_verdict();
+    return;
+  }
+  const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
+  std::string v = "Cause: " + c.name + " (" + c.cause + "),";
+  for (const auto& p : c.fit.parameters) {
+    v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) + " +- " + fmt("%.2g", p.sigma) + ";";
+  }
+  v += " held-out RMSE";
+  for (std::size_t i = 0; i < report_.quantities.size(); ++i) {
+    v += std::string(i ? "," : "") + " " + words(report_.quantities[i]) + " " +
+         show(report_.quantities[i], report_.baseline_held_out_rmse[i]) + " -> " +
+         show(report_.quantities[i], c.held_out_rmse[i]);
+  }
+  v += "; delta BIC " + fmt("%.1f", c.delta_bic) + ".";
+  report_.verdict = v;
+}
+
+void SingleWheelStudy::write_no_significant_verdict() {
+  const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
+  report_.verdict = "No significant discrepancy: the best candidate, " + c.name + ", changes BIC by " +
+                    fmt("%.1f", c.delta_bic) + " (needs < " + fmt("%.0f", o_.bic_threshold) +
+                    ") and the held-out error from " + fmt("%.2f", report_.baseline_score) + " to " +
+                    fmt("%.2f", c.held_out_score) + " sigma";
+  for (const auto& [q, index] : report_.partial) {
+    const std::size_t qi = static_cast<std::size_t>(
+        std::find(report_.quantities.begin(), report_.quantities.end(), q) - report_.quantities.begin());
+    const auto& pc = report_.candidates[static_cast<std::size_t>(index)];
+    report_.verdict += "; for " + words(q) + " alone, " + pc.name + " cuts the held-out RMSE from " +
+                       show(q, report_.baseline_held_out_rmse[qi]) + " to " + show(q, pc.held_out_rmse[qi]);
+  }
+  report_.verdict += ".";
+}
+
+}  // namespace
+
+DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
+                                     const DiscrepancyOptions& options) {
+  return SingleWheelStudy(soil, points, options).run();
 }
 
 }  // namespace roverlab::analysis

@@ -3,13 +3,16 @@
 // error-state EKF over a strapdown INS with zero-velocity (ZUPT),
 // zero-angular-rate (ZARU) and non-holonomic (NHC) pseudo-measurements,
 // optional wheel-odometry aiding, and the slip ratio of INS speed against
-// wheel speed.
+// wheel speed. The estimator's steps are InsSlipEstimator
+// (ins_slip_estimator.h), its models ins_slip_models.h, one filter pass
+// ins_slip_filter.h; run_ins_slip runs it and scores the result.
 
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/analysis/ins_metrics.h"
 #include "core/estimation/ins.h"
 #include "core/estimation/skid_steer_odometry.h"
 #include "core/estimation/slip.h"
@@ -65,28 +68,11 @@ struct InsSlipOptions {
   std::function<void(double)> progress;  // fraction done, called now and then
 };
 
-struct AxisErrors {
-  double east = 0, north = 0, up = 0;
-};
-
-struct InsSlipMetrics {
-  bool has_reference = false;
-  double final_position_error = 0;  // horizontal, m, at the last GPS sample
-  double final_position_error_3d = 0;
-  double position_rmse = 0;         // horizontal, m
-  AxisErrors position_rmse_axes;    // as in seed 002 Table 1
-  double velocity_rmse = 0;         // horizontal, m/s, against GPS-differenced velocity
-  double heading_drift = 0;         // rad, heading minus GPS course over the last 5 s of driving
-  double distance = 0;              // m along the GPS track
-  ConfusionMatrix confusion;        // estimated vs reference slip classes
-  double standstill_fraction = 0;
-  double duration = 0;              // s of IMU data processed
-};
-
-struct OdometryMetrics {
-  double final_position_error = 0;  // horizontal, m
-  double position_rmse = 0;
-};
+// Scores against the reference (core/analysis/ins_metrics.h), kept under
+// their old names here.
+using analysis::AxisErrors;
+using analysis::InsSlipMetrics;
+using analysis::OdometryMetrics;
 
 struct InsSlipResult {
   log::Log estimates;  // streams estimate/ins/..., estimate/odometry/pose
@@ -103,11 +89,12 @@ struct InsSlipChannels {
   std::string truth_slip = "truth/slip";  // slip_ratio: used as the reference when present (simulated logs)
 };
 
-// Runs the filter over a log with streams imu (specific_force_x..z,
+// Runs InsSlipEstimator over a log with streams imu (specific_force_x..z,
 // angular_rate_x..z, body axes forward-right-down), wheels (angle_FL, angle_FR,
 // angle_RL, angle_RR, rad, forward positive) and optionally gps (east, north,
 // up from the first fix; latitude, longitude, height). Throws DataError when
-// a stream or channel is missing or the log is too short.
+// a stream or channel is missing or the log is too short. The metrics are
+// analysis::score_ins_slip and analysis::score_wheel_odometry of the streams.
 InsSlipResult run_ins_slip(const log::Log& log, const InsSlipOptions& options,
                            const InsSlipChannels& channels = {});
 

@@ -4,7 +4,10 @@
 
 #include <cmath>
 
+#include "core/analysis/ins_metrics.h"
 #include "core/estimation/ins_slip.h"
+#include "core/estimation/ins_slip_estimator.h"
+#include "core/estimation/ins_slip_models.h"
 #include "core/estimation/slip.h"
 #include "core/simulation/skid_steer_scenario.h"
 
@@ -175,4 +178,134 @@ TEST(InsSlip, SlipClassesMeetTheDiagonalOfSeed002Table2) {
       EXPECT_GE(c.fraction(k, k), 0.95) << seed << " " << to_string(static_cast<SlipClass>(k));
     }
   }
+}
+
+namespace {
+
+// Input with a GPS track east at 1 m/s, and estimates 1 m east of it.
+struct ScoringLogs {
+  log::Log input, estimates;
+};
+
+ScoringLogs scoring_logs() {
+  ScoringLogs l;
+  std::vector<double> t, e, n, zero;
+  for (int i = 0; i <= 20; ++i) {
+    t.push_back(0.1 * i);
+    e.push_back(0.1 * i);
+    n.push_back(0.0);
+    zero.push_back(0.0);
+  }
+  log::Stream gps("gps", t);
+  gps.add_channel("east", "m", e);
+  gps.add_channel("north", "m", n);
+  gps.add_channel("up", "m", zero);
+  l.input.add_stream(std::move(gps));
+  std::vector<double> e1 = e;
+  for (double& x : e1) x += 1.0;
+  log::Stream pose("estimate/ins/pose", t);
+  pose.add_channel("yaw", "rad", std::vector<double>(t.size(), M_PI / 2));
+  pose.add_channel("east", "m", e1);
+  pose.add_channel("north", "m", n);
+  pose.add_channel("up", "m", zero);
+  l.estimates.add_stream(std::move(pose));
+  log::Stream vel("estimate/ins/velocity", t);
+  vel.add_channel("north", "m/s", zero);
+  vel.add_channel("east", "m/s", std::vector<double>(t.size(), 1.0));
+  l.estimates.add_stream(std::move(vel));
+  std::vector<double> still(t.size(), 0.0);
+  still[0] = still[1] = 1.0;
+  log::Stream st("estimate/ins/standstill", t);
+  st.add_channel("standstill", "bool", still);
+  l.estimates.add_stream(std::move(st));
+  // Slip classes: one agreeing, one not, one too slow to tell, one without GPS speed.
+  log::Stream slip("estimate/ins/slip", {0.5, 1.0, 1.5, 1.9});
+  slip.add_channel("slip_class", "1", {0.0, 1.0, NAN, 2.0});
+  slip.add_channel("reference_speed", "m/s", {1.0, 1.0, 1.0, NAN});
+  slip.add_channel("reference_class", "1", {0.0, 0.0, 1.0, 2.0});
+  l.estimates.add_stream(std::move(slip));
+  log::Stream odo("estimate/odometry/pose", t);
+  odo.add_channel("east", "m", e);
+  odo.add_channel("north", "m", std::vector<double>(t.size(), 2.0));
+  l.estimates.add_stream(std::move(odo));
+  return l;
+}
+
+}  // namespace
+
+TEST(InsMetrics, ScoreTheStreamsAgainstGpsAndTheSlipReference) {
+  ScoringLogs l = scoring_logs();
+  const analysis::InsSlipMetrics m = analysis::score_ins_slip(l.input, l.estimates);
+  EXPECT_TRUE(m.has_reference);
+  EXPECT_NEAR(m.duration, 2.0, 1e-12);
+  EXPECT_NEAR(m.standstill_fraction, 2.0 / 21.0, 1e-12);
+  EXPECT_NEAR(m.final_position_error, 1.0, 1e-9);
+  EXPECT_NEAR(m.position_rmse_axes.east, 1.0, 1e-9);
+  EXPECT_NEAR(m.position_rmse_axes.north, 0.0, 1e-12);
+  EXPECT_NEAR(m.velocity_rmse, 0.0, 1e-9);
+  EXPECT_NEAR(m.heading_drift, 0.0, 1e-9);  // heading east, GPS course east
+  // Against GPS: the sample too slow to tell and the one without a GPS speed are left out.
+  EXPECT_EQ(m.confusion.total(), 2);
+  EXPECT_DOUBLE_EQ(m.confusion.accuracy(), 0.5);
+  const analysis::OdometryMetrics o = analysis::score_wheel_odometry(l.input, l.estimates);
+  EXPECT_NEAR(o.final_position_error, 2.0, 1e-12);
+  EXPECT_NEAR(o.position_rmse, 2.0, 1e-12);
+  // Against slip truth every sample with an estimated class counts.
+  log::Stream truth("truth/slip", {0.0, 1.0});
+  truth.add_channel("slip_ratio", "1", {0.0, 0.0});
+  l.input.add_stream(std::move(truth));
+  EXPECT_EQ(analysis::score_ins_slip(l.input, l.estimates).confusion.total(), 3);
+}
+
+TEST(InsSlip, EstimatorStreamsScoredInAnalysisAreTheWrappersResult) {
+  const log::Log lg = simulation::simulate_skid_steer(simulation::default_slip_scenario(2));
+  InsSlipOptions o;
+  o.smooth = false;
+  const log::Log estimates = InsSlipEstimator(lg, o).run();
+  const InsSlipResult r = run_ins_slip(lg, o);
+  ASSERT_EQ(estimates.streams().size(), r.estimates.streams().size());
+  for (std::size_t i = 0; i < estimates.streams().size(); ++i) {
+    const auto& a = estimates.streams()[i];
+    const auto& b = r.estimates.streams()[i];
+    EXPECT_EQ(a.name(), b.name());
+    ASSERT_EQ(a.channels().size(), b.channels().size());
+    for (std::size_t k = 0; k < a.channels().size(); ++k) {
+      const auto& x = a.channels()[k].values;
+      const auto& y = b.channels()[k].values;
+      ASSERT_EQ(x.size(), y.size());
+      for (std::size_t j = 0; j < x.size(); ++j) {
+        if (!(std::isnan(x[j]) && std::isnan(y[j]))) {
+          ASSERT_EQ(x[j], y[j]) << a.name() << " " << j;
+        }
+      }
+    }
+  }
+  const analysis::InsSlipMetrics m = analysis::score_ins_slip(lg, estimates);
+  EXPECT_EQ(m.final_position_error, r.metrics.final_position_error);
+  EXPECT_EQ(m.confusion.total(), r.metrics.confusion.total());
+}
+
+TEST(InsSlipModels, PseudoMeasurementsAboutTheNominalState) {
+  InsState s;
+  s.C_bn = dcm_from_euler(0.0, 0.0, M_PI / 2);  // heading east
+  s.v_n = Eigen::Vector3d(0.1, 1.0, 0.05);       // north, east, down
+  // ZUPT: the innovation is minus the velocity, on the velocity states.
+  const InsMeasurement z = ZeroVelocityUpdate{0.01}.at(s);
+  EXPECT_TRUE(z.y.isApprox(-s.v_n));
+  EXPECT_TRUE(z.H.block(0, 3, 3, 3).isIdentity());
+  EXPECT_DOUBLE_EQ(z.R(1, 1), 1e-4);
+  // NHC: lateral and vertical body velocity, zero lever arm; a velocity error
+  // moves it by the velocity block of H.
+  const Eigen::Matrix3d C_nb = s.C_bn.transpose();
+  const NonHolonomicUpdate nhc{Eigen::Vector3d::Zero(), 0.05, 0.2};
+  const InsMeasurement m = nhc.at(s, C_nb, Eigen::Vector3d::Zero());
+  const Eigen::Vector3d vb = C_nb * s.v_n;
+  EXPECT_NEAR(vb.x(), 1.0, 1e-12);
+  EXPECT_TRUE(m.y.isApprox(-vb.tail<2>()));
+  const Eigen::Vector3d dv(0.01, -0.02, 0.03);
+  EXPECT_TRUE((m.H.block(0, 3, 2, 3) * dv).isApprox((C_nb * dv).tail<2>()));
+  // Wheel speed: gated, innovation wheel speed minus body forward speed.
+  const InsMeasurement w = WheelSpeedUpdate{0.05, 6.63}.at(s, C_nb, 1.2);
+  EXPECT_NEAR(w.y(0), 0.2, 1e-12);
+  EXPECT_EQ(w.gate, 6.63);
 }

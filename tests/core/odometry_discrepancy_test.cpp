@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/analysis/odometry_candidates.h"
 #include "core/analysis/odometry_discrepancy.h"
 #include "core/common/error.h"
 #include "core/simulation/skid_steer_scenario.h"
@@ -81,4 +82,30 @@ TEST(OdometryDiscrepancy, RefusesALogWithoutReference) {
     if (s.name() != "gps") no_gps.add_stream(s);
   }
   EXPECT_THROW(analysis::study_odometry(no_gps), DataError);
+}
+
+TEST(OdometryDiscrepancy, CandidatesComeFromTheRegistryInItsOrder) {
+  estimation::WheelSamples fit;
+  fit.time = {0.0, 6.0, 12.0};
+  fit.left_rate = fit.right_rate = {1.0, 1.0, 1.0};
+  const analysis::OdometryStudyOptions options;  // 5 s slip windows
+  const auto candidates = analysis::odometry_candidates({fit, 4, options});
+  std::vector<std::string> names;
+  for (const auto& c : candidates) names.push_back(c->name());
+  EXPECT_EQ(names, (std::vector<std::string>{"radius scale", "per-side scale", "turning track", "time offset",
+                                             "slip episodes"}));
+  // Slip episodes: one slip per window of the fit part, their median on the test part.
+  const auto& episodes = *candidates.back();
+  ASSERT_EQ(episodes.parameters().size(), 3u);
+  const double x[3] = {0.1, 0.4, 0.2};
+  EXPECT_EQ(episodes.corrections(x).slip, (std::vector<double>{0.1, 0.4, 0.2}));
+  EXPECT_EQ(episodes.held_out_corrections(x).slip, (std::vector<double>(4, 0.2)));
+  const auto summary = episodes.summary({0.1, 0.4, 0.2}, {NAN, NAN, NAN});
+  ASSERT_EQ(summary.size(), 4u);
+  EXPECT_EQ(summary[0].name, "windows");
+  EXPECT_EQ(summary[1].value, 0.2);
+  // The report lists them in the same order.
+  const auto r = study("", 0.0, 1);
+  ASSERT_EQ(r.candidates.size(), names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(r.candidates[i].name, names[i]);
 }

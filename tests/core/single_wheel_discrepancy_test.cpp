@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/analysis/single_wheel_candidates.h"
 #include "core/analysis/single_wheel_discrepancy.h"
 #include "terramechanics_soils.h"
 
@@ -138,4 +139,19 @@ TEST(ResidualStatistics, BiasAndTrends) {
   EXPECT_NEAR(stats[0].bias, 3.0, 0.01);
   EXPECT_NEAR(stats[0].slope_vs_slip, 10.0, 0.1);
   EXPECT_GT(stats[0].t_slip, 50.0);
+}
+
+TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
+  const auto candidates = analysis::single_wheel_candidates();
+  std::vector<std::string> names;
+  for (const auto& c : candidates) names.push_back(c->name());
+  EXPECT_EQ(names, (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength"}));
+  // Only the grouser candidate needs grousers, and it switches their model on.
+  Extensions e;
+  for (const auto& c : candidates) {
+    EXPECT_EQ(c->needs_grousers(), std::string(c->name()) == "grousers") << c->name();
+    c->configure(e);
+  }
+  EXPECT_TRUE(e.grousers);
+  EXPECT_TRUE(e.bulldozing);
 }

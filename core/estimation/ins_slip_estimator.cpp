@@ -1,0 +1,246 @@
+#include "core/estimation/ins_slip_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/common/error.h"
+
+namespace roverlab::estimation {
+
+namespace {
+
+const std::vector<double>& values(const log::Stream& s, const char* name) { return s.channel(name).values; }
+
+// Centred moving standard deviation over +-half samples.
+std::vector<double> moving_std(const std::vector<double>& x, std::size_t half) {
+  const std::size_t n = x.size();
+  std::vector<double> s1(n + 1, 0.0), s2(n + 1, 0.0), out(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    s1[i + 1] = s1[i] + x[i];
+    s2[i + 1] = s2[i] + x[i] * x[i];
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = i > half ? i - half : 0, b = std::min(n, i + half + 1);
+    const double m = static_cast<double>(b - a);
+    const double mean = (s1[b] - s1[a]) / m;
+    out[i] = std::sqrt(std::max(0.0, (s2[b] - s2[a]) / m - mean * mean));
+  }
+  return out;
+}
+
+}  // namespace
+
+InsSlipEstimator::InsSlipEstimator(const log::Log& log, const InsSlipOptions& options, const InsSlipChannels& channels)
+    : log_(log), o_(options), channels_(channels) {
+  read_samples();
+  detect_standstill();
+  level();
+}
+
+void InsSlipEstimator::read_samples() {
+  const std::string& imu_name = channels_.imu;
+  imu_ = &log_.stream(imu_name);
+  in_.wheels = &log_.stream(channels_.wheels);
+  if (imu_->size() < 10) throw DataError("stream '" + imu_name + "' has fewer than 10 samples");
+  if (in_.wheels->size() < 3) throw DataError("stream '" + channels_.wheels + "' has fewer than 3 samples");
+  in_.fx = &values(*imu_, "specific_force_x");
+  in_.fy = &values(*imu_, "specific_force_y");
+  in_.fz = &values(*imu_, "specific_force_z");
+  in_.wx = &values(*imu_, "angular_rate_x");
+  in_.wy = &values(*imu_, "angular_rate_y");
+  in_.wz = &values(*imu_, "angular_rate_z");
+  const log::Stream& w = *in_.wheels;
+  in_.wheel_rates = wheel_rates(w.time(), values(w, "angle_FL"), values(w, "angle_FR"), values(w, "angle_RL"),
+                                values(w, "angle_RR"));
+  reference_ = reference_from_gps(log_, channels_.gps);
+  in_.time = &imu_->time();
+  const auto& t = *in_.time;
+  const auto &fx = *in_.fx, &fy = *in_.fy, &fz = *in_.fz, &wx = *in_.wx, &wy = *in_.wy, &wz = *in_.wz;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(fx[i] + fy[i] + fz[i] + wx[i] + wy[i] + wz[i])) {
+      throw DataError("stream '" + imu_name + "': missing IMU sample at t = " + std::to_string(t[i]) + " s");
+    }
+  }
+  truth_slip_ = log_.find_stream(channels_.truth_slip);
+  if (truth_slip_ != nullptr && truth_slip_->find_channel("slip_ratio") == nullptr) truth_slip_ = nullptr;
+}
+
+// Standstill: quiet IMU and wheels that do not turn.
+void InsSlipEstimator::detect_standstill() {
+  const std::size_t n = in_.size();
+  const auto& t = *in_.time;
+  std::vector<double> fnorm(n), wnorm(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double fx = (*in_.fx)[i], fy = (*in_.fy)[i], fz = (*in_.fz)[i];
+    const double wx = (*in_.wx)[i], wy = (*in_.wy)[i], wz = (*in_.wz)[i];
+    fnorm[i] = std::sqrt(fx * fx + fy * fy + fz * fz);
+    wnorm[i] = std::sqrt(wx * wx + wy * wy + wz * wz);
+  }
+  const double rate = imu_->mean_rate_hz();
+  const auto half = static_cast<std::size_t>(std::max(1.0, 0.5 * o_.standstill.window * rate));
+  const auto fstd = moving_std(fnorm, half), wstd = moving_std(wnorm, half);
+  const WheelSamples& wr = in_.wheel_rates;
+  const double wheel_rate_max = o_.standstill.wheel_rate_max;
+  in_.standstill.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = in_.wheel_index(t[i]);
+    bool wheels_still = true;
+    for (std::size_t j = (k > 0 ? k - 1 : 0); j <= std::min(k + 1, wr.time.size() - 1); ++j) {
+      wheels_still = wheels_still && std::abs(wr.left_rate[j]) <= wheel_rate_max &&
+                     std::abs(wr.right_rate[j]) <= wheel_rate_max;
+    }
+    in_.standstill[i] = wheels_still && fstd[i] <= o_.standstill.accel_std_max && wstd[i] <= o_.standstill.gyro_std_max;
+  }
+}
+
+// Initial attitude: levelling on the first 5 s at rest (or the first 0.5 s);
+// initial heading from the options, else the reference's initial course.
+void InsSlipEstimator::level() {
+  const std::size_t n = in_.size();
+  const auto& t = *in_.time;
+  const double rate = imu_->mean_rate_hz();
+  std::size_t level_end = 0;
+  while (level_end < n && in_.standstill[level_end] && t[level_end] - t[0] < 5.0) ++level_end;
+  if (level_end < static_cast<std::size_t>(0.5 * rate)) level_end = std::min(n, static_cast<std::size_t>(0.5 * rate) + 1);
+  Eigen::Vector3d f0 = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < level_end; ++i) f0 += in_.force(i);
+  f0 /= static_cast<double>(level_end);
+  in_.roll0 = std::atan2(-f0.y(), -f0.z());
+  in_.pitch0 = std::atan2(f0.x(), std::hypot(f0.y(), f0.z()));
+  in_.heading0 = 0.0;
+  if (o_.initial_heading) {
+    in_.heading0 = *o_.initial_heading;
+  } else if (reference_.present) {
+    in_.heading0 = initial_course(reference_, o_.heading_distance);
+    if (!std::isfinite(in_.heading0)) in_.heading0 = 0.0;
+  }
+  in_.frame = LocalFrame(reference_.latitude, reference_.longitude, reference_.height);
+}
+
+log::Log InsSlipEstimator::run() {
+  // The localisation filter (with wheel-speed aiding if asked), and the slip
+  // detector: a filter that never sees the wheel speed it is judged against.
+  const double share = o_.odometry_aiding ? 0.5 : 1.0;
+  const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(0.0, share);
+  const InsTrack detector_track = o_.odometry_aiding ? InsFilterPass(in_, o_, false).run(0.5, 0.5) : InsTrack(0);
+  const InsTrack& detector = o_.odometry_aiding ? detector_track : track;
+
+  log::Log out;
+  out.metadata = log_.metadata;
+  out.metadata.extra["estimator"] = "ins-slip (seed 002)";
+  add_navigation_streams(out, track);
+  add_slip_stream(out, detector);
+  add_odometry_stream(out);
+  if (o_.progress) o_.progress(1.0);
+  return out;
+}
+
+void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& track) const {
+  const auto& t = *in_.time;
+  log::Stream pose("estimate/ins/pose", t);
+  pose.add_channel("roll", "rad", track.roll);
+  pose.add_channel("pitch", "rad", track.pitch);
+  pose.add_channel("yaw", "rad", track.yaw, "heading, clockwise from north");
+  pose.add_channel("east", "m", track.east, "from the initial position");
+  pose.add_channel("north", "m", track.north);
+  pose.add_channel("up", "m", track.up);
+  out.add_stream(std::move(pose));
+  log::Stream vel("estimate/ins/velocity", t);
+  vel.add_channel("north", "m/s", track.vn);
+  vel.add_channel("east", "m/s", track.ve);
+  vel.add_channel("down", "m/s", track.vd);
+  vel.add_channel("forward", "m/s", track.vx, "body x (Eq. 29)");
+  vel.add_channel("lateral", "m/s", track.vy, "body y");
+  vel.add_channel("vertical", "m/s", track.vz, "body z (down)");
+  out.add_stream(std::move(vel));
+  log::Stream b("estimate/ins/bias", t);
+  const char* names_b[6] = {"accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"};
+  for (int k = 0; k < 6; ++k) b.add_channel(names_b[k], k < 3 ? "m/s^2" : "rad/s", track.bias[static_cast<std::size_t>(k)]);
+  out.add_stream(std::move(b));
+  std::vector<double> still(in_.size());
+  for (std::size_t i = 0; i < still.size(); ++i) still[i] = in_.standstill[i] ? 1.0 : 0.0;
+  log::Stream st("estimate/ins/standstill", t);
+  st.add_channel("standstill", "bool", still, "1 where ZUPT/ZARU applied");
+  out.add_stream(std::move(st));
+}
+
+// Slip at the wheel samples within the IMU span (Eq. 1 with Eq. 29).
+InsSlipEstimator::SlipColumns InsSlipEstimator::slip_columns(const InsTrack& detector) const {
+  const auto& t = *in_.time;
+  const WheelSamples& wr = in_.wheel_rates;
+  SlipColumns c;
+  for (std::size_t k = 0; k < wr.time.size(); ++k) {
+    const double tk = wr.time[k];
+    if (tk < t.front() || tk > t.back()) continue;
+    const double wheel_speed = in_.wheel_speed(k, o_.rover.wheel_radius);
+    const double v = log::interpolate_linear(t, detector.vx, tk);
+    // At standstill slip is 0 (Eq. 1's third case). Between standstill and
+    // min_slip_speed the ratio is ill-conditioned: reported as NaN and left
+    // out of the confusion matrix.
+    const bool slow_wheels = std::abs(wheel_speed) < o_.min_slip_speed;
+    const bool at_rest = in_.standstill[std::min(imu_->nearest_index(tk), in_.size() - 1)] != 0;
+    const bool undefined = !at_rest && slow_wheels && std::abs(v) < o_.min_slip_speed;
+    const double s_e = at_rest ? 0.0 : undefined ? NAN : slip_ratio(v, wheel_speed);
+    c.time.push_back(tk);
+    c.slip.push_back(s_e);
+    c.slip_class.push_back(undefined ? NAN : static_cast<double>(classify_slip(s_e, o_.no_slip)));
+    c.wheel_speed.push_back(wheel_speed);
+    c.forward_speed.push_back(v);
+    add_reference_slip(c, tk, wheel_speed, detector);
+  }
+  return c;
+}
+
+// The reference slip: the log's truth when present, else Eq. 30 from the GPS
+// velocity along the detector's heading.
+void InsSlipEstimator::add_reference_slip(SlipColumns& c, double tk, double wheel_speed,
+                                          const InsTrack& detector) const {
+  const bool slow_wheels = std::abs(wheel_speed) < o_.min_slip_speed;
+  if (truth_slip_ != nullptr) {
+    const std::size_t j = truth_slip_->nearest_index(tk);
+    const double s_r = truth_slip_->channel("slip_ratio").values[j];
+    c.reference_slip.push_back(s_r);
+    c.reference_class.push_back(static_cast<double>(classify_slip(s_r, o_.no_slip)));
+    c.reference_speed.push_back(NAN);
+  } else if (reference_.present) {
+    const auto& t = *in_.time;
+    const ReferenceTrack& ref = reference_;
+    const double psi = log::interpolate_linear(t, detector.yaw, tk);
+    const double v_r = log::interpolate_linear(ref.time, ref.v_east, tk) * std::sin(psi) +
+                       log::interpolate_linear(ref.time, ref.v_north, tk) * std::cos(psi);
+    const double s_r = (slow_wheels && std::abs(v_r) < o_.min_slip_speed) ? 0.0 : slip_ratio(v_r, wheel_speed);
+    c.reference_slip.push_back(s_r);
+    c.reference_class.push_back(static_cast<double>(classify_slip(s_r, o_.no_slip)));
+    c.reference_speed.push_back(v_r);
+  }
+}
+
+void InsSlipEstimator::add_slip_stream(log::Log& out, const InsTrack& detector) const {
+  SlipColumns c = slip_columns(detector);
+  log::Stream slip("estimate/ins/slip", std::move(c.time));
+  slip.add_channel("slip_ratio", "1", std::move(c.slip),
+                   "Eq. 1: INS forward speed against wheel speed (NaN: too slow to tell)");
+  slip.add_channel("slip_class", "1", std::move(c.slip_class), "0 none, 1 low, 2 medium, 3 high, 4 extreme");
+  slip.add_channel("wheel_speed", "m/s", std::move(c.wheel_speed), "r omega, mean of the four wheels");
+  slip.add_channel("forward_speed", "m/s", std::move(c.forward_speed), "INS body forward speed");
+  if (truth_slip_ != nullptr || reference_.present) {
+    slip.add_channel("reference_speed", "m/s", std::move(c.reference_speed),
+                     "GPS velocity along the INS heading (NaN: truth used)");
+    slip.add_channel("reference_slip", "1", std::move(c.reference_slip), truth_slip_ ? "truth" : "Eq. 30, from GPS");
+    slip.add_channel("reference_class", "1", std::move(c.reference_class));
+  }
+  out.add_stream(std::move(slip));
+}
+
+// Plain wheel odometry from the same initial pose.
+void InsSlipEstimator::add_odometry_stream(log::Log& out) const {
+  const OdometryTrack odo = dead_reckon(in_.wheel_rates, o_.rover, OdometryCorrections{}, 0.0, 0.0, in_.heading0);
+  log::Stream p("estimate/odometry/pose", odo.time);
+  p.add_channel("east", "m", odo.east);
+  p.add_channel("north", "m", odo.north);
+  p.add_channel("heading", "rad", odo.heading, "clockwise from north, from the wheel rate difference");
+  p.add_channel("forward_speed", "m/s", odo.forward_speed);
+  out.add_stream(std::move(p));
+}
+
+}  // namespace roverlab::estimation
