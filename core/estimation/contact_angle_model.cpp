@@ -205,33 +205,6 @@ Linearized ContactProcessModel::linearize(const Eigen::VectorXd& x, const Inputs
   return r;
 }
 
-void ContactProcessModel::strapdown_step(double* att_v, const Inputs& in, double ts, Eigen::Matrix<double, 6, 6>& A,
-                                         Eigen::Matrix<double, 6, 6>& B) const {
-  // Jacobians of Eq. 4.13-4.14 with respect to attitude, velocity and the
-  // accelerometer and gyro noises.
-  using Jt = ceres::Jet<double, 12>;
-  const Jt zero(0.0);
-  const Jt zeros[3] = {zero, zero, zero};
-  Jt a[3], v[3], nf[3], nw[3], an[3], vn[3];
-  for (int k = 0; k < 3; ++k) {
-    a[k] = Jt(att_v[k], k);
-    v[k] = Jt(att_v[3 + k], 3 + k);
-    nf[k] = Jt(0.0, 6 + k);
-    nw[k] = Jt(0.0, 9 + k);
-  }
-  strapdown<Jt>(a, v, zeros, zeros, nf, nw, in, g_i_, ts, an, vn);
-  for (int k = 0; k < 3; ++k) {
-    att_v[k] = an[k].a;
-    att_v[3 + k] = vn[k].a;
-    for (int c = 0; c < 6; ++c) {
-      A(k, c) = an[k].v[c];
-      A(3 + k, c) = vn[k].v[c];
-      B(k, c) = an[k].v[6 + c];
-      B(3 + k, c) = vn[k].v[6 + c];
-    }
-  }
-}
-
 WheelMeasurementModel::WheelMeasurementModel(const kinematics::RoverModel& m, kinematics::WheelFrame frame,
                                              ContactLayout layout)
     : m_(&m), frame_(frame), layout_(layout), wheels_of_joint_(static_cast<std::size_t>(layout.nq)) {
@@ -239,45 +212,6 @@ WheelMeasurementModel::WheelMeasurementModel(const kinematics::RoverModel& m, ki
     const auto& c = m.wheels[static_cast<std::size_t>(w)];
     for (int j : {c.bogie_joint, c.steer_joint}) {
       if (j >= 0) wheels_of_joint_[static_cast<std::size_t>(j)].push_back(w);
-    }
-  }
-}
-
-WheelLinearization WheelMeasurementModel::linearize_wheel(int w, const double* x, const Inputs& in) const {
-  const int na = layout_.na;
-  return contact::linearize_wheel(*m_, w, frame_, x + 3, x[6 + w], na >= 6 ? x[12 + w] : 0.0, na >= 12 ? x[18 + w] : 0.0,
-                                  in);
-}
-
-void WheelMeasurementModel::add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r,
-                                                 Eigen::Matrix<double, 18, 18>& S) const {
-  const kinematics::RoverModel& m = *m_;
-  const int nw = 6, nq = layout_.nq;
-  Eigen::Matrix3d Gw[6];
-  const Eigen::Vector3d gyro_sd = r.head<3>().cwiseSqrt();
-  for (int w = 0; w < nw; ++w) {
-    Gw[w] = lin[w].d.template block<3, 3>(0, 6) * gyro_sd.asDiagonal();
-    S(3 * w, 3 * w) += r(3 + w);
-    S(3 * w + 1, 3 * w + 1) += r(3 + nw + 2 * nq + w);
-    S(3 * w + 2, 3 * w + 2) += r(3 + 2 * nw + 2 * nq + w);
-  }
-  for (int w1 = 0; w1 < nw; ++w1) {
-    const auto& c1 = m.wheels[static_cast<std::size_t>(w1)];
-    const int j1[2] = {c1.bogie_joint, c1.steer_joint};
-    for (int w2 = 0; w2 <= w1; ++w2) {
-      const auto& c2 = m.wheels[static_cast<std::size_t>(w2)];
-      const int j2[2] = {c2.bogie_joint, c2.steer_joint};
-      Eigen::Matrix3d B = Gw[w1] * Gw[w2].transpose();
-      for (int a = 0; a < 2; ++a) {
-        for (int b = 0; b < 2; ++b) {
-          if (j1[a] < 0 || j1[a] != j2[b]) continue;
-          const int j = j1[a];
-          B.noalias() += r(3 + nw + j) * lin[w1].d.col(9 + a) * lin[w2].d.col(9 + b).transpose();
-          B.noalias() += r(3 + nw + nq + j) * lin[w1].d.col(11 + a) * lin[w2].d.col(11 + b).transpose();
-        }
-      }
-      S.template block<3, 3>(3 * w1, 3 * w2) += B;
-      if (w2 != w1) S.template block<3, 3>(3 * w2, 3 * w1) += B.transpose();
     }
   }
 }

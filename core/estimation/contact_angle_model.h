@@ -191,7 +191,8 @@ class ContactProcessModel {
   Linearized linearize(const Eigen::VectorXd& x, const Inputs& in, double ts) const;
   // The fast EKF's part: attitude and velocity (att_v[0..5]) advanced in
   // place at zero noise, with their Jacobians with respect to themselves (A)
-  // and to n_f, n_w (B); n_att and n_v enter with identity.
+  // and to n_f, n_w (B); n_att and n_v enter with identity. Defined with the
+  // fast EKF (contact_angle_fast_ekf.h), as are the other fast-path members.
   void strapdown_step(double* att_v, const Inputs& in, double ts, Eigen::Matrix<double, 6, 6>& A,
                       Eigen::Matrix<double, 6, 6>& B) const;
 
