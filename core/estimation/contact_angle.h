@@ -6,7 +6,9 @@
 // damped slip (Eq. 4.15), random-walk or damped angles (Eq. 5.3-5.6);
 // measurement: wheel rates and zero lateral / normal wheel velocity in the
 // drive, contact or side-slip frame (Eq. 4.20, Table 5.1). EKF (Jacobians by
-// ceres::Jet) or UKF.
+// ceres::Jet) or UKF. The estimator itself is ContactAngleEstimator
+// (contact_angle_estimator.h), its models contact_angle_model.h; the errors
+// against truth come from core/analysis/estimate_errors.h.
 
 #include <functional>
 #include <string>
@@ -71,7 +73,8 @@ struct ContactAngleResult {
 // Needs streams imu (angular_rate_*, specific_force_* in the rover's body
 // axes), joints (one channel per joint and <joint>_rate), wheels
 // (rate_<wheel>); truth/body and truth/wheels are used for the errors when
-// present. Throws DataError naming what is missing.
+// present. Throws DataError naming what is missing. ContactAngleEstimator's
+// run, scored by analysis::contact_angle_errors.
 ContactAngleResult run_contact_angle(const log::Log& log, const kinematics::RoverModel& rover,
                                      const ContactAngleOptions& options = {});
 

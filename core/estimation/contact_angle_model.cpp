@@ -2,6 +2,7 @@
 
 #include <ceres/jet.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace roverlab::estimation::contact {
@@ -142,6 +143,215 @@ WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, k
   out.d(0, 3) = sc * u.x() / ((1.0 - slip) * den);
   if (ss) out.d(0, 5) -= std::sin(beta) * u.x() / den;
   return out;
+}
+
+ContactProcessModel::ContactProcessModel(ContactLayout layout, const Eigen::Vector3d& g_i, double slip_decay,
+                                         double angle_decay)
+    : layout_(layout), g_i_(g_i), slip_decay_(slip_decay), angle_decay_(angle_decay) {}
+
+void ContactProcessModel::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& nz, const Inputs& in, double ts,
+                                   Eigen::VectorXd& y) const {
+  const int nx = layout_.nx();
+  y.resize(nx);
+  if (!std::equal(trig_att_, trig_att_ + 3, x.data())) {  // sigma points mostly share the attitude
+    std::copy(x.data(), x.data() + 3, trig_att_);
+    trig_ = attitude_trig<double>(x.data());
+  }
+  strapdown<double>(x.data(), trig_, x.data() + 3, nz.data(), nz.data() + 3, nz.data() + nx, nz.data() + nx + 3, in, g_i_,
+                    ts, y.data(), y.data() + 3);
+  for (int k = 0; k < 6; ++k) y(6 + k) = x(6 + k) * slip_keep(ts) + nz(6 + k);  // Eq. 4.15
+  for (int k = 0; k < layout_.na; ++k) y(12 + k) = x(12 + k) * angle_keep(ts) + nz(12 + k);  // Eq. 5.3-5.6
+}
+
+Linearized ContactProcessModel::linearize(const Eigen::VectorXd& x, const Inputs& in, double ts) const {
+  const int nx = layout_.nx(), np = layout_.np();
+  using J = ceres::Jet<double, 18>;
+  J a[3], v[3], na[3], nv[3], nf[3], nw3[3], an[3], vn[3];
+  for (int k = 0; k < 3; ++k) {
+    a[k] = J(x(k), k);
+    v[k] = J(x(3 + k), 3 + k);
+    na[k] = J(0.0, 6 + k);
+    nv[k] = J(0.0, 9 + k);
+    nf[k] = J(0.0, 12 + k);
+    nw3[k] = J(0.0, 15 + k);
+  }
+  strapdown<J>(a, v, na, nv, nf, nw3, in, g_i_, ts, an, vn);
+  Linearized r;
+  evaluate(x, Eigen::VectorXd::Zero(np), in, ts, r.value);
+  r.dx = Eigen::MatrixXd::Zero(nx, nx);
+  r.dn = Eigen::MatrixXd::Zero(nx, np);
+  for (int k = 0; k < 3; ++k) {
+    for (int c = 0; c < 6; ++c) {
+      r.dx(k, c) = an[k].v[c];
+      r.dx(3 + k, c) = vn[k].v[c];
+    }
+    for (int c = 0; c < 6; ++c) {  // n_att, n_v
+      r.dn(k, c) = an[k].v[6 + c];
+      r.dn(3 + k, c) = vn[k].v[6 + c];
+    }
+    for (int c = 0; c < 6; ++c) {  // n_f, n_w
+      r.dn(k, nx + c) = an[k].v[12 + c];
+      r.dn(3 + k, nx + c) = vn[k].v[12 + c];
+    }
+  }
+  for (int k = 0; k < 6; ++k) {
+    r.dx(6 + k, 6 + k) = slip_keep(ts);
+    r.dn(6 + k, 6 + k) = 1.0;
+  }
+  for (int k = 0; k < layout_.na; ++k) {
+    r.dx(12 + k, 12 + k) = angle_keep(ts);
+    r.dn(12 + k, 12 + k) = 1.0;
+  }
+  return r;
+}
+
+WheelMeasurementModel::WheelMeasurementModel(const kinematics::RoverModel& m, kinematics::WheelFrame frame,
+                                             ContactLayout layout)
+    : m_(&m), frame_(frame), layout_(layout), wheels_of_joint_(static_cast<std::size_t>(layout.nq)) {
+  for (int w = 0; w < layout_.nw; ++w) {
+    const auto& c = m.wheels[static_cast<std::size_t>(w)];
+    for (int j : {c.bogie_joint, c.steer_joint}) {
+      if (j >= 0) wheels_of_joint_[static_cast<std::size_t>(j)].push_back(w);
+    }
+  }
+}
+
+Linearized WheelMeasurementModel::linearize(const Eigen::VectorXd& x, const Inputs& in) const {
+  const kinematics::RoverModel& m = *m_;
+  const int nx = layout_.nx(), ny = layout_.ny(), nm = layout_.nm(), nw = layout_.nw, nq = layout_.nq, na = layout_.na;
+  Linearized r;
+  r.value = Eigen::VectorXd(ny);
+  r.dx = Eigen::MatrixXd::Zero(ny, nx);
+  r.dn = Eigen::MatrixXd::Zero(ny, nm);
+  for (int w = 0; w < nw; ++w) {
+    const auto& c = m.wheels[static_cast<std::size_t>(w)];
+    const WheelLinearization lin = linearize_wheel_autodiff(m, w, frame_, x.data() + 3, x(6 + w), na >= 6 ? x(12 + w) : 0.0,
+                                                            na >= 12 ? x(18 + w) : 0.0, in);
+    for (int k = 0; k < 3; ++k) {
+      const int row = k * nw + w;
+      r.value(row) = lin.value(k);
+      r.dx.block<1, 3>(row, 3) = lin.d.block<1, 3>(k, 0);
+      r.dn.block<1, 3>(row, 0) = lin.d.block<1, 3>(k, 6);
+      r.dx(row, 6 + w) = lin.d(k, 3);
+      if (na >= 6) r.dx(row, 12 + w) = lin.d(k, 4);
+      if (na >= 12) r.dx(row, 18 + w) = lin.d(k, 5);
+      // Joint noise enters with a minus sign (Eq. 4.16: true = measured - noise).
+      if (c.bogie_joint >= 0) {
+        r.dn(row, 3 + nw + c.bogie_joint) = -lin.d(k, 9);
+        r.dn(row, 3 + nw + nq + c.bogie_joint) = -lin.d(k, 11);
+      }
+      if (c.steer_joint >= 0) {
+        r.dn(row, 3 + nw + c.steer_joint) = -lin.d(k, 10);
+        r.dn(row, 3 + nw + nq + c.steer_joint) = -lin.d(k, 12);
+      }
+    }
+    r.dn(w, 3 + w) = 1.0;
+    r.dn(nw + w, 3 + nw + 2 * nq + w) = 1.0;
+    r.dn(2 * nw + w, 3 + 2 * nw + 2 * nq + w) = 1.0;
+  }
+  return r;
+}
+
+Eigen::VectorXd WheelMeasurementModel::ukf_noise_order(const Eigen::VectorXd& r) const {
+  const int nw = layout_.nw, nq = layout_.nq;
+  Eigen::VectorXd out(layout_.nm());
+  out << r.head(3), r.segment(3 + nw, 2 * nq), r.segment(3, nw), r.segment(3 + nw + 2 * nq, 2 * nw);
+  return out;
+}
+
+void WheelMeasurementModel::set_inputs(const Inputs& in) {
+  in_ = in;
+  for (int w = 0; w < layout_.nw; ++w) {
+    geometry_[w] = wheel_geometry(*m_, w, in.q);
+    memo_[w][0].gamma = memo_[w][1].gamma = NAN;
+  }
+}
+
+const WheelMeasurementModel::RotationMemo& WheelMeasurementModel::rotation(int w, double gamma, double beta) {
+  RotationMemo* hit = nullptr;
+  for (auto& e : memo_[w]) {
+    if (e.gamma == gamma && e.beta == beta) hit = &e;
+  }
+  if (hit != nullptr) return *hit;
+  // A sigma point usually moves one of the two angles: keep the other's cos/sin.
+  const RotationMemo& first = memo_[w][0];
+  hit = std::isnan(first.gamma) ? &memo_[w][0] : &memo_[w][1];
+  if (first.gamma == gamma) {
+    hit->cg = first.cg;
+    hit->sg = first.sg;
+  } else {
+    hit->cg = std::cos(gamma);
+    hit->sg = std::sin(gamma);
+  }
+  if (first.beta == beta) {
+    hit->cb = first.cb;
+    hit->sb = first.sb;
+  } else {
+    hit->cb = std::cos(beta);
+    hit->sb = std::sin(beta);
+  }
+  hit->gamma = gamma;
+  hit->beta = beta;
+  hit->C = final_rotation(frame_, hit->cg, hit->sg, hit->cb, hit->sb);
+  return *hit;
+}
+
+// One wheel's three rows of h, from its geometry at the measured joint
+// angles (recomputed only for a sigma point that moves one of its joints)
+// and its final rotation (kept while gamma and beta repeat).
+void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, const Eigen::VectorXd& nz, Eigen::VectorXd& y) {
+  const int nw = layout_.nw, nq = layout_.nq, na = layout_.na;
+  const Inputs& in = in_;
+  const Eigen::Vector3d omega = in.gyro - nz.head<3>();
+  const double* nzq = nz.data() + 3;        // joint-angle noises
+  const double* nzqd = nz.data() + 3 + nq;  // joint-rate noises
+  double qd[kMaxJoints], qn[kMaxJoints];
+  const WheelGeometry* g = &geometry_[w];
+  WheelGeometry moved;
+  for (int k = 0; k < g->nj; ++k) {
+    const int j = g->joint[k];
+    qd[j] = in.qdot[j] - nzqd[j];
+    if (nzq[j] != 0.0 && g == &geometry_[w]) {
+      for (int i = 0; i < nq; ++i) qn[i] = in.q[i] - nzq[i];
+      moved = wheel_geometry(*m_, w, qn);
+      g = &moved;
+    }
+  }
+  const double gamma = na >= 6 ? x(12 + w) : 0.0, beta = na >= 12 ? x(18 + w) : 0.0;
+  const RotationMemo& rot = rotation(w, gamma, beta);
+  const Eigen::Vector3d u = wheel_measurement(*g, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
+  for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
+}
+
+void WheelMeasurementModel::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& n, Eigen::VectorXd& y) {
+  y.resize(layout_.ny());
+  for (int w = 0; w < layout_.nw; ++w) evaluate_wheel(w, x, n, y);
+}
+
+// Velocity and gyro reach every wheel, attitude none, a slip or angle its
+// wheel, a joint its wheels.
+void WheelMeasurementModel::evaluate_incremental(const Eigen::VectorXd& x, const Eigen::VectorXd& n,
+                                                 const std::vector<Eigen::Index>& changed_x,
+                                                 const std::vector<Eigen::Index>& changed_n, const Eigen::VectorXd& y0,
+                                                 Eigen::VectorXd& y) {
+  const int nq = layout_.nq;
+  bool reach[6] = {false, false, false, false, false, false};
+  bool all = false;
+  for (Eigen::Index i : changed_x) {
+    if (i >= 3 && i < 6) all = true;
+    if (i >= 6) reach[(i - 6) % 6] = true;
+  }
+  for (Eigen::Index i : changed_n) {
+    if (i < 3 || i >= 3 + 2 * nq) {
+      all = true;
+    } else {
+      for (int w : wheels_of_joint_[static_cast<std::size_t>((i - 3) % nq)]) reach[w] = true;
+    }
+  }
+  y = y0;
+  for (int w = 0; w < layout_.nw; ++w) {
+    if (all || reach[w]) evaluate_wheel(w, x, n, y);
+  }
 }
 
 }  // namespace roverlab::estimation::contact

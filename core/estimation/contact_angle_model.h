@@ -3,10 +3,17 @@
 // (Vijayan 2018, Eq. 4.13-4.20, Table 5.1), shared by the filters in
 // contact_angle.cpp and by the tests. The measurement of one wheel is
 // linearised two ways: by ceres::Jet (the reference) and by hand (the fast
-// path, tested equal to the Jet one).
+// path, tested equal to the Jet one). ContactProcessModel and
+// WheelMeasurementModel package them for the filters: the generic EKF and
+// UKF of nonlinear_filter.h and the structured fast EKF consume the same two
+// model types.
+
+#include <cmath>
+#include <vector>
 
 #include <Eigen/Core>
 
+#include "core/estimation/nonlinear_filter.h"
 #include "core/kinematics/rover_model.h"
 
 namespace roverlab::estimation::contact {
@@ -153,5 +160,100 @@ WheelLinearization linearize_wheel_autodiff(const kinematics::RoverModel& m, int
 // and the closed-form contact and side-slip rotations.
 WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, kinematics::WheelFrame frame,
                                    const double* v, double slip, double gamma, double beta, const Inputs& in);
+
+// Sizes of the state, process noise, measurement and measurement noise.
+// State: attitude (psi, theta, phi), body velocity, six slips, then na
+// angles (contact angles, then side-slip angles).
+struct ContactLayout {
+  int na = 0;  // angle states per wheel set: 0, 6 or 12
+  int nw = 6, nq = 9;
+  int nx() const { return 12 + na; }
+  int np() const { return nx() + 6; }  // n_att, n_v, n_s, n_gamma, n_beta, n_f, n_w
+  int ny() const { return 3 * nw; }
+  int nm() const { return 3 + nw + 2 * nq + 2 * nw; }  // n_w(gyro), n_wheel, n_q, n_qdot, n_vy, n_vz
+};
+
+// The process model: strapdown attitude and velocity (Eq. 4.13-4.14), damped
+// slip (Eq. 4.15) and random-walk or damped angles (Eq. 5.3-5.6). Process
+// noise order: n_att, n_v, n_s, n_gamma, n_beta (additive), then n_f, n_w.
+class ContactProcessModel {
+ public:
+  ContactProcessModel() = default;
+  // slip_decay and angle_decay in 1/s (0: random walk).
+  ContactProcessModel(ContactLayout layout, const Eigen::Vector3d& g_i, double slip_decay, double angle_decay);
+  const ContactLayout& layout() const { return layout_; }
+  // The factors slip and angles keep over a step of ts seconds.
+  double slip_keep(double ts) const { return 1.0 - slip_decay_ * ts; }
+  double angle_keep(double ts) const { return 1.0 - angle_decay_ * ts; }
+  // x' = f(x, n) in double (the UKF's sigma points).
+  void evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& n, const Inputs& in, double ts, Eigen::VectorXd& out) const;
+  // f(x, 0) and its Jacobians by ceres::Jet (the generic EKF).
+  Linearized linearize(const Eigen::VectorXd& x, const Inputs& in, double ts) const;
+  // The fast EKF's part: attitude and velocity (att_v[0..5]) advanced in
+  // place at zero noise, with their Jacobians with respect to themselves (A)
+  // and to n_f, n_w (B); n_att and n_v enter with identity. Defined with the
+  // fast EKF (contact_angle_fast_ekf.h), as are the other fast-path members.
+  void strapdown_step(double* att_v, const Inputs& in, double ts, Eigen::Matrix<double, 6, 6>& A,
+                      Eigen::Matrix<double, 6, 6>& B) const;
+
+ private:
+  ContactLayout layout_;
+  Eigen::Vector3d g_i_ = Eigen::Vector3d::Zero();
+  double slip_decay_ = 0, angle_decay_ = 0;
+  // The attitude whose cosines and sines are in trig_ (sigma points mostly share it).
+  mutable double trig_att_[3] = {NAN, NAN, NAN};
+  mutable AttitudeTrig<double> trig_{};
+};
+
+// The measurement model: each wheel's rate and zero lateral and normal
+// velocity (Eq. 4.20, Table 5.1), measurement order: the six rates, the six
+// lateral, the six normal velocities. Noise order (generic EKF, r vectors):
+// n_w (gyro 3), n_wheel (6), n_q, n_qdot, n_vy (6), n_vz (6); the UKF's puts
+// the additive noises last (ukf_noise_order).
+class WheelMeasurementModel {
+ public:
+  WheelMeasurementModel() = default;
+  WheelMeasurementModel(const kinematics::RoverModel& m, kinematics::WheelFrame frame, ContactLayout layout);
+  const ContactLayout& layout() const { return layout_; }
+
+  // The fast EKF: one wheel linearised by hand at state x.
+  WheelLinearization linearize_wheel(int wheel, const double* x, const Inputs& in) const;
+  // S += M R M^T for R = diag(r): wheel-rate, lateral and normal noises on
+  // their own rows; the gyro noise couples every wheel, a joint's noise the
+  // wheels it carries.
+  void add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r, Eigen::Matrix<double, 18, 18>& S) const;
+
+  // The generic EKF: h(x, 0) and its Jacobians, each wheel by ceres::Jet.
+  Linearized linearize(const Eigen::VectorXd& x, const Inputs& in) const;
+
+  // The UKF: r reordered as n_w, n_q, n_qdot, then n_wheel, n_vy, n_vz.
+  Eigen::VectorXd ukf_noise_order(const Eigen::VectorXd& r) const;
+  // This step's inputs: each wheel's geometry at the measured joint angles.
+  void set_inputs(const Inputs& in);
+  // y = h(x, n) at a sigma point (UKF noise order).
+  void evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& n, Eigen::VectorXd& y);
+  // The same at a sigma point that differs from the centre only in the
+  // listed entries, given the centre's y0: wheels they do not reach keep the
+  // centre's rows.
+  void evaluate_incremental(const Eigen::VectorXd& x, const Eigen::VectorXd& n, const std::vector<Eigen::Index>& changed_x,
+                            const std::vector<Eigen::Index>& changed_n, const Eigen::VectorXd& y0, Eigen::VectorXd& y);
+
+ private:
+  // A wheel's final rotation at (gamma, beta) with their cosines and sines.
+  struct RotationMemo {
+    double gamma = NAN, beta = NAN, cg = 1.0, sg = 0.0, cb = 1.0, sb = 0.0;
+    Eigen::Matrix3d C;
+  };
+  const RotationMemo& rotation(int wheel, double gamma, double beta);
+  void evaluate_wheel(int wheel, const Eigen::VectorXd& x, const Eigen::VectorXd& n, Eigen::VectorXd& y);
+
+  const kinematics::RoverModel* m_ = nullptr;
+  kinematics::WheelFrame frame_ = kinematics::WheelFrame::contact;
+  ContactLayout layout_;
+  std::vector<std::vector<int>> wheels_of_joint_;
+  Inputs in_;
+  WheelGeometry geometry_[6];  // at the measured joint angles
+  RotationMemo memo_[6][2];    // kept while gamma and beta repeat
+};
 
 }  // namespace roverlab::estimation::contact

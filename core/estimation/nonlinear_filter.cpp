@@ -101,21 +101,29 @@ void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::Matrix
 
 bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, const Function& h,
                                  const Eigen::MatrixXd& R, const Eigen::VectorXd& y) {
-  const Eigen::Index nx = x.size(), np = Q.rows(), nm = R.rows(), ny = y.size();
-  const Eigen::Index L = nx + np + nm;
-  const double lambda = alpha * alpha * (static_cast<double>(L) + kappa) - static_cast<double>(L);
-  const double c = std::sqrt(static_cast<double>(L) + lambda);
-  // Cholesky factor of (L + lambda) blockdiag(P, Q, R), block by block.
-  Eigen::MatrixXd Sx;
+  if (!factor_covariances(Q, R, y.size())) return false;
+  propagate_sigma_points(f, Q.rows());
+  measure_sigma_points(h, R.rows(), y.size());
+  covariances(Q, R);
+  return correct(y);
+}
+
+// Cholesky factor of (L + lambda) blockdiag(P, Q, R), block by block, and
+// the scaled unscented transform's weights.
+bool UnscentedKalmanFilter::factor_covariances(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R, Eigen::Index ny) {
+  const Eigen::Index nx = x.size(), np = Q.rows(), nm = R.rows();
+  L_ = nx + np + nm;
+  const double lambda = alpha * alpha * (static_cast<double>(L_) + kappa) - static_cast<double>(L_);
+  c_ = std::sqrt(static_cast<double>(L_) + lambda);
   if (diagonal_only) {  // P is diagonal (kept so by the previous step)
     if (!(P.diagonal().array() > 0.0).all()) return false;
-    Sx = (c * P.diagonal().cwiseSqrt()).asDiagonal();
+    Sx_ = (c_ * P.diagonal().cwiseSqrt()).asDiagonal();
   } else {
     const Eigen::LLT<Eigen::MatrixXd> llt(P);
     if (llt.info() != Eigen::Success) return false;
-    Sx = c * Eigen::MatrixXd(llt.matrixL());
+    Sx_ = c_ * Eigen::MatrixXd(llt.matrixL());
   }
-  auto factor = [&](const Eigen::MatrixXd& M, Eigen::MatrixXd& last, Eigen::MatrixXd& S) {
+  auto factor = [](const Eigen::MatrixXd& M, Eigen::MatrixXd& last, Eigen::MatrixXd& S) {
     if (last.rows() == M.rows() && last.cols() == M.cols() && last == M) return true;
     const Eigen::LLT<Eigen::MatrixXd> l(M);
     if (l.info() != Eigen::Success) return false;
@@ -127,134 +135,158 @@ bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, co
   // Additive noises (declared by the model, used only when uncorrelated
   // with the rest): the first nx process noises and the last ny
   // measurement noises.
-  const Eigen::Index pa = additive_process_noise && np >= nx && Q.bottomLeftCorner(np - nx, nx).isZero(0.0) ? nx : 0;
-  const Eigen::Index ma = additive_measurement_noise && nm >= ny && R.bottomLeftCorner(ny, nm - ny).isZero(0.0) ? ny : 0;
-  const double wm0 = lambda / (static_cast<double>(L) + lambda), wi = 0.5 / (static_cast<double>(L) + lambda);
-  const double wc0 = wm0 + (1.0 - alpha * alpha + beta);
+  pa_ = additive_process_noise && np >= nx && Q.bottomLeftCorner(np - nx, nx).isZero(0.0) ? nx : 0;
+  ma_ = additive_measurement_noise && nm >= ny && R.bottomLeftCorner(ny, nm - ny).isZero(0.0) ? ny : 0;
+  const double wm0 = lambda / (static_cast<double>(L_) + lambda);
+  wi_ = 0.5 / (static_cast<double>(L_) + lambda);
+  wc0_ = wm0 + (1.0 - alpha * alpha + beta);
+  return true;
+}
 
-  // Eq. 2.18: the points through f. Column 0 the centre, then a plus and a
-  // minus point per state direction and per non-additive process noise.
-  const Eigen::Index nf = 1 + 2 * (nx + np - pa);
+// Eq. 2.18: the points through f. Column 0 the centre, then a plus and a
+// minus point per state direction and per non-additive process noise.
+void UnscentedKalmanFilter::propagate_sigma_points(const Function& f, Eigen::Index np) {
+  const Eigen::Index nx = x.size();
+  const Eigen::Index nf = 1 + 2 * (nx + np - pa_);
   X_.resize(nx, nf);
-  Eigen::VectorXd xs(nx), nps = Eigen::VectorXd::Zero(np), nms = Eigen::VectorXd::Zero(nm), fx(nx), hy(ny);
+  Eigen::VectorXd xs(nx), nps = Eigen::VectorXd::Zero(np), fx(nx);
   f(x, nps, fx);
   X_.col(0) = fx;
   for (Eigen::Index d = 0; d < nx; ++d) {
     for (int k = 0; k < 2; ++k) {
       xs = x;
-      if (k == 0) xs += Sx.col(d);
-      if (k == 1) xs -= Sx.col(d);
+      if (k == 0) xs += Sx_.col(d);
+      if (k == 1) xs -= Sx_.col(d);
       f(xs, nps, fx);
       X_.col(1 + 2 * d + k) = fx;
     }
   }
-  for (Eigen::Index j = pa; j < np; ++j) {
+  for (Eigen::Index j = pa_; j < np; ++j) {
     for (int k = 0; k < 2; ++k) {
-      nps = (k == 0 ? c : -c) * SQ_.col(j);
+      nps = (k == 0 ? c_ : -c_) * SQ_.col(j);
       f(x, nps, fx);
-      X_.col(1 + 2 * nx + 2 * (j - pa) + k) = fx;
+      X_.col(1 + 2 * nx + 2 * (j - pa_) + k) = fx;
     }
   }
-  nps.setZero();
-  // Eq. 2.19: the points through h. Those of f; the centre moved along each
-  // additive process noise (its sigma points are X_0 +- c SQ_j, f is not
-  // needed); the centre with each non-additive measurement noise. Additive
-  // measurement noises move h's value by +- c SR_m and are not evaluated.
-  const Eigen::Index nmh = nm - ma;
-  Eigen::MatrixXd Yf(ny, nf), Yp(ny, 2 * pa), Ym(ny, 2 * nmh), Dp(nx, pa);
-  // Every point but the centre goes through h_incremental when the model
-  // has one, told which entries differ from the centre's.
-  fx = X_.col(0);
-  h(fx, nms, hy);
-  Yf.col(0) = hy;
-  const Eigen::VectorXd X0 = X_.col(0), Y0 = hy;
-  std::vector<Eigen::Index> changed_x, changed_n;
-  changed_x.reserve(static_cast<std::size_t>(nx));
-  changed_n.reserve(static_cast<std::size_t>(nm));
+}
+
+// h at one sigma point, stored as the deviation from the centre's Y0_;
+// through h_incremental when the model has one, told which entries differ
+// from the centre's (changed_x_, changed_n_).
+void UnscentedKalmanFilter::measure_point(const Function& h, const Eigen::VectorXd& xp, const Eigen::VectorXd& noise,
+                                          Eigen::Ref<Eigen::VectorXd> out) {
+  if (h_incremental) {
+    h_incremental(xp, noise, changed_x_, changed_n_, Y0_, hy_);
+  } else {
+    h(xp, noise, hy_);
+  }
+  out = hy_ - Y0_;
+}
+
+// Eq. 2.19: the points through h. Those of f; the centre moved along each
+// additive process noise (its sigma points are X_0 +- c SQ_j, f is not
+// needed); the centre with each non-additive measurement noise. Additive
+// measurement noises move h's value by +- c SR_m and are not evaluated.
+void UnscentedKalmanFilter::measure_sigma_points(const Function& h, Eigen::Index nm, Eigen::Index ny) {
+  const Eigen::Index nx = x.size(), nf = X_.cols(), pa = pa_;
+  const Eigen::Index nmh = nm - ma_;
+  Y_.resize(ny, nf);
+  Yp_.resize(ny, 2 * pa);
+  Ym_.resize(ny, 2 * nmh);
+  Dp_.resize(nx, pa);
+  Eigen::VectorXd nms = Eigen::VectorXd::Zero(nm), fx = X_.col(0);
+  hy_.resize(ny);
+  h(fx, nms, hy_);
+  Y_.col(0) = hy_;
+  X0_ = X_.col(0);
+  Y0_ = hy_;
+  changed_x_.reserve(static_cast<std::size_t>(nx));
+  changed_n_.reserve(static_cast<std::size_t>(nm));
   auto pattern = [](const Eigen::Ref<const Eigen::VectorXd>& v, std::vector<Eigen::Index>& out) {
     out.clear();
     for (Eigen::Index r = 0; r < v.size(); ++r) {
       if (v(r) != 0.0) out.push_back(r);
     }
   };
-  auto eval = [&](const Eigen::VectorXd& xp, const Eigen::VectorXd& np_, Eigen::Ref<Eigen::VectorXd> out) {
-    if (h_incremental) {
-      h_incremental(xp, np_, changed_x, changed_n, Y0, hy);
-    } else {
-      h(xp, np_, hy);
-    }
-    out = hy - Y0;  // stored as the deviation from the centre
-  };
-  changed_n.clear();
+  changed_n_.clear();
   for (Eigen::Index i = 1; i < nf; ++i) {
     fx = X_.col(i);
     if (h_incremental) {
-      changed_x.clear();
+      changed_x_.clear();
       for (Eigen::Index r = 0; r < nx; ++r) {
-        if (fx(r) != X0(r)) changed_x.push_back(r);
+        if (fx(r) != X0_(r)) changed_x_.push_back(r);
       }
     }
-    eval(fx, nms, Yf.col(i));
+    measure_point(h, fx, nms, Y_.col(i));
   }
   for (Eigen::Index j = 0; j < pa; ++j) {
-    Dp.col(j) = c * SQ_.col(j).head(nx);
-    if (h_incremental) pattern(Dp.col(j), changed_x);
+    Dp_.col(j) = c_ * SQ_.col(j).head(nx);
+    if (h_incremental) pattern(Dp_.col(j), changed_x_);
     for (int k = 0; k < 2; ++k) {
-      fx = X0;
-      if (k == 0) fx += Dp.col(j);
-      if (k == 1) fx -= Dp.col(j);
-      eval(fx, nms, Yp.col(2 * j + k));
+      fx = X0_;
+      if (k == 0) fx += Dp_.col(j);
+      if (k == 1) fx -= Dp_.col(j);
+      measure_point(h, fx, nms, Yp_.col(2 * j + k));
     }
   }
-  fx = X0;
-  changed_x.clear();
+  fx = X0_;
+  changed_x_.clear();
   for (Eigen::Index j = 0; j < nmh; ++j) {
-    if (h_incremental) pattern(SR_.col(j), changed_n);
+    if (h_incremental) pattern(SR_.col(j), changed_n_);
     for (int k = 0; k < 2; ++k) {
-      nms = (k == 0 ? c : -c) * SR_.col(j);
-      eval(fx, nms, Ym.col(2 * j + k));
+      nms = (k == 0 ? c_ : -c_) * SR_.col(j);
+      measure_point(h, fx, nms, Ym_.col(2 * j + k));
     }
   }
-  // Deviations from the centre: e_i = X_i - X_0 and Y_i - Y_0, mostly
-  // sparse (a sigma point moves a few states or wheels). With wm = wc = wi
-  // off the centre, the means are X_0 + s_x and Y_0 + s_y with
-  // s = wi sum e (pairs along additive noises cancel), and every covariance
-  // is wi sum e e^T + (W - 2) s s^T (W = sum of wc = 2 - alpha^2 + beta),
-  // plus Q's or R's additive block: such a pair adds 2 wi delta delta^T and
-  // 2 wi c^2 = 1.
-  X_.colwise() -= X0;
-  Yf.col(0).setZero();
+}
+
+// Deviations from the centre: e_i = X_i - X_0 and Y_i - Y_0, mostly
+// sparse (a sigma point moves a few states or wheels). With wm = wc = wi
+// off the centre, the means are X_0 + s_x and Y_0 + s_y with
+// s = wi sum e (pairs along additive noises cancel), and every covariance
+// is wi sum e e^T + (W - 2) s s^T (W = sum of wc = 2 - alpha^2 + beta),
+// plus Q's or R's additive block: such a pair adds 2 wi delta delta^T and
+// 2 wi c^2 = 1. Leaves the predicted mean in x and ym_, Pxx_, Pyy_, Pxy_.
+void UnscentedKalmanFilter::covariances(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R) {
+  const Eigen::Index nx = x.size(), ny = Y_.rows(), pa = pa_;
+  const double wi = wi_;
+  X_.colwise() -= X0_;
+  Y_.col(0).setZero();
   const Eigen::VectorXd sx = wi * X_.rowwise().sum();
-  const Eigen::VectorXd sy = wi * (Yf.rowwise().sum() + Yp.rowwise().sum() + Ym.rowwise().sum());
-  const Eigen::VectorXd xm = X0 + sx, ym = Y0 + sy;
-  const double W2 = wc0 + 2.0 * static_cast<double>(L) * wi - 2.0;
-  Eigen::MatrixXd Pxx = W2 * sx * sx.transpose();
-  add_outer(Pxx, X_, wi);
-  Pxx.triangularView<Eigen::StrictlyUpper>() = Pxx.transpose();
-  if (pa > 0) Pxx += Q.topLeftCorner(nx, nx);
-  Eigen::MatrixXd Pyy = W2 * sy * sy.transpose();
-  add_outer(Pyy, Yf, wi);
-  add_outer(Pyy, Yp, wi);
-  add_outer(Pyy, Ym, wi);
-  Pyy.triangularView<Eigen::StrictlyUpper>() = Pyy.transpose();
-  if (ma > 0) Pyy += R.bottomRightCorner(ny, ny);
+  const Eigen::VectorXd sy = wi * (Y_.rowwise().sum() + Yp_.rowwise().sum() + Ym_.rowwise().sum());
+  const Eigen::VectorXd xm = X0_ + sx;
+  ym_ = Y0_ + sy;
+  const double W2 = wc0_ + 2.0 * static_cast<double>(L_) * wi - 2.0;
+  Pxx_ = W2 * sx * sx.transpose();
+  add_outer(Pxx_, X_, wi);
+  Pxx_.triangularView<Eigen::StrictlyUpper>() = Pxx_.transpose();
+  if (pa > 0) Pxx_ += Q.topLeftCorner(nx, nx);
+  Pyy_ = W2 * sy * sy.transpose();
+  add_outer(Pyy_, Y_, wi);
+  add_outer(Pyy_, Yp_, wi);
+  add_outer(Pyy_, Ym_, wi);
+  Pyy_.triangularView<Eigen::StrictlyUpper>() = Pyy_.transpose();
+  if (ma_ > 0) Pyy_ += R.bottomRightCorner(ny, ny);
   // Pxy: f's points, and delta_j (e_j+ - e_j-)^T along the additive process
   // noises (delta_j = c SQ_j, a column of the triangular factor).
-  Eigen::MatrixXd Pxy = W2 * sx * sy.transpose();
-  add_cross(Pxy, X_, Yf, wi);
+  Pxy_ = W2 * sx * sy.transpose();
+  add_cross(Pxy_, X_, Y_, wi);
   if (pa > 0) {
     Eigen::MatrixXd Yd(pa, ny);
-    for (Eigen::Index j = 0; j < pa; ++j) Yd.row(j) = (c * wi) * (Yp.col(2 * j) - Yp.col(2 * j + 1)).transpose();
-    Pxy.noalias() += SQ_.topLeftCorner(nx, pa).triangularView<Eigen::Lower>() * Yd;
+    for (Eigen::Index j = 0; j < pa; ++j) Yd.row(j) = (c_ * wi) * (Yp_.col(2 * j) - Yp_.col(2 * j + 1)).transpose();
+    Pxy_.noalias() += SQ_.topLeftCorner(nx, pa).triangularView<Eigen::Lower>() * Yd;
   }
   x = xm;
-  P = 0.5 * (Pxx + Pxx.transpose());
-  // Eq. 2.20 with Pyy = L L^T: K = Pxy Pyy^-1 = W^T L^-1 for W = L^-1 Pxy^T,
-  // so K (y - ym) = W^T L^-1 (y - ym) and K Pyy K^T = W^T W.
-  const Eigen::LLT<Eigen::MatrixXd> syy(Pyy);
+  P = 0.5 * (Pxx_ + Pxx_.transpose());
+}
+
+// Eq. 2.20 with Pyy = L L^T: K = Pxy Pyy^-1 = W^T L^-1 for W = L^-1 Pxy^T,
+// so K (y - ym) = W^T L^-1 (y - ym) and K Pyy K^T = W^T W.
+bool UnscentedKalmanFilter::correct(const Eigen::VectorXd& y) {
+  const Eigen::LLT<Eigen::MatrixXd> syy(Pyy_);
   if (syy.info() != Eigen::Success) return false;
-  const Eigen::MatrixXd W = syy.matrixL().solve(Pxy.transpose());
-  x.noalias() += W.transpose() * syy.matrixL().solve(y - ym);
+  const Eigen::MatrixXd W = syy.matrixL().solve(Pxy_.transpose());
+  x.noalias() += W.transpose() * syy.matrixL().solve(y - ym_);
   if (diagonal_only) {
     P = Eigen::VectorXd(P.diagonal() - W.colwise().squaredNorm().transpose()).asDiagonal();
     return true;

@@ -73,8 +73,27 @@ class UnscentedKalmanFilter {
   void reset_cross_covariance();
 
  private:
+  // The steps of step(), in order; each reads what the previous ones left in
+  // the members below.
+  bool factor_covariances(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R, Eigen::Index ny);
+  void propagate_sigma_points(const Function& f, Eigen::Index np);
+  void measure_sigma_points(const Function& h, Eigen::Index nm, Eigen::Index ny);
+  void measure_point(const Function& h, const Eigen::VectorXd& xp, const Eigen::VectorXd& noise,
+                     Eigen::Ref<Eigen::VectorXd> out);
+  void covariances(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R);
+  bool correct(const Eigen::VectorXd& y);
+
   Eigen::MatrixXd Q_, R_, SQ_, SR_;  // last noise covariances and their Cholesky factors
   Eigen::MatrixXd X_, Y_;            // sigma points through f and h
+  // This step's sigma-point scale and weights, additive noise counts, the
+  // state's scaled Cholesky factor, the points' measurement deviations (of
+  // f's points, along the additive process noises, along the non-additive
+  // measurement noises), the centre and the moments.
+  Eigen::Index L_ = 0, pa_ = 0, ma_ = 0;
+  double c_ = 0, wi_ = 0, wc0_ = 0;
+  Eigen::MatrixXd Sx_, Yp_, Ym_, Dp_, Pxx_, Pyy_, Pxy_;
+  Eigen::VectorXd X0_, Y0_, hy_, ym_;
+  std::vector<Eigen::Index> changed_x_, changed_n_;
 };
 
 }  // namespace roverlab::estimation

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include "core/analysis/estimate_errors.h"
 #include "core/common/error.h"
 #include "core/estimation/contact_angle.h"
+#include "core/estimation/contact_angle_estimator.h"
 #include "core/estimation/contact_angle_model.h"
 #include "core/kinematics/rover_model.h"
 #include "core/simulation/flying_rover.h"
@@ -318,6 +320,54 @@ TEST(ContactAngle, StandstillHoldsTheStatesAndMarksThemInvalid) {
 TEST(ContactAngle, MissingStreamsAreDataErrors) {
   log::Log lg;
   EXPECT_THROW(estimation::run_contact_angle(lg, bb2(), {}), std::exception);
+}
+
+TEST(ContactAngle, TheEstimatorReadsNoTruthAndRunContactAngleScoresItsStreams) {
+  auto s = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
+  s.rate = 100.0;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  estimation::ContactAngleOptions o;
+  o.model = estimation::ContactModel::contact_side_slip;
+  const auto plain = estimation::ContactAngleEstimator(lg, bb2(), o).run();
+  const auto scored = estimation::run_contact_angle(lg, bb2(), o);
+  EXPECT_FALSE(plain.has_truth);
+  ASSERT_TRUE(scored.has_truth);
+  const auto& a = plain.estimates.stream("estimate/contact/wheels");
+  const auto& b = scored.estimates.stream("estimate/contact/wheels");
+  ASSERT_EQ(a.channels().size(), b.channels().size());
+  for (std::size_t c = 0; c < a.channels().size(); ++c) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const double x = a.channels()[c].values[i], y = b.channels()[c].values[i];
+      EXPECT_TRUE(x == y || (std::isnan(x) && std::isnan(y)));
+    }
+  }
+  const auto errors = analysis::contact_angle_errors(lg, plain.estimates);
+  ASSERT_TRUE(errors.has_value());
+  EXPECT_EQ(errors->samples, scored.rms.samples);
+  EXPECT_EQ(errors->side_slip, scored.rms.side_slip);
+  EXPECT_EQ(errors->contact_angle.size(), 6u);
+  log::Log no_truth;
+  for (const char* n : {"imu", "joints", "wheels"}) no_truth.add_stream(lg.stream(n));
+  EXPECT_FALSE(analysis::contact_angle_errors(no_truth, plain.estimates).has_value());
+}
+
+TEST(EstimateErrors, RmsOverValidMovingSamplesAgainstTheNearestTruthSample) {
+  log::Log lg;
+  log::Stream truth("truth/body", {0.0, 1.0, 2.0, 3.0});
+  truth.add_channel("velocity_x", "m/s", {0.0, 1.0, 1.0, 1.0});
+  truth.add_channel("velocity_y", "m/s", {0.0, 0.0, 0.0, 0.0});
+  truth.add_channel("a", "1", {0.0, 0.0, 0.0, 0.0});
+  log::Stream est("estimate/x", {0.1, 1.1, 2.1, 2.9});
+  est.add_channel("a", "1", {5.0, 1.0, 2.0, NAN});
+  est.add_channel("valid", "bool", {1.0, 1.0, 1.0, 0.0});
+  const auto aligned = analysis::align_truth(truth, est.time());
+  EXPECT_EQ(aligned.index, (std::vector<std::size_t>{0, 1, 2, 3}));
+  // Sample 0: the truth stands still; sample 3: the estimate is invalid.
+  const auto mask = analysis::moving_samples(est, "valid", aligned, "velocity_x", "velocity_y", 1e-3);
+  EXPECT_EQ(mask, (std::vector<char>{0, 1, 1, 0}));
+  EXPECT_DOUBLE_EQ(analysis::rms_error(est, "a", aligned, "a", mask, 2), std::sqrt(2.5));
+  const auto all = analysis::moving_samples(est, "", aligned, "velocity_x", "velocity_y", 1e-3);
+  EXPECT_EQ(all, (std::vector<char>{0, 1, 1, 1}));
 }
 
 TEST(RoverDescriptions, TheThreeBundledRoversLoadWithTheirPublishedDimensions) {

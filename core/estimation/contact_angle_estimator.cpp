@@ -1,0 +1,344 @@
+#include "core/estimation/contact_angle_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/common/error.h"
+
+namespace roverlab::estimation {
+
+using contact::Inputs;
+
+ContactAngleEstimator::ContactAngleEstimator(const log::Log& log, const kinematics::RoverModel& rover,
+                                             const ContactAngleOptions& options)
+    : log_(log), m_(rover), o_(options) {
+  if (m_.wheels.size() != 6) throw DataError("rover " + m_.name + ": the estimator expects six wheels");
+  if (m_.joints.size() > 16) throw DataError("rover " + m_.name + ": more than 16 joints");
+  read_channels();
+  layout_.na = o_.model == ContactModel::smooth ? 0 : o_.model == ContactModel::contact ? 6 : 12;
+  layout_.nq = static_cast<int>(m_.joints.size());
+  frame_ = o_.model == ContactModel::smooth    ? kinematics::WheelFrame::drive
+           : o_.model == ContactModel::contact ? kinematics::WheelFrame::contact
+                                               : kinematics::WheelFrame::side_slip;
+  level();
+  assemble_process_noise();
+  assemble_measurement_noise();
+  if (o_.joint_rate_window > 0.0) fuse_joint_rates();
+  const double angle_keep = o_.angle_model == AngleModel::damped ? 1.0 : 0.0;  // multiplies -A ts
+  process_ = contact::ContactProcessModel(layout_, g_i_, o_.slip_damping, angle_keep * o_.angle_damping);
+  measurement_ = contact::WheelMeasurementModel(m_, frame_, layout_);
+  R_ukf_ = measurement_.ukf_noise_order(rdiag_).asDiagonal();
+  initial_state();
+}
+
+void ContactAngleEstimator::read_channels() {
+  imu_ = &log_.stream("imu");
+  joints_ = &log_.stream("joints");
+  wheels_ = &log_.stream("wheels");
+  if (imu_->size() < 10) throw DataError("stream 'imu' has fewer than 10 samples");
+  const char* imu_names[6] = {"angular_rate_x", "angular_rate_y", "angular_rate_z", "specific_force_x", "specific_force_y", "specific_force_z"};
+  for (const char* c : imu_names) imu_ch_.push_back(&imu_->channel(c).values);
+  for (const auto& j : m_.joints) {
+    q_ch_.push_back(&joints_->channel(j).values);
+    qd_ch_.push_back(&joints_->channel(j + "_rate").values);
+  }
+  for (const auto& w : m_.wheels) w_ch_.push_back(&wheels_->channel("rate_" + w.name).values);
+}
+
+// Homing: attitude by levelling and the gravity vector g^i from the first 0.5 s.
+void ContactAngleEstimator::level() {
+  const auto& t = imu_->time();
+  const std::size_t n = t.size();
+  Eigen::Vector3d f0 = Eigen::Vector3d::Zero();
+  std::size_t h = 0;
+  while (h < n && t[h] - t[0] < 0.5) {
+    f0 += Eigen::Vector3d((*imu_ch_[3])[h], (*imu_ch_[4])[h], (*imu_ch_[5])[h]);
+    ++h;
+  }
+  f0 /= static_cast<double>(std::max<std::size_t>(h, 1));
+  pitch0_ = std::atan2(-f0.x(), std::hypot(f0.y(), f0.z()));  // z up: f = R^T (0, 0, g)
+  roll0_ = std::atan2(f0.y(), f0.z());
+  g_i_ = Eigen::Vector3d(0.0, 0.0, f0.norm());
+}
+
+// Process noise per step (section 6.2), then the IMU's n_f and n_w.
+void ContactAngleEstimator::assemble_process_noise() {
+  const int nx = layout_.nx();
+  qdiag_.resize(layout_.np());
+  qdiag_.segment(0, 3).setConstant(o_.attitude_variance);
+  qdiag_.segment(3, 3).setConstant(o_.velocity_variance);
+  qdiag_.segment(6, 6).setConstant(o_.slip_variance);
+  if (layout_.na > 0) qdiag_.segment(12, layout_.na).setConstant(o_.angle_variance);
+  qdiag_.segment(nx, 3) = m_.noise.accelerometer;
+  qdiag_.segment(nx + 3, 3) = m_.noise.gyro;
+  Q_ = qdiag_.asDiagonal();
+}
+
+// Measurement noise from the rover's sensor description: gyro, wheel rates,
+// joint angles and rates (bogies by name, steering per wheel), lateral and
+// normal velocity.
+void ContactAngleEstimator::assemble_measurement_noise() {
+  const int nq = layout_.nq, nw = layout_.nw;
+  rdiag_.resize(layout_.nm());
+  rdiag_.segment(0, 3) = m_.noise.gyro;
+  q_var_.assign(static_cast<std::size_t>(nq), 1e-12);
+  qd_var_.assign(static_cast<std::size_t>(nq), 1e-12);
+  std::size_t b = 0;
+  for (int j = 0; j < nq; ++j) {
+    if (m_.joints[static_cast<std::size_t>(j)].rfind("bogie", 0) == 0 && b < m_.noise.bogie_angle.size()) {
+      q_var_[static_cast<std::size_t>(j)] = m_.noise.bogie_angle[b];
+      qd_var_[static_cast<std::size_t>(j)] = m_.noise.bogie_rate[b];
+      ++b;
+    }
+  }
+  for (int w = 0; w < nw; ++w) {
+    const int j = m_.wheels[static_cast<std::size_t>(w)].steer_joint;
+    if (j >= 0 && !m_.noise.steer_angle.empty()) {
+      q_var_[static_cast<std::size_t>(j)] = m_.noise.steer_angle[static_cast<std::size_t>(w)];
+      qd_var_[static_cast<std::size_t>(j)] = m_.noise.steer_rate[static_cast<std::size_t>(w)];
+    }
+  }
+  for (int w = 0; w < nw; ++w) {
+    rdiag_(3 + w) = m_.noise.wheel_rate.empty() ? 1e-12 : m_.noise.wheel_rate[static_cast<std::size_t>(w)];
+  }
+  for (int j = 0; j < nq; ++j) {
+    rdiag_(3 + nw + j) = q_var_[static_cast<std::size_t>(j)];
+    rdiag_(3 + nw + nq + j) = qd_var_[static_cast<std::size_t>(j)];
+  }
+  rdiag_.segment(3 + nw + 2 * nq, 2 * nw).setConstant(o_.lateral_variance);
+}
+
+// Joint rates fused with the slope of the joint angles (offline extension,
+// not in the seed): inverse-variance weights, the fused variance into R.
+void ContactAngleEstimator::fuse_joint_rates() {
+  const int nq = layout_.nq, nw = layout_.nw;
+  const auto& tj = joints_->time();
+  const std::size_t nj = tj.size();
+  const double rate_hz = joints_->mean_rate_hz();
+  const auto half = static_cast<std::size_t>(std::max(1.0, 0.5 * o_.joint_rate_window * rate_hz));
+  for (int j = 0; j < nq; ++j) {
+    const auto& qa = *q_ch_[static_cast<std::size_t>(j)];
+    const auto& qr = *qd_ch_[static_cast<std::size_t>(j)];
+    // Slope variance of a line through N points spaced dt: 12 var_q / (N (N^2 - 1) dt^2).
+    const double N = static_cast<double>(2 * half + 1), dt = 1.0 / rate_hz;
+    const double slope_var = 12.0 * q_var_[static_cast<std::size_t>(j)] / (N * (N * N - 1.0) * dt * dt);
+    const double mv = qd_var_[static_cast<std::size_t>(j)];
+    const double w_slope = mv / (mv + slope_var);
+    rdiag_(3 + nw + nq + j) = mv * slope_var / (mv + slope_var);
+    std::vector<double> out(nj);
+    for (std::size_t i = 0; i < nj; ++i) {
+      const std::size_t a = i > half ? i - half : 0, b = std::min(nj - 1, i + half);
+      double st = 0, sq = 0, stt = 0, stq = 0;
+      const double m_ = static_cast<double>(b - a + 1);
+      for (std::size_t k = a; k <= b; ++k) {
+        const double x = tj[k] - tj[i];
+        st += x;
+        sq += qa[k];
+        stt += x * x;
+        stq += x * qa[k];
+      }
+      const double den = m_ * stt - st * st;
+      const double slope = den > 0 ? (m_ * stq - st * sq) / den : qr[i];
+      out[i] = w_slope * slope + (1.0 - w_slope) * qr[i];
+    }
+    fused_rate_.push_back(std::move(out));
+  }
+}
+
+Inputs ContactAngleEstimator::inputs_at(std::size_t i) const {
+  const auto& t = imu_->time();
+  const int nq = layout_.nq, nw = layout_.nw;
+  Inputs in;
+  in.gyro = Eigen::Vector3d((*imu_ch_[0])[i], (*imu_ch_[1])[i], (*imu_ch_[2])[i]);
+  in.accel = Eigen::Vector3d((*imu_ch_[3])[i], (*imu_ch_[4])[i], (*imu_ch_[5])[i]);
+  const std::size_t kj = std::min(joints_->nearest_index(t[i]), joints_->size() - 1);
+  const std::size_t kw = std::min(wheels_->nearest_index(t[i]), wheels_->size() - 1);
+  for (int j = 0; j < nq; ++j) {
+    const auto ju = static_cast<std::size_t>(j);
+    in.q[j] = (*q_ch_[ju])[kj];
+    in.qdot[j] = fused_rate_.empty() ? (*qd_ch_[ju])[kj] : fused_rate_[ju][kj];
+    if (!std::isfinite(in.q[j])) throw DataError("stream 'joints': missing sample at t = " + std::to_string(t[i]) + " s");
+  }
+  for (int w = 0; w < nw; ++w) in.wheel_rate[w] = (*w_ch_[static_cast<std::size_t>(w)])[kw];
+  if (!std::isfinite(in.gyro.sum() + in.accel.sum())) {
+    throw DataError("stream 'imu': missing sample at t = " + std::to_string(t[i]) + " s");
+  }
+  return in;
+}
+
+// Initial state: levelled attitude, forward speed from the wheels, no slip,
+// flat contact; the filters start from it.
+void ContactAngleEstimator::initial_state() {
+  const int nx = layout_.nx();
+  x0_ = Eigen::VectorXd::Zero(nx);
+  x0_(1) = pitch0_;
+  x0_(2) = roll0_;
+  {
+    const Inputs in = inputs_at(0);
+    std::vector<double> r(in.wheel_rate, in.wheel_rate + 6);
+    std::nth_element(r.begin(), r.begin() + 3, r.end());
+    x0_(3) = r[3] * m_.wheel_radius;
+  }
+  p0_.resize(nx);
+  p0_.segment(0, 3).setConstant(1e-4);
+  p0_.segment(3, 3).setConstant(1e-4);
+  p0_.segment(6, 6).setConstant(1e-4);
+  if (layout_.na > 0) p0_.segment(12, layout_.na).setConstant(1e-3);
+  ukf_.additive_process_noise = ukf_.additive_measurement_noise = !o_.reference_ukf;  // Eq. 4.15-4.17, 4.20
+  ukf_.diagonal_only = o_.reset_cross_covariance && !o_.reference_ukf;
+  if (!o_.reference_ukf) {
+    ukf_.h_incremental = [this](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, const std::vector<Eigen::Index>& cx,
+                                const std::vector<Eigen::Index>& cn, const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
+      measurement_.evaluate_incremental(xs, nz, cx, cn, y0, out_y);
+    };
+  }
+  ekf_.x = ukf_.x = x0_;
+  ekf_.P = ukf_.P = Eigen::MatrixXd(p0_.asDiagonal());
+  y_meas_ = Eigen::VectorXd::Zero(layout_.ny());
+}
+
+// Standstill (sections 4.1 and 5.1): every wheel and the body's rotation slow.
+bool ContactAngleEstimator::at_standstill(const Inputs& in) const {
+  bool still = true;
+  for (double w : in.wheel_rate) still = still && std::abs(w) < o_.standstill_wheel_rate;
+  return still && in.gyro.norm() < o_.standstill_gyro_rate;
+}
+
+ContactAngleResult ContactAngleEstimator::run() {
+  const auto& t = imu_->time();
+  const std::size_t n = t.size();
+  const int nx = layout_.nx();
+  out_.assign(static_cast<std::size_t>(nx), std::vector<double>(n, NAN));
+  valid_.assign(n, 0.0);
+  ContactAngleResult result;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Inputs in = inputs_at(i);
+    const double ts = i == 0 ? 0.0 : t[i] - t[i - 1];
+    const bool still = at_standstill(in);
+    for (int w = 0; w < layout_.nw; ++w) y_meas_(w) = in.wheel_rate[static_cast<std::size_t>(w)];
+    filter_step(i, in, ts, still);
+    if (!x_.allFinite()) throw DataError("the filter diverged at t = " + std::to_string(t[i]) + " s");
+    for (int k = 0; k < nx; ++k) out_[static_cast<std::size_t>(k)][i] = x_(k);
+    valid_[i] = still ? 0.0 : 1.0;
+    result.standstill_samples += still;
+    if (o_.progress && i % 2000 == 0) o_.progress(static_cast<double>(i) / static_cast<double>(n));
+  }
+  result.max_cross_correlation = max_cross_correlation();
+  write_streams(result);
+  result.seconds = t.back() - t.front();
+  if (o_.progress) o_.progress(1.0);
+  return result;
+}
+
+void ContactAngleEstimator::filter_step(std::size_t i, const Inputs& in, double ts, bool still) {
+  if (o_.filter == FilterKind::ekf && !o_.reference_ekf) {
+    if (layout_.na == 0) fast_ekf_step(fast0_, i, in, ts, still);
+    if (layout_.na == 6) fast_ekf_step(fast6_, i, in, ts, still);
+    if (layout_.na == 12) fast_ekf_step(fast12_, i, in, ts, still);
+  } else if (o_.filter == FilterKind::ekf) {
+    generic_ekf_step(i, in, ts, still);
+  } else {
+    ukf_step(i, in, ts, still);
+  }
+}
+
+template <int NA>
+void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const Inputs& in, double ts, bool still) {
+  if (i == 0) {
+    fe.x = x0_;
+    fe.P = p0_.asDiagonal();
+  }
+  if (i > 0) fe.predict(process_, qdiag_, in, ts);
+  // With the reset, P is blockdiag(P11, diag) after the predict.
+  if (!still) fe.update(measurement_, rdiag_, in, o_.reset_cross_covariance, o_.reset_cross_covariance);
+  if (still && o_.reset_cross_covariance) fe.P = fe.P.diagonal().asDiagonal();
+  x_ = fe.x;
+}
+
+// The fast EKF's reference: Jacobians by ceres::Jet, dense algebra.
+void ContactAngleEstimator::generic_ekf_step(std::size_t i, const Inputs& in, double ts, bool still) {
+  if (i > 0) ekf_.predict_diagonal(process_.linearize(ekf_.x, in, ts), qdiag_);
+  if (!still) ekf_.update_diagonal(measurement_.linearize(ekf_.x, in), rdiag_, y_meas_);
+  if (o_.reset_cross_covariance) ekf_.reset_cross_covariance();
+  x_ = ekf_.x;
+}
+
+void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts, bool still) {
+  // The filter's f and h: this step's inputs bound to the models.
+  const auto f = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_x) {
+    process_.evaluate(xs, nz, in, ts, out_x);
+  };
+  const auto h = [this](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_y) {
+    measurement_.evaluate(xs, nz, out_y);
+  };
+  measurement_.set_inputs(in);
+  if (i > 0 && !still) {
+    ukf_.step(f, Q_, h, R_ukf_, y_meas_);
+  } else if (i > 0) {  // predict only: the state's mean through f with zero noise
+    Eigen::VectorXd next;
+    f(ukf_.x, Eigen::VectorXd::Zero(layout_.np()), next);
+    ukf_.x = next;
+  }
+  if (o_.reset_cross_covariance) ukf_.reset_cross_covariance();
+  x_ = ukf_.x;
+}
+
+Eigen::MatrixXd ContactAngleEstimator::final_covariance() const {
+  if (o_.filter == FilterKind::ekf && !o_.reference_ekf) {
+    return layout_.na == 0 ? Eigen::MatrixXd(fast0_.P) : layout_.na == 6 ? Eigen::MatrixXd(fast6_.P) : Eigen::MatrixXd(fast12_.P);
+  }
+  return o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P;
+}
+
+// Largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end.
+double ContactAngleEstimator::max_cross_correlation() const {
+  const Eigen::MatrixXd P = final_covariance();
+  double largest = 0;
+  for (int a = 0; a < layout_.nx(); ++a) {
+    for (int b = 0; b < a; ++b) {
+      const double r = std::abs(P(a, b)) / std::sqrt(P(a, a) * P(b, b));
+      if (std::isfinite(r)) largest = std::max(largest, r);
+    }
+  }
+  return largest;
+}
+
+namespace {
+
+std::vector<double> masked(const std::vector<double>& v, const std::vector<double>& valid) {
+  std::vector<double> r = v;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (valid[i] == 0.0) r[i] = NAN;
+  }
+  return r;
+}
+
+}  // namespace
+
+// Streams; slip and angles are invalid (NaN) at standstill.
+void ContactAngleEstimator::write_streams(ContactAngleResult& result) const {
+  const auto& t = imu_->time();
+  const int nw = layout_.nw, na = layout_.na;
+  result.estimates.metadata = log_.metadata;
+  result.estimates.metadata.extra["estimator"] = "contact-angle (seed 000)";
+  log::Stream body("estimate/contact/body", t);
+  body.add_channel("velocity_x", "m/s", out_[3], "body frame g");
+  body.add_channel("velocity_y", "m/s", out_[4]);
+  body.add_channel("velocity_z", "m/s", out_[5]);
+  body.add_channel("yaw", "rad", out_[0]);
+  body.add_channel("pitch", "rad", out_[1]);
+  body.add_channel("roll", "rad", out_[2]);
+  result.estimates.add_stream(std::move(body));
+  log::Stream s("estimate/contact/wheels", t);
+  auto name = [&](int w) { return m_.wheels[static_cast<std::size_t>(w)].name; };
+  auto state = [&](int k) { return masked(out_[static_cast<std::size_t>(k)], valid_); };
+  for (int w = 0; w < nw; ++w) s.add_channel("slip_" + name(w), "1", state(6 + w));
+  for (int w = 0; w < nw && na >= 6; ++w) s.add_channel("contact_angle_" + name(w), "rad", state(12 + w));
+  for (int w = 0; w < nw && na >= 12; ++w) s.add_channel("side_slip_" + name(w), "rad", state(18 + w));
+  s.add_channel("valid", "bool", valid_, "0 at standstill: slip and angles undefined, held");
+  result.estimates.add_stream(std::move(s));
+}
+
+}  // namespace roverlab::estimation

@@ -1,0 +1,89 @@
+#pragma once
+// The contact-angle estimator of seed 000 as named steps over members: set-up
+// (channels, levelling, noise assembly, joint-rate fusion, initial state),
+// the filter pass (fast EKF, generic EKF or UKF over the same
+// ContactProcessModel and WheelMeasurementModel) and the output streams.
+// It does not read truth: run_contact_angle scores its streams through
+// core/analysis/estimate_errors.h.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/estimation/contact_angle.h"
+#include "core/estimation/contact_angle_fast_ekf.h"
+#include "core/estimation/contact_angle_model.h"
+#include "core/estimation/nonlinear_filter.h"
+#include "core/kinematics/rover_model.h"
+#include "core/log/log.h"
+
+namespace roverlab::estimation {
+
+class ContactAngleEstimator {
+ public:
+  // Reads the log's imu, joints and wheels streams (throws DataError naming
+  // what is missing) and sets up the models and noises. The log and rover
+  // must outlive the estimator.
+  ContactAngleEstimator(const log::Log& log, const kinematics::RoverModel& rover, const ContactAngleOptions& options);
+  ContactAngleEstimator(const ContactAngleEstimator&) = delete;  // the UKF's h refers to this object
+  ContactAngleEstimator& operator=(const ContactAngleEstimator&) = delete;
+
+  // The filter pass and the output streams; has_truth stays false and rms
+  // empty (the estimator does not read truth).
+  ContactAngleResult run();
+
+ private:
+  // Set-up.
+  void read_channels();
+  void level();
+  void assemble_process_noise();
+  void assemble_measurement_noise();
+  void fuse_joint_rates();
+  void initial_state();
+  contact::Inputs inputs_at(std::size_t i) const;
+  bool at_standstill(const contact::Inputs& in) const;
+  // The filter pass, one step per IMU sample; each leaves the state in x_.
+  void filter_step(std::size_t i, const contact::Inputs& in, double ts, bool still);
+  template <int NA>
+  void fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const contact::Inputs& in, double ts, bool still);
+  void generic_ekf_step(std::size_t i, const contact::Inputs& in, double ts, bool still);
+  void ukf_step(std::size_t i, const contact::Inputs& in, double ts, bool still);
+  // Outputs.
+  Eigen::MatrixXd final_covariance() const;
+  double max_cross_correlation() const;
+  void write_streams(ContactAngleResult& result) const;
+
+  const log::Log& log_;
+  const kinematics::RoverModel& m_;
+  ContactAngleOptions o_;
+  const log::Stream* imu_ = nullptr;
+  const log::Stream* joints_ = nullptr;
+  const log::Stream* wheels_ = nullptr;
+  std::vector<const std::vector<double>*> imu_ch_, q_ch_, qd_ch_, w_ch_;
+  std::vector<std::vector<double>> fused_rate_;  // joint rates fused with the angles' slope (empty: measured)
+  contact::ContactLayout layout_;
+  kinematics::WheelFrame frame_ = kinematics::WheelFrame::contact;
+  // Levelling: initial pitch and roll and the gravity vector g^i.
+  double pitch0_ = 0, roll0_ = 0;
+  Eigen::Vector3d g_i_ = Eigen::Vector3d::Zero();
+  // Noise variances: process (ContactLayout order), measurement (generic
+  // order, and the UKF's), joint angle and rate variances.
+  Eigen::VectorXd qdiag_, rdiag_;
+  Eigen::MatrixXd Q_, R_ukf_;
+  std::vector<double> q_var_, qd_var_;
+  contact::ContactProcessModel process_;
+  contact::WheelMeasurementModel measurement_;
+  // Filters and the state they leave after each step.
+  Eigen::VectorXd x0_, p0_, x_, y_meas_;
+  ExtendedKalmanFilter ekf_;
+  UnscentedKalmanFilter ukf_;
+  FastEkf<0> fast0_;
+  FastEkf<6> fast6_;
+  FastEkf<12> fast12_;
+  // Per state, its estimate at every IMU sample; 0 at standstill samples.
+  std::vector<std::vector<double>> out_;
+  std::vector<double> valid_;
+};
+
+}  // namespace roverlab::estimation

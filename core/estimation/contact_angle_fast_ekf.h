@@ -1,0 +1,223 @@
+#pragma once
+// The contact-angle EKF specialised to its model's structure (seed 000,
+// Eq. 2.14-2.17): the fast path of ContactAngleEstimator, consuming the same
+// ContactProcessModel and WheelMeasurementModel as the generic filters.
+// The models' fast-path members are defined here, inline, so that they
+// compile with the fast EKF (out of line, GCC stopped inlining their small
+// Eigen kernels and the whole process took 8-15% longer).
+
+#include <ceres/jet.h>
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "core/estimation/contact_angle_model.h"
+
+namespace roverlab::estimation {
+
+namespace contact {
+
+inline void ContactProcessModel::strapdown_step(double* att_v, const Inputs& in, double ts, Eigen::Matrix<double, 6, 6>& A,
+                                                Eigen::Matrix<double, 6, 6>& B) const {
+  // Jacobians of Eq. 4.13-4.14 with respect to attitude, velocity and the
+  // accelerometer and gyro noises.
+  using Jt = ceres::Jet<double, 12>;
+  const Jt zero(0.0);
+  const Jt zeros[3] = {zero, zero, zero};
+  Jt a[3], v[3], nf[3], nw[3], an[3], vn[3];
+  for (int k = 0; k < 3; ++k) {
+    a[k] = Jt(att_v[k], k);
+    v[k] = Jt(att_v[3 + k], 3 + k);
+    nf[k] = Jt(0.0, 6 + k);
+    nw[k] = Jt(0.0, 9 + k);
+  }
+  strapdown<Jt>(a, v, zeros, zeros, nf, nw, in, g_i_, ts, an, vn);
+  for (int k = 0; k < 3; ++k) {
+    att_v[k] = an[k].a;
+    att_v[3 + k] = vn[k].a;
+    for (int c = 0; c < 6; ++c) {
+      A(k, c) = an[k].v[c];
+      A(3 + k, c) = vn[k].v[c];
+      B(k, c) = an[k].v[6 + c];
+      B(3 + k, c) = vn[k].v[6 + c];
+    }
+  }
+}
+
+inline WheelLinearization WheelMeasurementModel::linearize_wheel(int w, const double* x, const Inputs& in) const {
+  const int na = layout_.na;
+  return contact::linearize_wheel(*m_, w, frame_, x + 3, x[6 + w], na >= 6 ? x[12 + w] : 0.0, na >= 12 ? x[18 + w] : 0.0,
+                                  in);
+}
+
+inline void WheelMeasurementModel::add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r,
+                                                        Eigen::Matrix<double, 18, 18>& S) const {
+  const kinematics::RoverModel& m = *m_;
+  const int nw = 6, nq = layout_.nq;
+  Eigen::Matrix3d Gw[6];
+  const Eigen::Vector3d gyro_sd = r.head<3>().cwiseSqrt();
+  for (int w = 0; w < nw; ++w) {
+    Gw[w] = lin[w].d.template block<3, 3>(0, 6) * gyro_sd.asDiagonal();
+    S(3 * w, 3 * w) += r(3 + w);
+    S(3 * w + 1, 3 * w + 1) += r(3 + nw + 2 * nq + w);
+    S(3 * w + 2, 3 * w + 2) += r(3 + 2 * nw + 2 * nq + w);
+  }
+  for (int w1 = 0; w1 < nw; ++w1) {
+    const auto& c1 = m.wheels[static_cast<std::size_t>(w1)];
+    const int j1[2] = {c1.bogie_joint, c1.steer_joint};
+    for (int w2 = 0; w2 <= w1; ++w2) {
+      const auto& c2 = m.wheels[static_cast<std::size_t>(w2)];
+      const int j2[2] = {c2.bogie_joint, c2.steer_joint};
+      Eigen::Matrix3d B = Gw[w1] * Gw[w2].transpose();
+      for (int a = 0; a < 2; ++a) {
+        for (int b = 0; b < 2; ++b) {
+          if (j1[a] < 0 || j1[a] != j2[b]) continue;
+          const int j = j1[a];
+          B.noalias() += r(3 + nw + j) * lin[w1].d.col(9 + a) * lin[w2].d.col(9 + b).transpose();
+          B.noalias() += r(3 + nw + nq + j) * lin[w1].d.col(11 + a) * lin[w2].d.col(11 + b).transpose();
+        }
+      }
+      S.template block<3, 3>(3 * w1, 3 * w2) += B;
+      if (w2 != w1) S.template block<3, 3>(3 * w2, 3 * w1) += B.transpose();
+    }
+  }
+}
+
+}  // namespace contact
+
+// The EKF of Eq. 2.14-2.17 specialised to this model: fixed-size matrices,
+// the process Jacobian's block structure (only the attitude-velocity block
+// is full) and the measurement Jacobian's (each wheel sees the velocity and
+// its own slip and angles), hand-derived wheel Jacobians. Tested equal to
+// the generic ExtendedKalmanFilter with ceres::Jet Jacobians.
+template <int NA>
+class FastEkf {
+ public:
+  static constexpr int NX = 12 + NA, NY = 18, NR = NX - 6;
+  Eigen::Matrix<double, NX, 1> x;
+  Eigen::Matrix<double, NX, NX> P;
+
+  // Eq. 2.14-2.15 with F = blockdiag(A, diag(d)): P11 <- A P11 A^T + G G^T,
+  // P12 <- A P12 D, P22 <- D P22 D + Q22.
+  void predict(const contact::ContactProcessModel& f, const Eigen::VectorXd& q, const contact::Inputs& in, double ts) {
+    Eigen::Matrix<double, 6, 6> A, G;  // G: noise Jacobian times the noise standard deviations
+    f.strapdown_step(x.data(), in, ts, A, G);
+    for (int c = 0; c < 6; ++c) G.col(c) *= std::sqrt(q(NX + c));
+    Eigen::Matrix<double, NR, 1> d;
+    d.template head<6>().setConstant(f.slip_keep(ts));
+    d.template tail<NA>().setConstant(f.angle_keep(ts));
+    x.template tail<NR>() = d.cwiseProduct(x.template tail<NR>());
+    const Eigen::Matrix<double, 6, 6> AP = A.lazyProduct(P.template topLeftCorner<6, 6>());
+    Eigen::Matrix<double, 6, 6> P11 = AP.lazyProduct(A.transpose()) + G.lazyProduct(G.transpose());
+    P11.diagonal() += q.template head<6>();
+    const Eigen::Matrix<double, 6, NR> P12 = A.lazyProduct(P.template topRightCorner<6, NR>()) * d.asDiagonal();
+    P.template topLeftCorner<6, 6>() = 0.5 * (P11 + P11.transpose());
+    P.template topRightCorner<6, NR>() = P12;
+    P.template bottomLeftCorner<NR, 6>() = P12.transpose();
+    P.template bottomRightCorner<NR, NR>() = P.template bottomRightCorner<NR, NR>().cwiseProduct(d * d.transpose());
+    P.template bottomRightCorner<NR, NR>().diagonal() += q.segment(6, NR);
+  }
+
+  // Eq. 2.16-2.17, Joseph form (I - KH) P (I - KH)^T + K R K^T expanded as
+  // P - K H P - P H^T K^T + K S K^T with K S K^T = (K L)(K L)^T, S = L L^T.
+  // diagonal_only keeps only P's diagonal (the seed's workaround follows).
+  bool update(const contact::WheelMeasurementModel& h, const Eigen::VectorXd& r, const contact::Inputs& in,
+              bool diagonal_only, bool block_diagonal = false) {
+    contact::WheelLinearization lin[6];
+    int priv[6][3];
+    constexpr int npriv = 1 + NA / 6;
+    Eigen::Matrix<double, NY, 1> innov;
+    for (int w = 0; w < 6; ++w) {
+      lin[w] = h.linearize_wheel(w, x.data(), in);
+      innov.template segment<3>(3 * w) = Eigen::Vector3d(in.wheel_rate[w], 0.0, 0.0) - lin[w].value;
+      for (int p = 0; p < 3; ++p) priv[w][p] = 6 + 6 * p + w;
+    }
+    // P H^T and H P H^T, one wheel (three rows of H) at a time.
+    Eigen::Matrix<double, NX, NY> PHt;
+    if (block_diagonal) {
+      // After the seed's reset P = blockdiag(P11, diag): a private row of
+      // P H^T holds its own wheel's three columns only.
+      PHt.setZero();
+      for (int w = 0; w < 6; ++w) {
+        PHt.template block<6, 3>(0, 3 * w).noalias() =
+            P.template block<6, 3>(0, 3) * lin[w].d.template leftCols<3>().transpose();
+        for (int p = 0; p < npriv; ++p) {
+          const int c = priv[w][p];
+          PHt.template block<1, 3>(c, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
+        }
+      }
+    } else {
+      for (int w = 0; w < 6; ++w) {
+        auto cols = PHt.template middleCols<3>(3 * w);
+        cols.noalias() = P.template middleCols<3>(3) * lin[w].d.template leftCols<3>().transpose();
+        for (int p = 0; p < npriv; ++p) cols.noalias() += P.col(priv[w][p]) * lin[w].d.col(3 + p).transpose();
+      }
+    }
+    Eigen::Matrix<double, NY, NY> S;
+    for (int w = 0; w < 6; ++w) {
+      auto rows = S.template middleRows<3>(3 * w);
+      rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
+      for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
+    }
+    h.add_noise_covariance(lin, r, S);
+    Eigen::Matrix<double, NY, NY> Lm;
+    if (!cholesky(S, Lm)) return false;
+    // W^T = P H^T L^-T and z = L^-1 (y - h) by forward substitution, so
+    // that K = W^T L^-1 and K (y - h) = W^T z.
+    Eigen::Matrix<double, NX, NY> Wt = PHt;
+    Eigen::Matrix<double, NY, 1> z = innov;
+    for (int r = 0; r < NY; ++r) {
+      for (int c = 0; c < r; ++c) {
+        Wt.col(r) -= Lm(r, c) * Wt.col(c);
+        z(r) -= Lm(r, c) * z(c);
+      }
+      Wt.col(r) /= Lm(r, r);
+      z(r) /= Lm(r, r);
+    }
+    x.noalias() += Wt * z;
+    if (diagonal_only) {
+      // The diagonal of the Joseph form with the optimal gain:
+      // P_ii - (K H P)_ii - (P H^T K^T)_ii + (K S K^T)_ii = P_ii - |W_i|^2.
+      const Eigen::Matrix<double, NX, 1> diag = P.diagonal() - Wt.rowwise().squaredNorm();
+      if ((diag.array() > 0.0).all()) {
+        P = diag.asDiagonal();
+        return true;
+      }
+    }
+    // K from K L = W^T (backward substitution), then the Joseph form.
+    Eigen::Matrix<double, NX, NY> K = Wt;
+    for (int c = NY - 1; c >= 0; --c) {
+      for (int r = c + 1; r < NY; ++r) K.col(c) -= Lm(r, c) * K.col(r);
+      K.col(c) /= Lm(c, c);
+    }
+    Eigen::Matrix<double, NX, NY> V = Eigen::Matrix<double, NX, NY>::Zero();  // K L
+    for (int c = 0; c < NY; ++c) {
+      for (int r = c; r < NY; ++r) V.col(c) += Lm(r, c) * K.col(r);
+    }
+    const Eigen::Matrix<double, NX, NX> T = K * PHt.transpose();
+    P -= T + T.transpose();
+    P.noalias() += V * V.transpose();
+    if (diagonal_only) P = P.diagonal().asDiagonal();
+    return true;
+  }
+
+ private:
+  // S = L L^T for a small fixed-size S (Cholesky-Banachiewicz on L^T's
+  // contiguous columns; Eigen's LLT goes through dynamic-size kernels here).
+  // False when S is not positive definite.
+  static bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
+    Eigen::Matrix<double, NY, NY> U = Eigen::Matrix<double, NY, NY>::Zero();  // L^T
+    for (int i = 0; i < NY; ++i) {
+      for (int j = 0; j < i; ++j) U(j, i) = (S(i, j) - U.col(i).head(j).dot(U.col(j).head(j))) / U(j, j);
+      const double d = S(i, i) - U.col(i).head(i).squaredNorm();
+      if (!(d > 0.0)) return false;
+      U(i, i) = std::sqrt(d);
+    }
+    L = U.transpose();
+    return true;
+  }
+
+};
+
+}  // namespace roverlab::estimation
