@@ -87,6 +87,44 @@ TEST(Robustness, SoftLinkCycleAndExternalLinksAreRefused) {
   expect_one_line_bad_input(run_roverlab("info " + quote(external.path())), external.path(), "soft or external link");
 }
 
+// Replaces a string attribute of an open file's object.
+void set_string_attribute(hid_t file, const char* object, const char* name, const std::string& value) {
+  const hid_t o = H5Oopen(file, object, H5P_DEFAULT);
+  ASSERT_GE(o, 0);
+  H5Adelete(o, name);
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, value.size());
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate2(o, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(H5Awrite(a, type, value.data()), 0);
+  H5Aclose(a);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Oclose(o);
+}
+
+TEST(Robustness, AStreamOfAnUnknownKindIsNamedNotDropped) {
+  TempDir dir;
+  const ConvertedLog log(dir);
+  log.edit([](hid_t f) { set_string_attribute(f, "/streams/imu", "roverlab_kind", "banana"); });
+  const CommandResult r = run_roverlab("convert " + quote(log.path()) + " " + quote(dir.file("out.h5")));
+  expect_one_line_bad_input(r, log.path(), "roverlab_kind 'banana'");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.h5")));
+}
+
+TEST(Robustness, ALogsRoverIdIsANameNeverAPath) {
+  TempDir dir;
+  const std::string sim = dir.file("fl.h5");
+  ASSERT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 50 -o " + quote(sim)).exit_code, 0);
+  const hid_t f = H5Fopen(sim.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  set_string_attribute(f, "/", "rover_id", "../../../etc/passwd");
+  H5Fclose(f);
+  const CommandResult r = run_roverlab("estimate contact-angle " + quote(sim));
+  expect_one_line_bad_input(r, sim, "is not a rover name");
+  EXPECT_EQ(r.err.find("root:"), std::string::npos) << r.err;
+}
+
 TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
   TempDir dir;
   const ConvertedLog huge(dir);
