@@ -2,13 +2,12 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
-#include <vtkCellArray.h>
 #include <vtkLineSource.h>
-#include <vtkPoints.h>
+#include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRegularPolygonSource.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
@@ -21,6 +20,7 @@
 #include "core/common/error.h"
 #include "core/estimation/slip.h"
 #include "views/rover_scene.h"
+#include "views/vtk_parts.h"
 
 namespace roverlab::views {
 
@@ -43,9 +43,9 @@ struct PlanarRoverScene::Parts {
   Eigen::Vector2d centre[3];
 };
 
-PlanarRoverScene::PlanarRoverScene(const log::Log& lg) : parts_(nullptr) {
+PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
   if (!is_planar_rocker_bogie_log(lg)) throw DataError("not a planar rocker-bogie log (truth/pose and truth/wheels with positions)");
-  parts_ = new Parts;
+  parts_ = std::make_unique<Parts>();
   Parts& p = *parts_;
   p.pose = lg.find_stream("truth/pose");
   p.wheels = lg.find_stream("truth/wheels");
@@ -55,57 +55,47 @@ PlanarRoverScene::PlanarRoverScene(const log::Log& lg) : parts_(nullptr) {
   t1_ = p.pose->end_time();
   p.renderer = vtkSmartPointer<vtkRenderer>::New();
   p.renderer->SetBackground(0.95, 0.96, 0.98);
-  // Terrain: the wheel centres' tracks, a wheel radius lower, sorted along x.
+  add_terrain();
+  add_links_and_wheels();
+  add_text_and_camera();
+  set_time(t0_);
+}
+
+PlanarRoverScene::~PlanarRoverScene() = default;
+
+// Terrain: the wheel centres' tracks, a wheel radius lower, sorted along x.
+void PlanarRoverScene::add_terrain() {
+  Parts& p = *parts_;
   std::map<double, double> profile;
   for (int i = 1; i <= 3; ++i) {
     const auto& xs = p.wheels->channel("centre_x_" + std::to_string(i)).values;
     const auto& zs = p.wheels->channel("centre_z_" + std::to_string(i)).values;
     for (std::size_t k = 0; k < xs.size(); ++k) profile[std::round(xs[k] * 1000.0) / 1000.0] = zs[k] - p.radius;
   }
-  auto pts = vtkSmartPointer<vtkPoints>::New();
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  vtkIdType prev = -1;
-  for (const auto& [x, z] : profile) {
-    const vtkIdType id = pts->InsertNextPoint(x, z, 0.0);
-    if (prev >= 0) {
-      const vtkIdType ids[2] = {prev, id};
-      cells->InsertNextCell(2, ids);
-    }
-    prev = id;
-  }
-  auto terrain = vtkSmartPointer<vtkPolyData>::New();
-  terrain->SetPoints(pts);
-  terrain->SetLines(cells);
-  auto tm = vtkSmartPointer<vtkPolyDataMapper>::New();
-  tm->SetInputData(terrain);
-  auto ta = vtkSmartPointer<vtkActor>::New();
-  ta->SetMapper(tm);
-  ta->GetProperty()->SetColor(0.55, 0.45, 0.3);
-  ta->GetProperty()->SetLineWidth(4.0);
-  ta->GetProperty()->SetLighting(false);
-  p.renderer->AddActor(ta);
-  for (int i = 0; i < 4; ++i) {
-    p.link[i] = vtkSmartPointer<vtkLineSource>::New();
-    auto m = vtkSmartPointer<vtkPolyDataMapper>::New();
-    m->SetInputConnection(p.link[i]->GetOutputPort());
-    auto a = vtkSmartPointer<vtkActor>::New();
-    a->SetMapper(m);
-    a->GetProperty()->SetColor(0.25, 0.25, 0.3);
-    a->GetProperty()->SetLineWidth(6.0);
-    a->GetProperty()->SetLighting(false);
-    p.renderer->AddActor(a);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& [x, z] : profile) points.emplace_back(x, z, 0.0);
+  p.renderer->AddActor(line_actor(segments(points), {0.55, 0.45, 0.3}, 4.0));
+}
+
+// The body/rocker and bogie links, and the three wheels.
+void PlanarRoverScene::add_links_and_wheels() {
+  Parts& p = *parts_;
+  for (auto& link : p.link) {
+    link = vtkSmartPointer<vtkLineSource>::New();
+    p.renderer->AddActor(line_actor(link->GetOutputPort(), {0.25, 0.25, 0.3}, 6.0));
   }
   for (int i = 0; i < 3; ++i) {
     p.wheel[i] = vtkSmartPointer<vtkRegularPolygonSource>::New();
     p.wheel[i]->SetNumberOfSides(48);
     p.wheel[i]->SetRadius(p.radius);
-    auto wm = vtkSmartPointer<vtkPolyDataMapper>::New();
-    wm->SetInputConnection(p.wheel[i]->GetOutputPort());
-    p.wheel_actor[i] = vtkSmartPointer<vtkActor>::New();
-    p.wheel_actor[i]->SetMapper(wm);
+    p.wheel_actor[i] = actor_of(p.wheel[i]->GetOutputPort(), {1.0, 1.0, 1.0});
     p.wheel_actor[i]->GetProperty()->SetLighting(false);
     p.renderer->AddActor(p.wheel_actor[i]);
   }
+}
+
+void PlanarRoverScene::add_text_and_camera() {
+  Parts& p = *parts_;
   p.text = vtkSmartPointer<vtkTextActor>::New();
   p.text->GetTextProperty()->SetFontSize(16);
   p.text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
@@ -115,12 +105,13 @@ PlanarRoverScene::PlanarRoverScene(const log::Log& lg) : parts_(nullptr) {
   vtkCamera* cam = p.renderer->GetActiveCamera();
   cam->ParallelProjectionOn();
   cam->SetParallelScale(0.45);
-  set_time(t0_);
 }
 
-PlanarRoverScene::~PlanarRoverScene() { delete parts_; }
-
 vtkRenderer* PlanarRoverScene::renderer() const { return parts_->renderer; }
+
+void PlanarRoverScene::attach(vtkRenderWindow* window) { window->AddRenderer(parts_->renderer); }
+
+void PlanarRoverScene::detach(vtkRenderWindow* window) { window->RemoveRenderer(parts_->renderer); }
 
 Eigen::Vector2d PlanarRoverScene::wheel_centre(int i) const { return parts_->centre[i]; }
 
@@ -129,9 +120,6 @@ void PlanarRoverScene::set_time(double t) {
   const std::size_t k = p.pose->nearest_index(t), kw = p.wheels->nearest_index(t);
   const Eigen::Vector2d body(p.pose->channel("x").values[k], p.pose->channel("z").values[k]);
   const Eigen::Vector2d pivot(p.pose->channel("bogie_pivot_x").values[k], p.pose->channel("bogie_pivot_z").values[k]);
-  char line[256];
-  int len = std::snprintf(line, sizeof line, "t = %.2f s   x = %.2f m   pitch %.1f deg   bogie %.1f deg", t, body.x(),
-                          p.pose->channel("pitch").values[k] * 180 / M_PI, p.pose->channel("bogie_angle").values[k] * 180 / M_PI);
   for (int i = 0; i < 3; ++i) {
     const std::string n = std::to_string(i + 1);
     p.centre[i] = {p.wheels->channel("centre_x_" + n).values[kw], p.wheels->channel("centre_z_" + n).values[kw]};
@@ -139,7 +127,6 @@ void PlanarRoverScene::set_time(double t) {
     const double s = p.wheels->find_channel("slip_" + n) ? p.wheels->channel("slip_" + n).values[kw] : NAN;
     const Eigen::Vector3d c = slip_class_colour(std::isfinite(s) ? static_cast<int>(estimation::classify_slip(s)) : -1);
     p.wheel_actor[i]->GetProperty()->SetColor(c.x(), c.y(), c.z());
-    if (std::isfinite(s)) len += std::snprintf(line + len, sizeof line - len, "%s slip %d: %.2f", i == 0 ? "\n" : "   ", i + 1, s);
   }
   p.link[0]->SetPoint1(body.x(), body.y(), 0.005);
   p.link[0]->SetPoint2(p.centre[0].x(), p.centre[0].y(), 0.005);
@@ -149,12 +136,26 @@ void PlanarRoverScene::set_time(double t) {
     p.link[i]->SetPoint1(pivot.x(), pivot.y(), 0.005);
     p.link[i]->SetPoint2(p.centre[i - 1].x(), p.centre[i - 1].y(), 0.005);
   }
-  p.text->SetInput(line);
+  show_text(t, k, kw);
   vtkCamera* cam = p.renderer->GetActiveCamera();
   cam->SetFocalPoint(body.x(), body.y() - 0.1, 0.0);
   cam->SetPosition(body.x(), body.y() - 0.1, 5.0);
   cam->SetViewUp(0, 1, 0);
   p.renderer->ResetCameraClippingRange();
+}
+
+void PlanarRoverScene::show_text(double t, std::size_t k, std::size_t kw) {
+  Parts& p = *parts_;
+  char line[256];
+  int len = std::snprintf(line, sizeof line, "t = %.2f s   x = %.2f m   pitch %.1f deg   bogie %.1f deg", t,
+                          p.pose->channel("x").values[k], p.pose->channel("pitch").values[k] * 180 / M_PI,
+                          p.pose->channel("bogie_angle").values[k] * 180 / M_PI);
+  for (int i = 0; i < 3; ++i) {
+    const std::string n = std::to_string(i + 1);
+    const double s = p.wheels->find_channel("slip_" + n) ? p.wheels->channel("slip_" + n).values[kw] : NAN;
+    if (std::isfinite(s)) len += std::snprintf(line + len, sizeof line - len, "%s slip %d: %.2f", i == 0 ? "\n" : "   ", i + 1, s);
+  }
+  p.text->SetInput(line);
 }
 
 }  // namespace roverlab::views

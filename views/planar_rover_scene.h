@@ -4,12 +4,14 @@
 // radius below), the body/rocker and bogie links, the three wheels coloured
 // by slip class, at the timeline's time.
 
+#include <memory>
 #include <string>
 
 #include <Eigen/Core>
 #include <vtkSmartPointer.h>
 
 #include "core/log/log.h"
+#include "views/view.h"
 
 class vtkRenderer;
 
@@ -19,22 +21,26 @@ namespace roverlab::views {
 // bogie pivot and truth/wheels with the wheel centres).
 bool is_planar_rocker_bogie_log(const log::Log& log);
 
-class PlanarRoverScene {
+class PlanarRoverScene : public Scene {
  public:
   explicit PlanarRoverScene(const log::Log& log);  // throws DataError when is_planar_rocker_bogie_log is false
-  ~PlanarRoverScene();
-  PlanarRoverScene(const PlanarRoverScene&) = delete;
-  PlanarRoverScene& operator=(const PlanarRoverScene&) = delete;
+  ~PlanarRoverScene() override;
   vtkRenderer* renderer() const;
-  void set_time(double t);
-  double start_time() const { return t0_; }
-  double end_time() const { return t1_; }
+  void attach(vtkRenderWindow* window) override;
+  void detach(vtkRenderWindow* window) override;
+  void set_time(double t) override;
+  double start_time() const override { return t0_; }
+  double end_time() const override { return t1_; }
   // Position (x, z) of wheel i (0..2) at the last set_time.
   Eigen::Vector2d wheel_centre(int i) const;
 
  private:
   struct Parts;
-  Parts* parts_;
+  void add_terrain();
+  void add_links_and_wheels();
+  void add_text_and_camera();
+  void show_text(double t, std::size_t k, std::size_t kw);
+  std::unique_ptr<Parts> parts_;
   double t0_ = 0, t1_ = 0;
 };
 

@@ -8,12 +8,11 @@
 #include <vtkCylinderSource.h>
 #include <vtkLegendBoxActor.h>
 #include <vtkMatrix4x4.h>
+#include <vtkNew.h>
 #include <vtkPlaneSource.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkPolyLine.h>
 #include <vtkProperty.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
@@ -25,6 +24,8 @@
 
 #include "core/estimation/slip.h"
 #include "core/log/stream.h"
+#include "views/planar_rover_scene.h"
+#include "views/vtk_parts.h"
 
 namespace roverlab::views {
 
@@ -42,34 +43,12 @@ const std::vector<double>* channel(const log::Stream& s, const char* name) {
   return c ? &c->values : nullptr;
 }
 
-vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, const Eigen::Vector3d& colour) {
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputConnection(port);
-  auto a = vtkSmartPointer<vtkActor>::New();
-  a->SetMapper(mapper);
-  a->GetProperty()->SetColor(colour.x(), colour.y(), colour.z());
-  return a;
-}
-
-vtkSmartPointer<vtkActor> polyline_actor(const PoseTrack& tr, const Eigen::Vector3d& colour, double z) {
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  auto line = vtkSmartPointer<vtkPolyLine>::New();
+vtkSmartPointer<vtkActor> track_actor(const PoseTrack& tr, const Eigen::Vector3d& colour, double z) {
+  std::vector<Eigen::Vector3d> points;
   for (std::size_t i = 0; i < tr.time.size(); ++i) {
-    if (!std::isfinite(tr.east[i] + tr.north[i])) continue;
-    line->GetPointIds()->InsertNextId(points->InsertNextPoint(tr.east[i], tr.north[i], z));
+    if (std::isfinite(tr.east[i] + tr.north[i])) points.emplace_back(tr.east[i], tr.north[i], z);
   }
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->InsertNextCell(line);
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetLines(cells);
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputData(poly);
-  auto a = vtkSmartPointer<vtkActor>::New();
-  a->SetMapper(mapper);
-  a->GetProperty()->SetColor(colour.x(), colour.y(), colour.z());
-  a->GetProperty()->SetLineWidth(3.0);
-  a->GetProperty()->SetLighting(false);
+  auto a = line_actor(polyline(points), colour, 3.0);
   return a;
 }
 
@@ -84,14 +63,14 @@ vtkSmartPointer<vtkMatrix4x4> pose_matrix(const PoseTrack::Pose& p, double z) {
   Eigen::Matrix3d ned_to_enu;
   ned_to_enu << 0, 1, 0, 1, 0, 0, 0, 0, -1;
   const Eigen::Matrix3d R = ned_to_enu * C;
-  auto m = vtkSmartPointer<vtkMatrix4x4>::New();
+  vtkNew<vtkMatrix4x4> m;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) m->SetElement(i, j, R(i, j));
   }
   m->SetElement(0, 3, p.east);
   m->SetElement(1, 3, p.north);
   m->SetElement(2, 3, z);
-  return m;
+  return vtkSmartPointer<vtkMatrix4x4>(m);
 }
 
 struct RoverModel {
@@ -102,7 +81,7 @@ struct RoverModel {
 
 RoverModel make_rover(const estimation::SkidSteerGeometry& g, double opacity) {
   RoverModel m;
-  auto body = vtkSmartPointer<vtkCubeSource>::New();
+  vtkNew<vtkCubeSource> body;
   body->SetXLength(g.wheelbase + 0.25);
   body->SetYLength(std::max(0.1, g.track - 0.16));
   body->SetZLength(0.18);
@@ -112,7 +91,7 @@ RoverModel make_rover(const estimation::SkidSteerGeometry& g, double opacity) {
   m.parts.push_back(b);
   for (int side : {-1, 1}) {
     for (int end : {-1, 1}) {
-      auto w = vtkSmartPointer<vtkCylinderSource>::New();  // axis along y: the body's lateral axis
+      vtkNew<vtkCylinderSource> w;  // axis along y: the body's lateral axis
       w->SetRadius(g.wheel_radius);
       w->SetHeight(0.1);
       w->SetResolution(32);
@@ -123,13 +102,27 @@ RoverModel make_rover(const estimation::SkidSteerGeometry& g, double opacity) {
       m.parts.push_back(a);
     }
   }
-  auto arrow = vtkSmartPointer<vtkArrowSource>::New();
+  vtkNew<vtkArrowSource> arrow;
   arrow->SetTipResolution(24);
   arrow->SetShaftResolution(24);
   m.arrow = actor_of(arrow->GetOutputPort(), {0.1, 0.3, 0.9});
   m.arrow->GetProperty()->SetOpacity(opacity);
   m.parts.push_back(m.arrow);
   return m;
+}
+
+// Poses a rover model; the arrow along the body's forward axis, above the
+// body, its length the speed.
+void place(RoverModel& m, const PoseTrack::Pose& q, double z, double speed) {
+  auto matrix = pose_matrix(q, z);
+  for (auto& a : m.parts) a->SetUserMatrix(matrix);
+  vtkNew<vtkTransform> arrow;
+  arrow->SetMatrix(matrix);
+  arrow->Translate(0.0, 0.0, -0.35);
+  const double len = std::max(0.05, 1.5 * std::abs(speed));
+  arrow->Scale(speed < 0 ? -len : len, 0.6, 0.6);
+  m.arrow->SetUserMatrix(arrow->GetMatrix());
+  m.arrow->SetVisibility(std::abs(speed) > 0.02);
 }
 
 Eigen::Vector3d track_colour(const std::string& source) {
@@ -153,46 +146,76 @@ PoseTrack::Pose PoseTrack::at(double t) const {
   return p;
 }
 
+namespace {
+
+// The pose sources, best first: stream, its yaw channel (none: the course
+// over ground), whether it holds roll and pitch.
+struct PoseSource {
+  const char* stream;
+  const char* yaw;
+  bool attitude;
+};
+constexpr PoseSource kPoseSources[] = {{"estimate/ins/pose", "yaw", true},
+                                       {"truth/motion", "yaw", false},
+                                       {"estimate/odometry/pose", "heading", false},
+                                       {"gps", nullptr, false}};
+
+const log::Stream* pose_stream(const log::Log& lg, const PoseSource& source) {
+  const log::Stream* s = lg.find_stream(source.stream);
+  if (s == nullptr || s->size() < 2 || channel(*s, "east") == nullptr || channel(*s, "north") == nullptr) return nullptr;
+  return s;
+}
+
+// Course over ground, held through stops.
+std::vector<double> course(const PoseTrack& tr) {
+  const std::size_t k = tr.time.size();
+  std::vector<double> yaw(k, 0.0);
+  double last = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const std::size_t a = i > 5 ? i - 5 : 0, b = std::min(k - 1, i + 5);
+    const double de = tr.east[b] - tr.east[a], dn = tr.north[b] - tr.north[a];
+    if (std::hypot(de, dn) > 0.2) last = std::atan2(de, dn);
+    yaw[i] = last;
+  }
+  return unwrap(yaw);
+}
+
+PoseTrack track_of(const log::Stream& s, const PoseSource& source) {
+  PoseTrack tr;
+  tr.source = source.stream;
+  tr.time = s.time();
+  tr.east = *channel(s, "east");
+  tr.north = *channel(s, "north");
+  const std::size_t k = tr.time.size();
+  tr.roll.assign(k, 0.0);
+  tr.pitch.assign(k, 0.0);
+  if (source.attitude && channel(s, "roll") && channel(s, "pitch")) {
+    tr.roll = *channel(s, "roll");
+    tr.pitch = *channel(s, "pitch");
+  }
+  if (source.yaw != nullptr && channel(s, source.yaw) != nullptr) {
+    tr.yaw = unwrap(*channel(s, source.yaw));
+  } else {
+    tr.yaw = course(tr);
+  }
+  return tr;
+}
+
+}  // namespace
+
 std::vector<PoseTrack> pose_tracks(const log::Log& lg) {
   std::vector<PoseTrack> out;
-  auto add = [&](const char* name, const char* yaw_name, bool attitude) {
-    const log::Stream* s = lg.find_stream(name);
-    if (s == nullptr || s->size() < 2) return;
-    const auto* e = channel(*s, "east");
-    const auto* n = channel(*s, "north");
-    if (e == nullptr || n == nullptr) return;
-    PoseTrack tr;
-    tr.source = name;
-    tr.time = s->time();
-    tr.east = *e;
-    tr.north = *n;
-    const std::size_t k = tr.time.size();
-    tr.roll.assign(k, 0.0);
-    tr.pitch.assign(k, 0.0);
-    if (attitude && channel(*s, "roll") && channel(*s, "pitch")) {
-      tr.roll = *channel(*s, "roll");
-      tr.pitch = *channel(*s, "pitch");
-    }
-    if (yaw_name != nullptr && channel(*s, yaw_name) != nullptr) {
-      tr.yaw = unwrap(*channel(*s, yaw_name));
-    } else {  // course over ground, held through stops
-      tr.yaw.assign(k, 0.0);
-      double last = 0.0;
-      for (std::size_t i = 0; i < k; ++i) {
-        const std::size_t a = i > 5 ? i - 5 : 0, b = std::min(k - 1, i + 5);
-        const double de = tr.east[b] - tr.east[a], dn = tr.north[b] - tr.north[a];
-        if (std::hypot(de, dn) > 0.2) last = std::atan2(de, dn);
-        tr.yaw[i] = last;
-      }
-      tr.yaw = unwrap(tr.yaw);
-    }
-    out.push_back(std::move(tr));
-  };
-  add("estimate/ins/pose", "yaw", true);
-  add("truth/motion", "yaw", false);
-  add("estimate/odometry/pose", "heading", false);
-  add("gps", nullptr, false);
+  for (const auto& source : kPoseSources) {
+    if (const log::Stream* s = pose_stream(lg, source)) out.push_back(track_of(*s, source));
+  }
   return out;
+}
+
+std::string pose_track_needs(const log::Log& lg) {
+  for (const auto& source : kPoseSources) {
+    if (pose_stream(lg, source) != nullptr) return {};
+  }
+  return "no pose: the log has none of estimate/ins/pose, truth/motion, estimate/odometry/pose, gps";
 }
 
 Eigen::Vector3d slip_class_colour(int c) {
@@ -216,16 +239,28 @@ struct RoverScene::Parts {
   estimation::SkidSteerGeometry geometry;
 };
 
-RoverScene::RoverScene(const log::Log& lg, const estimation::SkidSteerGeometry& g) : parts_(new Parts) {
+RoverScene::RoverScene(const log::Log& lg, const estimation::SkidSteerGeometry& g) : parts_(std::make_unique<Parts>()) {
+  parts_->geometry = g;
+  parts_->renderer = vtkSmartPointer<vtkRenderer>::New();
+  parts_->renderer->SetBackground(0.80, 0.86, 0.93);
+  parts_->renderer->SetBackground2(0.97, 0.98, 1.0);
+  parts_->renderer->GradientBackgroundOn();
+  read_log(lg);
+  add_ground();
+  add_tracks();
+  add_rovers();
+  add_text();
+  set_time(start_);
+}
+
+RoverScene::~RoverScene() = default;
+
+// The pose tracks, the slip streams and the notes on what is missing.
+void RoverScene::read_log(const log::Log& lg) {
   Parts& p = *parts_;
-  p.geometry = g;
-  p.renderer = vtkSmartPointer<vtkRenderer>::New();
-  p.renderer->SetBackground(0.80, 0.86, 0.93);
-  p.renderer->SetBackground2(0.97, 0.98, 1.0);
-  p.renderer->GradientBackgroundOn();
   tracks_ = pose_tracks(lg);
   if (tracks_.empty()) {
-    notes_.push_back("no pose: the log has none of estimate/ins/pose, truth/motion, estimate/odometry/pose, gps");
+    notes_.push_back(pose_track_needs(lg));
   } else {
     pose_source_ = tracks_.front().source;
     start_ = tracks_.front().time.front();
@@ -240,8 +275,10 @@ RoverScene::RoverScene(const log::Log& lg, const estimation::SkidSteerGeometry& 
   if (p.truth_slip != nullptr && p.truth_slip->find_channel("slip_ratio") == nullptr) p.truth_slip = nullptr;
   if (p.slip == nullptr) notes_.push_back("no slip estimate: wheels are grey");
   notes_.push_back("no contact-angle or side-slip estimates for this rover (seed 000 estimator)");
+}
 
-  // Ground plane over every track, tracks on it.
+// A ground plane 5 m beyond every track, with a 2 m grid.
+void RoverScene::add_ground() {
   double e0 = -5, e1 = 5, n0 = -5, n1 = 5;
   for (const auto& tr : tracks_) {
     for (std::size_t i = 0; i < tr.time.size(); ++i) {
@@ -252,7 +289,7 @@ RoverScene::RoverScene(const log::Log& lg, const estimation::SkidSteerGeometry& 
       n1 = std::max(n1, tr.north[i] + 5);
     }
   }
-  auto plane = vtkSmartPointer<vtkPlaneSource>::New();
+  vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin(e0, n0, 0.0);
   plane->SetPoint1(e1, n0, 0.0);
   plane->SetPoint2(e0, n1, 0.0);
@@ -260,29 +297,22 @@ RoverScene::RoverScene(const log::Log& lg, const estimation::SkidSteerGeometry& 
   auto ground = actor_of(plane->GetOutputPort(), {0.80, 0.74, 0.62});
   ground->GetProperty()->SetAmbient(0.45);
   ground->GetProperty()->SetDiffuse(0.6);
-  p.renderer->AddActor(ground);
+  parts_->renderer->AddActor(ground);
   auto grid = actor_of(plane->GetOutputPort(), {0.62, 0.56, 0.47});
   grid->GetProperty()->SetRepresentationToWireframe();
   grid->GetProperty()->SetLighting(false);
-  p.renderer->AddActor(grid);
+  parts_->renderer->AddActor(grid);
+}
 
-  auto legend = vtkSmartPointer<vtkLegendBoxActor>::New();
+// Every pose track on the ground, and a legend naming them.
+void RoverScene::add_tracks() {
+  vtkNew<vtkLegendBoxActor> legend;
   legend->SetNumberOfEntries(static_cast<int>(tracks_.size()));
   // Legend symbol: a short horizontal line.
-  auto symbol = vtkSmartPointer<vtkPolyData>::New();
-  {
-    auto pts = vtkSmartPointer<vtkPoints>::New();
-    pts->InsertNextPoint(0, 0, 0);
-    pts->InsertNextPoint(1, 0, 0);
-    auto cells = vtkSmartPointer<vtkCellArray>::New();
-    const vtkIdType ids[2] = {0, 1};
-    cells->InsertNextCell(2, ids);
-    symbol->SetPoints(pts);
-    symbol->SetLines(cells);
-  }
+  const auto symbol = segments({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0)});
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     const Eigen::Vector3d c = track_colour(tracks_[i].source);
-    p.renderer->AddActor(polyline_actor(tracks_[i], c, 0.01 + 0.002 * static_cast<double>(i)));
+    parts_->renderer->AddActor(track_actor(tracks_[i], c, 0.01 + 0.002 * static_cast<double>(i)));
     double rgb[3] = {c.x(), c.y(), c.z()};
     legend->SetEntry(static_cast<int>(i), symbol, tracks_[i].source.c_str(), rgb);
   }
@@ -292,31 +322,39 @@ RoverScene::RoverScene(const log::Log& lg, const estimation::SkidSteerGeometry& 
   legend->UseBackgroundOn();
   legend->SetBackgroundColor(1, 1, 1);
   legend->SetBackgroundOpacity(0.7);
-  if (!tracks_.empty()) p.renderer->AddViewProp(legend);
+  if (!tracks_.empty()) parts_->renderer->AddViewProp(legend);
+}
 
-  p.rover = make_rover(g, 1.0);
+// The rover, and truth beside the estimate as a green ghost rover.
+void RoverScene::add_rovers() {
+  Parts& p = *parts_;
+  p.rover = make_rover(p.geometry, 1.0);
   for (auto& a : p.rover.parts) p.renderer->AddActor(a);
-  // Truth beside the estimate: a ghost rover.
   if (tracks_.size() > 1 && tracks_[1].source == "truth/motion" && pose_source_ != "truth/motion") {
-    p.ghost = make_rover(g, 0.35);
+    p.ghost = make_rover(p.geometry, 0.35);
     p.has_ghost = true;
     for (auto& a : p.ghost.parts) {
       a->GetProperty()->SetColor(0.1, 0.6, 0.2);
       p.renderer->AddActor(a);
     }
   }
+}
+
+void RoverScene::add_text() {
+  Parts& p = *parts_;
   p.text = vtkSmartPointer<vtkTextActor>::New();
   p.text->GetTextProperty()->SetFontSize(16);
   p.text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
   p.text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   p.text->GetPositionCoordinate()->SetValue(0.01, 0.90);
   p.renderer->AddViewProp(p.text);
-  set_time(start_);
 }
 
-RoverScene::~RoverScene() { delete parts_; }
-
 vtkRenderer* RoverScene::renderer() const { return parts_->renderer; }
+
+void RoverScene::attach(vtkRenderWindow* window) { window->AddRenderer(parts_->renderer); }
+
+void RoverScene::detach(vtkRenderWindow* window) { window->RemoveRenderer(parts_->renderer); }
 
 void RoverScene::set_time(double t) {
   Parts& p = *parts_;
@@ -326,44 +364,47 @@ void RoverScene::set_time(double t) {
   }
   const PoseTrack::Pose pose = tracks_.front().at(t);
   const double z = p.geometry.wheel_radius;
-  auto place = [&](RoverModel& m, const PoseTrack::Pose& q, double speed) {
-    auto matrix = pose_matrix(q, z);
-    for (auto& a : m.parts) a->SetUserMatrix(matrix);
-    // Arrow along the body's forward axis, above the body, its length the speed.
-    auto arrow = vtkSmartPointer<vtkTransform>::New();
-    arrow->SetMatrix(matrix);
-    arrow->Translate(0.0, 0.0, -0.35);
-    const double len = std::max(0.05, 1.5 * std::abs(speed));
-    arrow->Scale(speed < 0 ? -len : len, 0.6, 0.6);
-    m.arrow->SetUserMatrix(arrow->GetMatrix());
-    m.arrow->SetVisibility(std::abs(speed) > 0.02);
-  };
-  // Speed from the pose track's displacement.
+  const double speed = speed_at(t);
+  place(p.rover, pose, z, speed);
+  position_ = Eigen::Vector3d(pose.east, pose.north, z);
+  if (p.has_ghost) place(p.ghost, tracks_[1].at(t), z, speed);
+  show_slip(t);
+  show_text(t, speed, pose.yaw);
+  chase(pose.east, pose.north, pose.yaw);
+}
+
+// Speed from the pose track's displacement over half a second.
+double RoverScene::speed_at(double t) const {
   const auto& tr = tracks_.front();
   const PoseTrack::Pose ahead = tr.at(t + 0.25), behind = tr.at(t - 0.25);
   const double span = std::min(t + 0.25, tr.time.back()) - std::max(t - 0.25, tr.time.front());
-  const double speed = span > 0 ? std::hypot(ahead.east - behind.east, ahead.north - behind.north) / span : 0.0;
-  place(p.rover, pose, speed);
-  position_ = Eigen::Vector3d(pose.east, pose.north, z);
-  if (p.has_ghost) place(p.ghost, tracks_[1].at(t), speed);
+  return span > 0 ? std::hypot(ahead.east - behind.east, ahead.north - behind.north) / span : 0.0;
+}
 
+// The estimated slip class on the wheels (grey when undefined).
+void RoverScene::show_slip(double t) {
+  Parts& p = *parts_;
   shown_class_ = -1;
-  double slip = NAN;
+  shown_slip_ = NAN;
   if (p.slip != nullptr && t >= p.slip->start_time() - 0.2 && t <= p.slip->end_time() + 0.2) {
     const std::size_t k = p.slip->nearest_index(t);
     const double c = p.slip->channel("slip_class").values[k];
-    slip = p.slip->channel("slip_ratio").values[k];
+    shown_slip_ = p.slip->channel("slip_ratio").values[k];
     shown_class_ = std::isfinite(c) ? static_cast<int>(c) : -1;
   }
   const Eigen::Vector3d wc = slip_class_colour(shown_class_);
   for (auto& w : p.rover.wheels) w->GetProperty()->SetColor(wc.x(), wc.y(), wc.z());
+}
 
+void RoverScene::show_text(double t, double speed, double yaw) {
+  Parts& p = *parts_;
   char line[256];
   std::snprintf(line, sizeof line, "t = %.2f s   speed %.2f m/s   heading %.0f deg   pose: %s", t, speed,
-                std::fmod(pose.yaw * 180.0 / M_PI + 720.0, 360.0), pose_source_.c_str());
+                std::fmod(yaw * 180.0 / M_PI + 720.0, 360.0), pose_source_.c_str());
   std::string text = line;
   if (shown_class_ >= 0) {
-    std::snprintf(line, sizeof line, "\nslip %.2f (%s)", slip, estimation::to_string(static_cast<estimation::SlipClass>(shown_class_)));
+    std::snprintf(line, sizeof line, "\nslip %.2f (%s)", shown_slip_,
+                  estimation::to_string(static_cast<estimation::SlipClass>(shown_class_)));
     text += line;
   } else if (p.slip != nullptr) {
     text += "\nslip undefined (too slow)";
@@ -374,15 +415,40 @@ void RoverScene::set_time(double t) {
     text += line;
   }
   p.text->SetInput(text.c_str());
+}
 
-  // Chase camera: behind and above, looking at the rover.
-  vtkCamera* cam = p.renderer->GetActiveCamera();
+// Chase camera: behind and above, looking at the rover.
+void RoverScene::chase(double east, double north, double yaw) {
+  const double z = parts_->geometry.wheel_radius;
+  vtkCamera* cam = parts_->renderer->GetActiveCamera();
   const double back = 3.6, height = 1.6;
-  cam->SetFocalPoint(pose.east, pose.north, z);
-  cam->SetPosition(pose.east - back * std::sin(pose.yaw), pose.north - back * std::cos(pose.yaw), z + height);
+  cam->SetFocalPoint(east, north, z);
+  cam->SetPosition(east - back * std::sin(yaw), north - back * std::cos(yaw), z + height);
   cam->SetViewUp(0, 0, 1);
   cam->SetViewAngle(40.0);
-  p.renderer->ResetCameraClippingRange();
+  parts_->renderer->ResetCameraClippingRange();
 }
+
+namespace {
+
+// `rover`: the planar side view for a planar rocker-bogie log, else the 3D
+// skid-steer rover.
+class RoverView : public View {
+ public:
+  std::string name() const override { return "rover"; }
+  std::string title() const override { return "Rover"; }
+  std::string needs(const SceneInput& in) const override {
+    return is_planar_rocker_bogie_log(*in.log) ? std::string() : pose_track_needs(*in.log);
+  }
+  std::unique_ptr<Scene> build(const SceneInput& in) const override {
+    if (is_planar_rocker_bogie_log(*in.log)) return std::make_unique<PlanarRoverScene>(*in.log);
+    return std::make_unique<RoverScene>(*in.log, in.rover);
+  }
+  bool trackball_camera() const override { return true; }
+};
+
+}  // namespace
+
+std::unique_ptr<View> make_rover_view() { return std::make_unique<RoverView>(); }
 
 }  // namespace roverlab::views

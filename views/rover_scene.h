@@ -14,11 +14,9 @@
 
 #include "core/estimation/skid_steer_odometry.h"
 #include "core/log/log.h"
+#include "views/view.h"
 
-class vtkActor;
 class vtkRenderer;
-class vtkTextActor;
-class vtkTransform;
 
 namespace roverlab::views {
 
@@ -39,25 +37,27 @@ struct PoseTrack {
 // The pose tracks a log holds, best first: estimate/ins/pose, truth/motion,
 // estimate/odometry/pose, gps.
 std::vector<PoseTrack> pose_tracks(const log::Log& log);
+// Empty when the log holds a pose track, else the note saying it has none.
+std::string pose_track_needs(const log::Log& log);
 
 // Class colours of seed 002's five slip classes (none .. extreme), RGB 0..1;
 // grey for undefined.
 Eigen::Vector3d slip_class_colour(int slip_class);
 
-class RoverScene {
+class RoverScene : public Scene {
  public:
   explicit RoverScene(const log::Log& log, const estimation::SkidSteerGeometry& rover = {});
-  ~RoverScene();
-  RoverScene(const RoverScene&) = delete;
-  RoverScene& operator=(const RoverScene&) = delete;
+  ~RoverScene() override;
 
   vtkRenderer* renderer() const;
+  void attach(vtkRenderWindow* window) override;
+  void detach(vtkRenderWindow* window) override;
   // Poses the rover(s), colours the wheels and moves the chase camera.
-  void set_time(double t);
-  double start_time() const { return start_; }
-  double end_time() const { return end_; }
+  void set_time(double t) override;
+  double start_time() const override { return start_; }
+  double end_time() const override { return end_; }
   // What the log lacks for this view, one sentence each.
-  const std::vector<std::string>& notes() const { return notes_; }
+  std::vector<std::string> notes() const override { return notes_; }
   const std::string& pose_source() const { return pose_source_; }
   // Slip class shown on the wheels at the last set_time (-1: none).
   int shown_slip_class() const { return shown_class_; }
@@ -68,12 +68,23 @@ class RoverScene {
 
  private:
   struct Parts;
-  Parts* parts_;
+  void read_log(const log::Log& log);
+  void add_ground();
+  void add_tracks();
+  void add_rovers();
+  void add_text();
+  double speed_at(double t) const;
+  void show_slip(double t);
+  void show_text(double t, double speed, double yaw);
+  void chase(double east, double north, double yaw);
+
+  std::unique_ptr<Parts> parts_;
   std::vector<PoseTrack> tracks_;
   std::vector<std::string> notes_;
   std::string pose_source_;
   double start_ = 0, end_ = 0;
   int shown_class_ = -1;
+  double shown_slip_ = 0;
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
 };
 

@@ -7,6 +7,7 @@
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
 #include <vtkDoubleArray.h>
+#include <vtkNew.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkRenderWindow.h>
@@ -70,7 +71,7 @@ void line_colour(std::size_t i, unsigned char rgb[3]) {
 TimeSeriesChart::TimeSeriesChart(const log::Log& lg, std::vector<ChannelRef> channels) {
   view_ = vtkSmartPointer<vtkContextView>::New();
   view_->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-  auto matrix = vtkSmartPointer<vtkChartMatrix>::New();
+  vtkNew<vtkChartMatrix> matrix;
   view_->GetScene()->AddItem(matrix);
   reset(lg, std::move(channels));
 }
@@ -119,7 +120,23 @@ void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels
 
 TimeSeriesChart::~TimeSeriesChart() = default;
 
+bool TimeSeriesChart::reset(const SceneInput& in) {
+  reset(*in.log, in.channels.empty() ? default_channels(*in.log) : in.channels);
+  return true;
+}
+
 vtkContextView* TimeSeriesChart::view() const { return view_; }
+
+void TimeSeriesChart::attach(vtkRenderWindow* window) {
+  view_->SetRenderWindow(window);
+  if (window->GetInteractor() != nullptr) view_->SetInteractor(window->GetInteractor());
+}
+
+void TimeSeriesChart::detach(vtkRenderWindow* window) {
+  if (view_->GetRenderWindow() == window) window->RemoveRenderer(view_->GetRenderer());
+}
+
+void TimeSeriesChart::fit_width(int pixels) { set_window(start_, end_, static_cast<std::size_t>(std::max(pixels, 1))); }
 
 vtkChartXY* TimeSeriesChart::chart(std::size_t i) const {
   auto* matrix = vtkChartMatrix::SafeDownCast(view_->GetScene()->GetItem(0));
@@ -156,9 +173,9 @@ void TimeSeriesChart::rebuild() {
     }
     // Cursor: a vertical black line over the plot's value range.
     auto cursor = vtkSmartPointer<vtkTable>::New();
-    auto ct = vtkSmartPointer<vtkDoubleArray>::New();
+    vtkNew<vtkDoubleArray> ct;
     ct->SetName("cursor time");
-    auto cy = vtkSmartPointer<vtkDoubleArray>::New();
+    vtkNew<vtkDoubleArray> cy;
     cy->SetName("cursor");
     cursor->AddColumn(ct);
     cursor->AddColumn(cy);
@@ -229,5 +246,34 @@ std::vector<std::size_t> TimeSeriesChart::drawn_points() const {
   for (const auto& t : tables_) out.push_back(t ? static_cast<std::size_t>(t->GetNumberOfRows()) : 0u);
   return out;
 }
+
+namespace {
+
+class TimeSeriesView : public View {
+ public:
+  std::string name() const override { return "timeseries"; }
+  std::string title() const override { return "Plots"; }
+  std::string needs(const SceneInput& in) const override {
+    for (const auto& c : in.channels) {
+      const log::Stream* s = in.log->find_stream(c.stream);
+      if (s == nullptr) return "no stream '" + c.stream + "'";
+      if (s->find_channel(c.channel) == nullptr) return "stream '" + c.stream + "' has no channel '" + c.channel + "'";
+    }
+    if (!in.channels.empty()) return {};
+    try {
+      default_channels(*in.log);
+    } catch (const DataError& e) {
+      return e.what();
+    }
+    return {};
+  }
+  std::unique_ptr<Scene> build(const SceneInput& in) const override {
+    return std::make_unique<TimeSeriesChart>(*in.log, in.channels.empty() ? default_channels(*in.log) : in.channels);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<View> make_timeseries_view() { return std::make_unique<TimeSeriesView>(); }
 
 }  // namespace roverlab::views

@@ -10,6 +10,7 @@
 #include <vtkSmartPointer.h>
 
 #include "core/log/log.h"
+#include "views/view.h"
 
 class vtkChartMatrix;
 class vtkChartXY;
@@ -18,10 +19,6 @@ class vtkPlot;
 class vtkTable;
 
 namespace roverlab::views {
-
-struct ChannelRef {
-  std::string stream, channel;
-};
 
 // "stream:channel" (stream names may hold '/'); a bare stream name means all
 // of its channels. Throws DataError naming what the log lacks.
@@ -34,22 +31,30 @@ std::vector<ChannelRef> default_channels(const log::Log& log);
 // Distinct line colours (RGB 0..255) for plot i.
 void line_colour(std::size_t i, unsigned char rgb[3]);
 
-class TimeSeriesChart {
+class TimeSeriesChart : public Scene {
  public:
   TimeSeriesChart(const log::Log& log, std::vector<ChannelRef> channels);
-  ~TimeSeriesChart();
+  ~TimeSeriesChart() override;
   // Shows other channels (of this or another log) in the same view and chart;
   // the whole time range, cursor at the start.
   void reset(const log::Log& log, std::vector<ChannelRef> channels);
+  bool reset(const SceneInput& input) override;
   vtkContextView* view() const;
+  // Draws the context view in `window` (with the window's interactor, if any).
+  void attach(vtkRenderWindow* window) override;
+  void detach(vtkRenderWindow* window) override;
+  // The whole time range, decimated to `pixels` columns.
+  void fit_width(int pixels) override;
   // Plot i from the top (one per unit).
   vtkChartXY* chart(std::size_t i = 0) const;
   std::size_t plot_count() const { return groups_.size(); }
   // Shown window in time; redecimates to about `columns` buckets.
   void set_window(double t0, double t1, std::size_t columns = 1000);
   void set_cursor(double t);
-  double start_time() const { return start_; }
-  double end_time() const { return end_; }
+  void set_time(double t) override { set_cursor(t); }
+  double start_time() const override { return start_; }
+  double end_time() const override { return end_; }
+  double default_time() const override { return start_; }
   const std::vector<ChannelRef>& channels() const { return channels_; }
   // Points drawn for each channel in the current window (after decimation).
   std::vector<std::size_t> drawn_points() const;

@@ -5,6 +5,7 @@
 #include <vtkCellArray.h>
 #include <vtkCubeAxesActor.h>
 #include <vtkDoubleArray.h>
+#include <vtkNew.h>
 #include <vtkGlyph3D.h>
 #include <vtkLookupTable.h>
 #include <vtkPointData.h>
@@ -12,6 +13,7 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkSphereSource.h>
@@ -21,6 +23,8 @@
 #include <cmath>
 
 #include "core/common/error.h"
+#include "views/view.h"
+#include "views/vtk_parts.h"
 
 namespace roverlab::views {
 
@@ -29,7 +33,7 @@ namespace {
 constexpr double kHeight = 0.7;  // display height of the value axis (load and slip span 1)
 
 vtkSmartPointer<vtkLookupTable> lookup(double lo, double hi) {
-  auto lut = vtkSmartPointer<vtkLookupTable>::New();
+  vtkNew<vtkLookupTable> lut;
   lut->SetNumberOfTableValues(256);
   lut->SetRange(lo, hi);
   for (int i = 0; i < 256; ++i) {
@@ -59,114 +63,117 @@ void surface_colour(double f, double rgb[3]) {
   }
 }
 
-TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, int grid) {
-  if (!(d.load_max > d.load_min) || !(d.slip_max > d.slip_min)) throw DataError("empty load or slip range");
-  TractionSurfaceScene out;
-  // Surface values on the grid.
-  const int n = std::max(grid, 4);
-  std::vector<double> v(static_cast<std::size_t>(n * n));
+namespace {
+
+// The surface's values on an n x n grid over the load and slip ranges (load
+// major), and the value range shown: the grid's and the points'.
+struct SurfaceGrid {
+  int n = 0;
+  std::vector<double> values;
   double lo = INFINITY, hi = -INFINITY;
+};
+
+SurfaceGrid sample_surface(const TractionSurfaceData& d, int grid) {
+  SurfaceGrid g;
+  g.n = std::max(grid, 4);
+  const int n = g.n;
+  g.values.resize(static_cast<std::size_t>(n * n));
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double W = d.load_min + (d.load_max - d.load_min) * i / (n - 1);
       const double s = d.slip_min + (d.slip_max - d.slip_min) * j / (n - 1);
       const double x = d.surface(W, s);
-      v[static_cast<std::size_t>(i * n + j)] = x;
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
+      g.values[static_cast<std::size_t>(i * n + j)] = x;
+      g.lo = std::min(g.lo, x);
+      g.hi = std::max(g.hi, x);
     }
   }
   for (const auto& p : d.points) {
-    lo = std::min(lo, p.value);
-    hi = std::max(hi, p.value);
+    g.lo = std::min(g.lo, p.value);
+    g.hi = std::max(g.hi, p.value);
   }
-  if (!(hi > lo)) hi = lo + 1.0;
-  out.value_min = lo;
-  out.value_max = hi;
-  auto X = [&](double W) { return (W - d.load_min) / (d.load_max - d.load_min); };
-  auto Y = [&](double s) { return (s - d.slip_min) / (d.slip_max - d.slip_min); };
-  auto Z = [&](double x) { return kHeight * (x - lo) / (hi - lo); };
+  if (!(g.hi > g.lo)) g.hi = g.lo + 1.0;
+  return g;
+}
 
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  auto scalars = vtkSmartPointer<vtkDoubleArray>::New();
-  scalars->SetName(d.quantity.c_str());
+// Display coordinates: load and slip over [0, 1], the value over [0, kHeight].
+struct DisplayBox {
+  const TractionSurfaceData& d;
+  double lo, hi;
+  double x(double load) const { return (load - d.load_min) / (d.load_max - d.load_min); }
+  double y(double slip) const { return (slip - d.slip_min) / (d.slip_max - d.slip_min); }
+  double z(double value) const { return kHeight * (value - lo) / (hi - lo); }
+};
+
+// The surface as quads coloured by value through `lut`.
+vtkSmartPointer<vtkActor> surface_actor(const SurfaceGrid& g, const DisplayBox& box, const std::string& quantity,
+                                        vtkLookupTable* lut) {
+  const int n = g.n;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> scalars;
+  scalars->SetName(quantity.c_str());
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
-      const double x = v[static_cast<std::size_t>(i * n + j)];
-      points->InsertNextPoint(static_cast<double>(i) / (n - 1), static_cast<double>(j) / (n - 1), Z(x));
+      const double x = g.values[static_cast<std::size_t>(i * n + j)];
+      points->InsertNextPoint(static_cast<double>(i) / (n - 1), static_cast<double>(j) / (n - 1), box.z(x));
       scalars->InsertNextValue(x);
     }
   }
-  auto quads = vtkSmartPointer<vtkCellArray>::New();
+  vtkNew<vtkCellArray> quads;
   for (int i = 0; i + 1 < n; ++i) {
     for (int j = 0; j + 1 < n; ++j) {
       const vtkIdType ids[4] = {i * n + j, (i + 1) * n + j, (i + 1) * n + j + 1, i * n + j + 1};
       quads->InsertNextCell(4, ids);
     }
   }
-  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPolyData> surface;
   surface->SetPoints(points);
   surface->SetPolys(quads);
   surface->GetPointData()->SetScalars(scalars);
-  auto lut = lookup(lo, hi);
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(surface);
   mapper->SetLookupTable(lut);
-  mapper->SetScalarRange(lo, hi);
+  mapper->SetScalarRange(g.lo, g.hi);
   mapper->ScalarVisibilityOn();
-  auto actor = vtkSmartPointer<vtkActor>::New();
+  vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   actor->GetProperty()->SetAmbient(0.35);
   actor->GetProperty()->SetDiffuse(0.7);
+  return actor;
+}
 
-  auto renderer = vtkSmartPointer<vtkRenderer>::New();
-  renderer->SetBackground(1.0, 1.0, 1.0);
-  renderer->AddActor(actor);
-
-  // Data points and residual lines to the surface.
-  if (!d.points.empty()) {
-    auto pts = vtkSmartPointer<vtkPoints>::New();
-    auto res = vtkSmartPointer<vtkPoints>::New();
-    auto lines = vtkSmartPointer<vtkCellArray>::New();
-    for (const auto& p : d.points) {
-      const double x = X(p.load), y = Y(p.slip);
-      pts->InsertNextPoint(x, y, Z(p.value));
-      const vtkIdType a = res->InsertNextPoint(x, y, Z(p.value));
-      const vtkIdType b = res->InsertNextPoint(x, y, Z(d.surface(p.load, p.slip)));
-      const vtkIdType ids[2] = {a, b};
-      lines->InsertNextCell(2, ids);
-    }
-    auto cloud = vtkSmartPointer<vtkPolyData>::New();
-    cloud->SetPoints(pts);
-    auto sphere = vtkSmartPointer<vtkSphereSource>::New();
-    sphere->SetRadius(0.012);
-    sphere->SetThetaResolution(12);
-    sphere->SetPhiResolution(12);
-    auto glyphs = vtkSmartPointer<vtkGlyph3D>::New();
-    glyphs->SetSourceConnection(sphere->GetOutputPort());
-    glyphs->SetInputData(cloud);
-    glyphs->SetScaleModeToDataScalingOff();
-    auto gm = vtkSmartPointer<vtkPolyDataMapper>::New();
-    gm->SetInputConnection(glyphs->GetOutputPort());
-    gm->ScalarVisibilityOff();
-    auto ga = vtkSmartPointer<vtkActor>::New();
-    ga->SetMapper(gm);
-    ga->GetProperty()->SetColor(0.1, 0.1, 0.1);
-    renderer->AddActor(ga);
-    auto rpoly = vtkSmartPointer<vtkPolyData>::New();
-    rpoly->SetPoints(res);
-    rpoly->SetLines(lines);
-    auto rm = vtkSmartPointer<vtkPolyDataMapper>::New();
-    rm->SetInputData(rpoly);
-    auto ra = vtkSmartPointer<vtkActor>::New();
-    ra->SetMapper(rm);
-    ra->GetProperty()->SetColor(0.1, 0.1, 0.1);
-    ra->GetProperty()->SetLineWidth(2.0);
-    renderer->AddActor(ra);
+// The data points as dark spheres, each with its residual as a line to the surface.
+void add_points(vtkRenderer* renderer, const TractionSurfaceData& d, const DisplayBox& box) {
+  if (d.points.empty()) return;
+  vtkNew<vtkPoints> centres;
+  std::vector<Eigen::Vector3d> residuals;
+  for (const auto& p : d.points) {
+    const double x = box.x(p.load), y = box.y(p.slip);
+    centres->InsertNextPoint(x, y, box.z(p.value));
+    residuals.emplace_back(x, y, box.z(p.value));
+    residuals.emplace_back(x, y, box.z(d.surface(p.load, p.slip)));
   }
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.012);
+  sphere->SetThetaResolution(12);
+  sphere->SetPhiResolution(12);
+  vtkNew<vtkGlyph3D> glyphs;
+  glyphs->SetSourceConnection(sphere->GetOutputPort());
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(centres);
+  glyphs->SetInputData(cloud);
+  glyphs->SetScaleModeToDataScalingOff();
+  auto spheres = actor_of(glyphs->GetOutputPort(), {0.1, 0.1, 0.1});
+  spheres->GetMapper()->ScalarVisibilityOff();
+  renderer->AddActor(spheres);
+  auto lines = actor_of(segments(residuals, true), {0.1, 0.1, 0.1});
+  lines->GetProperty()->SetLineWidth(2.0);
+  renderer->AddActor(lines);
+}
 
-  // Axes in real units.
-  auto axes = vtkSmartPointer<vtkCubeAxesActor>::New();
+// Axes in real units around the display box.
+vtkSmartPointer<vtkCubeAxesActor> axes_of(const TractionSurfaceData& d, double lo, double hi, vtkCamera* camera) {
+  vtkNew<vtkCubeAxesActor> axes;
   axes->SetBounds(0, 1, 0, 1, 0, kHeight);
   axes->SetXAxisRange(d.load_min, d.load_max);
   axes->SetYAxisRange(d.slip_min, d.slip_max);
@@ -174,7 +181,7 @@ TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, i
   axes->SetXTitle("load W (N)");
   axes->SetYTitle("slip s");
   axes->SetZTitle((d.quantity + " (" + d.unit + ")").c_str());
-  axes->SetCamera(renderer->GetActiveCamera());
+  axes->SetCamera(camera);
   axes->SetFlyModeToOuterEdges();
   for (int k = 0; k < 3; ++k) {
     axes->GetTitleTextProperty(k)->SetColor(0.1, 0.1, 0.1);
@@ -183,30 +190,92 @@ TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, i
   axes->GetXAxesLinesProperty()->SetColor(0.2, 0.2, 0.2);
   axes->GetYAxesLinesProperty()->SetColor(0.2, 0.2, 0.2);
   axes->GetZAxesLinesProperty()->SetColor(0.2, 0.2, 0.2);
-  renderer->AddActor(axes);
+  return axes;
+}
 
-  auto bar = vtkSmartPointer<vtkScalarBarActor>::New();
+vtkSmartPointer<vtkScalarBarActor> colour_bar(vtkLookupTable* lut, const std::string& unit) {
+  vtkNew<vtkScalarBarActor> bar;
   bar->SetLookupTable(lut);
   bar->SetNumberOfLabels(5);
   bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.1);
   bar->UnconstrainedFontSizeOn();
   bar->GetTitleTextProperty()->SetFontSize(14);
   bar->GetLabelTextProperty()->SetFontSize(14);
-  bar->SetTitle(d.unit.c_str());
+  bar->SetTitle(unit.c_str());
   bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
   bar->SetPosition(0.9, 0.1);
   bar->SetWidth(0.08);
   bar->SetHeight(0.8);
-  renderer->AddViewProp(bar);
+  return bar;
+}
 
+void place_camera(vtkRenderer* renderer) {
   vtkCamera* cam = renderer->GetActiveCamera();
   cam->SetFocalPoint(0.5, 0.5, 0.3 * kHeight);
   cam->SetPosition(2.4, -1.9, 1.7);
   cam->SetViewUp(0, 0, 1);
   renderer->ResetCamera(-0.1, 1.1, -0.1, 1.1, 0.0, kHeight);
   cam->Zoom(1.15);
-  out.renderer = renderer;
+}
+
+}  // namespace
+
+TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, int grid) {
+  if (!(d.load_max > d.load_min) || !(d.slip_max > d.slip_min)) throw DataError("empty load or slip range");
+  const SurfaceGrid g = sample_surface(d, grid);
+  const DisplayBox box{d, g.lo, g.hi};
+  auto lut = lookup(g.lo, g.hi);
+  TractionSurfaceScene out;
+  out.value_min = g.lo;
+  out.value_max = g.hi;
+  out.renderer = vtkSmartPointer<vtkRenderer>::New();
+  out.renderer->SetBackground(1.0, 1.0, 1.0);
+  out.renderer->AddActor(surface_actor(g, box, d.quantity, lut));
+  add_points(out.renderer, d, box);
+  out.renderer->AddActor(axes_of(d, g.lo, g.hi, out.renderer->GetActiveCamera()));
+  out.renderer->AddViewProp(colour_bar(lut, d.unit));
+  place_camera(out.renderer);
   return out;
 }
+
+namespace {
+
+// The surface as a Scene: it does not follow the timeline.
+class SurfaceScene : public Scene {
+ public:
+  explicit SurfaceScene(TractionSurfaceScene scene) : scene_(std::move(scene)) {}
+  void attach(vtkRenderWindow* window) override { window->AddRenderer(scene_.renderer); }
+  void detach(vtkRenderWindow* window) override { window->RemoveRenderer(scene_.renderer); }
+  bool follows_time() const override { return false; }
+  void set_time(double /*t*/) override {}
+  double start_time() const override { return 0.0; }
+  double end_time() const override { return 0.0; }
+
+ private:
+  TractionSurfaceScene scene_;
+};
+
+class TractionSurfaceView : public View {
+ public:
+  std::string name() const override { return "traction-surface"; }
+  std::string title() const override { return "Traction surface"; }
+  std::string needs(const SceneInput& in) const override {
+    if (in.surface == nullptr) {
+      return "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm) or a soil";
+    }
+    if (!(in.surface->load_max > in.surface->load_min) || !(in.surface->slip_max > in.surface->slip_min)) {
+      return "empty load or slip range";
+    }
+    return {};
+  }
+  std::unique_ptr<Scene> build(const SceneInput& in) const override {
+    return std::make_unique<SurfaceScene>(make_traction_surface_scene(*in.surface));
+  }
+  bool uses_surface_data() const override { return true; }
+};
+
+}  // namespace
+
+std::unique_ptr<View> make_traction_surface_view() { return std::make_unique<TractionSurfaceView>(); }
 
 }  // namespace roverlab::views

@@ -1,0 +1,89 @@
+#pragma once
+// The view registry: every view of a log RoverLab draws (the `render`
+// command, the report's images, the GUI's tabs) is one View, listed once in
+// views/views.def. A View says what it needs from the log and builds a
+// Scene; a Scene attaches to a render window and follows the timeline.
+//
+// Adding a view: define `std::unique_ptr<View> make_<id>_view()` in the
+// scene's own .cpp and add `ROVERLAB_VIEW(<id>)` to views/views.def.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/estimation/skid_steer_odometry.h"
+#include "core/log/log.h"
+
+class vtkRenderWindow;
+
+namespace roverlab::views {
+
+struct TractionSurfaceData;
+
+// One plotted channel.
+struct ChannelRef {
+  std::string stream, channel;
+};
+
+// What a view is built from. The app fills what the view uses.
+struct SceneInput {
+  const log::Log* log = nullptr;                  // never null when built
+  const TractionSurfaceData* surface = nullptr;   // views that use_surface_data(): built by the app
+  std::vector<ChannelRef> channels;               // plotted channels; empty: the view's default
+  estimation::SkidSteerGeometry rover;            // the rover drawn (skid-steer views)
+};
+
+// A built view: its renderers (or context view) attach to a render window;
+// set_time follows the timeline.
+class Scene {
+ public:
+  virtual ~Scene() = default;
+  Scene() = default;
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  // Adds the scene's renderers to `window` (or draws its context view in it).
+  virtual void attach(vtkRenderWindow* window) = 0;
+  virtual void detach(vtkRenderWindow* window) = 0;
+  // Lays the scene out for a window `pixels` wide (charts decimate to it).
+  virtual void fit_width(int /*pixels*/) {}
+  // False when the scene does not change with time (set_time does nothing).
+  virtual bool follows_time() const { return true; }
+  virtual void set_time(double t) = 0;
+  virtual double start_time() const = 0;
+  virtual double end_time() const = 0;
+  // The time shown when none is asked for: the middle of the drive.
+  virtual double default_time() const { return 0.5 * (start_time() + end_time()); }
+  // What the log lacks for this view, one sentence each.
+  virtual std::vector<std::string> notes() const { return {}; }
+  // Shows `input` with the scene's own VTK objects (a GUI keeps a chart whose
+  // interactor holds timers); false when the scene cannot, and a new one is built.
+  virtual bool reset(const SceneInput& /*input*/) { return false; }
+};
+
+class View {
+ public:
+  virtual ~View() = default;
+  // The name on the command line (`render --view NAME`).
+  virtual std::string name() const = 0;
+  // The GUI tab's title.
+  virtual std::string title() const = 0;
+  // Empty when the view can be built from `input`, else why not (one line).
+  virtual std::string needs(const SceneInput& input) const = 0;
+  // Builds the scene, at its default time. Call only when needs() is empty.
+  virtual std::unique_ptr<Scene> build(const SceneInput& input) const = 0;
+  // True when the view draws SceneInput::surface rather than the log.
+  virtual bool uses_surface_data() const { return false; }
+  // True when the GUI turns the camera as a trackball (3D scenes).
+  virtual bool trackball_camera() const { return false; }
+};
+
+// Every view, in the order of views/views.def.
+const std::vector<std::unique_ptr<View>>& all_views();
+// The view named `name`; nullptr when there is none.
+const View* find_view(const std::string& name);
+// The names, e.g. "a, b or c" (for usage messages).
+std::string view_names(const std::string& last_separator = " or ");
+
+}  // namespace roverlab::views

@@ -1,0 +1,83 @@
+#include "views/vtk_parts.h"
+
+#include <vtkActor.h>
+#include <vtkAlgorithmOutput.h>
+#include <vtkCellArray.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkPolyLine.h>
+#include <vtkProperty.h>
+
+namespace roverlab::views {
+
+namespace {
+
+vtkSmartPointer<vtkActor> actor_with(vtkPolyDataMapper* mapper, const Eigen::Vector3d& rgb) {
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(rgb.x(), rgb.y(), rgb.z());
+  return actor;
+}
+
+void unlit_line(vtkActor* actor, double width) {
+  actor->GetProperty()->SetLineWidth(static_cast<float>(width));
+  actor->GetProperty()->SetLighting(false);
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, const Eigen::Vector3d& rgb) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(port);
+  return actor_with(mapper, rgb);
+}
+
+vtkSmartPointer<vtkActor> actor_of(vtkPolyData* data, const Eigen::Vector3d& rgb) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(data);
+  return actor_with(mapper, rgb);
+}
+
+vtkSmartPointer<vtkPolyData> polyline(const std::vector<Eigen::Vector3d>& points) {
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkPolyLine> line;
+  for (const auto& p : points) line->GetPointIds()->InsertNextId(pts->InsertNextPoint(p.x(), p.y(), p.z()));
+  vtkNew<vtkCellArray> cells;
+  cells->InsertNextCell(line);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(pts);
+  poly->SetLines(cells);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> segments(const std::vector<Eigen::Vector3d>& points, bool pairs) {
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> cells;
+  for (const auto& p : points) pts->InsertNextPoint(p.x(), p.y(), p.z());
+  const vtkIdType n = pts->GetNumberOfPoints();
+  for (vtkIdType a = 0; a + 1 < n; a += pairs ? 2 : 1) {
+    const vtkIdType ids[2] = {a, a + 1};
+    cells->InsertNextCell(2, ids);
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(pts);
+  poly->SetLines(cells);
+  return poly;
+}
+
+vtkSmartPointer<vtkActor> line_actor(vtkPolyData* lines, const Eigen::Vector3d& rgb, double width) {
+  auto actor = actor_of(lines, rgb);
+  unlit_line(actor, width);
+  return actor;
+}
+
+vtkSmartPointer<vtkActor> line_actor(vtkAlgorithmOutput* port, const Eigen::Vector3d& rgb, double width) {
+  auto actor = actor_of(port, rgb);
+  unlit_line(actor, width);
+  return actor;
+}
+
+}  // namespace roverlab::views

@@ -1,0 +1,33 @@
+#pragma once
+// The small VTK pieces every scene repeats: an actor drawing a source's
+// output or a poly data through its own mapper, polylines and line segments
+// built from points, and the unlit line style the scenes draw tracks,
+// links and residuals in.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <vtkSmartPointer.h>
+
+class vtkActor;
+class vtkAlgorithmOutput;
+class vtkPolyData;
+
+namespace roverlab::views {
+
+// An actor of colour `rgb` (0..1) drawing `port` through a new mapper.
+vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, const Eigen::Vector3d& rgb);
+// An actor of colour `rgb` drawing `data` through a new mapper.
+vtkSmartPointer<vtkActor> actor_of(vtkPolyData* data, const Eigen::Vector3d& rgb);
+
+// One polyline cell through `points`, in order.
+vtkSmartPointer<vtkPolyData> polyline(const std::vector<Eigen::Vector3d>& points);
+// Line segments: one two-point cell from each point to the next (a path),
+// or, with `pairs`, from points 2k to 2k + 1.
+vtkSmartPointer<vtkPolyData> segments(const std::vector<Eigen::Vector3d>& points, bool pairs = false);
+
+// The polyline/mapper/actor triple: `lines` drawn unlit, `width` pixels wide.
+vtkSmartPointer<vtkActor> line_actor(vtkPolyData* lines, const Eigen::Vector3d& rgb, double width);
+vtkSmartPointer<vtkActor> line_actor(vtkAlgorithmOutput* port, const Eigen::Vector3d& rgb, double width);
+
+}  // namespace roverlab::views
