@@ -216,8 +216,11 @@ class ContactAnglesView : public View {
  public:
   std::string name() const override { return "contact-angles"; }
   std::string title() const override { return "Contact angles"; }
+  std::string heading() const override { return "Contact and side-slip angles"; }
   std::string needs(const SceneInput& in) const override { return contact_angle_needs(*in.log); }
-  std::unique_ptr<Scene> build(const SceneInput& in) const override { return std::make_unique<ContactAngleScene>(*in.log); }
+
+ protected:
+  std::unique_ptr<Scene> make_scene(const SceneInput& in) const override { return std::make_unique<ContactAngleScene>(*in.log); }
 };
 
 }  // namespace

@@ -440,11 +440,13 @@ class RoverView : public View {
   std::string needs(const SceneInput& in) const override {
     return is_planar_rocker_bogie_log(*in.log) ? std::string() : pose_track_needs(*in.log);
   }
-  std::unique_ptr<Scene> build(const SceneInput& in) const override {
+  bool trackball_camera() const override { return true; }
+
+ protected:
+  std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {
     if (is_planar_rocker_bogie_log(*in.log)) return std::make_unique<PlanarRoverScene>(*in.log);
     return std::make_unique<RoverScene>(*in.log, in.rover);
   }
-  bool trackball_camera() const override { return true; }
 };
 
 }  // namespace

@@ -120,9 +120,8 @@ void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels
 
 TimeSeriesChart::~TimeSeriesChart() = default;
 
-bool TimeSeriesChart::reset(const SceneInput& in) {
+void TimeSeriesChart::reset(const SceneInput& in) {
   reset(*in.log, in.channels.empty() ? default_channels(*in.log) : in.channels);
-  return true;
 }
 
 vtkContextView* TimeSeriesChart::view() const { return view_; }
@@ -253,6 +252,9 @@ class TimeSeriesView : public View {
  public:
   std::string name() const override { return "timeseries"; }
   std::string title() const override { return "Plots"; }
+  std::string heading() const override { return "Time series"; }
+  bool uses_channels() const override { return true; }
+  double report_height() const override { return 0.5; }
   std::string needs(const SceneInput& in) const override {
     for (const auto& c : in.channels) {
       const log::Stream* s = in.log->find_stream(c.stream);
@@ -267,7 +269,9 @@ class TimeSeriesView : public View {
     }
     return {};
   }
-  std::unique_ptr<Scene> build(const SceneInput& in) const override {
+
+ protected:
+  std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {
     return std::make_unique<TimeSeriesChart>(*in.log, in.channels.empty() ? default_channels(*in.log) : in.channels);
   }
 };

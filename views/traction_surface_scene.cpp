@@ -260,7 +260,7 @@ class TractionSurfaceView : public View {
   std::string name() const override { return "traction-surface"; }
   std::string title() const override { return "Traction surface"; }
   std::string needs(const SceneInput& in) const override {
-    if (in.surface == nullptr) {
+    if (!in.surface) {
       return "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm) or a soil";
     }
     if (!(in.surface->load_max > in.surface->load_min) || !(in.surface->slip_max > in.surface->slip_min)) {
@@ -268,10 +268,12 @@ class TractionSurfaceView : public View {
     }
     return {};
   }
-  std::unique_ptr<Scene> build(const SceneInput& in) const override {
+  bool uses_surface_data() const override { return true; }
+
+ protected:
+  std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {
     return std::make_unique<SurfaceScene>(make_traction_surface_scene(*in.surface));
   }
-  bool uses_surface_data() const override { return true; }
 };
 
 }  // namespace

@@ -14,12 +14,11 @@
 
 #include "core/estimation/skid_steer_odometry.h"
 #include "core/log/log.h"
+#include "views/traction_surface_scene.h"
 
 class vtkRenderWindow;
 
 namespace roverlab::views {
-
-struct TractionSurfaceData;
 
 // One plotted channel.
 struct ChannelRef {
@@ -28,10 +27,11 @@ struct ChannelRef {
 
 // What a view is built from. The app fills what the view uses.
 struct SceneInput {
-  const log::Log* log = nullptr;                  // never null when built
-  const TractionSurfaceData* surface = nullptr;   // views that use_surface_data(): built by the app
-  std::vector<ChannelRef> channels;               // plotted channels; empty: the view's default
-  estimation::SkidSteerGeometry rover;            // the rover drawn (skid-steer views)
+  const log::Log* log = nullptr;               // never null
+  std::optional<TractionSurfaceData> surface;  // views that use_surface_data(): built by the app
+  std::vector<ChannelRef> channels;            // plotted channels; empty: the view's default
+  estimation::SkidSteerGeometry rover;         // the rover drawn (skid-steer views)
+  std::optional<double> time;                  // shown first; default: the scene's default_time()
 };
 
 // A built view: its renderers (or context view) attach to a render window;
@@ -57,9 +57,12 @@ class Scene {
   virtual double default_time() const { return 0.5 * (start_time() + end_time()); }
   // What the log lacks for this view, one sentence each.
   virtual std::vector<std::string> notes() const { return {}; }
-  // Shows `input` with the scene's own VTK objects (a GUI keeps a chart whose
-  // interactor holds timers); false when the scene cannot, and a new one is built.
-  virtual bool reset(const SceneInput& /*input*/) { return false; }
+  // True when reset() shows another input with the scene's own VTK objects:
+  // a GUI then keeps the scene for its widget's lifetime (a chart's
+  // interactor style holds timers that must not outlive it).
+  virtual bool resettable() const { return false; }
+  // Shows `input` (only when resettable(); else does nothing).
+  virtual void reset(const SceneInput& /*input*/) {}
 };
 
 class View {
@@ -69,14 +72,24 @@ class View {
   virtual std::string name() const = 0;
   // The GUI tab's title.
   virtual std::string title() const = 0;
+  // What the picture shows, as the report's heading (default: the title).
+  virtual std::string heading() const { return title(); }
   // Empty when the view can be built from `input`, else why not (one line).
   virtual std::string needs(const SceneInput& input) const = 0;
-  // Builds the scene, at its default time. Call only when needs() is empty.
-  virtual std::unique_ptr<Scene> build(const SceneInput& input) const = 0;
+  // Builds the scene at the input's time. Call only when needs() is empty.
+  std::unique_ptr<Scene> build(const SceneInput& input) const;
   // True when the view draws SceneInput::surface rather than the log.
   virtual bool uses_surface_data() const { return false; }
+  // True when the view plots SceneInput::channels.
+  virtual bool uses_channels() const { return false; }
+  // The report's image height for this view, as a fraction of a scene's
+  // (charts are drawn wide and low).
+  virtual double report_height() const { return 1.0; }
   // True when the GUI turns the camera as a trackball (3D scenes).
   virtual bool trackball_camera() const { return false; }
+
+ protected:
+  virtual std::unique_ptr<Scene> make_scene(const SceneInput& input) const = 0;
 };
 
 // Every view, in the order of views/views.def.

@@ -6,6 +6,12 @@ namespace roverlab::views {
 #include "views/views.def"
 #undef ROVERLAB_VIEW
 
+std::unique_ptr<Scene> View::build(const SceneInput& input) const {
+  std::unique_ptr<Scene> scene = make_scene(input);
+  if (scene->follows_time()) scene->set_time(input.time.value_or(scene->default_time()));
+  return scene;
+}
+
 const std::vector<std::unique_ptr<View>>& all_views() {
   static const std::vector<std::unique_ptr<View>> views = [] {
     std::vector<std::unique_ptr<View>> v;

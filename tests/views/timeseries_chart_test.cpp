@@ -64,7 +64,8 @@ TEST(TimeSeriesChart, ResetShowsOtherChannelsInTheSameView) {
   views::SceneInput in;
   in.log = &lg;
   in.channels = {{"step", "x"}, {"step", "x"}};
-  EXPECT_TRUE(chart.reset(in));
+  ASSERT_TRUE(chart.resettable());
+  chart.reset(in);
   EXPECT_EQ(chart.view(), view);
   EXPECT_EQ(chart.channels().size(), 2u);
   EXPECT_DOUBLE_EQ(chart.default_time(), 0.0);

@@ -39,7 +39,7 @@ TEST(TractionSurfaceScene, SpansItsColourMapWithTheMeasuredPoints) {
   EXPECT_LE(bounds[0], 0.0);
   EXPECT_GE(bounds[1], 1.0);
   views::SceneInput in;
-  in.surface = &d;
+  in.surface = d;
   const views::View* view = nullptr;
   for (const auto& v : views::all_views()) {
     if (v->uses_surface_data()) view = v.get();
