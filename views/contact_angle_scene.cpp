@@ -217,6 +217,7 @@ class ContactAnglesView : public View {
   std::string name() const override { return "contact-angles"; }
   std::string title() const override { return "Contact angles"; }
   std::string heading() const override { return "Contact and side-slip angles"; }
+  bool draws_estimates() const override { return true; }
   std::string needs(const SceneInput& in) const override { return contact_angle_needs(*in.log); }
 
  protected:

@@ -441,6 +441,7 @@ class RoverView : public View {
     return is_planar_rocker_bogie_log(*in.log) ? std::string() : pose_track_needs(*in.log);
   }
   bool trackball_camera() const override { return true; }
+  bool draws_estimates() const override { return true; }
 
  protected:
   std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {

@@ -27,7 +27,7 @@ struct ChannelRef {
 
 // What a view is built from. The app fills what the view uses.
 struct SceneInput {
-  const log::Log* log = nullptr;               // never null
+  const log::Log* log = nullptr;               // null only for views that use_surface_data()
   std::optional<TractionSurfaceData> surface;  // views that use_surface_data(): built by the app
   std::vector<ChannelRef> channels;            // plotted channels; empty: the view's default
   estimation::SkidSteerGeometry rover;         // the rover drawn (skid-steer views)
@@ -82,6 +82,9 @@ class View {
   virtual bool uses_surface_data() const { return false; }
   // True when the view plots SceneInput::channels.
   virtual bool uses_channels() const { return false; }
+  // True when the view draws estimates the app's analyses add to a log (the
+  // app runs those that can run before building it).
+  virtual bool draws_estimates() const { return false; }
   // The report's image height for this view, as a fraction of a scene's
   // (charts are drawn wide and low).
   virtual double report_height() const { return 1.0; }
@@ -96,7 +99,7 @@ class View {
 const std::vector<std::unique_ptr<View>>& all_views();
 // The view named `name`; nullptr when there is none.
 const View* find_view(const std::string& name);
-// The names, e.g. "a, b or c" (for usage messages).
-std::string view_names(const std::string& last_separator = " or ");
+// The names, e.g. "a, b or c" (for usage messages and help).
+std::string view_names(const std::string& separator = ", ", const std::string& last_separator = " or ");
 
 }  // namespace roverlab::views

@@ -30,11 +30,11 @@ const View* find_view(const std::string& name) {
   return nullptr;
 }
 
-std::string view_names(const std::string& last_separator) {
+std::string view_names(const std::string& separator, const std::string& last_separator) {
   std::string out;
   const auto& views = all_views();
   for (std::size_t i = 0; i < views.size(); ++i) {
-    if (i > 0) out += i + 1 == views.size() ? last_separator : ", ";
+    if (i > 0) out += i + 1 == views.size() ? last_separator : separator;
     out += views[i]->name();
   }
   return out;
