@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <optional>
 
+#include "app/analysis.h"
 #include "app/command.h"
 #include "app/commands.h"
 #include "app/render_view.h"
 #include "app/views_input.h"
+#include "views/view.h"
 #include "views/x_display.h"
 
 namespace roverlab::app {
@@ -20,7 +22,7 @@ namespace fs = std::filesystem;
 struct RenderOptions {
   std::string file;
   std::optional<std::string> mapping;
-  std::string view = "rover";
+  std::string view = views::all_views().front()->name();
   std::optional<double> time;
   std::optional<std::string> channels;
   std::optional<std::string> soil;
@@ -29,18 +31,39 @@ struct RenderOptions {
   std::string output;
 };
 
+// The names of the views for which `uses` holds, e.g. "a | b".
+std::string views_that(bool (views::View::*uses)() const) {
+  std::string out;
+  for (const auto& v : views::all_views()) {
+    if (((*v).*uses)()) out += (out.empty() ? "" : " | ") + v->name();
+  }
+  return out;
+}
+
+// The analyses that add estimate streams: a view that draws estimates gets them.
+std::vector<std::string> estimators() {
+  std::vector<std::string> names;
+  for (const auto& a : all_analyses()) {
+    if (a->adds_streams()) names.push_back(a->name());
+  }
+  return names;
+}
+
 int run_render(const RenderOptions& o) {
   const auto [w, h] = parse_size(o.size);
-  if (o.view != "rover" && o.view != "timeseries" && o.view != "traction-surface" && o.view != "contact-angles") {
-    throw UsageError("--view " + o.view + ": expected rover, traction-surface, contact-angles or timeseries");
-  }
+  const views::View* view = views::find_view(o.view);
+  if (view == nullptr) throw UsageError("--view " + o.view + ": expected " + views::view_names());
   if (fs::path(o.output).extension() != ".png") throw UsageError("--output " + o.output + ": must end in .png");
   ViewInputOptions vo;
-  if (o.view == "rover") vo.analyses = {"ins-slip"};
-  if (o.view == "contact-angles") vo.analyses = {"contact-angle"};
+  if (view->draws_estimates()) vo.analyses = estimators();
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
   views::ensure_display();
-  const Rendered r = render_view(in, o.view, o.time, o.channels, o.soil, o.quantity, w, h);
+  ViewOptions options;
+  options.time = o.time;
+  options.channel_spec = o.channels;
+  options.soil = o.soil;
+  options.quantity = o.quantity;
+  const Rendered r = render_view(in, *view, options, w, h);
   save_png(r.image, o.output);
   for (const auto& n : in.notes) std::printf("note: %s\n", n.c_str());
   for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());
@@ -59,13 +82,13 @@ Commands make_render_commands() {
       [](CLI::App& cmd, RenderOptions& o) {
         cmd.add_option("FILE", o.file, "Log (HDF5, .mat with --mapping, CSV) or single-wheel CSV")->required();
         cmd.add_option("--mapping,-m", o.mapping, "Mapping NAME or FILE for .mat/HDF5 input");
-        cmd.add_option("--view", o.view, "rover | traction-surface | contact-angles | timeseries")
-            ->capture_default_str();
+        cmd.add_option("--view", o.view, views::view_names(" | ", " | "))->capture_default_str();
         cmd.add_option("--time,-t", o.time, "Time shown, s (default: mid-log)");
-        cmd.add_option("--channels", o.channels,
-                       "timeseries: stream:channel,... (a stream alone: all its channels)");
-        cmd.add_option("--soil", o.soil, "traction-surface: draw the Wong-Reece model surface of soil NAME|FILE");
-        cmd.add_option("--quantity", o.quantity, "traction-surface: drawbar-pull | torque")->capture_default_str();
+        const std::string plots = views_that(&views::View::uses_channels);
+        const std::string surfaces = views_that(&views::View::uses_surface_data);
+        cmd.add_option("--channels", o.channels, plots + ": stream:channel,... (a stream alone: all its channels)");
+        cmd.add_option("--soil", o.soil, surfaces + ": draw the Wong-Reece model surface of soil NAME|FILE");
+        cmd.add_option("--quantity", o.quantity, surfaces + ": drawbar-pull | torque")->capture_default_str();
         cmd.add_option("--size", o.size, "WxH pixels")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "OUT.png")->required();
       },

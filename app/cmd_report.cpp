@@ -3,6 +3,7 @@
 // `estimate X --json`, in metrics.json under analyses/<name>), the traction
 // surfaces — with CSV and JSON beside it.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,11 +21,9 @@
 #include "core/common/error.h"
 #include "importers/atomic_file.h"
 #include "importers/soil_file.h"
-#include <vtkRenderer.h>
 
-#include "views/planar_rover_scene.h"
-#include "views/rover_scene.h"
-#include "views/traction_surface_scene.h"
+#include "app/view_data.h"
+#include "views/view.h"
 #include "views/x_display.h"
 
 namespace roverlab::app {
@@ -99,26 +98,33 @@ class ReportWriter {
     metrics_["streams"] = streams;
   }
 
-  Rendered render(const std::string& view, const std::optional<std::string>& channels, int h) const {
-    return render_view(in_, view, std::nullopt, channels, std::nullopt, o_.quantity, w_, h);
+  // Every registered view the log can feed (the traction surfaces come with
+  // their fits below), in registry order; the INS slip beside its reference
+  // after the plots.
+  void views() {
+    for (const auto& view : views::all_views()) {
+      if (view->uses_surface_data()) continue;
+      const int h = static_cast<int>(h_ * view->report_height());
+      Rendered r;
+      try {
+        r = render_view(in_, *view, ViewOptions{}, w_, h);
+      } catch (const InputError& e) {
+        html() << "<p class=\"note\">No " << view->name() << " view: " << esc(e.problem()) << "</p>\n";
+        continue;
+      }
+      std::string file = view->name();
+      std::replace(file.begin(), file.end(), '-', '_');
+      image(file + ".png", view->heading(), r);
+      if (view->uses_channels()) slip_plot(*view, h);
+    }
   }
 
-  void views() {
-    const views::RoverScene probe(in_.log);
-    if (!probe.pose_source().empty() || views::is_planar_rocker_bogie_log(in_.log)) {
-      image("rover.png", "Rover", render("rover", std::nullopt, h_));
-    } else {
-      html() << "<p class=\"note\">No rover view: " << esc(probe.notes().front()) << "</p>\n";
-    }
-    if (in_.log.find_stream("estimate/contact/wheels") != nullptr) {
-      image("contact_angles.png", "Contact and side-slip angles", render("contact-angles", std::nullopt, h_));
-    }
-    image("timeseries.png", "Time series", render("timeseries", std::nullopt, h_ / 2));
+  void slip_plot(const views::View& plots, int h) {
     const log::Stream* slip = in_.log.find_stream("estimate/ins/slip");
-    if (slip != nullptr && slip->find_channel("reference_slip") != nullptr) {
-      image("slip.png", "Slip ratio: INS estimate and reference",
-            render("timeseries", "estimate/ins/slip:slip_ratio,estimate/ins/slip:reference_slip", h_ / 2));
-    }
+    if (slip == nullptr || slip->find_channel("reference_slip") == nullptr) return;
+    ViewOptions o;
+    o.channel_spec = "estimate/ins/slip:slip_ratio,estimate/ins/slip:reference_slip";
+    image("slip.png", "Slip ratio: INS estimate and reference", render_view(in_, plots, o, w_, h));
   }
 
   void analyses() {
@@ -138,10 +144,7 @@ class ReportWriter {
       html() << "<p class=\"note\">No " << quantity << " surface: " << esc(e.problem()) << "</p>\n";
       return;
     }
-    const views::TractionSurfaceScene scene = views::make_traction_surface_scene(d);
-    Rendered r;
-    r.image = render_renderer(scene.renderer, w_, h_);
-    image("surface_" + quantity + ".png", "Traction surface: " + d.quantity, r);
+    image("surface_" + quantity + ".png", "Traction surface: " + d.quantity, render_traction_surface(d, w_, h_));
     html() << "<table><tr><th>term</th><th>coefficient</th></tr>\n";
     std::string csv = "k_slip,l_load,coefficient\n";
     json coeffs = json::array();

@@ -1,16 +1,18 @@
 #pragma once
-// One view of a log rendered offscreen (the `render` command and the report's
-// images), and the --size option both take.
+// Views of a log rendered offscreen through the view registry
+// (views/views.def): the `render` command's PNG and the report's images.
+// Also the --size option both take.
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "app/view_data.h"
 #include "app/views_input.h"
 #include "views/offscreen.h"
-
-class vtkRenderer;
+#include "views/view.h"
 
 namespace roverlab::app {
 
@@ -20,17 +22,22 @@ std::pair<int, int> parse_size(const std::string& size);
 struct Rendered {
   views::Image image;
   std::vector<std::string> notes;
-  double time = NAN;
+  double time = NAN;  // NaN for views that do not follow time
 };
 
-// View rover | timeseries | traction-surface | contact-angles of `in` at
-// `time` (default: a time inside the drive), `w` x `h` pixels.
+// The view named `view` of `in` at `time` (default: the view's own, a time
+// inside the drive), `w` x `h` pixels. Throws UsageError for an unknown
+// view, InputError when the view cannot be drawn from `in`.
 Rendered render_view(const ViewInput& in, const std::string& view, std::optional<double> time,
                      const std::optional<std::string>& channels, const std::optional<std::string>& soil,
                      const std::string& quantity, int w, int h);
+Rendered render_view(const ViewInput& in, const views::View& view, const ViewOptions& options, int w, int h);
 
-// The scene of one renderer, offscreen.
-views::Image render_renderer(vtkRenderer* renderer, int w, int h);
+// The registry's view of a traction surface, for `data` the caller computed.
+Rendered render_traction_surface(const views::TractionSurfaceData& data, int w, int h);
+
+// A built scene, offscreen: attached, laid out, at `time` (default: its own).
+Rendered render_scene(views::Scene& scene, std::optional<double> time, int w, int h);
 
 // Writes the image as PNG, atomically.
 void save_png(const views::Image& image, const std::string& path);

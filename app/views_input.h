@@ -11,11 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/analysis.h"
-#include "core/estimation/skid_steer_odometry.h"
 #include "core/log/log.h"
-#include "core/terramechanics/traction_surface.h"
 #include "core/terramechanics/wheel_test.h"
-#include "views/traction_surface_scene.h"
 
 namespace roverlab::app {
 
@@ -59,19 +56,5 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
 
 // The rover a log names (its rover_id); the ExoMars BB2 when it names none.
 std::string rover_name_of(const log::Log& log);
-
-// The skid-steer geometry the rover view draws: the log's rover
-// description (resources/rovers/<rover_id>.json) when it is a skid-steer
-// one, else the Pathfinder's defaults.
-estimation::SkidSteerGeometry rover_geometry(const log::Log& log);
-
-// A traction surface for the view, "drawbar-pull" or "torque": with a soil,
-// the Wong-Reece model on a grid fitted by an order-4 polynomial (seed 003
-// Appendix A) with the single-wheel points (if any) drawn against it;
-// without, a polynomial fitted to the points (they must span two loads).
-// Throws InputError when there is nothing to draw.
-views::TractionSurfaceData traction_surface_of(const ViewInput& input, const std::string& quantity,
-                                               const std::optional<std::string>& soil,
-                                               terramechanics::SurfaceFit* fit = nullptr);
 
 }  // namespace roverlab::app

@@ -30,10 +30,7 @@
 #include <QScrollArea>
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
-#include <vtkContextView.h>
 #include <vtkGenericOpenGLRenderWindow.h>
-#include <vtkRenderer.h>
-#include <vtkRendererCollection.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkRenderWindowInteractor.h>
 
@@ -49,11 +46,11 @@
 #include "core/estimation/slip.h"
 #include "importers/mapping.h"
 #include "importers/rover_file.h"
+#include "app/view_data.h"
 #include "views/contact_angle_scene.h"
-#include "views/planar_rover_scene.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
-#include "views/traction_surface_scene.h"
+#include "views/view.h"
 
 namespace roverlab::gui {
 
@@ -90,14 +87,46 @@ MainWindow::~MainWindow() {
   jobs_->cancel();
   jobs_->wait();
   // The scenes own VTK objects the widgets render: drop them first.
-  rover_.reset();
-  planar_.reset();
-  contact_.reset();
+  for (auto& tab : view_tabs_) tab.scene.reset();
+}
+
+MainWindow::ViewTab::ViewTab() = default;
+MainWindow::ViewTab::ViewTab(ViewTab&&) noexcept = default;
+MainWindow::ViewTab::~ViewTab() = default;
+
+template <typename T>
+T* MainWindow::scene_as() const {
+  for (const auto& tab : view_tabs_) {
+    if (auto* s = dynamic_cast<T*>(tab.scene.get())) return s;
+  }
+  return nullptr;
+}
+
+views::RoverScene* MainWindow::rover_scene() const { return scene_as<views::RoverScene>(); }
+views::TimeSeriesChart* MainWindow::chart() const { return scene_as<views::TimeSeriesChart>(); }
+views::ContactAngleScene* MainWindow::contact_scene() const { return scene_as<views::ContactAngleScene>(); }
+
+// The tab of the first view for which `uses` holds (nullptr when none).
+MainWindow::ViewTab* MainWindow::tab_where(bool (views::View::*uses)() const) {
+  for (auto& tab : view_tabs_) {
+    if ((tab.view->*uses)()) return &tab;
+  }
+  return nullptr;
 }
 
 void MainWindow::build_ui() {
   resize(1400, 900);
-  // Menus.
+  build_menus();
+  build_streams_dock();
+  tabs_ = new QTabWidget;
+  build_view_tabs();
+  tabs_->addTab(build_analysis_tab(), "Analysis");
+  build_timeline();
+  setCentralWidget(tabs_);
+  build_status_bar();
+}
+
+void MainWindow::build_menus() {
   QMenu* file = menuBar()->addMenu("&File");
   QAction* open = file->addAction("&Open...");
   open->setShortcut(QKeySequence::Open);
@@ -118,53 +147,62 @@ void MainWindow::build_ui() {
     QAction* run = analysis->addAction("Run: " + q(a->title()));
     connect(run, &QAction::triggered, this, [this, name = a->name()] { run_analyses({name}, true); });
   }
+}
 
-  // Streams dock.
+void MainWindow::build_streams_dock() {
   tree_ = new QTreeWidget;
   tree_->setHeaderLabels({"stream / channel", "unit", "samples", "rate (Hz)"});
   tree_->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
   connect(tree_, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item, int) {
     if (item->parent() == nullptr) return;
     add_plot_channel(item->parent()->text(0), item->text(0));
-    select_tab("Plots");
+    if (const ViewTab* plots = tab_where(&views::View::uses_channels)) tabs_->setCurrentWidget(plots->page);
   });
   auto* dock = new QDockWidget("Streams (double-click a channel to plot it)");
   dock->setObjectName("streams");
   dock->setWidget(tree_);
   addDockWidget(Qt::LeftDockWidgetArea, dock);
+}
 
-  // Views.
-  tabs_ = new QTabWidget;
-  rover_widget_ = new QVTKOpenGLNativeWidget;
-  plot_widget_ = new QVTKOpenGLNativeWidget;
-  surface_widget_ = new QVTKOpenGLNativeWidget;
-  rover_widget_->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New());
-  tabs_->addTab(rover_widget_, "Rover");
-  tabs_->addTab(plot_widget_, "Plots");
-  contact_widget_ = new QVTKOpenGLNativeWidget;
-  tabs_->addTab(contact_widget_, "Contact angles");
-  auto* surface_page = new QWidget;
-  auto* surface_layout = new QVBoxLayout(surface_page);
-  auto* surface_bar = new QHBoxLayout;
+// One tab per registered view, in registry order.
+void MainWindow::build_view_tabs() {
+  for (const auto& view : views::all_views()) {
+    ViewTab tab;
+    tab.view = view.get();
+    tab.widget = new QVTKOpenGLNativeWidget;
+    if (view->trackball_camera()) {
+      tab.widget->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New());
+    }
+    tab.page = view->uses_surface_data() ? build_surface_page(tab.widget) : tab.widget;
+    tabs_->addTab(tab.page, q(view->title()));
+    view_tabs_.push_back(std::move(tab));
+  }
+}
+
+// The traction surface's page: its soil and quantity above the view.
+QWidget* MainWindow::build_surface_page(QVTKOpenGLNativeWidget* widget) {
+  auto* page = new QWidget;
+  auto* layout = new QVBoxLayout(page);
+  auto* bar = new QHBoxLayout;
   surface_soil_ = new QComboBox;
   surface_soil_->addItem("(fit to the points)");
   for (const auto& s : soil_names()) surface_soil_->addItem(q(s));
   surface_quantity_ = new QComboBox;
   surface_quantity_->addItems({"drawbar-pull", "torque"});
   surface_note_ = new QLabel;
-  surface_bar->addWidget(new QLabel("model soil:"));
-  surface_bar->addWidget(surface_soil_);
-  surface_bar->addWidget(new QLabel("quantity:"));
-  surface_bar->addWidget(surface_quantity_);
-  surface_bar->addWidget(surface_note_, 1);
-  surface_layout->addLayout(surface_bar);
-  surface_layout->addWidget(surface_widget_, 1);
+  bar->addWidget(new QLabel("model soil:"));
+  bar->addWidget(surface_soil_);
+  bar->addWidget(new QLabel("quantity:"));
+  bar->addWidget(surface_quantity_);
+  bar->addWidget(surface_note_, 1);
+  layout->addLayout(bar);
+  layout->addWidget(widget, 1);
   connect(surface_soil_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { rebuild_surface(); });
   connect(surface_quantity_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { rebuild_surface(); });
-  tabs_->addTab(surface_page, "Traction surface");
-  tabs_->addTab(build_analysis_tab(), "Analysis");
+  return page;
+}
 
-  // Timeline.
+void MainWindow::build_timeline() {
   auto* timeline = new QToolBar("Timeline");
   timeline->setObjectName("timeline");
   play_ = new QToolButton;
@@ -205,10 +243,10 @@ void MainWindow::build_ui() {
       player_->stop();
     }
   });
+}
 
-  setCentralWidget(tabs_);
-
-  // Status bar with the job's progress and cancel.
+// The status bar with the job's progress and cancel.
+void MainWindow::build_status_bar() {
   status_ = new QLabel("Open a log: File > Open, or drop a file here.");
   progress_ = new QProgressBar;
   progress_->setRange(0, 1000);
@@ -366,16 +404,12 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
       c.check();
     }
     return [this, todo, results] {
-      bool contact = false;
-      for (std::size_t k = 0; k < todo.size(); ++k) {
-        input_->add(*todo[k], std::move((*results)[k]));
-        contact = contact || todo[k]->name() == "contact-angle";
-      }
+      for (std::size_t k = 0; k < todo.size(); ++k) input_->add(*todo[k], std::move((*results)[k]));
       const double t = time_;
       rebuild_tree();
-      rebuild_views();
+      QWidget* shown = rebuild_views();  // a view the new estimates made available comes to the front
       rebuild_analysis();
-      if (contact) select_tab("Contact angles");
+      if (shown != nullptr) tabs_->setCurrentWidget(shown);
       set_time(t);
     };
   });
@@ -383,14 +417,12 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
 
 void MainWindow::install(std::unique_ptr<ViewInput> in) {
   play_->setChecked(false);
-  if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
-  rover_.reset();
-  if (planar_) rover_widget_->renderWindow()->RemoveRenderer(planar_->renderer());
-  planar_.reset();
-  if (contact_) {
-    for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->RemoveRenderer(r);
+  for (auto& tab : view_tabs_) {
+    tab.available = false;
+    if (!tab.scene || tab.scene->resettable()) continue;  // a resettable scene lives as long as its widget
+    tab.scene->detach(tab.widget->renderWindow());
+    tab.scene.reset();
   }
-  contact_.reset();
   plot_channels_.clear();
   input_ = std::move(in);
   rebuild_tree();
@@ -400,7 +432,9 @@ void MainWindow::install(std::unique_ptr<ViewInput> in) {
   QString notes;
   for (const auto& n : input_->notes) notes += q(n) + "; ";
   status_->setText(QString("%1 loaded. %2").arg(q(input_->file), notes));
-  if (input_->is_wheel_test()) select_tab("Traction surface");
+  if (const ViewTab* surface = tab_where(&views::View::uses_surface_data); surface && input_->is_wheel_test()) {
+    tabs_->setCurrentWidget(surface->page);
+  }
   set_time(t0_);
 }
 
@@ -423,8 +457,8 @@ void MainWindow::add_plot_channel(const QString& stream, const QString& channel)
   const log::Stream* s = input_->log.find_stream(stream.toStdString());
   if (s == nullptr || s->find_channel(channel.toStdString()) == nullptr) return;
   const std::pair<std::string, std::string> ref{stream.toStdString(), channel.toStdString()};
-  if (plot_channels_.empty() && chart_) {  // the first pick adds to what is shown
-    for (const auto& c : chart_->channels()) plot_channels_.push_back({c.stream, c.channel});
+  if (plot_channels_.empty() && chart() != nullptr) {  // the first pick adds to what is shown
+    for (const auto& c : chart()->channels()) plot_channels_.push_back({c.stream, c.channel});
   }
   if (std::find(plot_channels_.begin(), plot_channels_.end(), ref) != plot_channels_.end()) return;
   plot_channels_.push_back(ref);
@@ -432,64 +466,19 @@ void MainWindow::add_plot_channel(const QString& stream, const QString& channel)
   set_time(time_);
 }
 
-void MainWindow::rebuild_views() {
+QWidget* MainWindow::rebuild_views() {
   if (!input_ || input_->is_wheel_test()) {
     t0_ = 0;
     t1_ = 1;
-    return;
+    return nullptr;
   }
-  const log::Log& lg = input_->log;
-  // Rover: the planar side view for rocker-bogie simulations, else the 3D one.
-  if (rover_) rover_widget_->renderWindow()->RemoveRenderer(rover_->renderer());
-  if (planar_) rover_widget_->renderWindow()->RemoveRenderer(planar_->renderer());
-  rover_.reset();
-  planar_.reset();
-  if (views::is_planar_rocker_bogie_log(lg)) {
-    planar_ = std::make_unique<views::PlanarRoverScene>(lg);
-    rover_widget_->renderWindow()->AddRenderer(planar_->renderer());
-  } else {
-    rover_ = std::make_unique<views::RoverScene>(lg, app::rover_geometry(lg));
-    rover_widget_->renderWindow()->AddRenderer(rover_->renderer());
-  }
-  // Contact angles when estimated.
-  if (contact_) {
-    for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->RemoveRenderer(r);
-    contact_.reset();
-  }
-  if (lg.find_stream("estimate/contact/wheels") != nullptr) {
-    try {
-      contact_ = std::make_unique<views::ContactAngleScene>(lg);
-      for (const auto& r : contact_->renderers()) contact_widget_->renderWindow()->AddRenderer(r);
-    } catch (const DataError&) {
-    }
-  }
-  // Plots: the chosen channels, or the defaults (slip when estimated).
-  std::vector<views::ChannelRef> refs;
-  for (const auto& [s, c] : plot_channels_) refs.push_back({s, c});
-  if (refs.empty()) {
-    const log::Stream* slip = lg.find_stream("estimate/ins/slip");
-    if (slip != nullptr && slip->find_channel("reference_slip") != nullptr) {
-      refs = {{"estimate/ins/slip", "slip_ratio"}, {"estimate/ins/slip", "reference_slip"}};
-    } else {
-      try {
-        refs = views::default_channels(lg);
-      } catch (const DataError&) {
-      }
-    }
-  }
-  if (!refs.empty()) {
-    // One chart (and context view) for the widget's lifetime: its interactor
-    // style keeps timers that must not outlive it.
-    if (chart_) {
-      chart_->reset(lg, refs);
-    } else {
-      chart_ = std::make_unique<views::TimeSeriesChart>(lg, refs);
-      chart_->view()->SetRenderWindow(plot_widget_->renderWindow());
-      chart_->view()->SetInteractor(plot_widget_->interactor());
-    }
-    chart_->set_window(chart_->start_time(), chart_->end_time(), static_cast<std::size_t>(std::max(400, plot_widget_->width())));
+  QWidget* shown = nullptr;
+  for (auto& tab : view_tabs_) {
+    if (tab.view->uses_surface_data()) continue;  // rebuild_surface: its own soil and quantity
+    if (rebuild_view(tab) && shown == nullptr) shown = tab.page;
   }
   // Timeline over every stream.
+  const log::Log& lg = input_->log;
   bool first = true;
   for (const auto& s : lg.streams()) {
     if (s.empty()) continue;
@@ -498,6 +487,45 @@ void MainWindow::rebuild_views() {
     first = false;
   }
   if (!(t1_ > t0_)) t1_ = t0_ + 1.0;
+  return shown;
+}
+
+// Builds the tab's scene from the log (the planar side view for rocker-bogie
+// simulations, plots of the chosen channels, ...), or resets it in place;
+// true when the view was not available before. A view the log cannot feed
+// keeps no scene, but a resettable one stays for its widget's lifetime.
+bool MainWindow::rebuild_view(ViewTab& tab) {
+  const log::Log& lg = input_->log;
+  views::SceneInput in;
+  in.log = &lg;
+  in.rover = app::rover_geometry(lg);
+  if (tab.view->uses_channels()) {
+    // The chosen channels, or the slip when estimated, or the view's defaults.
+    for (const auto& [s, c] : plot_channels_) in.channels.push_back({s, c});
+    const log::Stream* slip = lg.find_stream("estimate/ins/slip");
+    if (in.channels.empty() && slip != nullptr && slip->find_channel("reference_slip") != nullptr) {
+      in.channels = {{"estimate/ins/slip", "slip_ratio"}, {"estimate/ins/slip", "reference_slip"}};
+    }
+  }
+  vtkRenderWindow* window = tab.widget->renderWindow();
+  const bool was = tab.available;
+  tab.available = tab.view->needs(in).empty();
+  if (!tab.available) {
+    if (tab.scene && !tab.scene->resettable()) {
+      tab.scene->detach(window);
+      tab.scene.reset();
+    }
+    return false;
+  }
+  if (tab.scene && tab.scene->resettable()) {
+    tab.scene->reset(in);
+  } else {
+    if (tab.scene) tab.scene->detach(window);
+    tab.scene = tab.view->build(in);
+    tab.scene->attach(window);
+  }
+  tab.scene->fit_width(std::max(400, tab.widget->width()));
+  return !was;
 }
 
 namespace {
@@ -600,19 +628,19 @@ void MainWindow::fill_candidates(const nlohmann::json& r) {
 }
 
 void MainWindow::rebuild_surface() {
-  if (!input_) return;
-  auto* window = surface_widget_->renderWindow();
-  while (window->GetRenderers()->GetFirstRenderer() != nullptr) {
-    window->RemoveRenderer(window->GetRenderers()->GetFirstRenderer());
-  }
-  std::optional<std::string> soil;
-  if (surface_soil_->currentIndex() > 0) soil = surface_soil_->currentText().toStdString();
+  ViewTab* tab = tab_where(&views::View::uses_surface_data);
+  if (!input_ || tab == nullptr) return;
+  vtkRenderWindow* window = tab->widget->renderWindow();
+  if (tab->scene) tab->scene->detach(window);
+  tab->scene.reset();
+  app::ViewOptions o;
+  if (surface_soil_->currentIndex() > 0) o.soil = surface_soil_->currentText().toStdString();
+  o.quantity = surface_quantity_->currentText().toStdString();
   try {
-    const views::TractionSurfaceData d =
-        app::traction_surface_of(*input_, surface_quantity_->currentText().toStdString(), soil);
-    const views::TractionSurfaceScene scene = views::make_traction_surface_scene(d);
-    window->AddRenderer(scene.renderer);
-    surface_note_->setText(QString("%1: %2 points").arg(q(d.quantity)).arg(d.points.size()));
+    const views::SceneInput in = app::scene_input(*input_, *tab->view, o);
+    tab->scene = tab->view->build(in);
+    tab->scene->attach(window);
+    surface_note_->setText(QString("%1: %2 points").arg(q(in.surface->quantity)).arg(in.surface->points.size()));
   } catch (const std::exception& e) {
     surface_note_->setText(QString("Nothing to draw: ") + e.what());
   }
@@ -626,10 +654,9 @@ void MainWindow::set_time(double t) {
     slider_->setValue(static_cast<int>(std::lround((time_ - t0_) / (t1_ - t0_) * kSliderSteps)));
   }
   time_label_->setText(QString("t = %1 s / %2 s").arg(time_, 0, 'f', 2).arg(t1_, 0, 'f', 1));
-  if (rover_) rover_->set_time(time_);
-  if (planar_) planar_->set_time(time_);
-  if (chart_) chart_->set_cursor(time_);
-  if (contact_) contact_->set_time(time_);
+  for (auto& tab : view_tabs_) {
+    if (tab.scene) tab.scene->set_time(time_);
+  }
   render_views();
   emit time_changed(time_);
 }
@@ -642,9 +669,10 @@ void MainWindow::render_views() {
 
 void MainWindow::render_now() {
   QWidget* page = tabs_->currentWidget();
-  if (page == rover_widget_ && (rover_ || planar_)) rover_widget_->renderWindow()->Render();
-  if (page == plot_widget_ && chart_) plot_widget_->renderWindow()->Render();
-  if (page == contact_widget_ && contact_) contact_widget_->renderWindow()->Render();
+  for (auto& tab : view_tabs_) {
+    // The surface does not follow the timeline: its widget repaints itself.
+    if (tab.page == page && tab.scene && tab.scene->follows_time()) tab.widget->renderWindow()->Render();
+  }
 }
 
 void MainWindow::select_tab(const QString& name) {

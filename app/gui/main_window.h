@@ -31,9 +31,10 @@ class QMenu;
 
 namespace roverlab::views {
 class ContactAngleScene;
-class PlanarRoverScene;
 class RoverScene;
+class Scene;
 class TimeSeriesChart;
+class View;
 }  // namespace roverlab::views
 
 namespace roverlab::gui {
@@ -61,9 +62,10 @@ class MainWindow : public QMainWindow {
   void set_time(double t);
   double start_time() const { return t0_; }
   double end_time() const { return t1_; }
-  views::RoverScene* rover_scene() const { return rover_.get(); }
-  views::TimeSeriesChart* chart() const { return chart_.get(); }
-  views::ContactAngleScene* contact_scene() const { return contact_.get(); }
+  // The scenes of the view tabs (nullptr when the log cannot feed them).
+  views::RoverScene* rover_scene() const;
+  views::TimeSeriesChart* chart() const;
+  views::ContactAngleScene* contact_scene() const;
   // The last error shown in a dialog (empty when none).
   QString last_error() const { return last_error_; }
   // Errors go to a modal dialog unless quiet (tests, screenshots): then only to last_error.
@@ -81,9 +83,34 @@ class MainWindow : public QMainWindow {
   void dropEvent(QDropEvent* event) override;
 
  private:
+  // One tab per registered view (views/views.def): its page, the VTK widget
+  // on it and the scene it shows (none when the log cannot feed the view).
+  struct ViewTab {
+    const views::View* view = nullptr;
+    QWidget* page = nullptr;
+    QVTKOpenGLNativeWidget* widget = nullptr;
+    std::unique_ptr<views::Scene> scene;
+    bool available = false;  // the log feeds the view
+    ViewTab();
+    ViewTab(ViewTab&&) noexcept;
+    ~ViewTab();
+  };
+  template <typename T>
+  T* scene_as() const;
+  ViewTab* tab_where(bool (views::View::*uses)() const);
+
   void build_ui();
+  void build_menus();
+  void build_streams_dock();
+  void build_view_tabs();
+  QWidget* build_surface_page(QVTKOpenGLNativeWidget* widget);
+  void build_timeline();
+  void build_status_bar();
   void install(std::unique_ptr<ViewInput> input);
-  void rebuild_views();
+  // Rebuilds every view of the log; returns the page of the first view it
+  // made available (nullptr when none).
+  QWidget* rebuild_views();
+  bool rebuild_view(ViewTab& tab);
   void rebuild_tree();
   void rebuild_analysis();
   void rebuild_surface();
@@ -99,17 +126,10 @@ class MainWindow : public QMainWindow {
 
   std::unique_ptr<JobRunner> jobs_;
   std::unique_ptr<ViewInput> input_;
-  std::unique_ptr<views::RoverScene> rover_;
-  std::unique_ptr<views::TimeSeriesChart> chart_;
-  std::unique_ptr<views::ContactAngleScene> contact_;
-  std::unique_ptr<views::PlanarRoverScene> planar_;
+  std::vector<ViewTab> view_tabs_;
   std::vector<std::pair<std::string, std::string>> plot_channels_;
   QTabWidget* tabs_ = nullptr;
   QTreeWidget* tree_ = nullptr;
-  QVTKOpenGLNativeWidget* rover_widget_ = nullptr;
-  QVTKOpenGLNativeWidget* plot_widget_ = nullptr;
-  QVTKOpenGLNativeWidget* surface_widget_ = nullptr;
-  QVTKOpenGLNativeWidget* contact_widget_ = nullptr;
   QComboBox* surface_soil_ = nullptr;
   QComboBox* surface_quantity_ = nullptr;
   QLabel* surface_note_ = nullptr;

@@ -1,0 +1,112 @@
+#include "app/view_data.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "app/resources.h"
+#include "core/common/error.h"
+#include "core/terramechanics/model.h"
+#include "importers/rover_file.h"
+#include "importers/soil_file.h"
+#include "views/timeseries_chart.h"
+
+namespace roverlab::app {
+
+estimation::SkidSteerGeometry rover_geometry(const log::Log& lg) {
+  if (lg.metadata.rover_id.empty()) return {};
+  try {
+    const io::RoverDescription d = io::find_rover(lg.metadata.rover_id, resource_subfolders("rovers"));
+    if (d.skid_steer) return *d.skid_steer;
+  } catch (const InputError&) {
+  }
+  return {};
+}
+
+views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::string& quantity,
+                                               const std::optional<std::string>& soil_name,
+                                               terramechanics::SurfaceFit* fit_out) {
+  using namespace terramechanics;
+  if (quantity != "drawbar-pull" && quantity != "torque") {
+    throw std::invalid_argument("quantity must be drawbar-pull or torque");
+  }
+  const bool dp = quantity == "drawbar-pull";
+  views::TractionSurfaceData d;
+  d.quantity = dp ? "drawbar pull" : "resistive torque";
+  d.unit = dp ? "N" : "N m";
+  if (!in.is_wheel_test() && !soil_name) {
+    throw InputError(in.file, "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm) "
+                              "or --soil NAME for the model surface");
+  }
+  std::set<double> loads;
+  double load_lo = INFINITY, load_hi = -INFINITY;
+  for (const auto& p : in.wheel_points) {
+    const auto v = dp ? p.drawbar_pull : p.torque;
+    if (!v) continue;
+    d.points.push_back({p.load, p.slip, *v});
+    loads.insert(p.load);
+    load_lo = std::min(load_lo, p.load);
+    load_hi = std::max(load_hi, p.load);
+  }
+  if (in.is_wheel_test() && d.points.empty()) {
+    throw InputError(in.file, std::string("no ") + (dp ? "drawbar_pull_N" : "torque_Nm") + " values");
+  }
+  SurfaceFit fit;
+  if (soil_name) {
+    // The model surface: Wong-Reece on a grid, fitted as in seed 003 Appendix A.
+    const Soil soil = io::find_soil(*soil_name, resource_subfolders("soils"));
+    Wheel wheel{0.075, 0.07, 0, 0.0};  // Kapvik's wheel when no points say otherwise
+    if (!in.wheel_points.empty()) wheel = in.wheel_points.front().wheel;
+    d.load_min = std::isfinite(load_lo) ? 0.5 * load_lo : 10.0;
+    d.load_max = std::isfinite(load_hi) ? 1.5 * load_hi : 200.0;
+    std::vector<SurfaceSample> grid;
+    for (int i = 0; i < 40; ++i) {
+      for (int k = 0; k < 40; ++k) {
+        const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0, s = k / 39.0;
+        const Traction t = evaluate(soil, wheel, W, s, ModelOptions{});
+        if (t.ok()) grid.push_back({W, s, dp ? t.drawbar_pull : t.resistive_torque});
+      }
+    }
+    if (grid.size() < 30) throw InputError(in.file, "soil " + soil.name + " cannot carry these loads");
+    fit.surface = fit_surface(grid, 4);
+    fit.error = fit_error(fit.surface, grid);
+    d.quantity += " (" + soil.name + " model)";
+  } else {
+    if (loads.size() < 2) {
+      throw InputError(in.file, "all points are at one load: give --soil NAME to draw the model surface through them");
+    }
+    fit = fit_surface_cross_validated(d.points, 4);
+    d.load_min = load_lo;
+    d.load_max = load_hi;
+  }
+  d.surface = fit.surface;
+  if (fit_out) *fit_out = fit;
+  return d;
+}
+
+views::SceneInput scene_input(const ViewInput& in, const views::View& view, const ViewOptions& o) {
+  if (in.is_wheel_test() && !view.uses_surface_data()) {
+    throw InputError(in.file, "single-wheel test points are not a log: no " + view.name() + " view");
+  }
+  views::SceneInput s;
+  s.log = &in.log;
+  s.time = o.time;
+  if (view.uses_surface_data()) {
+    s.surface = traction_surface_of(in, o.quantity, o.soil);
+  } else {
+    s.rover = rover_geometry(in.log);
+  }
+  if (view.uses_channels()) {
+    s.channels = o.channels;
+    try {
+      if (o.channel_spec) s.channels = views::parse_channels(in.log, *o.channel_spec);
+    } catch (const DataError& e) {
+      throw InputError(in.file, e.what());
+    }
+  }
+  const std::string missing = view.needs(s);
+  if (!missing.empty()) throw InputError(in.file, missing);
+  return s;
+}
+
+}  // namespace roverlab::app
