@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <vtkDoubleArray.h>
+#include <vtkNew.h>
 
 namespace roverlab::views {
 
@@ -60,9 +61,9 @@ vtkSmartPointer<vtkTable> make_display_table(const log::Stream& stream, const st
                                              double t0, double t1, std::size_t buckets) {
   const log::Channel& c = stream.channel(channel);
   const DisplaySeries series = decimate_min_max(stream.time(), c.values, t0, t1, buckets);
-  auto time = vtkSmartPointer<vtkDoubleArray>::New();
+  vtkNew<vtkDoubleArray> time;
   time->SetName("time");
-  auto value = vtkSmartPointer<vtkDoubleArray>::New();
+  vtkNew<vtkDoubleArray> value;
   value->SetName(c.name.c_str());
   time->SetNumberOfValues(static_cast<vtkIdType>(series.time.size()));
   value->SetNumberOfValues(static_cast<vtkIdType>(series.value.size()));
@@ -70,7 +71,7 @@ vtkSmartPointer<vtkTable> make_display_table(const log::Stream& stream, const st
     time->SetValue(static_cast<vtkIdType>(i), series.time[i]);
     value->SetValue(static_cast<vtkIdType>(i), series.value[i]);
   }
-  auto table = vtkSmartPointer<vtkTable>::New();
+  vtkNew<vtkTable> table;
   table->AddColumn(time);
   table->AddColumn(value);
   return table;

@@ -1,6 +1,7 @@
 #include "views/offscreen.h"
 
 #include <vtkImageData.h>
+#include <vtkNew.h>
 #include <vtkPNGReader.h>
 #include <vtkPNGWriter.h>
 #include <vtkRenderWindow.h>
@@ -27,7 +28,7 @@ vtkSmartPointer<vtkRenderWindow> make_offscreen_window(int width, int height) {
 
 Image capture(vtkRenderWindow* window) {
   window->Render();
-  auto grab = vtkSmartPointer<vtkWindowToImageFilter>::New();
+  vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
@@ -50,7 +51,7 @@ Image capture(vtkRenderWindow* window) {
 }
 
 void write_png(const Image& img, const std::string& path) {
-  auto data = vtkSmartPointer<vtkImageData>::New();
+  vtkNew<vtkImageData> data;
   data->SetDimensions(img.width, img.height, 1);
   data->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
   auto* out = static_cast<unsigned char*>(data->GetScalarPointer());
@@ -58,7 +59,7 @@ void write_png(const Image& img, const std::string& path) {
     std::memcpy(out + 3 * static_cast<std::size_t>(img.height - 1 - y) * img.width,
                 &img.rgb[3 * static_cast<std::size_t>(y) * img.width], 3 * static_cast<std::size_t>(img.width));
   }
-  auto writer = vtkSmartPointer<vtkPNGWriter>::New();
+  vtkNew<vtkPNGWriter> writer;
   writer->SetFileName(path.c_str());
   writer->SetInputData(data);
   writer->Write();
@@ -66,7 +67,7 @@ void write_png(const Image& img, const std::string& path) {
 }
 
 Image read_png(const std::string& path) {
-  auto reader = vtkSmartPointer<vtkPNGReader>::New();
+  vtkNew<vtkPNGReader> reader;
   if (!reader->CanReadFile(path.c_str())) throw DataError(path + ": not a PNG file");
   reader->SetFileName(path.c_str());
   reader->Update();

@@ -3,7 +3,6 @@
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
 #include <vtkCamera.h>
-#include <vtkCellArray.h>
 #include <vtkCubeSource.h>
 #include <vtkCylinderSource.h>
 #include <vtkLegendBoxActor.h>
@@ -43,13 +42,13 @@ const std::vector<double>* channel(const log::Stream& s, const char* name) {
   return c ? &c->values : nullptr;
 }
 
+// A pose track on the ground at height z (its finite points).
 vtkSmartPointer<vtkActor> track_actor(const PoseTrack& tr, const Eigen::Vector3d& colour, double z) {
   std::vector<Eigen::Vector3d> points;
   for (std::size_t i = 0; i < tr.time.size(); ++i) {
     if (std::isfinite(tr.east[i] + tr.north[i])) points.emplace_back(tr.east[i], tr.north[i], z);
   }
-  auto a = line_actor(polyline(points), colour, 3.0);
-  return a;
+  return line_actor(polyline(points), colour, 3.0);
 }
 
 // Body (forward-right-down) to world (east-north-up) at a pose.
