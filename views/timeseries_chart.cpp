@@ -120,10 +120,6 @@ void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels
 
 TimeSeriesChart::~TimeSeriesChart() = default;
 
-void TimeSeriesChart::reset(const SceneInput& in) {
-  reset(*in.log, in.channels.empty() ? default_channels(*in.log) : in.channels);
-}
-
 vtkContextView* TimeSeriesChart::view() const { return view_; }
 
 void TimeSeriesChart::attach(vtkRenderWindow* window) {
@@ -255,6 +251,7 @@ class TimeSeriesView : public View {
   std::string heading() const override { return "Time series"; }
   bool uses_channels() const override { return true; }
   double report_height() const override { return 0.5; }
+  bool resets_scene() const override { return true; }
   std::string needs(const SceneInput& in) const override {
     for (const auto& c : in.channels) {
       const log::Stream* s = in.log->find_stream(c.stream);
@@ -272,7 +269,19 @@ class TimeSeriesView : public View {
 
  protected:
   std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {
-    return std::make_unique<TimeSeriesChart>(*in.log, in.channels.empty() ? default_channels(*in.log) : in.channels);
+    return std::make_unique<TimeSeriesChart>(*in.log, channels(in));
+  }
+  bool reset_scene(Scene& scene, const SceneInput& in) const override {
+    auto* chart = dynamic_cast<TimeSeriesChart*>(&scene);
+    if (chart == nullptr) return false;
+    chart->reset(*in.log, channels(in));
+    return true;
+  }
+
+ private:
+  // The channels asked for, else the log's defaults.
+  static std::vector<ChannelRef> channels(const SceneInput& in) {
+    return in.channels.empty() ? default_channels(*in.log) : in.channels;
   }
 };
 

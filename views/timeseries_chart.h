@@ -38,8 +38,6 @@ class TimeSeriesChart : public Scene {
   // Shows other channels (of this or another log) in the same view and chart;
   // the whole time range, cursor at the start.
   void reset(const log::Log& log, std::vector<ChannelRef> channels);
-  bool resettable() const override { return true; }
-  void reset(const SceneInput& input) override;
   vtkContextView* view() const;
   // Draws the context view in `window` (with the window's interactor, if any).
   void attach(vtkRenderWindow* window) override;

@@ -57,12 +57,6 @@ class Scene {
   virtual double default_time() const { return 0.5 * (start_time() + end_time()); }
   // What the log lacks for this view, one sentence each.
   virtual std::vector<std::string> notes() const { return {}; }
-  // True when reset() shows another input with the scene's own VTK objects:
-  // a GUI then keeps the scene for its widget's lifetime (a chart's
-  // interactor style holds timers that must not outlive it).
-  virtual bool resettable() const { return false; }
-  // Shows `input` (only when resettable(); else does nothing).
-  virtual void reset(const SceneInput& /*input*/) {}
 };
 
 class View {
@@ -78,6 +72,13 @@ class View {
   virtual std::string needs(const SceneInput& input) const = 0;
   // Builds the scene at the input's time. Call only when needs() is empty.
   std::unique_ptr<Scene> build(const SceneInput& input) const;
+  // True when reset() shows another input in a scene this view built, with
+  // the scene's own VTK objects: a GUI then keeps the scene for its widget's
+  // lifetime (a chart's interactor style holds timers that must not outlive it).
+  virtual bool resets_scene() const { return false; }
+  // Shows `input` in `scene` (built by this view) at the input's time; false
+  // when the view cannot (build a new scene). Call only when needs() is empty.
+  bool reset(Scene& scene, const SceneInput& input) const;
   // True when the view draws SceneInput::surface rather than the log.
   virtual bool uses_surface_data() const { return false; }
   // True when the view plots SceneInput::channels.
@@ -93,6 +94,8 @@ class View {
 
  protected:
   virtual std::unique_ptr<Scene> make_scene(const SceneInput& input) const = 0;
+  // Shows `input` in `scene`; views whose resets_scene() is true implement it.
+  virtual bool reset_scene(Scene& /*scene*/, const SceneInput& /*input*/) const { return false; }
 };
 
 // Every view, in the order of views/views.def.

@@ -12,6 +12,12 @@ std::unique_ptr<Scene> View::build(const SceneInput& input) const {
   return scene;
 }
 
+bool View::reset(Scene& scene, const SceneInput& input) const {
+  if (!reset_scene(scene, input)) return false;
+  if (scene.follows_time()) scene.set_time(input.time.value_or(scene.default_time()));
+  return true;
+}
+
 const std::vector<std::unique_ptr<View>>& all_views() {
   static const std::vector<std::unique_ptr<View>> views = [] {
     std::vector<std::unique_ptr<View>> v;

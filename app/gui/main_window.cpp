@@ -419,7 +419,7 @@ void MainWindow::install(std::unique_ptr<ViewInput> in) {
   play_->setChecked(false);
   for (auto& tab : view_tabs_) {
     tab.available = false;
-    if (!tab.scene || tab.scene->resettable()) continue;  // a resettable scene lives as long as its widget
+    if (!tab.scene || tab.view->resets_scene()) continue;  // a scene reset in place lives as long as its widget
     tab.scene->detach(tab.widget->renderWindow());
     tab.scene.reset();
   }
@@ -493,7 +493,8 @@ QWidget* MainWindow::rebuild_views() {
 // Builds the tab's scene from the log (the planar side view for rocker-bogie
 // simulations, plots of the chosen channels, ...), or resets it in place;
 // true when the view was not available before. A view the log cannot feed
-// keeps no scene, but a resettable one stays for its widget's lifetime.
+// keeps no scene, but one its view resets in place stays for the widget's
+// lifetime.
 bool MainWindow::rebuild_view(ViewTab& tab) {
   const log::Log& lg = input_->log;
   views::SceneInput in;
@@ -511,15 +512,13 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   const bool was = tab.available;
   tab.available = tab.view->needs(in).empty();
   if (!tab.available) {
-    if (tab.scene && !tab.scene->resettable()) {
+    if (tab.scene && !tab.view->resets_scene()) {
       tab.scene->detach(window);
       tab.scene.reset();
     }
     return false;
   }
-  if (tab.scene && tab.scene->resettable()) {
-    tab.scene->reset(in);
-  } else {
+  if (!tab.scene || !tab.view->reset(*tab.scene, in)) {
     if (tab.scene) tab.scene->detach(window);
     tab.scene = tab.view->build(in);
     tab.scene->attach(window);

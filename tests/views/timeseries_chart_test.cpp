@@ -57,16 +57,25 @@ TEST(TimeSeriesChart, DrawsTheStepWhereItsDataIsAndTheCursorAtItsTime) {
   EXPECT_NEAR(best_x, 0.75 * img.width, 0.12 * img.width);
 }
 
-TEST(TimeSeriesChart, ResetShowsOtherChannelsInTheSameView) {
+TEST(TimeSeriesChart, ItsViewResetsItWithOtherChannelsInTheSameContextView) {
   const log::Log lg = step();
-  views::TimeSeriesChart chart(lg, views::default_channels(lg));
-  vtkContextView* view = chart.view();
+  const views::View* plots = nullptr;
+  for (const auto& v : views::all_views()) {
+    if (v->uses_channels()) plots = v.get();
+  }
+  ASSERT_NE(plots, nullptr);
   views::SceneInput in;
   in.log = &lg;
+  ASSERT_EQ(plots->needs(in), "");
+  const std::unique_ptr<views::Scene> scene = plots->build(in);
+  auto* chart = dynamic_cast<views::TimeSeriesChart*>(scene.get());
+  ASSERT_NE(chart, nullptr);
+  EXPECT_EQ(chart->channels().size(), 1u);  // the log's default
+  EXPECT_DOUBLE_EQ(chart->default_time(), 0.0);
+  vtkContextView* view = chart->view();
   in.channels = {{"step", "x"}, {"step", "x"}};
-  ASSERT_TRUE(chart.resettable());
-  chart.reset(in);
-  EXPECT_EQ(chart.view(), view);
-  EXPECT_EQ(chart.channels().size(), 2u);
-  EXPECT_DOUBLE_EQ(chart.default_time(), 0.0);
+  ASSERT_TRUE(plots->resets_scene());
+  ASSERT_TRUE(plots->reset(*scene, in));
+  EXPECT_EQ(chart->view(), view);
+  EXPECT_EQ(chart->channels().size(), 2u);
 }
