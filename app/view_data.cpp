@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "app/resources.h"
@@ -39,7 +40,7 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
                               "or --soil NAME for the model surface");
   }
   std::set<double> loads;
-  double load_lo = INFINITY, load_hi = -INFINITY;
+  double load_lo = std::numeric_limits<double>::infinity(), load_hi = -load_lo;
   for (const auto& p : in.wheel_points) {
     const auto v = dp ? p.drawbar_pull : p.torque;
     if (!v) continue;

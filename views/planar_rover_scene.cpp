@@ -73,6 +73,7 @@ void PlanarRoverScene::add_terrain() {
     for (std::size_t k = 0; k < xs.size(); ++k) profile[std::round(xs[k] * 1000.0) / 1000.0] = zs[k] - p.radius;
   }
   std::vector<Eigen::Vector3d> points;
+  points.reserve(profile.size());
   for (const auto& [x, z] : profile) points.emplace_back(x, z, 0.0);
   p.renderer->AddActor(line_actor(segments(points), {0.55, 0.45, 0.3}, 4.0));
 }

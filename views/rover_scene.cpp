@@ -259,21 +259,21 @@ void RoverScene::read_log(const log::Log& lg) {
   Parts& p = *parts_;
   tracks_ = pose_tracks(lg);
   if (tracks_.empty()) {
-    notes_.push_back(pose_track_needs(lg));
+    notes_.emplace_back(pose_track_needs(lg));
   } else {
     pose_source_ = tracks_.front().source;
     start_ = tracks_.front().time.front();
     end_ = tracks_.front().time.back();
     if (pose_source_ == "gps" || pose_source_ == "estimate/odometry/pose") {
-      notes_.push_back("no attitude: roll and pitch are drawn level (run `roverlab estimate ins-slip`)");
+      notes_.emplace_back("no attitude: roll and pitch are drawn level (run `roverlab estimate ins-slip`)");
     }
   }
   p.slip = lg.find_stream("estimate/ins/slip");
   if (p.slip != nullptr && p.slip->find_channel("slip_class") == nullptr) p.slip = nullptr;
   p.truth_slip = lg.find_stream("truth/slip");
   if (p.truth_slip != nullptr && p.truth_slip->find_channel("slip_ratio") == nullptr) p.truth_slip = nullptr;
-  if (p.slip == nullptr) notes_.push_back("no slip estimate: wheels are grey");
-  notes_.push_back("no contact-angle or side-slip estimates for this rover (seed 000 estimator)");
+  if (p.slip == nullptr) notes_.emplace_back("no slip estimate: wheels are grey");
+  notes_.emplace_back("no contact-angle or side-slip estimates for this rover (seed 000 estimator)");
 }
 
 // A ground plane 5 m beyond every track, with a 2 m grid.

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/common/error.h"
 #include "views/display_series.h"
@@ -189,7 +190,7 @@ void TimeSeriesChart::refresh() {
   ranges_.clear();
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     vtkChartXY* chart = this->chart(g);
-    double lo = INFINITY, hi = -INFINITY;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t i : groups_[g]) {
       const auto& c = channels_[i];
       const log::Stream& s = log_->stream(c.stream);
@@ -215,7 +216,7 @@ void TimeSeriesChart::refresh() {
       hi += 0.5;
     }
     const double pad = 0.05 * (hi - lo);
-    ranges_.push_back({lo - pad, hi + pad});
+    ranges_.emplace_back(lo - pad, hi + pad);
     chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
     chart->GetAxis(vtkAxis::LEFT)->SetRange(lo - pad, hi + pad);
     chart->GetAxis(vtkAxis::BOTTOM)->SetBehavior(vtkAxis::FIXED);

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/common/error.h"
 #include "views/view.h"
@@ -70,20 +71,22 @@ namespace {
 struct SurfaceGrid {
   int n = 0;
   std::vector<double> values;
-  double lo = INFINITY, hi = -INFINITY;
+  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
+  double& at(int i, int j) { return values[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)]; }
+  double at(int i, int j) const { return values[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)]; }
 };
 
 SurfaceGrid sample_surface(const TractionSurfaceData& d, int grid) {
   SurfaceGrid g;
   g.n = std::max(grid, 4);
   const int n = g.n;
-  g.values.resize(static_cast<std::size_t>(n * n));
+  g.values.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double W = d.load_min + (d.load_max - d.load_min) * i / (n - 1);
       const double s = d.slip_min + (d.slip_max - d.slip_min) * j / (n - 1);
       const double x = d.surface(W, s);
-      g.values[static_cast<std::size_t>(i * n + j)] = x;
+      g.at(i, j) = x;
       g.lo = std::min(g.lo, x);
       g.hi = std::max(g.hi, x);
     }
@@ -114,7 +117,7 @@ vtkSmartPointer<vtkActor> surface_actor(const SurfaceGrid& g, const DisplayBox& 
   scalars->SetName(quantity.c_str());
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
-      const double x = g.values[static_cast<std::size_t>(i * n + j)];
+      const double x = g.at(i, j);
       points->InsertNextPoint(static_cast<double>(i) / (n - 1), static_cast<double>(j) / (n - 1), box.z(x));
       scalars->InsertNextValue(x);
     }
