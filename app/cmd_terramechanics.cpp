@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -261,7 +262,8 @@ int run_terramechanics_fit(const FitOptions& o) {
     if (samples.empty()) continue;
     any = true;
     const SurfaceFit fit = fit_with(samples, o.order);
-    double lmin = INFINITY, lmax = -INFINITY, smin = INFINITY, smax = -INFINITY;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    double lmin = kInf, lmax = -kInf, smin = kInf, smax = -kInf;
     for (const auto& s : samples) {
       lmin = std::min(lmin, s.load);
       lmax = std::max(lmax, s.load);

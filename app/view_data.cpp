@@ -17,7 +17,7 @@ namespace roverlab::app {
 estimation::SkidSteerGeometry rover_geometry(const log::Log& lg) {
   if (lg.metadata.rover_id.empty()) return {};
   try {
-    const io::RoverDescription d = io::find_rover(lg.metadata.rover_id, resource_subfolders("rovers"));
+    const io::RoverDescription d = io::find_rover_named(lg.metadata.rover_id, resource_subfolders("rovers"), "log");
     if (d.skid_steer) return *d.skid_steer;
   } catch (const InputError&) {
   }
