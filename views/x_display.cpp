@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -40,6 +41,8 @@ std::string find_in_path(const std::string& name) {
 
 }  // namespace
 
+int private_xvfb_pid() { return xvfb_pid; }
+
 std::string ensure_display() {
   const char* d = std::getenv("DISPLAY");
   if (d != nullptr && *d != '\0') return d;
@@ -49,9 +52,14 @@ std::string ensure_display() {
   if (xvfb.empty()) throw EnvironmentError(how);
   int fds[2];
   if (pipe(fds) != 0) throw EnvironmentError(how);
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw EnvironmentError(how);
   if (pid == 0) {
+    // Xvfb ends with its parent, however the parent ends (SIGKILL, a crash):
+    // no orphaned X server left on a CI machine.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(127);
     close(fds[0]);
     const int devnull = open("/dev/null", O_RDWR);
     if (devnull >= 0) {
