@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/log/time_checks.h"
 
 namespace roverlab::estimation {
 
@@ -33,11 +34,21 @@ ContactAngleEstimator::ContactAngleEstimator(const log::Log& log, const kinemati
   initial_state();
 }
 
+namespace {
+// The strapdown prediction cannot bridge an IMU gap longer than this, s.
+constexpr double kMaxImuGap = 1.0;
+// Joints and wheels must cover at least this share of the IMU's time span.
+constexpr double kMinOverlap = 0.5;
+}  // namespace
+
 void ContactAngleEstimator::read_channels() {
   imu_ = &log_.stream("imu");
   joints_ = &log_.stream("joints");
   wheels_ = &log_.stream("wheels");
   if (imu_->size() < 10) throw DataError("stream 'imu' has fewer than 10 samples");
+  log::require_no_gap(*imu_, kMaxImuGap);
+  log::require_overlap(*imu_, *joints_, kMinOverlap);
+  log::require_overlap(*imu_, *wheels_, kMinOverlap);
   const char* imu_names[6] = {"angular_rate_x", "angular_rate_y", "angular_rate_z", "specific_force_x", "specific_force_y", "specific_force_z"};
   for (const char* c : imu_names) imu_ch_.push_back(&imu_->channel(c).values);
   for (const auto& j : m_.joints) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/common/error.h"
+#include "core/log/time_checks.h"
 
 namespace roverlab::estimation {
 
@@ -37,12 +38,21 @@ InsSlipEstimator::InsSlipEstimator(const log::Log& log, const InsSlipOptions& op
   level();
 }
 
+namespace {
+// The strapdown mechanisation cannot bridge an IMU gap longer than this, s.
+constexpr double kMaxImuGap = 1.0;
+// The wheels must cover at least this share of the IMU's time span.
+constexpr double kMinOverlap = 0.5;
+}  // namespace
+
 void InsSlipEstimator::read_samples() {
   const std::string& imu_name = channels_.imu;
   imu_ = &log_.stream(imu_name);
   in_.wheels = &log_.stream(channels_.wheels);
   if (imu_->size() < 10) throw DataError("stream '" + imu_name + "' has fewer than 10 samples");
   if (in_.wheels->size() < 3) throw DataError("stream '" + channels_.wheels + "' has fewer than 3 samples");
+  log::require_no_gap(*imu_, kMaxImuGap);
+  log::require_overlap(*imu_, *in_.wheels, kMinOverlap);
   in_.fx = &values(*imu_, "specific_force_x");
   in_.fy = &values(*imu_, "specific_force_y");
   in_.fz = &values(*imu_, "specific_force_z");

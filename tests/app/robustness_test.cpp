@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "test_support.h"
 
@@ -123,6 +124,47 @@ TEST(Robustness, ALogsRoverIdIsANameNeverAPath) {
   const CommandResult r = run_roverlab("estimate contact-angle " + quote(sim));
   expect_one_line_bad_input(r, sim, "is not a rover name");
   EXPECT_EQ(r.err.find("root:"), std::string::npos) << r.err;
+}
+
+// Adds `offset` to the last (or every) time stamp of a stream of an open file.
+void shift_time(hid_t file, const std::string& stream, double offset, bool last_only) {
+  const std::string path = "/streams/" + stream + "/time";
+  const hid_t ds = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  ASSERT_GE(ds, 0);
+  const hid_t space = H5Dget_space(ds);
+  std::vector<double> t(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  ASSERT_GE(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.data()), 0);
+  if (last_only) {
+    t.back() = offset;
+  } else {
+    for (double& v : t) v += offset;
+  }
+  ASSERT_GE(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.data()), 0);
+  H5Sclose(space);
+  H5Dclose(ds);
+}
+
+TEST(Robustness, EstimatorsRefuseABrokenTimeBaseInsteadOfPrintingNaN) {
+  TempDir dir;
+  // F2: one absurd IMU time stamp.
+  const ConvertedLog log(dir);
+  log.edit([](hid_t f) { shift_time(f, "imu", 1e300, true); });
+  const CommandResult ins = run_roverlab("estimate ins-slip " + quote(log.path()));
+  expect_one_line_bad_input(ins, log.path(), "a gap of");
+  EXPECT_EQ(ins.out.find("nan"), std::string::npos) << ins.out;
+  // F6: the same for the contact-angle estimator; F7: joints an hour after the IMU.
+  const std::string gap = dir.file("gap.h5"), late = dir.file("late.h5");
+  for (const std::string& sim : {gap, late}) {
+    ASSERT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 50 -o " + quote(sim)).exit_code, 0);
+  }
+  hid_t f = H5Fopen(gap.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  shift_time(f, "imu", 1e300, true);
+  H5Fclose(f);
+  expect_one_line_bad_input(run_roverlab("estimate contact-angle " + quote(gap)), gap, "a gap of");
+  f = H5Fopen(late.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  shift_time(f, "joints", 3600.0, false);
+  H5Fclose(f);
+  expect_one_line_bad_input(run_roverlab("estimate contact-angle " + quote(late)), late, "do not share a time base");
 }
 
 TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
