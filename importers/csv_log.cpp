@@ -81,13 +81,13 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
         value = csv::parse_number(cell).value_or(value);
       } catch (const std::invalid_argument&) {
         throw InputError(path, where + ", column '" + columns[k].name + "': cannot parse '" +
-                                   cell + "' as a number");
+                                   csv::shown(cell) + "' as a number");
       }
       Column& c = columns[k];
       value = value * c.si.factor + c.si.offset;
       if (k == time_column) {
         if (!std::isfinite(value)) {
-          throw InputError(path, where + ": time is " + (cell.empty() ? "empty" : "'" + cell + "'") +
+          throw InputError(path, where + ": time is " + (cell.empty() ? "empty" : "'" + csv::shown(cell) + "'") +
                                      "; it must be a finite number");
         }
         if (!c.values.empty() && !(value > c.values.back())) {

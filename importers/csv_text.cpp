@@ -65,6 +65,12 @@ bool next_content_line(std::istream& in, std::string& line, int& line_number, co
   return false;
 }
 
+std::string shown(const std::string& cell) {
+  constexpr std::size_t kShown = 40;
+  if (cell.size() <= kShown) return cell;
+  return cell.substr(0, kShown) + "... (" + std::to_string(cell.size()) + " characters)";
+}
+
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> cells;
   std::size_t begin = 0;

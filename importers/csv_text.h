@@ -27,6 +27,10 @@ std::ifstream open_text_file(const std::string& path);
 // Throws InputError naming `path` for a NUL byte or a line over kMaxLineBytes.
 bool next_content_line(std::istream& in, std::string& line, int& line_number, const std::string& path);
 
+// A cell as an error message shows it: at most 40 characters (a
+// multi-megabyte cell is not echoed whole).
+std::string shown(const std::string& cell);
+
 // Cells of one line, split at every comma.
 std::vector<std::string_view> split(std::string_view line);
 

@@ -66,6 +66,11 @@ double Stream::mean_rate_hz() const {
   return size() < 2 ? 0.0 : static_cast<double>(size() - 1) / duration();
 }
 
+namespace {
+// Up to this many channels a scan beats hashing the name.
+constexpr std::size_t kLinearSearchChannels = 16;
+}  // namespace
+
 Channel& Stream::add_channel(std::string name, std::string unit, std::vector<double> values,
                              std::string description) {
   if (!is_valid_channel_name(name)) {
@@ -84,16 +89,21 @@ Channel& Stream::add_channel(std::string name, std::string unit, std::vector<dou
                     std::to_string(values.size()) + " samples but the time base has " +
                     std::to_string(time_.size()));
   }
+  index_.emplace(name, channels_.size());
   channels_.push_back(Channel{std::move(name), std::move(unit), std::move(description),
                               std::move(values)});
   return channels_.back();
 }
 
 const Channel* Stream::find_channel(std::string_view name) const {
-  for (const auto& c : channels_) {
-    if (c.name == name) return &c;
+  if (channels_.size() <= kLinearSearchChannels) {
+    for (const auto& c : channels_) {
+      if (c.name == name) return &c;
+    }
+    return nullptr;
   }
-  return nullptr;
+  const auto it = index_.find(std::string(name));
+  return it == index_.end() ? nullptr : &channels_[it->second];
 }
 
 const Channel& Stream::channel(std::string_view name) const {
@@ -153,6 +163,7 @@ Stream Stream::slice(double t0, double t1) const {
   const auto end = std::max(begin, static_cast<std::size_t>(last - time_.begin()));
   Stream out(name_, std::vector<double>(time_.begin() + begin, time_.begin() + end));
   for (const auto& c : channels_) {
+    out.index_.emplace(c.name, out.channels_.size());
     out.channels_.push_back(Channel{c.name, c.unit, c.description,
                                     std::vector<double>(c.values.begin() + begin,
                                                         c.values.begin() + end)});
