@@ -1,6 +1,7 @@
 #include "core/log/stream.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <sstream>
 
@@ -161,12 +162,12 @@ Stream Stream::slice(double t0, double t1) const {
   const auto last = std::upper_bound(time_.begin(), time_.end(), t1);
   const auto begin = static_cast<std::size_t>(first - time_.begin());
   const auto end = std::max(begin, static_cast<std::size_t>(last - time_.begin()));
-  Stream out(name_, std::vector<double>(time_.begin() + begin, time_.begin() + end));
+  const auto from = static_cast<std::ptrdiff_t>(begin), to = static_cast<std::ptrdiff_t>(end);
+  Stream out(name_, std::vector<double>(time_.begin() + from, time_.begin() + to));
   for (const auto& c : channels_) {
     out.index_.emplace(c.name, out.channels_.size());
     out.channels_.push_back(Channel{c.name, c.unit, c.description,
-                                    std::vector<double>(c.values.begin() + begin,
-                                                        c.values.begin() + end)});
+                                    std::vector<double>(c.values.begin() + from, c.values.begin() + to)});
   }
   return out;
 }

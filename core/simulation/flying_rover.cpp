@@ -76,95 +76,133 @@ FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinemat
   return s;
 }
 
+namespace {
+
+// The variance of joint j's angle (or rate) in the rover's noise table:
+// bogie joints first in the table, then the steering joints per wheel.
+double joint_variance(const kinematics::RoverModel& m, std::size_t j, bool of_rate) {
+  if (m.noise.bogie_angle.empty()) return 1e-12;  // no noise table
+  std::size_t b = 0;
+  for (std::size_t k = 0; k < m.joints.size(); ++k) {
+    if (m.joints[k].rfind("bogie", 0) != 0) continue;
+    if (k == j) return of_rate ? m.noise.bogie_rate[b] : m.noise.bogie_angle[b];
+    ++b;
+  }
+  for (std::size_t w = 0; w < m.wheels.size(); ++w) {
+    if (m.wheels[w].steer_joint == static_cast<int>(j)) return of_rate ? m.noise.steer_rate[w] : m.noise.steer_angle[w];
+  }
+  return 1e-12;
+}
+
+// The flying rover sampled at the scenario's rate: the sensors with the noise
+// of Table 6.1 and the truth from the kinematics, then the log's streams.
+class FlyingRoverSimulator {
+ public:
+  FlyingRoverSimulator(const kinematics::RoverModel& m, const FlyingRoverScenario& sc)
+      : m_(m),
+        sc_(sc),
+        nq_(m.joints.size()),
+        nw_(m.wheels.size()),
+        n_(static_cast<std::size_t>(std::llround(sc.duration * sc.rate)) + 1),
+        rng_(sc.seed),
+        t_(n_),
+        imu_(6, std::vector<double>(n_)),
+        joints_(2 * nq_, std::vector<double>(n_)),
+        wheel_rate_(nw_, std::vector<double>(n_)),
+        body_(6, std::vector<double>(n_, 0.0)),
+        truth_(3 * nw_, std::vector<double>(n_)) {}
+
+  log::Log run() {
+    for (std::size_t i = 0; i < n_; ++i) sample(i);
+    return streams();
+  }
+
+ private:
+  double noisy(double value, double variance) { return sc_.noise ? value + std::sqrt(variance) * unit_(rng_) : value; }
+  void sample(std::size_t i);
+  log::Log streams() const;
+
+  const kinematics::RoverModel& m_;
+  const FlyingRoverScenario& sc_;
+  const std::size_t nq_, nw_, n_;  // joints, wheels, samples
+  std::mt19937 rng_;
+  std::normal_distribution<double> unit_{0.0, 1.0};
+  std::vector<double> t_, q_, qd_;
+  std::vector<std::vector<double>> imu_, joints_, wheel_rate_, body_, truth_;
+};
+
+// Sample i: a level body at constant speed, so the IMU reads gravity only;
+// every wheel turns at speed / radius (section 6.3).
+void FlyingRoverSimulator::sample(std::size_t i) {
+  const Eigen::Vector3d v(sc_.speed, 0.0, 0.0), omega = Eigen::Vector3d::Zero();
+  const double rate = sc_.speed / m_.wheel_radius;
+  t_[i] = static_cast<double>(i) / sc_.rate;
+  sc_.joints(t_[i], q_, qd_);
+  for (int k = 0; k < 3; ++k) {
+    imu_[static_cast<std::size_t>(k)][i] = noisy(0.0, m_.noise.gyro[k]);
+    imu_[static_cast<std::size_t>(3 + k)][i] = noisy(k == 2 ? sc_.gravity : 0.0, m_.noise.accelerometer[k]);
+  }
+  for (std::size_t j = 0; j < nq_; ++j) {
+    joints_[j][i] = noisy(q_[j], joint_variance(m_, j, false));
+    joints_[nq_ + j][i] = noisy(qd_[j], joint_variance(m_, j, true));
+  }
+  body_[0][i] = sc_.speed;
+  for (std::size_t w = 0; w < nw_; ++w) {
+    wheel_rate_[w][i] = noisy(rate, m_.noise.wheel_rate.empty() ? 1e-12 : m_.noise.wheel_rate[w]);
+    const Eigen::Vector3d vd = kinematics::wheel_velocity<double>(m_, static_cast<int>(w), q_.data(), qd_.data(), v,
+                                                                  omega, 0.0, 0.0, kinematics::WheelFrame::drive);
+    const kinematics::WheelAngles a = kinematics::wheel_angles(vd);
+    truth_[w][i] = 1.0 - a.speed_in_plane / (rate * m_.wheel_radius);  // slip against v . x_c (section 5.3)
+    truth_[nw_ + w][i] = a.contact;
+    truth_[2 * nw_ + w][i] = a.side_slip;
+  }
+}
+
+log::Log FlyingRoverSimulator::streams() const {
+  log::Log out;
+  out.metadata.rover_id = m_.name;
+  out.metadata.description = "hypothetical flying-rover scenario '" + sc_.name + "' (seed 000 sections 6.3-6.4; RoverLab)";
+  out.metadata.extra["truth/generator"] = "flying-rover";
+  out.metadata.extra["truth/scenario"] = sc_.name;
+  out.metadata.extra["truth/seed"] = std::to_string(sc_.seed);
+  {
+    log::Stream s("imu", t_);
+    const char* names[6] = {"angular_rate_x", "angular_rate_y", "angular_rate_z", "specific_force_x", "specific_force_y", "specific_force_z"};
+    for (std::size_t k = 0; k < 6; ++k) {
+      s.add_channel(names[k], k < 3 ? "rad/s" : "m/s^2", imu_[k], "rover body axes (x forward, y left, z up)");
+    }
+    out.add_stream(std::move(s));
+  }
+  {
+    log::Stream s("joints", t_);
+    for (std::size_t j = 0; j < nq_; ++j) s.add_channel(m_.joints[j], "rad", joints_[j]);
+    for (std::size_t j = 0; j < nq_; ++j) s.add_channel(m_.joints[j] + "_rate", "rad/s", joints_[nq_ + j]);
+    out.add_stream(std::move(s));
+  }
+  {
+    log::Stream s("wheels", t_);
+    for (std::size_t w = 0; w < nw_; ++w) s.add_channel("rate_" + m_.wheels[w].name, "rad/s", wheel_rate_[w]);
+    out.add_stream(std::move(s));
+  }
+  {
+    log::Stream s("truth/body", t_);
+    const char* names[6] = {"velocity_x", "velocity_y", "velocity_z", "roll", "pitch", "yaw"};
+    for (std::size_t k = 0; k < 6; ++k) s.add_channel(names[k], k < 3 ? "m/s" : "rad", body_[k]);
+    out.add_stream(std::move(s));
+  }
+  log::Stream s("truth/wheels", t_);
+  for (std::size_t w = 0; w < nw_; ++w) s.add_channel("slip_" + m_.wheels[w].name, "1", truth_[w]);
+  for (std::size_t w = 0; w < nw_; ++w) s.add_channel("contact_angle_" + m_.wheels[w].name, "rad", truth_[nw_ + w]);
+  for (std::size_t w = 0; w < nw_; ++w) s.add_channel("side_slip_" + m_.wheels[w].name, "rad", truth_[2 * nw_ + w]);
+  out.add_stream(std::move(s));
+  return out;
+}
+
+}  // namespace
+
 log::Log simulate_flying_rover(const kinematics::RoverModel& m, const FlyingRoverScenario& sc) {
   if (!sc.joints) throw DataError("scenario without joint motion");
-  const std::size_t nq = m.joints.size(), nw = m.wheels.size();
-  const auto n = static_cast<std::size_t>(std::llround(sc.duration * sc.rate)) + 1;
-  std::mt19937 rng(sc.seed);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  auto noisy = [&](double value, double variance) { return sc.noise ? value + std::sqrt(variance) * unit(rng) : value; };
-  std::vector<double> t(n);
-  std::vector<std::vector<double>> imu(6, std::vector<double>(n)), joints(2 * nq, std::vector<double>(n)),
-      wheel_rate(nw, std::vector<double>(n)), body(6, std::vector<double>(n, 0.0)),
-      truth(3 * nw, std::vector<double>(n));
-  std::vector<double> q, qd;
-  const Eigen::Vector3d v(sc.speed, 0.0, 0.0), omega = Eigen::Vector3d::Zero();
-  const double rate = sc.speed / m.wheel_radius;  // the same for every wheel (section 6.3)
-  auto bogie_variance = [&](std::size_t j, bool of_rate) {
-    // Bogie joints come first in the noise table, steering joints per wheel.
-    std::size_t b = 0;
-    for (std::size_t k = 0; k < nq; ++k) {
-      if (m.joints[k].rfind("bogie", 0) != 0) continue;
-      if (k == j) return of_rate ? m.noise.bogie_rate[b] : m.noise.bogie_angle[b];
-      ++b;
-    }
-    for (std::size_t w = 0; w < nw; ++w) {
-      if (m.wheels[w].steer_joint == static_cast<int>(j)) return of_rate ? m.noise.steer_rate[w] : m.noise.steer_angle[w];
-    }
-    return 1e-12;
-  };
-  const bool have_noise_table = !m.noise.bogie_angle.empty();
-  for (std::size_t i = 0; i < n; ++i) {
-    t[i] = static_cast<double>(i) / sc.rate;
-    sc.joints(t[i], q, qd);
-    for (int k = 0; k < 3; ++k) {
-      imu[static_cast<std::size_t>(k)][i] = noisy(0.0, m.noise.gyro[k]);
-      imu[static_cast<std::size_t>(3 + k)][i] = noisy(k == 2 ? sc.gravity : 0.0, m.noise.accelerometer[k]);
-    }
-    for (std::size_t j = 0; j < nq; ++j) {
-      joints[j][i] = noisy(q[j], have_noise_table ? bogie_variance(j, false) : 1e-12);
-      joints[nq + j][i] = noisy(qd[j], have_noise_table ? bogie_variance(j, true) : 1e-12);
-    }
-    body[0][i] = sc.speed;
-    for (std::size_t w = 0; w < nw; ++w) {
-      wheel_rate[w][i] = noisy(rate, m.noise.wheel_rate.empty() ? 1e-12 : m.noise.wheel_rate[w]);
-      const Eigen::Vector3d vd = kinematics::wheel_velocity<double>(m, static_cast<int>(w), q.data(), qd.data(), v, omega,
-                                                                    0.0, 0.0, kinematics::WheelFrame::drive);
-      const kinematics::WheelAngles a = kinematics::wheel_angles(vd);
-      truth[w][i] = 1.0 - a.speed_in_plane / (rate * m.wheel_radius);  // slip against v . x_c (section 5.3)
-      truth[nw + w][i] = a.contact;
-      truth[2 * nw + w][i] = a.side_slip;
-    }
-  }
-  log::Log out;
-  out.metadata.rover_id = m.name;
-  out.metadata.description = "hypothetical flying-rover scenario '" + sc.name + "' (seed 000 sections 6.3-6.4; RoverLab)";
-  out.metadata.extra["truth/generator"] = "flying-rover";
-  out.metadata.extra["truth/scenario"] = sc.name;
-  out.metadata.extra["truth/seed"] = std::to_string(sc.seed);
-  {
-    log::Stream s("imu", t);
-    const char* names[6] = {"angular_rate_x", "angular_rate_y", "angular_rate_z", "specific_force_x", "specific_force_y", "specific_force_z"};
-    for (int k = 0; k < 6; ++k) {
-      s.add_channel(names[k], k < 3 ? "rad/s" : "m/s^2", imu[static_cast<std::size_t>(k)], "rover body axes (x forward, y left, z up)");
-    }
-    out.add_stream(std::move(s));
-  }
-  {
-    log::Stream s("joints", t);
-    for (std::size_t j = 0; j < nq; ++j) s.add_channel(m.joints[j], "rad", joints[j]);
-    for (std::size_t j = 0; j < nq; ++j) s.add_channel(m.joints[j] + "_rate", "rad/s", joints[nq + j]);
-    out.add_stream(std::move(s));
-  }
-  {
-    log::Stream s("wheels", t);
-    for (std::size_t w = 0; w < nw; ++w) s.add_channel("rate_" + m.wheels[w].name, "rad/s", wheel_rate[w]);
-    out.add_stream(std::move(s));
-  }
-  {
-    log::Stream s("truth/body", t);
-    const char* names[6] = {"velocity_x", "velocity_y", "velocity_z", "roll", "pitch", "yaw"};
-    for (int k = 0; k < 6; ++k) s.add_channel(names[k], k < 3 ? "m/s" : "rad", body[static_cast<std::size_t>(k)]);
-    out.add_stream(std::move(s));
-  }
-  {
-    log::Stream s("truth/wheels", t);
-    for (std::size_t w = 0; w < nw; ++w) s.add_channel("slip_" + m.wheels[w].name, "1", truth[w]);
-    for (std::size_t w = 0; w < nw; ++w) s.add_channel("contact_angle_" + m.wheels[w].name, "rad", truth[nw + w]);
-    for (std::size_t w = 0; w < nw; ++w) s.add_channel("side_slip_" + m.wheels[w].name, "rad", truth[2 * nw + w]);
-    out.add_stream(std::move(s));
-  }
-  return out;
+  return FlyingRoverSimulator(m, sc).run();
 }
 
 }  // namespace roverlab::simulation

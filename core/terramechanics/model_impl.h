@@ -243,7 +243,7 @@ Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOption
   if (s >= 0.0) return solve(p, w, o, s, load);
   Solution<T> mirrored = solve(p, w, o, -s, load);
   if (mirrored.status != TractionStatus::ok) return mirrored;
-  const Solution<T> zero = solve(p, w, o, 0.0, load);
+  Solution<T> zero = solve(p, w, o, 0.0, load);
   if (zero.status != TractionStatus::ok) return zero;
   mirrored.drawbar = -mirrored.drawbar + 2.0 * zero.drawbar;  // Eq. 2.26
   mirrored.torque = -mirrored.torque + 2.0 * zero.torque;     // Eq. 2.27

@@ -124,7 +124,7 @@ Bounds default_bounds(Parameter p) {
   for (const auto& row : kParameters) {
     if (row.p == p) return row.bounds;
   }
-  return {-INFINITY, INFINITY};
+  return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 }
 
 double get_parameter(const Soil& s, const Extensions& e, Parameter p) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/simulation/rocker_bogie.h"
+#include "core/simulation/rocker_bogie_dynamics.h"
 #include "importers/soil_file.h"
 
 using namespace roverlab;
@@ -164,4 +165,42 @@ TEST(RockerBogie, SteadySlipOnFlatGroundIsWhereTheTerramechanicsBalances) {
     EXPECT_NEAR(torque, expected, 0.05 * std::abs(expected) + 0.02) << i;
     EXPECT_NEAR(w.channel("sinkage_" + n).values[k], model.sinkage, 0.1 * model.sinkage) << i;
   }
+}
+
+// The model apart from the simulator (core/simulation/rocker_bogie_dynamics.h).
+TEST(RockerBogieDynamics, TheVelocityJacobiansAreTheDerivativesOfThePositions) {
+  namespace rb = simulation::rocker_bogie;
+  const simulation::PlanarRockerBogieGeometry g;
+  const simulation::RockerBogieParameters p;
+  rb::Vec q;
+  q << 0.3, 0.2, 0.1, -0.2, 1.0, 2.0, 3.0;
+  const rb::Kinematics k = rb::kinematics(g, p, q);
+  const double h = 1e-6;
+  for (int c = 0; c < rb::N; ++c) {
+    rb::Vec d = rb::Vec::Zero();
+    d(c) = h;
+    const rb::Kinematics kp = rb::kinematics(g, p, q + d), km = rb::kinematics(g, p, q - d);
+    EXPECT_LT(((kp.bogie_com - km.bogie_com) / (2 * h) - k.J_bogie.col(c)).norm(), 1e-8) << c;
+    for (int i = 0; i < 3; ++i) EXPECT_LT(((kp.wheel[i] - km.wheel[i]) / (2 * h) - k.J_wheel[i].col(c)).norm(), 1e-8) << c;
+  }
+}
+
+TEST(RockerBogieDynamics, APlacedRoverAtRestStaysThereWithTheConstraintsCarryingItsWeight) {
+  namespace rb = simulation::rocker_bogie;
+  const simulation::PlanarRockerBogieGeometry g;
+  const simulation::RockerBogieParameters p;
+  const auto run = flat_run(1.0);
+  rb::Dynamics dynamics(g, p, run);
+  rb::Vec q, qd = rb::Vec::Zero(), qdd;
+  q << -0.35, 0.175, 0, 0, 0, 0, 0;  // wheel 1 at x = 0; all three wheel centres on z = 0
+  rb::DynamicsReport report;
+  dynamics.accelerations(q, qd, qdd, &report);  // no normal load held yet: no traction
+  EXPECT_LT(qdd.norm(), 1e-9);
+  const double weight = (p.body_mass + p.bogie_mass + 3 * p.wheel_mass) * p.gravity;
+  EXPECT_NEAR(report.lambda.sum(), weight, 1e-9 * weight);
+  // The Odeint system is [qdd; qd] of the same model.
+  rb::State x(2 * rb::N), dx(2 * rb::N);
+  for (int i = 0; i < rb::N; ++i) x[static_cast<std::size_t>(rb::N + i)] = q(i);
+  rb::OdeSystem{&dynamics}(x, dx, 0.0);
+  for (int i = 0; i < rb::N; ++i) EXPECT_EQ(dx[static_cast<std::size_t>(i)], qdd(i));
 }

@@ -1,0 +1,230 @@
+#include "core/simulation/rocker_bogie_dynamics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "core/common/error.h"
+
+namespace roverlab::simulation::rocker_bogie {
+
+namespace {
+
+// Derivative of the clockwise rotation with respect to its angle.
+Vec2 drotate(double a, const Vec2& v) { return {-std::sin(a) * v.x() + std::cos(a) * v.y(), -std::cos(a) * v.x() - std::sin(a) * v.y()}; }
+
+void set_translation_base(Jac& J) {
+  J.setZero();
+  J(0, 0) = 1;
+  J(1, 1) = 1;
+}
+
+}  // namespace
+
+Vec2 rotate(double a, const Vec2& v) { return {std::cos(a) * v.x() + std::sin(a) * v.y(), -std::sin(a) * v.x() + std::cos(a) * v.y()}; }
+
+Kinematics kinematics(const PlanarRockerBogieGeometry& g, const RockerBogieParameters& p, const Vec& q) {
+  Kinematics k;
+  const Vec2 r0(q(0), q(1));
+  const double th = q(2), tb = q(2) + q(3);
+  const Vec2 pivot = r0 + rotate(th, g.rocker_to_bogie);
+  k.body = r0;
+  k.bogie_com = pivot + rotate(tb, p.bogie_com);
+  k.wheel[0] = r0 + rotate(th, g.rocker_to_wheel1);
+  k.wheel[1] = pivot + rotate(tb, g.bogie_to_wheel2);
+  k.wheel[2] = pivot + rotate(tb, g.bogie_to_wheel3);
+  set_translation_base(k.J_body);
+  set_translation_base(k.J_bogie);
+  k.J_bogie.col(2) = drotate(th, g.rocker_to_bogie) + drotate(tb, p.bogie_com);
+  k.J_bogie.col(3) = drotate(tb, p.bogie_com);
+  set_translation_base(k.J_wheel[0]);
+  k.J_wheel[0].col(2) = drotate(th, g.rocker_to_wheel1);
+  for (int i = 1; i < 3; ++i) {
+    const Vec2& l = i == 1 ? g.bogie_to_wheel2 : g.bogie_to_wheel3;
+    set_translation_base(k.J_wheel[i]);
+    k.J_wheel[i].col(2) = drotate(th, g.rocker_to_bogie) + drotate(tb, l);
+    k.J_wheel[i].col(3) = drotate(tb, l);
+  }
+  k.W_body.setZero();
+  k.W_body(2) = 1;
+  k.W_bogie = k.W_body;
+  k.W_bogie(3) = 1;
+  k.W_wheel[0] = k.W_body;
+  k.W_wheel[0](4) = 1;
+  for (int i = 1; i < 3; ++i) {
+    k.W_wheel[i] = k.W_bogie;
+    k.W_wheel[i](4 + i) = 1;
+  }
+  return k;
+}
+
+// Eq. 4.29, with the drivetrain's reflected inertia on each wheel joint.
+Mat inertia(const Kinematics& k, const RockerBogieParameters& p) {
+  Mat H = p.body_mass * k.J_body.transpose() * k.J_body + p.body_inertia * k.W_body.transpose() * k.W_body;
+  H += p.bogie_mass * k.J_bogie.transpose() * k.J_bogie + p.bogie_inertia * k.W_bogie.transpose() * k.W_bogie;
+  for (int i = 0; i < 3; ++i) {
+    H += p.wheel_mass * k.J_wheel[i].transpose() * k.J_wheel[i] + p.wheel_inertia * k.W_wheel[i].transpose() * k.W_wheel[i];
+    H(4 + i, 4 + i) += p.wheel_gear_inertia - p.wheel_inertia;
+  }
+  return H;
+}
+
+TractionModel::TractionModel(const PlanarRockerBogieGeometry& g, const RockerBogieRun& run, bool with_effects)
+    : soil_(&run.soil), source_(run.traction) {
+  const RockerBogieEffects& fx = run.effects;
+  wheel_ = {g.wheel_radius * (with_effects ? fx.wheel_radius_scale : 1.0), g.wheel_width, 0, 0.0};
+  if (with_effects) {
+    options_.extensions.soil_strength = fx.soil_strength;
+    options_.extensions.slip_sinkage_n1 = fx.slip_sinkage_n1;
+    if (fx.grouser_height > 0) {
+      wheel_.grouser_count = 24;
+      wheel_.grouser_height = fx.grouser_height;
+      options_.extensions.grousers = true;
+    }
+  }
+  if (source_ == TractionSource::polynomial) fit_surrogate();
+}
+
+// Seed 003 Appendix A: order-5 surfaces over 1..150 N and slips -1..1.
+void TractionModel::fit_surrogate() {
+  std::vector<terramechanics::SurfaceSample> dp, tau, sink;
+  for (int i = 0; i < 40; ++i) {
+    for (int k = 0; k < 41; ++k) {
+      const double W = 1.0 + 149.0 * i / 39.0, s = -1.0 + 2.0 * k / 40.0;
+      const auto t = terramechanics::evaluate(*soil_, wheel_, W, s, options_);
+      if (!t.ok()) continue;
+      dp.push_back({W, s, t.drawbar_pull});
+      tau.push_back({W, s, t.resistive_torque});
+      sink.push_back({W, s, t.sinkage});
+    }
+  }
+  if (dp.size() < 50) throw DataError("soil " + soil_->name + " cannot carry the rover's wheel loads");
+  dp_ = terramechanics::fit_surface(dp, 5);
+  tau_ = terramechanics::fit_surface(tau, 5);
+  sinkage_ = terramechanics::fit_surface(sink, 5);
+}
+
+WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std::size_t& unsupported) const {
+  WheelTraction out;
+  if (!(W > 0.0)) return out;
+  if (source_ == TractionSource::polynomial) {
+    W = std::min(W, 150.0);  // the surrogate's fitted range
+    out.drawbar_pull = dp_(W, s);
+    out.resistive_torque = tau_(W, s);
+    if (with_sinkage) out.sinkage = sinkage_(W, s);
+    return out;
+  }
+  const auto t = terramechanics::evaluate(*soil_, wheel_, W, s, options_);
+  if (!t.ok()) {
+    ++unsupported;
+    out.sinkage = NAN;
+    return out;
+  }
+  out.drawbar_pull = t.drawbar_pull;
+  out.resistive_torque = t.resistive_torque;
+  out.sinkage = t.sinkage;
+  return out;
+}
+
+Dynamics::Dynamics(const PlanarRockerBogieGeometry& g, const RockerBogieParameters& p, const RockerBogieRun& run)
+    : g_(g), p_(p), run_(run), nominal_(g, run, false), changed_(g, run, true) {}
+
+void Dynamics::hold(const Eigen::Vector3d& torque, const Eigen::Vector3d& normal) {
+  torque_ = torque;
+  normal_ = normal;
+}
+
+const TractionModel& Dynamics::model_at(double x) const { return x >= run_.effects.effect_start_x ? changed_ : nominal_; }
+
+// Eq. 4.49-4.50: [H Psi_q^T; Psi_q 0] [qdd; -lambda] = [tau_a - Hdot qd; Baumgarte right-hand side].
+void Dynamics::accelerations(const Vec& q, const Vec& qd, Vec& qdd, DynamicsReport* report) {
+  const Kinematics k = kinematics(g_, p_, q);
+  const Mat H = inertia(k, p_);
+  const double h = 1e-6;
+  const Mat Hdot = (inertia(kinematics(g_, p_, q + h * qd), p_) - inertia(kinematics(g_, p_, q - h * qd), p_)) / (2 * h);
+  const Kinematics kp = kinematics(g_, p_, q + h * qd), km = kinematics(g_, p_, q - h * qd);
+  Vec tau_a = Vec::Zero();
+  // Gravity: -dV/dPhi (Eq. 4.37).
+  tau_a -= p_.gravity * (p_.body_mass * k.J_body.row(1) + p_.bogie_mass * k.J_bogie.row(1)).transpose();
+  Constraints c;
+  for (int i = 0; i < 3; ++i) wheel(i, k, kp, km, h, qd, tau_a, c, report);
+  Eigen::Matrix<double, N + 3, N + 3> A = Eigen::Matrix<double, N + 3, N + 3>::Zero();
+  A.topLeftCorner<N, N>() = H;
+  A.topRightCorner<N, 3>() = c.Psi_q.transpose();
+  A.bottomLeftCorner<3, N>() = c.Psi_q;
+  Eigen::Matrix<double, N + 3, 1> b;
+  b.head<N>() = tau_a - Hdot * qd;
+  b.tail<3>() = -c.Psidot_qd - 2 * p_.baumgarte_alpha * (c.Psi_q * qd) - p_.baumgarte_beta * p_.baumgarte_beta * c.Psi;  // Eq. 4.17
+  const Eigen::Matrix<double, N + 3, 1> x = A.partialPivLu().solve(b);
+  qdd = x.head<N>();
+  if (report) {
+    report->lambda = -x.tail<3>();
+    report->qdd = qdd;
+  }
+}
+
+void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h, const Vec& qd,
+                     Vec& tau_a, Constraints& con, DynamicsReport* report) {
+  tau_a -= p_.gravity * p_.wheel_mass * k.J_wheel[i].row(1).transpose();
+  const Vec2 c = k.wheel[i];
+  const Vec2 v = k.J_wheel[i] * qd;
+  const Vec2 a = ((kp.J_wheel[i] - km.J_wheel[i]) / (2 * h)) * qd;  // Jdot qdot
+  const double z1 = run_.path.dz(c.x()), z2 = run_.path.ddz(c.x());
+  con.Psi(i) = c.y() - run_.path.z(c.x());                          // Eq. 4.33
+  con.Psi_q.row(i) = k.J_wheel[i].row(1) - z1 * k.J_wheel[i].row(0);
+  con.Psidot_qd(i) = a.y() - z2 * v.x() * v.x() - z1 * a.x();
+  // Traction at the wheel (Eq. 4.40-4.47): contact angle from the path's slope.
+  const double gamma = std::atan(z1);
+  const Vec2 t(std::cos(gamma), std::sin(gamma));
+  const double v_t = v.dot(t);
+  const double omega = k.W_wheel[i] * qd;  // absolute wheel rate, clockwise = forward rolling
+  // Slip (Eq. 2.23) or skid (Eq. 2.26) in the wheel's sense of rotation
+  // (a wheel turning backwards sees the mirror image of the forward
+  // traction). The steady-state traction of the terramechanics model
+  // needs relative motion: it fades in over the first few mm/s of rim or
+  // centre speed (tanh), so that a wheel at rest is not turned backwards
+  // by its own resistive torque and the forces stay smooth through
+  // standstill; a rover sliding back with its wheels still sees full slip.
+  const TractionModel& model = model_at(c.x());
+  const double roll_signed = omega * model.radius();
+  const double dir = roll_signed < 0.0 ? -1.0 : 1.0;
+  const double fade = std::tanh(std::max(std::abs(roll_signed), std::abs(v_t)) / 0.004);
+  const double roll = dir * roll_signed, vt = dir * v_t;
+  const double den = std::max({std::abs(roll), std::abs(vt), 1e-6});
+  const double s = std::clamp((roll - vt) / den, -1.0, 1.0);
+  const double W = normal_(i) > 0 ? normal_(i) / std::cos(gamma) : 0.0;  // Eq. 4.38, held over the step
+  const WheelTraction traction = model.evaluate(W, s, report != nullptr, unsupported_);
+  const double dp = traction.drawbar_pull * (dir * fade);
+  const double tr = traction.resistive_torque * (dir * fade);
+  tau_a += k.J_wheel[i].transpose() * (dp * t);            // Eq. 4.43
+  tau_a -= k.W_wheel[i].transpose() * tr;                   // Eq. 4.42: resists the wheel's rotation
+  tau_a(4 + i) += torque_(i) - p_.wheel_damping * qd(4 + i);  // Eq. 4.46
+  if (report) {
+    report->slip(i) = s;
+    report->dp(i) = dp;
+    report->tau(i) = tr;
+    report->gamma(i) = gamma;
+    report->rate(i) = omega;
+    report->sinkage(i) = traction.sinkage;
+  }
+}
+
+void split_state(const State& x, Vec& q, Vec& qd) {
+  for (int i = 0; i < N; ++i) {
+    qd(i) = x[static_cast<std::size_t>(i)];
+    q(i) = x[N + static_cast<std::size_t>(i)];
+  }
+}
+
+void OdeSystem::operator()(const State& x, State& dx, double /*t*/) const {
+  Vec q, qd, qdd;
+  split_state(x, q, qd);
+  dynamics->accelerations(q, qd, qdd, nullptr);
+  for (int i = 0; i < N; ++i) {
+    dx[static_cast<std::size_t>(i)] = qdd(i);
+    dx[N + static_cast<std::size_t>(i)] = qd(i);
+  }
+}
+
+}  // namespace roverlab::simulation::rocker_bogie
