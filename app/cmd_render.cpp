@@ -8,6 +8,7 @@
 #include "app/analysis.h"
 #include "app/command.h"
 #include "app/commands.h"
+#include "app/command_support.h"
 #include "app/render_view.h"
 #include "app/views_input.h"
 #include "views/view.h"
@@ -83,12 +84,14 @@ Commands make_render_commands() {
         cmd.add_option("FILE", o.file, "Log (HDF5, .mat with --mapping, CSV) or single-wheel CSV")->required();
         cmd.add_option("--mapping,-m", o.mapping, "Mapping NAME or FILE for .mat/HDF5 input");
         cmd.add_option("--view", o.view, views::view_names(" | ", " | "))->capture_default_str();
-        cmd.add_option("--time,-t", o.time, "Time shown, s (default: mid-log)");
+        cmd.add_option("--time,-t", o.time, "Time shown, s (default: mid-log)")->check(finite_in(-1e12, 1e12));
         const std::string plots = views_that(&views::View::uses_channels);
         const std::string surfaces = views_that(&views::View::uses_surface_data);
         cmd.add_option("--channels", o.channels, plots + ": stream:channel,... (a stream alone: all its channels)");
         cmd.add_option("--soil", o.soil, surfaces + ": draw the Wong-Reece model surface of soil NAME|FILE");
-        cmd.add_option("--quantity", o.quantity, surfaces + ": drawbar-pull | torque")->capture_default_str();
+        cmd.add_option("--quantity", o.quantity, surfaces + ": drawbar-pull | torque")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"drawbar-pull", "torque"}));
         cmd.add_option("--size", o.size, "WxH pixels")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "OUT.png")->required();
       },

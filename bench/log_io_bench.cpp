@@ -164,4 +164,28 @@ BENCHMARK(BM_ReadOneChannel)->Unit(benchmark::kMillisecond)->Iterations(10)->Use
 
 }  // namespace
 
+// A CSV log 200,000 columns wide and 3 rows long (4.7 MB): reading is linear
+// in the columns (shared/robustness/findings.md F9: more than 60 s before the
+// channels were indexed by name; target 2 s).
+void BM_ReadWideCsv(benchmark::State& state) {
+  const std::string path = bench_path() + ".csv";
+  {
+    std::FILE* out = std::fopen(path.c_str(), "w");
+    std::fputs("time [s]", out);
+    for (int k = 0; k < 200000; ++k) std::fprintf(out, ",c%d [m]", k);
+    for (int row = 0; row < 3; ++row) {
+      std::fprintf(out, "\n%d", row);
+      for (int k = 0; k < 200000; ++k) std::fputs(",1.5", out);
+    }
+    std::fputs("\n", out);
+    std::fclose(out);
+  }
+  for (auto _ : state) {
+    io::LoadedLog back = io::load_log(path);
+    benchmark::DoNotOptimize(back);
+  }
+  fs::remove(path);
+}
+BENCHMARK(BM_ReadWideCsv)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
 BENCHMARK_MAIN();

@@ -257,5 +257,43 @@ TEST(Robustness, AReportNeverOverwritesTheUsersFilesNorIgnoresAnUnknownSoil) {
   EXPECT_NE(r.err.find("no_such_soil"), std::string::npos) << r.err;
 }
 
+TEST(Robustness, AbsurdOptionValuesAreUsageErrorsNamingTheOption) {
+  // Parsed before any file is read: the files need not exist.
+  const std::string tm = "terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 50 --slip 0.2";
+  const std::pair<std::string, std::string> cases[] = {
+      {tm + " --soil-strength -3", "--soil-strength"},            // F22: 5.2 kN of pull from 50 N
+      {tm + " --bulldozing-scale -5", "--bulldozing-scale"},      // F22
+      {tm + " --slip-sinkage-n1 -100", "--slip-sinkage-n1"},      // F22: NaN fields
+      {tm + " --radius 1e300", "--radius"},                       // F22
+      {tm + " --slip 0.2,2", "--slip"},
+      {tm + " --riemann-points 2000000000", "--riemann-points"},  // F23: minutes
+      {"terramechanics surface --soil ding_tyii --radius 0.075 --width 0.07 --grid 100000", "--grid"},  // F24
+      {"terramechanics fit points.csv --grid 1000000000", "--grid"},                                    // F17
+      {"estimate ins-slip log.h5 --odometry-sigma -1", "--odometry-sigma"},                            // F33
+      {"estimate ins-slip log.h5 --odometry-sigma nan", "--odometry-sigma"},                           // F33
+      {"estimate contact-angle log.h5 --velocity-variance -1", "--velocity-variance"},                 // F33
+      {"estimate contact-angle log.h5 --angle-variance nan", "--angle-variance"},                      // F33
+      {"estimate contact-angle log.h5 --joint-rate-window -1", "--joint-rate-window"},                 // F33
+      {"discrepancy odometry log.h5 --fit-fraction nan", "--fit-fraction"},                            // F33
+      {"render log.h5 --quantity banana -o x.png", "--quantity"},                                     // F26
+      {"render log.h5 --time nan -o x.png", "--time"},                                                // F25
+  };
+  for (const auto& [args, option] : cases) {
+    const CommandResult r = run_roverlab(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("roverlab: ", 0), 0u) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
+  }
+}
+
+TEST(Robustness, AHugeCellIsNotEchoedWhole) {
+  TempDir dir;
+  const std::string csv = dir.file("wide.csv");
+  test::write_text(csv, "time [s],x [m]\n0,1\n1," + std::string(3'000'000, 'x') + "\n");
+  const CommandResult r = run_roverlab("info " + quote(csv));
+  expect_one_line_bad_input(r, csv, "cannot parse");
+  EXPECT_LT(r.err.size(), 400u);  // F10: the 3 MB cell was echoed whole
+}
+
 }  // namespace
 }  // namespace roverlab
