@@ -31,7 +31,7 @@ struct AnalysisInput {
   std::function<void(double)> progress;   // fraction done; may be empty; may throw to cancel
 };
 
-struct AnalysisResult {
+struct AnalysisResult {  // NOLINT(bugprone-exception-escape): std::map's move in LogMetadata, not thrown in practice
   log::Log estimates;        // streams to add to the log (estimate/<name>/...) and metadata.extra entries
   nlohmann::json document;   // the result
 };

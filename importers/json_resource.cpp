@@ -140,6 +140,7 @@ std::vector<double> required_numbers(const JsonNode& node, const std::string& fi
     node.fail(field, "expected " + std::to_string(count) + " numbers, got " + std::to_string(elements.size()));
   }
   std::vector<double> out;
+  out.reserve(elements.size());
   for (const auto& e : elements) out.push_back(as_number(e));
   return out;
 }

@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string unit_field(const JsonNode& node, const std::string& field, const std::string& fallback) {
-  const std::string unit = optional_string(node, field, fallback);
+  std::string unit = optional_string(node, field, fallback);
   if (!log::is_known_unit(unit)) node.fail(field, "unknown unit '" + unit + "'");
   return unit;
 }

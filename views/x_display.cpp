@@ -86,7 +86,7 @@ std::string ensure_display() {
   }
   xvfb_pid = pid;
   std::atexit(stop_xvfb);
-  const std::string display = ":" + number;
+  std::string display = ":" + number;
   setenv("DISPLAY", display.c_str(), 1);
   return display;
 }

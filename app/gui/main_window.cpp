@@ -394,7 +394,7 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
   const std::string file = input_->file;
   jobs_->start(title, [this, lg, todo, file](const JobControl& c) -> std::function<void()> {
     auto results = std::make_shared<std::vector<app::AnalysisResult>>();
-    const double n = static_cast<double>(todo.size());
+    const auto n = static_cast<double>(todo.size());
     for (std::size_t k = 0; k < todo.size(); ++k) {
       const auto progress = [&c, k, n](double f) {
         c.report((static_cast<double>(k) + f) / n);
@@ -458,7 +458,7 @@ void MainWindow::add_plot_channel(const QString& stream, const QString& channel)
   if (s == nullptr || s->find_channel(channel.toStdString()) == nullptr) return;
   const std::pair<std::string, std::string> ref{stream.toStdString(), channel.toStdString()};
   if (plot_channels_.empty() && chart() != nullptr) {  // the first pick adds to what is shown
-    for (const auto& c : chart()->channels()) plot_channels_.push_back({c.stream, c.channel});
+    for (const auto& c : chart()->channels()) plot_channels_.emplace_back(c.stream, c.channel);
   }
   if (std::find(plot_channels_.begin(), plot_channels_.end(), ref) != plot_channels_.end()) return;
   plot_channels_.push_back(ref);

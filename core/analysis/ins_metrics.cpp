@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/estimation/reference_track.h"
 
@@ -41,7 +42,7 @@ void score_track(const ReferenceTrack& ref, const log::Stream& pose, const log::
     m.final_position_error_3d = std::sqrt(de * de + dn * dn + du * du);
   }
   if (count > 0) {
-    const double c = static_cast<double>(count);
+    const auto c = static_cast<double>(count);
     m.position_rmse_axes = {std::sqrt(se / c), std::sqrt(sn / c), std::sqrt(su / c)};
     m.position_rmse = std::sqrt((se + sn) / c);
     m.velocity_rmse = std::sqrt(sv / c);
@@ -52,7 +53,7 @@ void score_track(const ReferenceTrack& ref, const log::Stream& pose, const log::
 double heading_drift(const ReferenceTrack& ref, const log::Stream& pose) {
   const auto& t = pose.time();
   const auto& yaw = values(pose, "yaw");
-  double last_moving = -INFINITY;
+  double last_moving = -std::numeric_limits<double>::infinity();
   for (std::size_t g = 0; g < ref.time.size(); ++g) {
     if (std::hypot(ref.v_east[g], ref.v_north[g]) > 0.3) last_moving = ref.time[g];
   }

@@ -22,6 +22,7 @@ class SlipEpisodes final : public OdometryCandidateModel {
   }
   std::vector<CandidateParameter> parameters() const override {
     std::vector<CandidateParameter> p;
+    p.reserve(static_cast<std::size_t>(windows_));
     for (int k = 0; k < windows_; ++k) p.push_back({"slip_" + std::to_string(k), 0.0, -0.5, 0.9});
     return p;
   }
@@ -37,7 +38,7 @@ class SlipEpisodes final : public OdometryCandidateModel {
   estimation::OdometryCorrections held_out_corrections(const double* x) const override {
     estimation::OdometryCorrections c;
     std::vector<double> v(x, x + windows_);
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
     c.slip.assign(test_n_, v[v.size() / 2]);
     return c;
   }

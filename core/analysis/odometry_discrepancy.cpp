@@ -73,7 +73,7 @@ double final_of(const std::vector<double>& r) {
 double bic(const std::vector<double>& r, int k) {
   double s = 0.0;
   for (double x : r) s += x * x;
-  const double n = static_cast<double>(r.size());
+  const auto n = static_cast<double>(r.size());
   return n * std::log(std::max(s / n, 1e-300)) + k * std::log(n);
 }
 
@@ -211,8 +211,8 @@ void OdometryStudy::describe_baseline(const std::vector<double>& base_fit) {
     sc += cross * cross;
     ++n;
   }
-  rep_.along_track_rmse = n ? std::sqrt(sa / n) : NAN;
-  rep_.cross_track_rmse = n ? std::sqrt(sc / n) : NAN;
+  rep_.along_track_rmse = n ? std::sqrt(sa / static_cast<double>(n)) : NAN;
+  rep_.cross_track_rmse = n ? std::sqrt(sc / static_cast<double>(n)) : NAN;
 }
 
 // Fits a candidate on the fit part (bounded least squares) and scores it on
@@ -225,6 +225,7 @@ OdometryCandidate OdometryStudy::fit_candidate(const OdometryCandidateModel& mod
   const int k = static_cast<int>(parameters.size());
   cand.parameter_count = k;
   std::vector<double> x;
+  x.reserve(parameters.size());
   for (const auto& p : parameters) x.push_back(p.start);
   ceres::Problem problem;
   auto* cost = new ceres::DynamicNumericDiffCostFunction<TrackCost, ceres::CENTRAL>(

@@ -68,7 +68,7 @@ double bic_of(const std::vector<PointResidual>& residuals, std::size_t k) {
   std::size_t m = 0;
   score_of(residuals, &rss, &m);
   if (m == 0) return NAN;
-  const double md = static_cast<double>(m);
+  const auto md = static_cast<double>(m);
   return md * std::log(std::max(rss, 1e-300) / md) + static_cast<double>(k) * std::log(md);
 }
 
@@ -327,7 +327,7 @@ void SingleWheelStudy::find_partial() {
     }
     if (best_q >= 0 && report_.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi] <
                            0.7 * report_.baseline_held_out_rmse[qi]) {
-      report_.partial.push_back({report_.quantities[qi], best_q});
+      report_.partial.emplace_back(report_.quantities[qi], best_q);
     }
   }
 }

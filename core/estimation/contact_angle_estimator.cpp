@@ -142,7 +142,7 @@ void ContactAngleEstimator::fuse_joint_rates() {
     for (std::size_t i = 0; i < nj; ++i) {
       const std::size_t a = i > half ? i - half : 0, b = std::min(nj - 1, i + half);
       double st = 0, sq = 0, stt = 0, stq = 0;
-      const double m_ = static_cast<double>(b - a + 1);
+      const auto m_ = static_cast<double>(b - a + 1);
       for (std::size_t k = a; k <= b; ++k) {
         const double x = tj[k] - tj[i];
         st += x;

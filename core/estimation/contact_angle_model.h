@@ -115,7 +115,7 @@ void wheel_measurement(const kinematics::RoverModel& m, int wheel, kinematics::W
 // The drive frame of a wheel at given joint angles, with what the velocity
 // and its derivatives need: the chain's joint axes z and origins o (first the
 // bogie's, then the steering's) and the geometric Jacobian columns J = z x (r - o).
-struct WheelGeometry {
+struct WheelGeometry {  // NOLINT(bugprone-reserved-identifier): Eigen's aligned-new macro, not our names
   Eigen::Matrix3d Rd = Eigen::Matrix3d::Identity();
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
   Eigen::Vector3d z[2], o[2], J[2];
@@ -210,7 +210,7 @@ class ContactProcessModel {
 // lateral, the six normal velocities. Noise order (generic EKF, r vectors):
 // n_w (gyro 3), n_wheel (6), n_q, n_qdot, n_vy (6), n_vz (6); the UKF's puts
 // the additive noises last (ukf_noise_order).
-class WheelMeasurementModel {
+class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as WheelGeometry
  public:
   WheelMeasurementModel() = default;
   WheelMeasurementModel(const kinematics::RoverModel& m, kinematics::WheelFrame frame, ContactLayout layout);

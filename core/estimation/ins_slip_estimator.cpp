@@ -22,7 +22,7 @@ std::vector<double> moving_std(const std::vector<double>& x, std::size_t half) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t a = i > half ? i - half : 0, b = std::min(n, i + half + 1);
-    const double m = static_cast<double>(b - a);
+    const auto m = static_cast<double>(b - a);
     const double mean = (s1[b] - s1[a]) / m;
     out[i] = std::sqrt(std::max(0.0, (s2[b] - s2[a]) / m - mean * mean));
   }
@@ -99,7 +99,8 @@ void InsSlipEstimator::detect_standstill() {
       wheels_still = wheels_still && std::abs(wr.left_rate[j]) <= wheel_rate_max &&
                      std::abs(wr.right_rate[j]) <= wheel_rate_max;
     }
-    in_.standstill[i] = wheels_still && fstd[i] <= o_.standstill.accel_std_max && wstd[i] <= o_.standstill.gyro_std_max;
+    const bool still = wheels_still && fstd[i] <= o_.standstill.accel_std_max && wstd[i] <= o_.standstill.gyro_std_max;
+    in_.standstill[i] = still ? 1 : 0;
   }
 }
 
