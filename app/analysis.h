@@ -27,13 +27,13 @@ namespace roverlab::app {
 
 struct AnalysisInput {
   const log::Log& log;
-  std::string file;                       // named in errors
-  std::function<void(double)> progress;   // fraction done; may be empty; may throw to cancel
+  std::string file;                      // named in errors
+  std::function<void(double)> progress;  // fraction done; may be empty; may throw to cancel
 };
 
-struct AnalysisResult {  // NOLINT(bugprone-exception-escape): std::map's move in LogMetadata, not thrown in practice
-  log::Log estimates;        // streams to add to the log (estimate/<name>/...) and metadata.extra entries
-  nlohmann::json document;   // the result
+struct AnalysisResult {     // NOLINT(bugprone-exception-escape): std::map's move in LogMetadata, not thrown in practice
+  log::Log estimates;       // streams to add to the log (estimate/<name>/...) and metadata.extra entries
+  nlohmann::json document;  // the result
 };
 
 // A part of the HTML report: an HTML fragment and CSV files beside index.html.
@@ -54,11 +54,11 @@ class ReportSection {
 class Analysis {
  public:
   virtual ~Analysis() = default;
-  virtual std::string name() const = 0;     // key of its result: "ins-slip"
-  virtual std::string command() const = 0;  // "estimate ins-slip"
-  virtual std::string title() const = 0;    // heading in the report and the GUI
-  virtual std::string help() const = 0;     // one line for --help
-  virtual std::string log_help() const = 0; // what the LOG argument must hold
+  virtual std::string name() const = 0;      // key of its result: "ins-slip"
+  virtual std::string command() const = 0;   // "estimate ins-slip"
+  virtual std::string title() const = 0;     // heading in the report and the GUI
+  virtual std::string help() const = 0;      // one line for --help
+  virtual std::string log_help() const = 0;  // what the LOG argument must hold
   // Whether it adds streams to the log (and so takes -o OUT.h5).
   virtual bool adds_streams() const { return true; }
   // Empty when the analysis can run on `log`, else what the log lacks.
@@ -87,6 +87,8 @@ Analyses all_analyses();
 std::unique_ptr<Analysis> make_analysis(const std::string& name);
 
 // null for NaN and infinities (JSON has neither).
-inline nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+inline nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 }  // namespace roverlab::app

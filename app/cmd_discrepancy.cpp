@@ -34,10 +34,10 @@ json nullable(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
   json j = json::object();
   for (const auto& s : stats) {
-    j[to_string(s.quantity)] = {{"count", s.count}, {"rmse", s.rmse}, {"bias", s.bias},
-                                {"slope_vs_slip", s.slope_vs_slip}, {"t_slip", s.t_slip},
-                                {"slope_vs_load", s.slope_vs_load}, {"t_load", s.t_load},
-                                {"unit", unit_of(s.quantity)}};
+    j[to_string(s.quantity)] = {{"count", s.count},   {"rmse", s.rmse},
+                                {"bias", s.bias},     {"slope_vs_slip", s.slope_vs_slip},
+                                {"t_slip", s.t_slip}, {"slope_vs_load", s.slope_vs_load},
+                                {"t_load", s.t_load}, {"unit", unit_of(s.quantity)}};
   }
   return j;
 }
@@ -56,16 +56,21 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   const analysis::DiscrepancyReport r = analysis::study_single_wheel(soil, points, options);
 
   if (o.json) {
-    json j = {{"file", o.file}, {"soil", soil.name}, {"points", r.points},
-              {"measurements", r.measurements}, {"unsupported", r.unsupported},
-              {"baseline", {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score},
-                            {"bic", r.baseline_bic}}},
+    json j = {{"file", o.file},
+              {"soil", soil.name},
+              {"points", r.points},
+              {"measurements", r.measurements},
+              {"unsupported", r.unsupported},
+              {"baseline",
+               {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score}, {"bic", r.baseline_bic}}},
               {"significant", r.significant},
               {"cause", r.significant ? json(r.candidates[static_cast<std::size_t>(r.best)].name) : json(nullptr)},
-              {"what_is_wrong", r.what_is_wrong}, {"verdict", r.verdict}};
+              {"what_is_wrong", r.what_is_wrong},
+              {"verdict", r.verdict}};
     j["partial"] = json::array();
     for (const auto& [q, index] : r.partial) {
-      j["partial"].push_back({{"quantity", to_string(q)}, {"candidate", r.candidates[static_cast<std::size_t>(index)].name}});
+      j["partial"].push_back(
+          {{"quantity", to_string(q)}, {"candidate", r.candidates[static_cast<std::size_t>(index)].name}});
     }
     j["candidates"] = json::array();
     for (const auto& c : r.candidates) {
@@ -75,8 +80,10 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
       } else {
         cj["parameters"] = json::array();
         for (const auto& p : c.fit.parameters) {
-          cj["parameters"].push_back({{"name", to_string(p.parameter)}, {"value", p.value},
-                                      {"sigma", nullable(p.sigma)}, {"at_bound", p.at_bound}});
+          cj["parameters"].push_back({{"name", to_string(p.parameter)},
+                                      {"value", p.value},
+                                      {"sigma", nullable(p.sigma)},
+                                      {"at_bound", p.at_bound}});
         }
         cj["bic"] = c.bic;
         cj["delta_bic"] = c.delta_bic;
@@ -91,7 +98,8 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
       j["candidates"].push_back(cj);
     }
     json base = json::object();
-    for (std::size_t i = 0; i < r.quantities.size(); ++i) base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
+    for (std::size_t i = 0; i < r.quantities.size(); ++i)
+      base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
     j["baseline"]["held_out_rmse"] = base;
     std::cout << j.dump(2) << "\n";
     return kSuccess;
@@ -109,7 +117,8 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
                 s.rmse * k, u, s.bias * k, u, s.slope_vs_slip * k, s.t_slip, s.slope_vs_load * k * 100.0, s.t_load);
   }
   std::printf("\ncandidate causes (each fitted with Ceres; held-out = leave-one-out):\n");
-  std::printf("  %-14s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC", "held-out sigma");
+  std::printf("  %-14s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC",
+              "held-out sigma");
   std::printf("  %-14s %-24s %22s %10s %14.3f\n", "(baseline)", "-", "-", "0", r.baseline_score);
   for (const auto& c : r.candidates) {
     if (!c.applicable) {
@@ -121,8 +130,8 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
       char value[64];
       std::snprintf(value, sizeof value, "%.4g +- %.2g%s", p.value, p.sigma, p.at_bound ? " (bound)" : "");
       if (i == 0) {
-        std::printf("  %-14s %-24s %22s %10.1f %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
-                    c.delta_bic, c.held_out_score);
+        std::printf("  %-14s %-24s %22s %10.1f %14.3f\n", c.name.c_str(), to_string(p.parameter), value, c.delta_bic,
+                    c.held_out_score);
       } else {
         std::printf("  %-14s %-24s %22s\n", "", to_string(p.parameter), value);
       }
@@ -131,7 +140,6 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
   return kSuccess;
 }
-
 
 Commands make_single_wheel_commands() {
   Commands commands;

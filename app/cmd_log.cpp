@@ -9,8 +9,8 @@
 #include <CLI/CLI.hpp>
 
 #include "app/command.h"
-#include "app/commands.h"
 #include "app/command_support.h"
+#include "app/commands.h"
 #include "app/log_input.h"
 #include "app/resources.h"
 #include "core/common/error.h"
@@ -115,8 +115,7 @@ int run_info(const InfoOptions& options) {
     std::cout << "\nstream " << s.name() << ": " << s.size() << " samples";
     if (s.size() >= 2) {
       std::cout << ", " << fmt("%.1f", s.mean_rate_hz()) << " Hz, " << fmt("%.2f", s.duration())
-                << " s (t = " << fmt("%.3f", s.start_time()) << " .. " << fmt("%.3f", s.end_time())
-                << " s)";
+                << " s (t = " << fmt("%.3f", s.start_time()) << " .. " << fmt("%.3f", s.end_time()) << " s)";
     }
     std::cout << "\n";
     std::size_t width = 4;
@@ -155,8 +154,9 @@ int run_convert(const ConvertOptions& options) {
       return kSuccess;
     }
     if (lg.streams().size() != 1) {
-      throw InputError(options.input, "has " + std::to_string(lg.streams().size()) +
-                                          " streams; CSV output holds exactly one (choose it with --stream, or use .h5)");
+      throw InputError(options.input,
+                       "has " + std::to_string(lg.streams().size()) +
+                           " streams; CSV output holds exactly one (choose it with --stream, or use .h5)");
     }
     io::write_csv_stream(lg.streams().front(), options.output);
   } else {
@@ -175,7 +175,6 @@ int run_list_mappings() {
   }
   return kSuccess;
 }
-
 
 Commands make_log_commands() {
   Commands commands;

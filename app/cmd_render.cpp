@@ -7,8 +7,8 @@
 
 #include "app/analysis.h"
 #include "app/command.h"
-#include "app/commands.h"
 #include "app/command_support.h"
+#include "app/commands.h"
 #include "app/render_view.h"
 #include "app/views_input.h"
 #include "views/view.h"

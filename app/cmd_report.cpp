@@ -69,12 +69,13 @@ class ReportWriter {
 
   void head() {
     metrics_ = {{"file", o_.file}, {"notes", in_.notes}, {"analyses", json::object()}};
-    html() << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>RoverLab report: "
-           << esc(fs::path(o_.file).filename().string()) << "</title>\n<style>"
-           << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
-           << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
-           << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}</style></head><body>\n"
-           << "<h1>RoverLab report</h1>\n<p>" << esc(o_.file) << "</p>\n";
+    html()
+        << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>RoverLab report: "
+        << esc(fs::path(o_.file).filename().string()) << "</title>\n<style>"
+        << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
+        << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
+        << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}</style></head><body>\n"
+        << "<h1>RoverLab report</h1>\n<p>" << esc(o_.file) << "</p>\n";
     for (const auto& n : in_.notes) html() << "<p class=\"note\">" << esc(n) << "</p>\n";
   }
 
@@ -182,7 +183,8 @@ void check_report_folder(const std::string& output) {
   std::ifstream index(dir / "index.html");
   std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
   if (text.find("<h1>RoverLab report</h1>") != std::string::npos) return;
-  throw UsageError("--output " + output + ": the folder holds other files and no RoverLab report; "
+  throw UsageError("--output " + output +
+                   ": the folder holds other files and no RoverLab report; "
                    "choose a new or empty folder");
 }
 

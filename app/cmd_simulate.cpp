@@ -7,8 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include "app/command.h"
-#include "app/commands.h"
 #include "app/command_support.h"
+#include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/simulation/rocker_bogie.h"
@@ -40,7 +40,8 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
     if (!(std::abs(sc.slope_deg) < 45)) throw InputError(sc.file, "slope_deg must be within +-45");
     run.path = simulation::slope_path(sc.slope_deg);
   } else if (path == "bump") {
-    if (!(sc.bump_length > 0.05) || !(std::abs(sc.bump_height) < 0.5)) throw InputError(sc.file, "bump_length_m > 0.05 and |bump_height_m| < 0.5 needed");
+    if (!(sc.bump_length > 0.05) || !(std::abs(sc.bump_height) < 0.5))
+      throw InputError(sc.file, "bump_length_m > 0.05 and |bump_height_m| < 0.5 needed");
     run.path = simulation::bump_path(sc.bump_height, sc.bump_x, sc.bump_length);
   } else {
     throw InputError(sc.file, "path '" + path + "': expected rolling, flat, slope or bump");
@@ -61,7 +62,8 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
   about_file(sc.file, [&] {
     for (const auto& [k, v] : sc.effects) simulation::set_effect(run.effects, k, v);
   });
-  apply_effect_options(o.effects, [&](const std::string& name, double value) { simulation::set_effect(run.effects, name, value); });
+  apply_effect_options(
+      o.effects, [&](const std::string& name, double value) { simulation::set_effect(run.effects, name, value); });
   simulation::RockerBogieParameters params;
   params.desired_speed = sc.desired_speed;
   run.soil = io::find_soil(sc.soil, resource_subfolders("soils"));
@@ -83,13 +85,15 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   io::write_hdf5_log(r.log, o.output);
   const auto& pose = r.log.stream("truth/pose");
-  std::printf("wrote %s: scenario %s, %.0f s on the %s path, soil %s, %s traction; %.2f m driven; largest constraint error %.2g m; %.2f s\n",
-              o.output.c_str(), sc.name.c_str(), duration, run.path.name.c_str(), run.soil.name.c_str(), traction.c_str(),
-              pose.channel("x").values.back() - pose.channel("x").values.front(), r.max_constraint_error, wall);
-  if (r.unsupported > 0) std::printf("note: %zu traction evaluations beyond what the soil carries (set to 0)\n", r.unsupported);
+  std::printf(
+      "wrote %s: scenario %s, %.0f s on the %s path, soil %s, %s traction; %.2f m driven; largest constraint error "
+      "%.2g m; %.2f s\n",
+      o.output.c_str(), sc.name.c_str(), duration, run.path.name.c_str(), run.soil.name.c_str(), traction.c_str(),
+      pose.channel("x").values.back() - pose.channel("x").values.front(), r.max_constraint_error, wall);
+  if (r.unsupported > 0)
+    std::printf("note: %zu traction evaluations beyond what the soil carries (set to 0)\n", r.unsupported);
   return kSuccess;
 }
-
 
 Commands make_simulate_commands() {
   Commands commands;

@@ -2,17 +2,17 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
 
 #include "app/command.h"
-#include "app/commands.h"
 #include "app/command_support.h"
+#include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
@@ -168,10 +168,13 @@ int run_terramechanics(const TerramechanicsOptions& o) {
       const Traction t = evaluate(soil, wheel, load, slip, m);
       if (o.format == "csv") {
         std::cout << num(load) << "," << num(slip) << ","
-                  << (t.ok() ? num(t.drawbar_pull) + "," + num(t.resistive_torque) + "," +
-                                   num(t.sinkage) + "," + num(t.entry_angle)
+                  << (t.ok() ? num(t.drawbar_pull) + "," + num(t.resistive_torque) + "," + num(t.sinkage) + "," +
+                                   num(t.entry_angle)
                              : std::string(",,,"))
-                  << "," << (t.ok() ? "ok" : t.status == TractionStatus::unsupported_load ? "unsupported_load" : "invalid_input")
+                  << ","
+                  << (t.ok()                                         ? "ok"
+                      : t.status == TractionStatus::unsupported_load ? "unsupported_load"
+                                                                     : "invalid_input")
                   << "\n";
       } else {
         json r = {{"load_N", load}, {"slip", slip}, {"status", to_string(t.status)}};
@@ -231,10 +234,11 @@ int run_terramechanics_surface(const SurfaceOptions& o) {
                      .dump(2)
               << "\n";
   } else {
-    std::printf("soil %s, wheel r = %g m, b = %g m, %s integration\n", soil.name.c_str(), wheel.radius,
-                wheel.width, o.model.integration.c_str());
-    std::printf("grid %d x %d over W = %g..%g N, s = %g..%g; %zu points unsupported (entry angle would exceed 90 deg)\n",
-                o.grid, o.grid, o.load_min, o.load_max, o.slip_min, o.slip_max, unsupported);
+    std::printf("soil %s, wheel r = %g m, b = %g m, %s integration\n", soil.name.c_str(), wheel.radius, wheel.width,
+                o.model.integration.c_str());
+    std::printf(
+        "grid %d x %d over W = %g..%g N, s = %g..%g; %zu points unsupported (entry angle would exceed 90 deg)\n",
+        o.grid, o.grid, o.load_min, o.load_max, o.slip_min, o.slip_max, unsupported);
     print_surface("drawbar pull DP(W, s)", "N", fdp);
     print_surface("resistive torque tau_R(W, s)", "N m", ftau);
   }
@@ -276,15 +280,18 @@ int run_terramechanics_fit(const FitOptions& o) {
     if (o.json) {
       json j = surface_json(fit);
       j["points"] = samples.size();
-      j["occupancy"] = {{"load_range_N", {lmin, lmax}}, {"slip_range", {smin, smax}},
-                        {"bins", {o.grid_bins, o.grid_bins}}, {"counts", grid.counts},
+      j["occupancy"] = {{"load_range_N", {lmin, lmax}},
+                        {"slip_range", {smin, smax}},
+                        {"bins", {o.grid_bins, o.grid_bins}},
+                        {"counts", grid.counts},
                         {"coverage", grid.coverage()}};
       out[column] = j;
     } else {
       std::printf("%s from %zu points\n", title.c_str(), samples.size());
       print_surface(title, unit, fit);
-      std::printf("  occupancy grid (%d x %d cells, loads %g..%g N down, slips %g..%g across): %.0f %% of cells hold data\n",
-                  o.grid_bins, o.grid_bins, lmin, lmax, smin, smax, 100.0 * grid.coverage());
+      std::printf(
+          "  occupancy grid (%d x %d cells, loads %g..%g N down, slips %g..%g across): %.0f %% of cells hold data\n",
+          o.grid_bins, o.grid_bins, lmin, lmax, smin, smax, 100.0 * grid.coverage());
       for (int l = 0; l < o.grid_bins; ++l) {
         std::printf("    ");
         for (int s = 0; s < o.grid_bins; ++s) {
@@ -299,7 +306,6 @@ int run_terramechanics_fit(const FitOptions& o) {
   if (o.json) std::cout << out.dump(2) << "\n";
   return kSuccess;
 }
-
 
 namespace {
 
@@ -319,8 +325,12 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--grousers", o.grousers, "Number of grousers")->check(CLI::Range(0, 1000));
   cmd.add_option("--grouser-height", o.grouser_height, "Grouser height, m")->check(finite_in(0.0, 1.0));
   if (need_lists) {
-    cmd.add_option("--load", o.loads, "Normal loads W, N (comma separated)")->delimiter(',')->check(finite_in(0.0, 1e6));
-    cmd.add_option("--slip", o.slips, "Slips s in [-1, 1] (comma separated)")->delimiter(',')->check(finite_in(-1.0, 1.0));
+    cmd.add_option("--load", o.loads, "Normal loads W, N (comma separated)")
+        ->delimiter(',')
+        ->check(finite_in(0.0, 1e6));
+    cmd.add_option("--slip", o.slips, "Slips s in [-1, 1] (comma separated)")
+        ->delimiter(',')
+        ->check(finite_in(-1.0, 1.0));
     cmd.add_option("--format", o.format, "csv or json")->capture_default_str();
   }
   cmd.add_option("--model", o.model,

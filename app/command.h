@@ -41,7 +41,10 @@ class OptionsCommand final : public Command {
   using Declare = std::function<void(CLI::App&, Options&)>;
   using Run = std::function<int(const Options&)>;
   OptionsCommand(std::string path, std::string help, Declare declare, Run run, Options defaults)
-      : path_(std::move(path)), help_(std::move(help)), declare_(std::move(declare)), run_(std::move(run)),
+      : path_(std::move(path)),
+        help_(std::move(help)),
+        declare_(std::move(declare)),
+        run_(std::move(run)),
         options_(std::move(defaults)) {}
   std::string path() const override { return path_; }
   std::string help() const override { return help_; }
@@ -59,8 +62,8 @@ template <class Options>
 std::unique_ptr<Command> make_command(std::string path, std::string help,
                                       typename OptionsCommand<Options>::Declare declare,
                                       typename OptionsCommand<Options>::Run run, Options defaults = {}) {
-  return std::make_unique<OptionsCommand<Options>>(std::move(path), std::move(help), std::move(declare),
-                                                   std::move(run), std::move(defaults));
+  return std::make_unique<OptionsCommand<Options>>(std::move(path), std::move(help), std::move(declare), std::move(run),
+                                                   std::move(defaults));
 }
 
 // Every registered command, in commands.def order.

@@ -36,8 +36,9 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   d.quantity = dp ? "drawbar pull" : "resistive torque";
   d.unit = dp ? "N" : "N m";
   if (!in.is_wheel_test() && !soil_name) {
-    throw InputError(in.file, "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm) "
-                              "or --soil NAME for the model surface");
+    throw InputError(in.file,
+                     "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm) "
+                     "or --soil NAME for the model surface");
   }
   std::set<double> loads;
   double load_lo = std::numeric_limits<double>::infinity(), load_hi = -load_lo;

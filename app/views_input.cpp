@@ -50,7 +50,8 @@ void ViewInput::add(const Analysis& analysis, AnalysisResult r) {
   // Keep registry order, so the report and the GUI list results alike.
   const std::vector<std::string> order = all_analysis_names();
   const auto rank = [&](const std::string& n) { return std::find(order.begin(), order.end(), n) - order.begin(); };
-  auto at = std::find_if(analyses.begin(), analyses.end(), [&](const AnalysisRun& a) { return rank(a.name) > rank(run.name); });
+  auto at = std::find_if(analyses.begin(), analyses.end(),
+                         [&](const AnalysisRun& a) { return rank(a.name) > rank(run.name); });
   analyses.insert(at, std::move(run));
 }
 

@@ -25,9 +25,9 @@ struct AnalysisRun {
 struct ViewInput {
   std::string file;
   log::Log log;
-  std::vector<AnalysisRun> analyses;  // results of the analyses run here, in registry order
+  std::vector<AnalysisRun> analyses;                         // results of the analyses run here, in registry order
   std::vector<terramechanics::WheelTestPoint> wheel_points;  // single-wheel CSV input
-  std::vector<std::string> notes;  // what was computed or is missing, one line each
+  std::vector<std::string> notes;                            // what was computed or is missing, one line each
   bool is_wheel_test() const { return !wheel_points.empty(); }
   // The result document of analysis `name`, nullptr when it has not run.
   const nlohmann::json* result(const std::string& name) const;

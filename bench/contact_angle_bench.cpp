@@ -15,7 +15,8 @@ namespace {
 using namespace roverlab;
 
 const kinematics::RoverModel& bb2() {
-  static const kinematics::RoverModel m = *io::load_rover(std::string(ROVERLAB_SOURCE_DIR) + "/resources/rovers/exomars_bb2.json").dh;
+  static const kinematics::RoverModel m =
+      *io::load_rover(std::string(ROVERLAB_SOURCE_DIR) + "/resources/rovers/exomars_bb2.json").dh;
   return m;
 }
 
@@ -36,7 +37,8 @@ void run(benchmark::State& state, estimation::FilterKind filter, bool reset) {
     auto r = estimation::run_contact_angle(lg, bb2(), o);
     benchmark::DoNotOptimize(r);
   }
-  state.counters["x_real_time"] = benchmark::Counter(seconds * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["x_real_time"] =
+      benchmark::Counter(seconds * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 void BM_ContactAngleEkf2Min1kHz(benchmark::State& state) { run(state, estimation::FilterKind::ekf, true); }

@@ -33,8 +33,8 @@ void run(benchmark::State& state, const estimation::InsSlipOptions& o) {
     benchmark::DoNotOptimize(r);
   }
   // Log seconds processed per wall-clock second.
-  state.counters["x_real_time"] = benchmark::Counter(seconds * static_cast<double>(state.iterations()),
-                                                     benchmark::Counter::kIsRate);
+  state.counters["x_real_time"] =
+      benchmark::Counter(seconds * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 void BM_InsSlipDefault(benchmark::State& state) { run(state, {}); }  // aided + detector pass, smoothed

@@ -21,7 +21,8 @@ void run(benchmark::State& state, simulation::TractionSource traction) {
     auto out = simulation::simulate_rocker_bogie({}, {}, r);
     benchmark::DoNotOptimize(out);
   }
-  state.counters["x_real_time"] = benchmark::Counter(200.0 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["x_real_time"] =
+      benchmark::Counter(200.0 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 void BM_RollingTerrain200sPolynomial(benchmark::State& s) { run(s, simulation::TractionSource::polynomial); }

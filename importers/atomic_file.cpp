@@ -92,8 +92,7 @@ fs::path destination_of(const fs::path& target) {
 
 }  // namespace
 
-void write_atomically(const std::string& path,
-                      const std::function<void(const std::string& temporary_path)>& write) {
+void write_atomically(const std::string& path, const std::function<void(const std::string& temporary_path)>& write) {
   static std::atomic<unsigned> counter{0};
   const fs::path target = destination_of(fs::path(path));
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -112,9 +111,8 @@ void write_atomically(const std::string& path,
   if (exists && ((existing.st_mode & 0222) == 0 || ::access(target.c_str(), W_OK) != 0)) {
     throw InputError(path, "cannot write: the file is write-protected");
   }
-  const fs::path temporary =
-      folder / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                std::to_string(counter++));
+  const fs::path temporary = folder / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                                       std::to_string(counter++));
   const TemporaryRegistration registration(temporary.string());
   try {
     write(temporary.string());

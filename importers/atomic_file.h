@@ -13,8 +13,7 @@ namespace roverlab::io {
 // Calls write(temporary_path), then renames the temporary file to `path`.
 // Throws InputError naming `path` when the folder does not exist or the
 // rename fails; exceptions from `write` propagate after the cleanup.
-void write_atomically(const std::string& path,
-                      const std::function<void(const std::string& temporary_path)>& write);
+void write_atomically(const std::string& path, const std::function<void(const std::string& temporary_path)>& write);
 
 // Writes text atomically.
 void write_text_atomically(const std::string& path, const std::string& text);

@@ -64,9 +64,8 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
         }
       }
       if (columns[time_column].si.si_unit != "s") {
-        throw InputError(path, where + ": time column '" + columns[time_column].name +
-                                   "' has unit '" + columns[time_column].si.si_unit +
-                                   "', not a unit of time");
+        throw InputError(path, where + ": time column '" + columns[time_column].name + "' has unit '" +
+                                   columns[time_column].si.si_unit + "', not a unit of time");
       }
       continue;
     }
@@ -80,8 +79,8 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
       try {
         value = csv::parse_number(cell).value_or(value);
       } catch (const std::invalid_argument&) {
-        throw InputError(path, where + ", column '" + columns[k].name + "': cannot parse '" +
-                                   csv::shown(cell) + "' as a number");
+        throw InputError(
+            path, where + ", column '" + columns[k].name + "': cannot parse '" + csv::shown(cell) + "' as a number");
       }
       Column& c = columns[k];
       value = value * c.si.factor + c.si.offset;

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string>
 
-#include "core/common/error.h"
 #include <stdexcept>
+#include "core/common/error.h"
 
 namespace roverlab::io::csv {
 
@@ -76,8 +76,7 @@ std::vector<std::string_view> split(std::string_view line) {
   std::size_t begin = 0;
   while (true) {
     const std::size_t comma = line.find(',', begin);
-    cells.push_back(line.substr(begin, comma == std::string_view::npos ? std::string_view::npos
-                                                                       : comma - begin));
+    cells.push_back(line.substr(begin, comma == std::string_view::npos ? std::string_view::npos : comma - begin));
     if (comma == std::string_view::npos) return cells;
     begin = comma + 1;
   }

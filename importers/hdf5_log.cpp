@@ -37,8 +37,8 @@ Handle open_or_make_group(hid_t parent, const std::string& name) {
   return make_group(parent, name);
 }
 
-void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
-                  const std::string& unit, const std::string& description) {
+void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values, const std::string& unit,
+                  const std::string& description) {
   const hsize_t n = values.size();
   Handle space(H5Screate_simple(1, &n, nullptr));
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
@@ -47,11 +47,9 @@ void write_vector(hid_t parent, const std::string& name, const std::vector<doubl
     const hsize_t chunk = (n + chunks - 1) / chunks;
     H5Pset_chunk(dcpl.get(), 1, &chunk);
   }
-  Handle dataset(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
-                            dcpl.get(), H5P_DEFAULT));
+  Handle dataset(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
   if (!dataset.valid() ||
-      (n > 0 && H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                         values.data()) < 0)) {
+      (n > 0 && H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)) {
     throw std::runtime_error("cannot write dataset '" + name + "': " + h5::last_error_text());
   }
   h5::write_string_attribute(dataset.get(), "unit", unit);
@@ -85,8 +83,7 @@ void write_file(const log::Log& log, const std::string& path) {
     while (true) {
       const std::size_t slash = name.find('/', begin);
       const std::string segment = name.substr(begin, slash - begin);
-      Handle next = slash == std::string::npos ? make_group(parent, segment)
-                                               : open_or_make_group(parent, segment);
+      Handle next = slash == std::string::npos ? make_group(parent, segment) : open_or_make_group(parent, segment);
       group = std::move(next);
       parent = group.get();
       if (slash == std::string::npos) break;
@@ -119,8 +116,8 @@ constexpr int kMaxStreamDepth = 16;
 // Collects the streams under `group` (relative names joined with '/').
 void collect_streams(hid_t group, const std::string& prefix, std::vector<std::string>& names, int depth = 0) {
   if (depth > kMaxStreamDepth) {
-    throw std::runtime_error("streams nested deeper than " + std::to_string(kMaxStreamDepth) + " levels at '" +
-                             prefix + "' (a link cycle?)");
+    throw std::runtime_error("streams nested deeper than " + std::to_string(kMaxStreamDepth) + " levels at '" + prefix +
+                             "' (a link cycle?)");
   }
   for (const auto& child : h5::link_names(group)) {
     if (h5::object_kind(group, child) != h5::ObjectKind::group) continue;
@@ -151,15 +148,13 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
   }
   const hid_t f = file_->file.get();
   if (h5::read_string_attribute(f, "format") != std::string(kLogFormatName)) {
-    throw InputError(path, "HDF5 file is not a RoverLab log (no format attribute '" +
-                               std::string(kLogFormatName) +
+    throw InputError(path, "HDF5 file is not a RoverLab log (no format attribute '" + std::string(kLogFormatName) +
                                "'); for other HDF5 or MATLAB files pass --mapping NAME|FILE");
   }
   const auto version = h5::read_int_attribute(f, "format_version");
   if (!version || *version < 1) throw InputError(path, "RoverLab log without a valid format_version");
   if (*version > kLogFormatVersion) {
-    throw InputError(path, "log format version " + std::to_string(*version) +
-                               " is newer than this RoverLab reads (" +
+    throw InputError(path, "log format version " + std::to_string(*version) + " is newer than this RoverLab reads (" +
                                std::to_string(kLogFormatVersion) + ")");
   }
   format_version_ = static_cast<int>(*version);
@@ -170,8 +165,8 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
     Handle group(H5Gopen2(f, "metadata", H5P_DEFAULT));
     const int n = H5Aget_num_attrs(group.get());
     for (int k = 0; k < n; ++k) {
-      Handle attr(H5Aopen_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC,
-                                 static_cast<hsize_t>(k), H5P_DEFAULT, H5P_DEFAULT));
+      Handle attr(H5Aopen_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, static_cast<hsize_t>(k), H5P_DEFAULT,
+                                 H5P_DEFAULT));
       const ssize_t len = H5Aget_name(attr.get(), 0, nullptr);
       if (len <= 0) continue;
       std::string key(static_cast<std::size_t>(len) + 1, '\0');
@@ -203,9 +198,8 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
         for (const auto& cname : h5::link_names(channels.get())) {
           if (h5::object_kind(channels.get(), cname) != h5::ObjectKind::dataset) continue;
           Handle ds(H5Dopen2(channels.get(), cname.c_str(), H5P_DEFAULT));
-          info.channels.push_back(ChannelInfo{
-              cname, h5::read_string_attribute(ds.get(), "unit").value_or("1"),
-              h5::read_string_attribute(ds.get(), "description").value_or("")});
+          info.channels.push_back(ChannelInfo{cname, h5::read_string_attribute(ds.get(), "unit").value_or("1"),
+                                              h5::read_string_attribute(ds.get(), "description").value_or("")});
         }
       }
       catalog_.push_back(std::move(info));
@@ -257,8 +251,7 @@ std::vector<double> Hdf5LogReader::read_time(const std::string& stream) const {
   return read_si(path_, ds.get(), "stream '" + stream + "', time", "s", "s");
 }
 
-std::vector<double> Hdf5LogReader::read_channel(const std::string& stream,
-                                                const std::string& channel) const {
+std::vector<double> Hdf5LogReader::read_channel(const std::string& stream, const std::string& channel) const {
   const std::string where = stream + "/channels/" + channel;
   if (h5::object_kind(file_->streams.get(), where) != h5::ObjectKind::dataset) {
     throw InputError(path_, "no channel '" + channel + "' in stream '" + stream + "'");
@@ -268,14 +261,13 @@ std::vector<double> Hdf5LogReader::read_channel(const std::string& stream,
 }
 
 log::Stream Hdf5LogReader::read_stream(const std::string& stream) const {
-  const auto info = std::find_if(catalog_.begin(), catalog_.end(),
-                                 [&](const StreamInfo& s) { return s.name == stream; });
+  const auto info =
+      std::find_if(catalog_.begin(), catalog_.end(), [&](const StreamInfo& s) { return s.name == stream; });
   if (info == catalog_.end()) throw InputError(path_, "no stream '" + stream + "'");
   try {
     log::Stream out(stream, read_time(stream));
     for (const auto& c : info->channels) {
-      out.add_channel(c.name, log::unit_to_si(c.unit).si_unit, read_channel(stream, c.name),
-                      c.description);
+      out.add_channel(c.name, log::unit_to_si(c.unit).si_unit, read_channel(stream, c.name), c.description);
     }
     return out;
   } catch (const DataError& e) {

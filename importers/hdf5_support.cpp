@@ -17,14 +17,30 @@ Handle& Handle::operator=(Handle&& other) noexcept {
 void Handle::reset() {
   if (id_ < 0) return;
   switch (H5Iget_type(id_)) {
-    case H5I_FILE: H5Fclose(id_); break;
-    case H5I_GROUP: H5Gclose(id_); break;
-    case H5I_DATASET: H5Dclose(id_); break;
-    case H5I_DATASPACE: H5Sclose(id_); break;
-    case H5I_DATATYPE: H5Tclose(id_); break;
-    case H5I_ATTR: H5Aclose(id_); break;
-    case H5I_GENPROP_LST: H5Pclose(id_); break;
-    default: H5Idec_ref(id_); break;
+    case H5I_FILE:
+      H5Fclose(id_);
+      break;
+    case H5I_GROUP:
+      H5Gclose(id_);
+      break;
+    case H5I_DATASET:
+      H5Dclose(id_);
+      break;
+    case H5I_DATASPACE:
+      H5Sclose(id_);
+      break;
+    case H5I_DATATYPE:
+      H5Tclose(id_);
+      break;
+    case H5I_ATTR:
+      H5Aclose(id_);
+      break;
+    case H5I_GENPROP_LST:
+      H5Pclose(id_);
+      break;
+    default:
+      H5Idec_ref(id_);
+      break;
   }
   id_ = H5I_INVALID_HID;
 }
@@ -108,18 +124,15 @@ void write_string_attribute(hid_t object, const char* name, const std::string& v
   Handle attr(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT));
   const std::string stored = value.empty() ? std::string(1, '\0') : value;
   if (!attr.valid() || H5Awrite(attr.get(), type.get(), stored.data()) < 0) {
-    throw std::runtime_error(std::string("cannot write attribute '") + name + "': " +
-                             last_error_text());
+    throw std::runtime_error(std::string("cannot write attribute '") + name + "': " + last_error_text());
   }
 }
 
 void write_int_attribute(hid_t object, const char* name, std::int64_t value) {
   Handle space(H5Screate(H5S_SCALAR));
-  Handle attr(
-      H5Acreate2(object, name, H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT));
+  Handle attr(H5Acreate2(object, name, H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT));
   if (!attr.valid() || H5Awrite(attr.get(), H5T_NATIVE_INT64, &value) < 0) {
-    throw std::runtime_error(std::string("cannot write attribute '") + name + "': " +
-                             last_error_text());
+    throw std::runtime_error(std::string("cannot write attribute '") + name + "': " + last_error_text());
   }
 }
 
@@ -167,9 +180,12 @@ ObjectKind object_kind(hid_t location, const std::string& path) {
   Handle object(H5Oopen(location, path.c_str(), H5P_DEFAULT));
   if (!object.valid()) return ObjectKind::none;
   switch (H5Iget_type(object.get())) {
-    case H5I_GROUP: return ObjectKind::group;
-    case H5I_DATASET: return ObjectKind::dataset;
-    default: return ObjectKind::other;
+    case H5I_GROUP:
+      return ObjectKind::group;
+    case H5I_DATASET:
+      return ObjectKind::dataset;
+    default:
+      return ObjectKind::other;
   }
 }
 
@@ -197,8 +213,7 @@ std::vector<double> read_doubles(hid_t dataset) {
   } catch (const std::bad_alloc&) {
     throw std::runtime_error("declares " + std::to_string(n) + " values, more than memory holds");
   }
-  if (n > 0 && H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                       values.data()) < 0) {
+  if (n > 0 && H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
     const std::string why = last_error_text();
     throw std::runtime_error("cannot read dataset" + (why.empty() ? "" : ": " + why));
   }

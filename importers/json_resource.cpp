@@ -14,15 +14,22 @@ namespace {
 
 std::string type_of(const json& value) {
   switch (value.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array";
-    case json::value_t::string: return "a string";
-    case json::value_t::boolean: return "a boolean";
+    case json::value_t::null:
+      return "null";
+    case json::value_t::object:
+      return "an object";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::boolean:
+      return "a boolean";
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
-    case json::value_t::number_float: return "a number";
-    default: return "an unsupported value";
+    case json::value_t::number_float:
+      return "a number";
+    default:
+      return "an unsupported value";
   }
 }
 
@@ -39,13 +46,9 @@ JsonNode::JsonNode(std::string file, const json& value, std::string where)
 
 bool JsonNode::has(const std::string& field) const { return value_->is_object() && value_->contains(field); }
 
-std::string JsonNode::place_of(const std::string& field) const {
-  return where_.empty() ? field : where_ + "." + field;
-}
+std::string JsonNode::place_of(const std::string& field) const { return where_.empty() ? field : where_ + "." + field; }
 
-JsonNode JsonNode::child(const std::string& field) const {
-  return {file_, value_->at(field), place_of(field)};
-}
+JsonNode JsonNode::child(const std::string& field) const { return {file_, value_->at(field), place_of(field)}; }
 
 void JsonNode::fail(const std::string& problem) const {
   throw InputError(file_, where_.empty() ? problem : "field '" + where_ + "': " + problem);

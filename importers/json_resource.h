@@ -44,8 +44,7 @@ class JsonNode {
 // A parsed resource file.
 class JsonResource {
  public:
-  JsonResource(std::string file, nlohmann::json document)
-      : file_(std::move(file)), document_(std::move(document)) {}
+  JsonResource(std::string file, nlohmann::json document) : file_(std::move(file)), document_(std::move(document)) {}
   JsonResource(const JsonResource&) = delete;
   JsonResource& operator=(const JsonResource&) = delete;
   const std::string& file() const { return file_; }

@@ -26,11 +26,13 @@ class MappedHdf5Reader final : public LogReader {
     }
     if (!options.mapping) {
       if (mat == MatFileVersion::older) {
-        throw InputError(path, "MAT-file older than v7.3 (not HDF5-based); re-save it in "
-                               "MATLAB with save(FILE, '-v7.3')");
+        throw InputError(path,
+                         "MAT-file older than v7.3 (not HDF5-based); re-save it in "
+                         "MATLAB with save(FILE, '-v7.3')");
       }
-      throw InputError(path, "MATLAB file: pass --mapping NAME|FILE to say which variables "
-                             "form which streams (see resources/mappings/)");
+      throw InputError(path,
+                       "MATLAB file: pass --mapping NAME|FILE to say which variables "
+                       "form which streams (see resources/mappings/)");
     }
     return read_mapped_hdf5(path, *options.mapping);
   }

@@ -73,13 +73,10 @@ Mapping load_mapping(const std::string& path) {
   return m;
 }
 
-std::string find_mapping(const std::string& name_or_file,
-                         const std::vector<fs::path>& folders) {
+std::string find_mapping(const std::string& name_or_file, const std::vector<fs::path>& folders) {
   return find_named_file(name_or_file, folders, "mapping");
 }
 
-std::vector<std::string> list_mappings(const std::vector<fs::path>& folders) {
-  return list_named_files(folders);
-}
+std::vector<std::string> list_mappings(const std::vector<fs::path>& folders) { return list_named_files(folders); }
 
 }  // namespace roverlab::io

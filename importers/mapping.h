@@ -12,11 +12,11 @@
 namespace roverlab::io {
 
 struct ChannelMapping {
-  std::string name;         // RoverLab channel name
-  std::string variable;     // variable (dataset path) in the file
+  std::string name;                      // RoverLab channel name
+  std::string variable;                  // variable (dataset path) in the file
   std::optional<std::size_t> component;  // column of a 2-D variable, 0-based
-  std::string unit = "1";   // unit of the stored values
-  double scale = 1.0;       // applied after unit conversion; -1 flips the sign
+  std::string unit = "1";                // unit of the stored values
+  double scale = 1.0;                    // applied after unit conversion; -1 flips the sign
   std::string description;
 };
 
@@ -44,8 +44,7 @@ Mapping load_mapping(const std::string& path);
 
 // NAME (looked up as NAME.json in each of `folders`, in order) or a FILE path.
 // Throws InputError when neither exists.
-std::string find_mapping(const std::string& name_or_file,
-                         const std::vector<std::filesystem::path>& folders);
+std::string find_mapping(const std::string& name_or_file, const std::vector<std::filesystem::path>& folders);
 
 // Names of the mappings found in `folders`.
 std::vector<std::string> list_mappings(const std::vector<std::filesystem::path>& folders);

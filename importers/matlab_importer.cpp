@@ -37,8 +37,7 @@ struct Variable {
 Variable read_variable(const std::string& path, hid_t file, const std::string& mapping_name,
                        const std::string& variable) {
   if (h5::object_kind(file, variable) != h5::ObjectKind::dataset) {
-    throw InputError(path, "mapping '" + mapping_name + "' names variable '" + variable +
-                               "', which the file lacks");
+    throw InputError(path, "mapping '" + mapping_name + "' names variable '" + variable + "', which the file lacks");
   }
   Handle ds(H5Dopen2(file, variable.c_str(), H5P_DEFAULT));
   Variable v;
@@ -59,8 +58,8 @@ std::vector<double> select(const std::string& path, const Variable& v, const std
   for (hsize_t d : v.shape) non_singleton += d > 1 ? 1 : 0;
   if (non_singleton <= 1) {
     if (component && *component != 0) {
-      throw InputError(path, "variable '" + variable + "' is a vector; component " +
-                                 std::to_string(*component) + " does not exist");
+      throw InputError(
+          path, "variable '" + variable + "' is a vector; component " + std::to_string(*component) + " does not exist");
     }
     return v.values;
   }
@@ -69,8 +68,7 @@ std::vector<double> select(const std::string& path, const Variable& v, const std
                                " dimensions; only vectors and 2-D arrays can be mapped");
   }
   if (!component) {
-    throw InputError(path, "variable '" + variable +
-                               "' is 2-D: the mapping must name a 'component'");
+    throw InputError(path, "variable '" + variable + "' is 2-D: the mapping must name a 'component'");
   }
   // HDF5 row-major [rows, cols]; the sample axis is the one as long as the time base.
   const std::size_t rows = v.shape[0], cols = v.shape[1];
@@ -82,9 +80,9 @@ std::vector<double> select(const std::string& path, const Variable& v, const std
     out.assign(v.values.begin() + static_cast<std::ptrdiff_t>(*component * cols),
                v.values.begin() + static_cast<std::ptrdiff_t>((*component + 1) * cols));
   } else {
-    throw InputError(path, "variable '" + variable + "' is " + std::to_string(rows) + " x " +
-                               std::to_string(cols) + ": no axis of " + std::to_string(samples) +
-                               " samples with component " + std::to_string(*component));
+    throw InputError(path, "variable '" + variable + "' is " + std::to_string(rows) + " x " + std::to_string(cols) +
+                               ": no axis of " + std::to_string(samples) + " samples with component " +
+                               std::to_string(*component));
   }
   return out;
 }
@@ -98,8 +96,9 @@ log::Log read_mapped_hdf5(const std::string& path, const Mapping& mapping) {
   const MatFileVersion mat = matlab_file_version(path);
   if (!h5::is_hdf5_file(path)) {
     if (mat == MatFileVersion::older) {
-      throw InputError(path, "MAT-file older than v7.3 (not HDF5-based); re-save it in MATLAB "
-                             "with save(FILE, '-v7.3')");
+      throw InputError(path,
+                       "MAT-file older than v7.3 (not HDF5-based); re-save it in MATLAB "
+                       "with save(FILE, '-v7.3')");
     }
     if (mat == MatFileVersion::v7_3) {
       throw InputError(path, "MATLAB v7.3 header but no readable HDF5 content (truncated?)");
@@ -145,8 +144,7 @@ log::Log read_mapped_hdf5(const std::string& path, const Mapping& mapping) {
       for (const auto& cm : sm.channels) {
         auto it = cache.find(cm.variable);
         if (it == cache.end()) {
-          it = cache.emplace(cm.variable, read_variable(path, file.get(), mapping.name, cm.variable))
-                   .first;
+          it = cache.emplace(cm.variable, read_variable(path, file.get(), mapping.name, cm.variable)).first;
         }
         std::vector<double> values = select(path, it->second, cm.variable, cm.component, stream.size());
         const log::UnitConversion si = log::unit_to_si(cm.unit);

@@ -12,8 +12,8 @@ std::string find_named_file(const std::string& name_or_file, const std::vector<f
                             const std::string& what) {
   std::error_code ec;
   if (fs::is_regular_file(name_or_file, ec)) return name_or_file;
-  const bool looks_like_path = name_or_file.find('/') != std::string::npos ||
-                               fs::path(name_or_file).extension() == ".json";
+  const bool looks_like_path =
+      name_or_file.find('/') != std::string::npos || fs::path(name_or_file).extension() == ".json";
   if (!looks_like_path) {
     for (const auto& folder : folders) {
       const fs::path candidate = folder / (name_or_file + ".json");
@@ -22,10 +22,10 @@ std::string find_named_file(const std::string& name_or_file, const std::vector<f
   }
   std::string known;
   for (const auto& name : list_named_files(folders)) known += (known.empty() ? "" : ", ") + name;
-  throw InputError(name_or_file, looks_like_path
-                                     ? "no such " + what + " file"
-                                     : "no " + what + " of that name (known: " +
-                                           (known.empty() ? std::string("none") : known) + ")");
+  throw InputError(name_or_file,
+                   looks_like_path
+                       ? "no such " + what + " file"
+                       : "no " + what + " of that name (known: " + (known.empty() ? std::string("none") : known) + ")");
 }
 
 std::vector<std::string> list_named_files(const std::vector<fs::path>& folders) {

@@ -11,8 +11,7 @@ namespace roverlab::io {
 // The file for NAME (first folder that has NAME.json) or the FILE itself.
 // Throws InputError listing the known names when neither exists; `what` names
 // the kind of resource in the message ("mapping", "soil").
-std::string find_named_file(const std::string& name_or_file,
-                            const std::vector<std::filesystem::path>& folders,
+std::string find_named_file(const std::string& name_or_file, const std::vector<std::filesystem::path>& folders,
                             const std::string& what);
 
 // Names (stems of *.json) found in `folders`, sorted, without duplicates.

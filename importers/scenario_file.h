@@ -13,8 +13,8 @@ namespace roverlab::io {
 struct ScenarioFile {
   std::string file, name, description, kind, rover, path, soil, traction;
   double duration = 0, start_x = 0, desired_speed = 0.02;
-  double slope_deg = 0, bump_height = 0.05, bump_x = 1.0, bump_length = 0.3;  // path "slope" / "bump" 
-  std::map<std::string, double> effects;  // NAME -> value
+  double slope_deg = 0, bump_height = 0.05, bump_x = 1.0, bump_length = 0.3;  // path "slope" / "bump"
+  std::map<std::string, double> effects;                                      // NAME -> value
 };
 
 // Throws InputError naming the file.

@@ -26,8 +26,7 @@ terramechanics::Soil load_soil(const std::string& path) {
   return s;
 }
 
-terramechanics::Soil find_soil(const std::string& name_or_file,
-                               const std::vector<std::filesystem::path>& folders) {
+terramechanics::Soil find_soil(const std::string& name_or_file, const std::vector<std::filesystem::path>& folders) {
   return load_soil(find_named_file(name_or_file, folders, "soil"));
 }
 

@@ -14,7 +14,6 @@ namespace roverlab::io {
 terramechanics::Soil load_soil(const std::string& path);
 
 // NAME (resources/soils/NAME.json) or FILE.
-terramechanics::Soil find_soil(const std::string& name_or_file,
-                               const std::vector<std::filesystem::path>& folders);
+terramechanics::Soil find_soil(const std::string& name_or_file, const std::vector<std::filesystem::path>& folders);
 
 }  // namespace roverlab::io

@@ -40,8 +40,7 @@ NumericTable read_numeric_table(const std::string& path, const std::vector<std::
     }
     for (std::size_t k = 0; k < cells.size(); ++k) {
       const std::string cell = csv::trim(cells[k]);
-      const bool must_be_number =
-          std::find(numeric.begin(), numeric.end(), t.names[k]) != numeric.end();
+      const bool must_be_number = std::find(numeric.begin(), numeric.end(), t.names[k]) != numeric.end();
       double v = NAN;
       try {
         v = csv::parse_number(cell).value_or(NAN);

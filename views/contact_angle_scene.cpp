@@ -52,7 +52,8 @@ void aim(vtkActor* actor, double x, double y, double a, double len) {
 // The still parts of a panel: the wheel disc on the ground seen from the
 // side (left part), the wheel seen from above (right part).
 void add_wheel_outlines(vtkRenderer* r) {
-  const double disc_rgb[3] = {0.82, 0.82, 0.84}, ground_rgb[3] = {0.62, 0.56, 0.47}, wheel_top_rgb[3] = {0.55, 0.55, 0.58};
+  const double disc_rgb[3] = {0.82, 0.82, 0.84}, ground_rgb[3] = {0.62, 0.56, 0.47},
+               wheel_top_rgb[3] = {0.55, 0.55, 0.58};
   vtkNew<vtkRegularPolygonSource> disc;
   disc->SetNumberOfSides(64);
   disc->SetRadius(1.0);
@@ -125,7 +126,8 @@ ContactAngleScene::Panel ContactAngleScene::make_panel(std::size_t w) const {
   const bool left = name.size() > 1 && name[1] == 'L';
   std::size_t col = w < cols ? w : n - 1 - w;
   if (col >= cols) col = cols - 1;
-  const double x0 = static_cast<double>(col) / static_cast<double>(cols), x1 = static_cast<double>(col + 1) / static_cast<double>(cols);
+  const double x0 = static_cast<double>(col) / static_cast<double>(cols),
+               x1 = static_cast<double>(col + 1) / static_cast<double>(cols);
   const double y0 = left ? 0.5 : 0.0, y1 = left ? 1.0 : 0.5;
   Panel panel;
   auto& r = panel.renderer = vtkSmartPointer<vtkRenderer>::New();
@@ -221,7 +223,9 @@ class ContactAnglesView : public View {
   std::string needs(const SceneInput& in) const override { return contact_angle_needs(*in.log); }
 
  protected:
-  std::unique_ptr<Scene> make_scene(const SceneInput& in) const override { return std::make_unique<ContactAngleScene>(*in.log); }
+  std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {
+    return std::make_unique<ContactAngleScene>(*in.log);
+  }
 };
 
 }  // namespace

@@ -8,8 +8,8 @@
 
 namespace roverlab::views {
 
-DisplaySeries decimate_min_max(const std::vector<double>& time, const std::vector<double>& values,
-                               double t0, double t1, std::size_t buckets) {
+DisplaySeries decimate_min_max(const std::vector<double>& time, const std::vector<double>& values, double t0, double t1,
+                               std::size_t buckets) {
   DisplaySeries out;
   const auto begin = static_cast<std::size_t>(std::lower_bound(time.begin(), time.end(), t0) - time.begin());
   const auto end = static_cast<std::size_t>(std::upper_bound(time.begin(), time.end(), t1) - time.begin());
@@ -44,7 +44,7 @@ DisplaySeries decimate_min_max(const std::vector<double>& time, const std::vecto
       }
     }
     if (imin == hi && imax == hi) continue;  // bucket of missing samples: a gap
-    if (imin == hi) imin = imax;  // all equal to +inf
+    if (imin == hi) imin = imax;             // all equal to +inf
     if (imax == hi) imax = imin;
     const std::size_t first = std::min(imin, imax), second = std::max(imin, imax);
     out.time.push_back(time[first]);
@@ -57,8 +57,8 @@ DisplaySeries decimate_min_max(const std::vector<double>& time, const std::vecto
   return out;
 }
 
-vtkSmartPointer<vtkTable> make_display_table(const log::Stream& stream, const std::string& channel,
-                                             double t0, double t1, std::size_t buckets) {
+vtkSmartPointer<vtkTable> make_display_table(const log::Stream& stream, const std::string& channel, double t0,
+                                             double t1, std::size_t buckets) {
   const log::Channel& c = stream.channel(channel);
   const DisplaySeries series = decimate_min_max(stream.time(), c.values, t0, t1, buckets);
   vtkNew<vtkDoubleArray> time;

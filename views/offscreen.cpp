@@ -82,7 +82,8 @@ Image read_png(const std::string& path) {
   for (int y = 0; y < img.height; ++y) {
     for (int x = 0; x < img.width; ++x) {
       const auto* p = static_cast<unsigned char*>(data->GetScalarPointer(x, img.height - 1 - y, 0));
-      for (int c = 0; c < 3; ++c) img.rgb[3 * (static_cast<std::size_t>(y) * img.width + x) + c] = p[comps >= 3 ? c : 0];
+      for (int c = 0; c < 3; ++c)
+        img.rgb[3 * (static_cast<std::size_t>(y) * img.width + x) + c] = p[comps >= 3 ? c : 0];
     }
   }
   return img;

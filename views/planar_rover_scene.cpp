@@ -44,7 +44,8 @@ struct PlanarRoverScene::Parts {
 };
 
 PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
-  if (!is_planar_rocker_bogie_log(lg)) throw DataError("not a planar rocker-bogie log (truth/pose and truth/wheels with positions)");
+  if (!is_planar_rocker_bogie_log(lg))
+    throw DataError("not a planar rocker-bogie log (truth/pose and truth/wheels with positions)");
   parts_ = std::make_unique<Parts>();
   Parts& p = *parts_;
   p.pose = lg.find_stream("truth/pose");
@@ -154,7 +155,8 @@ void PlanarRoverScene::show_text(double t, std::size_t k, std::size_t kw) {
   for (int i = 0; i < 3; ++i) {
     const std::string n = std::to_string(i + 1);
     const double s = p.wheels->find_channel("slip_" + n) ? p.wheels->channel("slip_" + n).values[kw] : NAN;
-    if (std::isfinite(s)) len += std::snprintf(line + len, sizeof line - len, "%s slip %d: %.2f", i == 0 ? "\n" : "   ", i + 1, s);
+    if (std::isfinite(s))
+      len += std::snprintf(line + len, sizeof line - len, "%s slip %d: %.2f", i == 0 ? "\n" : "   ", i + 1, s);
   }
   p.text->SetInput(line);
 }

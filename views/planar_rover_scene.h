@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include <Eigen/Core>
 #include <vtkSmartPointer.h>
+#include <Eigen/Core>
 
 #include "core/log/log.h"
 #include "views/view.h"

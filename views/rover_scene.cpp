@@ -56,8 +56,7 @@ vtkSmartPointer<vtkMatrix4x4> pose_matrix(const PoseTrack::Pose& p, double z) {
   const double cr = std::cos(p.roll), sr = std::sin(p.roll), cp = std::cos(p.pitch), sp = std::sin(p.pitch),
                cy = std::cos(p.yaw), sy = std::sin(p.yaw);
   Eigen::Matrix3d C;  // body -> NED, Rz(yaw) Ry(pitch) Rx(roll)
-  C << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
-      sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+  C << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
       -sp, cp * sr, cp * cr;
   Eigen::Matrix3d ned_to_enu;
   ned_to_enu << 0, 1, 0, 1, 0, 0, 0, 0, -1;
@@ -161,7 +160,8 @@ constexpr PoseSource kPoseSources[] = {{"estimate/ins/pose", "yaw", true},
 
 const log::Stream* pose_stream(const log::Log& lg, const PoseSource& source) {
   const log::Stream* s = lg.find_stream(source.stream);
-  if (s == nullptr || s->size() < 2 || channel(*s, "east") == nullptr || channel(*s, "north") == nullptr) return nullptr;
+  if (s == nullptr || s->size() < 2 || channel(*s, "east") == nullptr || channel(*s, "north") == nullptr)
+    return nullptr;
   return s;
 }
 
@@ -219,12 +219,18 @@ std::string pose_track_needs(const log::Log& lg) {
 
 Eigen::Vector3d slip_class_colour(int c) {
   switch (c) {
-    case 0: return {0.20, 0.70, 0.30};
-    case 1: return {0.65, 0.80, 0.20};
-    case 2: return {0.95, 0.80, 0.15};
-    case 3: return {0.95, 0.50, 0.10};
-    case 4: return {0.85, 0.15, 0.10};
-    default: return {0.5, 0.5, 0.5};
+    case 0:
+      return {0.20, 0.70, 0.30};
+    case 1:
+      return {0.65, 0.80, 0.20};
+    case 2:
+      return {0.95, 0.80, 0.15};
+    case 3:
+      return {0.95, 0.50, 0.10};
+    case 4:
+      return {0.85, 0.15, 0.10};
+    default:
+      return {0.5, 0.5, 0.5};
   }
 }
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <vtkSmartPointer.h>
+#include <Eigen/Core>
 
 #include "core/estimation/skid_steer_odometry.h"
 #include "core/log/log.h"

@@ -42,7 +42,8 @@ std::vector<ChannelRef> parse_channels(const log::Log& lg, const std::string& sp
       for (const auto& c : s->channels()) out.push_back({stream, c.name});
     } else {
       const std::string channel = item.substr(colon + 1);
-      if (s->find_channel(channel) == nullptr) throw DataError("stream '" + stream + "' has no channel '" + channel + "'");
+      if (s->find_channel(channel) == nullptr)
+        throw DataError("stream '" + stream + "' has no channel '" + channel + "'");
       out.push_back({stream, channel});
     }
   }
@@ -64,7 +65,7 @@ std::vector<ChannelRef> default_channels(const log::Log& lg) {
 }
 
 void line_colour(std::size_t i, unsigned char rgb[3]) {
-  static const unsigned char table[8][3] = {{31, 119, 180}, {214, 39, 40},  {44, 160, 44},  {255, 127, 14},
+  static const unsigned char table[8][3] = {{31, 119, 180},  {214, 39, 40}, {44, 160, 44},   {255, 127, 14},
                                             {148, 103, 189}, {140, 86, 75}, {227, 119, 194}, {23, 190, 207}};
   for (int k = 0; k < 3; ++k) rgb[k] = table[i % 8][k];
 }

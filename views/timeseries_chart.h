@@ -59,13 +59,13 @@ class TimeSeriesChart : public Scene {
   std::vector<std::size_t> drawn_points() const;
 
  private:
-  void rebuild();   // plots and cursors, after the channels changed
-  void refresh();   // decimated data and axis ranges, after the window changed
+  void rebuild();  // plots and cursors, after the channels changed
+  void refresh();  // decimated data and axis ranges, after the window changed
   const log::Log* log_;
   std::vector<ChannelRef> channels_;
   vtkSmartPointer<vtkContextView> view_;
   std::vector<vtkSmartPointer<vtkTable>> tables_;
-  std::vector<vtkPlot*> plots_;  // per channel, owned by their chart
+  std::vector<vtkPlot*> plots_;                   // per channel, owned by their chart
   std::vector<std::vector<std::size_t>> groups_;  // channel indices per plot
   std::vector<vtkSmartPointer<vtkTable>> cursors_;
   std::vector<std::pair<double, double>> ranges_;  // value range per plot

@@ -5,9 +5,9 @@
 #include <vtkCellArray.h>
 #include <vtkCubeAxesActor.h>
 #include <vtkDoubleArray.h>
-#include <vtkNew.h>
 #include <vtkGlyph3D.h>
 #include <vtkLookupTable.h>
+#include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -72,8 +72,12 @@ struct SurfaceGrid {
   int n = 0;
   std::vector<double> values;
   double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
-  double& at(int i, int j) { return values[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)]; }
-  double at(int i, int j) const { return values[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)]; }
+  double& at(int i, int j) {
+    return values[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+  }
+  double at(int i, int j) const {
+    return values[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+  }
 };
 
 SurfaceGrid sample_surface(const TractionSurfaceData& d, int grid) {

@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include <Eigen/Core>
 #include <vtkSmartPointer.h>
+#include <Eigen/Core>
 
 class vtkActor;
 class vtkAlgorithmOutput;

@@ -47,8 +47,9 @@ std::string ensure_display() {
   const char* d = std::getenv("DISPLAY");
   if (d != nullptr && *d != '\0') return d;
   const std::string xvfb = find_in_path("Xvfb");
-  const char* how = "no X display for rendering: set DISPLAY, install Xvfb (apt-get install xvfb) "
-                    "or run under `xvfb-run -a`";
+  const char* how =
+      "no X display for rendering: set DISPLAY, install Xvfb (apt-get install xvfb) "
+      "or run under `xvfb-run -a`";
   if (xvfb.empty()) throw EnvironmentError(how);
   int fds[2];
   if (pipe(fds) != 0) throw EnvironmentError(how);

@@ -40,7 +40,9 @@ class ContactAngleAnalysis : public Analysis {
   std::string help() const override {
     return "Contact angles, side slip, slip and velocity of a six-wheel DH rover with an EKF or UKF (seed 000)";
   }
-  std::string log_help() const override { return "Log with imu, joints and wheels streams (truth/ streams for errors)"; }
+  std::string log_help() const override {
+    return "Log with imu, joints and wheels streams (truth/ streams for errors)";
+  }
 
   std::string missing(const log::Log& lg) const override {
     for (const char* s : {"imu", "joints", "wheels"}) {
@@ -94,15 +96,20 @@ void ContactAngleAnalysis::declare(CLI::App& cmd) {
   cmd.add_option("--angle-model", angle_model_, "random-walk | damped")->capture_default_str();
   cmd.add_flag("--reset-cross-covariance", reset_cross_covariance_,
                "Zero P's off-diagonal elements every step (the seed's workaround)");
-  cmd.add_option("--process-noise", process_noise_,
-                 "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
+  cmd.add_option(
+         "--process-noise", process_noise_,
+         "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
       ->capture_default_str();
-  cmd.add_option("--velocity-variance", velocity_variance_, "Velocity process noise per step, m^2/s^2")->check(finite_in(1e-15, 1.0));
-  cmd.add_option("--attitude-variance", attitude_variance_, "Attitude process noise per step, rad^2")->check(finite_in(1e-15, 1.0));
+  cmd.add_option("--velocity-variance", velocity_variance_, "Velocity process noise per step, m^2/s^2")
+      ->check(finite_in(1e-15, 1.0));
+  cmd.add_option("--attitude-variance", attitude_variance_, "Attitude process noise per step, rad^2")
+      ->check(finite_in(1e-15, 1.0));
   cmd.add_option("--slip-variance", slip_variance_, "Slip process noise per step")->check(finite_in(1e-15, 1.0));
-  cmd.add_option("--angle-variance", angle_variance_, "Contact / side-slip angle process noise per step, rad^2")->check(finite_in(1e-15, 1.0));
-  cmd.add_option("--joint-rate-window", joint_rate_window_,
-                 "Fuse joint rates with the slope of the joint angles over this window, s (0: measured rates, as the seed)")
+  cmd.add_option("--angle-variance", angle_variance_, "Contact / side-slip angle process noise per step, rad^2")
+      ->check(finite_in(1e-15, 1.0));
+  cmd.add_option(
+         "--joint-rate-window", joint_rate_window_,
+         "Fuse joint rates with the slope of the joint angles over this window, s (0: measured rates, as the seed)")
       ->capture_default_str()
       ->check(finite_in(0.0, 10.0));
 }
@@ -147,11 +154,19 @@ json ContactAngleAnalysis::document(const std::string& file, const kinematics::R
                                     const estimation::ContactAngleResult& r, double wall) const {
   std::vector<std::string> names;
   for (const auto& w : rover.wheels) names.push_back(w.name);
-  json j = {{"file", file}, {"rover", rover.name}, {"model", model_}, {"filter", filter_},
-            {"angle_model", angle_model_}, {"reset_cross_covariance", reset_cross_covariance_},
+  json j = {{"file", file},
+            {"rover", rover.name},
+            {"model", model_},
+            {"filter", filter_},
+            {"angle_model", angle_model_},
+            {"reset_cross_covariance", reset_cross_covariance_},
             {"process_noise", process_noise_},
-            {"seconds", r.seconds}, {"wall_seconds", wall}, {"standstill_samples", r.standstill_samples},
-            {"max_cross_correlation", r.max_cross_correlation}, {"wheels", names}, {"has_truth", r.has_truth}};
+            {"seconds", r.seconds},
+            {"wall_seconds", wall},
+            {"standstill_samples", r.standstill_samples},
+            {"max_cross_correlation", r.max_cross_correlation},
+            {"wheels", names},
+            {"has_truth", r.has_truth}};
   if (r.has_truth) {
     json rms = {{"velocity_mps", r.rms.velocity}, {"slip", r.rms.slip}, {"samples", r.rms.samples}};
     if (!r.rms.contact_angle.empty()) rms["contact_angle_deg"] = degrees(r.rms.contact_angle);
@@ -173,14 +188,17 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
     const json& rms = j.at("rms");
     std::fprintf(out, "\nRMS errors over %zu moving samples (layout of seed 000 Tables 6.2-6.5):\n",
                  rms.at("samples").get<std::size_t>());
-    std::fprintf(out, "  %-6s %14s %12s %16s %16s\n", "", "velocity (m/s)", "slip (-)", "contact (deg)", "side slip (deg)");
+    std::fprintf(out, "  %-6s %14s %12s %16s %16s\n", "", "velocity (m/s)", "slip (-)", "contact (deg)",
+                 "side slip (deg)");
     const char* axes[3] = {"x", "y", "z"};
     for (std::size_t w = 0; w < 6; ++w) {
       char vel[32] = "";
       if (w < 3) std::snprintf(vel, sizeof vel, "%s %.4f", axes[w], rms.at("velocity_mps").at(w).get<double>());
       char ca[32] = "-", ss[32] = "-";
-      if (rms.contains("contact_angle_deg")) std::snprintf(ca, sizeof ca, "%.4f", rms.at("contact_angle_deg").at(w).get<double>());
-      if (rms.contains("side_slip_deg")) std::snprintf(ss, sizeof ss, "%.4f", rms.at("side_slip_deg").at(w).get<double>());
+      if (rms.contains("contact_angle_deg"))
+        std::snprintf(ca, sizeof ca, "%.4f", rms.at("contact_angle_deg").at(w).get<double>());
+      if (rms.contains("side_slip_deg"))
+        std::snprintf(ss, sizeof ss, "%.4f", rms.at("side_slip_deg").at(w).get<double>());
       std::fprintf(out, "  %-6s %14s %12.4f %16s %16s\n", j.at("wheels").at(w).get<std::string>().c_str(), vel,
                    rms.at("slip").at(w).get<double>(), ca, ss);
     }
@@ -204,7 +222,8 @@ void ContactAngleAnalysis::report(const json& j, ReportSection& s) const {
   for (std::size_t k = 0; k < rms.at("slip").size(); ++k) {
     s.html << "<tr><td>" << ReportSection::escape(j.at("wheels").at(k).get<std::string>()) << "</td><td>"
            << ReportSection::number(rms.at("slip").at(k), "%.4f") << "</td><td>"
-           << ReportSection::number(rms.contains("contact_angle_deg") ? rms.at("contact_angle_deg").at(k) : none, "%.3f")
+           << ReportSection::number(rms.contains("contact_angle_deg") ? rms.at("contact_angle_deg").at(k) : none,
+                                    "%.3f")
            << "</td><td>"
            << ReportSection::number(rms.contains("side_slip_deg") ? rms.at("side_slip_deg").at(k) : none, "%.3f")
            << "</td></tr>\n";

@@ -11,16 +11,19 @@ namespace roverlab::app {
 
 namespace {
 
-using nlohmann::json;
 using estimation::ConfusionMatrix;
 using estimation::kSlipClasses;
 using estimation::SlipClass;
+using nlohmann::json;
 
 const char* class_name(int k) { return estimation::to_string(static_cast<SlipClass>(k)); }
 
 json confusion_json(const ConfusionMatrix& c) {
-  json j = {{"rows", "estimated"}, {"columns", "reference"}, {"classes", json::array()},
-            {"counts", json::array()}, {"column_normalised", json::array()}};
+  json j = {{"rows", "estimated"},
+            {"columns", "reference"},
+            {"classes", json::array()},
+            {"counts", json::array()},
+            {"column_normalised", json::array()}};
   for (int k = 0; k < kSlipClasses; ++k) j["classes"].push_back(class_name(k));
   for (int e = 0; e < kSlipClasses; ++e) {
     json counts = json::array(), fractions = json::array();
@@ -77,7 +80,8 @@ class InsSlipAnalysis : public Analysis {
     if (lg.find_stream("imu") == nullptr) return "no imu stream";
     const log::Stream* wheels = lg.find_stream("wheels");
     // A skid-steer log: wheel angles of four wheels.
-    if (wheels == nullptr || wheels->find_channel("angle_FL") == nullptr || wheels->find_channel("angle_RR") == nullptr) {
+    if (wheels == nullptr || wheels->find_channel("angle_FL") == nullptr ||
+        wheels->find_channel("angle_RR") == nullptr) {
       return "no skid-steer wheels stream (angle_FL .. angle_RR)";
     }
     return "";
@@ -123,19 +127,24 @@ class InsSlipAnalysis : public Analysis {
                        const estimation::InsSlipResult& r) {
     const estimation::InsSlipMetrics& m = r.metrics;
     json j = {{"file", file},
-              {"updates", {{"zupt", o.zupt}, {"zaru", o.zaru}, {"nhc", o.nhc},
-                           {"odometry_aiding", o.odometry_aiding}, {"smoother", o.smooth}}},
+              {"updates",
+               {{"zupt", o.zupt},
+                {"zaru", o.zaru},
+                {"nhc", o.nhc},
+                {"odometry_aiding", o.odometry_aiding},
+                {"smoother", o.smooth}}},
               {"duration_s", m.duration},
               {"standstill_fraction", m.standstill_fraction},
               {"has_reference", m.has_reference}};
     if (m.has_reference) {
       j["distance_m"] = m.distance;
-      j["ins"] = {{"final_position_error_m", m.final_position_error},
-                  {"final_position_error_3d_m", m.final_position_error_3d},
-                  {"position_rmse_m", m.position_rmse},
-                  {"position_rmse_enu_m", {m.position_rmse_axes.east, m.position_rmse_axes.north, m.position_rmse_axes.up}},
-                  {"velocity_rmse_mps", m.velocity_rmse},
-                  {"heading_drift_rad", finite_or_null(m.heading_drift)}};
+      j["ins"] = {
+          {"final_position_error_m", m.final_position_error},
+          {"final_position_error_3d_m", m.final_position_error_3d},
+          {"position_rmse_m", m.position_rmse},
+          {"position_rmse_enu_m", {m.position_rmse_axes.east, m.position_rmse_axes.north, m.position_rmse_axes.up}},
+          {"velocity_rmse_mps", m.velocity_rmse},
+          {"heading_drift_rad", finite_or_null(m.heading_drift)}};
       j["wheel_odometry"] = {{"final_position_error_m", r.odometry.final_position_error},
                              {"position_rmse_m", r.odometry.position_rmse}};
     }
@@ -174,7 +183,8 @@ void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
                  j.at("wheel_odometry").at("position_rmse_m").get<double>());
     const json& drift = ins.at("heading_drift_rad");
     std::fprintf(out, "velocity RMSE %.3f m/s; heading drift %.2f deg (last 5 s of driving)\n",
-                 ins.at("velocity_rmse_mps").get<double>(), drift.is_number() ? drift.get<double>() * 180.0 / M_PI : NAN);
+                 ins.at("velocity_rmse_mps").get<double>(),
+                 drift.is_number() ? drift.get<double>() * 180.0 / M_PI : NAN);
   } else {
     std::fprintf(out, "no GPS stream: no position metrics\n");
   }

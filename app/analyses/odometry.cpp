@@ -58,19 +58,27 @@ json OdometryAnalysis::document(const std::string& file, const analysis::Odometr
             {"fit_distance_m", r.fit_distance},
             {"split_time_s", r.split_time},
             {"reference_samples", {{"fit", r.fit_samples}, {"test", r.test_samples}}},
-            {"baseline", {{"fit_rmse_m", r.baseline_fit_rmse}, {"held_out_rmse_m", r.baseline_held_out_rmse},
-                          {"held_out_final_m", r.baseline_held_out_final}, {"distance_ratio", r.distance_ratio},
-                          {"heading_error_rad", finite_or_null(r.heading_error_end)},
-                          {"along_track_rmse_m", finite_or_null(r.along_track_rmse)},
-                          {"cross_track_rmse_m", finite_or_null(r.cross_track_rmse)}}},
+            {"baseline",
+             {{"fit_rmse_m", r.baseline_fit_rmse},
+              {"held_out_rmse_m", r.baseline_held_out_rmse},
+              {"held_out_final_m", r.baseline_held_out_final},
+              {"distance_ratio", r.distance_ratio},
+              {"heading_error_rad", finite_or_null(r.heading_error_end)},
+              {"along_track_rmse_m", finite_or_null(r.along_track_rmse)},
+              {"cross_track_rmse_m", finite_or_null(r.cross_track_rmse)}}},
             {"cause", r.best >= 0 ? json(r.candidates[static_cast<std::size_t>(r.best)].name) : json(nullptr)},
             {"what_is_wrong", r.what_is_wrong},
             {"verdict", r.verdict},
             {"candidates", json::array()}};
   for (const auto& c : r.candidates) {
-    json cj = {{"name", c.name}, {"cause", c.cause}, {"parameters", json::array()},
-               {"fit_rmse_m", c.fit_rmse}, {"delta_bic", c.delta_bic}, {"held_out_rmse_m", c.held_out_rmse},
-               {"held_out_final_m", c.held_out_final}, {"significant", c.significant}};
+    json cj = {{"name", c.name},
+               {"cause", c.cause},
+               {"parameters", json::array()},
+               {"fit_rmse_m", c.fit_rmse},
+               {"delta_bic", c.delta_bic},
+               {"held_out_rmse_m", c.held_out_rmse},
+               {"held_out_final_m", c.held_out_final},
+               {"significant", c.significant}};
     for (const auto& p : c.parameters) {
       cj["parameters"].push_back({{"name", p.name}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}});
     }

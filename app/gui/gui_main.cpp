@@ -1,13 +1,13 @@
 // `roverlab gui [FILE]`: the desktop application. With --screenshot it opens
 // FILE, waits for its jobs, shows the given time and tab, saves a picture of
 // the whole window and exits (headless: a private Xvfb when DISPLAY is unset).
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkOpenGLRenderWindow.h>
 #include <QApplication>
 #include <QDir>
 #include <QPixmap>
 #include <QSurfaceFormat>
 #include <QTimer>
-#include <QVTKOpenGLNativeWidget.h>
-#include <vtkOpenGLRenderWindow.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -93,7 +93,6 @@ int run_gui(const GuiOptions& o) {
   const int rc = app.exec();
   return code != kSuccess ? code : rc;
 }
-
 
 Commands make_gui_commands() {
   Commands commands;

@@ -1,5 +1,9 @@
 #include "app/gui/main_window.h"
 
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkRenderWindowInteractor.h>
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
@@ -18,6 +22,7 @@
 #include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSettings>
 #include <QSlider>
 #include <QStatusBar>
@@ -27,12 +32,7 @@
 #include <QToolBar>
 #include <QToolButton>
 #include <QTreeWidget>
-#include <QScrollArea>
 #include <QVBoxLayout>
-#include <QVTKOpenGLNativeWidget.h>
-#include <vtkGenericOpenGLRenderWindow.h>
-#include <vtkInteractorStyleTrackballCamera.h>
-#include <vtkRenderWindowInteractor.h>
 
 #include <algorithm>
 #include <cmath>
@@ -42,11 +42,11 @@
 
 #include "app/analysis.h"
 #include "app/resources.h"
+#include "app/view_data.h"
 #include "core/common/error.h"
 #include "core/estimation/slip.h"
 #include "importers/mapping.h"
 #include "importers/rover_file.h"
-#include "app/view_data.h"
 #include "views/contact_angle_scene.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
@@ -132,9 +132,9 @@ void MainWindow::build_menus() {
   open->setShortcut(QKeySequence::Open);
   connect(open, &QAction::triggered, this, [this] {
     QSettings settings;
-    const QString path = QFileDialog::getOpenFileName(
-        this, "Open a rover log", settings.value("files/last_dir").toString(),
-        "Rover logs (*.h5 *.hdf5 *.mat *.csv);;All files (*)");
+    const QString path =
+        QFileDialog::getOpenFileName(this, "Open a rover log", settings.value("files/last_dir").toString(),
+                                     "Rover logs (*.h5 *.hdf5 *.mat *.csv);;All files (*)");
     if (!path.isEmpty()) open_file(path);
   });
   recent_menu_ = file->addMenu("Open &recent");
@@ -297,13 +297,15 @@ QWidget* MainWindow::build_analysis_tab() {
   results_->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
   confusion_ = new QTableWidget(estimation::kSlipClasses, estimation::kSlipClasses);
   QStringList classes;
-  for (int k = 0; k < estimation::kSlipClasses; ++k) classes << estimation::to_string(static_cast<estimation::SlipClass>(k));
+  for (int k = 0; k < estimation::kSlipClasses; ++k)
+    classes << estimation::to_string(static_cast<estimation::SlipClass>(k));
   confusion_->setHorizontalHeaderLabels(classes);
   confusion_->setVerticalHeaderLabels(classes);
   confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   confusion_->setMaximumHeight(200);
   candidates_ = new QTableWidget(0, 5);
-  candidates_->setHorizontalHeaderLabels({"candidate", "fitted", "fit RMSE (m)", "held-out RMSE (m)", "held-out final (m)"});
+  candidates_->setHorizontalHeaderLabels(
+      {"candidate", "fitted", "fit RMSE (m)", "held-out RMSE (m)", "held-out final (m)"});
   candidates_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   candidates_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   auto* scroll = new QScrollArea;
@@ -331,48 +333,49 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
   const std::string file = path.toStdString();
   std::optional<std::string> map;
   if (mapping) map = mapping->toStdString();
-  jobs_->start("loading " + QFileInfo(path).fileName(), [this, file, map, path](const JobControl& c) -> std::function<void()> {
-    app::ViewInputOptions o;
-    std::unique_ptr<ViewInput> in;
-    const bool mat = std::filesystem::path(file).extension() == ".mat";
-    if (mat && !map) {
-      // A MATLAB file needs a mapping: the first known one that reads it.
-      std::string errors;
-      for (const auto& name : io::list_mappings(app::resource_subfolders("mappings"))) {
-        try {
-          in = std::make_unique<ViewInput>(app::load_view_input(file, name, o));
-          in->notes.push_back("mapping " + name);
-          break;
-        } catch (const std::exception& e) {
-          errors = e.what();
-        }
-      }
-      if (!in) throw InputError(file, "no known mapping reads this MATLAB file (" + errors + ")");
-    } else {
-      in = std::make_unique<ViewInput>(app::load_view_input(file, map, o));
-    }
-    c.check();
-    auto shared = std::make_shared<std::unique_ptr<ViewInput>>(std::move(in));
-    return [this, shared, path] {
-      install(std::move(*shared));
-      remember_recent(path);
-      QSettings().setValue("files/last_dir", QFileInfo(path).absolutePath());
-      setWindowTitle("RoverLab - " + QFileInfo(path).fileName());
-      emit log_loaded();
-      // Estimates arrive as new streams from the analyses that fit the log.
-      std::vector<std::string> names;
-      for (const auto& an : app::all_analyses()) {
-        if (an->runs_on_open(input_->log)) names.push_back(an->name());
-      }
-      if (!names.empty()) {
-        estimator_pending_ = true;
-        QTimer::singleShot(0, this, [this, names] {
-          estimator_pending_ = false;
-          run_analyses(names, false);
-        });
-      }
-    };
-  });
+  jobs_->start("loading " + QFileInfo(path).fileName(),
+               [this, file, map, path](const JobControl& c) -> std::function<void()> {
+                 app::ViewInputOptions o;
+                 std::unique_ptr<ViewInput> in;
+                 const bool mat = std::filesystem::path(file).extension() == ".mat";
+                 if (mat && !map) {
+                   // A MATLAB file needs a mapping: the first known one that reads it.
+                   std::string errors;
+                   for (const auto& name : io::list_mappings(app::resource_subfolders("mappings"))) {
+                     try {
+                       in = std::make_unique<ViewInput>(app::load_view_input(file, name, o));
+                       in->notes.push_back("mapping " + name);
+                       break;
+                     } catch (const std::exception& e) {
+                       errors = e.what();
+                     }
+                   }
+                   if (!in) throw InputError(file, "no known mapping reads this MATLAB file (" + errors + ")");
+                 } else {
+                   in = std::make_unique<ViewInput>(app::load_view_input(file, map, o));
+                 }
+                 c.check();
+                 auto shared = std::make_shared<std::unique_ptr<ViewInput>>(std::move(in));
+                 return [this, shared, path] {
+                   install(std::move(*shared));
+                   remember_recent(path);
+                   QSettings().setValue("files/last_dir", QFileInfo(path).absolutePath());
+                   setWindowTitle("RoverLab - " + QFileInfo(path).fileName());
+                   emit log_loaded();
+                   // Estimates arrive as new streams from the analyses that fit the log.
+                   std::vector<std::string> names;
+                   for (const auto& an : app::all_analyses()) {
+                     if (an->runs_on_open(input_->log)) names.push_back(an->name());
+                   }
+                   if (!names.empty()) {
+                     estimator_pending_ = true;
+                     QTimer::singleShot(0, this, [this, names] {
+                       estimator_pending_ = false;
+                       run_analyses(names, false);
+                     });
+                   }
+                 };
+               });
 }
 
 void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_hand) {
@@ -442,12 +445,14 @@ void MainWindow::rebuild_tree() {
   tree_->clear();
   if (!input_) return;
   if (input_->is_wheel_test()) {
-    auto* item = new QTreeWidgetItem(tree_, {"single-wheel points", "", QString::number(input_->wheel_points.size()), ""});
+    auto* item =
+        new QTreeWidgetItem(tree_, {"single-wheel points", "", QString::number(input_->wheel_points.size()), ""});
     item->setExpanded(true);
     return;
   }
   for (const auto& s : input_->log.streams()) {
-    auto* item = new QTreeWidgetItem(tree_, {q(s.name()), "", QString::number(s.size()), QString::number(s.mean_rate_hz(), 'f', 1)});
+    auto* item = new QTreeWidgetItem(
+        tree_, {q(s.name()), "", QString::number(s.size()), QString::number(s.mean_rate_hz(), 'f', 1)});
     for (const auto& c : s.channels()) new QTreeWidgetItem(item, {q(c.name), q(c.unit), "", ""});
   }
 }
@@ -576,7 +581,8 @@ void MainWindow::rebuild_analysis() {
   QString text;
   for (const auto& run : input_->analyses) {
     const std::unique_ptr<app::Analysis> a = app::make_analysis(run.name);
-    text += "<b>" + q(run.title).toHtmlEscaped() + "</b><pre>" + q(printed(*a, run.document)).toHtmlEscaped() + "</pre>";
+    text +=
+        "<b>" + q(run.title).toHtmlEscaped() + "</b><pre>" + q(printed(*a, run.document)).toHtmlEscaped() + "</pre>";
     auto* top = new QTreeWidgetItem(results_, {q(run.title), ""});
     add_json_items(top, run.document);
   }
@@ -585,8 +591,10 @@ void MainWindow::rebuild_analysis() {
     for (int e = 0; e < estimation::kSlipClasses; ++e) {
       for (int t = 0; t < estimation::kSlipClasses; ++t) {
         const nlohmann::json& f = fractions.at(e).at(t);
-        auto* item = new QTableWidgetItem(f.is_number() ? QString("%1 %").arg(100.0 * f.get<double>(), 0, 'f', 1) : "-");
-        if (f.is_number()) item->setBackground(QColor::fromRgbF(1.0 - 0.5 * f.get<double>(), 1.0 - 0.5 * f.get<double>(), 1.0));
+        auto* item =
+            new QTableWidgetItem(f.is_number() ? QString("%1 %").arg(100.0 * f.get<double>(), 0, 'f', 1) : "-");
+        if (f.is_number())
+          item->setBackground(QColor::fromRgbF(1.0 - 0.5 * f.get<double>(), 1.0 - 0.5 * f.get<double>(), 1.0));
         confusion_->setItem(e, t, item);
       }
     }
@@ -600,8 +608,8 @@ void MainWindow::rebuild_analysis() {
 void MainWindow::fill_candidates(const nlohmann::json& r) {
   const nlohmann::json& candidates = r.at("candidates");
   candidates_->setRowCount(static_cast<int>(candidates.size()) + 1);
-  auto row = [&](int i, const QString& name, const QString& fitted, const nlohmann::json& fit, const nlohmann::json& held,
-                 const nlohmann::json& fin, bool bold) {
+  auto row = [&](int i, const QString& name, const QString& fitted, const nlohmann::json& fit,
+                 const nlohmann::json& held, const nlohmann::json& fin, bool bold) {
     const QStringList cells{name, fitted, json_text(fit), json_text(held), json_text(fin)};
     for (int k = 0; k < cells.size(); ++k) {
       auto* item = new QTableWidgetItem(cells[k]);
@@ -619,7 +627,8 @@ void MainWindow::fill_candidates(const nlohmann::json& r) {
   for (const auto& c : candidates) {
     QString fitted;
     for (const auto& p : c.at("parameters")) {
-      fitted += q(p.at("name").get<std::string>()) + " = " + QString::number(p.at("value").get<double>(), 'g', 4) + "  ";
+      fitted +=
+          q(p.at("name").get<std::string>()) + " = " + QString::number(p.at("value").get<double>(), 'g', 4) + "  ";
     }
     row(i++, q(c.at("name").get<std::string>()), fitted, c.at("fit_rmse_m"), c.at("held_out_rmse_m"),
         c.at("held_out_final_m"), c.at("name") == r.at("cause"));

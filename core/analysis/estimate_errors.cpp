@@ -55,7 +55,8 @@ std::optional<estimation::StateErrors> contact_angle_errors(const log::Log& lg, 
   const std::vector<char> mask = moving_samples(wheels, "valid", tbody, "velocity_x", "velocity_y", 1e-3);
   estimation::StateErrors e;
   e.samples = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
-  for (const char* c : {"velocity_x", "velocity_y", "velocity_z"}) e.velocity.push_back(rms_error(body, c, tbody, c, mask, e.samples));
+  for (const char* c : {"velocity_x", "velocity_y", "velocity_z"})
+    e.velocity.push_back(rms_error(body, c, tbody, c, mask, e.samples));
   // The wheels' channels in the estimate's order: slip_<wheel>, then the angles.
   for (const auto& ch : wheels.channels()) {
     const std::string& c = ch.name;

@@ -18,8 +18,7 @@ const std::vector<double>& values(const log::Stream& s, const char* name) { retu
 
 // Position (east, north, up) and velocity (east, north) errors against GPS at
 // the GPS samples within the INS span (seed 002 Table 1).
-void score_track(const ReferenceTrack& ref, const log::Stream& pose, const log::Stream& velocity,
-                 InsSlipMetrics& m) {
+void score_track(const ReferenceTrack& ref, const log::Stream& pose, const log::Stream& velocity, InsSlipMetrics& m) {
   const auto& t = pose.time();
   const auto &east = values(pose, "east"), &north = values(pose, "north"), &up = values(pose, "up");
   const auto &ve = values(velocity, "east"), &vn = values(velocity, "north");

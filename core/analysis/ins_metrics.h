@@ -20,14 +20,14 @@ struct InsSlipMetrics {
   bool has_reference = false;
   double final_position_error = 0;  // horizontal, m, at the last GPS sample
   double final_position_error_3d = 0;
-  double position_rmse = 0;         // horizontal, m
-  AxisErrors position_rmse_axes;    // as in seed 002 Table 1
-  double velocity_rmse = 0;         // horizontal, m/s, against GPS-differenced velocity
-  double heading_drift = 0;         // rad, heading minus GPS course over the last 5 s of driving
-  double distance = 0;              // m along the GPS track
+  double position_rmse = 0;               // horizontal, m
+  AxisErrors position_rmse_axes;          // as in seed 002 Table 1
+  double velocity_rmse = 0;               // horizontal, m/s, against GPS-differenced velocity
+  double heading_drift = 0;               // rad, heading minus GPS course over the last 5 s of driving
+  double distance = 0;                    // m along the GPS track
   estimation::ConfusionMatrix confusion;  // estimated vs reference slip classes
   double standstill_fraction = 0;
-  double duration = 0;              // s of IMU data processed
+  double duration = 0;  // s of IMU data processed
 };
 
 struct OdometryMetrics {

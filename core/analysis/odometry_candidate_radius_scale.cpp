@@ -9,7 +9,8 @@ class RadiusScale final : public OdometryCandidateModel {
  public:
   std::string name() const override { return "radius scale"; }
   std::string cause() const override {
-    return "the wheels roll a different distance per turn than the nominal radius says, on both sides (effective radius, or a steady slip)";
+    return "the wheels roll a different distance per turn than the nominal radius says, on both sides (effective "
+           "radius, or a steady slip)";
   }
   std::vector<CandidateParameter> parameters() const override { return {{"radius_scale", 1.0, 0.5, 1.5}}; }
   estimation::OdometryCorrections corrections(const double* x) const override {

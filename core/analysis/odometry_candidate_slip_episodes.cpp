@@ -17,9 +17,7 @@ class SlipEpisodes final : public OdometryCandidateModel {
     windows_ = std::max(1, static_cast<int>(std::ceil(fit_span / window_)));
   }
   std::string name() const override { return "slip episodes"; }
-  std::string cause() const override {
-    return "the wheels slip by different amounts over the drive (terrain changes)";
-  }
+  std::string cause() const override { return "the wheels slip by different amounts over the drive (terrain changes)"; }
   std::vector<CandidateParameter> parameters() const override {
     std::vector<CandidateParameter> p;
     p.reserve(static_cast<std::size_t>(windows_));
@@ -30,7 +28,8 @@ class SlipEpisodes final : public OdometryCandidateModel {
     estimation::OdometryCorrections c;
     c.slip.resize(fit_wheels_.time.size());
     for (std::size_t i = 0; i < c.slip.size(); ++i) {
-      const int k = std::min(windows_ - 1, static_cast<int>((fit_wheels_.time[i] - fit_wheels_.time.front()) / window_));
+      const int k =
+          std::min(windows_ - 1, static_cast<int>((fit_wheels_.time[i] - fit_wheels_.time.front()) / window_));
       c.slip[i] = x[k];
     }
     return c;

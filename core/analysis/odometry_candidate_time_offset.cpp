@@ -8,9 +8,7 @@ namespace {
 class TimeOffset final : public OdometryCandidateModel {
  public:
   std::string name() const override { return "time offset"; }
-  std::string cause() const override {
-    return "the wheel and reference clocks disagree by a constant offset";
-  }
+  std::string cause() const override { return "the wheel and reference clocks disagree by a constant offset"; }
   std::vector<CandidateParameter> parameters() const override { return {{"time_offset_s", 0.0, -2.0, 2.0}}; }
   estimation::OdometryCorrections corrections(const double* x) const override {
     estimation::OdometryCorrections c;

@@ -135,12 +135,14 @@ void OdometryStudy::read_inputs() {
     if (ws.find_channel(c) == nullptr) throw DataError("stream '" + o_.wheels + "' has no channel '" + c + "'");
   }
   ref_ = estimation::reference_from_gps(log_, o_.reference);
-  if (!ref_.present) throw DataError("no reference track: stream '" + o_.reference + "' with east and north is missing");
+  if (!ref_.present)
+    throw DataError("no reference track: stream '" + o_.reference + "' with east and north is missing");
   wheels_ = estimation::wheel_rates(ws.time(), ws.channel("angle_FL").values, ws.channel("angle_FR").values,
                                     ws.channel("angle_RL").values, ws.channel("angle_RR").values);
   for (std::size_t i = 0; i < wheels_.time.size(); ++i) {
     if (!std::isfinite(wheels_.left_rate[i] + wheels_.right_rate[i])) {
-      throw DataError("stream '" + o_.wheels + "': missing wheel angle near t = " + std::to_string(wheels_.time[i]) + " s");
+      throw DataError("stream '" + o_.wheels + "': missing wheel angle near t = " + std::to_string(wheels_.time[i]) +
+                      " s");
     }
   }
 }
@@ -151,7 +153,8 @@ void OdometryStudy::read_inputs() {
 void OdometryStudy::split() {
   const std::vector<double> dist = estimation::distance_along(ref_);
   rep_.distance = dist.back();
-  if (rep_.distance < 5.0) throw DataError("the reference track covers only " + std::to_string(rep_.distance) + " m (need 5 m)");
+  if (rep_.distance < 5.0)
+    throw DataError("the reference track covers only " + std::to_string(rep_.distance) + " m (need 5 m)");
   const double t_begin = std::max(ref_.time.front(), wheels_.time.front());
   const double t_end = std::min(ref_.time.back(), wheels_.time.back());
   std::size_t split = 0;
@@ -251,7 +254,8 @@ OdometryCandidate OdometryStudy::fit_candidate(const OdometryCandidateModel& mod
   const std::vector<double> r_test = track_errors(test_, ref_, o_.rover, model.held_out_corrections(x.data()));
   cand.held_out_rmse = rmse_of(r_test);
   cand.held_out_final = final_of(r_test);
-  cand.significant = cand.delta_bic < -10.0 && cand.held_out_rmse <= (1.0 - o_.min_gain) * rep_.baseline_held_out_rmse &&
+  cand.significant = cand.delta_bic < -10.0 &&
+                     cand.held_out_rmse <= (1.0 - o_.min_gain) * rep_.baseline_held_out_rmse &&
                      cand.held_out_rmse <= rep_.baseline_held_out_rmse - o_.min_improvement;
   return cand;
 }
@@ -273,7 +277,8 @@ std::vector<double> OdometryStudy::parameter_sigmas(ceres::Problem& problem, std
     double s2 = 0.0;
     for (double v : r_fit) s2 += v * v;
     s2 /= std::max<double>(1.0, static_cast<double>(r_fit.size()) - k);
-    for (int i = 0; i < k; ++i) sigma[static_cast<std::size_t>(i)] = std::sqrt(std::max(0.0, c[static_cast<std::size_t>(i * k + i)] * s2));
+    for (int i = 0; i < k; ++i)
+      sigma[static_cast<std::size_t>(i)] = std::sqrt(std::max(0.0, c[static_cast<std::size_t>(i * k + i)] * s2));
   }
   return sigma;
 }
@@ -292,7 +297,8 @@ void OdometryStudy::choose_cause() {
     const auto& b = rep_.candidates[static_cast<std::size_t>(rep_.best)];
     const double tie = std::max(0.1 * b.held_out_rmse, o_.min_improvement);
     const bool equal = std::abs(c.held_out_rmse - b.held_out_rmse) < tie;
-    if (equal ? c.parameter_count < b.parameter_count : c.held_out_rmse < b.held_out_rmse) rep_.best = static_cast<int>(i);
+    if (equal ? c.parameter_count < b.parameter_count : c.held_out_rmse < b.held_out_rmse)
+      rep_.best = static_cast<int>(i);
   }
 }
 
@@ -333,15 +339,17 @@ void OdometryStudy::write_verdict() {
   int second = -1;
   for (std::size_t i = 0; i < rep_.candidates.size(); ++i) {
     if (static_cast<int>(i) == rep_.best || !rep_.candidates[i].significant) continue;
-    if (second < 0 || rep_.candidates[i].held_out_rmse < rep_.candidates[static_cast<std::size_t>(second)].held_out_rmse) {
+    if (second < 0 ||
+        rep_.candidates[i].held_out_rmse < rep_.candidates[static_cast<std::size_t>(second)].held_out_rmse) {
       second = static_cast<int>(i);
     }
   }
   if (second >= 0) {
     const auto& c = rep_.candidates[static_cast<std::size_t>(second)];
     char more[256];
-    std::snprintf(more, sizeof more, " Runner-up: %s (held-out %.2f m); data with other manoeuvres would separate them.",
-                  c.name.c_str(), c.held_out_rmse);
+    std::snprintf(more, sizeof more,
+                  " Runner-up: %s (held-out %.2f m); data with other manoeuvres would separate them.", c.name.c_str(),
+                  c.held_out_rmse);
     rep_.verdict += more;
   }
 }

@@ -21,11 +21,11 @@ namespace roverlab::analysis {
 
 struct OdometryStudyOptions {
   estimation::SkidSteerGeometry rover;
-  double fit_fraction = 0.5;       // share of the driven distance used for fitting
-  double heading_distance = 5.0;   // m of reference track that set the initial heading
-  double slip_window = 5.0;        // s, length of a slip-episode window
-  double min_gain = 0.2;           // a cause must cut the held-out RMSE by at least this share
-  double min_improvement = 0.05;   // m, and by at least this much (about the reference's accuracy)
+  double fit_fraction = 0.5;      // share of the driven distance used for fitting
+  double heading_distance = 5.0;  // m of reference track that set the initial heading
+  double slip_window = 5.0;       // s, length of a slip-episode window
+  double min_gain = 0.2;          // a cause must cut the held-out RMSE by at least this share
+  double min_improvement = 0.05;  // m, and by at least this much (about the reference's accuracy)
   std::string wheels = "wheels", reference = "gps";
 };
 
@@ -39,11 +39,11 @@ struct OdometryCandidate {
   std::string cause;  // what it would mean physically
   std::vector<OdometryParameter> parameters;  // slip episodes: summarised (count, median, max)
   int parameter_count = 0;
-  double fit_rmse = 0;       // m, on the fit part
+  double fit_rmse = 0;            // m, on the fit part
   double bic = 0, delta_bic = 0;  // against the baseline, on the fit part
-  double held_out_rmse = 0;  // m, on the test part
-  double held_out_final = 0; // m, at the end of the test part
-  bool significant = false;  // delta BIC < -10 and held-out gain >= min_gain and >= min_improvement
+  double held_out_rmse = 0;       // m, on the test part
+  double held_out_final = 0;      // m, at the end of the test part
+  bool significant = false;       // delta BIC < -10 and held-out gain >= min_gain and >= min_improvement
 };
 
 struct OdometryDiscrepancyReport {
@@ -53,8 +53,8 @@ struct OdometryDiscrepancyReport {
   double baseline_fit_rmse = 0, baseline_held_out_rmse = 0, baseline_held_out_final = 0;
   double baseline_bic = 0;
   // What the baseline gets wrong on the fit part: distance ratio and heading error.
-  double distance_ratio = 0;      // odometry distance / reference distance
-  double heading_error_end = 0;   // rad, odometry heading minus reference course at the split
+  double distance_ratio = 0;                          // odometry distance / reference distance
+  double heading_error_end = 0;                       // rad, odometry heading minus reference course at the split
   double along_track_rmse = 0, cross_track_rmse = 0;  // m
   std::vector<OdometryCandidate> candidates;
   int best = -1;  // index of the named cause, -1 when none is significant

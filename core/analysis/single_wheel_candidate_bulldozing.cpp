@@ -17,6 +17,8 @@ class Bulldozing final : public SingleWheelCandidate {
 
 }  // namespace
 
-std::unique_ptr<SingleWheelCandidate> make_bulldozing_single_wheel_candidate() { return std::make_unique<Bulldozing>(); }
+std::unique_ptr<SingleWheelCandidate> make_bulldozing_single_wheel_candidate() {
+  return std::make_unique<Bulldozing>();
+}
 
 }  // namespace roverlab::analysis

@@ -11,7 +11,9 @@ class Grousers final : public SingleWheelCandidate {
  public:
   const char* name() const override { return "grousers"; }
   const char* cause() const override { return "the grousered wheel pulls more than the smooth-wheel model predicts"; }
-  std::vector<std::pair<Parameter, double>> parameters() const override { return {{Parameter::grouser_effectiveness, 0.5}}; }
+  std::vector<std::pair<Parameter, double>> parameters() const override {
+    return {{Parameter::grouser_effectiveness, 0.5}};
+  }
   bool needs_grousers() const override { return true; }
   void configure(terramechanics::Extensions& e) const override { e.grousers = true; }
 };

@@ -12,11 +12,15 @@ class SlipSinkage final : public SingleWheelCandidate {
  public:
   const char* name() const override { return "slip-sinkage"; }
   const char* cause() const override { return "sinkage grows with slip and the static model cannot follow it"; }
-  std::vector<std::pair<Parameter, double>> parameters() const override { return {{Parameter::slip_sinkage_n1, 0.0}, {Parameter::n, -1.0}}; }
+  std::vector<std::pair<Parameter, double>> parameters() const override {
+    return {{Parameter::slip_sinkage_n1, 0.0}, {Parameter::n, -1.0}};
+  }
 };
 
 }  // namespace
 
-std::unique_ptr<SingleWheelCandidate> make_slip_sinkage_single_wheel_candidate() { return std::make_unique<SlipSinkage>(); }
+std::unique_ptr<SingleWheelCandidate> make_slip_sinkage_single_wheel_candidate() {
+  return std::make_unique<SlipSinkage>();
+}
 
 }  // namespace roverlab::analysis

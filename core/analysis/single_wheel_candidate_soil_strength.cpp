@@ -16,6 +16,8 @@ class SoilStrength final : public SingleWheelCandidate {
 
 }  // namespace
 
-std::unique_ptr<SingleWheelCandidate> make_soil_strength_single_wheel_candidate() { return std::make_unique<SoilStrength>(); }
+std::unique_ptr<SingleWheelCandidate> make_soil_strength_single_wheel_candidate() {
+  return std::make_unique<SoilStrength>();
+}
 
 }  // namespace roverlab::analysis

@@ -47,8 +47,7 @@ Line regress(const std::vector<double>& x, const std::vector<double>& y) {
   return l;
 }
 
-double score_of(const std::vector<PointResidual>& residuals, double* rss_out = nullptr,
-                std::size_t* m_out = nullptr) {
+double score_of(const std::vector<PointResidual>& residuals, double* rss_out = nullptr, std::size_t* m_out = nullptr) {
   double rss = 0.0;
   std::size_t m = 0;
   for (const auto& r : residuals) {
@@ -87,9 +86,12 @@ std::string show(Quantity q, double v) {
 
 std::string words(Quantity q) {
   switch (q) {
-    case Quantity::drawbar_pull: return "drawbar pull";
-    case Quantity::torque: return "torque";
-    case Quantity::sinkage: return "sinkage";
+    case Quantity::drawbar_pull:
+      return "drawbar pull";
+    case Quantity::torque:
+      return "torque";
+    case Quantity::sinkage:
+      return "sinkage";
   }
   return "?";
 }
@@ -167,9 +169,8 @@ DiscrepancyReport SingleWheelStudy::run() {
   report_.points = points_.size();
   find_quantities();
   score_baseline();
-  any_grousers_ = std::any_of(points_.begin(), points_.end(), [](const auto& p) {
-    return p.wheel.grouser_count > 0 && p.wheel.grouser_height > 0.0;
-  });
+  any_grousers_ = std::any_of(points_.begin(), points_.end(),
+                              [](const auto& p) { return p.wheel.grouser_count > 0 && p.wheel.grouser_height > 0.0; });
   for (const auto& candidate : single_wheel_candidates()) report_.candidates.push_back(fit_candidate(*candidate));
   choose_best();
   write_what_is_wrong();
@@ -271,8 +272,8 @@ void SingleWheelStudy::choose_best() {
   }
   if (report_.best >= 0) {
     const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
-    report_.significant = c.delta_bic < o_.bic_threshold &&
-                          c.held_out_score < (1.0 - o_.min_held_out_gain) * report_.baseline_score;
+    report_.significant =
+        c.delta_bic < o_.bic_threshold && c.held_out_score < (1.0 - o_.min_held_out_gain) * report_.baseline_score;
   }
 }
 
@@ -290,9 +291,10 @@ void SingleWheelStudy::write_what_is_wrong() {
         fmt("%.2f", report_.baseline_score) + " sigma).";
     return;
   }
-  std::string s = "The baseline Wong-Reece model " + std::string(worst->bias > 0 ? "over-predicts " : "under-predicts ") +
-                  words(worst->quantity) + " by " + show(worst->quantity, std::abs(worst->bias)) +
-                  " on average (RMSE " + show(worst->quantity, worst->rmse) + ")";
+  std::string s = "The baseline Wong-Reece model " +
+                  std::string(worst->bias > 0 ? "over-predicts " : "under-predicts ") + words(worst->quantity) +
+                  " by " + show(worst->quantity, std::abs(worst->bias)) + " on average (RMSE " +
+                  show(worst->quantity, worst->rmse) + ")";
   if (std::abs(worst->t_slip) >= 3.0) {
     s += ", and the error " + std::string(worst->slope_vs_slip * worst->bias > 0 ? "grows" : "changes") +
          " with slip (" + (worst->slope_vs_slip > 0 ? "+" : "-") +
@@ -363,8 +365,8 @@ void SingleWheelStudy::write_no_significant_verdict() {
                     ") and the held-out error from " + fmt("%.2f", report_.baseline_score) + " to " +
                     fmt("%.2f", c.held_out_score) + " sigma";
   for (const auto& [q, index] : report_.partial) {
-    const std::size_t qi = static_cast<std::size_t>(
-        std::find(report_.quantities.begin(), report_.quantities.end(), q) - report_.quantities.begin());
+    const std::size_t qi = static_cast<std::size_t>(std::find(report_.quantities.begin(), report_.quantities.end(), q) -
+                                                    report_.quantities.begin());
     const auto& pc = report_.candidates[static_cast<std::size_t>(index)];
     report_.verdict += "; for " + words(q) + " alone, " + pc.name + " cuts the held-out RMSE from " +
                        show(q, report_.baseline_held_out_rmse[qi]) + " to " + show(q, pc.held_out_rmse[qi]);

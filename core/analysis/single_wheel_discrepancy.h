@@ -25,13 +25,12 @@ struct QuantityResiduals {
 };
 
 // Residual statistics per measured quantity, for given predictions.
-std::vector<QuantityResiduals> residual_statistics(
-    const std::vector<terramechanics::PointResidual>& residuals,
-    const std::vector<terramechanics::WheelTestPoint>& points);
+std::vector<QuantityResiduals> residual_statistics(const std::vector<terramechanics::PointResidual>& residuals,
+                                                   const std::vector<terramechanics::WheelTestPoint>& points);
 
 struct CandidateResult {
-  std::string name;         // slip-sinkage, grousers, bulldozing, soil-strength
-  std::string cause;        // plain words
+  std::string name;   // slip-sinkage, grousers, bulldozing, soil-strength
+  std::string cause;  // plain words
   bool applicable = true;
   std::string not_applicable_because;
   terramechanics::IdentificationResult fit;  // on all points
@@ -45,20 +44,20 @@ struct CandidateResult {
 struct DiscrepancyOptions {
   terramechanics::ModelOptions baseline;  // Wong-Reece, Simpson, no extensions
   terramechanics::MeasurementSigma sigma;
-  double bic_threshold = -10.0;      // "very strong" evidence (Kass & Raftery 1995)
-  double min_held_out_gain = 0.10;   // and at least 10 % lower held-out error
+  double bic_threshold = -10.0;     // "very strong" evidence (Kass & Raftery 1995)
+  double min_held_out_gain = 0.10;  // and at least 10 % lower held-out error
   bool leave_one_out = true;
 };
 
 struct DiscrepancyReport {
-  std::vector<Quantity> quantities;             // measured in the file
-  std::vector<QuantityResiduals> baseline;      // baseline residuals
-  std::vector<double> baseline_held_out_rmse;   // = in-sample: nothing is fitted
-  double baseline_score = 0.0;                  // RMS residual in sigmas
+  std::vector<Quantity> quantities;            // measured in the file
+  std::vector<QuantityResiduals> baseline;     // baseline residuals
+  std::vector<double> baseline_held_out_rmse;  // = in-sample: nothing is fitted
+  double baseline_score = 0.0;                 // RMS residual in sigmas
   double baseline_bic = 0.0;
   std::size_t points = 0, measurements = 0, unsupported = 0;
   std::vector<CandidateResult> candidates;
-  int best = -1;             // index of the winning candidate, -1 when none is significant
+  int best = -1;  // index of the winning candidate, -1 when none is significant
   bool significant = false;
   // Quantities that one candidate predicts much better on held-out points
   // (>= 30 % lower RMSE) even when no candidate explains everything:

@@ -27,7 +27,8 @@ AngleModel parse_angle_model(const std::string& s) {
   throw DataError("angle model '" + s + "': expected random-walk or damped");
 }
 
-ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::RoverModel& m, const ContactAngleOptions& o) {
+ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::RoverModel& m,
+                                     const ContactAngleOptions& o) {
   ContactAngleEstimator estimator(lg, m, o);
   ContactAngleResult result = estimator.run();
   if (auto errors = analysis::contact_angle_errors(lg, result.estimates)) {

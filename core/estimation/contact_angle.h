@@ -38,16 +38,16 @@ struct ContactAngleOptions {
   // The plain augmented UKF: every sigma point through f and h, without the
   // closed forms for additive noises and the incremental h (the reference).
   bool reference_ukf = false;
-  double angle_damping = 1e-3;           // 1/s, A_gamma = A_beta (section 6.2)
-  double slip_damping = 1e-3;            // 1/s, A of Eq. 4.15
+  double angle_damping = 1e-3;  // 1/s, A_gamma = A_beta (section 6.2)
+  double slip_damping = 1e-3;   // 1/s, A of Eq. 4.15
   // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).
   double attitude_variance = 1e-5, velocity_variance = 1e-5, slip_variance = 1e-6, angle_variance = 1e-5;
-  double lateral_variance = 1e-5;        // n_vy, n_vz
+  double lateral_variance = 1e-5;  // n_vy, n_vz
   // Standstill (section 4.1's and 5.1's singularities): every wheel slower
   // than this and the body turning slower than standstill_gyro_rate; the slip
   // and angle states are then held and marked invalid.
-  double standstill_wheel_rate = 1e-3;   // rad/s
-  double standstill_gyro_rate = 0.05;    // rad/s
+  double standstill_wheel_rate = 1e-3;  // rad/s
+  double standstill_gyro_rate = 0.05;   // rad/s
   // Offline extension (not in the seed): joint rates fused with the slope of
   // a least-squares line through the joint angles over this centred window
   // (s); 0 uses the measured rates alone as the seed does.
@@ -56,9 +56,9 @@ struct ContactAngleOptions {
 };
 
 struct StateErrors {
-  std::vector<double> velocity;  // x y z, m/s
+  std::vector<double> velocity;                        // x y z, m/s
   std::vector<double> slip, contact_angle, side_slip;  // per wheel (rad for the angles)
-  std::size_t samples = 0;       // moving samples compared
+  std::size_t samples = 0;                             // moving samples compared
 };
 
 struct ContactAngleResult {

@@ -49,7 +49,8 @@ void ContactAngleEstimator::read_channels() {
   log::require_no_gap(*imu_, kMaxImuGap);
   log::require_overlap(*imu_, *joints_, kMinOverlap);
   log::require_overlap(*imu_, *wheels_, kMinOverlap);
-  const char* imu_names[6] = {"angular_rate_x", "angular_rate_y", "angular_rate_z", "specific_force_x", "specific_force_y", "specific_force_z"};
+  const char* imu_names[6] = {"angular_rate_x",   "angular_rate_y",   "angular_rate_z",
+                              "specific_force_x", "specific_force_y", "specific_force_z"};
   for (const char* c : imu_names) imu_ch_.push_back(&imu_->channel(c).values);
   for (const auto& j : m_.joints) {
     q_ch_.push_back(&joints_->channel(j).values);
@@ -170,7 +171,8 @@ Inputs ContactAngleEstimator::inputs_at(std::size_t i) const {
     const auto ju = static_cast<std::size_t>(j);
     in.q[j] = (*q_ch_[ju])[kj];
     in.qdot[j] = fused_rate_.empty() ? (*qd_ch_[ju])[kj] : fused_rate_[ju][kj];
-    if (!std::isfinite(in.q[j])) throw DataError("stream 'joints': missing sample at t = " + std::to_string(t[i]) + " s");
+    if (!std::isfinite(in.q[j]))
+      throw DataError("stream 'joints': missing sample at t = " + std::to_string(t[i]) + " s");
   }
   for (int w = 0; w < nw; ++w) in.wheel_rate[w] = (*w_ch_[static_cast<std::size_t>(w)])[kw];
   if (!std::isfinite(in.gyro.sum() + in.accel.sum())) {
@@ -200,8 +202,9 @@ void ContactAngleEstimator::initial_state() {
   ukf_.additive_process_noise = ukf_.additive_measurement_noise = !o_.reference_ukf;  // Eq. 4.15-4.17, 4.20
   ukf_.diagonal_only = o_.reset_cross_covariance && !o_.reference_ukf;
   if (!o_.reference_ukf) {
-    ukf_.h_incremental = [this](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, const std::vector<Eigen::Index>& cx,
-                                const std::vector<Eigen::Index>& cn, const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
+    ukf_.h_incremental = [this](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz,
+                                const std::vector<Eigen::Index>& cx, const std::vector<Eigen::Index>& cn,
+                                const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
       measurement_.evaluate_incremental(xs, nz, cx, cn, y0, out_y);
     };
   }
@@ -298,7 +301,9 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
 
 Eigen::MatrixXd ContactAngleEstimator::final_covariance() const {
   if (o_.filter == FilterKind::ekf && !o_.reference_ekf) {
-    return layout_.na == 0 ? Eigen::MatrixXd(fast0_.P) : layout_.na == 6 ? Eigen::MatrixXd(fast6_.P) : Eigen::MatrixXd(fast12_.P);
+    return layout_.na == 0   ? Eigen::MatrixXd(fast0_.P)
+           : layout_.na == 6 ? Eigen::MatrixXd(fast6_.P)
+                             : Eigen::MatrixXd(fast12_.P);
   }
   return o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P;
 }

@@ -18,8 +18,8 @@ namespace roverlab::estimation {
 
 namespace contact {
 
-inline void ContactProcessModel::strapdown_step(double* att_v, const Inputs& in, double ts, Eigen::Matrix<double, 6, 6>& A,
-                                                Eigen::Matrix<double, 6, 6>& B) const {
+inline void ContactProcessModel::strapdown_step(double* att_v, const Inputs& in, double ts,
+                                                Eigen::Matrix<double, 6, 6>& A, Eigen::Matrix<double, 6, 6>& B) const {
   // Jacobians of Eq. 4.13-4.14 with respect to attitude, velocity and the
   // accelerometer and gyro noises.
   using Jt = ceres::Jet<double, 12>;
@@ -47,8 +47,8 @@ inline void ContactProcessModel::strapdown_step(double* att_v, const Inputs& in,
 
 inline WheelLinearization WheelMeasurementModel::linearize_wheel(int w, const double* x, const Inputs& in) const {
   const int na = layout_.na;
-  return contact::linearize_wheel(*m_, w, frame_, x + 3, x[6 + w], na >= 6 ? x[12 + w] : 0.0, na >= 12 ? x[18 + w] : 0.0,
-                                  in);
+  return contact::linearize_wheel(*m_, w, frame_, x + 3, x[6 + w], na >= 6 ? x[12 + w] : 0.0,
+                                  na >= 12 ? x[18 + w] : 0.0, in);
 }
 
 inline void WheelMeasurementModel::add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r,
@@ -217,7 +217,6 @@ class FastEkf {
     L = U.transpose();
     return true;
   }
-
 };
 
 }  // namespace roverlab::estimation

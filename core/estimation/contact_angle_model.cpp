@@ -17,12 +17,11 @@ WheelLinearization linearize_wheel_autodiff(const kinematics::RoverModel& m, int
     nw[k] = J(0.0, 6 + k);
   }
   const J s(slip, 3), g(gamma, 4), b(beta, 5);
-  auto joint = [&](int j, bool rate, int slot) {
-    return j < 0 ? J(0.0) : J((rate ? in.qdot : in.q)[j], slot);
-  };
+  auto joint = [&](int j, bool rate, int slot) { return j < 0 ? J(0.0) : J((rate ? in.qdot : in.q)[j], slot); };
   J out[3];
-  wheel_measurement<J>(m, wheel, frame, vj, s, g, b, nw, joint(c.bogie_joint, false, 9), joint(c.steer_joint, false, 10),
-                       joint(c.bogie_joint, true, 11), joint(c.steer_joint, true, 12), in, out);
+  wheel_measurement<J>(m, wheel, frame, vj, s, g, b, nw, joint(c.bogie_joint, false, 9),
+                       joint(c.steer_joint, false, 10), joint(c.bogie_joint, true, 11), joint(c.steer_joint, true, 12),
+                       in, out);
   WheelLinearization r;
   for (int k = 0; k < 3; ++k) {
     r.value(k) = out[k].a;
@@ -157,9 +156,9 @@ void ContactProcessModel::evaluate(const Eigen::VectorXd& x, const Eigen::Vector
     std::copy(x.data(), x.data() + 3, trig_att_);
     trig_ = attitude_trig<double>(x.data());
   }
-  strapdown<double>(x.data(), trig_, x.data() + 3, nz.data(), nz.data() + 3, nz.data() + nx, nz.data() + nx + 3, in, g_i_,
-                    ts, y.data(), y.data() + 3);
-  for (int k = 0; k < 6; ++k) y(6 + k) = x(6 + k) * slip_keep(ts) + nz(6 + k);  // Eq. 4.15
+  strapdown<double>(x.data(), trig_, x.data() + 3, nz.data(), nz.data() + 3, nz.data() + nx, nz.data() + nx + 3, in,
+                    g_i_, ts, y.data(), y.data() + 3);
+  for (int k = 0; k < 6; ++k) y(6 + k) = x(6 + k) * slip_keep(ts) + nz(6 + k);               // Eq. 4.15
   for (int k = 0; k < layout_.na; ++k) y(12 + k) = x(12 + k) * angle_keep(ts) + nz(12 + k);  // Eq. 5.3-5.6
 }
 
@@ -225,8 +224,8 @@ Linearized WheelMeasurementModel::linearize(const Eigen::VectorXd& x, const Inpu
   r.dn = Eigen::MatrixXd::Zero(ny, nm);
   for (int w = 0; w < nw; ++w) {
     const auto& c = m.wheels[static_cast<std::size_t>(w)];
-    const WheelLinearization lin = linearize_wheel_autodiff(m, w, frame_, x.data() + 3, x(6 + w), na >= 6 ? x(12 + w) : 0.0,
-                                                            na >= 12 ? x(18 + w) : 0.0, in);
+    const WheelLinearization lin = linearize_wheel_autodiff(m, w, frame_, x.data() + 3, x(6 + w),
+                                                            na >= 6 ? x(12 + w) : 0.0, na >= 12 ? x(18 + w) : 0.0, in);
     for (int k = 0; k < 3; ++k) {
       const int row = k * nw + w;
       r.value(row) = lin.value(k);
@@ -299,7 +298,8 @@ const WheelMeasurementModel::RotationMemo& WheelMeasurementModel::rotation(int w
 // One wheel's three rows of h, from its geometry at the measured joint
 // angles (recomputed only for a sigma point that moves one of its joints)
 // and its final rotation (kept while gamma and beta repeat).
-void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, const Eigen::VectorXd& nz, Eigen::VectorXd& y) {
+void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, const Eigen::VectorXd& nz,
+                                           Eigen::VectorXd& y) {
   const int nw = layout_.nw, nq = layout_.nq, na = layout_.na;
   const Inputs& in = in_;
   const Eigen::Vector3d omega = in.gyro - nz.head<3>();
@@ -319,7 +319,8 @@ void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, cons
   }
   const double gamma = na >= 6 ? x(12 + w) : 0.0, beta = na >= 12 ? x(18 + w) : 0.0;
   const RotationMemo& rot = rotation(w, gamma, beta);
-  const Eigen::Vector3d u = wheel_measurement(*g, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
+  const Eigen::Vector3d u =
+      wheel_measurement(*g, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
   for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
 }
 

@@ -186,7 +186,8 @@ class ContactProcessModel {
   double slip_keep(double ts) const { return 1.0 - slip_decay_ * ts; }
   double angle_keep(double ts) const { return 1.0 - angle_decay_ * ts; }
   // x' = f(x, n) in double (the UKF's sigma points).
-  void evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& n, const Inputs& in, double ts, Eigen::VectorXd& out) const;
+  void evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& n, const Inputs& in, double ts,
+                Eigen::VectorXd& out) const;
   // f(x, 0) and its Jacobians by ceres::Jet (the generic EKF).
   Linearized linearize(const Eigen::VectorXd& x, const Inputs& in, double ts) const;
   // The fast EKF's part: attitude and velocity (att_v[0..5]) advanced in
@@ -221,7 +222,8 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
   // S += M R M^T for R = diag(r): wheel-rate, lateral and normal noises on
   // their own rows; the gyro noise couples every wheel, a joint's noise the
   // wheels it carries.
-  void add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r, Eigen::Matrix<double, 18, 18>& S) const;
+  void add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r,
+                            Eigen::Matrix<double, 18, 18>& S) const;
 
   // The generic EKF: h(x, 0) and its Jacobians, each wheel by ceres::Jet.
   Linearized linearize(const Eigen::VectorXd& x, const Inputs& in) const;
@@ -235,8 +237,9 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
   // The same at a sigma point that differs from the centre only in the
   // listed entries, given the centre's y0: wheels they do not reach keep the
   // centre's rows.
-  void evaluate_incremental(const Eigen::VectorXd& x, const Eigen::VectorXd& n, const std::vector<Eigen::Index>& changed_x,
-                            const std::vector<Eigen::Index>& changed_n, const Eigen::VectorXd& y0, Eigen::VectorXd& y);
+  void evaluate_incremental(const Eigen::VectorXd& x, const Eigen::VectorXd& n,
+                            const std::vector<Eigen::Index>& changed_x, const std::vector<Eigen::Index>& changed_n,
+                            const Eigen::VectorXd& y0, Eigen::VectorXd& y);
 
  private:
   // A wheel's final rotation at (gamma, beta) with their cosines and sines.

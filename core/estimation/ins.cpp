@@ -5,9 +5,9 @@
 namespace roverlab::estimation {
 
 namespace {
-constexpr double kSemiMajor = 6378137.0;          // WGS-84 a, m
+constexpr double kSemiMajor = 6378137.0;             // WGS-84 a, m
 constexpr double kEccentricity2 = 6.69437999014e-3;  // WGS-84 e^2
-constexpr double kEarthRate = 7.292115e-5;        // rad/s
+constexpr double kEarthRate = 7.292115e-5;           // rad/s
 }  // namespace
 
 double meridian_radius(double L) {
@@ -62,8 +62,7 @@ Eigen::Matrix3d exp_so3(const Eigen::Vector3d& phi) {
 
 }  // namespace
 
-void mechanize(InsState& s, const Eigen::Vector3d& f_b, const Eigen::Vector3d& w_b, double dt,
-               const InsOptions& o) {
+void mechanize(InsState& s, const Eigen::Vector3d& f_b, const Eigen::Vector3d& w_b, double dt, const InsOptions& o) {
   const Eigen::Vector3d w_ie = o.earth_rotation ? earth_rate_n(s.latitude) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d w_en = o.transport_rate ? transport_rate_n(s) : Eigen::Vector3d::Zero();
   // Eq. 2, with the body rotation taken exactly (exponential map) rather than to first order.
@@ -77,14 +76,15 @@ void mechanize(InsState& s, const Eigen::Vector3d& f_b, const Eigen::Vector3d& w
   // Eq. 4-6: trapezoidal position update.
   const double h_old = s.height, L_old = s.latitude;
   s.height = h_old - 0.5 * dt * (v_old.z() + s.v_n.z());
-  s.latitude = L_old + 0.5 * dt * (v_old.x() / (meridian_radius(L_old) + h_old) +
-                                   s.v_n.x() / (meridian_radius(L_old) + s.height));
-  s.longitude += 0.5 * dt * (v_old.y() / ((transverse_radius(L_old) + h_old) * std::cos(L_old)) +
-                             s.v_n.y() / ((transverse_radius(s.latitude) + s.height) * std::cos(s.latitude)));
+  s.latitude =
+      L_old +
+      0.5 * dt * (v_old.x() / (meridian_radius(L_old) + h_old) + s.v_n.x() / (meridian_radius(L_old) + s.height));
+  s.longitude += 0.5 * dt *
+                 (v_old.y() / ((transverse_radius(L_old) + h_old) * std::cos(L_old)) +
+                  s.v_n.y() / ((transverse_radius(s.latitude) + s.height) * std::cos(s.latitude)));
 }
 
-Eigen::Matrix<double, 15, 15> error_system_matrix(const InsState& s, const Eigen::Vector3d& f_b,
-                                                 const InsOptions& o) {
+Eigen::Matrix<double, 15, 15> error_system_matrix(const InsState& s, const Eigen::Vector3d& f_b, const InsOptions& o) {
   using M3 = Eigen::Matrix3d;
   Eigen::Matrix<double, 15, 15> F = Eigen::Matrix<double, 15, 15>::Zero();
   const double rn = meridian_radius(s.latitude) + s.height, re = transverse_radius(s.latitude) + s.height;

@@ -13,7 +13,7 @@ struct InsOptions {
 };
 
 struct InsState {
-  Eigen::Matrix3d C_bn = Eigen::Matrix3d::Identity();  // body -> NED
+  Eigen::Matrix3d C_bn = Eigen::Matrix3d::Identity();    // body -> NED
   Eigen::Vector3d v_n = Eigen::Vector3d::Zero();         // velocity, NED, m/s
   double latitude = 0.0, longitude = 0.0, height = 0.0;  // rad, rad, m
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // m/s^2
@@ -40,7 +40,7 @@ void mechanize(InsState& s, const Eigen::Vector3d& f_b, const Eigen::Vector3d& w
 // (attitude, velocity, position (lat, lon, h), accel bias, gyro bias), with
 // errors defined as truth - estimate and C_true = (I + [dpsi x]) C_est.
 Eigen::Matrix<double, 15, 15> error_system_matrix(const InsState& s, const Eigen::Vector3d& f_b,
-                                                 const InsOptions& options);
+                                                  const InsOptions& options);
 
 // Applies an error-state correction to the state (Eq. 24-27) and keeps C_bn
 // orthonormal.

@@ -21,21 +21,21 @@
 namespace roverlab::estimation {
 
 struct ImuNoise {
-  double gyro_arw = 2.9e-4;         // rad/sqrt(s): angular random walk (datasheet 0.1 deg/sqrt(h), x10 for vibration)
-  double accel_vrw = 1.3e-3;        // m/s/sqrt(s): velocity random walk (0.008 m/s/sqrt(h), x10 for vibration)
-  double gyro_bias_walk = 1e-6;     // rad/s/sqrt(s)
-  double accel_bias_walk = 1e-5;    // m/s^2/sqrt(s)
-  double initial_gyro_bias = 2e-3;  // rad/s, 1 sigma
-  double initial_accel_bias = 0.05; // m/s^2, 1 sigma
-  double initial_attitude = 0.01;   // rad, roll and pitch after levelling
-  double initial_heading = 0.02;    // rad
+  double gyro_arw = 2.9e-4;          // rad/sqrt(s): angular random walk (datasheet 0.1 deg/sqrt(h), x10 for vibration)
+  double accel_vrw = 1.3e-3;         // m/s/sqrt(s): velocity random walk (0.008 m/s/sqrt(h), x10 for vibration)
+  double gyro_bias_walk = 1e-6;      // rad/s/sqrt(s)
+  double accel_bias_walk = 1e-5;     // m/s^2/sqrt(s)
+  double initial_gyro_bias = 2e-3;   // rad/s, 1 sigma
+  double initial_accel_bias = 0.05;  // m/s^2, 1 sigma
+  double initial_attitude = 0.01;    // rad, roll and pitch after levelling
+  double initial_heading = 0.02;     // rad
 };
 
 struct StandstillOptions {
-  double window = 0.5;            // s, centred window for the IMU statistics
-  double gyro_std_max = 0.005;    // rad/s, std of |w|
-  double accel_std_max = 0.05;    // m/s^2, std of |f|
-  double wheel_rate_max = 0.05;   // rad/s, |left| and |right| wheel rates
+  double window = 0.5;           // s, centred window for the IMU statistics
+  double gyro_std_max = 0.005;   // rad/s, std of |w|
+  double accel_std_max = 0.05;   // m/s^2, std of |f|
+  double wheel_rate_max = 0.05;  // rad/s, |left| and |right| wheel rates
 };
 
 struct InsSlipOptions {
@@ -51,20 +51,20 @@ struct InsSlipOptions {
   StandstillOptions standstill;
   SkidSteerGeometry rover;
   Eigen::Vector3d nhc_lever_arm = Eigen::Vector3d::Zero();  // body frame, IMU to wheel-axle centre, m
-  double update_interval = 0.1;     // s between pseudo-measurement updates
-  double zupt_sigma = 0.01;         // m/s
-  double zaru_sigma = 2e-4;         // rad/s, on the mean rate over the update interval
-  double nhc_lateral_sigma = 0.05;  // m/s
+  double update_interval = 0.1;                             // s between pseudo-measurement updates
+  double zupt_sigma = 0.01;                                 // m/s
+  double zaru_sigma = 2e-4;                                 // rad/s, on the mean rate over the update interval
+  double nhc_lateral_sigma = 0.05;                          // m/s
   // Vertical wheel velocity is further from zero than lateral on rough ground
   // (bumps, and the IMU's mounting pitch: 2 deg at 0.7 m/s is 0.025 m/s);
   // see docs/validation/ins-slip.md for the sensitivity on the Pathfinder log.
-  double nhc_vertical_sigma = 0.2;  // m/s
-  double odometry_sigma = 0.05;     // m/s
-  double odometry_gate = 6.63;      // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
-  double heading_distance = 5.0;    // m of GPS track that set the initial heading
+  double nhc_vertical_sigma = 0.2;        // m/s
+  double odometry_sigma = 0.05;           // m/s
+  double odometry_gate = 6.63;            // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
+  double heading_distance = 5.0;          // m of GPS track that set the initial heading
   std::optional<double> initial_heading;  // rad clockwise from north; overrides the GPS heading
-  double no_slip = 0.02;            // |s| at or below which a sample counts as no slip
-  double min_slip_speed = 0.1;      // m/s: below it (wheel and body speed both) slip is undefined and reported as 0
+  double no_slip = 0.02;                  // |s| at or below which a sample counts as no slip
+  double min_slip_speed = 0.1;  // m/s: below it (wheel and body speed both) slip is undefined and reported as 0
   std::function<void(double)> progress;  // fraction done, called now and then
 };
 
@@ -95,7 +95,6 @@ struct InsSlipChannels {
 // up from the first fix; latitude, longitude, height). Throws DataError when
 // a stream or channel is missing or the log is too short. The metrics are
 // analysis::score_ins_slip and analysis::score_wheel_odometry of the streams.
-InsSlipResult run_ins_slip(const log::Log& log, const InsSlipOptions& options,
-                           const InsSlipChannels& channels = {});
+InsSlipResult run_ins_slip(const log::Log& log, const InsSlipOptions& options, const InsSlipChannels& channels = {});
 
 }  // namespace roverlab::estimation

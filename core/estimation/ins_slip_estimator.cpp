@@ -60,8 +60,8 @@ void InsSlipEstimator::read_samples() {
   in_.wy = &values(*imu_, "angular_rate_y");
   in_.wz = &values(*imu_, "angular_rate_z");
   const log::Stream& w = *in_.wheels;
-  in_.wheel_rates = wheel_rates(w.time(), values(w, "angle_FL"), values(w, "angle_FR"), values(w, "angle_RL"),
-                                values(w, "angle_RR"));
+  in_.wheel_rates =
+      wheel_rates(w.time(), values(w, "angle_FL"), values(w, "angle_FR"), values(w, "angle_RL"), values(w, "angle_RR"));
   reference_ = reference_from_gps(log_, channels_.gps);
   in_.time = &imu_->time();
   const auto& t = *in_.time;
@@ -96,8 +96,8 @@ void InsSlipEstimator::detect_standstill() {
     const std::size_t k = in_.wheel_index(t[i]);
     bool wheels_still = true;
     for (std::size_t j = (k > 0 ? k - 1 : 0); j <= std::min(k + 1, wr.time.size() - 1); ++j) {
-      wheels_still = wheels_still && std::abs(wr.left_rate[j]) <= wheel_rate_max &&
-                     std::abs(wr.right_rate[j]) <= wheel_rate_max;
+      wheels_still =
+          wheels_still && std::abs(wr.left_rate[j]) <= wheel_rate_max && std::abs(wr.right_rate[j]) <= wheel_rate_max;
     }
     const bool still = wheels_still && fstd[i] <= o_.standstill.accel_std_max && wstd[i] <= o_.standstill.gyro_std_max;
     in_.standstill[i] = still ? 1 : 0;
@@ -112,7 +112,8 @@ void InsSlipEstimator::level() {
   const double rate = imu_->mean_rate_hz();
   std::size_t level_end = 0;
   while (level_end < n && in_.standstill[level_end] && t[level_end] - t[0] < 5.0) ++level_end;
-  if (level_end < static_cast<std::size_t>(0.5 * rate)) level_end = std::min(n, static_cast<std::size_t>(0.5 * rate) + 1);
+  if (level_end < static_cast<std::size_t>(0.5 * rate))
+    level_end = std::min(n, static_cast<std::size_t>(0.5 * rate) + 1);
   Eigen::Vector3d f0 = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < level_end; ++i) f0 += in_.force(i);
   f0 /= static_cast<double>(level_end);
@@ -166,7 +167,8 @@ void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& tra
   out.add_stream(std::move(vel));
   log::Stream b("estimate/ins/bias", t);
   const char* names_b[6] = {"accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"};
-  for (int k = 0; k < 6; ++k) b.add_channel(names_b[k], k < 3 ? "m/s^2" : "rad/s", track.bias[static_cast<std::size_t>(k)]);
+  for (int k = 0; k < 6; ++k)
+    b.add_channel(names_b[k], k < 3 ? "m/s^2" : "rad/s", track.bias[static_cast<std::size_t>(k)]);
   out.add_stream(std::move(b));
   std::vector<double> still(in_.size());
   for (std::size_t i = 0; i < still.size(); ++i) still[i] = in_.standstill[i] ? 1.0 : 0.0;

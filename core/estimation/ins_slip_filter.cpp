@@ -11,7 +11,18 @@ LocalFrame::LocalFrame(double lat, double lon, double h)
     : latitude(lat), longitude(lon), height(h), rn(meridian_radius(lat) + h), re(transverse_radius(lat) + h) {}
 
 InsTrack::InsTrack(std::size_t n)
-    : roll(n), pitch(n), yaw(n), east(n), north(n), up(n), vn(n), ve(n), vd(n), vx(n), vy(n), vz(n),
+    : roll(n),
+      pitch(n),
+      yaw(n),
+      east(n),
+      north(n),
+      up(n),
+      vn(n),
+      ve(n),
+      vd(n),
+      vx(n),
+      vy(n),
+      vz(n),
       bias(6, std::vector<double>(n)) {}
 
 void InsTrack::record(std::size_t i, const InsState& s, const LocalFrame& f) {

@@ -16,7 +16,7 @@ struct LocalFrame {
   LocalFrame() = default;
   LocalFrame(double latitude, double longitude, double height);
   double latitude = 0, longitude = 0, height = 0;  // rad, rad, m
-  double rn = 0, re = 0;  // meridian and transverse radii plus height, m
+  double rn = 0, re = 0;                           // meridian and transverse radii plus height, m
 };
 
 // Filter outputs at the IMU samples.
@@ -37,7 +37,7 @@ struct InsPassInputs {
   Samples wx = nullptr, wy = nullptr, wz = nullptr;  // angular rate, rad/s
   const log::Stream* wheels = nullptr;
   WheelSamples wheel_rates;
-  std::vector<char> standstill;  // per IMU sample
+  std::vector<char> standstill;                // per IMU sample
   double roll0 = 0, pitch0 = 0, heading0 = 0;  // rad
   LocalFrame frame;
 
@@ -65,7 +65,7 @@ class InsFilterPass {
   // every update epoch the prior and posterior covariance, the transition
   // from the previous epoch and the error correction applied.
   struct Epoch {
-    std::size_t index;  // IMU sample
+    std::size_t index;                    // IMU sample
     InsErrorMatrix P_prior, P_post, Phi;  // Phi: transition from the previous epoch
     InsErrorVector correction;            // error correction applied at this epoch
   };

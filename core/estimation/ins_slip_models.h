@@ -60,7 +60,7 @@ struct ZeroAngularRateUpdate {
 // nav-to-body rotation at the start of the update epoch, w the bias-corrected
 // angular rate.
 struct NonHolonomicUpdate {
-  Eigen::Vector3d lever_arm;  // body frame, IMU to wheel-axle centre, m
+  Eigen::Vector3d lever_arm;             // body frame, IMU to wheel-axle centre, m
   double lateral_sigma, vertical_sigma;  // m/s
   InsMeasurement at(const InsState& s, const Eigen::Matrix3d& C_nb, const Eigen::Vector3d& w) const;
 };

@@ -27,7 +27,8 @@ void ExtendedKalmanFilter::predict_diagonal(const Linearized& f, const Eigen::Ve
   P = 0.5 * (P + P.transpose());
 }
 
-UpdateResult ExtendedKalmanFilter::update_diagonal(const Linearized& h, const Eigen::VectorXd& r, const Eigen::VectorXd& y) {
+UpdateResult ExtendedKalmanFilter::update_diagonal(const Linearized& h, const Eigen::VectorXd& r,
+                                                   const Eigen::VectorXd& y) {
   const Eigen::MatrixXd Ms = h.dn * r.cwiseSqrt().asDiagonal();
   const Eigen::MatrixXd MRM = Ms * Ms.transpose();
   UpdateResult u = kalman_update(P, h.dx, MRM, y - h.value);
@@ -89,7 +90,8 @@ void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::Matrix
     for (int a = 0; a < k; ++a) M.row(idx[a]) += (w * A(idx[a], i)) * B.col(i).transpose();
   }
   if (dense.empty()) return;
-  Eigen::MatrixXd DA(A.rows(), static_cast<Eigen::Index>(dense.size())), DB(B.rows(), static_cast<Eigen::Index>(dense.size()));
+  Eigen::MatrixXd DA(A.rows(), static_cast<Eigen::Index>(dense.size())),
+      DB(B.rows(), static_cast<Eigen::Index>(dense.size()));
   for (std::size_t i = 0; i < dense.size(); ++i) {
     DA.col(static_cast<Eigen::Index>(i)) = A.col(dense[i]);
     DB.col(static_cast<Eigen::Index>(i)) = B.col(dense[i]);

@@ -12,7 +12,7 @@ namespace roverlab::estimation {
 
 struct ReferenceTrack {
   std::vector<double> time, east, north, up, v_east, v_north;
-  bool present = false;  // false when the stream or its east/north channels are missing
+  bool present = false;                            // false when the stream or its east/north channels are missing
   double latitude = 0, longitude = 0, height = 0;  // first fix (rad, rad, m)
 };
 

@@ -21,8 +21,8 @@ WheelSamples wheel_rates(const std::vector<double>& t, const std::vector<double>
   return w;
 }
 
-OdometryTrack dead_reckon(const WheelSamples& w, const SkidSteerGeometry& g, const OdometryCorrections& c,
-                          double east0, double north0, double heading0) {
+OdometryTrack dead_reckon(const WheelSamples& w, const SkidSteerGeometry& g, const OdometryCorrections& c, double east0,
+                          double north0, double heading0) {
   OdometryTrack tr;
   const std::size_t n = w.time.size();
   double e = east0, nn = north0, psi = heading0;

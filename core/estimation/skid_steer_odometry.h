@@ -15,12 +15,12 @@ struct SkidSteerGeometry {
 
 // Corrections a model-discrepancy study may fit; neutral values do nothing.
 struct OdometryCorrections {
-  double radius_scale = 1.0;       // all wheels
-  double left_scale = 1.0;         // left wheels, on top of radius_scale
-  double right_scale = 1.0;        // right wheels
-  double track_factor = 1.0;       // effective track = track_factor * track (skid-steer turning)
-  double time_offset = 0.0;        // s added to the wheel time stamps
-  std::vector<double> slip;        // per wheel sample, the wheel speed is multiplied by (1 - slip); empty: none
+  double radius_scale = 1.0;  // all wheels
+  double left_scale = 1.0;    // left wheels, on top of radius_scale
+  double right_scale = 1.0;   // right wheels
+  double track_factor = 1.0;  // effective track = track_factor * track (skid-steer turning)
+  double time_offset = 0.0;   // s added to the wheel time stamps
+  std::vector<double> slip;   // per wheel sample, the wheel speed is multiplied by (1 - slip); empty: none
 };
 
 struct WheelSamples {
@@ -29,9 +29,8 @@ struct WheelSamples {
 };
 
 // Rates by central differences of the wheel angles (one-sided at the ends).
-WheelSamples wheel_rates(const std::vector<double>& time, const std::vector<double>& fl,
-                         const std::vector<double>& fr, const std::vector<double>& rl,
-                         const std::vector<double>& rr);
+WheelSamples wheel_rates(const std::vector<double>& time, const std::vector<double>& fl, const std::vector<double>& fr,
+                         const std::vector<double>& rl, const std::vector<double>& rr);
 
 struct OdometryTrack {
   std::vector<double> time, east, north, heading;  // heading: rad clockwise from north
@@ -40,7 +39,7 @@ struct OdometryTrack {
 
 // Dead reckoning from (east0, north0, heading0): v = r (wL + wR) / 2,
 // heading rate = r (wL - wR) / track (clockwise positive).
-OdometryTrack dead_reckon(const WheelSamples& w, const SkidSteerGeometry& g, const OdometryCorrections& c,
-                          double east0, double north0, double heading0);
+OdometryTrack dead_reckon(const WheelSamples& w, const SkidSteerGeometry& g, const OdometryCorrections& c, double east0,
+                          double north0, double heading0);
 
 }  // namespace roverlab::estimation

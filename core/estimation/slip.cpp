@@ -19,11 +19,16 @@ double slip_ratio(double v, double wheel_speed) {
 
 const char* to_string(SlipClass c) {
   switch (c) {
-    case SlipClass::none: return "none";
-    case SlipClass::low: return "low";
-    case SlipClass::medium: return "medium";
-    case SlipClass::high: return "high";
-    case SlipClass::extreme: return "extreme";
+    case SlipClass::none:
+      return "none";
+    case SlipClass::low:
+      return "low";
+    case SlipClass::medium:
+      return "medium";
+    case SlipClass::high:
+      return "high";
+    case SlipClass::extreme:
+      return "extreme";
   }
   return "?";
 }

@@ -24,8 +24,8 @@ struct DhLink {
 };
 
 struct WheelChain {
-  std::string name;          // FL ML RL RR MR FR (seed 000's order)
-  std::vector<int> links;    // from the body frame g to the wheel's drive frame
+  std::string name;                        // FL ML RL RR MR FR (seed 000's order)
+  std::vector<int> links;                  // from the body frame g to the wheel's drive frame
   int bogie_joint = -1, steer_joint = -1;  // joints on the chain (-1: none)
 };
 
@@ -69,10 +69,8 @@ Mat4<T> dh_transform(const T& theta, double d, double a, double alpha) {
   const T ct = cos(theta), st = sin(theta);
   const double ca = std::cos(alpha), sa = std::sin(alpha);
   Mat4<T> m;
-  m << ct, -st * ca, st * sa, T(a) * ct,
-       st, ct * ca, -ct * sa, T(a) * st,
-       T(0), T(sa), T(ca), T(d),
-       T(0), T(0), T(0), T(1);
+  m << ct, -st * ca, st * sa, T(a) * ct, st, ct * ca, -ct * sa, T(a) * st, T(0), T(sa), T(ca), T(d), T(0), T(0), T(0),
+      T(1);
   return m;
 }
 
@@ -148,8 +146,8 @@ WheelPose<T> wheel_pose(const RoverModel& m, int wheel, const T* q, const T& gam
 // R^T (v + omega x r + dr/dq qdot), from the body velocity v and rate omega
 // (both in g) and the joint rates qdot.
 template <class T>
-Vec3<T> wheel_velocity(const RoverModel& m, int wheel, const T* q, const T* qdot, const Vec3<T>& v, const Vec3<T>& omega,
-                       const T& gamma, const T& beta, WheelFrame frame) {
+Vec3<T> wheel_velocity(const RoverModel& m, int wheel, const T* q, const T* qdot, const Vec3<T>& v,
+                       const Vec3<T>& omega, const T& gamma, const T& beta, WheelFrame frame) {
   const WheelPose<T> p = wheel_pose<T>(m, wheel, q, gamma, beta, frame);
   const WheelChain& w = m.wheels[static_cast<std::size_t>(wheel)];
   Vec3<T> u = v + omega.cross(p.r);

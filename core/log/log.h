@@ -12,9 +12,9 @@
 namespace roverlab::log {
 
 struct LogMetadata {
-  std::string rover_id;     // id of a rover description in resources/rovers/
-  std::string source_file;  // the file the log was imported from
-  std::string description;  // free text
+  std::string rover_id;                      // id of a rover description in resources/rovers/
+  std::string source_file;                   // the file the log was imported from
+  std::string description;                   // free text
   std::map<std::string, std::string> extra;  // further key/value pairs kept verbatim
 };
 
@@ -37,8 +37,8 @@ class Log {
   // Every stream restricted to t0 <= t <= t1.
   Log slice(double t0, double t1) const;
 
-  std::size_t total_samples() const;      // sum over streams of samples x (channels + time)
-  std::size_t payload_bytes() const;      // total_samples() * sizeof(double)
+  std::size_t total_samples() const;  // sum over streams of samples x (channels + time)
+  std::size_t payload_bytes() const;  // total_samples() * sizeof(double)
 
  private:
   std::vector<Stream> streams_;

@@ -8,8 +8,7 @@
 namespace roverlab::log {
 
 std::vector<double> uniform_times(double t0, double t1, double rate_hz) {
-  if (!std::isfinite(t0) || !std::isfinite(t1) || !std::isfinite(rate_hz) || rate_hz <= 0.0 ||
-      t1 < t0) {
+  if (!std::isfinite(t0) || !std::isfinite(t1) || !std::isfinite(rate_hz) || rate_hz <= 0.0 || t1 < t0) {
     throw DataError("uniform time base needs finite t0 <= t1 and a positive rate");
   }
   const double period = 1.0 / rate_hz;
@@ -31,8 +30,7 @@ Stream align(const Stream& base, const Stream& other, std::string name) {
   const double t0 = std::max(base.start_time(), other.start_time());
   const double t1 = std::min(base.end_time(), other.end_time());
   if (base.empty() || other.empty() || !(t0 <= t1)) {
-    throw DataError("streams '" + base.name() + "' and '" + other.name() +
-                    "' do not overlap in time");
+    throw DataError("streams '" + base.name() + "' and '" + other.name() + "' do not overlap in time");
   }
   const Stream part = base.slice(t0, t1);
   Stream out(std::move(name), part.time());

@@ -1,8 +1,8 @@
 #include "core/log/stream.h"
 
 #include <algorithm>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <sstream>
 
 #include "core/common/error.h"
@@ -20,9 +20,7 @@ std::string format_time(double t) {
 
 bool is_valid_segment(std::string_view s) {
   if (s.empty() || s == "." || s == "..") return false;
-  return std::none_of(s.begin(), s.end(), [](char c) {
-    return c == '/' || c == '\0' || c == '\n' || c == '\r';
-  });
+  return std::none_of(s.begin(), s.end(), [](char c) { return c == '/' || c == '\0' || c == '\n' || c == '\r'; });
 }
 
 }  // namespace
@@ -42,20 +40,17 @@ bool is_valid_stream_name(std::string_view name) {
   }
 }
 
-Stream::Stream(std::string name, std::vector<double> time)
-    : name_(std::move(name)), time_(std::move(time)) {
+Stream::Stream(std::string name, std::vector<double> time) : name_(std::move(name)), time_(std::move(time)) {
   if (!is_valid_stream_name(name_)) {
     throw DataError("invalid stream name '" + name_ + "'");
   }
   for (std::size_t i = 0; i < time_.size(); ++i) {
     if (!std::isfinite(time_[i])) {
-      throw DataError("stream '" + name_ + "': time is not finite at sample " +
-                      std::to_string(i));
+      throw DataError("stream '" + name_ + "': time is not finite at sample " + std::to_string(i));
     }
     if (i > 0 && !(time_[i] > time_[i - 1])) {
-      throw DataError("stream '" + name_ + "': time is not strictly increasing at sample " +
-                      std::to_string(i) + " (t = " + format_time(time_[i]) + " s after " +
-                      format_time(time_[i - 1]) + " s)");
+      throw DataError("stream '" + name_ + "': time is not strictly increasing at sample " + std::to_string(i) +
+                      " (t = " + format_time(time_[i]) + " s after " + format_time(time_[i - 1]) + " s)");
     }
   }
 }
@@ -63,17 +58,14 @@ Stream::Stream(std::string name, std::vector<double> time)
 double Stream::start_time() const { return empty() ? std::nan("") : time_.front(); }
 double Stream::end_time() const { return empty() ? std::nan("") : time_.back(); }
 double Stream::duration() const { return size() < 2 ? 0.0 : time_.back() - time_.front(); }
-double Stream::mean_rate_hz() const {
-  return size() < 2 ? 0.0 : static_cast<double>(size() - 1) / duration();
-}
+double Stream::mean_rate_hz() const { return size() < 2 ? 0.0 : static_cast<double>(size() - 1) / duration(); }
 
 namespace {
 // Up to this many channels a scan beats hashing the name.
 constexpr std::size_t kLinearSearchChannels = 16;
 }  // namespace
 
-Channel& Stream::add_channel(std::string name, std::string unit, std::vector<double> values,
-                             std::string description) {
+Channel& Stream::add_channel(std::string name, std::string unit, std::vector<double> values, std::string description) {
   if (!is_valid_channel_name(name)) {
     throw DataError("stream '" + name_ + "': invalid channel name '" + name + "'");
   }
@@ -82,17 +74,15 @@ Channel& Stream::add_channel(std::string name, std::string unit, std::vector<dou
   }
   const UnitConversion si = unit_to_si(unit);  // throws on unknown units
   if (si.si_unit != unit) {
-    throw DataError("stream '" + name_ + "', channel '" + name + "': unit '" + unit +
-                    "' is not SI; convert it to '" + si.si_unit + "'");
+    throw DataError("stream '" + name_ + "', channel '" + name + "': unit '" + unit + "' is not SI; convert it to '" +
+                    si.si_unit + "'");
   }
   if (values.size() != time_.size()) {
-    throw DataError("stream '" + name_ + "', channel '" + name + "': " +
-                    std::to_string(values.size()) + " samples but the time base has " +
-                    std::to_string(time_.size()));
+    throw DataError("stream '" + name_ + "', channel '" + name + "': " + std::to_string(values.size()) +
+                    " samples but the time base has " + std::to_string(time_.size()));
   }
   index_.emplace(name, channels_.size());
-  channels_.push_back(Channel{std::move(name), std::move(unit), std::move(description),
-                              std::move(values)});
+  channels_.push_back(Channel{std::move(name), std::move(unit), std::move(description), std::move(values)});
   return channels_.back();
 }
 
@@ -129,8 +119,7 @@ std::size_t Stream::nearest_index(double t) const {
   return (t - time_[i] <= time_[i + 1] - t) ? i : i + 1;
 }
 
-double interpolate_linear(const std::vector<double>& time, const std::vector<double>& values,
-                          double t) {
+double interpolate_linear(const std::vector<double>& time, const std::vector<double>& values, double t) {
   if (time.empty() || std::isnan(t) || t < time.front() || t > time.back()) {
     return std::nan("");
   }
@@ -146,8 +135,7 @@ double Stream::value_at(std::string_view channel_name, double t) const {
   return interpolate_linear(time_, channel(channel_name).values, t);
 }
 
-std::vector<double> Stream::interpolate(std::string_view channel_name,
-                                        const std::vector<double>& times) const {
+std::vector<double> Stream::interpolate(std::string_view channel_name, const std::vector<double>& times) const {
   const Channel& c = channel(channel_name);
   std::vector<double> out(times.size());
   for (std::size_t k = 0; k < times.size(); ++k) out[k] = interpolate_linear(time_, c.values, times[k]);
@@ -166,8 +154,8 @@ Stream Stream::slice(double t0, double t1) const {
   Stream out(name_, std::vector<double>(time_.begin() + from, time_.begin() + to));
   for (const auto& c : channels_) {
     out.index_.emplace(c.name, out.channels_.size());
-    out.channels_.push_back(Channel{c.name, c.unit, c.description,
-                                    std::vector<double>(c.values.begin() + from, c.values.begin() + to)});
+    out.channels_.push_back(
+        Channel{c.name, c.unit, c.description, std::vector<double>(c.values.begin() + from, c.values.begin() + to)});
   }
   return out;
 }

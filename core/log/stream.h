@@ -31,15 +31,14 @@ class Stream {
   const std::vector<double>& time() const { return time_; }
   std::size_t size() const { return time_.size(); }
   bool empty() const { return time_.empty(); }
-  double start_time() const;  // NaN when empty
-  double end_time() const;    // NaN when empty
-  double duration() const;    // 0 when fewer than two samples
+  double start_time() const;    // NaN when empty
+  double end_time() const;      // NaN when empty
+  double duration() const;      // 0 when fewer than two samples
   double mean_rate_hz() const;  // (N - 1) / duration; 0 when undefined
 
   // Adds a channel. Throws DataError when the name is invalid or taken, the
   // unit is unknown or not SI, or the length differs from the time base.
-  Channel& add_channel(std::string name, std::string unit, std::vector<double> values,
-                       std::string description = {});
+  Channel& add_channel(std::string name, std::string unit, std::vector<double> values, std::string description = {});
 
   const std::vector<Channel>& channels() const { return channels_; }
   const Channel* find_channel(std::string_view name) const;
@@ -54,8 +53,7 @@ class Stream {
   // Linear interpolation of a channel at time t; NaN outside [start, end].
   double value_at(std::string_view channel_name, double t) const;
   // The same at many times (ascending or not), in one pass per time.
-  std::vector<double> interpolate(std::string_view channel_name,
-                                  const std::vector<double>& times) const;
+  std::vector<double> interpolate(std::string_view channel_name, const std::vector<double>& times) const;
 
   // Samples with t0 <= t <= t1, all channels, under the same name.
   Stream slice(double t0, double t1) const;
@@ -70,8 +68,7 @@ class Stream {
 };
 
 // Interpolates `values` sampled at `time` (ascending) at t; NaN outside.
-double interpolate_linear(const std::vector<double>& time, const std::vector<double>& values,
-                          double t);
+double interpolate_linear(const std::vector<double>& time, const std::vector<double>& values, double t);
 
 // Name rules shared by the importers: a stream name is one or more segments
 // separated by '/', e.g. "imu" or "truth/imu"; a channel name has no '/'.

@@ -92,8 +92,7 @@ UnitConversion unit_to_si(std::string_view unit) {
   for (const auto& row : kUnits) {
     if (unit == row.name) return UnitConversion{row.si, row.factor, row.offset};
   }
-  throw DataError("unknown unit '" + std::string(unit) +
-                  "' (see docs/log-format.md for the accepted unit strings)");
+  throw DataError("unknown unit '" + std::string(unit) + "' (see docs/log-format.md for the accepted unit strings)");
 }
 
 bool is_known_unit(std::string_view unit) {

@@ -24,7 +24,9 @@ std::pair<double, double> bump(double t, double t0, double T, double h) {
 
 }  // namespace
 
-std::vector<std::string> flying_rover_scenarios() { return {"fl-bogie-rotation", "rear-bogie-rotation", "bump-crossing"}; }
+std::vector<std::string> flying_rover_scenarios() {
+  return {"fl-bogie-rotation", "rear-bogie-rotation", "bump-crossing"};
+}
 
 FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinematics::RoverModel& m) {
   FlyingRoverScenario s;
@@ -46,7 +48,8 @@ FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinemat
     // says; every wheel steers (front and rear opposite, 0.15 rad, 20 s period).
     const int bfl = need(m, "bogie_FL"), br = need(m, "bogie_R");
     std::vector<int> steer;
-    for (const char* w : {"steer_FL", "steer_ML", "steer_RL", "steer_RR", "steer_MR", "steer_FR"}) steer.push_back(need(m, w));
+    for (const char* w : {"steer_FL", "steer_ML", "steer_RL", "steer_RR", "steer_MR", "steer_FR"})
+      steer.push_back(need(m, w));
     s.duration = 45.0;
     s.speed = 0.05;
     s.joints = [=](double t, std::vector<double>& q, std::vector<double>& qd) {
@@ -161,13 +164,15 @@ void FlyingRoverSimulator::sample(std::size_t i) {
 log::Log FlyingRoverSimulator::streams() const {
   log::Log out;
   out.metadata.rover_id = m_.name;
-  out.metadata.description = "hypothetical flying-rover scenario '" + sc_.name + "' (seed 000 sections 6.3-6.4; RoverLab)";
+  out.metadata.description =
+      "hypothetical flying-rover scenario '" + sc_.name + "' (seed 000 sections 6.3-6.4; RoverLab)";
   out.metadata.extra["truth/generator"] = "flying-rover";
   out.metadata.extra["truth/scenario"] = sc_.name;
   out.metadata.extra["truth/seed"] = std::to_string(sc_.seed);
   {
     log::Stream s("imu", t_);
-    const char* names[6] = {"angular_rate_x", "angular_rate_y", "angular_rate_z", "specific_force_x", "specific_force_y", "specific_force_z"};
+    const char* names[6] = {"angular_rate_x",   "angular_rate_y",   "angular_rate_z",
+                            "specific_force_x", "specific_force_y", "specific_force_z"};
     for (std::size_t k = 0; k < 6; ++k) {
       s.add_channel(names[k], k < 3 ? "rad/s" : "m/s^2", imu_[k], "rover body axes (x forward, y left, z up)");
     }

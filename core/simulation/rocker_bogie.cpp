@@ -37,8 +37,10 @@ void set_effect(RockerBogieEffects& e, const std::string& name, double v) {
   } else if (name == "imu-time-offset") {
     e.imu_time_offset = v;
   } else {
-    throw DataError("unknown effect '" + name + "' (soil-strength, slip-sinkage, grousers, wheel-radius-scale, "
-                    "effect-start-x, gyro-bias, accel-bias, force-offset, force-scale, encoder-dropout, imu-time-offset)");
+    throw DataError(
+        "unknown effect '" + name +
+        "' (soil-strength, slip-sinkage, grousers, wheel-radius-scale, "
+        "effect-start-x, gyro-bias, accel-bias, force-offset, force-scale, encoder-dropout, imu-time-offset)");
   }
 }
 

@@ -31,10 +31,10 @@ struct RockerBogieParameters {
   double wheel_damping = 2.28855;                                     // N m s
   Eigen::Vector2d bogie_com{0.0, -0.07322};                           // c_11, m (x, z)
   double baumgarte_alpha = 500, baumgarte_beta = 500;
-  double desired_speed = 0.02;                                        // m/s
-  double kp = 25, ki = 0.5;                                           // wheel-speed PI (Table 4.1)
-  double kd = 12.5;  // Table 4.1; not applied: it makes the 50 Hz loop unstable (docs/validation/simulation.md)
-  double control_rate = 50;                                           // Hz
+  double desired_speed = 0.02;  // m/s
+  double kp = 25, ki = 0.5;     // wheel-speed PI (Table 4.1)
+  double kd = 12.5;          // Table 4.1; not applied: it makes the 50 Hz loop unstable (docs/validation/simulation.md)
+  double control_rate = 50;  // Hz
   double gravity = 9.81;
 };
 
@@ -51,9 +51,9 @@ struct WheelCentrePath {
   std::string name;
   std::function<double(double)> z, dz, ddz;
 };
-WheelCentrePath rolling_path();               // Eq. 4.51
+WheelCentrePath rolling_path();  // Eq. 4.51
 WheelCentrePath flat_path(double height = 0);
-WheelCentrePath slope_path(double degrees);    // constant grade through x = 0
+WheelCentrePath slope_path(double degrees);  // constant grade through x = 0
 // A raised-cosine bump of `height` and `length` starting at x0 on flat ground.
 WheelCentrePath bump_path(double height, double x0, double length);
 
@@ -63,17 +63,17 @@ enum class TractionSource { wong_reece, polynomial };
 // physical effect starts where the front wheel passes effect_start_x; the
 // log records the effects only in its truth/ metadata.
 struct RockerBogieEffects {
-  double soil_strength = 1.0;       // factor on c, tan(phi), kc, kphi (a soil change)
-  double slip_sinkage_n1 = 0.0;     // n = n0 + n1 |s|
-  double grouser_height = 0.0;      // m (24 grousers)
-  double wheel_radius_scale = 1.0;  // true radius / nominal (control and encoders assume nominal)
-  double effect_start_x = -1e9;     // m
-  double gyro_bias = 0.0;           // rad/s on the pitch rate
-  double accel_bias = 0.0;          // m/s^2 on both accelerometer axes
-  double force_offset = 0.0;        // N on every force-sensor axis
-  double force_scale = 1.0;         // force-sensor scale factor
+  double soil_strength = 1.0;         // factor on c, tan(phi), kc, kphi (a soil change)
+  double slip_sinkage_n1 = 0.0;       // n = n0 + n1 |s|
+  double grouser_height = 0.0;        // m (24 grousers)
+  double wheel_radius_scale = 1.0;    // true radius / nominal (control and encoders assume nominal)
+  double effect_start_x = -1e9;       // m
+  double gyro_bias = 0.0;             // rad/s on the pitch rate
+  double accel_bias = 0.0;            // m/s^2 on both accelerometer axes
+  double force_offset = 0.0;          // N on every force-sensor axis
+  double force_scale = 1.0;           // force-sensor scale factor
   double encoder_dropout_start = -1;  // s: the wheel encoders hold their value for 2 s from here (< 0: none)
-  double imu_time_offset = 0.0;     // s added to the imu stream's time stamps
+  double imu_time_offset = 0.0;       // s added to the imu stream's time stamps
 };
 // Sets an effect by name (soil-strength, slip-sinkage, grousers,
 // wheel-radius-scale, effect-start-x, gyro-bias, accel-bias, force-offset,
@@ -83,7 +83,7 @@ void set_effect(RockerBogieEffects& effects, const std::string& name, double val
 struct RockerBogieRun {
   double duration = 200.0;  // s
   WheelCentrePath path = rolling_path();
-  double start_x = 0.0;     // wheel 1's x at t = 0
+  double start_x = 0.0;  // wheel 1's x at t = 0
   terramechanics::Soil soil;
   TractionSource traction = TractionSource::polynomial;
   RockerBogieEffects effects;
@@ -100,11 +100,11 @@ struct RockerBogieResult {
   // streams truth/pose and truth/wheels.
   log::Log log;
   double max_constraint_error = 0;  // m, largest |Psi| over the run
-  std::size_t unsupported = 0;  // traction evaluations where the soil could not carry the load
+  std::size_t unsupported = 0;      // traction evaluations where the soil could not carry the load
 };
 
 // Throws DataError when the rover cannot be placed on the path.
-RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& geometry, const RockerBogieParameters& parameters,
-                                        const RockerBogieRun& run);
+RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& geometry,
+                                        const RockerBogieParameters& parameters, const RockerBogieRun& run);
 
 }  // namespace roverlab::simulation

@@ -12,7 +12,9 @@ namespace roverlab::simulation::rocker_bogie {
 namespace {
 
 // Derivative of the clockwise rotation with respect to its angle.
-Vec2 drotate(double a, const Vec2& v) { return {-std::sin(a) * v.x() + std::cos(a) * v.y(), -std::cos(a) * v.x() - std::sin(a) * v.y()}; }
+Vec2 drotate(double a, const Vec2& v) {
+  return {-std::sin(a) * v.x() + std::cos(a) * v.y(), -std::cos(a) * v.x() - std::sin(a) * v.y()};
+}
 
 void set_translation_base(Jac& J) {
   J.setZero();
@@ -22,7 +24,9 @@ void set_translation_base(Jac& J) {
 
 }  // namespace
 
-Vec2 rotate(double a, const Vec2& v) { return {std::cos(a) * v.x() + std::sin(a) * v.y(), -std::sin(a) * v.x() + std::cos(a) * v.y()}; }
+Vec2 rotate(double a, const Vec2& v) {
+  return {std::cos(a) * v.x() + std::sin(a) * v.y(), -std::sin(a) * v.x() + std::cos(a) * v.y()};
+}
 
 Kinematics kinematics(const PlanarRockerBogieGeometry& g, const RockerBogieParameters& p, const Vec& q) {
   Kinematics k;
@@ -64,7 +68,8 @@ Mat inertia(const Kinematics& k, const RockerBogieParameters& p) {
   Mat H = p.body_mass * k.J_body.transpose() * k.J_body + p.body_inertia * k.W_body.transpose() * k.W_body;
   H += p.bogie_mass * k.J_bogie.transpose() * k.J_bogie + p.bogie_inertia * k.W_bogie.transpose() * k.W_bogie;
   for (int i = 0; i < 3; ++i) {
-    H += p.wheel_mass * k.J_wheel[i].transpose() * k.J_wheel[i] + p.wheel_inertia * k.W_wheel[i].transpose() * k.W_wheel[i];
+    H += p.wheel_mass * k.J_wheel[i].transpose() * k.J_wheel[i] +
+         p.wheel_inertia * k.W_wheel[i].transpose() * k.W_wheel[i];
     H(4 + i, 4 + i) += p.wheel_gear_inertia - p.wheel_inertia;
   }
   return H;
@@ -135,14 +140,17 @@ void Dynamics::hold(const Eigen::Vector3d& torque, const Eigen::Vector3d& normal
   normal_ = normal;
 }
 
-const TractionModel& Dynamics::model_at(double x) const { return x >= run_.effects.effect_start_x ? changed_ : nominal_; }
+const TractionModel& Dynamics::model_at(double x) const {
+  return x >= run_.effects.effect_start_x ? changed_ : nominal_;
+}
 
 // Eq. 4.49-4.50: [H Psi_q^T; Psi_q 0] [qdd; -lambda] = [tau_a - Hdot qd; Baumgarte right-hand side].
 void Dynamics::accelerations(const Vec& q, const Vec& qd, Vec& qdd, DynamicsReport* report) {
   const Kinematics k = kinematics(g_, p_, q);
   const Mat H = inertia(k, p_);
   const double h = 1e-6;
-  const Mat Hdot = (inertia(kinematics(g_, p_, q + h * qd), p_) - inertia(kinematics(g_, p_, q - h * qd), p_)) / (2 * h);
+  const Mat Hdot =
+      (inertia(kinematics(g_, p_, q + h * qd), p_) - inertia(kinematics(g_, p_, q - h * qd), p_)) / (2 * h);
   const Kinematics kp = kinematics(g_, p_, q + h * qd), km = kinematics(g_, p_, q - h * qd);
   Vec tau_a = Vec::Zero();
   // Gravity: -dV/dPhi (Eq. 4.37).
@@ -155,7 +163,8 @@ void Dynamics::accelerations(const Vec& q, const Vec& qd, Vec& qdd, DynamicsRepo
   A.bottomLeftCorner<3, N>() = c.Psi_q;
   Eigen::Matrix<double, N + 3, 1> b;
   b.head<N>() = tau_a - Hdot * qd;
-  b.tail<3>() = -c.Psidot_qd - 2 * p_.baumgarte_alpha * (c.Psi_q * qd) - p_.baumgarte_beta * p_.baumgarte_beta * c.Psi;  // Eq. 4.17
+  b.tail<3>() = -c.Psidot_qd - 2 * p_.baumgarte_alpha * (c.Psi_q * qd) -
+                p_.baumgarte_beta * p_.baumgarte_beta * c.Psi;  // Eq. 4.17
   const Eigen::Matrix<double, N + 3, 1> x = A.partialPivLu().solve(b);
   qdd = x.head<N>();
   if (report) {
@@ -171,7 +180,7 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
   const Vec2 v = k.J_wheel[i] * qd;
   const Vec2 a = ((kp.J_wheel[i] - km.J_wheel[i]) / (2 * h)) * qd;  // Jdot qdot
   const double z1 = run_.path.dz(c.x()), z2 = run_.path.ddz(c.x());
-  con.Psi(i) = c.y() - run_.path.z(c.x());                          // Eq. 4.33
+  con.Psi(i) = c.y() - run_.path.z(c.x());  // Eq. 4.33
   con.Psi_q.row(i) = k.J_wheel[i].row(1) - z1 * k.J_wheel[i].row(0);
   con.Psidot_qd(i) = a.y() - z2 * v.x() * v.x() - z1 * a.x();
   // Traction at the wheel (Eq. 4.40-4.47): contact angle from the path's slope.
@@ -197,8 +206,8 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
   const WheelTraction traction = model.evaluate(W, s, report != nullptr, unsupported_);
   const double dp = traction.drawbar_pull * (dir * fade);
   const double tr = traction.resistive_torque * (dir * fade);
-  tau_a += k.J_wheel[i].transpose() * (dp * t);            // Eq. 4.43
-  tau_a -= k.W_wheel[i].transpose() * tr;                   // Eq. 4.42: resists the wheel's rotation
+  tau_a += k.J_wheel[i].transpose() * (dp * t);               // Eq. 4.43
+  tau_a -= k.W_wheel[i].transpose() * tr;                     // Eq. 4.42: resists the wheel's rotation
   tau_a(4 + i) += torque_(i) - p_.wheel_damping * qd(4 + i);  // Eq. 4.46
   if (report) {
     report->slip(i) = s;

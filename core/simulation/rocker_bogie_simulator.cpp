@@ -38,8 +38,8 @@ RockerBogieSimulator::RockerBogieSimulator(const PlanarRockerBogieGeometry& geom
       dt_(1.0 / parameters.control_rate),
       steps_(static_cast<std::size_t>(std::llround(run.duration * parameters.control_rate))),
       state_(2 * N, 0.0),
-      stepper_(boost::numeric::odeint::make_controlled(1e-8, 1e-8,
-                                                      boost::numeric::odeint::runge_kutta_dopri5<rocker_bogie::State>())),
+      stepper_(boost::numeric::odeint::make_controlled(
+          1e-8, 1e-8, boost::numeric::odeint::runge_kutta_dopri5<rocker_bogie::State>())),
       rng_(run.seed),
       t_(steps_ + 1),
       rec_(4 + 6 * 3 + 3 + 3, std::vector<double>(steps_ + 1)),
@@ -276,10 +276,12 @@ void RockerBogieSimulator::write_truth_streams() {
   }
   {
     log::Stream st("truth/wheels", t_);
-    const char* names[6] = {"slip_", "normal_load_", "drawbar_pull_", "resistive_torque_", "contact_angle_", "wheel_rate_"};
+    const char* names[6] = {"slip_",          "normal_load_", "drawbar_pull_", "resistive_torque_",
+                            "contact_angle_", "wheel_rate_"};
     const char* units[6] = {"1", "N", "N", "N*m", "rad", "rad/s"};
     for (std::size_t c = 0; c < 6; ++c) {
-      for (std::size_t i = 0; i < 3; ++i) st.add_channel(std::string(names[c]) + std::to_string(i + 1), units[c], rec_[4 + 3 * c + i]);
+      for (std::size_t i = 0; i < 3; ++i)
+        st.add_channel(std::string(names[c]) + std::to_string(i + 1), units[c], rec_[4 + 3 * c + i]);
     }
     for (std::size_t i = 0; i < 3; ++i) st.add_channel("sinkage_" + std::to_string(i + 1), "m", rec_[25 + i]);
     for (std::size_t i = 0; i < 3; ++i) {

@@ -30,8 +30,8 @@ class RockerBogieSimulator {
  private:
   using Vec = rocker_bogie::Vec;
   // Adaptive Dormand-Prince; kept over the run (it carries its last derivative, first-same-as-last).
-  using Stepper = boost::numeric::odeint::controlled_runge_kutta<
-      boost::numeric::odeint::runge_kutta_dopri5<rocker_bogie::State>>;
+  using Stepper =
+      boost::numeric::odeint::controlled_runge_kutta<boost::numeric::odeint::runge_kutta_dopri5<rocker_bogie::State>>;
 
   void place_on_path();
   void control_step(std::size_t k);
@@ -51,11 +51,11 @@ class RockerBogieSimulator {
   const RockerBogieParameters& p_;
   const RockerBogieRun& run_;
   rocker_bogie::Dynamics dynamics_;
-  double dt_;            // s, the control step
-  std::size_t steps_;    // control steps over the run
+  double dt_;                  // s, the control step
+  std::size_t steps_;          // control steps over the run
   rocker_bogie::State state_;  // [qdot; q]
   Stepper stepper_;
-  double step_size_ = 1e-3;    // s, Odeint's adaptive step, carried between control steps
+  double step_size_ = 1e-3;  // s, Odeint's adaptive step, carried between control steps
   // Wheel-speed PI: torques (N m) held over a step and the rate errors' integrals.
   Eigen::Vector3d torque_ = Eigen::Vector3d::Zero(), normal_ = Eigen::Vector3d::Constant(-1.0),
                   integral_ = Eigen::Vector3d::Zero();

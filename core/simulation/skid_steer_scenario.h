@@ -22,17 +22,17 @@ struct SkidSteerScenario {
   std::vector<DriveSegment> segments;
   estimation::SkidSteerGeometry rover;
   double imu_rate = 250.0, wheel_rate = 10.0, gps_rate = 10.0;
-  double max_acceleration = 0.5;       // m/s^2
+  double max_acceleration = 0.5;                                  // m/s^2
   double latitude = 0.6919, longitude = -1.3957, height = 310.0;  // start (Point Marion, PA)
-  double heading = 0.0;                // rad, clockwise from north
+  double heading = 0.0;                                           // rad, clockwise from north
   // IMU errors and GPS noise. Noise: the ADIS16495 datasheet (seed 002
   // section 5.1). Biases: turn-on values the filter must estimate, 25 (gyro)
   // and 100 (accelerometer) times the datasheet's in-run stability.
-  double gyro_arw = 2.9e-5;            // rad/sqrt(s)   (0.1 deg/sqrt(h))
-  double accel_vrw = 1.33e-4;          // m/s/sqrt(s)   (0.008 m/s/sqrt(h))
-  double gyro_bias = 2e-4;             // rad/s, per axis, sign drawn from the seed (41 deg/h)
-  double accel_bias = 0.003;           // m/s^2, per axis, sign drawn from the seed (0.3 mg)
-  double gps_sigma = 0.01;             // m
+  double gyro_arw = 2.9e-5;    // rad/sqrt(s)   (0.1 deg/sqrt(h))
+  double accel_vrw = 1.33e-4;  // m/s/sqrt(s)   (0.008 m/s/sqrt(h))
+  double gyro_bias = 2e-4;     // rad/s, per axis, sign drawn from the seed (41 deg/h)
+  double accel_bias = 0.003;   // m/s^2, per axis, sign drawn from the seed (0.3 mg)
+  double gps_sigma = 0.01;     // m
   unsigned seed = 1;
   // Hidden effects, recorded only in the truth/ metadata: true wheel radius
   // of each side against the nominal one, effective track of skid-steer

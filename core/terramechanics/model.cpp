@@ -7,8 +7,7 @@
 
 namespace roverlab::terramechanics {
 
-Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip,
-                  const ModelOptions& options) {
+Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip, const ModelOptions& options) {
   Traction t;
   if (!std::isfinite(load) || load <= 0.0 || !std::isfinite(slip) || slip < -1.0 || slip > 1.0 ||
       !(wheel.radius > 0.0) || !(wheel.width > 0.0)) {
@@ -30,24 +29,27 @@ Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip
 SlipState slip_state(double v, double omega, double radius) {
   const double rw = radius * omega;
   SlipState st;
-  if (omega == 0.0 && v == 0.0) return {0.0, 1.0, 7};              // stationary
-  if (omega == 0.0) return {-1.0, v > 0.0 ? 1.0 : -1.0, 5};         // locked wheel
+  if (omega == 0.0 && v == 0.0) return {0.0, 1.0, 7};        // stationary
+  if (omega == 0.0) return {-1.0, v > 0.0 ? 1.0 : -1.0, 5};  // locked wheel
   const double dir = omega > 0.0 ? 1.0 : -1.0;
-  if (v == 0.0) return {1.0, dir, 6};                                // spinning in place
+  if (v == 0.0) return {1.0, dir, 6};  // spinning in place
   const bool same_sign = (v > 0.0) == (omega > 0.0);
   if (std::abs(rw) >= std::abs(v)) {
-    if (same_sign) return {1.0 - v / rw, dir, 1};                    // Eq. 2.8
+    if (same_sign) return {1.0 - v / rw, dir, 1};  // Eq. 2.8
     return {1.0, dir, 2};
   }
-  if (same_sign) return {rw / v - 1.0, dir, 3};                      // Eq. 2.9
+  if (same_sign) return {rw / v - 1.0, dir, 3};  // Eq. 2.9
   return {1.0, dir, 4};
 }
 
 const char* to_string(TractionStatus status) {
   switch (status) {
-    case TractionStatus::ok: return "ok";
-    case TractionStatus::unsupported_load: return "load not supported with entry angle < 90 deg";
-    case TractionStatus::invalid_input: return "invalid input";
+    case TractionStatus::ok:
+      return "ok";
+    case TractionStatus::unsupported_load:
+      return "load not supported with entry angle < 90 deg";
+    case TractionStatus::invalid_input:
+      return "invalid input";
   }
   return "?";
 }

@@ -55,8 +55,7 @@ struct Traction {
 
 // Traction of one wheel at normal load W (N) and slip s in [-1, 1]
 // (negative: skid, by the anti-symmetric extension Eq. 2.26-2.27).
-Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip,
-                  const ModelOptions& options = {});
+Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip, const ModelOptions& options = {});
 
 // Slip or skid and the direction of the traction forces from the wheel
 // centre speed v (m/s) and the wheel rate omega (rad/s): Eq. 2.23 with the
@@ -69,7 +68,7 @@ struct SlipState {
 SlipState slip_state(double v, double omega, double radius);
 
 const char* to_string(TractionStatus status);
-ModelKind parse_model_kind(const std::string& text);  // throws DataError
+ModelKind parse_model_kind(const std::string& text);     // throws DataError
 Integration parse_integration(const std::string& text);  // throws DataError
 
 }  // namespace roverlab::terramechanics

@@ -10,14 +10,14 @@
 
 namespace roverlab::terramechanics::detail {
 
+using std::atan;
 using std::cos;
 using std::exp;
+using std::log;
 using std::pow;
 using std::sin;
 using std::sqrt;
 using std::tan;
-using std::atan;
-using std::log;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kGravity = 9.80665;
@@ -31,9 +31,18 @@ struct Params {
 
 template <typename T>
 Params<T> make_params(const Soil& s, const Extensions& e) {
-  return Params<T>{T(s.n), T(s.cohesion), T(std::tan(s.friction_angle)), T(s.shear_modulus),
-                   T(s.kc), T(s.kphi), T(s.c1), T(s.c2), T(s.density),
-                   T(e.slip_sinkage_n1), T(e.grouser_effectiveness), T(e.bulldozing_scale),
+  return Params<T>{T(s.n),
+                   T(s.cohesion),
+                   T(std::tan(s.friction_angle)),
+                   T(s.shear_modulus),
+                   T(s.kc),
+                   T(s.kphi),
+                   T(s.c1),
+                   T(s.c2),
+                   T(s.density),
+                   T(e.slip_sinkage_n1),
+                   T(e.grouser_effectiveness),
+                   T(e.bulldozing_scale),
                    T(e.soil_strength)};
 }
 
@@ -53,8 +62,7 @@ T power(const T& x, const T& n) {
 
 // Stress integrals for entry angle theta0 and slip s >= 0.
 template <typename T>
-Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s,
-                       const T& theta0) {
+Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, const T& theta0) {
   const double r = w.radius, b = w.width;
   const T f = p.soil_strength;
   const T c = f * p.cohesion, tan_phi = f * p.tan_phi;
@@ -69,14 +77,14 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
     const T modulus = kc / b + kphi;
     auto sample = [&](const T& th, T& sigma, T& tau) {
       sigma = modulus * power(T(r) * (cos(th) - cos0), n);  // Eq. 2.1, seed 003
-      tau = c + sigma * tan_phi;                             // Eq. 2.4
+      tau = c + sigma * tan_phi;                            // Eq. 2.4
     };
     auto add = [&](const T& th, const T& weight) {
       T sigma, tau;
       sample(th, sigma, tau);
-      out.normal += weight * sigma * cos(th);                  // Eq. 2.5
+      out.normal += weight * sigma * cos(th);                     // Eq. 2.5
       out.drawbar += weight * (tau * cos(th) - sigma * sin(th));  // Eq. 2.6
-      out.torque += weight * tau;                              // Eq. 2.7
+      out.torque += weight * tau;                                 // Eq. 2.7
     };
     if (o.integration == Integration::simpson) {
       const T h = theta0 / 4.0;  // composite Simpson, two panels (five points)
@@ -94,7 +102,7 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
 
   // Wong-Reece.
   const T modulus = (kc + kphi * b) * pow(T(b), n - 1.0);  // k1 + k2 b, Eq. 2.12-2.13
-  const T theta_m = theta0 * (p.c1 + p.c2 * s);          // Eq. 2.10
+  const T theta_m = theta0 * (p.c1 + p.c2 * s);            // Eq. 2.10
   auto sample = [&](const T& th, T& sigma, T& tau) {
     // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front).
     const T th_eq = th >= theta_m ? th : theta0 - th / theta_m * (theta0 - theta_m);
@@ -156,7 +164,9 @@ struct Solution {
 
 inline double value_of(double x) { return x; }
 template <typename J>
-double value_of(const J& x) { return x.a; }
+double value_of(const J& x) {
+  return x.a;
+}
 
 // Entry angle theta0 from vertical equilibrium (Eq. 2.24) and the traction
 // at slip s >= 0. The root is bracketed in (0, pi/2] and found by secant
@@ -164,18 +174,25 @@ double value_of(const J& x) { return x.a; }
 // safeguarded by bisection. For Jets, one Newton step from the converged
 // root carries d theta0 / d parameters (implicit function theorem).
 template <typename T>
-Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s,
-                  double load) {
+Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load) {
   Solution<T> out;
   Params<double> pv;
   if constexpr (std::is_same_v<T, double>) {
     pv = p;
   } else {
-    pv = Params<double>{value_of(p.n), value_of(p.cohesion), value_of(p.tan_phi),
-                        value_of(p.shear_modulus), value_of(p.kc), value_of(p.kphi),
-                        value_of(p.c1), value_of(p.c2), value_of(p.density),
-                        value_of(p.slip_sinkage_n1), value_of(p.grouser_effectiveness),
-                        value_of(p.bulldozing_scale), value_of(p.soil_strength)};
+    pv = Params<double>{value_of(p.n),
+                        value_of(p.cohesion),
+                        value_of(p.tan_phi),
+                        value_of(p.shear_modulus),
+                        value_of(p.kc),
+                        value_of(p.kphi),
+                        value_of(p.c1),
+                        value_of(p.c2),
+                        value_of(p.density),
+                        value_of(p.slip_sinkage_n1),
+                        value_of(p.grouser_effectiveness),
+                        value_of(p.bulldozing_scale),
+                        value_of(p.soil_strength)};
   }
   auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
   double hi = kPi / 2.0;
@@ -238,8 +255,7 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
 // (Eq. 2.26-2.27, seed 003). Entry angle and sinkage of a skidding wheel are
 // those of the mirrored slip.
 template <typename T>
-Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s,
-                           double load) {
+Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load) {
   if (s >= 0.0) return solve(p, w, o, s, load);
   Solution<T> mirrored = solve(p, w, o, -s, load);
   if (mirrored.status != TractionStatus::ok) return mirrored;

@@ -9,16 +9,16 @@ namespace roverlab::terramechanics {
 
 struct Soil {
   std::string name;
-  std::string source;            // citation of the values
-  double n = 1.0;                // sinkage exponent n_s
-  double cohesion = 0.0;         // c, Pa
-  double friction_angle = 0.0;   // phi_s, rad
-  double shear_modulus = 0.01;   // K_s, shear deformation parameter, m
-  double kc = 0.0;               // modulus of cohesion, Pa / m^(n-1)
-  double kphi = 0.0;             // modulus of friction, Pa / m^n
-  double c1 = 0.18;              // maximum-stress angle coefficients (Eq. 2.10)
+  std::string source;           // citation of the values
+  double n = 1.0;               // sinkage exponent n_s
+  double cohesion = 0.0;        // c, Pa
+  double friction_angle = 0.0;  // phi_s, rad
+  double shear_modulus = 0.01;  // K_s, shear deformation parameter, m
+  double kc = 0.0;              // modulus of cohesion, Pa / m^(n-1)
+  double kphi = 0.0;            // modulus of friction, Pa / m^n
+  double c1 = 0.18;             // maximum-stress angle coefficients (Eq. 2.10)
   double c2 = 0.32;
-  double density = 1500.0;       // bulk density, kg/m^3 (bulldozing only)
+  double density = 1500.0;  // bulk density, kg/m^3 (bulldozing only)
 };
 
 // Eq. 2.12-2.13, seed 003: Wong's pressure-sinkage constants for a wheel width.

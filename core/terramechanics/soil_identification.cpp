@@ -12,18 +12,24 @@ namespace roverlab::terramechanics {
 
 const char* to_string(Quantity q) {
   switch (q) {
-    case Quantity::drawbar_pull: return "drawbar_pull";
-    case Quantity::torque: return "torque";
-    case Quantity::sinkage: return "sinkage";
+    case Quantity::drawbar_pull:
+      return "drawbar_pull";
+    case Quantity::torque:
+      return "torque";
+    case Quantity::sinkage:
+      return "sinkage";
   }
   return "?";
 }
 
 const char* unit_of(Quantity q) {
   switch (q) {
-    case Quantity::drawbar_pull: return "N";
-    case Quantity::torque: return "N*m";
-    case Quantity::sinkage: return "m";
+    case Quantity::drawbar_pull:
+      return "N";
+    case Quantity::torque:
+      return "N*m";
+    case Quantity::sinkage:
+      return "m";
   }
   return "?";
 }
@@ -54,18 +60,42 @@ template <typename T>
 void assign(detail::Params<T>& p, Parameter which, const T& v) {
   using std::tan;
   switch (which) {
-    case Parameter::n: p.n = v; break;
-    case Parameter::cohesion: p.cohesion = v; break;
-    case Parameter::friction_angle: p.tan_phi = tan(v); break;
-    case Parameter::shear_modulus: p.shear_modulus = v; break;
-    case Parameter::kc: p.kc = v; break;
-    case Parameter::kphi: p.kphi = v; break;
-    case Parameter::c1: p.c1 = v; break;
-    case Parameter::c2: p.c2 = v; break;
-    case Parameter::slip_sinkage_n1: p.slip_sinkage_n1 = v; break;
-    case Parameter::grouser_effectiveness: p.grouser_effectiveness = v; break;
-    case Parameter::bulldozing_scale: p.bulldozing_scale = v; break;
-    case Parameter::soil_strength: p.soil_strength = v; break;
+    case Parameter::n:
+      p.n = v;
+      break;
+    case Parameter::cohesion:
+      p.cohesion = v;
+      break;
+    case Parameter::friction_angle:
+      p.tan_phi = tan(v);
+      break;
+    case Parameter::shear_modulus:
+      p.shear_modulus = v;
+      break;
+    case Parameter::kc:
+      p.kc = v;
+      break;
+    case Parameter::kphi:
+      p.kphi = v;
+      break;
+    case Parameter::c1:
+      p.c1 = v;
+      break;
+    case Parameter::c2:
+      p.c2 = v;
+      break;
+    case Parameter::slip_sinkage_n1:
+      p.slip_sinkage_n1 = v;
+      break;
+    case Parameter::grouser_effectiveness:
+      p.grouser_effectiveness = v;
+      break;
+    case Parameter::bulldozing_scale:
+      p.bulldozing_scale = v;
+      break;
+    case Parameter::soil_strength:
+      p.soil_strength = v;
+      break;
   }
 }
 
@@ -87,9 +117,7 @@ struct PointCost {
     for (Quantity q : kQuantities) {
       const auto m = point->measured(q);
       if (!m) continue;
-      const T& predicted = q == Quantity::drawbar_pull ? sol.drawbar
-                           : q == Quantity::torque     ? sol.torque
-                                                       : sol.sinkage;
+      const T& predicted = q == Quantity::drawbar_pull ? sol.drawbar : q == Quantity::torque ? sol.torque : sol.sinkage;
       residual[r++] = (predicted - *m) / sigma.of(q);
     }
     return true;
@@ -129,36 +157,72 @@ Bounds default_bounds(Parameter p) {
 
 double get_parameter(const Soil& s, const Extensions& e, Parameter p) {
   switch (p) {
-    case Parameter::n: return s.n;
-    case Parameter::cohesion: return s.cohesion;
-    case Parameter::friction_angle: return s.friction_angle;
-    case Parameter::shear_modulus: return s.shear_modulus;
-    case Parameter::kc: return s.kc;
-    case Parameter::kphi: return s.kphi;
-    case Parameter::c1: return s.c1;
-    case Parameter::c2: return s.c2;
-    case Parameter::slip_sinkage_n1: return e.slip_sinkage_n1;
-    case Parameter::grouser_effectiveness: return e.grouser_effectiveness;
-    case Parameter::bulldozing_scale: return e.bulldozing_scale;
-    case Parameter::soil_strength: return e.soil_strength;
+    case Parameter::n:
+      return s.n;
+    case Parameter::cohesion:
+      return s.cohesion;
+    case Parameter::friction_angle:
+      return s.friction_angle;
+    case Parameter::shear_modulus:
+      return s.shear_modulus;
+    case Parameter::kc:
+      return s.kc;
+    case Parameter::kphi:
+      return s.kphi;
+    case Parameter::c1:
+      return s.c1;
+    case Parameter::c2:
+      return s.c2;
+    case Parameter::slip_sinkage_n1:
+      return e.slip_sinkage_n1;
+    case Parameter::grouser_effectiveness:
+      return e.grouser_effectiveness;
+    case Parameter::bulldozing_scale:
+      return e.bulldozing_scale;
+    case Parameter::soil_strength:
+      return e.soil_strength;
   }
   return NAN;
 }
 
 void set_parameter(Soil& s, Extensions& e, Parameter p, double v) {
   switch (p) {
-    case Parameter::n: s.n = v; break;
-    case Parameter::cohesion: s.cohesion = v; break;
-    case Parameter::friction_angle: s.friction_angle = v; break;
-    case Parameter::shear_modulus: s.shear_modulus = v; break;
-    case Parameter::kc: s.kc = v; break;
-    case Parameter::kphi: s.kphi = v; break;
-    case Parameter::c1: s.c1 = v; break;
-    case Parameter::c2: s.c2 = v; break;
-    case Parameter::slip_sinkage_n1: e.slip_sinkage_n1 = v; break;
-    case Parameter::grouser_effectiveness: e.grouser_effectiveness = v; break;
-    case Parameter::bulldozing_scale: e.bulldozing_scale = v; break;
-    case Parameter::soil_strength: e.soil_strength = v; break;
+    case Parameter::n:
+      s.n = v;
+      break;
+    case Parameter::cohesion:
+      s.cohesion = v;
+      break;
+    case Parameter::friction_angle:
+      s.friction_angle = v;
+      break;
+    case Parameter::shear_modulus:
+      s.shear_modulus = v;
+      break;
+    case Parameter::kc:
+      s.kc = v;
+      break;
+    case Parameter::kphi:
+      s.kphi = v;
+      break;
+    case Parameter::c1:
+      s.c1 = v;
+      break;
+    case Parameter::c2:
+      s.c2 = v;
+      break;
+    case Parameter::slip_sinkage_n1:
+      e.slip_sinkage_n1 = v;
+      break;
+    case Parameter::grouser_effectiveness:
+      e.grouser_effectiveness = v;
+      break;
+    case Parameter::bulldozing_scale:
+      e.bulldozing_scale = v;
+      break;
+    case Parameter::soil_strength:
+      e.soil_strength = v;
+      break;
   }
 }
 
@@ -180,8 +244,7 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
           new PointCost{&soil, &options.model, &point, &options.free, options.sigma});
       cost->AddParameterBlock(static_cast<int>(k));
       cost->SetNumResiduals(m);
-      ceres::LossFunction* loss =
-          options.huber_sigmas > 0.0 ? new ceres::HuberLoss(options.huber_sigmas) : nullptr;
+      ceres::LossFunction* loss = options.huber_sigmas > 0.0 ? new ceres::HuberLoss(options.huber_sigmas) : nullptr;
       problem.AddResidualBlock(cost, loss, x.data());
     }
     if (problem.NumResidualBlocks() == 0) throw DataError("no measured quantities to fit");
@@ -208,8 +271,8 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
     ceres::Covariance covariance(co);
     std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
     std::vector<double> cov(k * k, NAN);
-    result.covariance_ok = covariance.Compute(blocks, &problem) &&
-                           covariance.GetCovarianceBlock(x.data(), x.data(), cov.data());
+    result.covariance_ok =
+        covariance.Compute(blocks, &problem) && covariance.GetCovarianceBlock(x.data(), x.data(), cov.data());
     for (std::size_t i = 0; i < k; ++i) {
       EstimatedParameter e;
       e.parameter = options.free[i];
@@ -238,7 +301,7 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
       r.quantity = q;
       r.measured = *m;
       r.sigma = options.sigma.of(q);
-      r.predicted = !t.ok() ? NAN
+      r.predicted = !t.ok()                       ? NAN
                     : q == Quantity::drawbar_pull ? t.drawbar_pull
                     : q == Quantity::torque       ? t.resistive_torque
                                                   : t.sinkage;

@@ -12,8 +12,18 @@
 namespace roverlab::terramechanics {
 
 enum class Parameter {
-  n, cohesion, friction_angle, shear_modulus, kc, kphi, c1, c2,
-  slip_sinkage_n1, grouser_effectiveness, bulldozing_scale, soil_strength
+  n,
+  cohesion,
+  friction_angle,
+  shear_modulus,
+  kc,
+  kphi,
+  c1,
+  c2,
+  slip_sinkage_n1,
+  grouser_effectiveness,
+  bulldozing_scale,
+  soil_strength
 };
 const char* to_string(Parameter p);
 Parameter parse_parameter(const std::string& text);  // throws DataError
@@ -25,9 +35,9 @@ Bounds default_bounds(Parameter p);  // physical ranges used unless overridden
 
 struct IdentificationOptions {
   std::vector<Parameter> free;
-  ModelOptions model;           // baseline model and the extensions switched on
+  ModelOptions model;  // baseline model and the extensions switched on
   MeasurementSigma sigma;
-  double huber_sigmas = 3.0;    // Huber loss threshold in sigmas; <= 0: plain least squares
+  double huber_sigmas = 3.0;  // Huber loss threshold in sigmas; <= 0: plain least squares
   int max_iterations = 100;
 };
 
@@ -52,7 +62,7 @@ struct IdentificationResult {
   Extensions extensions;
   std::vector<EstimatedParameter> parameters;
   std::vector<PointResidual> residuals;
-  double chi2 = 0.0;          // sum of squared normalised residuals at the solution
+  double chi2 = 0.0;  // sum of squared normalised residuals at the solution
   std::size_t measurements = 0;
   bool converged = false;
   bool covariance_ok = false;

@@ -14,8 +14,8 @@ PolynomialSurface::PolynomialSurface(int order, std::vector<double> coefficients
     : order_(order), coefficients_(std::move(coefficients)) {
   if (order < 0 || order > 6) throw DataError("polynomial order must be 0..6");
   if (coefficients_.size() != term_count(order)) {
-    throw DataError("polynomial of order " + std::to_string(order) + " needs " +
-                    std::to_string(term_count(order)) + " coefficients");
+    throw DataError("polynomial of order " + std::to_string(order) + " needs " + std::to_string(term_count(order)) +
+                    " coefficients");
   }
 }
 
@@ -63,8 +63,8 @@ PolynomialSurface fit_surface(const std::vector<SurfaceSample>& samples, int ord
   if (order < 1 || order > 6) throw DataError("polynomial order must be 1..6");
   const std::size_t terms = PolynomialSurface::term_count(order);
   if (samples.size() < terms) {
-    throw DataError("order " + std::to_string(order) + " needs at least " + std::to_string(terms) +
-                    " points, got " + std::to_string(samples.size()));
+    throw DataError("order " + std::to_string(order) + " needs at least " + std::to_string(terms) + " points, got " +
+                    std::to_string(samples.size()));
   }
   // Monomials in raw units (so the coefficients read as Eq. 2.28), columns
   // equilibrated before a column-pivoting QR for conditioning.
@@ -88,8 +88,8 @@ PolynomialSurface fit_surface(const std::vector<SurfaceSample>& samples, int ord
   return PolynomialSurface(order, std::vector<double>(x.data(), x.data() + x.size()));
 }
 
-SurfaceFit fit_surface_cross_validated(const std::vector<SurfaceSample>& samples, int max_order,
-                                       int folds, unsigned seed) {
+SurfaceFit fit_surface_cross_validated(const std::vector<SurfaceSample>& samples, int max_order, int folds,
+                                       unsigned seed) {
   if (samples.size() < 6) throw DataError("cross-validation needs at least 6 points");
   folds = std::max(2, std::min<int>(folds, static_cast<int>(samples.size())));
   std::vector<std::size_t> order_of(samples.size());
@@ -137,13 +137,17 @@ SurfaceFit fit_surface_cross_validated(const std::vector<SurfaceSample>& samples
   return best;
 }
 
-OccupancyGrid OccupancyGrid::build(const std::vector<SurfaceSample>& samples, double load_min,
-                                   double load_max, double slip_min, double slip_max,
-                                   int load_bins, int slip_bins) {
+OccupancyGrid OccupancyGrid::build(const std::vector<SurfaceSample>& samples, double load_min, double load_max,
+                                   double slip_min, double slip_max, int load_bins, int slip_bins) {
   if (!(load_max > load_min) || !(slip_max > slip_min) || load_bins < 1 || slip_bins < 1) {
     throw DataError("occupancy grid needs non-empty ranges and at least one bin");
   }
-  OccupancyGrid g{load_min, load_max, slip_min, slip_max, load_bins, slip_bins,
+  OccupancyGrid g{load_min,
+                  load_max,
+                  slip_min,
+                  slip_max,
+                  load_bins,
+                  slip_bins,
                   std::vector<int>(static_cast<std::size_t>(load_bins * slip_bins), 0)};
   for (const auto& s : samples) {
     const int l = static_cast<int>(std::floor((s.load - load_min) / (load_max - load_min) * load_bins));

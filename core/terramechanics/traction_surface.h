@@ -53,15 +53,15 @@ struct OrderScore {
 
 struct SurfaceFit {
   PolynomialSurface surface;
-  FitError error;                 // on the samples it was fitted to
+  FitError error;                  // on the samples it was fitted to
   std::vector<OrderScore> orders;  // cross-validation table (empty for a fixed order)
 };
 
 // Fits orders 1..max_order, scores each by k-fold cross-validation (folds
 // drawn with a fixed seed), and keeps the order with the lowest CV RMSE;
 // among orders within 2 % of that, the lowest.
-SurfaceFit fit_surface_cross_validated(const std::vector<SurfaceSample>& samples, int max_order = 6,
-                                       int folds = 5, unsigned seed = 1);
+SurfaceFit fit_surface_cross_validated(const std::vector<SurfaceSample>& samples, int max_order = 6, int folds = 5,
+                                       unsigned seed = 1);
 
 // Counts of samples in a load x slip grid over the given ranges.
 struct OccupancyGrid {
@@ -69,11 +69,12 @@ struct OccupancyGrid {
   int load_bins = 10, slip_bins = 10;
   std::vector<int> counts;  // load-major: counts[l * slip_bins + s]
 
-  static OccupancyGrid build(const std::vector<SurfaceSample>& samples, double load_min,
-                             double load_max, double slip_min, double slip_max, int load_bins,
-                             int slip_bins);
-  int count(int load_bin, int slip_bin) const { return counts[static_cast<std::size_t>(load_bin * slip_bins + slip_bin)]; }
-  double coverage() const;              // fraction of cells with at least one sample
+  static OccupancyGrid build(const std::vector<SurfaceSample>& samples, double load_min, double load_max,
+                             double slip_min, double slip_max, int load_bins, int slip_bins);
+  int count(int load_bin, int slip_bin) const {
+    return counts[static_cast<std::size_t>(load_bin * slip_bins + slip_bin)];
+  }
+  double coverage() const;                       // fraction of cells with at least one sample
   bool covered(double load, double slip) const;  // the cell holding (load, slip) has data
 };
 

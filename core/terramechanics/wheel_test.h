@@ -26,9 +26,12 @@ struct WheelTestPoint {
 
   std::optional<double> measured(Quantity q) const {
     switch (q) {
-      case Quantity::drawbar_pull: return drawbar_pull;
-      case Quantity::torque: return torque;
-      case Quantity::sinkage: return sinkage;
+      case Quantity::drawbar_pull:
+        return drawbar_pull;
+      case Quantity::torque:
+        return torque;
+      case Quantity::sinkage:
+        return sinkage;
     }
     return std::nullopt;
   }

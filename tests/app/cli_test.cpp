@@ -31,8 +31,7 @@ std::size_t count_lines(const std::string& text) {
 // Runs `info` and `convert` on a bad input: both must exit 3 with one line on
 // stderr naming the file and containing `problem`, and convert must leave no
 // output (nor temporary) file.
-void expect_bad_input(const std::string& input, const std::string& problem,
-                      const std::string& extra_args = "") {
+void expect_bad_input(const std::string& input, const std::string& problem, const std::string& extra_args = "") {
   SCOPED_TRACE(input);
   const CommandResult info = run_roverlab("info " + quote(input) + " " + extra_args);
   EXPECT_EQ(info.exit_code, 3) << info.err;
@@ -81,8 +80,7 @@ TEST(Cli, InfoListsPathfinderStreamsWithUnitsRatesAndDurations) {
   const auto doc = nlohmann::json::parse(j.out);
   const auto& streams = doc.at("streams");
   auto find = [&](const std::string& name) {
-    return *std::find_if(streams.begin(), streams.end(),
-                         [&](const auto& s) { return s.at("name") == name; });
+    return *std::find_if(streams.begin(), streams.end(), [&](const auto& s) { return s.at("name") == name; });
   };
   EXPECT_EQ(find("imu").at("samples"), 17611);
   EXPECT_NEAR(find("imu").at("rate_hz").get<double>(), 250.0, 1.0);
@@ -109,8 +107,7 @@ TEST(Cli, ConvertThenInfoShowsTheSameStreamsAndIdenticalValues) {
 
   // And every value bit for bit.
   io::LoadOptions options;
-  options.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) +
-                                     "/mappings/wvu_pathfinder.json");
+  options.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/wvu_pathfinder.json");
   const log::Log original = io::load_log(kPathfinder, options).log;
   const log::Log converted = io::load_log(out).log;
   ASSERT_EQ(original.streams().size(), converted.streams().size());
@@ -220,8 +217,7 @@ TEST(CliBadInput, ChannelLengthDiffersFromTimeBase) {
   // Put a 705-sample wheel variable into the 17611-sample IMU stream.
   mapping.replace(mapping.find("\"Gz\""), 4, "\"frontRightPos\"");
   write_text(dir.file("m.json"), mapping);
-  expect_bad_input(kPathfinder, "705 samples but the time base has 17611",
-                   "--mapping " + quote(dir.file("m.json")));
+  expect_bad_input(kPathfinder, "705 samples but the time base has 17611", "--mapping " + quote(dir.file("m.json")));
   // The same in a RoverLab HDF5 log.
   write_raw_log(dir.file("short.h5"), {0.0, 1.0, 2.0}, {1.0, 2.0});
   expect_bad_input(dir.file("short.h5"), "2 samples but the time base has 3");
@@ -266,7 +262,7 @@ TEST(CliBadInput, UnknownUnitString) {
 TEST(CliBadInput, UnwritableOutputIsBadInputNotACrash) {
   TempDir dir;
   const CommandResult r = run_roverlab("convert " + quote(kPathfinder) + " " +
-                                   quote(dir.file("no/such/folder/out.h5")) + " -m wvu_pathfinder");
+                                       quote(dir.file("no/such/folder/out.h5")) + " -m wvu_pathfinder");
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
 }
@@ -274,8 +270,8 @@ TEST(CliBadInput, UnwritableOutputIsBadInputNotACrash) {
 // --- terramechanics and discrepancy ----------------------------------------
 
 TEST(CliTerramechanics, EvaluatePrintsOneRowPerLoadAndSlip) {
-  const CommandResult r = run_roverlab(
-      "terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 10,50 --slip -0.5,0,0.5");
+  const CommandResult r =
+      run_roverlab("terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 10,50 --slip -0.5,0,0.5");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("load_N,slip,drawbar_pull_N,resistive_torque_Nm,sinkage_m,entry_angle_rad", 0), 0u);
   EXPECT_EQ(count_lines(r.out), 7u);
@@ -287,8 +283,8 @@ TEST(CliTerramechanics, EvaluatePrintsOneRowPerLoadAndSlip) {
   EXPECT_EQ(doc.at("rows").size(), 1u);
   EXPECT_GT(doc.at("rows")[0].at("drawbar_pull_N").get<double>(), 0.0);  // past the zero crossing at s = 0.2
   // A load the soil cannot carry is reported, not extrapolated.
-  const CommandResult u = run_roverlab(
-      "terramechanics --soil lunar_nominal --radius 0.075 --width 0.07 --load 600 --slip 0.5");
+  const CommandResult u =
+      run_roverlab("terramechanics --soil lunar_nominal --radius 0.075 --width 0.07 --load 600 --slip 0.5");
   EXPECT_EQ(u.exit_code, 0);
   EXPECT_NE(u.out.find(",,,,unsupported_load"), std::string::npos) << u.out;
 }
@@ -296,7 +292,10 @@ TEST(CliTerramechanics, EvaluatePrintsOneRowPerLoadAndSlip) {
 TEST(CliTerramechanics, UsageAndInputErrors) {
   EXPECT_EQ(run_roverlab("terramechanics --radius 0.075 --width 0.07 --load 1 --slip 0").exit_code, 2);
   EXPECT_EQ(run_roverlab("terramechanics --soil ding_tyii --radius -1 --width 0.07 --load 1 --slip 0").exit_code, 2);
-  EXPECT_EQ(run_roverlab("terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 1 --slip 0 --model wong+magic").exit_code, 2);
+  EXPECT_EQ(
+      run_roverlab("terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 1 --slip 0 --model wong+magic")
+          .exit_code,
+      2);
   const CommandResult r = run_roverlab("terramechanics --soil nowhere --radius 0.075 --width 0.07 --load 1 --slip 0");
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("no soil of that name"), std::string::npos) << r.err;
@@ -344,7 +343,8 @@ TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   // Bad input: a file without the measured columns.
   TempDir dir;
   write_text(dir.file("bad.csv"), "radius_m,width_m,load_N,slip\n0.1,0.1,80,0.2\n");
-  const CommandResult bad = run_roverlab("discrepancy single-wheel " + quote(dir.file("bad.csv")) + " --soil ding_tyii");
+  const CommandResult bad =
+      run_roverlab("discrepancy single-wheel " + quote(dir.file("bad.csv")) + " --soil ding_tyii");
   EXPECT_EQ(bad.exit_code, 3);
   EXPECT_EQ(count_lines(bad.err), 1u);
   EXPECT_NE(bad.err.find("bad.csv"), std::string::npos);
@@ -359,8 +359,8 @@ TEST(CliInsSlip, OnThePathfinderLogThePseudoMeasurementInsBeatsPureInsAndWheelOd
                                           " -m wvu_pathfinder --no-zupt --no-zaru --no-nhc --no-odometry-aiding "
                                           "--no-smoother --json");
   ASSERT_EQ(pure.exit_code, 0) << pure.err;
-  const CommandResult pseudo = run_roverlab("estimate ins-slip " + quote(kPathfinder) +
-                                            " -m wvu_pathfinder --no-odometry-aiding --json");
+  const CommandResult pseudo =
+      run_roverlab("estimate ins-slip " + quote(kPathfinder) + " -m wvu_pathfinder --no-odometry-aiding --json");
   ASSERT_EQ(pseudo.exit_code, 0) << pseudo.err;
   const auto f = nlohmann::json::parse(full.out), p = nlohmann::json::parse(pure.out);
   const auto q = nlohmann::json::parse(pseudo.out);
@@ -370,7 +370,7 @@ TEST(CliInsSlip, OnThePathfinderLogThePseudoMeasurementInsBeatsPureInsAndWheelOd
   const double pseudo_only = q.at("ins").at("final_position_error_m").get<double>();
   EXPECT_NEAR(f.at("distance_m").get<double>(), 34.3, 0.5);
   EXPECT_NEAR(odometry, 10.6, 0.5);
-  EXPECT_GT(inertial, 100.0);           // 70 s of free inertial drift
+  EXPECT_GT(inertial, 100.0);              // 70 s of free inertial drift
   EXPECT_LT(pseudo_only, 0.6 * odometry);  // ZUPT, ZARU and NHC alone
   EXPECT_LT(ins, 0.3 * odometry);          // plus gated wheel-speed aiding
   EXPECT_EQ(f.at("slip_confusion").at("counts").size(), 5u);
@@ -408,14 +408,16 @@ TEST(CliInsSlip, BadInputAndUsage) {
     H5Dclose(f.dataset("streams/wheels/channels/angle_FL", std::vector<double>{0.0, 0.1, 0.2}));
   }
   for (const std::string name : {"noimu.h5", "wheels_only.h5", "missing.h5"}) {
-    const CommandResult r = run_roverlab("estimate ins-slip " + quote(dir.file(name)) + " -o " + quote(dir.file("o.h5")));
+    const CommandResult r =
+        run_roverlab("estimate ins-slip " + quote(dir.file(name)) + " -o " + quote(dir.file("o.h5")));
     EXPECT_EQ(r.exit_code, 3) << name << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir.file("o.h5")));
   }
   EXPECT_EQ(run_roverlab("scenario skid-steer-slip --effect wheel-size=2 -o " + quote(dir.file("s.h5"))).exit_code, 2);
-  EXPECT_EQ(run_roverlab("scenario skid-steer-slip --effect radius-scale=big -o " + quote(dir.file("s.h5"))).exit_code, 2);
+  EXPECT_EQ(run_roverlab("scenario skid-steer-slip --effect radius-scale=big -o " + quote(dir.file("s.h5"))).exit_code,
+            2);
   EXPECT_FALSE(fs::exists(dir.file("s.h5")));
 }
 
@@ -437,7 +439,9 @@ TEST(CliDiscrepancy, OdometryFindsAHiddenEffectInASimulatedLog) {
   TempDir dir;
   const std::string sim = dir.file("sim.h5");
   ASSERT_EQ(run_roverlab("scenario skid-steer-slip --seed 9 --effect slip=0 --effect right-radius-scale=1.03 -o " +
-                         quote(sim)).exit_code, 0);
+                         quote(sim))
+                .exit_code,
+            0);
   const CommandResult r = run_roverlab("discrepancy odometry " + quote(sim) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto doc = nlohmann::json::parse(r.out);
@@ -471,7 +475,8 @@ TEST(CliContactAngle, BadInputAndUsage) {
   TempDir dir;
   EXPECT_EQ(run_roverlab("estimate contact-angle " + quote(kPathfinder) + " -m wvu_pathfinder --model c").exit_code, 3);
   EXPECT_EQ(run_roverlab("estimate contact-angle " + quote(kPathfinder) + " -m wvu_pathfinder --model z").exit_code, 2);
-  EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rover wvu_pathfinder -o " + quote(dir.file("x.h5"))).exit_code, 3);
+  EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rover wvu_pathfinder -o " + quote(dir.file("x.h5"))).exit_code,
+            3);
   EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 0 -o " + quote(dir.file("x.h5"))).exit_code, 2);
   EXPECT_EQ(files_in(dir.path()), 0u);
 }
@@ -489,8 +494,9 @@ TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
   EXPECT_GT(pose.channel("x").values.back(), pose.channel("x").values.front());
   EXPECT_NE(lg.stream("truth/wheels").find_channel("drawbar_pull_2"), nullptr);
   EXPECT_NE(lg.find_stream("commands"), nullptr);
-  write_text(dir.file("bad.json"), "{\"format\": \"roverlab-scenario\", \"kind\": \"rocker-bogie\", \"rover\": \"exomars_bb2\", "
-                                   "\"path\": \"flat\", \"soil\": \"ding_tyii\", \"duration_s\": 1}");
+  write_text(dir.file("bad.json"),
+             "{\"format\": \"roverlab-scenario\", \"kind\": \"rocker-bogie\", \"rover\": \"exomars_bb2\", "
+             "\"path\": \"flat\", \"soil\": \"ding_tyii\", \"duration_s\": 1}");
   EXPECT_EQ(run_roverlab("simulate " + quote(dir.file("bad.json")) + " -o " + quote(dir.file("x.h5"))).exit_code, 3);
   EXPECT_EQ(run_roverlab("simulate no_such_scenario -o " + quote(dir.file("x.h5"))).exit_code, 3);
   EXPECT_EQ(run_roverlab("simulate flat_60s --effect warp=9 -o " + quote(dir.file("x.h5"))).exit_code, 2);

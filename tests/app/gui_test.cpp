@@ -4,6 +4,8 @@
 // gives a one-line error dialog and leaves the session usable.
 #include <gtest/gtest.h>
 
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkOpenGLRenderWindow.h>
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QMessageBox>
@@ -11,8 +13,6 @@
 #include <QSurfaceFormat>
 #include <QThread>
 #include <QTimer>
-#include <QVTKOpenGLNativeWidget.h>
-#include <vtkOpenGLRenderWindow.h>
 
 #include <atomic>
 #include <chrono>
@@ -78,7 +78,8 @@ TEST(Gui, OpenTheBundledLogScrubTheTimelineAndSeeTheRoverMove) {
   EXPECT_NE(at10, at40);  // the picture follows the timeline
   // Playing moves the time forward.
   w.set_time(20.0);
-  QMetaObject::invokeMethod(&w, [&] {}, Qt::QueuedConnection);
+  QMetaObject::invokeMethod(
+      &w, [&] {}, Qt::QueuedConnection);
   double seen = 0.0;
   QObject::connect(&w, &gui::MainWindow::time_changed, [&](double t) { seen = t; });
   w.add_plot_channel("imu", "angular_rate_z");

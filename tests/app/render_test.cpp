@@ -77,8 +77,8 @@ views::Image render(const std::string& args, const std::string& png) {
 TEST(Render, RoverViewPutsThePathfinderAtTheCentreWithWheelsInItsSlipClassColour) {
   TempDir dir;
   // Driving at 30 s: the INS says low slip (yellow-green wheels).
-  const views::Image img = render(quote(kPathfinder) + " -m wvu_pathfinder --view rover -t 30 --size 640x400",
-                                  dir.file("rover.png"));
+  const views::Image img =
+      render(quote(kPathfinder) + " -m wvu_pathfinder --view rover -t 30 --size 640x400", dir.file("rover.png"));
   ASSERT_EQ(img.width, 640);
   ASSERT_EQ(img.height, 400);
   EXPECT_GT(distinct_colours(img), 50);  // not blank
@@ -89,12 +89,13 @@ TEST(Render, RoverViewPutsThePathfinderAtTheCentreWithWheelsInItsSlipClassColour
   EXPECT_NEAR(wheels.mean_y, 200, 80);
   // The light body beside them, in the middle of the picture (the legend's
   // white box is in a corner, the sky at the top).
-  const Region body = find(img, [&](int r, int g, int b) { return r > 200 && g > 200 && b > 200; }, 160, 480, 100, 320);
+  const Region body = find(
+      img, [&](int r, int g, int b) { return r > 200 && g > 200 && b > 200; }, 160, 480, 100, 320);
   EXPECT_GT(body.count, 300);
   EXPECT_NEAR(body.mean_x, 320, 64);
   // At rest (2 s) the slip class is none: pure green, no yellow.
-  const views::Image still = render(quote(kPathfinder) + " -m wvu_pathfinder --view rover -t 2 --size 640x400",
-                                    dir.file("still.png"));
+  const views::Image still =
+      render(quote(kPathfinder) + " -m wvu_pathfinder --view rover -t 2 --size 640x400", dir.file("still.png"));
   const Region green = find(still, [](int r, int g, int b) { return g - r > 50 && g - b > 50; });
   EXPECT_GT(green.count, 400);
   EXPECT_NEAR(green.mean_x, 320, 64);
@@ -106,10 +107,12 @@ TEST(Render, TimeSeriesDrawsTheLineWhereItsDataIsAndTheCursorAtItsTime) {
   std::string csv = "time [s],x [m]\n";
   for (int i = 0; i <= 1000; ++i) csv += std::to_string(i * 0.01) + "," + (i < 500 ? "0" : "1") + "\n";
   write_text(dir.file("step.csv"), csv);
-  const views::Image img = render(quote(dir.file("step.csv")) + " --view timeseries --channels step:x -t 7.5 --size 800x400",
-                                  dir.file("ts.png"));
+  const views::Image img = render(
+      quote(dir.file("step.csv")) + " --view timeseries --channels step:x -t 7.5 --size 800x400", dir.file("ts.png"));
   // The first plot colour, (31, 119, 180).
-  auto line = [](int r, int g, int b) { return std::abs(r - 31) < 40 && std::abs(g - 119) < 40 && std::abs(b - 180) < 40; };
+  auto line = [](int r, int g, int b) {
+    return std::abs(r - 31) < 40 && std::abs(g - 119) < 40 && std::abs(b - 180) < 40;
+  };
   // Split the line's pixels at the middle column.
   int n_left = 0, n_right = 0;
   double y_left = 0, y_right = 0;
@@ -149,9 +152,9 @@ TEST(Render, TimeSeriesDrawsTheLineWhereItsDataIsAndTheCursorAtItsTime) {
 
 TEST(Render, TractionSurfaceSpansItsColourMapAndShowsTheMeasuredPoints) {
   TempDir dir;
-  const views::Image img =
-      render(quote(kData + "/single_wheel/ding2011_tyii.csv") + " --view traction-surface --soil ding_tyii --size 800x600",
-             dir.file("surface.png"));
+  const views::Image img = render(
+      quote(kData + "/single_wheel/ding2011_tyii.csv") + " --view traction-surface --soil ding_tyii --size 800x600",
+      dir.file("surface.png"));
   const Region red = find(img, [](int r, int g, int b) { return r > 170 && g < 110 && b < 110; });
   const Region blue = find(img, [](int r, int g, int b) { return b > 170 && r < 120 && g < 150; });
   const Region black = find(img, [](int r, int g, int b) { return r < 40 && g < 40 && b < 40; });
@@ -172,13 +175,18 @@ TEST(Render, ErrorsAreOneLineAndLeaveNoFile) {
   const CommandResult missing = run_roverlab("render " + quote(dir.file("nope.h5")) + " -o " + out);
   EXPECT_EQ(missing.exit_code, 3);
   EXPECT_NE(missing.err.find("nope.h5"), std::string::npos);
-  const CommandResult contact = run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --view contact-angles -o " + out);
+  const CommandResult contact =
+      run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --view contact-angles -o " + out);
   EXPECT_EQ(contact.exit_code, 3);
   EXPECT_NE(contact.err.find("contact-angle"), std::string::npos) << contact.err;
   EXPECT_EQ(std::count(contact.err.begin(), contact.err.end(), '\n'), 1);
   EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --size 12x9000 -o " + out).exit_code, 2);
-  EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --view spaceship -o " + out).exit_code, 2);
-  EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --channels imu:nothing --view timeseries -o " + out).exit_code, 3);
+  EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) + " -m wvu_pathfinder --view spaceship -o " + out).exit_code,
+            2);
+  EXPECT_EQ(run_roverlab("render " + quote(kPathfinder) +
+                         " -m wvu_pathfinder --channels imu:nothing --view timeseries -o " + out)
+                .exit_code,
+            3);
   // No display and no Xvfb: a one-line message saying how to run headless.
   const CommandResult headless = run_command("/usr/bin/env -u DISPLAY PATH=/nonexistent " + quote(kExe) + " render " +
                                              quote(kPathfinder) + " -m wvu_pathfinder -o " + out);
@@ -190,7 +198,8 @@ TEST(Render, ErrorsAreOneLineAndLeaveNoFile) {
 TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
   TempDir dir;
   const std::string folder = dir.file("report");
-  const CommandResult r = run_roverlab("report " + quote(kPathfinder) + " -m wvu_pathfinder --size 640x400 -o " + quote(folder));
+  const CommandResult r =
+      run_roverlab("report " + quote(kPathfinder) + " -m wvu_pathfinder --size 640x400 -o " + quote(folder));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = read_text(folder + "/index.html");
   for (const char* s : {"<h2>Rover</h2>", "rover.png", "timeseries.png", "slip.png", "INS slip detection",
@@ -209,8 +218,8 @@ TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
   EXPECT_EQ(ins.at("slip_confusion").at("column_normalised").size(), 5u);
   // The report holds the very document `estimate ins-slip --json` and
   // `discrepancy odometry --json` print for the same log and options.
-  for (const auto& [command, name] : {std::pair<std::string, std::string>{"estimate ins-slip", "ins-slip"},
-                                      {"discrepancy odometry", "odometry"}}) {
+  for (const auto& [command, name] :
+       {std::pair<std::string, std::string>{"estimate ins-slip", "ins-slip"}, {"discrepancy odometry", "odometry"}}) {
     const CommandResult cli = run_roverlab(command + " " + quote(kPathfinder) + " -m wvu_pathfinder --json");
     ASSERT_EQ(cli.exit_code, 0) << cli.err;
     EXPECT_EQ(nlohmann::json::parse(cli.out), metrics.at("analyses").at(name)) << command;
@@ -250,9 +259,9 @@ TEST(Render, ContactAnglesPointWhereTheWheelsMove) {
   };
   const Region fl = centroid_y(0, 0), rl = centroid_y(800, 0), fr = centroid_y(0, 300), rr = centroid_y(800, 300);
   for (const Region* r : {&fl, &rl, &fr, &rr}) EXPECT_GT(r->count, 300);
-  EXPECT_GT(rl.mean_y - fl.mean_y, 12.0);  // RL arrow points down
-  EXPECT_LT(rr.mean_y - fr.mean_y, -12.0); // RR's arrow points up
-  EXPECT_NEAR(fl.mean_y, 140.0, 12.0);     // FL's is level with the wheel centre
+  EXPECT_GT(rl.mean_y - fl.mean_y, 12.0);   // RL arrow points down
+  EXPECT_LT(rr.mean_y - fr.mean_y, -12.0);  // RR's arrow points up
+  EXPECT_NEAR(fl.mean_y, 140.0, 12.0);      // FL's is level with the wheel centre
 }
 
 TEST(Render, PlanarRockerBogieSideViewShowsTheWheelsOnTheTerrain) {
@@ -264,7 +273,8 @@ TEST(Render, PlanarRockerBogieSideViewShowsTheWheelsOnTheTerrain) {
   const Region wheels = find(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
   EXPECT_GT(wheels.count, 3000);
   EXPECT_NEAR(wheels.mean_x, 400, 60);
-  const Region terrain = find(img, [](int r, int g, int b) { return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g; });
+  const Region terrain =
+      find(img, [](int r, int g, int b) { return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g; });
   EXPECT_GT(terrain.count, 800);
   EXPECT_GT(terrain.mean_y, wheels.mean_y);
 }

@@ -37,8 +37,8 @@ void expect_one_line_bad_input(const CommandResult& r, const std::string& file, 
 class ConvertedLog {
  public:
   explicit ConvertedLog(const TempDir& dir) : path_(dir.file("log.h5")) {
-    const CommandResult r = run_roverlab("convert " + quote(kData + "/test17run.mat") + " " + quote(path_) +
-                                         " -m wvu_pathfinder");
+    const CommandResult r =
+        run_roverlab("convert " + quote(kData + "/test17run.mat") + " " + quote(path_) + " -m wvu_pathfinder");
     EXPECT_EQ(r.exit_code, 0) << r.err;
   }
   const std::string& path() const { return path_; }
@@ -176,8 +176,8 @@ TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
     const hid_t space = H5Screate_simple(1, &dims, &max);
     const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, 1, &chunk);
-    const hid_t ds = H5Dcreate2(f, "/streams/imu/channels/angular_rate_x", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl,
-                                H5P_DEFAULT);
+    const hid_t ds =
+        H5Dcreate2(f, "/streams/imu/channels/angular_rate_x", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     ASSERT_GE(ds, 0);
     H5Dclose(ds);
     H5Pclose(dcpl);
@@ -261,22 +261,22 @@ TEST(Robustness, AbsurdOptionValuesAreUsageErrorsNamingTheOption) {
   // Parsed before any file is read: the files need not exist.
   const std::string tm = "terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 50 --slip 0.2";
   const std::pair<std::string, std::string> cases[] = {
-      {tm + " --soil-strength -3", "--soil-strength"},            // F22: 5.2 kN of pull from 50 N
-      {tm + " --bulldozing-scale -5", "--bulldozing-scale"},      // F22
-      {tm + " --slip-sinkage-n1 -100", "--slip-sinkage-n1"},      // F22: NaN fields
-      {tm + " --radius 1e300", "--radius"},                       // F22
+      {tm + " --soil-strength -3", "--soil-strength"},        // F22: 5.2 kN of pull from 50 N
+      {tm + " --bulldozing-scale -5", "--bulldozing-scale"},  // F22
+      {tm + " --slip-sinkage-n1 -100", "--slip-sinkage-n1"},  // F22: NaN fields
+      {tm + " --radius 1e300", "--radius"},                   // F22
       {tm + " --slip 0.2,2", "--slip"},
-      {tm + " --riemann-points 2000000000", "--riemann-points"},  // F23: minutes
+      {tm + " --riemann-points 2000000000", "--riemann-points"},                                        // F23: minutes
       {"terramechanics surface --soil ding_tyii --radius 0.075 --width 0.07 --grid 100000", "--grid"},  // F24
       {"terramechanics fit points.csv --grid 1000000000", "--grid"},                                    // F17
-      {"estimate ins-slip log.h5 --odometry-sigma -1", "--odometry-sigma"},                            // F33
-      {"estimate ins-slip log.h5 --odometry-sigma nan", "--odometry-sigma"},                           // F33
-      {"estimate contact-angle log.h5 --velocity-variance -1", "--velocity-variance"},                 // F33
-      {"estimate contact-angle log.h5 --angle-variance nan", "--angle-variance"},                      // F33
-      {"estimate contact-angle log.h5 --joint-rate-window -1", "--joint-rate-window"},                 // F33
-      {"discrepancy odometry log.h5 --fit-fraction nan", "--fit-fraction"},                            // F33
-      {"render log.h5 --quantity banana -o x.png", "--quantity"},                                     // F26
-      {"render log.h5 --time nan -o x.png", "--time"},                                                // F25
+      {"estimate ins-slip log.h5 --odometry-sigma -1", "--odometry-sigma"},                             // F33
+      {"estimate ins-slip log.h5 --odometry-sigma nan", "--odometry-sigma"},                            // F33
+      {"estimate contact-angle log.h5 --velocity-variance -1", "--velocity-variance"},                  // F33
+      {"estimate contact-angle log.h5 --angle-variance nan", "--angle-variance"},                       // F33
+      {"estimate contact-angle log.h5 --joint-rate-window -1", "--joint-rate-window"},                  // F33
+      {"discrepancy odometry log.h5 --fit-fraction nan", "--fit-fraction"},                             // F33
+      {"render log.h5 --quantity banana -o x.png", "--quantity"},                                       // F26
+      {"render log.h5 --time nan -o x.png", "--time"},                                                  // F25
   };
   for (const auto& [args, option] : cases) {
     const CommandResult r = run_roverlab(args);

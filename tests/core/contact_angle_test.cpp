@@ -46,12 +46,13 @@ TEST(Kinematics, Bb2WheelCentresAtZeroJointAnglesMatchTable42ByHand) {
   // at (0, 0, 0.23); b -> s adds the along-bogie offset a and the lateral d;
   // s -> d drops the drive frame 0.216 m (0.286 m at the rear) down the
   // steering axis, from z = 0.16 (0.23) to -0.056.
-  const double expected[6][3] = {{0.6505, 0.5933, -0.056}, {0.0105, 0.6013, -0.056}, {-0.698, 0.6043, -0.056},
+  const double expected[6][3] = {{0.6505, 0.5933, -0.056},  {0.0105, 0.6013, -0.056},  {-0.698, 0.6043, -0.056},
                                  {-0.698, -0.5963, -0.056}, {0.0105, -0.5933, -0.056}, {0.6505, -0.6013, -0.056}};
   const std::vector<double> q(9, 0.0);
   for (int w = 0; w < 6; ++w) {
     const auto p = kinematics::wheel_pose<double>(bb2(), w, q.data(), 0.0, 0.0, WheelFrame::drive);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.r[k], expected[w][k], 1e-9) << bb2().wheels[static_cast<std::size_t>(w)].name;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(p.r[k], expected[w][k], 1e-9) << bb2().wheels[static_cast<std::size_t>(w)].name;
     // Drive frame: x forward, y down, z along the axle (left).
     EXPECT_NEAR(p.R(0, 0), 1.0, 1e-12);
     EXPECT_NEAR(p.R(2, 1), -1.0, 1e-12);
@@ -82,9 +83,9 @@ TEST(Kinematics, RotationsAreOrthonormalAndTheJacobianEqualsFiniteDifferences) {
         EXPECT_NEAR((p.R.transpose() * p.R - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
         EXPECT_NEAR(p.R.determinant(), 1.0, 1e-12);
         // Eq. 4.10 times the rates equals the wheel velocity (Eq. 4.8).
-        const Eigen::Vector3d vel = kinematics::wheel_velocity<double>(bb2(), n, q.data(), qd.data(), v, w,
-                                                                       gamma[static_cast<std::size_t>(n)],
-                                                                       beta[static_cast<std::size_t>(n)], frame);
+        const Eigen::Vector3d vel =
+            kinematics::wheel_velocity<double>(bb2(), n, q.data(), qd.data(), v, w, gamma[static_cast<std::size_t>(n)],
+                                               beta[static_cast<std::size_t>(n)], frame);
         EXPECT_NEAR((Ju.segment<3>(3 * n) - vel).norm(), 0.0, 1e-12);
         // dr/dq by central differences.
         const auto& c = bb2().wheels[static_cast<std::size_t>(n)];
@@ -93,7 +94,8 @@ TEST(Kinematics, RotationsAreOrthonormalAndTheJacobianEqualsFiniteDifferences) {
           qp[static_cast<std::size_t>(j)] += 1e-6;
           qm[static_cast<std::size_t>(j)] -= 1e-6;
           const Eigen::Vector3d fd = (kinematics::wheel_pose<double>(bb2(), n, qp.data(), 0.0, 0.0, frame).r -
-                                      kinematics::wheel_pose<double>(bb2(), n, qm.data(), 0.0, 0.0, frame).r) / 2e-6;
+                                      kinematics::wheel_pose<double>(bb2(), n, qm.data(), 0.0, 0.0, frame).r) /
+                                     2e-6;
           const Eigen::Vector3d an = j == c.bogie_joint ? p.dr_dbogie : p.dr_dsteer;
           EXPECT_NEAR((fd - an).norm(), 0.0, 1e-8);
         }
@@ -177,7 +179,8 @@ estimation::ContactAngleResult run(const std::string& scenario, double rate, est
 
 TEST(ContactAngle, FrontLeftBogieRotationAsSection63Describes) {
   log::Log lg;
-  const auto r = run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, true, &lg);
+  const auto r =
+      run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, true, &lg);
   const auto& est = r.estimates.stream("estimate/contact/wheels");
   const auto& ref = lg.stream("truth/wheels");
   // Wheels on unrotated bogies keep (near) zero contact angles.
@@ -192,8 +195,10 @@ TEST(ContactAngle, FrontLeftBogieRotationAsSection63Describes) {
 }
 
 TEST(ContactAngle, CrossCovariancesGrowWithoutTheResetAndTheResetBoundsSlip) {
-  const auto original = run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, false);
-  const auto reset = run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, true);
+  const auto original =
+      run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, false);
+  const auto reset =
+      run("fl-bogie-rotation", 200.0, estimation::ContactModel::contact, estimation::FilterKind::ekf, true);
   // Velocity and slips share the wheel rates' scale: their correlation goes to 1.
   EXPECT_GT(original.max_cross_correlation, 0.99);
   EXPECT_GT(original.rms.slip[5], 10.0 * reset.rms.slip[5]);
@@ -202,8 +207,10 @@ TEST(ContactAngle, CrossCovariancesGrowWithoutTheResetAndTheResetBoundsSlip) {
 
 TEST(ContactAngle, EkfAndUkfAgree) {
   log::Log lg;
-  const auto e = run("rear-bogie-rotation", 50.0, estimation::ContactModel::contact_side_slip, estimation::FilterKind::ekf, true, &lg);
-  const auto u = run("rear-bogie-rotation", 50.0, estimation::ContactModel::contact_side_slip, estimation::FilterKind::ukf, true);
+  const auto e = run("rear-bogie-rotation", 50.0, estimation::ContactModel::contact_side_slip,
+                     estimation::FilterKind::ekf, true, &lg);
+  const auto u =
+      run("rear-bogie-rotation", 50.0, estimation::ContactModel::contact_side_slip, estimation::FilterKind::ukf, true);
   const auto& a = e.estimates.stream("estimate/contact/wheels");
   const auto& b = u.estimates.stream("estimate/contact/wheels");
   double worst = 0;
@@ -215,7 +222,9 @@ TEST(ContactAngle, EkfAndUkfAgree) {
   }
   EXPECT_LT(worst, 1.0 * M_PI / 180);  // within a degree (slip within 0.017) everywhere after the first second
   // Their error tables agree too (side slip of every wheel within 0.6 deg RMS).
-  for (int w = 0; w < 6; ++w) EXPECT_NEAR(e.rms.side_slip[static_cast<std::size_t>(w)], u.rms.side_slip[static_cast<std::size_t>(w)], 0.6 * M_PI / 180);
+  for (int w = 0; w < 6; ++w)
+    EXPECT_NEAR(e.rms.side_slip[static_cast<std::size_t>(w)], u.rms.side_slip[static_cast<std::size_t>(w)],
+                0.6 * M_PI / 180);
 }
 
 namespace {
@@ -249,7 +258,8 @@ TEST(ContactAngle, FastEkfEqualsTheGenericEkfWithJetJacobians) {
   auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
   sc.rate = 100.0;
   const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
-  for (auto model : {estimation::ContactModel::smooth, estimation::ContactModel::contact, estimation::ContactModel::contact_side_slip}) {
+  for (auto model : {estimation::ContactModel::smooth, estimation::ContactModel::contact,
+                     estimation::ContactModel::contact_side_slip}) {
     for (bool reset : {false, true}) {
       estimation::ContactAngleOptions o;
       o.model = model;
@@ -374,7 +384,7 @@ TEST(RoverDescriptions, TheThreeBundledRoversLoadWithTheirPublishedDimensions) {
   const std::string dir = std::string(ROVERLAB_RESOURCES_DIR) + "/rovers/";
   const auto pf = io::load_rover(dir + "wvu_pathfinder.json");
   ASSERT_TRUE(pf.skid_steer.has_value());
-  EXPECT_DOUBLE_EQ(pf.skid_steer->track, 0.685);      // seed 002 section 5.1
+  EXPECT_DOUBLE_EQ(pf.skid_steer->track, 0.685);  // seed 002 section 5.1
   EXPECT_DOUBLE_EQ(pf.skid_steer->wheelbase, 0.544);
   EXPECT_DOUBLE_EQ(pf.skid_steer->wheel_radius, 0.12);  // 24 cm diameter
   const auto kv = io::load_rover(dir + "kapvik_planar.json");

@@ -15,11 +15,11 @@ using namespace roverlab;
 using namespace roverlab::estimation;
 
 TEST(Slip, RatioOfEquation1AndClasses) {
-  EXPECT_DOUBLE_EQ(slip_ratio(0.5, 1.0), 0.5);     // wheels faster: slip
-  EXPECT_DOUBLE_EQ(slip_ratio(1.0, 0.5), -0.5);    // wheels slower: skid
+  EXPECT_DOUBLE_EQ(slip_ratio(0.5, 1.0), 0.5);   // wheels faster: slip
+  EXPECT_DOUBLE_EQ(slip_ratio(1.0, 0.5), -0.5);  // wheels slower: skid
   EXPECT_DOUBLE_EQ(slip_ratio(0.0, 0.0), 0.0);
   EXPECT_DOUBLE_EQ(slip_ratio(0.7, 0.7), 0.0);
-  EXPECT_DOUBLE_EQ(slip_ratio(0.0, 0.3), 1.0);     // spinning in place
+  EXPECT_DOUBLE_EQ(slip_ratio(0.0, 0.3), 1.0);  // spinning in place
   EXPECT_EQ(classify_slip(0.01), SlipClass::none);
   EXPECT_EQ(classify_slip(-0.15), SlipClass::low);
   EXPECT_EQ(classify_slip(0.2), SlipClass::low);
@@ -46,10 +46,10 @@ TEST(InsSlip, PseudoMeasurementsBoundTheDriftOfTheInertialSolution) {
   pseudo.zupt = pseudo.zaru = pseudo.nhc = true;
   const InsSlipResult a = run_ins_slip(lg, pure);
   const InsSlipResult b = run_ins_slip(lg, pseudo);
-  const InsSlipResult c = run_ins_slip(lg, InsSlipOptions{});  // + gated wheel-speed aiding, smoothed
-  EXPECT_NEAR(b.metrics.distance, 56.0, 1.0);  // the scenario drives 56 m
-  EXPECT_GT(a.metrics.final_position_error, 100.0);  // 160 s of free inertial drift
-  EXPECT_LT(b.metrics.final_position_error, 0.5);    // with ZUPT, ZARU and NHC
+  const InsSlipResult c = run_ins_slip(lg, InsSlipOptions{});                  // + gated wheel-speed aiding, smoothed
+  EXPECT_NEAR(b.metrics.distance, 56.0, 1.0);                                  // the scenario drives 56 m
+  EXPECT_GT(a.metrics.final_position_error, 100.0);                            // 160 s of free inertial drift
+  EXPECT_LT(b.metrics.final_position_error, 0.5);                              // with ZUPT, ZARU and NHC
   EXPECT_LT(b.metrics.final_position_error, b.odometry.final_position_error);  // slip fools the wheels
   // The 6 % slip of nominal driving passes the aiding gate, so the aided track
   // is worse than the pseudo-measurements alone here, and still far better
@@ -288,7 +288,7 @@ TEST(InsSlip, EstimatorStreamsScoredInAnalysisAreTheWrappersResult) {
 TEST(InsSlipModels, PseudoMeasurementsAboutTheNominalState) {
   InsState s;
   s.C_bn = dcm_from_euler(0.0, 0.0, M_PI / 2);  // heading east
-  s.v_n = Eigen::Vector3d(0.1, 1.0, 0.05);       // north, east, down
+  s.v_n = Eigen::Vector3d(0.1, 1.0, 0.05);      // north, east, down
   // ZUPT: the innovation is minus the velocity, on the velocity states.
   const InsMeasurement z = ZeroVelocityUpdate{0.01}.at(s);
   EXPECT_TRUE(z.y.isApprox(-s.v_n));

@@ -43,8 +43,8 @@ TEST(Resample, AlignPutsTwoStreamsOnOneTimeBase) {
   EXPECT_DOUBLE_EQ(a.start_time(), 1.0);
   EXPECT_DOUBLE_EQ(a.end_time(), 3.0);
   EXPECT_DOUBLE_EQ(a.channel("angular_rate_z").values[0], 2.0);
-  EXPECT_DOUBLE_EQ(a.channel("angle").values[0], 7.0);             // base keeps its name
-  EXPECT_DOUBLE_EQ(a.channel("wheels.angle").values[1], 12.5);     // other is prefixed
+  EXPECT_DOUBLE_EQ(a.channel("angle").values[0], 7.0);          // base keeps its name
+  EXPECT_DOUBLE_EQ(a.channel("wheels.angle").values[1], 12.5);  // other is prefixed
   EXPECT_DOUBLE_EQ(a.channel("wheels.angle").values[8], 30.0);
 
   Stream late("late", {10.0, 11.0});

@@ -87,15 +87,18 @@ TEST(RockerBogieEffects, SwitchedOffTheLogIsTheBaselineBitForBit) {
     const auto& x = a.streams()[s];
     const auto& y = b.streams()[s];
     EXPECT_EQ(x.time(), y.time()) << x.name();
-    for (std::size_t c = 0; c < x.channels().size(); ++c) EXPECT_EQ(x.channels()[c].values, y.channels()[c].values) << x.name();
+    for (std::size_t c = 0; c < x.channels().size(); ++c)
+      EXPECT_EQ(x.channels()[c].values, y.channels()[c].values) << x.name();
   }
   EXPECT_EQ(a.metadata.extra.count("truth/effect/gyro-bias"), 0u);
 }
 
 TEST(RockerBogieEffects, SensorEffectsChangeOnlyTheirSensorAsTheyShould) {
   const log::Log base = run_with("", 0);
-  const log::Log gyro = run_with("gyro-bias", 0.01), acc = run_with("accel-bias", 0.05), off = run_with("force-offset", 1.5);
-  const log::Log scale = run_with("force-scale", 1.1), drop = run_with("encoder-dropout", 5.0), shift = run_with("imu-time-offset", 0.2);
+  const log::Log gyro = run_with("gyro-bias", 0.01), acc = run_with("accel-bias", 0.05),
+                 off = run_with("force-offset", 1.5);
+  const log::Log scale = run_with("force-scale", 1.1), drop = run_with("encoder-dropout", 5.0),
+                 shift = run_with("imu-time-offset", 0.2);
   const auto& r0 = ch(base, "imu", "pitch_rate");
   const auto& r1 = ch(gyro, "imu", "pitch_rate");
   for (std::size_t i = 0; i < r0.size(); ++i) EXPECT_NEAR(r1[i] - r0[i], 0.01, 1e-12);
@@ -123,7 +126,10 @@ TEST(RockerBogieEffects, SensorEffectsChangeOnlyTheirSensorAsTheyShould) {
 
 TEST(RockerBogieEffects, PhysicalEffectsMoveTheRoverAsTheirPhysicsSays) {
   const log::Log base = run_with("", 0);
-  auto distance = [](const log::Log& lg) { const auto& x = ch(lg, "truth/pose", "x"); return x.back() - x.front(); };
+  auto distance = [](const log::Log& lg) {
+    const auto& x = ch(lg, "truth/pose", "x");
+    return x.back() - x.front();
+  };
   auto slip = [](const log::Log& lg) { return mean_tail(ch(lg, "truth/wheels", "slip_2"), 100); };
   // Larger wheels than the controller assumes: the same wheel rate covers more ground.
   EXPECT_GT(distance(run_with("wheel-radius-scale", 1.1)), 1.05 * distance(base));
@@ -133,13 +139,15 @@ TEST(RockerBogieEffects, PhysicalEffectsMoveTheRoverAsTheirPhysicsSays) {
   // Slip-sinkage digs the wheels in: deeper, and more slip.
   const log::Log dig = run_with("slip-sinkage", 0.5);
   EXPECT_GT(slip(dig), slip(base) + 0.01);
-  EXPECT_GT(mean_tail(ch(dig, "truth/wheels", "sinkage_2"), 100), 1.1 * mean_tail(ch(base, "truth/wheels", "sinkage_2"), 100));
+  EXPECT_GT(mean_tail(ch(dig, "truth/wheels", "sinkage_2"), 100),
+            1.1 * mean_tail(ch(base, "truth/wheels", "sinkage_2"), 100));
   // An effect that starts further on leaves the beginning untouched.
   auto run = flat_run(12.0);
   run.seed = 3;
   run.effects.soil_strength = 2.0;
   run.effects.effect_start_x = 1e6;
-  EXPECT_EQ(ch(simulation::simulate_rocker_bogie({}, {}, run).log, "truth/wheels", "slip_2"), ch(base, "truth/wheels", "slip_2"));
+  EXPECT_EQ(ch(simulation::simulate_rocker_bogie({}, {}, run).log, "truth/wheels", "slip_2"),
+            ch(base, "truth/wheels", "slip_2"));
 }
 
 TEST(RockerBogie, SteadySlipOnFlatGroundIsWhereTheTerramechanicsBalances) {
@@ -181,7 +189,8 @@ TEST(RockerBogieDynamics, TheVelocityJacobiansAreTheDerivativesOfThePositions) {
     d(c) = h;
     const rb::Kinematics kp = rb::kinematics(g, p, q + d), km = rb::kinematics(g, p, q - d);
     EXPECT_LT(((kp.bogie_com - km.bogie_com) / (2 * h) - k.J_bogie.col(c)).norm(), 1e-8) << c;
-    for (int i = 0; i < 3; ++i) EXPECT_LT(((kp.wheel[i] - km.wheel[i]) / (2 * h) - k.J_wheel[i].col(c)).norm(), 1e-8) << c;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_LT(((kp.wheel[i] - km.wheel[i]) / (2 * h) - k.J_wheel[i].col(c)).norm(), 1e-8) << c;
   }
 }
 

@@ -99,8 +99,7 @@ TEST_P(HiddenEffect, IsNamedAndItsParameterRecovered) {
     if (p.parameter != h.parameter) continue;
     found = true;
     EXPECT_LT(std::abs(p.value - h.value), 2.0 * p.sigma)
-        << h.effect << ": " << to_string(p.parameter) << " = " << p.value << " +- " << p.sigma << ", truth "
-        << h.value;
+        << h.effect << ": " << to_string(p.parameter) << " = " << p.value << " +- " << p.sigma << ", truth " << h.value;
   }
   EXPECT_TRUE(found);
   // The gain is measured on held-out points, and is real: the extended model

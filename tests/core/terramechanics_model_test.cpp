@@ -67,8 +67,12 @@ TEST(WongReece, Figure24ShapeFacts) {
   ModelOptions simpson, riemann;
   riemann.integration = Integration::riemann;
   const double load = 50.0;
-  auto dp = [&](double s, const ModelOptions& o) { return evaluate(ding_tyii(), kapvik_wheel(), load, s, o).drawbar_pull; };
-  auto tau = [&](double s, const ModelOptions& o) { return evaluate(ding_tyii(), kapvik_wheel(), load, s, o).resistive_torque; };
+  auto dp = [&](double s, const ModelOptions& o) {
+    return evaluate(ding_tyii(), kapvik_wheel(), load, s, o).drawbar_pull;
+  };
+  auto tau = [&](double s, const ModelOptions& o) {
+    return evaluate(ding_tyii(), kapvik_wheel(), load, s, o).resistive_torque;
+  };
   // Compaction resistance: a free-rolling wheel (s = 0) is pulled back.
   EXPECT_LT(dp(0.0, simpson), 0.0);
   // Resistive torque rises with slip over the whole range [-1, 1], and is

@@ -43,7 +43,8 @@ TEST(PolynomialSurface, RecoversAnExactPolynomial) {
 
 TEST(PolynomialSurface, WeightsPullTheFitTowardsHeavyPoints) {
   // A line through three points, one far off: a heavy weight on the outlier moves the fit to it.
-  std::vector<SurfaceSample> light = {{0, 0, 0, 1}, {0, 1, 1, 1}, {0, 2, 5, 1}, {1, 0, 0, 1}, {1, 1, 1, 1}, {1, 2, 5, 1}};
+  std::vector<SurfaceSample> light = {{0, 0, 0, 1}, {0, 1, 1, 1}, {0, 2, 5, 1},
+                                      {1, 0, 0, 1}, {1, 1, 1, 1}, {1, 2, 5, 1}};
   std::vector<SurfaceSample> heavy = light;
   heavy[2].weight = heavy[5].weight = 1000.0;
   const double off_light = std::abs(fit_surface(light, 1)(0, 2) - 5.0);
@@ -66,14 +67,14 @@ TEST(PolynomialSurface, CrossValidationFindsTheTrueOrderUnderNoise) {
   EXPECT_EQ(fit.surface.order(), 3);
   ASSERT_GE(fit.orders.size(), 4u);
   EXPECT_GT(fit.orders[1].cv_rmse, 2.0 * fit.orders[2].cv_rmse);  // order 2 underfits
-  EXPECT_NEAR(fit.error.rmse, 0.05, 0.01);                          // what is left is the noise
+  EXPECT_NEAR(fit.error.rmse, 0.05, 0.01);                        // what is left is the noise
 }
 
 TEST(OccupancyGrid, CountsAndCoverage) {
   std::vector<SurfaceSample> samples = {{5, 0.05, 0}, {5, 0.06, 0}, {95, 0.95, 0}, {100, 1.0, 0}, {500, 0.5, 0}};
   const OccupancyGrid g = OccupancyGrid::build(samples, 0, 100, 0, 1, 10, 10);
   EXPECT_EQ(g.count(0, 0), 2);
-  EXPECT_EQ(g.count(9, 9), 2);  // the upper edge belongs to the last cell
+  EXPECT_EQ(g.count(9, 9), 2);             // the upper edge belongs to the last cell
   EXPECT_NEAR(g.coverage(), 0.02, 1e-12);  // the 500 N point is outside the grid
   EXPECT_TRUE(g.covered(3, 0.01));
   EXPECT_FALSE(g.covered(50, 0.5));
@@ -109,9 +110,9 @@ TEST(ThesisGrids, FourthOrderFitErrorsMatchAppendixA) {
     double load_max, dp_error, tau_error;
   };
   const Case cases[] = {
-      {roverlab::test::ding_tyii(), 200.0, 0.10798, 0.0080327},    // section 2.6
+      {roverlab::test::ding_tyii(), 200.0, 0.10798, 0.0080327},      // section 2.6
       {roverlab::test::lunar_nominal(), 75.0, 0.037682, 0.0023752},  // A.2
-      {roverlab::test::dry_sand(), 200.0, 0.081406, 0.0040465},     // A.3
+      {roverlab::test::dry_sand(), 200.0, 0.081406, 0.0040465},      // A.3
   };
   for (const auto& c : cases) {
     const double dp = thesis_grid_fit(c.soil, c.load_max, true).error.mean_abs;

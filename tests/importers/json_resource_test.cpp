@@ -57,8 +57,7 @@ TEST(JsonResource, ErrorsNameTheFileAndTheField) {
   const io::JsonNode root = file.root();
   EXPECT_EQ(problem_of(path, [&] { io::required_number(root, "missing"); }),
             "field 'missing': missing, expected a number");
-  EXPECT_EQ(problem_of(path, [&] { io::required_number(root, "n"); }),
-            "field 'n': expected a number, got a string");
+  EXPECT_EQ(problem_of(path, [&] { io::required_number(root, "n"); }), "field 'n': expected a number, got a string");
   EXPECT_EQ(problem_of(path, [&] { io::optional_string(root, "k", ""); }),
             "field 'k': expected a string, got a number");
   EXPECT_EQ(problem_of(path, [&] { io::required_numbers(io::required_object(root, "o"), "v", 2); }),
@@ -67,8 +66,7 @@ TEST(JsonResource, ErrorsNameTheFileAndTheField) {
             "field 'o.v': expected 3 numbers, got 2");
   EXPECT_EQ(problem_of(path, [&] { io::required_number(io::required_array(root, "a")[1], "x"); }),
             "field 'a[1].x': missing, expected a number");
-  EXPECT_EQ(problem_of(path, [&] { io::required_number_in(root, "k", 0, 1); }),
-            "field 'k': 5 is outside [0, 1]");
+  EXPECT_EQ(problem_of(path, [&] { io::required_number_in(root, "k", 0, 1); }), "field 'k': 5 is outside [0, 1]");
   EXPECT_EQ(problem_of(path, [&] { io::require_format(root, "roverlab-x", "thing"); }),
             "not a RoverLab thing ('format' must be \"roverlab-x\")");
 }
@@ -82,9 +80,10 @@ TEST(JsonResource, UnreadableFilesNameTheFile) {
                 .rfind("soil file is not valid JSON: ", 0),
             0u);
   write_text(dir.file("list.json"), "[1, 2]");
-  EXPECT_NE(problem_of(dir.file("list.json"), [&] { io::read_json_resource(dir.file("list.json"), "rover description"); })
-                .find("expected a JSON object"),
-            std::string::npos);
+  EXPECT_NE(
+      problem_of(dir.file("list.json"), [&] { io::read_json_resource(dir.file("list.json"), "rover description"); })
+          .find("expected a JSON object"),
+      std::string::npos);
 }
 
 TEST(JsonResource, ResourceReadersNameTheField) {
@@ -108,5 +107,6 @@ TEST(JsonResource, ResourceReadersNameTheField) {
             "field 'effects.slip': expected a number, got a string");
   write_text(scenario, R"({"format": "roverlab-scenario", "kind": "rocker-bogie", "rover": "r", "path": "flat",
                            "soil": "s"})");
-  EXPECT_EQ(problem_of(scenario, [&] { io::load_scenario(scenario); }), "field 'duration_s': missing, expected a number");
+  EXPECT_EQ(problem_of(scenario, [&] { io::load_scenario(scenario); }),
+            "field 'duration_s': missing, expected a number");
 }

@@ -16,8 +16,7 @@ TEST(Mapping, ShippedPathfinderMappingLoads) {
   EXPECT_EQ(m.streams[0].name, "imu");
   EXPECT_EQ(m.streams[0].time_variable, "tTimu");
   EXPECT_EQ(m.streams[1].channels[0].scale, -1.0);  // left wheels count negative forward
-  EXPECT_NE(std::find(io::list_mappings(folders).begin(), io::list_mappings(folders).end(),
-                      "wvu_pathfinder"),
+  EXPECT_NE(std::find(io::list_mappings(folders).begin(), io::list_mappings(folders).end(), "wvu_pathfinder"),
             io::list_mappings(folders).end());
   EXPECT_THROW(io::find_mapping("no_such_rover", folders), InputError);
   EXPECT_THROW(io::find_mapping("/nowhere/x.json", folders), InputError);
@@ -32,10 +31,10 @@ TEST(Mapping, RejectsMalformedMappingsNamingTheFile) {
       {head + "]}", "non-empty"},
       {head + R"({"name": "imu", "time": {"variable": "t", "unit": "fortnight"}, "channels": []}]})",
        "unknown unit 'fortnight'"},
-      {head + R"({"name": "imu", "time": {"variable": "t"}, "channels": [{"name": "x", "variable": "X", "unit": "parsec"}]}]})",
+      {head +
+           R"({"name": "imu", "time": {"variable": "t"}, "channels": [{"name": "x", "variable": "X", "unit": "parsec"}]}]})",
        "unknown unit 'parsec'"},
-      {head + R"({"name": "imu", "time": {"variable": "t", "unit": "m"}, "channels": []}]})",
-       "not a unit of time"},
+      {head + R"({"name": "imu", "time": {"variable": "t", "unit": "m"}, "channels": []}]})", "not a unit of time"},
       {head + R"({"name": "imu", "time": {"variable": "t"}, "channels": [{"name": "x"}]}]})",
        "field 'streams[0].channels[0].variable': missing, expected a string"},
   };
@@ -47,8 +46,7 @@ TEST(Mapping, RejectsMalformedMappingsNamingTheFile) {
       ADD_FAILURE() << "accepted case " << k;
     } catch (const InputError& e) {
       EXPECT_EQ(e.file(), path);
-      EXPECT_NE(std::string(e.what()).find(cases[k].second), std::string::npos)
-          << "case " << k << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find(cases[k].second), std::string::npos) << "case " << k << ": " << e.what();
       EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "case " << k;
     }
   }

@@ -124,14 +124,12 @@ TEST(MatlabImporter, GenericHdf5WithUserBlockAndWrongLengths) {
     io::read_mapped_hdf5(path, bad_length);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("2 samples but the time base has 3"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("2 samples but the time base has 3"), std::string::npos) << e.what();
   }
   io::Mapping two_d = m;
   two_d.streams[0].channels.push_back({"x", "xyz", std::nullopt, "m", 1.0, ""});
   EXPECT_THROW(io::read_mapped_hdf5(path, two_d), InputError);  // 2-D needs a component
   two_d.streams[0].channels.back().component = 2;
   // [3, 3] row-major: the sample axis is ambiguous; rows are taken as samples.
-  EXPECT_EQ(io::read_mapped_hdf5(path, two_d).channel("joints/x").values,
-            (std::vector<double>{3, 6, 9}));
+  EXPECT_EQ(io::read_mapped_hdf5(path, two_d).channel("joints/x").values, (std::vector<double>{3, 6, 9}));
 }

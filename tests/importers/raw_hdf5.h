@@ -29,8 +29,7 @@ class RawHdf5 {
 
   // A dataset of doubles with the given shape (row-major), intermediate
   // groups created.
-  hid_t dataset(const std::string& path, const std::vector<double>& values,
-                std::vector<hsize_t> dims = {}) {
+  hid_t dataset(const std::string& path, const std::vector<double>& values, std::vector<hsize_t> dims = {}) {
     if (dims.empty()) dims = {values.size()};
     hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
     hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);

@@ -52,7 +52,8 @@ TEST(RoverScene, FollowsTheGpsTrackWithWheelsInTheSlipClassColour) {
   EXPECT_NEAR(green.mean_x, 160, 32);
   EXPECT_NEAR(green.mean_y, 120, 48);
   // The light body between them.
-  const Region body = find_pixels(img, [](int r, int g, int b) { return r > 200 && g > 200 && b > 200; }, 80, 240, 60, 180);
+  const Region body = find_pixels(
+      img, [](int r, int g, int b) { return r > 200 && g > 200 && b > 200; }, 80, 240, 60, 180);
   EXPECT_GT(body.count, 100);
   EXPECT_NEAR(body.mean_x, 160, 32);
 }

@@ -39,7 +39,9 @@ TEST(TimeSeriesChart, DrawsTheStepWhereItsDataIsAndTheCursorAtItsTime) {
   EXPECT_DOUBLE_EQ(chart.chart(0)->GetAxis(vtkAxis::BOTTOM)->GetMaximum(), 10.0);
   EXPECT_LE(chart.drawn_points().at(0), 2u * 320u);  // decimated to the window's width
   // The first plot colour, (31, 119, 180), left and right of the middle.
-  auto line = [](int r, int g, int b) { return std::abs(r - 31) < 40 && std::abs(g - 119) < 40 && std::abs(b - 180) < 40; };
+  auto line = [](int r, int g, int b) {
+    return std::abs(r - 31) < 40 && std::abs(g - 119) < 40 && std::abs(b - 180) < 40;
+  };
   const Region left = find_pixels(img, line, 0, 120), right = find_pixels(img, line, 200, 320);
   ASSERT_GT(left.count, 20);
   ASSERT_GT(right.count, 20);
@@ -47,7 +49,9 @@ TEST(TimeSeriesChart, DrawsTheStepWhereItsDataIsAndTheCursorAtItsTime) {
   // The cursor: the column with the most black pixels right of the value axis (x = 50).
   int best_x = -1, best = 0;
   for (int x = img.width / 4; x < img.width; ++x) {
-    const int k = find_pixels(img, [](int r, int g, int b) { return r < 40 && g < 40 && b < 40; }, x, x + 1).count;
+    const int k = find_pixels(
+                      img, [](int r, int g, int b) { return r < 40 && g < 40 && b < 40; }, x, x + 1)
+                      .count;
     if (k > best) {
       best = k;
       best_x = x;
