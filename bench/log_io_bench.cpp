@@ -67,7 +67,9 @@ void BM_WriteLog(benchmark::State& state) {
 }
 BENCHMARK(BM_WriteLog)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
-void BM_ReadLog(benchmark::State& state) {
+// Reads the bench log with `read` every iteration: time, memory over the raw payload.
+template <class Read>
+void read_whole_log(benchmark::State& state, Read&& read) {
   const std::string path = bench_path();
   double raw = 0.0;
   {
@@ -78,7 +80,7 @@ void BM_ReadLog(benchmark::State& state) {
   double worst_ratio = 0.0;
   for (auto _ : state) {
     const std::size_t before = allocated_bytes();
-    log::Log back = io::read_hdf5_log(path);
+    auto back = read(path);
     const std::size_t after = allocated_bytes();
     worst_ratio = std::max(worst_ratio, static_cast<double>(after - before) / raw);
     benchmark::DoNotOptimize(back);
@@ -88,30 +90,16 @@ void BM_ReadLog(benchmark::State& state) {
   state.counters["read_MBps"] = benchmark::Counter(raw / 1e6, benchmark::Counter::kIsIterationInvariantRate);
   fs::remove(path);
 }
+
+void BM_ReadLog(benchmark::State& state) {
+  read_whole_log(state, [](const std::string& path) { return io::read_hdf5_log(path); });
+}
 BENCHMARK(BM_ReadLog)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 
 // What a user's open costs: load_log tries an HDF5 file in a child process
 // first (libhdf5 may crash on a damaged file), then reads it.
 void BM_LoadLogInChild(benchmark::State& state) {
-  const std::string path = bench_path();
-  double raw = 0.0;
-  {
-    const log::Log lg = make_log();
-    raw = static_cast<double>(lg.payload_bytes());
-    io::write_hdf5_log(lg, path);
-  }
-  double worst_ratio = 0.0;
-  for (auto _ : state) {
-    const std::size_t before = allocated_bytes();
-    io::LoadedLog back = io::load_log(path);
-    const std::size_t after = allocated_bytes();
-    worst_ratio = std::max(worst_ratio, static_cast<double>(after - before) / raw);
-    benchmark::DoNotOptimize(back);
-  }
-  state.counters["raw_MB"] = raw / 1e6;
-  state.counters["mem_ratio"] = worst_ratio;
-  state.counters["read_MBps"] = benchmark::Counter(raw / 1e6, benchmark::Counter::kIsIterationInvariantRate);
-  fs::remove(path);
+  read_whole_log(state, [](const std::string& path) { return io::load_log(path); });
 }
 BENCHMARK(BM_LoadLogInChild)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 

@@ -22,19 +22,25 @@ void set_effect(RockerBogieEffects& e, const std::string& name, double v) {
     if (!(v > 0.5 && v < 2)) throw DataError("effect wheel-radius-scale must be 0.5..2");
     e.wheel_radius_scale = v;
   } else if (name == "effect-start-x") {
+    if (!(std::abs(v) <= 1000)) throw DataError("effect effect-start-x (m) must be -1000..1000");
     e.effect_start_x = v;
   } else if (name == "gyro-bias") {
+    if (!(std::abs(v) <= 1)) throw DataError("effect gyro-bias (rad/s) must be -1..1");
     e.gyro_bias = v;
   } else if (name == "accel-bias") {
+    if (!(std::abs(v) <= 10)) throw DataError("effect accel-bias (m/s^2) must be -10..10");
     e.accel_bias = v;
   } else if (name == "force-offset") {
+    if (!(std::abs(v) <= 1000)) throw DataError("effect force-offset (N) must be -1000..1000");
     e.force_offset = v;
   } else if (name == "force-scale") {
-    if (!(v > 0)) throw DataError("effect force-scale must be positive");
+    if (!(v > 0.1 && v < 10)) throw DataError("effect force-scale must be 0.1..10");
     e.force_scale = v;
   } else if (name == "encoder-dropout") {
+    if (!(v >= 0 && v <= 100000)) throw DataError("effect encoder-dropout (start time, s) must be 0..100000");
     e.encoder_dropout_start = v;
   } else if (name == "imu-time-offset") {
+    if (!(std::abs(v) <= 1)) throw DataError("effect imu-time-offset (s) must be -1..1");
     e.imu_time_offset = v;
   } else {
     throw DataError(

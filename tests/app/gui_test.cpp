@@ -62,6 +62,14 @@ TEST(Gui, OpenTheBundledLogScrubTheTimelineAndSeeTheRoverMove) {
   EXPECT_NE(w.input()->log.find_stream("estimate/ins/pose"), nullptr);
   EXPECT_NE(w.input()->log.find_stream("estimate/ins/slip"), nullptr);
   EXPECT_EQ(w.rover_scene()->pose_source(), "estimate/ins/pose");
+  // The Analysis tab holds the analyses' result documents: the figures
+  // `estimate ins-slip --json` and `discrepancy odometry --json` print.
+  const nlohmann::json* ins = w.input()->result("ins-slip");
+  const nlohmann::json* odometry = w.input()->result("odometry");
+  ASSERT_NE(ins, nullptr);
+  ASSERT_NE(odometry, nullptr);
+  EXPECT_NEAR(ins->at("ins").at("final_position_error_m").get<double>(), 2.42, 0.01);
+  EXPECT_EQ(odometry->at("cause"), "turning track");
   w.select_tab("Rover");
   w.set_time(10.0);
   w.render_now();

@@ -11,6 +11,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "image_support.h"
 #include "test_support.h"
 #include "views/offscreen.h"
 
@@ -25,34 +26,6 @@ const std::string kData = ROVERLAB_TEST_DATA;
 const std::string kPathfinder = kData + "/test17run.mat";
 
 CommandResult run_roverlab(const std::string& args) { return run_command(quote(kExe) + " " + args); }
-
-struct Region {
-  int count = 0;
-  double mean_x = 0, mean_y = 0;
-};
-
-// Pixels matching `pred` in columns [x0, x1), their count and centroid.
-Region find(const views::Image& img, const std::function<bool(int, int, int)>& pred, int x0 = 0, int x1 = -1,
-            int y0 = 0, int y1 = -1) {
-  Region r;
-  if (x1 < 0) x1 = img.width;
-  if (y1 < 0) y1 = img.height;
-  for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      const unsigned char* p = img.pixel(x, y);
-      if (pred(p[0], p[1], p[2])) {
-        ++r.count;
-        r.mean_x += x;
-        r.mean_y += y;
-      }
-    }
-  }
-  if (r.count > 0) {
-    r.mean_x /= r.count;
-    r.mean_y /= r.count;
-  }
-  return r;
-}
 
 double distinct_colours(const views::Image& img) {
   std::vector<int> seen;
@@ -83,20 +56,20 @@ TEST(Render, RoverViewPutsThePathfinderAtTheCentreWithWheelsInItsSlipClassColour
   ASSERT_EQ(img.height, 400);
   EXPECT_GT(distinct_colours(img), 50);  // not blank
   // Yellow-green wheels: green well above blue and at least red.
-  const Region wheels = find(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
+  const Region wheels = find_pixels(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
   EXPECT_GT(wheels.count, 400);
   EXPECT_NEAR(wheels.mean_x, 320, 64);  // the chase camera centres the rover
   EXPECT_NEAR(wheels.mean_y, 200, 80);
   // The light body beside them, in the middle of the picture (the legend's
   // white box is in a corner, the sky at the top).
-  const Region body = find(
+  const Region body = find_pixels(
       img, [&](int r, int g, int b) { return r > 200 && g > 200 && b > 200; }, 160, 480, 100, 320);
   EXPECT_GT(body.count, 300);
   EXPECT_NEAR(body.mean_x, 320, 64);
   // At rest (2 s) the slip class is none: pure green, no yellow.
   const views::Image still =
       render(quote(kPathfinder) + " -m wvu_pathfinder --view rover -t 2 --size 640x400", dir.file("still.png"));
-  const Region green = find(still, [](int r, int g, int b) { return g - r > 50 && g - b > 50; });
+  const Region green = find_pixels(still, [](int r, int g, int b) { return g - r > 50 && g - b > 50; });
   EXPECT_GT(green.count, 400);
   EXPECT_NEAR(green.mean_x, 320, 64);
 }
@@ -155,9 +128,9 @@ TEST(Render, TractionSurfaceSpansItsColourMapAndShowsTheMeasuredPoints) {
   const views::Image img = render(
       quote(kData + "/single_wheel/ding2011_tyii.csv") + " --view traction-surface --soil ding_tyii --size 800x600",
       dir.file("surface.png"));
-  const Region red = find(img, [](int r, int g, int b) { return r > 170 && g < 110 && b < 110; });
-  const Region blue = find(img, [](int r, int g, int b) { return b > 170 && r < 120 && g < 150; });
-  const Region black = find(img, [](int r, int g, int b) { return r < 40 && g < 40 && b < 40; });
+  const Region red = find_pixels(img, [](int r, int g, int b) { return r > 170 && g < 110 && b < 110; });
+  const Region blue = find_pixels(img, [](int r, int g, int b) { return b > 170 && r < 120 && g < 150; });
+  const Region black = find_pixels(img, [](int r, int g, int b) { return r < 40 && g < 40 && b < 40; });
   EXPECT_GT(red.count, 2000);   // high drawbar pull (high slip)
   EXPECT_GT(blue.count, 2000);  // negative drawbar pull (low slip)
   EXPECT_GT(black.count, 200);  // points, residual lines and axis text
@@ -255,7 +228,7 @@ TEST(Render, ContactAnglesPointWhereTheWheelsMove) {
   auto blue = [](int r, int g, int b) { return b > 180 && r < 90 && g < 140; };
   // Side-view part of each panel (panels are 400 x 300: FL ML RL on top, FR MR RR below).
   auto centroid_y = [&](int panel_x, int panel_y) {
-    return find(img, blue, panel_x, panel_x + 240, panel_y, panel_y + 270);
+    return find_pixels(img, blue, panel_x, panel_x + 240, panel_y, panel_y + 270);
   };
   const Region fl = centroid_y(0, 0), rl = centroid_y(800, 0), fr = centroid_y(0, 300), rr = centroid_y(800, 300);
   for (const Region* r : {&fl, &rl, &fr, &rr}) EXPECT_GT(r->count, 300);
@@ -270,11 +243,11 @@ TEST(Render, PlanarRockerBogieSideViewShowsTheWheelsOnTheTerrain) {
   ASSERT_EQ(run_roverlab("simulate bump_crossing --duration 30 -o " + quote(sim)).exit_code, 0);
   const views::Image img = render(quote(sim) + " --view rover -t 25 --size 800x400", dir.file("rb.png"));
   // Low-slip wheels (yellow-green) around the centre of the picture, the brown terrain below them.
-  const Region wheels = find(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
+  const Region wheels = find_pixels(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
   EXPECT_GT(wheels.count, 3000);
   EXPECT_NEAR(wheels.mean_x, 400, 60);
-  const Region terrain =
-      find(img, [](int r, int g, int b) { return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g; });
+  const Region terrain = find_pixels(
+      img, [](int r, int g, int b) { return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g; });
   EXPECT_GT(terrain.count, 800);
   EXPECT_GT(terrain.mean_y, wheels.mean_y);
 }

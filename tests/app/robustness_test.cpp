@@ -277,6 +277,8 @@ TEST(Robustness, AbsurdOptionValuesAreUsageErrorsNamingTheOption) {
       {"discrepancy odometry log.h5 --fit-fraction nan", "--fit-fraction"},                             // F33
       {"render log.h5 --quantity banana -o x.png", "--quantity"},                                       // F26
       {"render log.h5 --time nan -o x.png", "--time"},                                                  // F25
+      {"simulate flat_60s --effect gyro-bias=1e300 -o x.h5", "gyro-bias"},                              // F27
+      {"simulate flat_60s --effect imu-time-offset=1e9 -o x.h5", "imu-time-offset"},                    // F27
   };
   for (const auto& [args, option] : cases) {
     const CommandResult r = run_roverlab(args);

@@ -11,6 +11,7 @@
 
 #include <vtkRenderWindow.h>
 
+#include "image_support.h"
 #include "views/offscreen.h"
 #include "views/view.h"
 #include "views/x_display.h"
@@ -34,34 +35,6 @@ inline views::Image render_scene(views::Scene& scene, int w, int h, std::optiona
     views::write_png(image, std::string(folder) + "/" + test->test_suite_name() + "." + test->name() + ".png");
   }
   return image;
-}
-
-struct Region {
-  int count = 0;
-  double mean_x = 0, mean_y = 0;
-};
-
-// Pixels in [x0, x1) x [y0, y1) matching `pred` (r, g, b): their count and centroid.
-inline Region find_pixels(const views::Image& img, const std::function<bool(int, int, int)>& pred, int x0 = 0,
-                          int x1 = -1, int y0 = 0, int y1 = -1) {
-  Region r;
-  if (x1 < 0) x1 = img.width;
-  if (y1 < 0) y1 = img.height;
-  for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      const unsigned char* p = img.pixel(x, y);
-      if (pred(p[0], p[1], p[2])) {
-        ++r.count;
-        r.mean_x += x;
-        r.mean_y += y;
-      }
-    }
-  }
-  if (r.count > 0) {
-    r.mean_x /= r.count;
-    r.mean_y /= r.count;
-  }
-  return r;
 }
 
 // Samples 0, dt, ..., up to `duration`.
