@@ -6,6 +6,7 @@
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -245,8 +246,36 @@ int run_terramechanics_surface(const SurfaceOptions& o) {
   return kSuccess;
 }
 
+// The points a surface is fitted to: loads 0..1e6 N, slips in [-1, 1],
+// values finite and below 1e6 (N or N m), at two loads and two slips at least.
+void check_fit_points(const std::string& file, const io::NumericTable& t) {
+  const auto& load = *t.find("load_N");
+  const auto& slip = *t.find("slip");
+  std::set<double> loads, slips;
+  for (std::size_t i = 0; i < load.size(); ++i) {
+    if (!std::isfinite(load[i]) || !std::isfinite(slip[i])) continue;
+    const std::string row = "row " + std::to_string(i + 1);
+    if (!(load[i] >= 0 && load[i] <= 1e6)) throw InputError(file, row + ": load_N must be 0..1e6 N");
+    if (!(std::abs(slip[i]) <= 1)) throw InputError(file, row + ": slip must be in [-1, 1]");
+    for (const char* column : {"drawbar_pull_N", "resistive_torque_Nm", "torque_Nm"}) {
+      const auto* v = t.find(column);
+      if (v != nullptr && std::isfinite((*v)[i]) && !(std::abs((*v)[i]) <= 1e6)) {
+        throw InputError(file, row + ": " + column + " must be within +-1e6");
+      }
+    }
+    loads.insert(load[i]);
+    slips.insert(slip[i]);
+  }
+  if (loads.size() < 2 || slips.size() < 2) {
+    throw InputError(file, "the points span " + std::to_string(loads.size()) + " load(s) and " +
+                               std::to_string(slips.size()) +
+                               " slip(s): a surface DP(W, s) needs points at two loads and two slips at least");
+  }
+}
+
 int run_terramechanics_fit(const FitOptions& o) {
   const io::NumericTable t = io::read_numeric_table(o.file, {"load_N", "slip"});
+  check_fit_points(o.file, t);
   const auto& load = *t.find("load_N");
   const auto& slip = *t.find("slip");
   json out = {{"file", o.file}};

@@ -1,5 +1,7 @@
 #include "importers/rover_file.h"
 
+#include <cmath>
+
 #include "core/common/error.h"
 #include "importers/json_resource.h"
 #include "importers/named_file.h"
@@ -8,9 +10,13 @@ namespace roverlab::io {
 
 namespace {
 
+// The longest link of a rover description, m.
+constexpr double kMaxLink = 20.0;
+
 double positive_number(const JsonNode& j, const char* key) {
   const double v = required_number(j, key);
-  if (v <= 0) j.fail(key, "must be positive");
+  if (!(v > 0)) j.fail(key, "must be positive");
+  if (!(v <= kMaxLink)) j.fail(key, "must be at most 20 (m)");
   return v;
 }
 
@@ -32,10 +38,11 @@ kinematics::DhLink dh_link(const JsonNode& l, const kinematics::RoverModel& m) {
   kinematics::DhLink link;
   link.from = required_string(l, "from");
   link.to = required_string(l, "to");
-  link.theta = required_number(l, "theta");
-  link.d = required_number(l, "d");
-  link.a = required_number(l, "a");
-  link.alpha = required_number(l, "alpha");
+  // A rover is metres across and angles are radians: a 1e300 m link is a typo.
+  link.theta = required_number_in(l, "theta", -2 * M_PI, 2 * M_PI);
+  link.d = required_number_in(l, "d", -kMaxLink, kMaxLink);
+  link.a = required_number_in(l, "a", -kMaxLink, kMaxLink);
+  link.alpha = required_number_in(l, "alpha", -2 * M_PI, 2 * M_PI);
   if (l.has("joint")) {
     const std::string joint = required_string(l, "joint");
     link.joint = m.joint_index(joint);

@@ -1,5 +1,7 @@
 #include "importers/scenario_file.h"
 
+#include <cmath>
+
 #include "importers/json_resource.h"
 #include "importers/named_file.h"
 
@@ -31,7 +33,12 @@ ScenarioFile load_scenario(const std::string& path) {
   }
   if (s.kind != "rocker-bogie") j.fail("kind", "scenario kind '" + s.kind + "' is not rocker-bogie");
   if (!(s.duration > 0)) j.fail("duration_s", "must be positive");
+  if (!(s.duration <= 100000)) j.fail("duration_s", "must be at most 100000 (s)");
   if (!(s.desired_speed > 0)) j.fail("desired_speed_mps", "must be positive");
+  // A planetary rover drives at centimetres per second; 2 m/s is far beyond any.
+  if (!(s.desired_speed <= 2)) j.fail("desired_speed_mps", "must be at most 2 (m/s)");
+  // Far from the origin the path's doubles lose the millimetres the contact needs.
+  if (!(std::abs(s.start_x) <= 1000)) j.fail("start_x_m", "must be within +-1000 (m)");
   return s;
 }
 

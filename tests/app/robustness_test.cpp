@@ -288,6 +288,21 @@ TEST(Robustness, AbsurdOptionValuesAreUsageErrorsNamingTheOption) {
   }
 }
 
+TEST(Robustness, ATractionSurfaceIsNotFittedToPointsThatCannotDefineIt) {
+  TempDir dir;
+  const std::string one_place = dir.file("one.csv"), garbage = dir.file("bad.csv");
+  std::string rows = "load_N,slip,drawbar_pull_N\n", bad = rows;
+  for (int k = 1; k <= 10; ++k) {
+    rows += "80,0.5," + std::to_string(k) + "\n";                               // F16: one (W, s)
+    bad += std::to_string(-10 * k) + "," + std::to_string(3 * k) + ",1e300\n";  // F15
+  }
+  test::write_text(one_place, rows);
+  test::write_text(garbage, bad);
+  expect_one_line_bad_input(run_roverlab("terramechanics fit " + quote(one_place)), one_place,
+                            "two loads and two slips");
+  expect_one_line_bad_input(run_roverlab("terramechanics fit " + quote(garbage)), garbage, "row 1: load_N must be");
+}
+
 TEST(Robustness, AHugeCellIsNotEchoedWhole) {
   TempDir dir;
   const std::string csv = dir.file("wide.csv");

@@ -110,3 +110,28 @@ TEST(JsonResource, ResourceReadersNameTheField) {
   EXPECT_EQ(problem_of(scenario, [&] { io::load_scenario(scenario); }),
             "field 'duration_s': missing, expected a number");
 }
+
+// Physically absurd values are refused with the field and its range
+// (shared/robustness/findings.md F19, F21).
+TEST(JsonResource, AbsurdValuesAreRefusedWithTheirRange) {
+  TempDir dir;
+  const std::string scenario = dir.file("scenario.json");
+  const std::string head = R"({"format": "roverlab-scenario", "kind": "rocker-bogie", "rover": "r", "path": "flat",
+                               "soil": "s", "duration_s": 10, )";
+  write_text(scenario, head + R"("desired_speed_mps": 1000})");
+  EXPECT_EQ(problem_of(scenario, [&] { io::load_scenario(scenario); }),
+            "field 'desired_speed_mps': must be at most 2 (m/s)");
+  write_text(scenario, head + R"("start_x_m": 1e12})");
+  EXPECT_EQ(problem_of(scenario, [&] { io::load_scenario(scenario); }), "field 'start_x_m': must be within +-1000 (m)");
+  const std::string rover = dir.file("rover.json");
+  write_text(rover, R"({"kind": "skid_steer", "wheel_radius_m": 1e300, "track_m": 0.7, "wheelbase_m": 0.5})");
+  EXPECT_EQ(problem_of(rover, [&] { io::load_rover(rover); }), "field 'wheel_radius_m': must be at most 20 (m)");
+  // The ExoMars BB2 with one DH link 1e300 m long.
+  std::string bb2 = test::read_text(std::string(ROVERLAB_RESOURCES_DIR) + "/rovers/exomars_bb2.json");
+  const auto at = bb2.find("\"a\":");
+  ASSERT_NE(at, std::string::npos);
+  bb2.replace(at, bb2.find_first_of(",}", at) - at, "\"a\": 1e300");
+  write_text(rover, bb2);
+  const std::string problem = problem_of(rover, [&] { io::load_rover(rover); });
+  EXPECT_NE(problem.find(".a'"), std::string::npos) << problem;
+}
