@@ -198,8 +198,12 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
         for (const auto& cname : h5::link_names(channels.get())) {
           if (h5::object_kind(channels.get(), cname) != h5::ObjectKind::dataset) continue;
           Handle ds(H5Dopen2(channels.get(), cname.c_str(), H5P_DEFAULT));
-          info.channels.push_back(ChannelInfo{cname, h5::read_string_attribute(ds.get(), "unit").value_or("1"),
-                                              h5::read_string_attribute(ds.get(), "description").value_or("")});
+          const auto unit = h5::read_string_attribute(ds.get(), "unit");
+          // RoverLab writes a unit for every channel ("1" when dimensionless): without
+          // one, a channel could be used as anything (an angular rate, a distance).
+          if (!unit) throw InputError(path, "stream '" + name + "', channel '" + cname + "' has no unit attribute");
+          info.channels.push_back(
+              ChannelInfo{cname, *unit, h5::read_string_attribute(ds.get(), "description").value_or("")});
         }
       }
       catalog_.push_back(std::move(info));

@@ -49,9 +49,9 @@ void expect_bad_input(const std::string& input, const std::string& problem, cons
 }
 
 // A RoverLab HDF5 log written by hand: one stream "imu" with the given time
-// base and one channel "x" (its unit attribute set when `unit` is not empty).
+// base and one channel "x" of the given unit (none when `unit` is empty).
 void write_raw_log(const std::string& path, const std::vector<double>& time, const std::vector<double>& x,
-                   const std::string& unit = "") {
+                   const std::string& unit = "1") {
   RawHdf5 f(path);
   f.roverlab_header(1);
   f.roverlab_stream("imu");
@@ -405,7 +405,9 @@ TEST(CliInsSlip, BadInputAndUsage) {
     f.roverlab_header(1);
     f.roverlab_stream("wheels");
     H5Dclose(f.dataset("streams/wheels/time", std::vector<double>{0.0, 0.1, 0.2}));
-    H5Dclose(f.dataset("streams/wheels/channels/angle_FL", std::vector<double>{0.0, 0.1, 0.2}));
+    hid_t angle = f.dataset("streams/wheels/channels/angle_FL", std::vector<double>{0.0, 0.1, 0.2});
+    RawHdf5::string_attribute(angle, "unit", "rad");
+    H5Dclose(angle);
   }
   for (const std::string name : {"noimu.h5", "wheels_only.h5", "missing.h5"}) {
     const CommandResult r =

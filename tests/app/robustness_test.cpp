@@ -113,6 +113,19 @@ TEST(Robustness, AStreamOfAnUnknownKindIsNamedNotDropped) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("out.h5")));
 }
 
+TEST(Robustness, AChannelWithoutAUnitIsRefused) {
+  TempDir dir;
+  const ConvertedLog log(dir);
+  log.edit([](hid_t f) {
+    const hid_t ds = H5Dopen2(f, "/streams/imu/channels/angular_rate_x", H5P_DEFAULT);
+    ASSERT_GE(H5Adelete(ds, "unit"), 0);
+    H5Dclose(ds);
+  });
+  // F4: it was read as dimensionless and used as an angular rate.
+  expect_one_line_bad_input(run_roverlab("estimate ins-slip " + quote(log.path())), log.path(),
+                            "has no unit attribute");
+}
+
 TEST(Robustness, ALogsRoverIdIsANameNeverAPath) {
   TempDir dir;
   const std::string sim = dir.file("fl.h5");
@@ -180,6 +193,7 @@ TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
         H5Dcreate2(f, "/streams/imu/channels/angular_rate_x", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     ASSERT_GE(ds, 0);
     H5Dclose(ds);
+    set_string_attribute(f, "/streams/imu/channels/angular_rate_x", "unit", "rad/s");
     H5Pclose(dcpl);
     H5Sclose(space);
   });
