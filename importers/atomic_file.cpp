@@ -97,7 +97,7 @@ void write_atomically(const std::string& path, const std::function<void(const st
   const fs::path target = destination_of(fs::path(path));
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
-  if (path.empty()) throw InputError(path, "cannot write: the output name is empty");
+  if (path.empty()) throw InputError("''", "cannot write: the output name is empty");
   if (!fs::is_directory(folder, ec)) {
     throw InputError(path, "cannot write: folder '" + folder.string() + "' does not exist");
   }

@@ -47,6 +47,7 @@ const LogReader* find_log_reader(const std::string& path, const LoadOptions& opt
 
 LoadedLog load_log(const std::string& path, const LoadOptions& options) {
   std::error_code ec;
+  if (path.empty()) throw InputError("''", "the file name is empty");
   if (!fs::exists(path, ec)) throw InputError(path, "no such file");
   if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
   // A pipe or a device never ends (and opening a pipe blocks): not a log.

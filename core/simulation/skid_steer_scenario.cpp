@@ -40,8 +40,11 @@ void set_effect(SkidSteerScenario& s, const std::string& name, double value) {
   } else if (name == "turning-track-factor") {
     s.turning_track_factor = value;
   } else if (name == "wheel-time-offset") {
+    if (!(std::abs(value) <= 1)) throw DataError("effect wheel-time-offset (s) must be -1..1");
     s.wheel_time_offset = value;
   } else if (name == "slip") {
+    // A switch: slip episodes on (1) or firm ground (0).
+    if (value != 0.0 && value != 1.0) throw DataError("effect slip must be 0 (firm ground) or 1 (slip episodes)");
     s.slip = value != 0.0;
   } else {
     throw DataError("unknown effect '" + name +

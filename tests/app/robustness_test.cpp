@@ -293,6 +293,7 @@ TEST(Robustness, AbsurdOptionValuesAreUsageErrorsNamingTheOption) {
       {"render log.h5 --time nan -o x.png", "--time"},                                                  // F25
       {"simulate flat_60s --effect gyro-bias=1e300 -o x.h5", "gyro-bias"},                              // F27
       {"simulate flat_60s --effect imu-time-offset=1e9 -o x.h5", "imu-time-offset"},                    // F27
+      {"scenario skid-steer-slip --effect slip=-5 -o x.h5", "slip"},                                    // F27
   };
   for (const auto& [args, option] : cases) {
     const CommandResult r = run_roverlab(args);
@@ -315,6 +316,13 @@ TEST(Robustness, ATractionSurfaceIsNotFittedToPointsThatCannotDefineIt) {
   expect_one_line_bad_input(run_roverlab("terramechanics fit " + quote(one_place)), one_place,
                             "two loads and two slips");
   expect_one_line_bad_input(run_roverlab("terramechanics fit " + quote(garbage)), garbage, "row 1: load_N must be");
+}
+
+TEST(Robustness, AnEmptyFileNameIsCalledSo) {
+  // F42: "roverlab: : no such file".
+  const CommandResult r = run_roverlab("info ''");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("the file name is empty"), std::string::npos) << r.err;
 }
 
 TEST(Robustness, AHugeCellIsNotEchoedWhole) {
