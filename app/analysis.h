@@ -81,6 +81,9 @@ class Analysis {
 
 using Analyses = std::vector<std::unique_ptr<Analysis>>;
 
+// What `analysis.print(document, ...)` writes, as a string (the GUI shows it).
+std::string printed(const Analysis& analysis, const nlohmann::json& document);
+
 // Every registered analysis, in analyses.def order.
 Analyses all_analyses();
 // One by name; nullptr when there is none of that name.

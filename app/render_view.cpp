@@ -46,19 +46,6 @@ Rendered render_view(const ViewInput& in, const views::View& view, const ViewOpt
   return render_scene(*scene, options.time, w, h);
 }
 
-Rendered render_view(const ViewInput& in, const std::string& view, std::optional<double> time,
-                     const std::optional<std::string>& channels, const std::optional<std::string>& soil,
-                     const std::string& quantity, int w, int h) {
-  const views::View* v = views::find_view(view);
-  if (v == nullptr) throw UsageError("--view " + view + ": expected " + views::view_names());
-  ViewOptions o;
-  o.time = time;
-  o.channel_spec = channels;
-  o.soil = soil;
-  o.quantity = quantity;
-  return render_view(in, *v, o, w, h);
-}
-
 Rendered render_traction_surface(const views::TractionSurfaceData& data, int w, int h) {
   for (const auto& view : views::all_views()) {
     if (!view->uses_surface_data()) continue;

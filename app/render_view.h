@@ -25,12 +25,9 @@ struct Rendered {
   double time = NAN;  // NaN for views that do not follow time
 };
 
-// The view named `view` of `in` at `time` (default: the view's own, a time
-// inside the drive), `w` x `h` pixels. Throws UsageError for an unknown
-// view, InputError when the view cannot be drawn from `in`.
-Rendered render_view(const ViewInput& in, const std::string& view, std::optional<double> time,
-                     const std::optional<std::string>& channels, const std::optional<std::string>& soil,
-                     const std::string& quantity, int w, int h);
+// `view` of `in` with `options` (time default: the view's own, a time inside
+// the drive), `w` x `h` pixels. Throws InputError when the view cannot be
+// drawn from `in`.
 Rendered render_view(const ViewInput& in, const views::View& view, const ViewOptions& options, int w, int h);
 
 // The registry's view of a traction surface, for `data` the caller computed.

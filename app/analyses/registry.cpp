@@ -1,6 +1,7 @@
 // The analysis registry (app/analyses/analyses.def) and the report helpers.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "app/analysis.h"
 #include "importers/atomic_file.h"
@@ -24,6 +25,18 @@ std::unique_ptr<Analysis> make_analysis(const std::string& name) {
     if (a->name() == name) return std::move(a);
   }
   return nullptr;
+}
+
+std::string printed(const Analysis& analysis, const nlohmann::json& document) {
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* out = open_memstream(&buffer, &size);
+  if (out == nullptr) return {};
+  analysis.print(document, out);
+  std::fclose(out);
+  std::string text(buffer, size);
+  std::free(buffer);
+  return text;
 }
 
 void ReportSection::write_csv(const std::string& name, const std::string& text) const {

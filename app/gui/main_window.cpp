@@ -558,19 +558,6 @@ void add_json_items(QTreeWidgetItem* parent, const nlohmann::json& v) {
   }
 }
 
-// What Analysis::print writes, as a string.
-std::string printed(const app::Analysis& a, const nlohmann::json& document) {
-  char* buffer = nullptr;
-  std::size_t size = 0;
-  std::FILE* out = open_memstream(&buffer, &size);
-  if (out == nullptr) return {};
-  a.print(document, out);
-  std::fclose(out);
-  std::string text(buffer, size);
-  std::free(buffer);
-  return text;
-}
-
 }  // namespace
 
 void MainWindow::rebuild_analysis() {
@@ -581,8 +568,8 @@ void MainWindow::rebuild_analysis() {
   QString text;
   for (const auto& run : input_->analyses) {
     const std::unique_ptr<app::Analysis> a = app::make_analysis(run.name);
-    text +=
-        "<b>" + q(run.title).toHtmlEscaped() + "</b><pre>" + q(printed(*a, run.document)).toHtmlEscaped() + "</pre>";
+    text += "<b>" + q(run.title).toHtmlEscaped() + "</b><pre>" + q(app::printed(*a, run.document)).toHtmlEscaped() +
+            "</pre>";
     auto* top = new QTreeWidgetItem(results_, {q(run.title), ""});
     add_json_items(top, run.document);
   }

@@ -13,17 +13,6 @@
 namespace roverlab {
 namespace {
 
-std::string printed(const app::Analysis& a, const nlohmann::json& document) {
-  char* buffer = nullptr;
-  std::size_t size = 0;
-  std::FILE* out = open_memstream(&buffer, &size);
-  a.print(document, out);
-  std::fclose(out);
-  std::string text(buffer, size);
-  std::free(buffer);
-  return text;
-}
-
 TEST(AnalysisRegistry, EveryEntryIsWellFormedAndSaysWhatAnEmptyLogLacks) {
   const app::Analyses all = app::all_analyses();
   ASSERT_GE(all.size(), 3u);
@@ -52,11 +41,11 @@ TEST(AnalysisRegistry, TextAndReportAreWrittenFromTheResultDocument) {
   const double accuracy = r.document.at("slip_confusion").at("accuracy").get<double>();
   char expected[64];
   std::snprintf(expected, sizeof expected, "overall accuracy %.1f %%", 100.0 * accuracy);
-  EXPECT_NE(printed(*ins, r.document).find(expected), std::string::npos);
+  EXPECT_NE(app::printed(*ins, r.document).find(expected), std::string::npos);
   // Change the document: the text follows it, not the estimator's internals.
   nlohmann::json edited = r.document;
   edited["duration_s"] = 1234.5;
-  EXPECT_NE(printed(*ins, edited).find("1234.5 s of IMU data"), std::string::npos);
+  EXPECT_NE(app::printed(*ins, edited).find("1234.5 s of IMU data"), std::string::npos);
   const std::filesystem::path folder = std::filesystem::temp_directory_path() / "roverlab_analysis_registry_test";
   std::filesystem::create_directories(folder);
   app::ReportSection section(folder);
