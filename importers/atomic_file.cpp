@@ -100,6 +100,10 @@ void write_atomically(const std::string& path, const std::function<void(const st
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
   if (path.empty()) throw InputError("''", "cannot write: the output name is empty");
+  const std::string name = target.filename().string();
+  for (const char* extension : {".h5", ".hdf5", ".csv", ".png", ".html", ".json"}) {
+    if (name == extension) throw InputError(path, "cannot write: the output has no name before its extension");
+  }
   if (!fs::is_directory(folder, ec)) {
     throw InputError(path, "cannot write: folder '" + folder.string() + "' does not exist");
   }

@@ -325,6 +325,29 @@ TEST(Robustness, AnEmptyFileNameIsCalledSo) {
   EXPECT_NE(r.err.find("the file name is empty"), std::string::npos) << r.err;
 }
 
+TEST(Robustness, MessagesNameWhatIsReallyWrong) {
+  // F42: a hidden file named ".h5" written; a folder called "no such scenario
+  // file"; a 2-D channel called a length mismatch.
+  TempDir dir;
+  CommandResult r = run_roverlab("simulate flat_60s --duration 1 -o " + quote(dir.file(".h5")));
+  expect_one_line_bad_input(r, ".h5", "no name before its extension");
+  EXPECT_FALSE(std::filesystem::exists(dir.file(".h5")));
+  expect_one_line_bad_input(run_roverlab("simulate " + quote(dir.path().string()) + " -o " + quote(dir.file("x.h5"))),
+                            dir.path().string(), "is a folder, not a scenario file");
+  const ConvertedLog log(dir);
+  log.edit([](hid_t file) {
+    const hsize_t dims[2] = {10, 2};
+    const hid_t space = H5Screate_simple(2, dims, nullptr);
+    const hid_t ds =
+        H5Dcreate2(file, "/streams/imu/channels/wide", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(ds, 0);
+    H5Dclose(ds);
+    H5Sclose(space);
+    set_string_attribute(file, "/streams/imu/channels/wide", "unit", "m");
+  });
+  expect_one_line_bad_input(run_roverlab("info " + quote(log.path())), log.path(), "expected a 1-D dataset");
+}
+
 TEST(Robustness, AHugeCellIsNotEchoedWhole) {
   TempDir dir;
   const std::string csv = dir.file("wide.csv");
