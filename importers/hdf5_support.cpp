@@ -207,6 +207,22 @@ std::vector<double> read_doubles(hid_t dataset) {
   Handle space(H5Dget_space(dataset));
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   if (n < 0) throw std::runtime_error("cannot read dataset size: " + last_error_text());
+  // A declared size is believed only as far as the file could store it:
+  // uncompressed, every value is in the file; compressed, deflate stores at
+  // most about 1000 values in the space of one.
+  hsize_t file_size = 0;
+  {
+    Handle file(H5Iget_file_id(dataset));
+    if (file.get() < 0 || H5Fget_filesize(file.get(), &file_size) < 0) file_size = 0;
+  }
+  Handle create(H5Dget_create_plist(dataset));
+  const int filters = create.get() >= 0 ? H5Pget_nfilters(create.get()) : 0;
+  const double stored = static_cast<double>(n) * static_cast<double>(H5Tget_size(type.get()));
+  const double room = (filters > 0 ? 1000.0 : 1.0) * static_cast<double>(file_size) + 4096.0;
+  if (file_size > 0 && stored > room) {
+    throw std::runtime_error("declares " + std::to_string(n) + " values, more than the file (" +
+                             std::to_string(file_size) + " bytes) can hold");
+  }
   std::vector<double> values;
   try {
     values.resize(static_cast<std::size_t>(n));
