@@ -43,6 +43,75 @@ json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
   return j;
 }
 
+// The study as a JSON document (`--json`).
+json report_json(const std::string& file, const Soil& soil, const analysis::DiscrepancyReport& r) {
+  json j = {
+      {"file", file},
+      {"soil", soil.name},
+      {"points", r.points},
+      {"measurements", r.measurements},
+      {"held_out_method", r.held_out_method},
+      {"unsupported", r.unsupported},
+      {"baseline", {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score}, {"bic", r.baseline_bic}}},
+      {"significant", r.significant},
+      {"cause", r.selection.empty() ? json(nullptr) : json(r.selection.back().name)},
+      {"what_is_wrong", r.what_is_wrong},
+      {"verdict", r.verdict}};
+  j["partial"] = json::array();
+  for (const auto& [q, index] : r.partial) {
+    j["partial"].push_back(
+        {{"quantity", to_string(q)}, {"candidate", r.candidates[static_cast<std::size_t>(index)].name}});
+  }
+  j["candidates"] = json::array();
+  for (const auto& c : r.candidates) {
+    json cj = {{"name", c.name}, {"cause", c.cause}, {"applicable", c.applicable}};
+    if (!c.applicable) {
+      cj["not_applicable_because"] = c.not_applicable_because;
+    } else {
+      cj["parameters"] = json::array();
+      for (const auto& p : c.fit.parameters) {
+        cj["parameters"].push_back({{"name", to_string(p.parameter)},
+                                    {"value", p.value},
+                                    {"sigma", nullable(p.sigma)},
+                                    {"at_bound", p.at_bound}});
+      }
+      cj["bic"] = c.bic;
+      cj["delta_bic"] = c.delta_bic;
+      cj["in_sample_residuals"] = stats_json(c.in_sample);
+      cj["held_out_score_sigma"] = c.held_out_score;
+      json ho = json::object(), base = json::object();
+      for (std::size_t i = 0; i < r.quantities.size(); ++i) {
+        ho[to_string(r.quantities[i])] = nullable(c.held_out_rmse[i]);
+      }
+      cj["held_out_rmse"] = ho;
+    }
+    j["candidates"].push_back(cj);
+  }
+  // Forward selection: each step's model (the chain so far plus one cause).
+  j["selection"] = json::array();
+  for (const auto& c : r.selection) {
+    json step = {{"model", c.name},
+                 {"bic", c.bic},
+                 {"delta_bic", c.delta_bic},
+                 {"held_out_score_sigma", c.held_out_score},
+                 {"parameters", json::array()}};
+    for (const auto& p : c.fit.parameters) {
+      step["parameters"].push_back(
+          {{"name", to_string(p.parameter)}, {"value", p.value}, {"sigma", nullable(p.sigma)}});
+    }
+    j["selection"].push_back(step);
+  }
+  if (r.best_pair) {
+    j["best_pair"] = {{"model", r.best_pair->name},
+                      {"delta_bic", nullable(r.best_pair->delta_bic)},
+                      {"held_out_score_sigma", nullable(r.best_pair->held_out_score)}};
+  }
+  json base = json::object();
+  for (std::size_t i = 0; i < r.quantities.size(); ++i) base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
+  j["baseline"]["held_out_rmse"] = base;
+  return j;
+}
+
 }  // namespace
 
 int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
@@ -58,53 +127,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
       about_file(o.file, [&] { return analysis::study_single_wheel(soil, points, options); });
 
   if (o.json) {
-    json j = {{"file", o.file},
-              {"soil", soil.name},
-              {"points", r.points},
-              {"measurements", r.measurements},
-              {"held_out_method", r.held_out_method},
-              {"unsupported", r.unsupported},
-              {"baseline",
-               {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score}, {"bic", r.baseline_bic}}},
-              {"significant", r.significant},
-              {"cause", r.significant ? json(r.candidates[static_cast<std::size_t>(r.best)].name) : json(nullptr)},
-              {"what_is_wrong", r.what_is_wrong},
-              {"verdict", r.verdict}};
-    j["partial"] = json::array();
-    for (const auto& [q, index] : r.partial) {
-      j["partial"].push_back(
-          {{"quantity", to_string(q)}, {"candidate", r.candidates[static_cast<std::size_t>(index)].name}});
-    }
-    j["candidates"] = json::array();
-    for (const auto& c : r.candidates) {
-      json cj = {{"name", c.name}, {"cause", c.cause}, {"applicable", c.applicable}};
-      if (!c.applicable) {
-        cj["not_applicable_because"] = c.not_applicable_because;
-      } else {
-        cj["parameters"] = json::array();
-        for (const auto& p : c.fit.parameters) {
-          cj["parameters"].push_back({{"name", to_string(p.parameter)},
-                                      {"value", p.value},
-                                      {"sigma", nullable(p.sigma)},
-                                      {"at_bound", p.at_bound}});
-        }
-        cj["bic"] = c.bic;
-        cj["delta_bic"] = c.delta_bic;
-        cj["in_sample_residuals"] = stats_json(c.in_sample);
-        cj["held_out_score_sigma"] = c.held_out_score;
-        json ho = json::object(), base = json::object();
-        for (std::size_t i = 0; i < r.quantities.size(); ++i) {
-          ho[to_string(r.quantities[i])] = nullable(c.held_out_rmse[i]);
-        }
-        cj["held_out_rmse"] = ho;
-      }
-      j["candidates"].push_back(cj);
-    }
-    json base = json::object();
-    for (std::size_t i = 0; i < r.quantities.size(); ++i)
-      base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
-    j["baseline"]["held_out_rmse"] = base;
-    std::cout << j.dump(2) << "\n";
+    std::cout << report_json(o.file, soil, r).dump(2) << "\n";
     return kSuccess;
   }
 
@@ -143,6 +166,16 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
         std::printf("  %-14s %-24s %22s\n", "", to_string(p.parameter), value);
       }
     }
+  }
+  if (!r.selection.empty()) {
+    std::printf("\nforward selection (each step refits the chain with one more cause):\n");
+    std::printf("  %-36s %12s %14s\n", "model", "delta BIC", "held-out sigma");
+    for (const auto& c : r.selection) {
+      std::printf("  %-36s %12.1f %14.3f\n", c.name.c_str(), c.delta_bic, c.held_out_score);
+    }
+  } else if (r.best_pair && r.best_pair->applicable) {
+    std::printf("\nforward selection: no step passes; the best pair, %s: delta BIC %.1f, held-out %.3f sigma\n",
+                r.best_pair->name.c_str(), r.best_pair->delta_bic, r.best_pair->held_out_score);
   }
   std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
   return kSuccess;

@@ -149,7 +149,9 @@ class SingleWheelStudy {
  private:
   void find_quantities();
   void score_baseline();
-  CandidateResult fit_candidate(const SingleWheelCandidate& candidate) const;
+  CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set,
+                          const CandidateResult* start_from = nullptr) const;
+  void select_forward();
   void check_points_can_tell_candidates_apart() const;
   std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit) const;
   void choose_best();
@@ -157,11 +159,13 @@ class SingleWheelStudy {
   void find_partial();
   void write_verdict();
   void write_no_significant_verdict();
+  void write_chain_verdict();
 
   const Soil& soil_;
   const std::vector<WheelTestPoint>& points_;
   const DiscrepancyOptions& o_;
   bool any_grousers_ = false;
+  std::vector<std::unique_ptr<SingleWheelCandidate>> candidates_;
   DiscrepancyReport report_;
 };
 
@@ -176,8 +180,12 @@ DiscrepancyReport SingleWheelStudy::run() {
   score_baseline();
   any_grousers_ = std::any_of(points_.begin(), points_.end(),
                               [](const auto& p) { return p.wheel.grouser_count > 0 && p.wheel.grouser_height > 0.0; });
-  for (const auto& candidate : single_wheel_candidates()) report_.candidates.push_back(fit_candidate(*candidate));
+  candidates_ = single_wheel_candidates();
+  for (const auto& candidate : candidates_) report_.candidates.push_back(fit_set({candidate.get()}));
   choose_best();
+  report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
+  select_forward();
+  report_.significant = !report_.selection.empty();
   write_what_is_wrong();
   find_partial();
   write_verdict();
@@ -224,25 +232,41 @@ void SingleWheelStudy::score_baseline() {
   for (Quantity q : report_.quantities) report_.baseline_held_out_rmse.push_back(rmse_of(report_.baseline, q));
 }
 
-// Fits the candidate's parameters on all points, then scores it on held-out
-// points.
-CandidateResult SingleWheelStudy::fit_candidate(const SingleWheelCandidate& candidate) const {
+// Fits the candidates' parameters together on all points (started from
+// `start`, a previous fit's soil and extensions, when given), then scores the
+// extended model on held-out points.
+CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCandidate*>& set,
+                                          const CandidateResult* start_from) const {
   CandidateResult c;
-  c.name = candidate.name();
-  c.cause = candidate.cause();
-  if (candidate.needs_grousers() && !any_grousers_) {
-    c.applicable = false;
-    c.not_applicable_because = "no wheel in the data has grousers";
-    return c;
+  for (const auto* candidate : set) {
+    c.name += (c.name.empty() ? "" : " + ") + std::string(candidate->name());
+    c.cause += (c.cause.empty() ? "" : "; ") + std::string(candidate->cause());
+    if (candidate->needs_grousers() && !any_grousers_) {
+      c.applicable = false;
+      c.not_applicable_because = "no wheel in the data has grousers";
+      return c;
+    }
   }
   IdentificationOptions io;
   io.model = o_.baseline;
-  candidate.configure(io.model.extensions);
   io.sigma = o_.sigma;
   Soil start = soil_;
-  for (const auto& [parameter, value] : candidate.parameters()) {
-    io.free.push_back(parameter);
-    if (value >= 0.0) set_parameter(start, io.model.extensions, parameter, value);
+  if (start_from != nullptr) {
+    start = start_from->fit.soil;
+    io.model.extensions = start_from->fit.extensions;
+  }
+  for (const auto* candidate : set) {
+    candidate->configure(io.model.extensions);
+    for (const auto& entry : candidate->parameters()) {
+      const Parameter parameter = entry.first;
+      const double value = entry.second;
+      if (std::find(io.free.begin(), io.free.end(), parameter) != io.free.end()) continue;
+      io.free.push_back(parameter);
+      const bool fitted_before =
+          start_from != nullptr && std::any_of(start_from->fit.parameters.begin(), start_from->fit.parameters.end(),
+                                               [&](const auto& e) { return e.parameter == parameter; });
+      if (value >= 0.0 && !fitted_before) set_parameter(start, io.model.extensions, parameter, value);
+    }
   }
   c.fit = identify_soil(start, points_, io);
   c.in_sample = residual_statistics(c.fit.residuals, points_);
@@ -253,6 +277,65 @@ CandidateResult SingleWheelStudy::fit_candidate(const SingleWheelCandidate& cand
   for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
   c.held_out_score = score_of(predicted);
   return c;
+}
+
+// Several causes at once: the candidate with the best BIC first, then each
+// of the others refitted on top of the chain; a step is kept while it lowers
+// BIC by more than the threshold and the held-out error falls. A first step
+// too weak alone is kept when it and the best second step together pass
+// against the baseline (two causes that hide each other).
+void SingleWheelStudy::select_forward() {
+  std::vector<std::size_t> chain;
+  const CandidateResult* at = nullptr;  // the chain's fit
+  double bic = report_.baseline_bic, held = report_.baseline_score;
+  auto passes = [&](const CandidateResult& c, double than_bic, double than_held) {
+    return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < o_.bic_threshold &&
+           c.held_out_score < (1.0 - o_.min_held_out_gain) * than_held;
+  };
+  while (chain.size() < candidates_.size()) {
+    // Best next step by BIC.
+    int best = -1;
+    CandidateResult best_fit;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+      if (std::find(chain.begin(), chain.end(), i) != chain.end() || !report_.candidates[i].applicable) continue;
+      std::vector<const SingleWheelCandidate*> set;
+      set.reserve(chain.size() + 1);
+      for (std::size_t j : chain) set.push_back(candidates_[j].get());
+      set.push_back(candidates_[i].get());
+      CandidateResult fit = chain.empty() ? report_.candidates[i] : fit_set(set, at);
+      if (best < 0 || fit.bic < best_fit.bic) {
+        best = static_cast<int>(i);
+        best_fit = std::move(fit);
+      }
+    }
+    if (best < 0) break;
+    if (passes(best_fit, bic, held)) {
+      chain.push_back(static_cast<std::size_t>(best));
+    } else if (chain.empty()) {
+      // Look one step further: the weak first step with its best partner.
+      CandidateResult pair_fit;
+      int partner = -1;
+      for (std::size_t i = 0; i < candidates_.size(); ++i) {
+        if (static_cast<int>(i) == best || !report_.candidates[i].applicable) continue;
+        CandidateResult fit = fit_set({candidates_[static_cast<std::size_t>(best)].get(), candidates_[i].get()},
+                                      &report_.candidates[static_cast<std::size_t>(best)]);
+        if (partner < 0 || fit.bic < pair_fit.bic) {
+          partner = static_cast<int>(i);
+          pair_fit = std::move(fit);
+        }
+      }
+      report_.best_pair = pair_fit;
+      if (partner < 0 || !passes(pair_fit, bic, held)) break;
+      chain = {static_cast<std::size_t>(best), static_cast<std::size_t>(partner)};
+      best_fit = std::move(pair_fit);
+    } else {
+      break;
+    }
+    bic = best_fit.bic;
+    held = best_fit.held_out_score;
+    report_.selection.push_back(std::move(best_fit));
+    at = &report_.selection.back();
+  }
 }
 
 // Held out: refit without each fold of points (one point each up to
@@ -373,6 +456,10 @@ void SingleWheelStudy::write_verdict() {
     report_.verdict = "No candidate could be fitted.";
     return;
   }
+  if (report_.selection.size() >= 2) {
+    write_chain_verdict();
+    return;
+  }
   if (!report_.significant) {
     write_no_significant_verdict();
     return;
@@ -393,6 +480,24 @@ void SingleWheelStudy::write_verdict() {
   report_.verdict = v;
 }
 
+// Several causes: the chain, its parameters and its gain over the baseline.
+void SingleWheelStudy::write_chain_verdict() {
+  const CandidateResult& c = report_.selection.back();
+  std::string v = "Causes (forward selection): " + c.name + " (" + c.cause + "),";
+  for (const auto& p : c.fit.parameters) {
+    v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) +
+         (std::isfinite(p.sigma) ? " +- " + fmt("%.2g", p.sigma) : std::string(" (no sigma)")) + ";";
+  }
+  v += " held-out RMSE";
+  for (std::size_t i = 0; i < report_.quantities.size(); ++i) {
+    v += std::string(i ? "," : "") + " " + words(report_.quantities[i]) + " " +
+         show(report_.quantities[i], report_.baseline_held_out_rmse[i]) + " -> " +
+         show(report_.quantities[i], c.held_out_rmse[i]);
+  }
+  v += "; delta BIC " + fmt("%.1f", c.delta_bic) + " against the baseline.";
+  report_.verdict = v;
+}
+
 void SingleWheelStudy::write_no_significant_verdict() {
   const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
   report_.verdict = "No significant discrepancy: the best candidate, " + c.name + ", changes BIC by " +
@@ -405,6 +510,11 @@ void SingleWheelStudy::write_no_significant_verdict() {
     const auto& pc = report_.candidates[static_cast<std::size_t>(index)];
     report_.verdict += "; for " + words(q) + " alone, " + pc.name + " cuts the held-out RMSE from " +
                        show(q, report_.baseline_held_out_rmse[qi]) + " to " + show(q, pc.held_out_rmse[qi]);
+  }
+  if (report_.best_pair && report_.best_pair->applicable) {
+    report_.verdict += "; together, " + report_.best_pair->name + " change BIC by " +
+                       fmt("%.1f", report_.best_pair->delta_bic) + " and the held-out error to " +
+                       fmt("%.2f", report_.best_pair->held_out_score) + " sigma: not significant either";
   }
   report_.verdict += ".";
 }

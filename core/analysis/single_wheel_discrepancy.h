@@ -68,6 +68,11 @@ struct DiscrepancyReport {
   // (>= 30 % lower RMSE) even when no candidate explains everything:
   // (quantity, candidate index).
   std::vector<std::pair<Quantity, int>> partial;
+  // Forward selection (several causes): each step the chain so far plus one
+  // more candidate, all refitted together; empty when no step passes.
+  std::vector<CandidateResult> selection;
+  // When the first step alone does not pass: the best pair with it, as tried.
+  std::optional<CandidateResult> best_pair;
   std::string what_is_wrong;  // one sentence on the baseline's residuals
   std::string verdict;        // one sentence: the cause and the gain, or "no significant discrepancy"
 };

@@ -125,6 +125,37 @@ TEST(NegativeControl, NoEffectReportsNoSignificantDiscrepancy) {
   }
 }
 
+// Two effects hidden at once: forward selection names both, each with its
+// parameter, and the chain's held-out error is at the noise level.
+TEST(TwoHiddenEffects, AreBothNamedByForwardSelection) {
+  for (unsigned seed : {31u, 32u}) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Hidden h;
+    h.model.extensions.slip_sinkage_n1 = 0.3 + 0.3 * u(rng);
+    h.model.extensions.grousers = true;
+    h.model.extensions.grouser_effectiveness = 0.5 + 0.4 * u(rng);
+    const analysis::DiscrepancyOptions options;
+    const auto points = testbed(h, seed, options.sigma);
+    const analysis::DiscrepancyReport r = analysis::study_single_wheel(test::ding_tyii(), points, options);
+    ASSERT_EQ(r.selection.size(), 2u) << r.verdict;
+    const auto& chain = r.selection.back();
+    EXPECT_NE(chain.name.find("slip-sinkage"), std::string::npos) << chain.name;
+    EXPECT_NE(chain.name.find("grousers"), std::string::npos) << chain.name;
+    for (const auto& p : chain.fit.parameters) {
+      if (p.parameter == Parameter::slip_sinkage_n1) {
+        EXPECT_LT(std::abs(p.value - h.model.extensions.slip_sinkage_n1), 3.0 * p.sigma + 0.02) << p.value;
+      }
+      if (p.parameter == Parameter::grouser_effectiveness) {
+        EXPECT_LT(std::abs(p.value - h.model.extensions.grouser_effectiveness), 3.0 * p.sigma + 0.02) << p.value;
+      }
+    }
+    EXPECT_LT(chain.held_out_score, 1.3);
+    EXPECT_LT(chain.held_out_score, r.selection.front().held_out_score);
+    EXPECT_NE(r.verdict.find("Causes (forward selection)"), std::string::npos) << r.verdict;
+  }
+}
+
 // Above max_leave_one_out_points the held-out scores come from folds (the cost
 // stays linear in the points; leave-one-out was quadratic), and the study
 // still names the effect.
