@@ -114,9 +114,10 @@ int run_info(const InfoOptions& options) {
   for (const auto& s : lg.streams()) {
     std::cout << "\nstream " << s.name() << ": " << s.size() << " samples";
     if (s.size() >= 2) {
-      // %g: a time base of 1e300 s prints as such, not as 300 digits (F42).
-      std::cout << ", " << fmt("%.4g", s.mean_rate_hz()) << " Hz, " << fmt("%.6g", s.duration())
-                << " s (t = " << fmt("%.6g", s.start_time()) << " .. " << fmt("%.6g", s.end_time()) << " s)";
+      // A time base of 1e300 s prints as such, not as 300 digits (F42).
+      auto shown = [](const char* format, double v) { return std::abs(v) < 1e9 ? fmt(format, v) : fmt("%.6g", v); };
+      std::cout << ", " << shown("%.1f", s.mean_rate_hz()) << " Hz, " << shown("%.2f", s.duration())
+                << " s (t = " << shown("%.3f", s.start_time()) << " .. " << shown("%.3f", s.end_time()) << " s)";
     }
     std::cout << "\n";
     std::size_t width = 4;
