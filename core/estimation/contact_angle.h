@@ -59,9 +59,9 @@ struct ContactAngleOptions {
   // states (docs/validation/contact-angle.md, "Outliers, gaps, divergence").
   ImuScreenOptions imu_screen;
   HealthOptions health;
-  double max_speed = 10.0;      // m/s, |body velocity| per axis
-  double max_angle = M_PI / 2;  // rad: |pitch|, |roll|, |contact angle|, |side-slip angle|
-  double max_slip = 10.0;       // |slip state|
+  double max_speed = 10.0;               // m/s, |body velocity| per axis
+  double max_angle = M_PI / 2;           // rad: |pitch|, |roll|, |contact angle|, |side-slip angle|
+  double max_slip = 10.0;                // |slip state|
   std::function<void(double)> progress;  // fraction done
 };
 

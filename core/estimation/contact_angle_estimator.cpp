@@ -211,6 +211,19 @@ void ContactAngleEstimator::state_bounds() {
   state_names_.resize(static_cast<std::size_t>(nx));
 }
 
+// The process noise of the step to sample i: the IMU's n_f and n_w (Eq.
+// 4.13-4.14, seed 000) grow by a bridged input's error (ScreenedImu).
+const Eigen::VectorXd& ContactAngleEstimator::process_noise(std::size_t i) {
+  if (imu_screened_.bridged[i] == 0) return qdiag_;
+  const int nx = layout_.nx();
+  q_bridged_ = qdiag_;
+  for (int c = 0; c < 3; ++c) {
+    q_bridged_(nx + c) += imu_screened_.added_variance(i, 3 + c);  // specific force
+    q_bridged_(nx + 3 + c) += imu_screened_.added_variance(i, c);  // angular rate
+  }
+  return q_bridged_;
+}
+
 // Initial state: levelled attitude, forward speed from the wheels, no slip,
 // flat contact; the filters start from it.
 void ContactAngleEstimator::initial_state() {
@@ -308,14 +321,15 @@ void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const 
     fe.x = x0_;
     fe.P = p0_.asDiagonal();
   }
-  if (i > 0) fe.predict(process_, qdiag_, in, ts);
+  if (i > 0) fe.predict(process_, process_noise(i), in, ts);
   // With the reset, P is blockdiag(P11, diag) after the predict.
   if (update) {
     fe.gate = health_.gate(FastEkf<NA>::NY);
     if (fe.update(measurement_, rdiag_, in, o_.reset_cross_covariance, o_.reset_cross_covariance))
       health_.record(imu_->time()[i], fe.nis, FastEkf<NA>::NY);
   }
-  // The diagonal evaluated first: P = P.diagonal().asDiagonal() zeroes P (Eigen sets it to 0, then copies the diagonal).
+  // The diagonal evaluated first: P = P.diagonal().asDiagonal() zeroes P (Eigen sets it to 0, then copies the
+  // diagonal).
   if ((!update || fe.rejected) && o_.reset_cross_covariance)
     fe.P = Eigen::Matrix<double, FastEkf<NA>::NX, 1>(fe.P.diagonal()).asDiagonal();
   x_ = fe.x;
@@ -323,7 +337,7 @@ void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const 
 
 // The fast EKF's reference: Jacobians by ceres::Jet, dense algebra.
 void ContactAngleEstimator::generic_ekf_step(std::size_t i, const Inputs& in, double ts, bool update) {
-  if (i > 0) ekf_.predict_diagonal(process_.linearize(ekf_.x, in, ts), qdiag_);
+  if (i > 0) ekf_.predict_diagonal(process_.linearize(ekf_.x, in, ts), process_noise(i));
   if (update) {
     const auto ny = static_cast<int>(y_meas_.size());
     const UpdateResult u = ekf_.update_diagonal(measurement_.linearize(ekf_.x, in), rdiag_, y_meas_, health_.gate(ny));
@@ -360,7 +374,13 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
 // filter is reset (or stops once the resets are used up).
 void ContactAngleEstimator::check_health(std::size_t i) {
   const double t = imu_->time()[i];
-  const std::string why = health_.check(t, covariance(), x_, lower_, upper_, state_names_);
+  // P where it lives (no copy at every step).
+  const bool fast = o_.filter == FilterKind::ekf && !o_.reference_ekf;
+  const std::string why =
+      !fast ? health_.check(t, o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P, x_, lower_, upper_, state_names_)
+      : layout_.na == 0 ? health_.check(t, fast0_.P, x_, lower_, upper_, state_names_)
+      : layout_.na == 6 ? health_.check(t, fast6_.P, x_, lower_, upper_, state_names_)
+                        : health_.check(t, fast12_.P, x_, lower_, upper_, state_names_);
   if (why.empty()) return;
   if (!health_.reset(t, why)) {
     stopped_ = true;
@@ -448,7 +468,8 @@ void ContactAngleEstimator::write_streams(ContactAngleResult& result) const {
   for (int w = 0; w < nw; ++w) s.add_channel("slip_" + name(w), "1", state(6 + w));
   for (int w = 0; w < nw && na >= 6; ++w) s.add_channel("contact_angle_" + name(w), "rad", state(12 + w));
   for (int w = 0; w < nw && na >= 12; ++w) s.add_channel("side_slip_" + name(w), "rad", state(18 + w));
-  s.add_channel("valid", "bool", valid_, "0 at standstill (slip and angles undefined, held) and where the filter diverged");
+  s.add_channel("valid", "bool", valid_,
+                "0 at standstill (slip and angles undefined, held) and where the filter diverged");
   s.add_channel("bridged", "bool", std::vector<double>(imu_screened_.bridged.begin(), imu_screened_.bridged.end()),
                 "1 where the IMU sample was rejected or missing: prediction from the last usable one");
   result.estimates.add_stream(std::move(s));

@@ -46,6 +46,7 @@ class ContactAngleEstimator {
   contact::Inputs inputs_at(std::size_t i) const;
   bool at_standstill(const contact::Inputs& in) const;
   bool measurements_finite(const contact::Inputs& in) const;
+  const Eigen::VectorXd& process_noise(std::size_t i);
   void state_bounds();
   // The filter pass, one step per IMU sample; each leaves the state in x_.
   // `update` false: prediction only (standstill, a bridged IMU sample, a
@@ -84,7 +85,7 @@ class ContactAngleEstimator {
   Eigen::Vector3d g_i_ = Eigen::Vector3d::Zero();
   // Noise variances: process (ContactLayout order), measurement (generic
   // order, and the UKF's), joint angle and rate variances.
-  Eigen::VectorXd qdiag_, rdiag_;
+  Eigen::VectorXd qdiag_, rdiag_, q_bridged_;
   Eigen::MatrixXd Q_, R_ukf_;
   std::vector<double> q_var_, qd_var_;
   contact::ContactProcessModel process_;

@@ -182,7 +182,7 @@ class FastEkf {
       Wt.col(r) /= Lm(r, r);
       z(r) /= Lm(r, r);
     }
-    nis = z.squaredNorm();  // y^T S^-1 y with S = L L^T
+    nis = z.squaredNorm();  // y^T S^-1 y of Eq. 2.16's innovation (seed 000), S = L L^T; gated
     rejected = !(nis <= gate);
     if (rejected) return true;
     x.noalias() += Wt * z;

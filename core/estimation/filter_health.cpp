@@ -56,72 +56,76 @@ double chi_square_quantile(double dof, double probability) {
   return dof * c * c * c;
 }
 
-// Range and Hampel tests per sample, then the hold of the last usable
-// sample, then the gaps between usable samples.
-ScreenedImu screen_imu(const std::string& stream, const std::vector<double>& t,
-                       const std::array<const std::vector<double>*, 6>& ch, const ImuScreenOptions& o) {
-  const std::size_t n = t.size();
-  ScreenedImu s;
-  std::vector<char> usable(n, 1);
+namespace {
+
+using ImuChannels = std::array<const std::vector<double>*, 6>;
+enum Usable : char { missing = 0, usable = 1, out_of_range = 2, inconsistent = 3 };
+
+// Range test per sample, then the Hampel test per channel against the
+// usable samples around it.
+std::vector<char> flag_samples(const ImuChannels& ch, const ImuScreenOptions& o) {
+  const std::size_t n = ch[0]->size();
+  std::vector<char> flags(n, usable);
+  const auto range = [&o](std::size_t c) { return c < 3 ? o.max_angular_rate : o.max_specific_force; };
   for (std::size_t i = 0; i < n; ++i) {
-    for (int c = 0; c < 6; ++c) {
-      const double v = (*ch[static_cast<std::size_t>(c)])[i];
-      const double range = c < 3 ? o.max_angular_rate : o.max_specific_force;
+    for (std::size_t c = 0; c < 6; ++c) {
+      const double v = (*ch[c])[i];
       if (!std::isfinite(v)) {
-        usable[i] = 0;
-      } else if (std::abs(v) > range && usable[i]) {
-        usable[i] = 2;
+        flags[i] = missing;
+      } else if (std::abs(v) > range(c) && flags[i] == usable) {
+        flags[i] = out_of_range;
       }
     }
   }
   const auto h = static_cast<std::size_t>(std::max(o.half_window, 1));
   std::vector<double> w;
   w.reserve(2 * h + 1);
-  for (int c = 0; c < 6; ++c) {
-    const std::vector<double>& x = *ch[static_cast<std::size_t>(c)];
+  for (std::size_t c = 0; c < 6; ++c) {
+    const std::vector<double>& x = *ch[c];
     const double floor = c < 3 ? o.min_rate_jump : o.min_force_jump;
     for (std::size_t i = 0; i < n; ++i) {
-      if (usable[i] != 1) continue;
+      if (flags[i] != usable) continue;
       w.clear();
       for (std::size_t k = i > h ? i - h : 0; k <= std::min(n - 1, i + h); ++k) {
-        if (usable[k] != 0 && std::isfinite(x[k]) && std::abs(x[k]) <= (c < 3 ? o.max_angular_rate : o.max_specific_force))
-          w.push_back(x[k]);
+        if (flags[k] != missing && std::abs(x[k]) <= range(c)) w.push_back(x[k]);
       }
       if (w.size() < 3) continue;
       double median = 0, spread = 0;
       median_and_spread(w, median, spread);
-      if (std::abs(x[i] - median) > o.hampel_k * spread + floor) usable[i] = 3;
+      if (std::abs(x[i] - median) > o.hampel_k * spread + floor) flags[i] = inconsistent;
     }
   }
-  std::size_t first = 0;
-  while (first < n && usable[first] != 1) ++first;
-  if (first == n) throw DataError("stream '" + stream + "': no usable IMU sample (all missing or out of range)");
-  // A run of rejected or missing samples is bridged by a line from the mean
-  // of the half_window usable samples before it to that of those after it
-  // (the log is processed offline: both ends are known), each end's noise
-  // averaged; before the first or after the last usable sample, a constant.
-  s.bridged.assign(n, 0);
-  for (int c = 0; c < 6; ++c) s.values[static_cast<std::size_t>(c)] = *ch[static_cast<std::size_t>(c)];
+  return flags;
+}
+
+// A run of rejected or missing samples is bridged by a line from the mean of
+// the half_window usable samples before it to that of those after it (the
+// log is processed offline: both ends are known), each end's noise
+// averaged; before the first or after the last usable sample, a constant.
+void bridge_runs(const std::vector<double>& t, const ImuChannels& ch, const std::vector<char>& flags, std::size_t h,
+                 ScreenedImu& s) {
+  const std::size_t n = t.size();
   const auto mean_of = [&](const std::vector<std::size_t>& idx, std::size_t c) {
     double sum = 0;
     for (std::size_t k : idx) sum += (*ch[c])[k];
     return sum / static_cast<double>(idx.size());
   };
   std::vector<std::size_t> before, after;
+  std::vector<double> w;
   for (std::size_t a = 0; a < n;) {
-    if (usable[a] == 1) {
+    if (flags[a] == usable) {
       ++a;
       continue;
     }
     std::size_t b = a;
-    while (b < n && usable[b] != 1) ++b;  // [a, b) unusable
+    while (b < n && flags[b] != usable) ++b;  // [a, b) not usable; a - 1 usable when a > 0
     before.clear();
     after.clear();
     for (std::size_t k = a; k-- > 0 && before.size() < h;) {
-      if (usable[k] == 1) before.push_back(k);
+      if (flags[k] == usable) before.push_back(k);
     }
     for (std::size_t k = b; k < n && after.size() < h; ++k) {
-      if (usable[k] == 1) after.push_back(k);
+      if (flags[k] == usable) after.push_back(k);
     }
     ScreenedImu::Run run;
     run.begin = a;
@@ -134,51 +138,70 @@ ScreenedImu screen_imu(const std::string& stream, const std::vector<double>& t,
       median_and_spread(w, median, run.spread[c]);
     }
     s.runs.push_back(run);
-    const double t0 = before.empty() ? t[b] : t[a - 1], t1 = after.empty() ? t[a - 1] : t[b];
+    const double t0 = before.empty() ? t[b] : t[a - 1], t1 = after.empty() ? t0 : t[b];
     for (std::size_t c = 0; c < 6; ++c) {
       const double v0 = mean_of(before.empty() ? after : before, c), v1 = mean_of(after.empty() ? before : after, c);
       for (std::size_t i = a; i < b; ++i) {
-        const double w = t1 > t0 ? (t[i] - t0) / (t1 - t0) : 0.0;
-        s.values[c][i] = v0 + w * (v1 - v0);
+        const double f = t1 > t0 ? (t[i] - t0) / (t1 - t0) : 0.0;
+        s.values[c][i] = v0 + f * (v1 - v0);
       }
     }
     for (std::size_t i = a; i < b; ++i) {
       s.bridged[i] = 1;
-      if (usable[i] == 0) {
-        ++s.missing;
-      } else {
-        ++s.outliers;
-      }
+      ++(flags[i] == missing ? s.missing : s.outliers);
     }
     a = b;
   }
-  // Gaps: intervals between usable samples longer than gap_periods nominal periods.
+}
+
+// Intervals without a usable sample longer than gap_periods nominal (median)
+// periods; longer than max_bridged_gap: refused.
+void find_gaps(const std::string& stream, const std::vector<double>& t, const std::vector<char>& flags,
+               const ImuScreenOptions& o, ScreenedImu& s) {
+  const std::size_t n = t.size();
   std::vector<double> dt;
+  dt.reserve(n);
   for (std::size_t i = 1; i < n; ++i) dt.push_back(t[i] - t[i - 1]);
   double period = 0;
   if (!dt.empty()) {
     std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
     period = dt[dt.size() / 2];
   }
-  std::size_t prev = first;
-  for (std::size_t i = first + 1; i <= n; ++i) {
-    if (i < n && usable[i] != 1) continue;
-    const double start = t[prev], end = i < n ? t[i] : t[n - 1];
-    if (end - start > o.max_bridged_gap) {
-      throw DataError("stream '" + stream + "': a gap of " + format("%.6g s", end - start) + " without a usable sample after t = " +
-                      format("%.6g s", start) + " (more than " + format("%.6g s", o.max_bridged_gap) +
+  double last = t[0];  // the last usable sample's time (the log's start before the first)
+  for (std::size_t i = 0; i <= n; ++i) {
+    if (i < n && flags[i] != usable) continue;
+    const double end = i < n ? t[i] : t[n - 1];
+    if (end - last > o.max_bridged_gap) {
+      throw DataError("stream '" + stream + "': a gap of " + format("%.6g s", end - last) +
+                      " without a usable sample after t = " + format("%.6g s", last) + " (more than " +
+                      format("%.6g s", o.max_bridged_gap) +
                       ", the longest bridged by prediction: a broken time stamp or a dropout)");
     }
-    if (end - start > o.gap_periods * period) s.gaps.push_back({start, end});
-    prev = std::min(i, n - 1);
+    if (end - last > o.gap_periods * period) s.gaps.push_back({last, end});
+    last = end;
   }
-  if (first > 0) s.gaps.insert(s.gaps.begin(), TimeGap{t[0], t[first]});
+}
+
+}  // namespace
+
+// Range and Hampel tests, the bridges, the gaps.
+ScreenedImu screen_imu(const std::string& stream, const std::vector<double>& t, const ImuChannels& ch,
+                       const ImuScreenOptions& o) {
+  const std::vector<char> flags = flag_samples(ch, o);
+  if (std::find(flags.begin(), flags.end(), usable) == flags.end())
+    throw DataError("stream '" + stream + "': no usable IMU sample (all missing or out of range)");
+  ScreenedImu s;
+  s.bridged.assign(t.size(), 0);
+  for (std::size_t c = 0; c < 6; ++c) s.values[c] = *ch[c];
+  bridge_runs(t, ch, flags, static_cast<std::size_t>(std::max(o.half_window, 1)), s);
+  find_gaps(stream, t, flags, o, s);
   return s;
 }
 
 double ScreenedImu::added_variance(std::size_t i, int channel) const {
   if (i >= bridged.size() || bridged[i] == 0) return 0.0;
-  const auto after = std::upper_bound(runs.begin(), runs.end(), i, [](std::size_t k, const Run& r) { return k < r.begin; });
+  const auto after =
+      std::upper_bound(runs.begin(), runs.end(), i, [](std::size_t k, const Run& r) { return k < r.begin; });
   if (after == runs.begin()) return 0.0;
   const Run& r = *std::prev(after);
   const double k = static_cast<double>(i - r.begin + 1), spread = r.spread[static_cast<std::size_t>(channel)];
@@ -209,7 +232,8 @@ std::string HealthReport::message() const {
   const auto count = [](std::size_t k, const char* one, const char* many) {
     return std::to_string(k) + " " + (k == 1 ? one : many);
   };
-  if (outliers_rejected > 0) parts.push_back(count(outliers_rejected, "IMU sample", "IMU samples") + " rejected as outliers");
+  if (outliers_rejected > 0)
+    parts.push_back(count(outliers_rejected, "IMU sample", "IMU samples") + " rejected as outliers");
   if (missing_samples > 0) parts.push_back(count(missing_samples, "IMU sample", "IMU samples") + " missing");
   if (measurements_missing > 0)
     parts.push_back(count(measurements_missing, "step", "steps") + " without a measurement sample (predicted only)");
@@ -220,8 +244,9 @@ std::string HealthReport::message() const {
       total += g.end - g.start;
     }
     parts.push_back(count(gaps.size(), "gap", "gaps") +
-                    (gaps.size() == 1 ? " of " + format("%.2f s", total)
-                                      : " (" + format("%.2f s", total) + " in all, longest " + format("%.2f s", longest) + ")") +
+                    (gaps.size() == 1
+                         ? " of " + format("%.2f s", total)
+                         : " (" + format("%.2f s", total) + " in all, longest " + format("%.2f s", longest) + ")") +
                     " bridged by prediction");
   }
   if (updates_rejected > 0)
@@ -233,7 +258,7 @@ std::string HealthReport::message() const {
     d += ", " + format("%.1f", 100.0 * invalid_fraction) + " % of samples marked invalid";
     parts.push_back(d);
   }
-  if (parts.empty()) return "healthy: no sample rejected, no gap, no divergence";
+  if (parts.empty()) return "no sample rejected, no gap, no divergence";
   std::string m;
   for (const std::string& p : parts) m += (m.empty() ? "" : "; ") + p;
   return m;
@@ -290,7 +315,11 @@ std::string FilterHealthMonitor::check(double t, const Eigen::Ref<const Eigen::M
                                        const std::vector<std::string>& names) {
   if (!x.allFinite()) return "state not finite";
   if (!P.allFinite()) return "covariance not finite";
-  if (Eigen::LLT<Eigen::MatrixXd>(P).info() != Eigen::Success) return "covariance not positive definite";
+  if (std::isnan(last_factorisation_) || !(t - last_factorisation_ < o_.factorisation_interval) ||
+      t < last_factorisation_) {
+    last_factorisation_ = t;
+    if (Eigen::LLT<Eigen::MatrixXd>(P).info() != Eigen::Success) return "covariance not positive definite";
+  }
   for (Eigen::Index k = 0; k < x.size(); ++k) {
     if (x(k) < lower(k) || x(k) > upper(k)) {
       const auto u = static_cast<std::size_t>(k);

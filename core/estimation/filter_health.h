@@ -78,7 +78,8 @@ struct ScreenedImu {
 // when a gap is longer than max_bridged_gap ("a gap of ...") or no sample is
 // usable.
 ScreenedImu screen_imu(const std::string& stream, const std::vector<double>& time,
-                       const std::array<const std::vector<double>*, 6>& rate_then_force, const ImuScreenOptions& options);
+                       const std::array<const std::vector<double>*, 6>& rate_then_force,
+                       const ImuScreenOptions& options);
 
 struct HealthOptions {
   // NIS gate: an update whose NIS exceeds the chi-square quantile of this
@@ -93,6 +94,9 @@ struct HealthOptions {
   int max_resets = 5;
   // NIS moving average over this long is compared with its band, s.
   double nis_window = 2.0;
+  // The positive-definiteness test (a Cholesky factorisation) at most this
+  // often, s; finiteness and bounds are checked at every step.
+  double factorisation_interval = 0.1;
 };
 
 enum class HealthStatus { ok, degraded, diverged };
@@ -100,17 +104,17 @@ const char* to_string(HealthStatus status);
 
 // What a run's filters rejected, bridged and reset.
 struct HealthReport {
-  std::size_t outliers_rejected = 0;  // IMU samples outside the range or the Hampel test
-  std::size_t missing_samples = 0;    // non-finite IMU samples
+  std::size_t outliers_rejected = 0;     // IMU samples outside the range or the Hampel test
+  std::size_t missing_samples = 0;       // non-finite IMU samples
   std::size_t measurements_missing = 0;  // steps without a finite measurement sample: predicted only
-  std::size_t updates_rejected = 0;   // measurement updates gated by NIS
-  std::size_t updates = 0;            // measurement updates offered to the gate
-  std::vector<TimeGap> gaps;          // bridged by prediction
+  std::size_t updates_rejected = 0;      // measurement updates gated by NIS
+  std::size_t updates = 0;               // measurement updates offered to the gate
+  std::vector<TimeGap> gaps;             // bridged by prediction
   std::size_t resets = 0;
-  bool stopped = false;               // resets exhausted: the rest is invalid
-  double invalid_fraction = 0;        // samples marked invalid for divergence
-  double divergence_time = NAN;       // first, s
-  std::string divergence_reason;      // first
+  bool stopped = false;                 // resets exhausted: the rest is invalid
+  double invalid_fraction = 0;          // samples marked invalid for divergence
+  double divergence_time = NAN;         // first, s
+  std::string divergence_reason;        // first
   double nis_out_of_band_fraction = 0;  // share of NIS windows above their band
   // ok: nothing rejected, bridged or reset; degraded: inputs or updates
   // rejected or gaps bridged; diverged: a filter was reset or stopped.
@@ -154,6 +158,7 @@ class FilterHealthMonitor {
   std::vector<double> gates_;    // by dof
   double rejected_since_ = NAN;  // first of the current run of gated updates
   double last_reset_ = NAN;
+  double last_factorisation_ = NAN;
   // NIS moving average: sum of NIS / dof over the current window.
   double window_start_ = NAN, window_sum_ = 0, window_dof_ = 0;
   std::size_t windows_ = 0, windows_out_ = 0;

@@ -71,10 +71,10 @@ struct InsSlipOptions {
   // below (docs/validation/ins-slip.md, "Outliers, gaps, divergence").
   ImuScreenOptions imu_screen;
   HealthOptions health;
-  double max_speed = 10.0;       // m/s, each velocity component
-  double max_tilt = 1.4;         // rad, |roll| and |pitch|
-  double max_accel_bias = 1.0;   // m/s^2
-  double max_gyro_bias = 0.1;    // rad/s
+  double max_speed = 10.0;               // m/s, each velocity component
+  double max_tilt = 1.4;                 // rad, |roll| and |pitch|
+  double max_accel_bias = 1.0;           // m/s^2
+  double max_gyro_bias = 0.1;            // rad/s
   std::function<void(double)> progress;  // fraction done, called now and then
 };
 

@@ -54,11 +54,11 @@ void InsSlipEstimator::read_samples() {
   log::require_no_gap(*imu_, kMaxImuGap);
   log::require_overlap(*imu_, *in_.wheels, kMinOverlap);
   // The IMU drives the mechanisation: outliers and missing samples never enter it.
-  imu_screened_ = screen_imu(imu_name, imu_->time(),
-                             {&values(*imu_, "angular_rate_x"), &values(*imu_, "angular_rate_y"),
-                              &values(*imu_, "angular_rate_z"), &values(*imu_, "specific_force_x"),
-                              &values(*imu_, "specific_force_y"), &values(*imu_, "specific_force_z")},
-                             o_.imu_screen);
+  imu_screened_ = screen_imu(
+      imu_name, imu_->time(),
+      {&values(*imu_, "angular_rate_x"), &values(*imu_, "angular_rate_y"), &values(*imu_, "angular_rate_z"),
+       &values(*imu_, "specific_force_x"), &values(*imu_, "specific_force_y"), &values(*imu_, "specific_force_z")},
+      o_.imu_screen);
   in_.screened = &imu_screened_;
   in_.wx = &imu_screened_.values[0];
   in_.wy = &imu_screened_.values[1];

@@ -135,7 +135,7 @@ void InsFilterPass::predict(std::size_t i) {
   const InsErrorMatrix Phi = InsErrorProcess::transition(F, dt);
   InsErrorMatrix Q = process_.noise_covariance(dt);
   if (in_.screened != nullptr && in_.screened->bridged[i - 1] != 0) {
-    // A bridged input: its error, the largest axis's, on attitude and velocity.
+    // Eq. 14's Q (seed 002) plus a bridged input's error, the largest axis's, on attitude and velocity.
     double rate = 0, force = 0;
     for (int c = 0; c < 3; ++c) {
       rate = std::max(rate, in_.screened->added_variance(i - 1, c));
@@ -204,9 +204,17 @@ bool InsFilterPass::check_health(std::size_t i) {
   bound << o_.max_tilt, o_.max_tilt, Eigen::Vector3d::Constant(o_.max_speed),
       Eigen::Vector3d::Constant(o_.max_accel_bias), Eigen::Vector3d::Constant(o_.max_gyro_bias);
   if (!std::isfinite(s_.latitude + s_.longitude + s_.height)) x(0) = NAN;
-  static const std::vector<std::string> names = {
-      "roll", "pitch", "north velocity", "east velocity", "down velocity", "accelerometer bias x",
-      "accelerometer bias y", "accelerometer bias z", "gyro bias x", "gyro bias y", "gyro bias z"};
+  static const std::vector<std::string> names = {"roll",
+                                                 "pitch",
+                                                 "north velocity",
+                                                 "east velocity",
+                                                 "down velocity",
+                                                 "accelerometer bias x",
+                                                 "accelerometer bias y",
+                                                 "accelerometer bias z",
+                                                 "gyro bias x",
+                                                 "gyro bias y",
+                                                 "gyro bias z"};
   const std::string why = health_.check(t, P_, x, -bound, bound, names);
   if (why.empty() || !health_.reset(t, why)) return false;
   reset_state(i);

@@ -26,8 +26,8 @@ struct InsTrack {
   void record(std::size_t i, const InsState& s, const LocalFrame& frame);
   std::vector<double> roll, pitch, yaw, east, north, up, vn, ve, vd, vx, vy, vz;
   std::vector<std::vector<double>> bias;  // accel x y z, gyro x y z
-  std::vector<double> valid;               // 0 where the filter had diverged (recovering or stopped)
-  HealthReport health;                     // gated updates and divergences of the pass
+  std::vector<double> valid;              // 0 where the filter had diverged (recovering or stopped)
+  HealthReport health;                    // gated updates and divergences of the pass
 };
 
 // What every pass reads: IMU samples (body forward-right-down), wheel rates,

@@ -289,7 +289,7 @@ void UnscentedKalmanFilter::covariances(const Eigen::MatrixXd& Q, const Eigen::M
 bool UnscentedKalmanFilter::correct(const Eigen::VectorXd& y) {
   const Eigen::LLT<Eigen::MatrixXd> syy(Pyy_);
   if (syy.info() != Eigen::Success) return false;
-  const Eigen::VectorXd z = syy.matrixL().solve(y - ym_);
+  const Eigen::VectorXd z = syy.matrixL().solve(y - ym_);  // NIS of Eq. 2.20's innovation (seed 000): |z|^2, gated
   nis = z.squaredNorm();
   rejected = !(nis <= gate);
   if (rejected) return true;  // x and P as predicted

@@ -285,9 +285,9 @@ TEST_P(InsRobustness, AStuckAccelerometerOverSecondsIsReportedAsDivergenceNotSil
 
 INSTANTIATE_TEST_SUITE_P(
     SimulatedAndPathfinder, InsRobustness,
-    ::testing::Values(
-        InsCase{"skid_steer_seed6", [] { return simulation::simulate_skid_steer(simulation::default_slip_scenario(6)); }},
-        InsCase{"pathfinder_test17run", pathfinder_log}),
+    ::testing::Values(InsCase{"skid_steer_seed6",
+                              [] { return simulation::simulate_skid_steer(simulation::default_slip_scenario(6)); }},
+                      InsCase{"pathfinder_test17run", pathfinder_log}),
     [](const ::testing::TestParamInfo<InsCase>& info) { return std::string(info.param.name); });
 
 // --- the pieces ------------------------------------------------------------
@@ -313,12 +313,20 @@ TEST(FilterHealth, TheMonitorSeesACovarianceThatIsNotPositiveDefinite) {
   const Eigen::VectorXd x = Eigen::VectorXd::Zero(2), none = Eigen::VectorXd::Constant(2, NAN);
   Eigen::MatrixXd P = Eigen::MatrixXd::Identity(2, 2);
   EXPECT_EQ(m.check(0.0, P, x, none, none), "");
-  P(0, 1) = P(1, 0) = 2.0;
-  EXPECT_EQ(m.check(0.0, P, x, none, none), "covariance not positive definite");
+  P(0, 1) = P(1, 0) = 2.0;  // finite, symmetric, eigenvalues 3 and -1
+  EXPECT_EQ(m.check(1.0, P, x, none, none), "covariance not positive definite");
   P(0, 1) = P(1, 0) = NAN;
-  EXPECT_EQ(m.check(0.0, P, x, none, none), "covariance not finite");
+  EXPECT_EQ(m.check(2.0, P, x, none, none), "covariance not finite");
   const Eigen::VectorXd lower = Eigen::VectorXd::Constant(2, -1.0), upper = Eigen::VectorXd::Constant(2, 1.0);
-  EXPECT_NE(m.check(0.0, Eigen::MatrixXd::Identity(2, 2), Eigen::VectorXd::Constant(2, 2.0), lower, upper), "");
+  EXPECT_EQ(m.check(3.0, Eigen::MatrixXd::Identity(2, 2), Eigen::VectorXd::Constant(2, 2.0), lower, upper, {"a", "b"}),
+            "a outside its physical bounds (2)");
+  // Updates gated for longer than max_rejected_time (1 s) are a divergence too.
+  for (double t = 4.0; t < 5.5; t += 0.1) m.record(t, 1e6, 3);
+  EXPECT_NE(m.check(5.5, Eigen::MatrixXd::Identity(2, 2), x, none, none).find("rejected by the NIS gate"),
+            std::string::npos);
+  EXPECT_TRUE(m.reset(5.5, "test"));
+  EXPECT_TRUE(m.invalid_at(6.0));
+  EXPECT_FALSE(m.invalid_at(6.6));
 }
 
 }  // namespace
