@@ -86,10 +86,16 @@ std::vector<char> flag_samples(const ImuChannels& ch, const ImuScreenOptions& o)
     for (std::size_t i = 0; i < n; ++i) {
       if (flags[i] != usable) continue;
       w.clear();
+      double lo = x[i], hi = x[i];
       for (std::size_t k = i > h ? i - h : 0; k <= std::min(n - 1, i + h); ++k) {
-        if (flags[k] != missing && std::abs(x[k]) <= range(c)) w.push_back(x[k]);
+        if (flags[k] != missing && std::abs(x[k]) <= range(c)) {
+          w.push_back(x[k]);
+          lo = std::min(lo, x[k]);
+          hi = std::max(hi, x[k]);
+        }
       }
-      if (w.size() < 3) continue;
+      // The median lies within [lo, hi]: a window narrower than the floor cannot flag x[i].
+      if (w.size() < 3 || hi - lo <= floor) continue;
       double median = 0, spread = 0;
       median_and_spread(w, median, spread);
       if (std::abs(x[i] - median) > o.hampel_k * spread + floor) flags[i] = inconsistent;
@@ -314,10 +320,11 @@ std::string FilterHealthMonitor::check(double t, const Eigen::Ref<const Eigen::M
                                        const Eigen::Ref<const Eigen::VectorXd>& upper,
                                        const std::vector<std::string>& names) {
   if (!x.allFinite()) return "state not finite";
-  if (!P.allFinite()) return "covariance not finite";
+  if (!P.diagonal().allFinite()) return "covariance not finite";  // the whole of P with the factorisation
   if (std::isnan(last_factorisation_) || !(t - last_factorisation_ < o_.factorisation_interval) ||
       t < last_factorisation_) {
     last_factorisation_ = t;
+    if (!P.allFinite()) return "covariance not finite";
     if (Eigen::LLT<Eigen::MatrixXd>(P).info() != Eigen::Success) return "covariance not positive definite";
   }
   for (Eigen::Index k = 0; k < x.size(); ++k) {

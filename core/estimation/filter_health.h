@@ -94,8 +94,9 @@ struct HealthOptions {
   int max_resets = 5;
   // NIS moving average over this long is compared with its band, s.
   double nis_window = 2.0;
-  // The positive-definiteness test (a Cholesky factorisation) at most this
-  // often, s; finiteness and bounds are checked at every step.
+  // The whole covariance's finiteness and positive definiteness (a Cholesky
+  // factorisation) at most this often, s; the state's finiteness and bounds
+  // and P's diagonal are checked at every step.
   double factorisation_interval = 0.1;
 };
 
