@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "app/analyses/health.h"
 #include "app/analysis.h"
 #include "app/command_support.h"
 #include "app/commands.h"
@@ -166,7 +167,8 @@ json ContactAngleAnalysis::document(const std::string& file, const kinematics::R
             {"standstill_samples", r.standstill_samples},
             {"max_cross_correlation", r.max_cross_correlation},
             {"wheels", names},
-            {"has_truth", r.has_truth}};
+            {"has_truth", r.has_truth},
+            {"health", health_json(r.health)}};
   if (r.has_truth) {
     json rms = {{"velocity_mps", r.rms.velocity}, {"slip", r.rms.slip}, {"samples", r.rms.samples}};
     if (!r.rms.contact_angle.empty()) rms["contact_angle_deg"] = degrees(r.rms.contact_angle);
@@ -184,6 +186,7 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
                j.at("seconds").get<double>(), j.at("wall_seconds").get<double>());
   const auto standstill = j.at("standstill_samples").get<std::size_t>();
   if (standstill > 0) std::fprintf(out, "standstill: %zu samples held and left out\n", standstill);
+  print_health(j, out);
   if (j.at("has_truth").get<bool>()) {
     const json& rms = j.at("rms");
     std::fprintf(out, "\nRMS errors over %zu moving samples (layout of seed 000 Tables 6.2-6.5):\n",
@@ -209,7 +212,10 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
 }
 
 void ContactAngleAnalysis::report(const json& j, ReportSection& s) const {
-  if (!j.at("has_truth").get<bool>()) return;
+  if (!j.at("has_truth").get<bool>()) {
+    report_health(j, s);
+    return;
+  }
   const json& rms = j.at("rms");
   std::string model = j.at("model").get<std::string>();
   for (char& c : model) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -232,6 +238,7 @@ void ContactAngleAnalysis::report(const json& j, ReportSection& s) const {
   s.html << "</table>\n<p>Velocity RMS x / y / z: " << ReportSection::number(v.at(0), "%.4f") << " / "
          << ReportSection::number(v.at(1), "%.4f") << " / " << ReportSection::number(v.at(2), "%.4f") << " m/s over "
          << rms.at("samples").get<std::size_t>() << " moving samples.</p>\n";
+  report_health(j, s);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 
+#include "app/analyses/health.h"
 #include "app/analysis.h"
 #include "app/command_support.h"
 #include "core/estimation/ins_slip.h"
@@ -135,7 +136,8 @@ class InsSlipAnalysis : public Analysis {
                 {"smoother", o.smooth}}},
               {"duration_s", m.duration},
               {"standstill_fraction", m.standstill_fraction},
-              {"has_reference", m.has_reference}};
+              {"has_reference", m.has_reference},
+              {"health", health_json(r.health)}};
     if (m.has_reference) {
       j["distance_m"] = m.distance;
       j["ins"] = {
@@ -169,6 +171,7 @@ void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
                on_off(u.at("zaru")), on_off(u.at("nhc")),
                aiding ? "on (slip judged by a second pass without it)" : "off",
                u.at("smoother").get<bool>() ? "RTS-smoothed" : "forward filter only");
+  print_health(j, out);
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");
@@ -198,6 +201,7 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
   auto& html = s.html;
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   html << "<h2>" << title() << "</h2>\n";
+  report_health(j, s);
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");

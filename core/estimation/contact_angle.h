@@ -10,10 +10,12 @@
 // (contact_angle_estimator.h), its models contact_angle_model.h; the errors
 // against truth come from core/analysis/estimate_errors.h.
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "core/estimation/filter_health.h"
 #include "core/kinematics/rover_model.h"
 #include "core/log/log.h"
 
@@ -52,6 +54,14 @@ struct ContactAngleOptions {
   // a least-squares line through the joint angles over this centred window
   // (s); 0 uses the measured rates alone as the seed does.
   double joint_rate_window = 0.0;
+  // Robustness (issue 17): IMU screening and gap bridging, the NIS gate of
+  // the wheel update and the filter's health checks; physical bounds of the
+  // states (docs/validation/contact-angle.md, "Outliers, gaps, divergence").
+  ImuScreenOptions imu_screen;
+  HealthOptions health;
+  double max_speed = 10.0;               // m/s, |body velocity| per axis
+  double max_angle = M_PI / 2;           // rad: |pitch|, |roll|, |contact angle|, |side-slip angle|
+  double max_slip = 10.0;                // |slip state|
   std::function<void(double)> progress;  // fraction done
 };
 
@@ -68,6 +78,7 @@ struct ContactAngleResult {
   double seconds = 0;  // of log processed
   std::size_t standstill_samples = 0;
   double max_cross_correlation = 0;  // largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end
+  HealthReport health;               // outliers, gaps, gated updates, divergences
 };
 
 // Needs streams imu (angular_rate_*, specific_force_* in the rover's body

@@ -1,6 +1,7 @@
 #include "core/estimation/contact_angle_estimator.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -14,7 +15,7 @@ using contact::Inputs;
 
 ContactAngleEstimator::ContactAngleEstimator(const log::Log& log, const kinematics::RoverModel& rover,
                                              const ContactAngleOptions& options)
-    : log_(log), m_(rover), o_(options) {
+    : log_(log), m_(rover), o_(options), health_(options.health) {
   if (m_.wheels.size() != 6) throw DataError("rover " + m_.name + ": the estimator expects six wheels");
   if (m_.joints.size() > 16) throw DataError("rover " + m_.name + ": more than 16 joints");
   read_channels();
@@ -31,6 +32,7 @@ ContactAngleEstimator::ContactAngleEstimator(const log::Log& log, const kinemati
   process_ = contact::ContactProcessModel(layout_, g_i_, o_.slip_damping, angle_keep * o_.angle_damping);
   measurement_ = contact::WheelMeasurementModel(m_, frame_, layout_);
   R_ukf_ = measurement_.ukf_noise_order(rdiag_).asDiagonal();
+  state_bounds();
   initial_state();
 }
 
@@ -51,7 +53,11 @@ void ContactAngleEstimator::read_channels() {
   log::require_overlap(*imu_, *wheels_, kMinOverlap);
   const char* imu_names[6] = {"angular_rate_x",   "angular_rate_y",   "angular_rate_z",
                               "specific_force_x", "specific_force_y", "specific_force_z"};
-  for (const char* c : imu_names) imu_ch_.push_back(&imu_->channel(c).values);
+  std::array<const std::vector<double>*, 6> raw{};
+  for (int c = 0; c < 6; ++c) raw[static_cast<std::size_t>(c)] = &imu_->channel(imu_names[c]).values;
+  // The IMU drives the prediction: outliers and missing samples never enter it.
+  imu_screened_ = screen_imu("imu", imu_->time(), raw, o_.imu_screen);
+  for (const auto& v : imu_screened_.values) imu_ch_.push_back(&v);
   for (const auto& j : m_.joints) {
     q_ch_.push_back(&joints_->channel(j).values);
     qd_ch_.push_back(&joints_->channel(j + "_rate").values);
@@ -59,17 +65,22 @@ void ContactAngleEstimator::read_channels() {
   for (const auto& w : m_.wheels) w_ch_.push_back(&wheels_->channel("rate_" + w.name).values);
 }
 
-// Homing: attitude by levelling and the gravity vector g^i from the first 0.5 s.
-void ContactAngleEstimator::level() {
+// Mean specific force over the 0.5 s from sample `from`.
+Eigen::Vector3d ContactAngleEstimator::mean_force(std::size_t from) const {
   const auto& t = imu_->time();
   const std::size_t n = t.size();
   Eigen::Vector3d f0 = Eigen::Vector3d::Zero();
-  std::size_t h = 0;
-  while (h < n && t[h] - t[0] < 0.5) {
+  std::size_t h = from;
+  while (h < n && t[h] - t[from] < 0.5) {
     f0 += Eigen::Vector3d((*imu_ch_[3])[h], (*imu_ch_[4])[h], (*imu_ch_[5])[h]);
     ++h;
   }
-  f0 /= static_cast<double>(std::max<std::size_t>(h, 1));
+  return f0 / static_cast<double>(std::max<std::size_t>(h - from, 1));
+}
+
+// Homing: attitude by levelling and the gravity vector g^i from the first 0.5 s.
+void ContactAngleEstimator::level() {
+  const Eigen::Vector3d f0 = mean_force(0);
   pitch0_ = std::atan2(-f0.x(), std::hypot(f0.y(), f0.z()));  // z up: f = R^T (0, 0, g)
   roll0_ = std::atan2(f0.y(), f0.z());
   g_i_ = Eigen::Vector3d(0.0, 0.0, f0.norm());
@@ -171,14 +182,46 @@ Inputs ContactAngleEstimator::inputs_at(std::size_t i) const {
     const auto ju = static_cast<std::size_t>(j);
     in.q[j] = (*q_ch_[ju])[kj];
     in.qdot[j] = fused_rate_.empty() ? (*qd_ch_[ju])[kj] : fused_rate_[ju][kj];
-    if (!std::isfinite(in.q[j]))
-      throw DataError("stream 'joints': missing sample at t = " + std::to_string(t[i]) + " s");
   }
   for (int w = 0; w < nw; ++w) in.wheel_rate[w] = (*w_ch_[static_cast<std::size_t>(w)])[kw];
-  if (!std::isfinite(in.gyro.sum() + in.accel.sum())) {
-    throw DataError("stream 'imu': missing sample at t = " + std::to_string(t[i]) + " s");
-  }
   return in;
+}
+
+// A missing joint or wheel sample: that step is a prediction only.
+bool ContactAngleEstimator::measurements_finite(const Inputs& in) const {
+  double sum = 0;
+  for (int j = 0; j < layout_.nq; ++j) sum += in.q[j] + in.qdot[j];
+  for (double w : in.wheel_rate) sum += w;
+  return std::isfinite(sum);
+}
+
+// Physical bounds: attitude (pitch, roll), body velocity, slips, angles.
+void ContactAngleEstimator::state_bounds() {
+  const int nx = layout_.nx();
+  upper_ = Eigen::VectorXd::Constant(nx, NAN);
+  upper_.segment(1, 2).setConstant(o_.max_angle);
+  upper_.segment(3, 3).setConstant(o_.max_speed);
+  upper_.segment(6, 6).setConstant(o_.max_slip);
+  if (layout_.na > 0) upper_.segment(12, layout_.na).setConstant(o_.max_angle);
+  lower_ = -upper_;
+  state_names_ = {"yaw", "pitch", "roll", "velocity x", "velocity y", "velocity z"};
+  for (const char* kind : {"slip ", "contact angle ", "side-slip angle "}) {
+    for (const auto& w : m_.wheels) state_names_.push_back(kind + w.name);
+  }
+  state_names_.resize(static_cast<std::size_t>(nx));
+}
+
+// The process noise of the step to sample i: the IMU's n_f and n_w (Eq.
+// 4.13-4.14, seed 000) grow by a bridged input's error (ScreenedImu).
+const Eigen::VectorXd& ContactAngleEstimator::process_noise(std::size_t i) {
+  if (imu_screened_.bridged[i] == 0) return qdiag_;
+  const int nx = layout_.nx();
+  q_bridged_ = qdiag_;
+  for (int c = 0; c < 3; ++c) {
+    q_bridged_(nx + c) += imu_screened_.added_variance(i, 3 + c);  // specific force
+    q_bridged_(nx + 3 + c) += imu_screened_.added_variance(i, c);  // angular rate
+  }
+  return q_bridged_;
 }
 
 // Initial state: levelled attitude, forward speed from the wheels, no slip,
@@ -226,19 +269,33 @@ ContactAngleResult ContactAngleEstimator::run() {
   const int nx = layout_.nx();
   out_.assign(static_cast<std::size_t>(nx), std::vector<double>(n, NAN));
   valid_.assign(n, 0.0);
+  diverged_.assign(n, 0.0);
   ContactAngleResult result;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n && !stopped_; ++i) {
     const Inputs in = inputs_at(i);
     const double ts = i == 0 ? 0.0 : t[i] - t[i - 1];
     const bool still = at_standstill(in);
+    const bool measured = measurements_finite(in);
+    measurements_missing_ += !measured;
     for (int w = 0; w < layout_.nw; ++w) y_meas_(w) = in.wheel_rate[static_cast<std::size_t>(w)];
-    filter_step(i, in, ts, still);
-    if (!x_.allFinite()) throw DataError("the filter diverged at t = " + std::to_string(t[i]) + " s");
+    filter_step(i, in, ts, !still && measured && imu_screened_.bridged[i] == 0);
+    check_health(i);
     for (int k = 0; k < nx; ++k) out_[static_cast<std::size_t>(k)][i] = x_(k);
-    valid_[i] = still ? 0.0 : 1.0;
+    diverged_[i] = health_.invalid_at(t[i]) ? 1.0 : 0.0;
+    valid_[i] = still || diverged_[i] != 0.0 ? 0.0 : 1.0;
     result.standstill_samples += still;
     if (o_.progress && i % 2000 == 0) o_.progress(static_cast<double>(i) / static_cast<double>(n));
   }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (stopped_ && valid_[i] == 0.0 && std::isnan(out_[0][i])) diverged_[i] = 1.0;
+  }
+  result.health = health_.report();
+  result.health.outliers_rejected = imu_screened_.outliers;
+  result.health.missing_samples = imu_screened_.missing;
+  result.health.measurements_missing = measurements_missing_;
+  result.health.gaps = imu_screened_.gaps;
+  result.health.invalid_fraction =
+      static_cast<double>(std::count(diverged_.begin(), diverged_.end(), 1.0)) / static_cast<double>(n);
   result.max_cross_correlation = max_cross_correlation();
   write_streams(result);
   result.seconds = t.back() - t.front();
@@ -246,40 +303,51 @@ ContactAngleResult ContactAngleEstimator::run() {
   return result;
 }
 
-void ContactAngleEstimator::filter_step(std::size_t i, const Inputs& in, double ts, bool still) {
+void ContactAngleEstimator::filter_step(std::size_t i, const Inputs& in, double ts, bool update) {
   if (o_.filter == FilterKind::ekf && !o_.reference_ekf) {
-    if (layout_.na == 0) fast_ekf_step(fast0_, i, in, ts, still);
-    if (layout_.na == 6) fast_ekf_step(fast6_, i, in, ts, still);
-    if (layout_.na == 12) fast_ekf_step(fast12_, i, in, ts, still);
+    if (layout_.na == 0) fast_ekf_step(fast0_, i, in, ts, update);
+    if (layout_.na == 6) fast_ekf_step(fast6_, i, in, ts, update);
+    if (layout_.na == 12) fast_ekf_step(fast12_, i, in, ts, update);
   } else if (o_.filter == FilterKind::ekf) {
-    generic_ekf_step(i, in, ts, still);
+    generic_ekf_step(i, in, ts, update);
   } else {
-    ukf_step(i, in, ts, still);
+    ukf_step(i, in, ts, update);
   }
 }
 
 template <int NA>
-void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const Inputs& in, double ts, bool still) {
+void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const Inputs& in, double ts, bool update) {
   if (i == 0) {
     fe.x = x0_;
     fe.P = p0_.asDiagonal();
   }
-  if (i > 0) fe.predict(process_, qdiag_, in, ts);
+  if (i > 0) fe.predict(process_, process_noise(i), in, ts);
   // With the reset, P is blockdiag(P11, diag) after the predict.
-  if (!still) fe.update(measurement_, rdiag_, in, o_.reset_cross_covariance, o_.reset_cross_covariance);
-  if (still && o_.reset_cross_covariance) fe.P = fe.P.diagonal().asDiagonal();
+  if (update) {
+    fe.gate = health_.gate(FastEkf<NA>::NY);
+    if (fe.update(measurement_, rdiag_, in, o_.reset_cross_covariance, o_.reset_cross_covariance))
+      health_.record(imu_->time()[i], fe.nis, FastEkf<NA>::NY);
+  }
+  // The diagonal evaluated first: P = P.diagonal().asDiagonal() zeroes P (Eigen sets it to 0, then copies the
+  // diagonal).
+  if ((!update || fe.rejected) && o_.reset_cross_covariance)
+    fe.P = Eigen::Matrix<double, FastEkf<NA>::NX, 1>(fe.P.diagonal()).asDiagonal();
   x_ = fe.x;
 }
 
 // The fast EKF's reference: Jacobians by ceres::Jet, dense algebra.
-void ContactAngleEstimator::generic_ekf_step(std::size_t i, const Inputs& in, double ts, bool still) {
-  if (i > 0) ekf_.predict_diagonal(process_.linearize(ekf_.x, in, ts), qdiag_);
-  if (!still) ekf_.update_diagonal(measurement_.linearize(ekf_.x, in), rdiag_, y_meas_);
+void ContactAngleEstimator::generic_ekf_step(std::size_t i, const Inputs& in, double ts, bool update) {
+  if (i > 0) ekf_.predict_diagonal(process_.linearize(ekf_.x, in, ts), process_noise(i));
+  if (update) {
+    const auto ny = static_cast<int>(y_meas_.size());
+    const UpdateResult u = ekf_.update_diagonal(measurement_.linearize(ekf_.x, in), rdiag_, y_meas_, health_.gate(ny));
+    if (u.ok || u.rejected) health_.record(imu_->time()[i], u.nis, ny);
+  }
   if (o_.reset_cross_covariance) ekf_.reset_cross_covariance();
   x_ = ekf_.x;
 }
 
-void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts, bool still) {
+void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts, bool update) {
   // The filter's f and h: this step's inputs bound to the models.
   const auto f = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_x) {
     process_.evaluate(xs, nz, in, ts, out_x);
@@ -288,8 +356,10 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
     measurement_.evaluate(xs, nz, out_y);
   };
   measurement_.set_inputs(in);
-  if (i > 0 && !still) {
-    ukf_.step(f, Q_, h, R_ukf_, y_meas_);
+  if (i > 0 && update) {
+    const auto ny = static_cast<int>(y_meas_.size());
+    ukf_.gate = health_.gate(ny);
+    if (ukf_.step(f, Q_, h, R_ukf_, y_meas_)) health_.record(imu_->time()[i], ukf_.nis, ny);
   } else if (i > 0) {  // predict only: the state's mean through f with zero noise
     Eigen::VectorXd next;
     f(ukf_.x, Eigen::VectorXd::Zero(layout_.np()), next);
@@ -299,7 +369,50 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
   x_ = ukf_.x;
 }
 
-Eigen::MatrixXd ContactAngleEstimator::final_covariance() const {
+// After each step: P finite and positive definite, the state finite and
+// within its bounds, the updates not gated away for long. On divergence the
+// filter is reset (or stops once the resets are used up).
+void ContactAngleEstimator::check_health(std::size_t i) {
+  const double t = imu_->time()[i];
+  // P where it lives (no copy at every step).
+  const bool fast = o_.filter == FilterKind::ekf && !o_.reference_ekf;
+  const std::string why =
+      !fast ? health_.check(t, o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P, x_, lower_, upper_, state_names_)
+      : layout_.na == 0 ? health_.check(t, fast0_.P, x_, lower_, upper_, state_names_)
+      : layout_.na == 6 ? health_.check(t, fast6_.P, x_, lower_, upper_, state_names_)
+                        : health_.check(t, fast12_.P, x_, lower_, upper_, state_names_);
+  if (why.empty()) return;
+  if (!health_.reset(t, why)) {
+    stopped_ = true;
+    x_.setConstant(NAN);
+    return;
+  }
+  reset_filter(i);
+}
+
+// The reset: as at the start (initial_state) from sample i: attitude levelled
+// over the next 0.5 s (yaw kept), forward speed from the wheels, no slip, flat
+// contact, the initial covariance.
+void ContactAngleEstimator::reset_filter(std::size_t i) {
+  Eigen::VectorXd x = x0_;
+  const Eigen::Vector3d f = mean_force(i);
+  x(0) = std::isfinite(x_(0)) ? x_(0) : 0.0;
+  x(1) = std::atan2(-f.x(), std::hypot(f.y(), f.z()));
+  x(2) = std::atan2(f.y(), f.z());
+  const Inputs in = inputs_at(i);
+  std::vector<double> r(in.wheel_rate, in.wheel_rate + 6);
+  std::nth_element(r.begin(), r.begin() + 3, r.end());
+  x(3) = std::isfinite(r[3]) ? r[3] * m_.wheel_radius : 0.0;
+  const Eigen::MatrixXd P = p0_.asDiagonal();
+  if (layout_.na == 0) fast0_.x = x, fast0_.P = P;
+  if (layout_.na == 6) fast6_.x = x, fast6_.P = P;
+  if (layout_.na == 12) fast12_.x = x, fast12_.P = P;
+  ekf_.x = ukf_.x = x;
+  ekf_.P = ukf_.P = P;
+  x_ = x;
+}
+
+Eigen::MatrixXd ContactAngleEstimator::covariance() const {
   if (o_.filter == FilterKind::ekf && !o_.reference_ekf) {
     return layout_.na == 0   ? Eigen::MatrixXd(fast0_.P)
            : layout_.na == 6 ? Eigen::MatrixXd(fast6_.P)
@@ -310,7 +423,7 @@ Eigen::MatrixXd ContactAngleEstimator::final_covariance() const {
 
 // Largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end.
 double ContactAngleEstimator::max_cross_correlation() const {
-  const Eigen::MatrixXd P = final_covariance();
+  const Eigen::MatrixXd P = covariance();
   double largest = 0;
   for (int a = 0; a < layout_.nx(); ++a) {
     for (int b = 0; b < a; ++b) {
@@ -333,19 +446,21 @@ std::vector<double> masked(const std::vector<double>& v, const std::vector<doubl
 
 }  // namespace
 
-// Streams; slip and angles are invalid (NaN) at standstill.
+// Streams; slip and angles are invalid (NaN) at standstill, every state where the filter diverged.
 void ContactAngleEstimator::write_streams(ContactAngleResult& result) const {
   const auto& t = imu_->time();
   const int nw = layout_.nw, na = layout_.na;
   result.estimates.metadata = log_.metadata;
   result.estimates.metadata.extra["estimator"] = "contact-angle (seed 000)";
   log::Stream body("estimate/contact/body", t);
-  body.add_channel("velocity_x", "m/s", out_[3], "body frame g");
-  body.add_channel("velocity_y", "m/s", out_[4]);
-  body.add_channel("velocity_z", "m/s", out_[5]);
-  body.add_channel("yaw", "rad", out_[0]);
-  body.add_channel("pitch", "rad", out_[1]);
-  body.add_channel("roll", "rad", out_[2]);
+  std::vector<double> trusted(diverged_.size());  // the body states are invalid only where the filter diverged
+  for (std::size_t i = 0; i < trusted.size(); ++i) trusted[i] = 1.0 - diverged_[i];
+  body.add_channel("velocity_x", "m/s", masked(out_[3], trusted), "body frame g");
+  body.add_channel("velocity_y", "m/s", masked(out_[4], trusted));
+  body.add_channel("velocity_z", "m/s", masked(out_[5], trusted));
+  body.add_channel("yaw", "rad", masked(out_[0], trusted));
+  body.add_channel("pitch", "rad", masked(out_[1], trusted));
+  body.add_channel("roll", "rad", masked(out_[2], trusted));
   result.estimates.add_stream(std::move(body));
   log::Stream s("estimate/contact/wheels", t);
   auto name = [&](int w) { return m_.wheels[static_cast<std::size_t>(w)].name; };
@@ -353,7 +468,10 @@ void ContactAngleEstimator::write_streams(ContactAngleResult& result) const {
   for (int w = 0; w < nw; ++w) s.add_channel("slip_" + name(w), "1", state(6 + w));
   for (int w = 0; w < nw && na >= 6; ++w) s.add_channel("contact_angle_" + name(w), "rad", state(12 + w));
   for (int w = 0; w < nw && na >= 12; ++w) s.add_channel("side_slip_" + name(w), "rad", state(18 + w));
-  s.add_channel("valid", "bool", valid_, "0 at standstill: slip and angles undefined, held");
+  s.add_channel("valid", "bool", valid_,
+                "0 at standstill (slip and angles undefined, held) and where the filter diverged");
+  s.add_channel("bridged", "bool", std::vector<double>(imu_screened_.bridged.begin(), imu_screened_.bridged.end()),
+                "1 where the IMU sample was rejected or missing: prediction from the last usable one");
   result.estimates.add_stream(std::move(s));
 }
 

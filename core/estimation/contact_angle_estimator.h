@@ -7,6 +7,7 @@
 // core/analysis/estimate_errors.h.
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,20 +38,29 @@ class ContactAngleEstimator {
   // Set-up.
   void read_channels();
   void level();
+  Eigen::Vector3d mean_force(std::size_t from) const;
   void assemble_process_noise();
   void assemble_measurement_noise();
   void fuse_joint_rates();
   void initial_state();
   contact::Inputs inputs_at(std::size_t i) const;
   bool at_standstill(const contact::Inputs& in) const;
+  bool measurements_finite(const contact::Inputs& in) const;
+  const Eigen::VectorXd& process_noise(std::size_t i);
+  void state_bounds();
   // The filter pass, one step per IMU sample; each leaves the state in x_.
-  void filter_step(std::size_t i, const contact::Inputs& in, double ts, bool still);
+  // `update` false: prediction only (standstill, a bridged IMU sample, a
+  // missing joint or wheel sample). Updates pass the health monitor's gate.
+  void filter_step(std::size_t i, const contact::Inputs& in, double ts, bool update);
   template <int NA>
-  void fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const contact::Inputs& in, double ts, bool still);
-  void generic_ekf_step(std::size_t i, const contact::Inputs& in, double ts, bool still);
-  void ukf_step(std::size_t i, const contact::Inputs& in, double ts, bool still);
+  void fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const contact::Inputs& in, double ts, bool update);
+  void generic_ekf_step(std::size_t i, const contact::Inputs& in, double ts, bool update);
+  void ukf_step(std::size_t i, const contact::Inputs& in, double ts, bool update);
+  // Health: the checks after a step, and the reset (docs/validation/contact-angle.md).
+  void check_health(std::size_t i);
+  void reset_filter(std::size_t i);
+  Eigen::MatrixXd covariance() const;
   // Outputs.
-  Eigen::MatrixXd final_covariance() const;
   double max_cross_correlation() const;
   void write_streams(ContactAngleResult& result) const;
 
@@ -61,6 +71,12 @@ class ContactAngleEstimator {
   const log::Stream* joints_ = nullptr;
   const log::Stream* wheels_ = nullptr;
   std::vector<const std::vector<double>*> imu_ch_, q_ch_, qd_ch_, w_ch_;
+  ScreenedImu imu_screened_;  // the IMU channels the filter reads
+  FilterHealthMonitor health_;
+  Eigen::VectorXd lower_, upper_;  // physical bounds of the states (NaN: none)
+  std::vector<std::string> state_names_;
+  std::size_t measurements_missing_ = 0;
+  bool stopped_ = false;
   std::vector<std::vector<double>> fused_rate_;  // joint rates fused with the angles' slope (empty: measured)
   contact::ContactLayout layout_;
   kinematics::WheelFrame frame_ = kinematics::WheelFrame::contact;
@@ -69,7 +85,7 @@ class ContactAngleEstimator {
   Eigen::Vector3d g_i_ = Eigen::Vector3d::Zero();
   // Noise variances: process (ContactLayout order), measurement (generic
   // order, and the UKF's), joint angle and rate variances.
-  Eigen::VectorXd qdiag_, rdiag_;
+  Eigen::VectorXd qdiag_, rdiag_, q_bridged_;
   Eigen::MatrixXd Q_, R_ukf_;
   std::vector<double> q_var_, qd_var_;
   contact::ContactProcessModel process_;
@@ -81,9 +97,10 @@ class ContactAngleEstimator {
   FastEkf<0> fast0_;
   FastEkf<6> fast6_;
   FastEkf<12> fast12_;
-  // Per state, its estimate at every IMU sample; 0 at standstill samples.
+  // Per state, its estimate at every IMU sample; 0 at standstill samples
+  // and where the filter diverged (diverged_ 1).
   std::vector<std::vector<double>> out_;
-  std::vector<double> valid_;
+  std::vector<double> valid_, diverged_;
 };
 
 }  // namespace roverlab::estimation

@@ -97,6 +97,11 @@ class FastEkf {
   static constexpr int NX = 12 + NA, NY = 18, NR = NX - 6;
   Eigen::Matrix<double, NX, 1> x;
   Eigen::Matrix<double, NX, NX> P;
+  // The update's NIS gate (a chi-square quantile), the last update's
+  // normalised innovation squared z^T z and whether the gate rejected it.
+  double gate = HUGE_VAL;
+  double nis = 0;
+  bool rejected = false;
 
   // Eq. 2.14-2.15 with F = blockdiag(A, diag(d)): P11 <- A P11 A^T + G G^T,
   // P12 <- A P12 D, P22 <- D P22 D + Q22.
@@ -122,8 +127,10 @@ class FastEkf {
   // Eq. 2.16-2.17, Joseph form (I - KH) P (I - KH)^T + K R K^T expanded as
   // P - K H P - P H^T K^T + K S K^T with K S K^T = (K L)(K L)^T, S = L L^T.
   // diagonal_only keeps only P's diagonal (the seed's workaround follows).
+  // An innovation whose NIS exceeds `gate` leaves x and P as predicted.
   bool update(const contact::WheelMeasurementModel& h, const Eigen::VectorXd& r, const contact::Inputs& in,
               bool diagonal_only, bool block_diagonal = false) {
+    rejected = false;
     contact::WheelLinearization lin[6];
     int priv[6][3];
     constexpr int npriv = 1 + NA / 6;
@@ -175,6 +182,9 @@ class FastEkf {
       Wt.col(r) /= Lm(r, r);
       z(r) /= Lm(r, r);
     }
+    nis = z.squaredNorm();  // y^T S^-1 y of Eq. 2.16's innovation (seed 000), S = L L^T; gated
+    rejected = !(nis <= gate);
+    if (rejected) return true;
     x.noalias() += Wt * z;
     if (diagonal_only) {
       // The diagonal of the Joseph form with the optimal gain:
@@ -198,7 +208,7 @@ class FastEkf {
     const Eigen::Matrix<double, NX, NX> T = K * PHt.transpose();
     P -= T + T.transpose();
     P.noalias() += V * V.transpose();
-    if (diagonal_only) P = P.diagonal().asDiagonal();
+    if (diagonal_only) P = Eigen::Matrix<double, NX, 1>(P.diagonal()).asDiagonal();  // evaluated first: no aliasing
     return true;
   }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/analysis/ins_metrics.h"
+#include "core/estimation/filter_health.h"
 #include "core/estimation/ins.h"
 #include "core/estimation/skid_steer_odometry.h"
 #include "core/estimation/slip.h"
@@ -65,6 +66,15 @@ struct InsSlipOptions {
   std::optional<double> initial_heading;  // rad clockwise from north; overrides the GPS heading
   double no_slip = 0.02;                  // |s| at or below which a sample counts as no slip
   double min_slip_speed = 0.1;  // m/s: below it (wheel and body speed both) slip is undefined and reported as 0
+  // Robustness (issue 17): IMU screening and gap bridging, the NIS gate of
+  // the ZUPT, ZARU and NHC updates, health checks with the physical bounds
+  // below (docs/validation/ins-slip.md, "Outliers, gaps, divergence").
+  ImuScreenOptions imu_screen;
+  HealthOptions health;
+  double max_speed = 10.0;               // m/s, each velocity component
+  double max_tilt = 1.4;                 // rad, |roll| and |pitch|
+  double max_accel_bias = 1.0;           // m/s^2
+  double max_gyro_bias = 0.1;            // rad/s
   std::function<void(double)> progress;  // fraction done, called now and then
 };
 
@@ -78,6 +88,7 @@ struct InsSlipResult {
   log::Log estimates;  // streams estimate/ins/..., estimate/odometry/pose
   InsSlipMetrics metrics;
   OdometryMetrics odometry;  // plain wheel odometry, same initial pose
+  HealthReport health;       // IMU screening and both filter passes
 };
 
 // Channel names the estimator reads (RoverLab's conventions; see

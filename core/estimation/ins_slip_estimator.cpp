@@ -53,24 +53,24 @@ void InsSlipEstimator::read_samples() {
   if (in_.wheels->size() < 3) throw DataError("stream '" + channels_.wheels + "' has fewer than 3 samples");
   log::require_no_gap(*imu_, kMaxImuGap);
   log::require_overlap(*imu_, *in_.wheels, kMinOverlap);
-  in_.fx = &values(*imu_, "specific_force_x");
-  in_.fy = &values(*imu_, "specific_force_y");
-  in_.fz = &values(*imu_, "specific_force_z");
-  in_.wx = &values(*imu_, "angular_rate_x");
-  in_.wy = &values(*imu_, "angular_rate_y");
-  in_.wz = &values(*imu_, "angular_rate_z");
+  // The IMU drives the mechanisation: outliers and missing samples never enter it.
+  imu_screened_ = screen_imu(
+      imu_name, imu_->time(),
+      {&values(*imu_, "angular_rate_x"), &values(*imu_, "angular_rate_y"), &values(*imu_, "angular_rate_z"),
+       &values(*imu_, "specific_force_x"), &values(*imu_, "specific_force_y"), &values(*imu_, "specific_force_z")},
+      o_.imu_screen);
+  in_.screened = &imu_screened_;
+  in_.wx = &imu_screened_.values[0];
+  in_.wy = &imu_screened_.values[1];
+  in_.wz = &imu_screened_.values[2];
+  in_.fx = &imu_screened_.values[3];
+  in_.fy = &imu_screened_.values[4];
+  in_.fz = &imu_screened_.values[5];
   const log::Stream& w = *in_.wheels;
   in_.wheel_rates =
       wheel_rates(w.time(), values(w, "angle_FL"), values(w, "angle_FR"), values(w, "angle_RL"), values(w, "angle_RR"));
   reference_ = reference_from_gps(log_, channels_.gps);
   in_.time = &imu_->time();
-  const auto& t = *in_.time;
-  const auto &fx = *in_.fx, &fy = *in_.fy, &fz = *in_.fz, &wx = *in_.wx, &wy = *in_.wy, &wz = *in_.wz;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    if (!std::isfinite(fx[i] + fy[i] + fz[i] + wx[i] + wy[i] + wz[i])) {
-      throw DataError("stream '" + imu_name + "': missing IMU sample at t = " + std::to_string(t[i]) + " s");
-    }
-  }
   truth_slip_ = log_.find_stream(channels_.truth_slip);
   if (truth_slip_ != nullptr && truth_slip_->find_channel("slip_ratio") == nullptr) truth_slip_ = nullptr;
 }
@@ -136,6 +136,11 @@ log::Log InsSlipEstimator::run() {
   const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(0.0, share);
   const InsTrack detector_track = o_.odometry_aiding ? InsFilterPass(in_, o_, false).run(0.5, 0.5) : InsTrack(0);
   const InsTrack& detector = o_.odometry_aiding ? detector_track : track;
+  health_ = track.health;
+  if (o_.odometry_aiding) health_.merge(detector_track.health);
+  health_.outliers_rejected = imu_screened_.outliers;
+  health_.missing_samples = imu_screened_.missing;
+  health_.gaps = imu_screened_.gaps;
 
   log::Log out;
   out.metadata = log_.metadata;
@@ -156,6 +161,10 @@ void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& tra
   pose.add_channel("east", "m", track.east, "from the initial position");
   pose.add_channel("north", "m", track.north);
   pose.add_channel("up", "m", track.up);
+  pose.add_channel("valid", "bool", track.valid, "0 where the filter had diverged (reset, recovering, or stopped)");
+  std::vector<double> bridged(imu_screened_.bridged.begin(), imu_screened_.bridged.end());
+  pose.add_channel("bridged", "bool", std::move(bridged),
+                   "1 where the IMU sample was rejected or missing: prediction from the last usable one");
   out.add_stream(std::move(pose));
   log::Stream vel("estimate/ins/velocity", t);
   vel.add_channel("north", "m/s", track.vn);

@@ -22,6 +22,8 @@ class InsSlipEstimator {
   // Streams estimate/ins/{pose,velocity,bias,standstill,slip} and
   // estimate/odometry/pose, with the input's metadata.
   log::Log run();
+  // What the IMU screening and both filter passes rejected, bridged and reset (after run).
+  const HealthReport& health() const { return health_; }
 
  private:
   // Slip at the wheel samples within the IMU span, with its reference.
@@ -46,6 +48,8 @@ class InsSlipEstimator {
   const log::Stream* truth_slip_ = nullptr;  // slip reference when present, else GPS
   ReferenceTrack reference_;
   InsPassInputs in_;
+  ScreenedImu imu_screened_;  // the IMU channels the passes read
+  HealthReport health_;
 };
 
 }  // namespace roverlab::estimation

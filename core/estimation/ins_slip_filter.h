@@ -26,6 +26,8 @@ struct InsTrack {
   void record(std::size_t i, const InsState& s, const LocalFrame& frame);
   std::vector<double> roll, pitch, yaw, east, north, up, vn, ve, vd, vx, vy, vz;
   std::vector<std::vector<double>> bias;  // accel x y z, gyro x y z
+  std::vector<double> valid;              // 0 where the filter had diverged (recovering or stopped)
+  HealthReport health;                    // gated updates and divergences of the pass
 };
 
 // What every pass reads: IMU samples (body forward-right-down), wheel rates,
@@ -38,6 +40,7 @@ struct InsPassInputs {
   const log::Stream* wheels = nullptr;
   WheelSamples wheel_rates;
   std::vector<char> standstill;                // per IMU sample
+  const ScreenedImu* screened = nullptr;       // what was bridged (the process noise it adds)
   double roll0 = 0, pitch0 = 0, heading0 = 0;  // rad
   LocalFrame frame;
 
@@ -68,6 +71,7 @@ class InsFilterPass {
     std::size_t index;                    // IMU sample
     InsErrorMatrix P_prior, P_post, Phi;  // Phi: transition from the previous epoch
     InsErrorVector correction;            // error correction applied at this epoch
+    bool reset = false;                   // the filter was reset here: smoothing does not cross it
   };
 
   void initialise();
@@ -76,7 +80,15 @@ class InsFilterPass {
   void update(std::size_t i);   // the updates of the epoch ending at sample i
   void update_at_rest();
   void update_moving(std::size_t i, const Eigen::Vector3d& w_now);
-  void apply(const InsMeasurement& m);
+  // How an update is gated: NHC by the health monitor's NIS gate; ZUPT and
+  // ZARU watched (their NIS feeds the monitor) but never rejected, since the
+  // standstill they assert holds whatever the IMU says and the screened IMU
+  // cannot make them outliers; the wheel speed by its own gate (slip is not
+  // divergence).
+  enum class Gating { nis, watched, own };
+  void apply(const InsMeasurement& m, Gating gating);
+  bool check_health(std::size_t i);  // true when the filter was reset
+  void reset_state(std::size_t i);
   void smooth();
   InsErrorVector error_scale() const;
   std::vector<InsErrorVector> smoothed_epoch_errors() const;
@@ -92,12 +104,14 @@ class InsFilterPass {
 
   InsState s_;
   Eigen::MatrixXd P_;
+  FilterHealthMonitor health_;
   InsTrack track_;
   std::vector<InsState> states_;
   std::vector<Epoch> epochs_;
   InsErrorMatrix Phi_acc_ = InsErrorMatrix::Identity();
   InsErrorVector c_epoch_ = InsErrorVector::Zero();
   double last_update_ = 0;
+  std::size_t last_update_index_ = 0;
   Eigen::Vector3d w_sum_ = Eigen::Vector3d::Zero();  // raw rates since the last update (ZARU uses their mean)
   int w_count_ = 0;
 };

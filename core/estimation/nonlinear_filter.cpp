@@ -28,10 +28,10 @@ void ExtendedKalmanFilter::predict_diagonal(const Linearized& f, const Eigen::Ve
 }
 
 UpdateResult ExtendedKalmanFilter::update_diagonal(const Linearized& h, const Eigen::VectorXd& r,
-                                                   const Eigen::VectorXd& y) {
+                                                   const Eigen::VectorXd& y, double gate) {
   const Eigen::MatrixXd Ms = h.dn * r.cwiseSqrt().asDiagonal();
   const Eigen::MatrixXd MRM = Ms * Ms.transpose();
-  UpdateResult u = kalman_update(P, h.dx, MRM, y - h.value);
+  UpdateResult u = kalman_update(P, h.dx, MRM, y - h.value, gate);
   if (u.ok) x += u.correction;
   return u;
 }
@@ -103,6 +103,8 @@ void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::Matrix
 
 bool UnscentedKalmanFilter::step(const Function& f, const Eigen::MatrixXd& Q, const Function& h,
                                  const Eigen::MatrixXd& R, const Eigen::VectorXd& y) {
+  nis = 0;
+  rejected = false;
   if (!factor_covariances(Q, R, y.size())) return false;
   propagate_sigma_points(f, Q.rows());
   measure_sigma_points(h, R.rows(), y.size());
@@ -287,8 +289,12 @@ void UnscentedKalmanFilter::covariances(const Eigen::MatrixXd& Q, const Eigen::M
 bool UnscentedKalmanFilter::correct(const Eigen::VectorXd& y) {
   const Eigen::LLT<Eigen::MatrixXd> syy(Pyy_);
   if (syy.info() != Eigen::Success) return false;
+  const Eigen::VectorXd z = syy.matrixL().solve(y - ym_);  // NIS of Eq. 2.20's innovation (seed 000): |z|^2, gated
+  nis = z.squaredNorm();
+  rejected = !(nis <= gate);
+  if (rejected) return true;  // x and P as predicted
   const Eigen::MatrixXd W = syy.matrixL().solve(Pxy_.transpose());
-  x.noalias() += W.transpose() * syy.matrixL().solve(y - ym_);
+  x.noalias() += W.transpose() * z;
   if (diagonal_only) {
     P = Eigen::VectorXd(P.diagonal() - W.colwise().squaredNorm().transpose()).asDiagonal();
     return true;

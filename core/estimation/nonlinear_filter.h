@@ -4,6 +4,7 @@
 // Jacobians F, L, H, M supplied by the model, e.g. through ceres::Jet) and an
 // augmented-state UKF (Eq. 2.18-2.20). Models stay outside the filters.
 
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -30,8 +31,10 @@ class ExtendedKalmanFilter {
   void predict_diagonal(const Linearized& f, const Eigen::VectorXd& q);
   // Eq. 2.16-2.17 with the Joseph form: S = H P H^T + M R M^T.
   UpdateResult update(const Linearized& h, const Eigen::MatrixXd& R, const Eigen::VectorXd& y);
-  // The same with uncorrelated measurement noises R = diag(r).
-  UpdateResult update_diagonal(const Linearized& h, const Eigen::VectorXd& r, const Eigen::VectorXd& y);
+  // The same with uncorrelated measurement noises R = diag(r); an innovation
+  // whose NIS exceeds `gate` is rejected (x and P left as they were).
+  UpdateResult update_diagonal(const Linearized& h, const Eigen::VectorXd& r, const Eigen::VectorXd& y,
+                               double gate = HUGE_VAL);
   // The seed's workaround: zero P's off-diagonal elements.
   void reset_cross_covariance();
 };
@@ -60,6 +63,12 @@ class UnscentedKalmanFilter {
   // The seed's workaround inside the step: P is diagonal on entry and only
   // the diagonal of the updated P is computed and kept.
   bool diagonal_only = false;
+  // NIS gate of the update (a chi-square quantile); the last step's NIS
+  // (y - ym)^T Pyy^-1 (y - ym) and whether the gate rejected it (the state
+  // is then left as predicted).
+  double gate = HUGE_VAL;
+  double nis = 0;
+  bool rejected = false;
   // One predict-update cycle on sigma points of the augmented state
   // [x; n_p; n_m] (Eq. 2.18-2.20). Returns false when a covariance is not
   // positive definite (the state is then left as predicted).

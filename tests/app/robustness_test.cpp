@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "test_support.h"
 
 namespace roverlab {
@@ -178,6 +180,62 @@ TEST(Robustness, EstimatorsRefuseABrokenTimeBaseInsteadOfPrintingNaN) {
   shift_time(f, "joints", 3600.0, false);
   H5Fclose(f);
   expect_one_line_bad_input(run_roverlab("estimate contact-angle " + quote(late)), late, "do not share a time base");
+}
+
+// Sets samples [first, first + count) of a stream's channel in an open file to `value`.
+void set_samples(hid_t file, const std::string& stream, const std::string& channel, std::size_t first,
+                 std::size_t count, double value) {
+  const std::string path = "/streams/" + stream + "/channels/" + channel;
+  const hid_t ds = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  ASSERT_GE(ds, 0);
+  const hid_t space = H5Dget_space(ds);
+  std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  ASSERT_GE(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+  ASSERT_LE(first + count, v.size());
+  for (std::size_t i = first; i < first + count; ++i) v[i] = value;
+  ASSERT_GE(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+  H5Sclose(space);
+  H5Dclose(ds);
+}
+
+// Issue 17 item 4: outliers that took the contact-angle EKF's error from
+// degrees to a hundred with exit 0, and a 0.1 s dropout that made the INS
+// refuse the whole log, are now rejected or bridged, and the command says so
+// in words and in its JSON.
+TEST(Robustness, EstimatorsRejectImuOutliersBridgeDropoutsAndSaySo) {
+  TempDir dir;
+  const std::string sim = dir.file("fl.h5");
+  ASSERT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 200 -o " + quote(sim)).exit_code, 0);
+  const hid_t f = H5Fopen(sim.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  set_samples(f, "imu", "angular_rate_x", 1800, 1, 40.0);  // 200 Hz, 30 s: at 9, 15 and 21 s
+  set_samples(f, "imu", "angular_rate_z", 3000, 1, -35.0);
+  set_samples(f, "imu", "specific_force_z", 4200, 1, 400.0);
+  H5Fclose(f);
+  const CommandResult json = run_roverlab("estimate contact-angle " + quote(sim) + " --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const auto doc = nlohmann::json::parse(json.out);
+  EXPECT_EQ(doc.at("health").at("outliers_rejected").get<int>(), 3);
+  EXPECT_EQ(doc.at("health").at("status"), "degraded");
+  double sum = 0;
+  for (const auto& e : doc.at("rms").at("contact_angle_deg")) sum += e.get<double>();
+  EXPECT_LT(sum / 6.0, 6.9);  // 6.24 deg clean; unprotected, these outliers made it about 130 deg
+  const CommandResult text = run_roverlab("estimate contact-angle " + quote(sim));
+  EXPECT_NE(text.out.find("health: degraded: 3 IMU samples rejected as outliers"), std::string::npos) << text.out;
+
+  const ConvertedLog log(dir);
+  log.edit([](hid_t file) {  // 250 Hz: 0.1 s of NaN from 35 s
+    for (const char* c : {"angular_rate_x", "angular_rate_y", "angular_rate_z", "specific_force_x", "specific_force_y",
+                          "specific_force_z"})
+      set_samples(file, "imu", c, 8800, 25, NAN);
+  });
+  const CommandResult ins = run_roverlab("estimate ins-slip " + quote(log.path()) + " --json");
+  ASSERT_EQ(ins.exit_code, 0) << ins.err;
+  const auto h = nlohmann::json::parse(ins.out).at("health");
+  EXPECT_EQ(h.at("missing_samples").get<int>(), 25);
+  ASSERT_EQ(h.at("gaps").size(), 1u);
+  EXPECT_NEAR(h.at("gaps").at(0).at("end").get<double>() - h.at("gaps").at(0).at("start").get<double>(), 0.104, 0.005);
+  EXPECT_NE(h.at("message").get<std::string>().find("1 gap of 0.10 s bridged by prediction"), std::string::npos);
 }
 
 TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
