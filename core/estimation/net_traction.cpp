@@ -153,7 +153,7 @@ void NetTractionEstimator::assemble_noise() {
   q(kMomentBody) = q(kMomentBogie) = 2e-3;
   q(kForceX) = q(kForceZ) = 2e-3;
   q(kForwardSpeed) = 1e-8;
-  q.segment<3>(kSlip).setConstant(2e-5);
+  q.segment<3>(kSlip).setConstant(2e-6);
   Q1_ = q.asDiagonal();
   const double encoder = 2.143e-5 * kDeg, accel = 1.245e-3;
   r1_.resize(kMeasurements);
@@ -162,9 +162,9 @@ void NetTractionEstimator::assemble_noise() {
   r1_(4) = std::pow(9.155e-4 * kDeg, 2);
   r1_(5) = r1_(6) = accel * accel;
   r1_(7) = 1e-3 * 1e-3;
-  r1_.tail<3>().setConstant(0.15 * 0.15);  // velocimeter and gyro noise over a 2 cm/s rim speed
+  r1_.tail<3>().setConstant(0.06 * 0.06);  // the velocimeter's 1 mm/s over a 2 cm/s rim speed
   Eigen::VectorXd q2(wf::kStates), r2(wf::kMeasurements);
-  q2.head<3>().setConstant(4e-6);
+  q2.head<3>().setConstant(2e-7);
   q2.tail<6>().setConstant(2.5e-3);
   Q2_ = q2.asDiagonal();
   r2.head<3>().setConstant(0.03 * 0.03);
@@ -251,7 +251,8 @@ void NetTractionEstimator::filter_pass() {
 // Eq. 5.10-5.16 for Estimator 1 with the torques held since the last sample;
 // slips a standing rover cannot measure are gated out.
 void NetTractionEstimator::general_step(std::size_t k) {
-  Eigen::VectorXd y = nt::general_measurement(rover_, samples_[k], samples_[k - 1], step_);
+  const Eigen::Vector2d rates(general_.x(gen::kPitchRate), general_.x(gen::kBogieRate));
+  Eigen::VectorXd y = nt::general_measurement(rover_, samples_[k], samples_[k - 1], step_, &rates);
   Eigen::VectorXd r = r1_;
   bool standing = false;
   for (int i = 0; i < 3; ++i) {

@@ -13,19 +13,57 @@ double RoverConstants::total_mass() const {
   return parameters.body_mass + parameters.bogie_mass + 3.0 * parameters.wheel_mass;
 }
 
-// Eq. 5.19: only pitch and bogie angle matter (wheel masses sit on their joints).
+namespace {
+
+// Derivative of the clockwise rotation by `a` applied to v.
+Eigen::Vector2d drotate(double s, double c, const Eigen::Vector2d& v) {
+  return {-s * v.x() + c * v.y(), -c * v.x() - s * v.y()};
+}
+
+}  // namespace
+
+// Eq. 5.19: only pitch and bogie angle matter (wheel masses sit on their
+// joints). Eq. 4.29 body by body: m J^T J + I W^T W, where the velocity
+// Jacobian columns of pitch and bogie angle are A + B and B (A from the
+// body to the bogie pivot, B from the pivot to the point).
 ConfigurationTerms configuration_terms(const RoverConstants& rover, double pitch, double bogie) {
-  rb::Vec q = rb::Vec::Zero();
-  q(2) = pitch;
-  q(3) = bogie;
   const simulation::RockerBogieParameters& p = rover.parameters;
-  ConfigurationTerms c{rb::kinematics(rover.geometry, p, q), rb::Mat::Zero(), rb::Vec::Zero()};
-  c.inertia = rb::inertia(c.kinematics, p);  // Eq. 4.29
-  const rb::Kinematics& k = c.kinematics;
-  Eigen::Matrix<double, 1, rb::N> height = p.body_mass * k.J_body.row(1) + p.bogie_mass * k.J_bogie.row(1);
-  for (const auto& J : k.J_wheel) height += p.wheel_mass * J.row(1);
-  c.gravity = p.gravity * height.transpose();  // dV/dPhi (Eq. 4.37)
-  return c;
+  const simulation::PlanarRockerBogieGeometry& g = rover.geometry;
+  const double s0 = std::sin(pitch), c0 = std::cos(pitch), s1 = std::sin(pitch + bogie), c1 = std::cos(pitch + bogie);
+  const Eigen::Vector2d A = drotate(s0, c0, g.rocker_to_bogie);
+  ConfigurationTerms t;
+  rb::Mat& H = t.inertia;
+  const auto add = [&](double m, double I, const Eigen::Vector2d& pitch_col, const Eigen::Vector2d& bogie_col,
+                       bool on_bogie, int wheel) {
+    H(0, 0) += m;
+    H(1, 1) += m;
+    H(0, 2) += m * pitch_col.x();
+    H(1, 2) += m * pitch_col.y();
+    H(2, 2) += m * pitch_col.squaredNorm() + I;
+    t.gravity(2) += p.gravity * m * pitch_col.y();
+    if (on_bogie) {
+      H(0, 3) += m * bogie_col.x();
+      H(1, 3) += m * bogie_col.y();
+      H(2, 3) += m * pitch_col.dot(bogie_col) + I;
+      H(3, 3) += m * bogie_col.squaredNorm() + I;
+      t.gravity(3) += p.gravity * m * bogie_col.y();
+    }
+    if (wheel >= 0) {
+      H(2, 4 + wheel) += I;
+      if (on_bogie) H(3, 4 + wheel) += I;
+      H(4 + wheel, 4 + wheel) += p.wheel_gear_inertia;  // the drivetrain referred to the wheel
+    }
+  };
+  add(p.body_mass, p.body_inertia, Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), false, -1);
+  const Eigen::Vector2d B = drotate(s1, c1, p.bogie_com);
+  add(p.bogie_mass, p.bogie_inertia, A + B, B, true, -1);
+  add(p.wheel_mass, p.wheel_inertia, drotate(s0, c0, g.rocker_to_wheel1), Eigen::Vector2d::Zero(), false, 0);
+  const Eigen::Vector2d D2 = drotate(s1, c1, g.bogie_to_wheel2), D3 = drotate(s1, c1, g.bogie_to_wheel3);
+  add(p.wheel_mass, p.wheel_inertia, A + D2, D2, true, 1);
+  add(p.wheel_mass, p.wheel_inertia, A + D3, D3, true, 2);
+  t.gravity(1) = p.gravity * rover.total_mass();
+  H.triangularView<Eigen::StrictlyLower>() = H.transpose();
+  return t;
 }
 
 // Eq. 5.20: the body moves along its own x axis (zdot_0^R = 0).
@@ -54,9 +92,22 @@ Eigen::Vector3d GeneralProcessModel::wheel_accelerations(const Eigen::VectorXd& 
          p.wheel_gear_inertia;
 }
 
+const ConfigurationTerms& GeneralProcessModel::terms(double pitch, double bogie) const {
+  for (int i = 0; i < cache_size_; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    if (cache_key_[u](0) == pitch && cache_key_[u](1) == bogie) return cache_[u];
+  }
+  const auto slot = static_cast<std::size_t>(cache_next_);
+  cache_[slot] = configuration_terms(rover_, pitch, bogie);
+  cache_key_[slot] = {pitch, bogie};
+  cache_next_ = (cache_next_ + 1) % kCached;
+  cache_size_ = std::min(cache_size_ + 1, kCached);
+  return cache_[slot];
+}
+
 void GeneralProcessModel::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
   const double T = step_;
-  const ConfigurationTerms c = configuration_terms(rover_, x(kPitch), x(kBogie));
+  const ConfigurationTerms& c = terms(x(kPitch), x(kBogie));
   const rb::Mat& H = c.inertia;
   const rb::Vec& dV = c.gravity;
   const Eigen::Vector3d qdd = wheel_accelerations(x);
@@ -94,19 +145,20 @@ void GeneralMeasurementModel::operator()(const Eigen::VectorXd& x, Eigen::Vector
 }
 
 Eigen::VectorXd general_measurement(const RoverConstants& rover, const SensorSample& now, const SensorSample& before,
-                                    double step) {
+                                    double step, const Eigen::Vector2d* rates) {
   Eigen::VectorXd y(kMeasurements);
-  const Eigen::Vector3d rates = (now.wheel_angle - before.wheel_angle) / step;  // Eq. 5.38
+  const Eigen::Vector3d wheel_rates = (now.wheel_angle - before.wheel_angle) / step;  // Eq. 5.38
   const double pitch = std::atan2(-now.specific_force_x, now.specific_force_z);  // Eq. 5.39
-  const double bogie_rate = (now.bogie - before.bogie) / step;
-  y.head<3>() = rates;
+  const double pitch_rate = rates != nullptr ? (*rates)(0) : now.pitch_rate;
+  const double bogie_rate = rates != nullptr ? (*rates)(1) : (now.bogie - before.bogie) / step;
+  y.head<3>() = wheel_rates;
   y(3) = pitch;
   y(4) = now.bogie;
   y(5) = now.specific_force_x;
   y(6) = now.specific_force_z;
   y(7) = now.forward_speed;
   // Eq. 5.40-5.42: wheel centre velocities from the measured configuration.
-  const rb::Vec v = generalised_velocity(now.forward_speed, pitch, now.pitch_rate, bogie_rate, rates);
+  const rb::Vec v = generalised_velocity(now.forward_speed, pitch, pitch_rate, bogie_rate, wheel_rates);
   rb::Vec q = rb::Vec::Zero();
   q(2) = pitch;
   q(3) = now.bogie;

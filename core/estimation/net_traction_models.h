@@ -62,11 +62,12 @@ struct RoverConstants {
 };
 
 // The terms of Eq. 4.48 at the configuration (pitch, bogie angle) of Eq.
-// 5.19: inertia H, gravity dV/dPhi and the wheels' velocity Jacobians.
+// 5.19: inertia H (Eq. 4.29) and gravity dV/dPhi, in closed form (two
+// sin/cos pairs; a test holds them equal to the simulator's
+// Jacobian-product inertia, which is ten times slower).
 struct ConfigurationTerms {
-  simulation::rocker_bogie::Kinematics kinematics;
-  simulation::rocker_bogie::Mat inertia;
-  simulation::rocker_bogie::Vec gravity;  // dV/dPhi
+  simulation::rocker_bogie::Mat inertia = simulation::rocker_bogie::Mat::Zero();
+  simulation::rocker_bogie::Vec gravity = simulation::rocker_bogie::Vec::Zero();  // dV/dPhi
 };
 ConfigurationTerms configuration_terms(const RoverConstants& rover, double pitch, double bogie);
 
@@ -91,9 +92,18 @@ class GeneralProcessModel {
   void operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
 
  private:
+  // The configuration terms at (pitch, bogie): most sigma points share the
+  // centre's (the state's Cholesky factor is lower triangular and the angles
+  // are states 7 and 8), so the last few are kept.
+  const ConfigurationTerms& terms(double pitch, double bogie) const;
+
   RoverConstants rover_;
   double step_ = 0.02;
   Eigen::Vector3d torques_ = Eigen::Vector3d::Zero();
+  static constexpr int kCached = 4;
+  mutable std::array<ConfigurationTerms, kCached> cache_{};
+  mutable std::array<Eigen::Vector2d, kCached> cache_key_{};
+  mutable int cache_size_ = 0, cache_next_ = 0;
 };
 
 // Eq. 5.43-5.47: Estimator 1's measurement model h_1.
@@ -115,9 +125,13 @@ struct SensorSample {
 
 // Eq. 5.37-5.42: Estimator 1's measurement vector from two consecutive
 // sensor samples T_e apart. The slips are NaN where a wheel neither rolls
-// nor moves (no slip to measure).
+// nor moves (no slip to measure). With `rates` (pitch rate, bogie rate:
+// Estimator 1's last estimate) the wheel-centre velocities of Eq. 5.41 use
+// them in place of the gyro and the differenced bogie angle, as Estimators 2
+// and 3 use estimates for the contact angles (Eq. 5.55): the gyro's noise
+// (0.56 deg/s) would otherwise dominate the slips.
 Eigen::VectorXd general_measurement(const RoverConstants& rover, const SensorSample& now, const SensorSample& before,
-                                    double step);
+                                    double step, const Eigen::Vector2d* rates = nullptr);
 
 // The angle of the link carrying each wheel's force sensor (epsilon of
 // Figure 5.9, clockwise): the body for wheel 1, the bogie for wheels 2 and 3.

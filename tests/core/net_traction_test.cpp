@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 
 #include <Eigen/Dense>
@@ -15,6 +16,7 @@
 #include "core/common/error.h"
 #include "core/estimation/net_traction.h"
 #include "core/simulation/rocker_bogie.h"
+#include "core/simulation/rocker_bogie_dynamics.h"
 #include "importers/soil_file.h"
 
 using namespace roverlab;
@@ -56,6 +58,16 @@ TEST(NetTraction, EstimatesTrackTheTruth) {
               << e.resistive_torque.transpose() << "\n"
               << e.slip.transpose() << "\n"
               << e.contact_angle.transpose() << "\n";
+    const auto& tw = rolling_log().stream("truth/wheels");
+    for (int i = 0; i < 3; ++i) {
+      double bg = 0, bd = 0; int n = 0;
+      for (Eigen::Index k = 250; k < track->state.rows(); ++k) {
+        bg += track->state(k, i) - tw.channel("contact_angle_" + std::to_string(i + 1)).values[k];
+        bd += track->state(k, 6 + i) - tw.channel("drawbar_pull_" + std::to_string(i + 1)).values[k];
+        ++n;
+      }
+      std::printf("bias wheel %d: gamma %.4f rad DP %.3f N\n", i + 1, bg / n, bd / n);
+    }
   }
 }
 
@@ -166,5 +178,45 @@ TEST(NetTraction, WheelForceEstimatorsLoseTheForceSplitAtStandstillAndTheContact
     const Observability lifted = observability(F, jacobian(hx, x, wf::kMeasurements), all_but(9, {0}));
     EXPECT_EQ(lifted.rank, 8);
     EXPECT_EQ(lifted.lost, (std::vector<int>{wf::kContactAngle}));
+  }
+}
+
+TEST(NetTraction, RebuiltSurfacesMatchTheTrueLocalModel) {
+  const auto& r = rolling_result();
+  std::printf("filter %.3f s\n", r.filter_seconds);
+  {
+    const auto c0 = std::clock();
+    auto again = estimation::run_net_traction(rolling_log(), {}, {});
+
+    std::printf("cpu %.3f s (wall %.3f)\n", double(std::clock() - c0) / CLOCKS_PER_SEC, again.filter_seconds);
+  }
+  for (const auto* track : {&r.two_axis, &r.single_axis}) {
+    for (int order : {0, 2, 3}) {
+      const auto m = analysis::rebuild_net_traction_model(rolling_log(), r, *track, {}, order);
+      std::printf("order %d/%d points %zu region W %.1f-%.1f s %.3f-%.3f cov %.2f: DP rms %.2f%% max %.2f%% range %.2f | tau rms %.2f%% max %.2f%% range %.3f\n",
+                  order, m.drawbar_pull.estimate.surface.order(), m.points, m.region.load_min, m.region.load_max,
+                  m.region.slip_min, m.region.slip_max, m.region.grid.coverage(), m.drawbar_pull.comparison.rms_percent,
+                  m.drawbar_pull.comparison.max_percent, m.drawbar_pull.comparison.range,
+                  m.resistive_torque.comparison.rms_percent, m.resistive_torque.comparison.max_percent,
+                  m.resistive_torque.comparison.range);
+    }
+  }
+}
+
+TEST(NetTraction, ClosedFormInertiaAndGravityEqualTheSimulators) {
+  const nt::RoverConstants rover;
+  namespace rb = simulation::rocker_bogie;
+  for (const auto& [pitch, bogie] : {std::pair{0.0, 0.0}, std::pair{0.17, -0.06}, std::pair{-0.3, 0.2}}) {
+    rb::Vec q = rb::Vec::Zero();
+    q(2) = pitch;
+    q(3) = bogie;
+    const rb::Kinematics k = rb::kinematics(rover.geometry, rover.parameters, q);
+    const rb::Mat H = rb::inertia(k, rover.parameters);
+    const auto& p = rover.parameters;
+    Eigen::Matrix<double, 1, rb::N> height = p.body_mass * k.J_body.row(1) + p.bogie_mass * k.J_bogie.row(1);
+    for (const auto& J : k.J_wheel) height += p.wheel_mass * J.row(1);
+    const nt::ConfigurationTerms t = nt::configuration_terms(rover, pitch, bogie);
+    EXPECT_LT((t.inertia - H).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((t.gravity - p.gravity * height.transpose()).cwiseAbs().maxCoeff(), 1e-10);
   }
 }
