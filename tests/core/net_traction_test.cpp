@@ -34,7 +34,7 @@ const log::Log& rolling_log() {
     run.soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
     run.path = simulation::rolling_path();
     run.effects.soil_strength = 2.5;
-    run.duration = 100.0;
+    run.duration = 200.0;
     return simulation::simulate_rocker_bogie({}, {}, run).log;
   }();
   return lg;
@@ -47,28 +47,29 @@ const estimation::NetTractionResult& rolling_result() {
 
 }  // namespace
 
+// RMS errors per wheel over the 200 s run after 5 s of convergence
+// (docs/validation/net-traction.md has the figures; bounds about 1.5x them).
 TEST(NetTraction, EstimatesTrackTheTruth) {
   const auto& r = rolling_result();
-  for (const auto* track : {&r.two_axis, &r.single_axis}) {
-    const auto e = estimation::tracking_errors(rolling_log(), r, *track);
-    ASSERT_TRUE(e.has_truth);
-    std::printf("W %s\nDP %s\ntau %s\ns %s\ng %s\n", "", "", "", "", "");
-    std::cout << e.normal_load.transpose() << "\n"
-              << e.drawbar_pull.transpose() << "\n"
-              << e.resistive_torque.transpose() << "\n"
-              << e.slip.transpose() << "\n"
-              << e.contact_angle.transpose() << "\n";
-    const auto& tw = rolling_log().stream("truth/wheels");
-    for (int i = 0; i < 3; ++i) {
-      double bg = 0, bd = 0; int n = 0;
-      for (Eigen::Index k = 250; k < track->state.rows(); ++k) {
-        bg += track->state(k, i) - tw.channel("contact_angle_" + std::to_string(i + 1)).values[k];
-        bd += track->state(k, 6 + i) - tw.channel("drawbar_pull_" + std::to_string(i + 1)).values[k];
-        ++n;
-      }
-      std::printf("bias wheel %d: gamma %.4f rad DP %.3f N\n", i + 1, bg / n, bd / n);
-    }
+  const auto two = estimation::tracking_errors(rolling_log(), r, r.two_axis);
+  const auto one = estimation::tracking_errors(rolling_log(), r, r.single_axis);
+  ASSERT_TRUE(two.has_truth);
+  ASSERT_TRUE(one.has_truth);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(two.resistive_torque(i), 2e-3) << i;  // N m, of torques up to 2 N m
+    EXPECT_LT(two.slip(i), 0.012) << i;
+    EXPECT_LT(two.normal_load(i), 0.15) << i;  // N, of 35-66 N
+    EXPECT_LT(two.drawbar_pull(i), 0.9) << i;  // N, of -5..15 N
+    EXPECT_LT(two.contact_angle(i), 0.02) << i;  // rad
+    EXPECT_LT(one.normal_load(i), 0.2) << i;
   }
+  // Single-axis: wheel 1 (alone on the rocker) as well as with two-axis
+  // sensors; wheels 2 and 3 share their bogie's perpendicular load in
+  // proportion to their loads (Eq. 5.66), worse, as the seed says.
+  EXPECT_LT(one.drawbar_pull(0), 0.9);
+  EXPECT_LT(one.drawbar_pull(1), 3.0);
+  EXPECT_LT(one.drawbar_pull(2), 3.0);
+  EXPECT_GT(one.drawbar_pull(1), two.drawbar_pull(1));
 }
 
 namespace {
@@ -181,26 +182,57 @@ TEST(NetTraction, WheelForceEstimatorsLoseTheForceSplitAtStandstillAndTheContact
   }
 }
 
+// Section 5.8 / Table 5.2: order-2 surfaces from the estimates against the
+// true local model over the traversed region, in % of the quantity's range.
 TEST(NetTraction, RebuiltSurfacesMatchTheTrueLocalModel) {
   const auto& r = rolling_result();
-  std::printf("filter %.3f s\n", r.filter_seconds);
-  {
-    const auto c0 = std::clock();
-    auto again = estimation::run_net_traction(rolling_log(), {}, {});
+  const auto two = analysis::rebuild_net_traction_model(rolling_log(), r, r.two_axis, {}, 2);
+  const auto one = analysis::rebuild_net_traction_model(rolling_log(), r, r.single_axis, {}, 2);
+  ASSERT_TRUE(two.resistive_torque.has_truth && two.drawbar_pull.has_truth);
+  EXPECT_GT(two.points, 1000u);
+  EXPECT_GT(two.region.load_max - two.region.load_min, 20.0);  // N
+  EXPECT_GT(two.region.slip_max - two.region.slip_min, 0.15);
+  EXPECT_LT(two.resistive_torque.comparison.rms_percent, 2.5);
+  EXPECT_LT(two.drawbar_pull.comparison.rms_percent, 2.5);
+  EXPECT_LT(one.resistive_torque.comparison.rms_percent, 3.0);
+  EXPECT_LT(one.drawbar_pull.comparison.rms_percent, 4.0);  // the 3 % is missed: 3.3 %
+  // The true local model of order 2 is itself a close fit to the truth there.
+  EXPECT_LT(two.drawbar_pull.truth.error.rmse, 0.05 * two.drawbar_pull.comparison.range);
+}
 
-    std::printf("cpu %.3f s (wall %.3f)\n", double(std::clock() - c0) / CLOCKS_PER_SEC, again.filter_seconds);
+TEST(NetTraction, TooFewSteadyStatePointsAreRefused) {
+  const auto& r = rolling_result();
+  analysis::SteadyStateOptions o;
+  o.window_seconds = 0.4;  // 2 averaged points per wheel
+  EXPECT_THROW(analysis::rebuild_net_traction_model(rolling_log(), r, r.two_axis, o, 2), DataError);
+}
+
+TEST(NetTraction, LogsLackingStreamsOrPerpendicularLoadsAreRefused) {
+  log::Log without;
+  for (const auto& s : rolling_log().streams()) {
+    if (s.name() != "forces") without.add_stream(s);
   }
-  for (const auto* track : {&r.two_axis, &r.single_axis}) {
-    for (int order : {0, 2, 3}) {
-      const auto m = analysis::rebuild_net_traction_model(rolling_log(), r, *track, {}, order);
-      std::printf("order %d/%d points %zu region W %.1f-%.1f s %.3f-%.3f cov %.2f: DP rms %.2f%% max %.2f%% range %.2f | tau rms %.2f%% max %.2f%% range %.3f\n",
-                  order, m.drawbar_pull.estimate.surface.order(), m.points, m.region.load_min, m.region.load_max,
-                  m.region.slip_min, m.region.slip_max, m.region.grid.coverage(), m.drawbar_pull.comparison.rms_percent,
-                  m.drawbar_pull.comparison.max_percent, m.drawbar_pull.comparison.range,
-                  m.resistive_torque.comparison.rms_percent, m.resistive_torque.comparison.max_percent,
-                  m.resistive_torque.comparison.range);
+  EXPECT_EQ(estimation::net_traction_missing(without), "no forces stream");
+  EXPECT_THROW(estimation::run_net_traction(without, {}, {}), DataError);
+  log::Log single;
+  for (const auto& s : rolling_log().streams()) {
+    if (s.name() != "forces") {
+      single.add_stream(s);
+      continue;
     }
+    log::Stream f("forces", s.time());
+    for (int i = 1; i <= 3; ++i) f.add_channel("load_" + std::to_string(i), "N", s.channel("load_" + std::to_string(i)).values);
+    single.add_stream(std::move(f));
   }
+  EXPECT_FALSE(estimation::has_two_axis_force_sensors(single));
+  estimation::NetTractionOptions o;
+  o.force_sensors = estimation::ForceSensors::two_axis;
+  EXPECT_THROW(estimation::run_net_traction(single, {}, o), DataError);
+  // By default such a log runs Estimator 3 only, and its streams come from it.
+  const auto r = estimation::run_net_traction(single, {}, {});
+  EXPECT_EQ(r.force_sensors, estimation::ForceSensors::single_axis);
+  EXPECT_TRUE(r.two_axis.empty());
+  EXPECT_FALSE(r.single_axis.empty());
 }
 
 TEST(NetTraction, ClosedFormInertiaAndGravityEqualTheSimulators) {
