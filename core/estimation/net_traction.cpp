@@ -242,6 +242,7 @@ void NetTractionEstimator::filter_pass() {
     store(result_.general, general_, r);
     process_.set_torques(samples_[k].torque);
     result_.wheel_acceleration.row(r) = process_.wheel_accelerations(general_.x).transpose();
+    if (k > 0) contact_angles_ = nt::contact_angle_measurement(rover_, general_.x);  // Eq. 5.56, for both
     if (two_axis_) wheel_force_step(k, two_axis_filter_, true, result_.two_axis);
     if (run_single_axis_) wheel_force_step(k, single_axis_filter_, false, result_.single_axis);
     if (o_.progress && k % 500 == 0) o_.progress(static_cast<double>(k) / static_cast<double>(samples_.size()));
@@ -279,7 +280,7 @@ void NetTractionEstimator::wheel_force_step(std::size_t k, UnscentedKalmanFilter
     const nt::SensorSample& s = samples_[k];
     const Eigen::VectorXd& x1 = general_.x;
     Eigen::VectorXd y(wf::kMeasurements);
-    y.head<3>() = nt::contact_angle_measurement(rover_, x1);
+    y.head<3>() = contact_angles_;
     y.segment<3>(3) = s.load;
     y.tail<3>() = two_axis ? s.perpendicular : nt::perpendicular_from_net_forces(rover_, x1, s.load);
     Eigen::MatrixXd R = two_axis ? R2_ : R3_;

@@ -88,6 +88,7 @@ class NetTractionEstimator {
   UnscentedKalmanFilter general_, two_axis_filter_, single_axis_filter_;
   Eigen::MatrixXd Q1_, Q2_, R2_, R3_;
   Eigen::VectorXd r1_;  // Estimator 1's measurement variances, before gating
+  Eigen::Vector3d contact_angles_ = Eigen::Vector3d::Zero();  // this sample's, from Estimator 1
   NetTractionResult result_;
 };
 
