@@ -90,7 +90,9 @@ class NetTractionAnalysis : public Analysis {
   void declare(CLI::App& cmd) override {
     cmd.add_option("--force-sensors", force_sensors_,
                    "two-axis | single-axis (default: two-axis when the log has perpendicular loads)");
-    cmd.add_option("--order", order_, "Order of the Eq. 2.28 surfaces, 1..6 (the seed's Table 5.2: 2), or auto (cross-validation over 1..4)")
+    cmd.add_option(
+           "--order", order_,
+           "Order of the Eq. 2.28 surfaces, 1..6 (the seed's Table 5.2: 2), or auto (cross-validation over 1..4)")
         ->capture_default_str();
     cmd.add_option("--window", window_, "Fit only the last S seconds of estimates (0: all; section 5.9)")
         ->capture_default_str()
@@ -200,9 +202,10 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
                   {"seconds", seconds},
                   {"filter_seconds", r.filter_seconds},
                   {"standstill_samples", r.standstill_samples},
-                  {"steady_state", {{"max_wheel_acceleration", analysis::SteadyStateOptions{}.max_wheel_acceleration},
-                                    {"average_s", analysis::SteadyStateOptions{}.average_seconds},
-                                    {"settle_s", analysis::SteadyStateOptions{}.settle_seconds}}},
+                  {"steady_state",
+                   {{"max_wheel_acceleration", analysis::SteadyStateOptions{}.max_wheel_acceleration},
+                    {"average_s", analysis::SteadyStateOptions{}.average_seconds},
+                    {"settle_s", analysis::SteadyStateOptions{}.settle_seconds}}},
                   {"has_truth", in.log.find_stream("truth/wheels") != nullptr},
                   {"estimators", fits(in.log, r)}};
   out.estimates = std::move(r.estimates);
@@ -210,7 +213,8 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
 }
 
 void print_rms(const json& t, std::FILE* out) {
-  std::fprintf(out, "  %-6s %10s %10s %12s %8s %12s\n", "wheel", "W (N)", "DP (N)", "tau_R (N m)", "slip", "gamma (deg)");
+  std::fprintf(out, "  %-6s %10s %10s %12s %8s %12s\n", "wheel", "W (N)", "DP (N)", "tau_R (N m)", "slip",
+               "gamma (deg)");
   for (std::size_t w = 0; w < 3; ++w) {
     const auto v = [&](const char* k) {
       const json& x = t.at(k).at(w);
@@ -237,9 +241,11 @@ void print_table(const json& q, const char* label, std::FILE* out) {
   }
   if (truth) {
     const json& c = q.at("rms_vs_truth");
-    std::fprintf(out, "    vs the true local model over the region: RMS %.4g (%.2f %% of its range %.4g), largest %.4g (%.2f %%)\n",
-                 c.at("rms").get<double>(), c.at("rms_percent").get<double>(), c.at("range").get<double>(),
-                 c.at("max_abs").get<double>(), c.at("max_percent").get<double>());
+    std::fprintf(
+        out,
+        "    vs the true local model over the region: RMS %.4g (%.2f %% of its range %.4g), largest %.4g (%.2f %%)\n",
+        c.at("rms").get<double>(), c.at("rms_percent").get<double>(), c.at("range").get<double>(),
+        c.at("max_abs").get<double>(), c.at("max_percent").get<double>());
   }
 }
 
@@ -256,10 +262,12 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
   for (const char* name : {"two-axis", "single-axis"}) {
     if (!j.at("estimators").contains(name)) continue;
     const json& e = j.at("estimators").at(name);
-    const char* which = std::string(name) == "two-axis" ? "Estimators 1 and 2 (two-axis)" : "Estimators 1 and 3 (single-axis)";
+    const char* which =
+        std::string(name) == "two-axis" ? "Estimators 1 and 2 (two-axis)" : "Estimators 1 and 3 (single-axis)";
     std::fprintf(out, "\n%s\n", which);
     if (e.contains("tracking_rms")) {
-      std::fprintf(out, " RMS error per wheel over %zu samples:\n", e.at("tracking_rms").at("samples").get<std::size_t>());
+      std::fprintf(out, " RMS error per wheel over %zu samples:\n",
+                   e.at("tracking_rms").at("samples").get<std::size_t>());
       print_rms(e.at("tracking_rms"), out);
     }
     if (e.contains("error")) {

@@ -124,8 +124,7 @@ SurfaceComparison compare_surfaces(const terramechanics::PolynomialSurface& esti
 
 namespace {
 
-std::array<WheelSeries, 3> estimated_series(const estimation::NetTractionResult& r,
-                                            const estimation::FilterTrack& w) {
+std::array<WheelSeries, 3> estimated_series(const estimation::NetTractionResult& r, const estimation::FilterTrack& w) {
   namespace gen = estimation::net_traction::general;
   namespace wf = estimation::net_traction::wheel_force;
   std::array<WheelSeries, 3> out;

@@ -76,7 +76,8 @@ NetTractionEstimator::NetTractionEstimator(const log::Log& log, const nt::RoverC
   const std::string missing = net_traction_missing(log_);
   if (!missing.empty()) throw DataError(missing);
   const bool has_two_axis = has_two_axis_force_sensors(log_);
-  const ForceSensors chosen = o_.force_sensors.value_or(has_two_axis ? ForceSensors::two_axis : ForceSensors::single_axis);
+  const ForceSensors chosen =
+      o_.force_sensors.value_or(has_two_axis ? ForceSensors::two_axis : ForceSensors::single_axis);
   if (chosen == ForceSensors::two_axis && !has_two_axis) {
     throw DataError("two-axis force estimation needs perpendicular_1..3 in stream 'forces'");
   }
@@ -316,8 +317,10 @@ void NetTractionEstimator::write_streams() {
     const FilterTrack* track;
     int first;
   } quantities[] = {
-      {"normal_load_", "N", &w, wf::kNormalLoad},          {"drawbar_pull_", "N", &w, wf::kDrawbarPull},
-      {"resistive_torque_", "N*m", &g, gen::kResistiveTorque}, {"slip_", "1", &g, gen::kSlip},
+      {"normal_load_", "N", &w, wf::kNormalLoad},
+      {"drawbar_pull_", "N", &w, wf::kDrawbarPull},
+      {"resistive_torque_", "N*m", &g, gen::kResistiveTorque},
+      {"slip_", "1", &g, gen::kSlip},
       {"contact_angle_", "rad", &w, wf::kContactAngle},
   };
   for (const auto& q : quantities) {

@@ -43,11 +43,11 @@ struct FilterTrack {
 
 struct NetTractionResult {  // NOLINT(bugprone-exception-escape): std::map's move in LogMetadata
   std::vector<double> time;
-  FilterTrack general, two_axis, single_axis;  // Estimators 1, 2, 3 (2 or 3 empty when not run)
-  Eigen::MatrixXd wheel_acceleration;          // Eq. 5.24 at each sample (N x 3), rad/s^2
+  FilterTrack general, two_axis, single_axis;           // Estimators 1, 2, 3 (2 or 3 empty when not run)
+  Eigen::MatrixXd wheel_acceleration;                   // Eq. 5.24 at each sample (N x 3), rad/s^2
   ForceSensors force_sensors = ForceSensors::two_axis;  // the estimator the streams come from
-  std::size_t standstill_samples = 0;  // samples with no slip measured (the rover stood)
-  double filter_seconds = 0;           // wall time of the filter pass
+  std::size_t standstill_samples = 0;                   // samples with no slip measured (the rover stood)
+  double filter_seconds = 0;                            // wall time of the filter pass
   // estimate/net_traction/wheels and estimate/net_traction/body.
   log::Log estimates;
   const FilterTrack& wheel_forces() const { return force_sensors == ForceSensors::two_axis ? two_axis : single_axis; }
@@ -87,7 +87,7 @@ class NetTractionEstimator {
   net_traction::ForceMeasurementModel force_measurement_;
   UnscentedKalmanFilter general_, two_axis_filter_, single_axis_filter_;
   Eigen::MatrixXd Q1_, Q2_, R2_, R3_;
-  Eigen::VectorXd r1_;  // Estimator 1's measurement variances, before gating
+  Eigen::VectorXd r1_;                                        // Estimator 1's measurement variances, before gating
   Eigen::Vector3d contact_angles_ = Eigen::Vector3d::Zero();  // this sample's, from Estimator 1
   NetTractionResult result_;
 };

@@ -114,21 +114,21 @@ void GeneralProcessModel::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& 
   const Eigen::Vector3d tau = x.segment<3>(kResistiveTorque);
   const double th_dd = x(kPitchAcceleration), q1_dd = x(kBogieAcceleration);
   const double x_dd = x(kAccelerationX), z_dd = x(kAccelerationZ), th = x(kPitch);
-  out = x;  // Eq. 5.25, 5.34, 5.36: random walks
-  out.segment<3>(kWheelRate) += qdd * T;                                                  // Eq. 5.23
-  out(kPitch) += x(kPitchRate) * T + th_dd * T * T / 2;                                   // Eq. 5.26
-  out(kBogie) += x(kBogieRate) * T + q1_dd * T * T / 2;                                   // Eq. 5.27
-  out(kPitchRate) += th_dd * T;                                                           // Eq. 5.28
-  out(kBogieRate) += q1_dd * T;                                                           // Eq. 5.29
+  out = x;                                               // Eq. 5.25, 5.34, 5.36: random walks
+  out.segment<3>(kWheelRate) += qdd * T;                 // Eq. 5.23
+  out(kPitch) += x(kPitchRate) * T + th_dd * T * T / 2;  // Eq. 5.26
+  out(kBogie) += x(kBogieRate) * T + q1_dd * T * T / 2;  // Eq. 5.27
+  out(kPitchRate) += th_dd * T;                          // Eq. 5.28
+  out(kBogieRate) += q1_dd * T;                          // Eq. 5.29
   out(kPitchAcceleration) = (x(kMomentBody) - tau.sum() - dV(2) - H(2, 0) * x_dd - H(2, 1) * z_dd -  // Eq. 5.30
                              H(2, 3) * q1_dd - H(2, 4) * qdd(0) - H(2, 5) * qdd(1) - H(2, 6) * qdd(2)) /
                             H(2, 2);
   out(kBogieAcceleration) = (x(kMomentBogie) - tau(1) - tau(2) - dV(3) - H(3, 0) * x_dd - H(3, 1) * z_dd -  // Eq. 5.31
                              H(3, 2) * th_dd - H(3, 5) * qdd(1) - H(3, 6) * qdd(2)) /
                             H(3, 3);
-  out(kAccelerationX) = (x(kForceX) - H(0, 2) * th_dd - H(0, 3) * q1_dd) / H(0, 0);            // Eq. 5.32
-  out(kAccelerationZ) = (x(kForceZ) - dV(1) - H(1, 2) * th_dd - H(1, 3) * q1_dd) / H(1, 1);    // Eq. 5.33
-  out(kForwardSpeed) += (x_dd * std::cos(th) - z_dd * std::sin(th)) * T;                       // Eq. 5.35
+  out(kAccelerationX) = (x(kForceX) - H(0, 2) * th_dd - H(0, 3) * q1_dd) / H(0, 0);          // Eq. 5.32
+  out(kAccelerationZ) = (x(kForceZ) - dV(1) - H(1, 2) * th_dd - H(1, 3) * q1_dd) / H(1, 1);  // Eq. 5.33
+  out(kForwardSpeed) += (x_dd * std::cos(th) - z_dd * std::sin(th)) * T;                     // Eq. 5.35
 }
 
 void GeneralMeasurementModel::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
@@ -148,7 +148,7 @@ Eigen::VectorXd general_measurement(const RoverConstants& rover, const SensorSam
                                     double step, const Eigen::Vector2d* rates) {
   Eigen::VectorXd y(kMeasurements);
   const Eigen::Vector3d wheel_rates = (now.wheel_angle - before.wheel_angle) / step;  // Eq. 5.38
-  const double pitch = std::atan2(-now.specific_force_x, now.specific_force_z);  // Eq. 5.39
+  const double pitch = std::atan2(-now.specific_force_x, now.specific_force_z);       // Eq. 5.39
   const double pitch_rate = rates != nullptr ? (*rates)(0) : now.pitch_rate;
   const double bogie_rate = rates != nullptr ? (*rates)(1) : (now.bogie - before.bogie) / step;
   y.head<3>() = wheel_rates;
@@ -170,7 +170,7 @@ Eigen::VectorXd general_measurement(const RoverConstants& rover, const SensorSam
     // rates here; the simulator's slip includes them).
     const double roll = (k.W_wheel[i] * v)(0) * rover.geometry.wheel_radius;
     y(8 + i) = std::max(std::abs(roll), std::abs(speed)) < 1e-3 ? std::numeric_limits<double>::quiet_NaN()
-                                                                 : slip_ratio(roll, speed);
+                                                                : slip_ratio(roll, speed);
   }
   return y;
 }
@@ -186,16 +186,16 @@ void ForceMeasurementModel::operator()(const Eigen::VectorXd& x, Eigen::VectorXd
     const double g = x(wheel_force::kContactAngle + i), W = x(wheel_force::kNormalLoad + i),
                  dp = x(wheel_force::kDrawbarPull + i);
     const double a = g + angles_(i), c = std::cos(a), s = std::sin(a);
-    out(i) = g;                     // Eq. 5.57
-    out(3 + i) = W * c + dp * s;    // Eq. 5.58
-    out(6 + i) = -W * s + dp * c;   // Eq. 5.59
+    out(i) = g;                    // Eq. 5.57
+    out(3 + i) = W * c + dp * s;   // Eq. 5.58
+    out(6 + i) = -W * s + dp * c;  // Eq. 5.59
   }
 }
 
 // Eq. 5.54-5.56 on Estimator 1's estimate.
 Eigen::Vector3d contact_angle_measurement(const RoverConstants& rover, const Eigen::VectorXd& x) {
-  const rb::Vec v = generalised_velocity(x(kForwardSpeed), x(kPitch), x(kPitchRate), x(kBogieRate),
-                                         x.segment<3>(kWheelRate));
+  const rb::Vec v =
+      generalised_velocity(x(kForwardSpeed), x(kPitch), x(kPitchRate), x(kBogieRate), x.segment<3>(kWheelRate));
   rb::Vec q = rb::Vec::Zero();
   q(2) = x(kPitch);
   q(3) = x(kBogie);

@@ -25,22 +25,22 @@ namespace roverlab::estimation::net_traction {
 
 // Eq. 5.18: Estimator 1's state, in the seed's order.
 namespace general {
-constexpr int kWheelRate = 0;         // qdot_2..4 (3), rad/s
-constexpr int kResistiveTorque = 3;   // tau_R1..3 (3), N m
-constexpr int kPitch = 6;             // theta_0y, rad
-constexpr int kBogie = 7;             // q_1, rad
-constexpr int kPitchRate = 8;         // rad/s
-constexpr int kBogieRate = 9;         // rad/s
+constexpr int kWheelRate = 0;           // qdot_2..4 (3), rad/s
+constexpr int kResistiveTorque = 3;     // tau_R1..3 (3), N m
+constexpr int kPitch = 6;               // theta_0y, rad
+constexpr int kBogie = 7;               // q_1, rad
+constexpr int kPitchRate = 8;           // rad/s
+constexpr int kBogieRate = 9;           // rad/s
 constexpr int kPitchAcceleration = 10;  // rad/s^2
 constexpr int kBogieAcceleration = 11;  // rad/s^2
-constexpr int kAccelerationX = 12;    // xddot_0, world, m/s^2
-constexpr int kAccelerationZ = 13;    // zddot_0, world, m/s^2
-constexpr int kMomentBody = 14;       // M_0fw, N m
-constexpr int kMomentBogie = 15;      // M_1fw, N m
-constexpr int kForceX = 16;           // F_xfw, N
-constexpr int kForceZ = 17;           // F_zfw, N
-constexpr int kForwardSpeed = 18;     // xdot_0^R, m/s
-constexpr int kSlip = 19;             // i_1..3 (3)
+constexpr int kAccelerationX = 12;      // xddot_0, world, m/s^2
+constexpr int kAccelerationZ = 13;      // zddot_0, world, m/s^2
+constexpr int kMomentBody = 14;         // M_0fw, N m
+constexpr int kMomentBogie = 15;        // M_1fw, N m
+constexpr int kForceX = 16;             // F_xfw, N
+constexpr int kForceZ = 17;             // F_zfw, N
+constexpr int kForwardSpeed = 18;       // xdot_0^R, m/s
+constexpr int kSlip = 19;               // i_1..3 (3)
 constexpr int kStates = 22;
 // Eq. 5.37: wheel rates (3), pitch, bogie, specific force x and z, forward speed, slips (3).
 constexpr int kMeasurements = 11;

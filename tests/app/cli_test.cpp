@@ -515,15 +515,16 @@ TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
 TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
   TempDir dir;
   const std::string sim = dir.file("roll.h5");
-  ASSERT_EQ(run_roverlab("simulate rolling_200s --duration 60 --effect soil-strength=2.5 -o " + quote(sim)).exit_code, 0);
+  ASSERT_EQ(run_roverlab("simulate rolling_200s --duration 60 --effect soil-strength=2.5 -o " + quote(sim)).exit_code,
+            0);
   const CommandResult text = run_roverlab("estimate net-traction " + quote(sim) + " --order 2");
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("Estimators 1 and 2 (two-axis)"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("Estimators 1 and 3 (single-axis)"), std::string::npos);
   EXPECT_NE(text.out.find("true local"), std::string::npos);
   EXPECT_NE(text.out.find("s W"), std::string::npos);  // a Table 5.2 row, p_11
-  const CommandResult js = run_roverlab("estimate net-traction " + quote(sim) + " --order 2 --json -o " +
-                                        quote(dir.file("out.h5")));
+  const CommandResult js =
+      run_roverlab("estimate net-traction " + quote(sim) + " --order 2 --json -o " + quote(dir.file("out.h5")));
   ASSERT_EQ(js.exit_code, 0) << js.err;
   const auto j = nlohmann::json::parse(js.out);
   EXPECT_EQ(j.at("force_sensors"), "two-axis");
@@ -531,7 +532,8 @@ TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
   EXPECT_EQ(tau.at("terms").size(), 6u);
   EXPECT_EQ(tau.at("coefficients").size(), 6u);
   EXPECT_EQ(tau.at("region").at("slip").size(), 2u);
-  EXPECT_LT(tau.at("rms_vs_truth").at("rms_percent").get<double>(), 15.0);  // 60 s: a small region; tests/core holds the 200 s figures
+  EXPECT_LT(tau.at("rms_vs_truth").at("rms_percent").get<double>(),
+            15.0);  // 60 s: a small region; tests/core holds the 200 s figures
   EXPECT_LT(j.at("estimators").at("two-axis").at("tracking_rms").at("resistive_torque_Nm").at(0).get<double>(), 0.01);
   const log::Log out = io::read_hdf5_log(dir.file("out.h5"));
   EXPECT_NE(out.stream("estimate/net_traction/wheels").find_channel("drawbar_pull_sigma_3"), nullptr);

@@ -58,8 +58,8 @@ TEST(NetTraction, EstimatesTrackTheTruth) {
   for (int i = 0; i < 3; ++i) {
     EXPECT_LT(two.resistive_torque(i), 2e-3) << i;  // N m, of torques up to 2 N m
     EXPECT_LT(two.slip(i), 0.012) << i;
-    EXPECT_LT(two.normal_load(i), 0.15) << i;  // N, of 35-66 N
-    EXPECT_LT(two.drawbar_pull(i), 0.9) << i;  // N, of -5..15 N
+    EXPECT_LT(two.normal_load(i), 0.15) << i;    // N, of 35-66 N
+    EXPECT_LT(two.drawbar_pull(i), 0.9) << i;    // N, of -5..15 N
     EXPECT_LT(two.contact_angle(i), 0.02) << i;  // rad
     EXPECT_LT(one.normal_load(i), 0.2) << i;
   }
@@ -221,7 +221,8 @@ TEST(NetTraction, LogsLackingStreamsOrPerpendicularLoadsAreRefused) {
       continue;
     }
     log::Stream f("forces", s.time());
-    for (int i = 1; i <= 3; ++i) f.add_channel("load_" + std::to_string(i), "N", s.channel("load_" + std::to_string(i)).values);
+    for (int i = 1; i <= 3; ++i)
+      f.add_channel("load_" + std::to_string(i), "N", s.channel("load_" + std::to_string(i)).values);
     single.add_stream(std::move(f));
   }
   EXPECT_FALSE(estimation::has_two_axis_force_sensors(single));
