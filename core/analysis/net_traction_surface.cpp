@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/common/error.h"
 
@@ -80,6 +81,7 @@ TraversedRegion traversed_region(const std::vector<TractionPoint>& points, int b
     throw DataError("the steady-state points span a single load or slip: no surface to rebuild");
   }
   std::vector<terramechanics::SurfaceSample> s;
+  s.reserve(points.size());
   for (const auto& p : points) s.push_back({p.load, p.slip, 0.0, 1.0});
   r.grid = terramechanics::OccupancyGrid::build(s, r.load_min, r.load_max, r.slip_min, r.slip_max, bins, bins);
   return r;
@@ -98,7 +100,7 @@ SurfaceComparison compare_surfaces(const terramechanics::PolynomialSurface& esti
                                    const terramechanics::PolynomialSurface& reference, const TraversedRegion& region,
                                    int resolution) {
   SurfaceComparison c;
-  double sum = 0, lo = INFINITY, hi = -INFINITY;
+  double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (int i = 0; i < resolution; ++i) {
     for (int j = 0; j < resolution; ++j) {
       const double W = region.load_min + (region.load_max - region.load_min) * (i + 0.5) / resolution;

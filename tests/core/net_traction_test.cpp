@@ -118,7 +118,7 @@ Observability observability(const Eigen::MatrixXd& F, const Eigen::MatrixXd& H_a
     if (s > 0) E.row(r) /= s;
   }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(E, Eigen::ComputeFullV);
-  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::VectorXd& sv = svd.singularValues();
   Observability o;
   for (Eigen::Index i = 0; i < sv.size(); ++i) o.rank += sv(i) > 1e-7 * sv(0) ? 1 : 0;
   const Eigen::MatrixXd null = svd.matrixV().rightCols(n - o.rank);
