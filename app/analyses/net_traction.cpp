@@ -16,6 +16,7 @@
 #include "core/common/error.h"
 #include "core/estimation/net_traction.h"
 #include "importers/rover_file.h"
+#include "importers/soil_file.h"
 
 namespace roverlab::app {
 
@@ -94,6 +95,8 @@ class NetTractionAnalysis : public Analysis {
            "--order", order_,
            "Order of the Eq. 2.28 surfaces, 1..6 (the seed's Table 5.2: 2), or auto (cross-validation over 1..4)")
         ->capture_default_str();
+    cmd.add_option("--soil", soil_, "Starting soil NAME or FILE for the soil fit to the estimates")
+        ->capture_default_str();
     cmd.add_option("--window", window_, "Fit only the last S seconds of estimates (0: all; section 5.9)")
         ->capture_default_str()
         ->check(finite_in(0.0, 1e7));
@@ -136,14 +139,43 @@ class NetTractionAnalysis : public Analysis {
       throw UsageError(std::string("--force-sensors: ") + e.what());
     }
   }
-  json fits(const log::Log& lg, const estimation::NetTractionResult& r) const;
+  json fits(const log::Log& lg, const estimation::NetTractionResult& r, double wheel_radius) const;
+  json soil_fit(const std::vector<analysis::TractionPoint>& points, double wheel_radius) const;
 
   std::optional<std::string> force_sensors_;
   std::string order_ = "2";  // the seed's Table 5.2
+  std::string soil_ = "ding_tyii";
   double window_ = 0.0;
 };
 
-json NetTractionAnalysis::fits(const log::Log& lg, const estimation::NetTractionResult& r) const {
+// Item 5: soil strength and shear modulus from the points, then whether the
+// sinkage exponent can be told apart from them.
+json NetTractionAnalysis::soil_fit(const std::vector<analysis::TractionPoint>& points, double wheel_radius) const {
+  using P = terramechanics::Parameter;
+  const terramechanics::Soil start = io::find_soil(soil_, resource_subfolders("soils"));
+  terramechanics::Wheel wheel;
+  wheel.radius = wheel_radius;
+  const auto two = analysis::identify_soil_from_points(points, start, wheel, {P::soil_strength, P::shear_modulus});
+  const auto three =
+      analysis::identify_soil_from_points(points, start, wheel, {P::soil_strength, P::n, P::shear_modulus});
+  json params = json::array();
+  for (const auto& p : two.fit.parameters) {
+    params.push_back({{"name", terramechanics::to_string(p.parameter)},
+                      {"value", p.value},
+                      {"sigma", finite_or_null(p.sigma)},
+                      {"at_bound", p.at_bound}});
+  }
+  json corr = json::array();
+  for (double c : two.fit.correlation) corr.push_back(finite_or_null(c));
+  json confounded = json::array();
+  for (const auto& [a, b] : three.confounded) {
+    confounded.push_back({terramechanics::to_string(a), terramechanics::to_string(b)});
+  }
+  return {{"start_soil", start.name}, {"points", two.points}, {"converged", two.fit.converged},
+          {"parameters", params},     {"correlation", corr},  {"cannot_tell_apart_with_n_free", confounded}};
+}
+
+json NetTractionAnalysis::fits(const log::Log& lg, const estimation::NetTractionResult& r, double wheel_radius) const {
   analysis::SteadyStateOptions o;
   o.window_seconds = window_;
   json out = json::object();
@@ -160,6 +192,7 @@ json NetTractionAnalysis::fits(const log::Log& lg, const estimation::NetTraction
            {"kept_samples", m.kept_samples},
            {"drawbar_pull", quantity_json(m.drawbar_pull, m.region)},
            {"resistive_torque", quantity_json(m.resistive_torque, m.region)}};
+      j["soil"] = soil_fit(m.estimated_points, wheel_radius);
     } catch (const DataError& err) {
       j = {{"error", err.what()}};
     }
@@ -207,7 +240,7 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
                     {"average_s", analysis::SteadyStateOptions{}.average_seconds},
                     {"settle_s", analysis::SteadyStateOptions{}.settle_seconds}}},
                   {"has_truth", in.log.find_stream("truth/wheels") != nullptr},
-                  {"estimators", fits(in.log, r)}};
+                  {"estimators", fits(in.log, r, g.wheel_radius)}};
   out.estimates = std::move(r.estimates);
   return out;
 }
@@ -278,6 +311,21 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
                  e.at("points").get<std::size_t>());
     print_table(e.at("resistive_torque"), "tau_R (N m)", out);
     print_table(e.at("drawbar_pull"), "DP (N)", out);
+    const json& soil = e.at("soil");
+    std::fprintf(out, " soil fitted to %zu of the points from %s:", soil.at("points").get<std::size_t>(),
+                 soil.at("start_soil").get<std::string>().c_str());
+    for (const json& p : soil.at("parameters")) {
+      std::fprintf(out, " %s %.4g +- %s", p.at("name").get<std::string>().c_str(), p.at("value").get<double>(),
+                   ReportSection::number(p.at("sigma"), "%.2g").c_str());
+    }
+    if (soil.at("correlation").size() == 4) {
+      std::fprintf(out, ", correlation %s", ReportSection::number(soil.at("correlation").at(1), "%.2f").c_str());
+    }
+    std::fprintf(out, "\n");
+    for (const json& pair : soil.at("cannot_tell_apart_with_n_free")) {
+      std::fprintf(out, "  with n free the points cannot tell %s from %s\n", pair.at(0).get<std::string>().c_str(),
+                   pair.at(1).get<std::string>().c_str());
+    }
   }
 }
 

@@ -192,6 +192,7 @@ NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation
   for (const auto& wm : mask) m.kept_samples += static_cast<std::size_t>(std::count(wm.begin(), wm.end(), true));
   const std::vector<TractionPoint> points = averaged_points(r.time, estimated_series(r, w), mask, o);
   m.points = points.size();
+  m.estimated_points = points;
   m.region = traversed_region(points);
   std::array<WheelSeries, 3> truth;
   std::vector<TractionPoint> truth_points;
@@ -201,6 +202,40 @@ NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation
   m.drawbar_pull = fit_quantity(points, tp, m.region, TractionQuantity::drawbar_pull, order, max_order);
   m.resistive_torque = fit_quantity(points, tp, m.region, TractionQuantity::resistive_torque, order, max_order);
   return m;
+}
+
+SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points, const terramechanics::Soil& start,
+                                        const terramechanics::Wheel& wheel,
+                                        const std::vector<terramechanics::Parameter>& free, std::size_t max_points) {
+  if (points.size() < 10) throw DataError("too few steady-state points to fit the soil");
+  std::vector<terramechanics::WheelTestPoint> test;
+  const std::size_t stride = std::max<std::size_t>(1, (points.size() + max_points - 1) / max_points);
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    terramechanics::WheelTestPoint p;
+    p.wheel = wheel;
+    p.wheel_label = "wheel " + std::to_string(points[i].wheel);
+    p.load = points[i].load;
+    p.slip = points[i].slip;
+    p.drawbar_pull = points[i].drawbar_pull;
+    p.torque = points[i].resistive_torque;
+    test.push_back(p);
+  }
+  terramechanics::IdentificationOptions o;
+  o.free = free;
+  o.sigma.drawbar_pull = 0.5;  // N: about the drawbar pulls' tracking error
+  o.sigma.torque = 0.02;       // N m: the resistive torques' scatter about a surface
+  SoilFromRover out;
+  out.points = test.size();
+  out.fit = terramechanics::identify_soil(start, test, o);
+  const std::size_t k = free.size();
+  if (out.fit.correlation.size() == k * k) {
+    for (std::size_t i = 0; i < k; ++i) {
+      for (std::size_t j = i + 1; j < k; ++j) {
+        if (std::abs(out.fit.correlation[i * k + j]) > 0.95) out.confounded.emplace_back(free[i], free[j]);
+      }
+    }
+  }
+  return out;
 }
 
 std::string surface_term(std::size_t i) {

@@ -14,6 +14,7 @@
 
 #include "core/estimation/net_traction.h"
 #include "core/log/log.h"
+#include "core/terramechanics/soil_identification.h"
 #include "core/terramechanics/traction_surface.h"
 
 namespace roverlab::analysis {
@@ -83,6 +84,7 @@ struct QuantityFit {
 };
 struct NetTractionModel {
   std::size_t points = 0, kept_samples = 0;
+  std::vector<TractionPoint> estimated_points;  // the averaged steady-state points
   TraversedRegion region;
   QuantityFit drawbar_pull, resistive_torque;
 };
@@ -92,6 +94,21 @@ struct NetTractionModel {
 NetTractionModel rebuild_net_traction_model(const log::Log& log, const estimation::NetTractionResult& result,
                                             const estimation::FilterTrack& wheel_forces,
                                             const SteadyStateOptions& options, int order, int max_order = 4);
+
+// Issue 12 item 5: soil parameters fitted (Ceres, core/terramechanics/
+// soil_identification.h) to the estimated steady-state points (drawbar pull
+// and resistive torque at each load and slip), from `start`, with +-1
+// sigma, correlations, and the pairs the points cannot tell apart
+// (|correlation| above 0.95). At most max_points points (evenly spaced).
+struct SoilFromRover {
+  terramechanics::IdentificationResult fit;
+  std::vector<std::pair<terramechanics::Parameter, terramechanics::Parameter>> confounded;
+  std::size_t points = 0;
+};
+SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points, const terramechanics::Soil& start,
+                                        const terramechanics::Wheel& wheel,
+                                        const std::vector<terramechanics::Parameter>& free,
+                                        std::size_t max_points = 300);
 
 // The Eq. 2.28 term of coefficient i, e.g. "s^2 W" (p_21).
 std::string surface_term(std::size_t i);

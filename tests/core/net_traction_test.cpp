@@ -253,3 +253,24 @@ TEST(NetTraction, ClosedFormInertiaAndGravityEqualTheSimulators) {
     EXPECT_LT((t.gravity - p.gravity * height.transpose()).cwiseAbs().maxCoeff(), 1e-10);
   }
 }
+
+// Issue 12 item 5: the soil from the rover's own estimates. The run's soil is
+// TYII with cohesion, tan(friction angle), kc and kphi scaled by 2.5.
+TEST(NetTraction, SoilParametersFromTheEstimatedPoints) {
+  const auto& r = rolling_result();
+  const auto m = analysis::rebuild_net_traction_model(rolling_log(), r, r.two_axis, {}, 2);
+  const auto soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
+  using P = terramechanics::Parameter;
+  const auto s =
+      analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::shear_modulus});
+  ASSERT_TRUE(s.fit.converged && s.fit.covariance_ok);
+  EXPECT_NEAR(s.fit.parameters[0].value, 2.5, 0.375);    // 2.22 +- 0.03: within 15 %
+  EXPECT_NEAR(s.fit.parameters[1].value, 0.0114, 6e-4);  // K, m: 0.01124 +- 0.0001
+  EXPECT_GT(s.fit.parameters[0].sigma, 0.0);
+  EXPECT_LT(std::abs(s.fit.correlation[1]), 0.95);
+  EXPECT_TRUE(s.confounded.empty());
+  // With the sinkage exponent free as well, the region cannot tell the three apart.
+  const auto three =
+      analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::n, P::shear_modulus});
+  EXPECT_FALSE(three.confounded.empty());
+}
