@@ -21,6 +21,8 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr double kAirborneLoad = 1.0;  // N
 // Variance of a measurement that is not available (gated out).
 constexpr double kUnavailable = 1e8;
+// The process noise is added to P before each step (see general_step).
+const Eigen::MatrixXd kNoProcessNoise(0, 0);
 
 const char* const kStreams[] = {"joints", "imu", "velocimeter", "forces", "commands"};
 
@@ -270,7 +272,12 @@ void NetTractionEstimator::general_step(std::size_t k) {
                                                    Eigen::VectorXd& out) { process_(x, out); };
   const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
                                                    Eigen::VectorXd& out) { measurement_(x, out); };
-  general_.step(f, Q1_, h, r.asDiagonal(), y);
+  // Eq. 5.12's Q added before the sigma points rather than after them: the
+  // same for the random walks, f(x + w) ~ f(x) + F w for the rest, and the
+  // UKF then needs no sigma points along the 22 process noises (half the
+  // augmented state's).
+  general_.P += Q1_;
+  general_.step(f, kNoProcessNoise, h, r.asDiagonal(), y);
 }
 
 // Eq. 5.49-5.67 for Estimator 2 (two_axis) or 3 at sample k.
@@ -296,7 +303,8 @@ void NetTractionEstimator::wheel_force_step(std::size_t k, UnscentedKalmanFilter
                                                  Eigen::VectorXd& out) { out = x; };  // Eq. 5.50-5.52, 5.61
     const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
                                                      Eigen::VectorXd& out) { force_measurement_(x, out); };
-    filter.step(f, Q2_, h, R, y);
+    filter.P += Q2_;  // Eq. 5.50-5.52: x + w through the identity, as Q after it
+    filter.step(f, kNoProcessNoise, h, R, y);
   }
   track.state.row(r) = filter.x.transpose();
   track.sigma.row(r) = filter.P.diagonal().cwiseMax(0.0).cwiseSqrt().transpose();
