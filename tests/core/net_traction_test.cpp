@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <ctime>
 #include <iostream>
+#include <map>
 
 #include <Eigen/Dense>
 
@@ -28,31 +29,39 @@ namespace {
 
 // The rolling terrain of Eq. 4.51 on TYII made 2.5 times stronger, so the
 // rover traverses it (docs/validation/simulation.md).
-const log::Log& rolling_log() {
-  static const log::Log lg = [] {
+// Each test runs in its own process (gtest_discover_tests): only the
+// surface test simulates the whole 200 s; the others take shorter runs.
+const log::Log& rolling_log(int seconds) {
+  static std::map<int, log::Log> logs;
+  auto it = logs.find(seconds);
+  if (it == logs.end()) {
     simulation::RockerBogieRun run;
     run.soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
     run.path = simulation::rolling_path();
     run.effects.soil_strength = 2.5;
-    run.duration = 200.0;
-    return simulation::simulate_rocker_bogie({}, {}, run).log;
-  }();
-  return lg;
+    run.duration = seconds;
+    it = logs.emplace(seconds, simulation::simulate_rocker_bogie({}, {}, run).log).first;
+  }
+  return it->second;
 }
 
-const estimation::NetTractionResult& rolling_result() {
-  static const estimation::NetTractionResult r = estimation::run_net_traction(rolling_log(), {}, {});
-  return r;
+const estimation::NetTractionResult& rolling_result(int seconds) {
+  static std::map<int, estimation::NetTractionResult> results;
+  auto it = results.find(seconds);
+  if (it == results.end())
+    it = results.emplace(seconds, estimation::run_net_traction(rolling_log(seconds), {}, {})).first;
+  return it->second;
 }
 
 }  // namespace
 
-// RMS errors per wheel over the 200 s run after 5 s of convergence
-// (docs/validation/net-traction.md has the figures; bounds about 1.5x them).
+// RMS errors per wheel over the first 100 s of the run after 5 s of
+// convergence (docs/validation/net-traction.md has the 200 s figures;
+// bounds about 1.5x them).
 TEST(NetTraction, EstimatesTrackTheTruth) {
-  const auto& r = rolling_result();
-  const auto two = estimation::tracking_errors(rolling_log(), r, r.two_axis);
-  const auto one = estimation::tracking_errors(rolling_log(), r, r.single_axis);
+  const auto& r = rolling_result(100);
+  const auto two = estimation::tracking_errors(rolling_log(100), r, r.two_axis);
+  const auto one = estimation::tracking_errors(rolling_log(100), r, r.single_axis);
   ASSERT_TRUE(two.has_truth);
   ASSERT_TRUE(one.has_truth);
   for (int i = 0; i < 3; ++i) {
@@ -139,7 +148,7 @@ std::vector<int> all_but(int n, const std::vector<int>& dropped) {
 }  // namespace
 
 TEST(NetTraction, Estimator1IsObservableAlongTheRunAndLosesTheSlipsAtStandstill) {
-  const auto& r = rolling_result();
+  const auto& r = rolling_result(20);
   nt::RoverConstants rover;
   nt::GeneralProcessModel f(rover, 0.02);
   const nt::GeneralMeasurementModel h;
@@ -158,7 +167,7 @@ TEST(NetTraction, Estimator1IsObservableAlongTheRunAndLosesTheSlipsAtStandstill)
 }
 
 TEST(NetTraction, WheelForceEstimatorsLoseTheForceSplitAtStandstillAndTheContactAngleOffTheGround) {
-  const auto& r = rolling_result();
+  const auto& r = rolling_result(20);
   nt::ForceMeasurementModel h;
   const auto hx = [&](const Eigen::VectorXd& x, Eigen::VectorXd& out) { h(x, out); };
   const Eigen::MatrixXd F = Eigen::MatrixXd::Identity(wf::kStates, wf::kStates);  // Eq. 5.50-5.52
@@ -184,10 +193,10 @@ TEST(NetTraction, WheelForceEstimatorsLoseTheForceSplitAtStandstillAndTheContact
 
 // Section 5.8 / Table 5.2: order-2 surfaces from the estimates against the
 // true local model over the traversed region, in % of the quantity's range.
-TEST(NetTraction, RebuiltSurfacesMatchTheTrueLocalModel) {
-  const auto& r = rolling_result();
-  const auto two = analysis::rebuild_net_traction_model(rolling_log(), r, r.two_axis, {}, 2);
-  const auto one = analysis::rebuild_net_traction_model(rolling_log(), r, r.single_axis, {}, 2);
+TEST(NetTraction, RebuiltSurfacesMatchTheTrueLocalModelAndGiveTheSoil) {
+  const auto& r = rolling_result(200);
+  const auto two = analysis::rebuild_net_traction_model(rolling_log(200), r, r.two_axis, {}, 2);
+  const auto one = analysis::rebuild_net_traction_model(rolling_log(200), r, r.single_axis, {}, 2);
   ASSERT_TRUE(two.resistive_torque.has_truth && two.drawbar_pull.has_truth);
   EXPECT_GT(two.points, 1000u);
   EXPECT_GT(two.region.load_max - two.region.load_min, 20.0);  // N
@@ -198,24 +207,43 @@ TEST(NetTraction, RebuiltSurfacesMatchTheTrueLocalModel) {
   EXPECT_LT(one.drawbar_pull.comparison.rms_percent, 4.0);  // the issue's 3 % is missed: 3.3 %
   // The true local model of order 2 is itself a close fit to the truth there.
   EXPECT_LT(two.drawbar_pull.truth.error.rmse, 0.05 * two.drawbar_pull.comparison.range);
+
+  // Issue 12 item 5, on the same points (one 200 s simulation per test
+  // process): the soil from the rover's own estimates. The run's soil is
+  // TYII with cohesion, tan(friction angle), kc and kphi scaled by 2.5.
+  const auto& m = two;
+  const auto soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
+  using P = terramechanics::Parameter;
+  const auto s =
+      analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::shear_modulus});
+  ASSERT_TRUE(s.fit.converged && s.fit.covariance_ok);
+  EXPECT_NEAR(s.fit.parameters[0].value, 2.5, 0.375);    // 2.22 +- 0.03: within 15 %
+  EXPECT_NEAR(s.fit.parameters[1].value, 0.0114, 6e-4);  // K, m: 0.01124 +- 0.0001
+  EXPECT_GT(s.fit.parameters[0].sigma, 0.0);
+  EXPECT_LT(std::abs(s.fit.correlation[1]), 0.95);
+  EXPECT_TRUE(s.confounded.empty());
+  // With the sinkage exponent free as well, the region cannot tell the three apart.
+  const auto three =
+      analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::n, P::shear_modulus});
+  EXPECT_FALSE(three.confounded.empty());
 }
 
 TEST(NetTraction, TooFewSteadyStatePointsAreRefused) {
-  const auto& r = rolling_result();
+  const auto& r = rolling_result(20);
   analysis::SteadyStateOptions o;
   o.window_seconds = 0.4;  // 2 averaged points per wheel
-  EXPECT_THROW(analysis::rebuild_net_traction_model(rolling_log(), r, r.two_axis, o, 2), DataError);
+  EXPECT_THROW(analysis::rebuild_net_traction_model(rolling_log(20), r, r.two_axis, o, 2), DataError);
 }
 
 TEST(NetTraction, LogsLackingStreamsOrPerpendicularLoadsAreRefused) {
   log::Log without;
-  for (const auto& s : rolling_log().streams()) {
+  for (const auto& s : rolling_log(20).streams()) {
     if (s.name() != "forces") without.add_stream(s);
   }
   EXPECT_EQ(estimation::net_traction_missing(without), "no forces stream");
   EXPECT_THROW(estimation::run_net_traction(without, {}, {}), DataError);
   log::Log single;
-  for (const auto& s : rolling_log().streams()) {
+  for (const auto& s : rolling_log(20).streams()) {
     if (s.name() != "forces") {
       single.add_stream(s);
       continue;
@@ -252,25 +280,4 @@ TEST(NetTraction, ClosedFormInertiaAndGravityEqualTheSimulators) {
     EXPECT_LT((t.inertia - H).cwiseAbs().maxCoeff(), 1e-12);
     EXPECT_LT((t.gravity - p.gravity * height.transpose()).cwiseAbs().maxCoeff(), 1e-10);
   }
-}
-
-// Issue 12 item 5: the soil from the rover's own estimates. The run's soil is
-// TYII with cohesion, tan(friction angle), kc and kphi scaled by 2.5.
-TEST(NetTraction, SoilParametersFromTheEstimatedPoints) {
-  const auto& r = rolling_result();
-  const auto m = analysis::rebuild_net_traction_model(rolling_log(), r, r.two_axis, {}, 2);
-  const auto soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
-  using P = terramechanics::Parameter;
-  const auto s =
-      analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::shear_modulus});
-  ASSERT_TRUE(s.fit.converged && s.fit.covariance_ok);
-  EXPECT_NEAR(s.fit.parameters[0].value, 2.5, 0.375);    // 2.22 +- 0.03: within 15 %
-  EXPECT_NEAR(s.fit.parameters[1].value, 0.0114, 6e-4);  // K, m: 0.01124 +- 0.0001
-  EXPECT_GT(s.fit.parameters[0].sigma, 0.0);
-  EXPECT_LT(std::abs(s.fit.correlation[1]), 0.95);
-  EXPECT_TRUE(s.confounded.empty());
-  // With the sinkage exponent free as well, the region cannot tell the three apart.
-  const auto three =
-      analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::n, P::shear_modulus});
-  EXPECT_FALSE(three.confounded.empty());
 }
