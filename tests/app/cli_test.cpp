@@ -561,6 +561,11 @@ TEST(CliNetTraction, BadInputAndUsage) {
   EXPECT_NE(r.err.find("no forces stream"), std::string::npos) << r.err;
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --order 9").exit_code, 2);
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors three-axis").exit_code, 2);
+  // A rover that has not moved yet (0.3 s of spin-up) is refused in one line.
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 0.3 -o " + quote(dir.file("still.h5"))).exit_code, 0);
+  const CommandResult still = run_roverlab("estimate net-traction " + quote(dir.file("still.h5")));
+  EXPECT_EQ(still.exit_code, 3);
+  EXPECT_NE(still.err.find("never moves"), std::string::npos) << still.err;
   // A skid-steer log is not a planar rocker-bogie.
   ASSERT_EQ(run_roverlab("scenario skid-steer-slip -o " + quote(dir.file("ss.h5"))).exit_code, 0);
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(dir.file("ss.h5"))).exit_code, 3);
