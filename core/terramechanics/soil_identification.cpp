@@ -286,6 +286,15 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
       result.parameters.push_back(e);
       set_parameter(result.soil, result.extensions, options.free[i], x[i]);
     }
+    if (result.covariance_ok) {
+      result.correlation.assign(k * k, NAN);
+      for (std::size_t i = 0; i < k; ++i) {
+        for (std::size_t j = 0; j < k; ++j) {
+          const double d = std::sqrt(cov[i * k + i] * cov[j * k + j]);
+          result.correlation[i * k + j] = d > 0.0 ? cov[i * k + j] / d : NAN;
+        }
+      }
+    }
   } else {
     result.converged = true;
     result.covariance_ok = true;

@@ -68,6 +68,9 @@ struct IdentificationResult {
   std::size_t measurements = 0;
   bool converged = false;
   bool covariance_ok = false;
+  // Correlations of the free parameters (k x k, row-major, in the order of
+  // options.free); empty without the covariance.
+  std::vector<double> correlation;
   std::string message;
 };
 

@@ -509,3 +509,64 @@ TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
   fs::remove(dir.file("bad.json"));
   EXPECT_FALSE(fs::exists(dir.file("x.h5")));
 }
+
+// --- seed 003: net-traction estimation --------------------------------------
+
+TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
+  TempDir dir;
+  const std::string sim = dir.file("roll.h5");
+  ASSERT_EQ(run_roverlab("simulate rolling_200s --duration 60 --effect soil-strength=2.5 -o " + quote(sim)).exit_code,
+            0);
+  const CommandResult text = run_roverlab("estimate net-traction " + quote(sim) + " --order 2");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("Estimators 1 and 2 (two-axis)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("Estimators 1 and 3 (single-axis)"), std::string::npos);
+  EXPECT_NE(text.out.find("true local"), std::string::npos);
+  EXPECT_NE(text.out.find("s W"), std::string::npos);  // a Table 5.2 row, p_11
+  const CommandResult js =
+      run_roverlab("estimate net-traction " + quote(sim) + " --order 2 --json -o " + quote(dir.file("out.h5")));
+  ASSERT_EQ(js.exit_code, 0) << js.err;
+  const auto j = nlohmann::json::parse(js.out);
+  EXPECT_EQ(j.at("force_sensors"), "two-axis");
+  const auto& tau = j.at("estimators").at("two-axis").at("resistive_torque");
+  EXPECT_EQ(tau.at("terms").size(), 6u);
+  EXPECT_EQ(tau.at("coefficients").size(), 6u);
+  EXPECT_EQ(tau.at("region").at("slip").size(), 2u);
+  EXPECT_LT(tau.at("rms_vs_truth").at("rms_percent").get<double>(),
+            15.0);  // 60 s: a small region; tests/core holds the 200 s figures
+  EXPECT_LT(j.at("estimators").at("two-axis").at("tracking_rms").at("resistive_torque_Nm").at(0).get<double>(), 0.01);
+  const log::Log out = io::read_hdf5_log(dir.file("out.h5"));
+  EXPECT_NE(out.stream("estimate/net_traction/wheels").find_channel("drawbar_pull_sigma_3"), nullptr);
+  EXPECT_NE(out.find_stream("estimate/net_traction/body"), nullptr);
+  // Single-axis on request: only Estimator 3 beside Estimator 1.
+  const CommandResult single =
+      run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors single-axis --json");
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  EXPECT_EQ(nlohmann::json::parse(single.out).at("estimators").count("two-axis"), 0u);
+}
+
+TEST(CliNetTraction, BadInputAndUsage) {
+  TempDir dir;
+  const std::string sim = dir.file("flat.h5");
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 4 -o " + quote(sim)).exit_code, 0);
+  log::Log lg = io::read_hdf5_log(sim);
+  log::Log without;
+  without.metadata = lg.metadata;
+  for (const auto& s : lg.streams()) {
+    if (s.name() != "forces") without.add_stream(s);
+  }
+  io::write_hdf5_log(without, dir.file("noforces.h5"));
+  const CommandResult r = run_roverlab("estimate net-traction " + quote(dir.file("noforces.h5")));
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("no forces stream"), std::string::npos) << r.err;
+  EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --order 9").exit_code, 2);
+  EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors three-axis").exit_code, 2);
+  // A rover that has not moved yet (0.3 s of spin-up) is refused in one line.
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 0.3 -o " + quote(dir.file("still.h5"))).exit_code, 0);
+  const CommandResult still = run_roverlab("estimate net-traction " + quote(dir.file("still.h5")));
+  EXPECT_EQ(still.exit_code, 3);
+  EXPECT_NE(still.err.find("never moves"), std::string::npos) << still.err;
+  // A skid-steer log is not a planar rocker-bogie.
+  ASSERT_EQ(run_roverlab("scenario skid-steer-slip -o " + quote(dir.file("ss.h5"))).exit_code, 0);
+  EXPECT_EQ(run_roverlab("estimate net-traction " + quote(dir.file("ss.h5"))).exit_code, 3);
+}

@@ -1,0 +1,388 @@
+// `estimate net-traction`: drawbar pull, resistive torque, normal load, slip
+// and contact angle of every wheel of a planar rocker-bogie from its own
+// sensors (seed 003 sections 5.4-5.6), and the traction surfaces DP(W, s)
+// and tau_R(W, s) rebuilt from the estimates (section 5.7), compared with
+// the true local model in the layout of Table 5.2 when the log has truth.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "app/analysis.h"
+#include "app/command_support.h"
+#include "app/commands.h"
+#include "app/resources.h"
+#include "core/analysis/net_traction_surface.h"
+#include "core/common/error.h"
+#include "core/estimation/net_traction.h"
+#include "importers/rover_file.h"
+#include "importers/soil_file.h"
+
+namespace roverlab::app {
+
+namespace {
+
+using nlohmann::json;
+constexpr double kDeg = 180.0 / M_PI;
+// A rover whose forward speed never exceeds this has not moved.
+constexpr double kMovingSpeed = 2e-3;  // m/s
+
+json vec(const Eigen::Vector3d& v, double scale = 1.0) {
+  return json::array({finite_or_null(v(0) * scale), finite_or_null(v(1) * scale), finite_or_null(v(2) * scale)});
+}
+
+json surface_json(const terramechanics::PolynomialSurface& s) {
+  json terms = json::array(), coefficients = json::array();
+  for (std::size_t i = 0; i < s.coefficients().size(); ++i) {
+    terms.push_back(analysis::surface_term(i));
+    coefficients.push_back(finite_or_null(s.coefficients()[i]));
+  }
+  return {{"order", s.order()}, {"terms", terms}, {"coefficients", coefficients}};
+}
+
+json quantity_json(const analysis::QuantityFit& f, const analysis::TraversedRegion& region) {
+  json j = surface_json(f.estimate.surface);
+  j["region"] = {{"slip", {region.slip_min, region.slip_max}},
+                 {"load_N", {region.load_min, region.load_max}},
+                 {"coverage", region.grid.coverage()}};
+  j["fit_rmse"] = f.estimate.error.rmse;
+  json cv = json::array();
+  for (const auto& o : f.estimate.orders) cv.push_back({{"order", o.order}, {"cv_rmse", o.cv_rmse}});
+  if (!cv.empty()) j["cross_validation"] = cv;
+  if (f.has_truth) {
+    j["truth_coefficients"] = surface_json(f.truth.surface).at("coefficients");
+    const auto& c = f.comparison;
+    j["rms_vs_truth"] = {{"rms", c.rms},
+                         {"max_abs", c.max_abs},
+                         {"range", c.range},
+                         {"rms_percent", c.rms_percent},
+                         {"max_percent", c.max_percent},
+                         {"grid_points", c.grid_points}};
+  }
+  return j;
+}
+
+class NetTractionAnalysis : public Analysis {
+ public:
+  std::string name() const override { return "net-traction"; }
+  std::string command() const override { return "estimate net-traction"; }
+  std::string title() const override { return "Net-traction estimator (seed 003)"; }
+  std::string help() const override {
+    return "Drawbar pull, resistive torque, normal load, slip and contact angle of a planar rocker-bogie's wheels, "
+           "and its traction surfaces rebuilt from them (seed 003)";
+  }
+  std::string log_help() const override {
+    return "Planar rocker-bogie log with joints, imu, velocimeter, forces and commands streams (truth/ for errors)";
+  }
+
+  std::string missing(const log::Log& lg) const override {
+    std::string m = estimation::net_traction_missing(lg);
+    if (!m.empty()) return m;
+    if (!planar_rover(lg)) return "the log's rover '" + lg.metadata.rover_id + "' is not a planar rocker-bogie";
+    if (!moves(lg.stream("velocimeter")))
+      return "the rover never moves (forward speed within 2 mm/s over every second)";
+    return "";
+  }
+  bool runs_on_open(const log::Log& lg) const override {
+    return missing(lg).empty() && lg.find_stream("estimate/net_traction/wheels") == nullptr;
+  }
+
+  void declare(CLI::App& cmd) override {
+    cmd.add_option("--force-sensors", force_sensors_,
+                   "two-axis | single-axis (default: two-axis when the log has perpendicular loads)");
+    cmd.add_option(
+           "--order", order_,
+           "Order of the Eq. 2.28 surfaces, 1..6 (the seed's Table 5.2: 2), or auto (cross-validation over 1..4)")
+        ->capture_default_str();
+    cmd.add_option("--soil", soil_, "Starting soil NAME or FILE for the soil fit to the estimates")
+        ->capture_default_str();
+    cmd.add_option("--window", window_, "Fit only the last S seconds of estimates (0: all; section 5.9)")
+        ->capture_default_str()
+        ->check(finite_in(0.0, 1e7));
+  }
+  void check_options() const override {
+    (void)order();
+    if (force_sensors_) (void)sensors();
+  }
+  AnalysisResult run(const AnalysisInput& in) override;
+  void print(const json& j, std::FILE* out) const override;
+  void report(const json& j, ReportSection& section) const override;
+
+ private:
+  static std::optional<io::RoverDescription> rover_of(const log::Log& lg, const std::string& file) {
+    if (lg.metadata.rover_id.empty()) return std::nullopt;
+    try {
+      return io::find_rover_named(lg.metadata.rover_id, resource_subfolders("rovers"), file);
+    } catch (const InputError&) {
+      return std::nullopt;
+    }
+  }
+  // Whether the forward speed averaged over some second exceeds 2 mm/s (a
+  // single sample may, by the velocimeter's noise alone).
+  static bool moves(const log::Stream& velocimeter) {
+    const auto& v = velocimeter.channel("forward_speed").values;
+    const auto& t = velocimeter.time();
+    const auto value = [&](std::size_t k) { return std::isfinite(v[k]) ? v[k] : 0.0; };
+    double sum = 0;
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      sum += value(k);
+      for (; t[k] - t[first] > 1.0; ++first) sum -= value(first);
+      const auto n = static_cast<double>(k - first + 1);
+      if (t[k] - t[first] >= 0.9 && std::abs(sum) > kMovingSpeed * n) return true;
+    }
+    return false;
+  }
+  static bool planar_rover(const log::Log& lg) {
+    const auto d = rover_of(lg, "");
+    return d && d->planar.has_value();
+  }
+  int order() const {
+    if (order_ == "auto") return 0;
+    try {
+      std::size_t used = 0;
+      const int n = std::stoi(order_, &used);
+      if (used == order_.size() && n >= 1 && n <= 6) return n;
+    } catch (const std::exception&) {
+    }
+    throw UsageError("--order " + order_ + ": expected 1..6 or auto");
+  }
+  estimation::ForceSensors sensors() const {
+    try {
+      return estimation::parse_force_sensors(*force_sensors_);
+    } catch (const DataError& e) {
+      throw UsageError(std::string("--force-sensors: ") + e.what());
+    }
+  }
+  json fits(const log::Log& lg, const estimation::NetTractionResult& r, double wheel_radius) const;
+  json soil_fit(const std::vector<analysis::TractionPoint>& points, double wheel_radius) const;
+
+  std::optional<std::string> force_sensors_;
+  std::string order_ = "2";  // the seed's Table 5.2
+  std::string soil_ = "ding_tyii";
+  double window_ = 0.0;
+};
+
+// Item 5: soil strength and shear modulus from the points, then whether the
+// sinkage exponent can be told apart from them.
+json NetTractionAnalysis::soil_fit(const std::vector<analysis::TractionPoint>& points, double wheel_radius) const {
+  using P = terramechanics::Parameter;
+  const terramechanics::Soil start = io::find_soil(soil_, resource_subfolders("soils"));
+  terramechanics::Wheel wheel;
+  wheel.radius = wheel_radius;
+  const auto two = analysis::identify_soil_from_points(points, start, wheel, {P::soil_strength, P::shear_modulus});
+  const auto three =
+      analysis::identify_soil_from_points(points, start, wheel, {P::soil_strength, P::n, P::shear_modulus});
+  json params = json::array();
+  for (const auto& p : two.fit.parameters) {
+    params.push_back({{"name", terramechanics::to_string(p.parameter)},
+                      {"value", p.value},
+                      {"sigma", finite_or_null(p.sigma)},
+                      {"at_bound", p.at_bound}});
+  }
+  json corr = json::array();
+  for (double c : two.fit.correlation) corr.push_back(finite_or_null(c));
+  json confounded = json::array();
+  for (const auto& [a, b] : three.confounded) {
+    confounded.push_back({terramechanics::to_string(a), terramechanics::to_string(b)});
+  }
+  return {{"start_soil", start.name}, {"points", two.points}, {"converged", two.fit.converged},
+          {"parameters", params},     {"correlation", corr},  {"cannot_tell_apart_with_n_free", confounded}};
+}
+
+json NetTractionAnalysis::fits(const log::Log& lg, const estimation::NetTractionResult& r, double wheel_radius) const {
+  analysis::SteadyStateOptions o;
+  o.window_seconds = window_;
+  json out = json::object();
+  const struct {
+    const char* name;
+    const estimation::FilterTrack* track;
+  } estimators[] = {{"two-axis", &r.two_axis}, {"single-axis", &r.single_axis}};
+  for (const auto& e : estimators) {
+    if (e.track->empty()) continue;
+    json j;
+    try {
+      const analysis::NetTractionModel m = analysis::rebuild_net_traction_model(lg, r, *e.track, o, order());
+      j = {{"points", m.points},
+           {"kept_samples", m.kept_samples},
+           {"drawbar_pull", quantity_json(m.drawbar_pull, m.region)},
+           {"resistive_torque", quantity_json(m.resistive_torque, m.region)}};
+      j["soil"] = soil_fit(m.estimated_points, wheel_radius);
+    } catch (const DataError& err) {
+      j = {{"error", err.what()}};
+    }
+    const auto errors = estimation::tracking_errors(lg, r, *e.track);
+    if (errors.has_truth) {
+      j["tracking_rms"] = {{"normal_load_N", vec(errors.normal_load)},
+                           {"drawbar_pull_N", vec(errors.drawbar_pull)},
+                           {"resistive_torque_Nm", vec(errors.resistive_torque)},
+                           {"slip", vec(errors.slip)},
+                           {"contact_angle_deg", vec(errors.contact_angle, kDeg)},
+                           {"samples", errors.samples}};
+    }
+    out[e.name] = j;
+  }
+  return out;
+}
+
+AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
+  const std::string m = missing(in.log);
+  if (!m.empty()) throw DataError(m);
+  const io::RoverDescription d = *rover_of(in.log, in.file);
+  estimation::net_traction::RoverConstants rover;
+  auto& g = rover.geometry;
+  g.wheel_radius = d.planar->wheel_radius;
+  g.rocker_to_wheel1 = {d.planar->rocker_to_wheel1[0], d.planar->rocker_to_wheel1[1]};
+  g.rocker_to_bogie = {d.planar->rocker_to_bogie[0], d.planar->rocker_to_bogie[1]};
+  g.bogie_to_wheel2 = {d.planar->bogie_to_wheel2[0], d.planar->bogie_to_wheel2[1]};
+  g.bogie_to_wheel3 = {d.planar->bogie_to_wheel3[0], d.planar->bogie_to_wheel3[1]};
+  estimation::NetTractionOptions o;
+  if (force_sensors_) o.force_sensors = sensors();
+  o.progress = in.progress;
+  estimation::NetTractionResult r = estimation::run_net_traction(in.log, rover, o);
+  AnalysisResult out;
+  const double seconds = r.time.empty() ? 0.0 : r.time.back() - r.time.front();
+  out.document = {{"file", in.file},
+                  {"rover", d.name},
+                  {"force_sensors", estimation::force_sensors_name(r.force_sensors)},
+                  {"order", order_},
+                  {"window_s", window_},
+                  {"seconds", seconds},
+                  {"filter_seconds", r.filter_seconds},
+                  {"standstill_samples", r.standstill_samples},
+                  {"steady_state",
+                   {{"max_wheel_acceleration", analysis::SteadyStateOptions{}.max_wheel_acceleration},
+                    {"average_s", analysis::SteadyStateOptions{}.average_seconds},
+                    {"settle_s", analysis::SteadyStateOptions{}.settle_seconds}}},
+                  {"has_truth", in.log.find_stream("truth/wheels") != nullptr},
+                  {"estimators", fits(in.log, r, g.wheel_radius)}};
+  out.estimates = std::move(r.estimates);
+  return out;
+}
+
+void print_rms(const json& t, std::FILE* out) {
+  std::fprintf(out, "  %-6s %10s %10s %12s %8s %12s\n", "wheel", "W (N)", "DP (N)", "tau_R (N m)", "slip",
+               "gamma (deg)");
+  for (std::size_t w = 0; w < 3; ++w) {
+    const auto v = [&](const char* k) {
+      const json& x = t.at(k).at(w);
+      return x.is_null() ? NAN : x.get<double>();
+    };
+    std::fprintf(out, "  %-6zu %10.3f %10.3f %12.4f %8.4f %12.3f\n", w + 1, v("normal_load_N"), v("drawbar_pull_N"),
+                 v("resistive_torque_Nm"), v("slip"), v("contact_angle_deg"));
+  }
+}
+
+// Table 5.2's layout: one row per coefficient p_ij of s^i W^j.
+void print_table(const json& q, const char* label, std::FILE* out) {
+  const bool truth = q.contains("truth_coefficients");
+  std::fprintf(out, "  %s, order %d, region s %.3f..%.3f, W %.1f..%.1f N (coverage %.0f %%)\n", label,
+               q.at("order").get<int>(), q.at("region").at("slip").at(0).get<double>(),
+               q.at("region").at("slip").at(1).get<double>(), q.at("region").at("load_N").at(0).get<double>(),
+               q.at("region").at("load_N").at(1).get<double>(), 100.0 * q.at("region").at("coverage").get<double>());
+  std::fprintf(out, "    %-10s %14s %14s\n", "term", truth ? "true local" : "", "estimated");
+  for (std::size_t i = 0; i < q.at("terms").size(); ++i) {
+    char t[32] = "";
+    if (truth) std::snprintf(t, sizeof t, "%.5g", q.at("truth_coefficients").at(i).get<double>());
+    std::fprintf(out, "    %-10s %14s %14.5g\n", q.at("terms").at(i).get<std::string>().c_str(), t,
+                 q.at("coefficients").at(i).get<double>());
+  }
+  if (truth) {
+    const json& c = q.at("rms_vs_truth");
+    std::fprintf(
+        out,
+        "    vs the true local model over the region: RMS %.4g (%.2f %% of its range %.4g), largest %.4g (%.2f %%)\n",
+        c.at("rms").get<double>(), c.at("rms_percent").get<double>(), c.at("range").get<double>(),
+        c.at("max_abs").get<double>(), c.at("max_percent").get<double>());
+  }
+}
+
+void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
+  std::fprintf(out, "%s: rover %s, %s force sensors (streams), %.1f s of log, filters %.2f s\n",
+               j.at("file").get<std::string>().c_str(), j.at("rover").get<std::string>().c_str(),
+               j.at("force_sensors").get<std::string>().c_str(), j.at("seconds").get<double>(),
+               j.at("filter_seconds").get<double>());
+  const auto standstill = j.at("standstill_samples").get<std::size_t>();
+  if (standstill > 0) std::fprintf(out, "standstill: %zu samples without a slip measurement\n", standstill);
+  std::fprintf(out, "steady state: |wheel acceleration| <= %.4g rad/s^2, averaged over %.1f s\n",
+               j.at("steady_state").at("max_wheel_acceleration").get<double>(),
+               j.at("steady_state").at("average_s").get<double>());
+  for (const char* name : {"two-axis", "single-axis"}) {
+    if (!j.at("estimators").contains(name)) continue;
+    const json& e = j.at("estimators").at(name);
+    const char* which =
+        std::string(name) == "two-axis" ? "Estimators 1 and 2 (two-axis)" : "Estimators 1 and 3 (single-axis)";
+    std::fprintf(out, "\n%s\n", which);
+    if (e.contains("tracking_rms")) {
+      std::fprintf(out, " RMS error per wheel over %zu samples:\n",
+                   e.at("tracking_rms").at("samples").get<std::size_t>());
+      print_rms(e.at("tracking_rms"), out);
+    }
+    if (e.contains("error")) {
+      std::fprintf(out, " no surfaces: %s\n", e.at("error").get<std::string>().c_str());
+      continue;
+    }
+    std::fprintf(out, " surfaces from %zu averaged steady-state points (layout of Table 5.2):\n",
+                 e.at("points").get<std::size_t>());
+    print_table(e.at("resistive_torque"), "tau_R (N m)", out);
+    print_table(e.at("drawbar_pull"), "DP (N)", out);
+    const json& soil = e.at("soil");
+    std::fprintf(out, " soil fitted to %zu of the points from %s:", soil.at("points").get<std::size_t>(),
+                 soil.at("start_soil").get<std::string>().c_str());
+    for (const json& p : soil.at("parameters")) {
+      std::fprintf(out, " %s %.4g +- %s", p.at("name").get<std::string>().c_str(), p.at("value").get<double>(),
+                   ReportSection::number(p.at("sigma"), "%.2g").c_str());
+    }
+    if (soil.at("correlation").size() == 4) {
+      std::fprintf(out, ", correlation %s", ReportSection::number(soil.at("correlation").at(1), "%.2f").c_str());
+    }
+    std::fprintf(out, "\n");
+    for (const json& pair : soil.at("cannot_tell_apart_with_n_free")) {
+      std::fprintf(out, "  with n free the points cannot tell %s from %s\n", pair.at(0).get<std::string>().c_str(),
+                   pair.at(1).get<std::string>().c_str());
+    }
+  }
+}
+
+void NetTractionAnalysis::report(const json& j, ReportSection& s) const {
+  s.html << "<h2>Net-traction estimator (seed 003, " << ReportSection::escape(j.at("force_sensors").get<std::string>())
+         << " force sensors)</h2>\n";
+  for (const char* name : {"two-axis", "single-axis"}) {
+    if (!j.at("estimators").contains(name)) continue;
+    const json& e = j.at("estimators").at(name);
+    s.html << "<h3>" << ReportSection::escape(name) << "</h3>\n";
+    if (e.contains("tracking_rms")) {
+      const json& t = e.at("tracking_rms");
+      s.html << "<table><tr><th>wheel</th><th>W RMS (N)</th><th>DP RMS (N)</th><th>&tau;<sub>R</sub> RMS (N m)</th>"
+                "<th>slip RMS</th><th>contact angle RMS (deg)</th></tr>\n";
+      for (std::size_t w = 0; w < 3; ++w) {
+        s.html << "<tr><td>" << w + 1 << "</td>";
+        for (const char* k : {"normal_load_N", "drawbar_pull_N", "resistive_torque_Nm", "slip", "contact_angle_deg"}) {
+          s.html << "<td>" << ReportSection::number(t.at(k).at(w), "%.4f") << "</td>";
+        }
+        s.html << "</tr>\n";
+      }
+      s.html << "</table>\n";
+    }
+    if (e.contains("error")) {
+      s.html << "<p>No surfaces: " << ReportSection::escape(e.at("error").get<std::string>()) << "</p>\n";
+      continue;
+    }
+    for (const char* q : {"resistive_torque", "drawbar_pull"}) {
+      const json& f = e.at(q);
+      s.html << "<p>" << q << ": order " << f.at("order").get<int>();
+      if (f.contains("rms_vs_truth")) {
+        s.html << ", against the true local model RMS "
+               << ReportSection::number(f.at("rms_vs_truth").at("rms_percent"), "%.2f") << " % and largest "
+               << ReportSection::number(f.at("rms_vs_truth").at("max_percent"), "%.2f") << " % of its range";
+      }
+      s.html << ".</p>\n";
+    }
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Analysis> make_net_traction_analysis() { return std::make_unique<NetTractionAnalysis>(); }
+
+}  // namespace roverlab::app

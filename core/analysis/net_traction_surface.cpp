@@ -1,0 +1,254 @@
+#include "core/analysis/net_traction_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/common/error.h"
+
+namespace roverlab::analysis {
+
+std::array<std::vector<bool>, 3> steady_state_mask(const std::vector<double>& time,
+                                                   const std::array<std::vector<double>, 3>& wheel_acceleration,
+                                                   const SteadyStateOptions& o) {
+  std::array<std::vector<bool>, 3> mask;
+  for (std::size_t w = 0; w < 3; ++w) {
+    mask[w].assign(time.size(), false);
+    for (std::size_t k = 0; k < time.size(); ++k) {
+      const double a = wheel_acceleration[w][k];
+      const bool in_window = o.window_seconds <= 0.0 || time[k] >= time.back() - o.window_seconds;
+      mask[w][k] = in_window && time[k] - time.front() >= o.settle_seconds && std::abs(a) <= o.max_wheel_acceleration;
+    }
+  }
+  return mask;
+}
+
+std::vector<TractionPoint> averaged_points(const std::vector<double>& time, const std::array<WheelSeries, 3>& wheels,
+                                           const std::array<std::vector<bool>, 3>& mask, const SteadyStateOptions& o) {
+  std::vector<TractionPoint> points;
+  for (std::size_t w = 0; w < 3; ++w) {
+    const WheelSeries& s = wheels[w];
+    std::size_t k = 0;
+    while (k < time.size()) {
+      const double end = time[k] + o.average_seconds;
+      TractionPoint sum;
+      int n = 0;
+      for (; k < time.size() && time[k] < end - 1e-9; ++k) {
+        if (!mask[w][k]) continue;
+        const double v[4] = {s.load[k], s.slip[k], s.drawbar_pull[k], s.resistive_torque[k]};
+        if (!std::isfinite(v[0] + v[1] + v[2] + v[3])) continue;
+        sum.load += v[0];
+        sum.slip += v[1];
+        sum.drawbar_pull += v[2];
+        sum.resistive_torque += v[3];
+        ++n;
+      }
+      if (n == 0) continue;
+      const double inv = 1.0 / n;
+      points.push_back({sum.load * inv, sum.slip * inv, sum.drawbar_pull * inv, sum.resistive_torque * inv,
+                        static_cast<int>(w) + 1});
+    }
+  }
+  return points;
+}
+
+std::vector<terramechanics::SurfaceSample> surface_samples(const std::vector<TractionPoint>& points,
+                                                           TractionQuantity quantity) {
+  std::vector<terramechanics::SurfaceSample> out;
+  out.reserve(points.size());
+  for (const auto& p : points) {
+    out.push_back(
+        {p.load, p.slip, quantity == TractionQuantity::drawbar_pull ? p.drawbar_pull : p.resistive_torque, 1.0});
+  }
+  return out;
+}
+
+TraversedRegion traversed_region(const std::vector<TractionPoint>& points, int bins) {
+  if (points.size() < 10) {
+    throw DataError("only " + std::to_string(points.size()) +
+                    " steady-state points: too few to rebuild the traction surfaces");
+  }
+  TraversedRegion r;
+  r.load_min = r.load_max = points.front().load;
+  r.slip_min = r.slip_max = points.front().slip;
+  for (const auto& p : points) {
+    r.load_min = std::min(r.load_min, p.load);
+    r.load_max = std::max(r.load_max, p.load);
+    r.slip_min = std::min(r.slip_min, p.slip);
+    r.slip_max = std::max(r.slip_max, p.slip);
+  }
+  if (!(r.load_max - r.load_min > 1e-6) || !(r.slip_max - r.slip_min > 1e-6)) {
+    throw DataError("the steady-state points span a single load or slip: no surface to rebuild");
+  }
+  std::vector<terramechanics::SurfaceSample> s;
+  s.reserve(points.size());
+  for (const auto& p : points) s.push_back({p.load, p.slip, 0.0, 1.0});
+  r.grid = terramechanics::OccupancyGrid::build(s, r.load_min, r.load_max, r.slip_min, r.slip_max, bins, bins);
+  return r;
+}
+
+terramechanics::SurfaceFit fit_traction_surface(const std::vector<terramechanics::SurfaceSample>& samples, int order,
+                                                int max_order) {
+  if (order == 0) return terramechanics::fit_surface_cross_validated(samples, max_order);
+  terramechanics::SurfaceFit fit;
+  fit.surface = terramechanics::fit_surface(samples, order);
+  fit.error = terramechanics::fit_error(fit.surface, samples);
+  return fit;
+}
+
+SurfaceComparison compare_surfaces(const terramechanics::PolynomialSurface& estimate,
+                                   const terramechanics::PolynomialSurface& reference, const TraversedRegion& region,
+                                   int resolution) {
+  SurfaceComparison c;
+  double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int i = 0; i < resolution; ++i) {
+    for (int j = 0; j < resolution; ++j) {
+      const double W = region.load_min + (region.load_max - region.load_min) * (i + 0.5) / resolution;
+      const double s = region.slip_min + (region.slip_max - region.slip_min) * (j + 0.5) / resolution;
+      if (!region.grid.covered(W, s)) continue;
+      const double ref = reference(W, s), d = estimate(W, s) - ref;
+      sum += d * d;
+      c.max_abs = std::max(c.max_abs, std::abs(d));
+      lo = std::min(lo, ref);
+      hi = std::max(hi, ref);
+      ++c.grid_points;
+    }
+  }
+  if (c.grid_points == 0) return c;
+  c.rms = std::sqrt(sum / static_cast<double>(c.grid_points));
+  c.range = hi - lo;
+  if (c.range > 0) {
+    c.rms_percent = 100.0 * c.rms / c.range;
+    c.max_percent = 100.0 * c.max_abs / c.range;
+  }
+  return c;
+}
+
+namespace {
+
+std::array<WheelSeries, 3> estimated_series(const estimation::NetTractionResult& r, const estimation::FilterTrack& w) {
+  namespace gen = estimation::net_traction::general;
+  namespace wf = estimation::net_traction::wheel_force;
+  std::array<WheelSeries, 3> out;
+  const auto n = static_cast<std::size_t>(r.general.state.rows());
+  for (int i = 0; i < 3; ++i) {
+    WheelSeries& s = out[static_cast<std::size_t>(i)];
+    s.load.resize(n);
+    s.slip.resize(n);
+    s.drawbar_pull.resize(n);
+    s.resistive_torque.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto row = static_cast<Eigen::Index>(k);
+      s.load[k] = w.state(row, wf::kNormalLoad + i);
+      s.drawbar_pull[k] = w.state(row, wf::kDrawbarPull + i);
+      s.slip[k] = r.general.state(row, gen::kSlip + i);
+      s.resistive_torque[k] = r.general.state(row, gen::kResistiveTorque + i);
+    }
+  }
+  return out;
+}
+
+// truth/wheels at the estimates' times; false without it.
+bool truth_series(const log::Log& lg, const std::vector<double>& time, std::array<WheelSeries, 3>& out) {
+  const log::Stream* t = lg.find_stream("truth/wheels");
+  if (t == nullptr) return false;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string n = std::to_string(i + 1);
+    for (const char* c : {"normal_load_", "slip_", "drawbar_pull_", "resistive_torque_"}) {
+      if (t->find_channel(c + n) == nullptr) return false;
+    }
+    out[i].load = t->interpolate("normal_load_" + n, time);
+    out[i].slip = t->interpolate("slip_" + n, time);
+    out[i].drawbar_pull = t->interpolate("drawbar_pull_" + n, time);
+    out[i].resistive_torque = t->interpolate("resistive_torque_" + n, time);
+  }
+  return true;
+}
+
+QuantityFit fit_quantity(const std::vector<TractionPoint>& estimated, const std::vector<TractionPoint>* truth,
+                         const TraversedRegion& region, TractionQuantity quantity, int order, int max_order) {
+  QuantityFit f;
+  f.estimate = fit_traction_surface(surface_samples(estimated, quantity), order, max_order);
+  if (truth != nullptr && truth->size() >= terramechanics::PolynomialSurface::term_count(f.estimate.surface.order())) {
+    f.truth = fit_traction_surface(surface_samples(*truth, quantity), f.estimate.surface.order(), max_order);
+    f.comparison = compare_surfaces(f.estimate.surface, f.truth.surface, region);
+    f.has_truth = true;
+  }
+  return f;
+}
+
+}  // namespace
+
+NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation::NetTractionResult& r,
+                                            const estimation::FilterTrack& w, const SteadyStateOptions& o, int order,
+                                            int max_order) {
+  std::array<std::vector<double>, 3> acceleration;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::VectorXd c = r.wheel_acceleration.col(i);
+    acceleration[static_cast<std::size_t>(i)].assign(c.data(), c.data() + c.size());
+  }
+  const auto mask = steady_state_mask(r.time, acceleration, o);
+  NetTractionModel m;
+  for (const auto& wm : mask) m.kept_samples += static_cast<std::size_t>(std::count(wm.begin(), wm.end(), true));
+  const std::vector<TractionPoint> points = averaged_points(r.time, estimated_series(r, w), mask, o);
+  m.points = points.size();
+  m.estimated_points = points;
+  m.region = traversed_region(points);
+  std::array<WheelSeries, 3> truth;
+  std::vector<TractionPoint> truth_points;
+  const bool has_truth = truth_series(lg, r.time, truth);
+  if (has_truth) truth_points = averaged_points(r.time, truth, mask, o);
+  const std::vector<TractionPoint>* tp = has_truth ? &truth_points : nullptr;
+  m.drawbar_pull = fit_quantity(points, tp, m.region, TractionQuantity::drawbar_pull, order, max_order);
+  m.resistive_torque = fit_quantity(points, tp, m.region, TractionQuantity::resistive_torque, order, max_order);
+  return m;
+}
+
+SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points, const terramechanics::Soil& start,
+                                        const terramechanics::Wheel& wheel,
+                                        const std::vector<terramechanics::Parameter>& free, std::size_t max_points) {
+  if (points.size() < 10) throw DataError("too few steady-state points to fit the soil");
+  std::vector<terramechanics::WheelTestPoint> test;
+  const std::size_t stride = std::max<std::size_t>(1, (points.size() + max_points - 1) / max_points);
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    terramechanics::WheelTestPoint p;
+    p.wheel = wheel;
+    p.wheel_label = "wheel " + std::to_string(points[i].wheel);
+    p.load = points[i].load;
+    p.slip = points[i].slip;
+    p.drawbar_pull = points[i].drawbar_pull;
+    p.torque = points[i].resistive_torque;
+    test.push_back(p);
+  }
+  terramechanics::IdentificationOptions o;
+  o.free = free;
+  o.sigma.drawbar_pull = 0.5;  // N: about the drawbar pulls' tracking error
+  o.sigma.torque = 0.02;       // N m: the resistive torques' scatter about a surface
+  SoilFromRover out;
+  out.points = test.size();
+  out.fit = terramechanics::identify_soil(start, test, o);
+  const std::size_t k = free.size();
+  if (out.fit.correlation.size() == k * k) {
+    for (std::size_t i = 0; i < k; ++i) {
+      for (std::size_t j = i + 1; j < k; ++j) {
+        if (std::abs(out.fit.correlation[i * k + j]) > 0.95) out.confounded.emplace_back(free[i], free[j]);
+      }
+    }
+  }
+  return out;
+}
+
+std::string surface_term(std::size_t i) {
+  const auto [k, l] = terramechanics::PolynomialSurface::exponents(i);
+  const auto power = [](const char* v, int n) {
+    if (n == 0) return std::string();
+    return n == 1 ? std::string(v) : std::string(v) + "^" + std::to_string(n);
+  };
+  std::string t = power("s", k);
+  const std::string w = power("W", l);
+  if (!t.empty() && !w.empty()) t += " ";
+  t += w;
+  return t.empty() ? "1" : t;
+}
+
+}  // namespace roverlab::analysis

@@ -1,0 +1,116 @@
+#pragma once
+// The net traction model of seed 003 section 5.7: estimated points (W, s,
+// DP, tau_R) kept where the rover is near steady state (the seed's filter on
+// the estimated wheel accelerations) and averaged in time, the Eq. 2.28
+// polynomial fitted to them (order given or by cross-validation), the region
+// of load and slip they cover (the occupancy grid), and the comparison with
+// the true local model (the same fit to the truth over the same region),
+// as section 5.8 and Table 5.2 compare them.
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/estimation/net_traction.h"
+#include "core/log/log.h"
+#include "core/terramechanics/soil_identification.h"
+#include "core/terramechanics/traction_surface.h"
+
+namespace roverlab::analysis {
+
+// One wheel's series on a common time base.
+struct WheelSeries {
+  std::vector<double> load, slip, drawbar_pull, resistive_torque;
+};
+
+struct SteadyStateOptions {
+  // Section 5.8: points where an estimated wheel acceleration exceeds this are left out.
+  double max_wheel_acceleration = 6.079e-3;  // rad/s^2
+  double average_seconds = 0.2;              // section 5.8: averaged to 5 samples/s
+  double settle_seconds = 5.0;               // the filters' convergence at the start is left out
+  double window_seconds = 0.0;               // section 5.9: only the last this many seconds (0: all)
+};
+
+// Which samples of each wheel are near steady state (|wheel acceleration| below the threshold, after the settling).
+std::array<std::vector<bool>, 3> steady_state_mask(const std::vector<double>& time,
+                                                   const std::array<std::vector<double>, 3>& wheel_acceleration,
+                                                   const SteadyStateOptions& options);
+
+struct TractionPoint {
+  double load = 0, slip = 0, drawbar_pull = 0, resistive_torque = 0;
+  int wheel = 0;
+};
+
+// The kept samples of every wheel averaged over consecutive windows of
+// average_seconds (a window with no kept sample gives no point).
+std::vector<TractionPoint> averaged_points(const std::vector<double>& time, const std::array<WheelSeries, 3>& wheels,
+                                           const std::array<std::vector<bool>, 3>& mask,
+                                           const SteadyStateOptions& options);
+
+enum class TractionQuantity { drawbar_pull, resistive_torque };
+std::vector<terramechanics::SurfaceSample> surface_samples(const std::vector<TractionPoint>& points,
+                                                           TractionQuantity quantity);
+
+// The load and slip the points cover, with an occupancy grid over them.
+struct TraversedRegion {
+  double load_min = 0, load_max = 0, slip_min = 0, slip_max = 0;
+  terramechanics::OccupancyGrid grid;
+};
+// Throws DataError with fewer than 10 points or a region of zero width.
+TraversedRegion traversed_region(const std::vector<TractionPoint>& points, int bins = 8);
+
+// Eq. 2.28 of the given order (1..6), or (order 0) the order 1..max_order
+// with the best cross-validated RMS.
+terramechanics::SurfaceFit fit_traction_surface(const std::vector<terramechanics::SurfaceSample>& samples, int order,
+                                                int max_order = 4);
+
+// Two surfaces over the covered cells of a region, on a fine grid: RMS and
+// largest difference, and both in % of the reference's range there.
+struct SurfaceComparison {
+  double rms = 0, max_abs = 0, range = 0, rms_percent = 0, max_percent = 0;
+  std::size_t grid_points = 0;
+};
+SurfaceComparison compare_surfaces(const terramechanics::PolynomialSurface& estimate,
+                                   const terramechanics::PolynomialSurface& reference, const TraversedRegion& region,
+                                   int resolution = 40);
+
+// One quantity's surface rebuilt from the estimates and, with truth, the
+// true local model of the same order over the same region.
+struct QuantityFit {
+  terramechanics::SurfaceFit estimate, truth;
+  bool has_truth = false;
+  SurfaceComparison comparison;
+};
+struct NetTractionModel {
+  std::size_t points = 0, kept_samples = 0;
+  std::vector<TractionPoint> estimated_points;  // the averaged steady-state points
+  TraversedRegion region;
+  QuantityFit drawbar_pull, resistive_torque;
+};
+// Section 5.7 on one wheel-force estimator's output (Estimator 1's slips
+// and resistive torques with its loads and drawbar pulls): order 0 chooses
+// by cross-validation. Throws DataError when too few points remain.
+NetTractionModel rebuild_net_traction_model(const log::Log& log, const estimation::NetTractionResult& result,
+                                            const estimation::FilterTrack& wheel_forces,
+                                            const SteadyStateOptions& options, int order, int max_order = 4);
+
+// Issue 12 item 5: soil parameters fitted (Ceres, core/terramechanics/
+// soil_identification.h) to the estimated steady-state points (drawbar pull
+// and resistive torque at each load and slip), from `start`, with +-1
+// sigma, correlations, and the pairs the points cannot tell apart
+// (|correlation| above 0.95). At most max_points points (evenly spaced).
+struct SoilFromRover {
+  terramechanics::IdentificationResult fit;
+  std::vector<std::pair<terramechanics::Parameter, terramechanics::Parameter>> confounded;
+  std::size_t points = 0;
+};
+SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points, const terramechanics::Soil& start,
+                                        const terramechanics::Wheel& wheel,
+                                        const std::vector<terramechanics::Parameter>& free,
+                                        std::size_t max_points = 300);
+
+// The Eq. 2.28 term of coefficient i, e.g. "s^2 W" (p_21).
+std::string surface_term(std::size_t i);
+
+}  // namespace roverlab::analysis

@@ -1,0 +1,408 @@
+#include "core/estimation/net_traction.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/common/error.h"
+
+namespace roverlab::estimation {
+
+namespace nt = net_traction;
+namespace gen = net_traction::general;
+namespace wf = net_traction::wheel_force;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+// A wheel whose load along its link is below this has left the ground: its
+// contact angle is not measured.
+constexpr double kAirborneLoad = 1.0;  // N
+// Variance of a measurement that is not available (gated out).
+constexpr double kUnavailable = 1e8;
+// The process noise is added to P before each step (see general_step).
+const Eigen::MatrixXd kNoProcessNoise(0, 0);
+
+const char* const kStreams[] = {"joints", "imu", "velocimeter", "forces", "commands"};
+
+std::string index_name(const char* stem, int i) { return stem + std::to_string(i + 1); }
+
+}  // namespace
+
+ForceSensors parse_force_sensors(const std::string& name) {
+  if (name == "two-axis") return ForceSensors::two_axis;
+  if (name == "single-axis") return ForceSensors::single_axis;
+  throw DataError("force sensors '" + name + "': expected two-axis or single-axis");
+}
+
+std::string force_sensors_name(ForceSensors sensors) {
+  return sensors == ForceSensors::two_axis ? "two-axis" : "single-axis";
+}
+
+std::string net_traction_missing(const log::Log& lg) {
+  for (const char* s : kStreams) {
+    if (lg.find_stream(s) == nullptr) return std::string("no ") + s + " stream";
+  }
+  const struct {
+    const char* stream;
+    std::vector<std::string> channels;
+  } needs[] = {
+      {"joints", {"bogie_angle", "wheel_angle_1", "wheel_angle_2", "wheel_angle_3"}},
+      {"imu", {"pitch_rate", "specific_force_x", "specific_force_z"}},
+      {"velocimeter", {"forward_speed"}},
+      {"forces", {"load_1", "load_2", "load_3"}},
+      {"commands", {"wheel_torque_1", "wheel_torque_2", "wheel_torque_3"}},
+  };
+  for (const auto& n : needs) {
+    const log::Stream& st = *lg.find_stream(n.stream);
+    for (const auto& c : n.channels) {
+      if (st.find_channel(c) == nullptr) return "no channel " + c + " in stream '" + n.stream + "'";
+    }
+  }
+  return "";
+}
+
+bool has_two_axis_force_sensors(const log::Log& lg) {
+  const log::Stream* f = lg.find_stream("forces");
+  if (f == nullptr) return false;
+  for (int i = 0; i < 3; ++i) {
+    if (f->find_channel(index_name("perpendicular_", i)) == nullptr) return false;
+  }
+  return true;
+}
+
+NetTractionEstimator::NetTractionEstimator(const log::Log& log, const nt::RoverConstants& rover,
+                                           const NetTractionOptions& options)
+    : log_(log), rover_(rover), o_(options), measurement_(rover.parameters.gravity) {
+  const std::string missing = net_traction_missing(log_);
+  if (!missing.empty()) throw DataError(missing);
+  const bool has_two_axis = has_two_axis_force_sensors(log_);
+  const ForceSensors chosen =
+      o_.force_sensors.value_or(has_two_axis ? ForceSensors::two_axis : ForceSensors::single_axis);
+  if (chosen == ForceSensors::two_axis && !has_two_axis) {
+    throw DataError("two-axis force estimation needs perpendicular_1..3 in stream 'forces'");
+  }
+  result_.force_sensors = chosen;
+  two_axis_ = chosen == ForceSensors::two_axis;
+  run_single_axis_ = !two_axis_ || o_.compare_single_axis;
+  read_sensors();
+  process_ = nt::GeneralProcessModel(rover_, step_);
+  assemble_noise();
+  initial_state();
+}
+
+// Every sensor on the joints stream's time base (Eq. 5.17) and the torques.
+void NetTractionEstimator::read_sensors() {
+  const log::Stream& joints = log_.stream("joints");
+  const std::vector<double>& t = joints.time();
+  if (t.size() < 10) throw DataError("stream 'joints' has fewer than 10 samples");
+  step_ = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+  if (!(step_ > 0.0) || step_ > 0.5) throw DataError("stream 'joints' is not sampled at 2 Hz or faster");
+  const auto at = [&](const char* stream, const std::string& channel) {
+    const log::Stream& st = log_.stream(stream);
+    if (&st == &joints) return st.channel(channel).values;
+    std::vector<double> v = st.interpolate(channel, t);
+    for (std::size_t k = 0; k < v.size(); ++k) {  // hold the ends where the streams' spans differ
+      if (std::isnan(v[k])) v[k] = st.channel(channel).values[t[k] < st.start_time() ? 0 : st.size() - 1];
+    }
+    return v;
+  };
+  const std::vector<double> bogie = at("joints", "bogie_angle"), rate = at("imu", "pitch_rate"),
+                            fx = at("imu", "specific_force_x"), fz = at("imu", "specific_force_z"),
+                            speed = at("velocimeter", "forward_speed");
+  samples_.resize(t.size());
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    samples_[k].bogie = bogie[k];
+    samples_[k].pitch_rate = rate[k];
+    samples_[k].specific_force_x = fx[k];
+    samples_[k].specific_force_z = fz[k];
+    samples_[k].forward_speed = speed[k];
+  }
+  for (int i = 0; i < 3; ++i) {
+    const std::vector<double> angle = at("joints", index_name("wheel_angle_", i)),
+                              load = at("forces", index_name("load_", i)),
+                              torque = at("commands", index_name("wheel_torque_", i));
+    std::vector<double> perp(t.size(), 0.0);
+    if (two_axis_) perp = at("forces", index_name("perpendicular_", i));
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      samples_[k].wheel_angle(i) = angle[k];
+      samples_[k].load(i) = load[k];
+      samples_[k].torque(i) = torque[k];
+      samples_[k].perpendicular(i) = perp[k];
+    }
+  }
+  for (const auto& s : samples_) {
+    const bool finite = std::isfinite(s.bogie) && std::isfinite(s.pitch_rate) && std::isfinite(s.forward_speed) &&
+                        std::isfinite(s.specific_force_x) && std::isfinite(s.specific_force_z) &&
+                        s.wheel_angle.allFinite() && s.load.allFinite() && s.torque.allFinite() &&
+                        s.perpendicular.allFinite();
+    if (!finite) throw DataError("a sensor sample is missing (NaN) in the net-traction streams");
+  }
+  result_.time = t;
+}
+
+// Process noise per step and Table 5.1's measurement noise, propagated to
+// the measurements built from the sensors.
+void NetTractionEstimator::assemble_noise() {
+  using namespace gen;  // NOLINT(google-build-using-namespace)
+  Eigen::VectorXd q(kStates);
+  q.segment<3>(kWheelRate).setConstant(1e-9);
+  q.segment<3>(kResistiveTorque).setConstant(4e-6);
+  q(kPitch) = q(kBogie) = 1e-10;
+  q(kPitchRate) = q(kBogieRate) = 1e-8;
+  q(kPitchAcceleration) = q(kBogieAcceleration) = 1e-5;
+  q(kAccelerationX) = q(kAccelerationZ) = 1e-6;
+  q(kMomentBody) = q(kMomentBogie) = 2e-3;
+  q(kForceX) = q(kForceZ) = 2e-3;
+  q(kForwardSpeed) = 1e-8;
+  q.segment<3>(kSlip).setConstant(2e-6);
+  Q1_ = q.asDiagonal();
+  const double encoder = 2.143e-5 * kDeg, accel = 1.245e-3;
+  r1_.resize(kMeasurements);
+  r1_.head<3>().setConstant(2.0 * encoder * encoder / (step_ * step_));  // Eq. 5.38 of two readings
+  r1_(3) = 1e-3 * 1e-3;  // Eq. 5.39: accelerometer noise and the rover's own accelerations
+  r1_(4) = std::pow(9.155e-4 * kDeg, 2);
+  r1_(5) = r1_(6) = accel * accel;
+  r1_(7) = 1e-3 * 1e-3;
+  r1_.tail<3>().setConstant(0.06 * 0.06);  // the velocimeter's 1 mm/s over a 2 cm/s rim speed
+  Eigen::VectorXd q2(wf::kStates), r2(wf::kMeasurements);
+  q2.head<3>().setConstant(2e-7);
+  q2.tail<6>().setConstant(2.5e-3);
+  Q2_ = q2.asDiagonal();
+  r2.head<3>().setConstant(0.03 * 0.03);
+  r2.tail<6>().setConstant(3.255e-2 * 3.255e-2);
+  R2_ = r2.asDiagonal();
+  r2.tail<3>().setConstant(0.5 * 0.5);  // Eq. 5.64-5.66: built from Estimator 1's net forces
+  R3_ = r2.asDiagonal();
+}
+
+void NetTractionEstimator::initial_state() {
+  using namespace gen;  // NOLINT(google-build-using-namespace)
+  const nt::SensorSample& s0 = samples_.front();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(kStates);
+  x(kPitch) = std::atan2(-s0.specific_force_x, s0.specific_force_z);
+  x(kBogie) = s0.bogie;
+  x.segment<3>(kResistiveTorque) = s0.torque;
+  x(kForwardSpeed) = s0.forward_speed;
+  // At rest: the net wheel forces hold the weight (Eq. 5.30-5.33 with no accelerations).
+  const nt::ConfigurationTerms c = nt::configuration_terms(rover_, x(kPitch), x(kBogie));
+  x(kMomentBody) = c.gravity(2) + s0.torque.sum();
+  x(kMomentBogie) = c.gravity(3) + s0.torque(1) + s0.torque(2);
+  x(kForceZ) = c.gravity(1);
+  Eigen::VectorXd p(kStates);
+  p.segment<3>(kWheelRate).setConstant(1e-4);
+  p.segment<3>(kResistiveTorque).setConstant(1.0);
+  p(kPitch) = 1e-4;
+  p(kBogie) = 1e-6;
+  p(kPitchRate) = p(kBogieRate) = 1e-4;
+  p(kPitchAcceleration) = p(kBogieAcceleration) = 1e-2;
+  p(kAccelerationX) = p(kAccelerationZ) = 1e-2;
+  p.segment<4>(kMomentBody).setConstant(25.0);
+  p(kForwardSpeed) = 1e-4;
+  p.segment<3>(kSlip).setConstant(0.25);
+  general_.x = x;
+  general_.P = p.asDiagonal();
+  general_.additive_process_noise = general_.additive_measurement_noise = true;
+  Eigen::VectorXd x2 = Eigen::VectorXd::Zero(wf::kStates), p2(wf::kStates);
+  x2.segment<3>(wf::kNormalLoad) = s0.load;
+  p2.head<3>().setConstant(0.1);
+  p2.tail<6>().setConstant(100.0);
+  for (UnscentedKalmanFilter* f : {&two_axis_filter_, &single_axis_filter_}) {
+    f->x = x2;
+    f->P = p2.asDiagonal();
+    f->additive_process_noise = f->additive_measurement_noise = true;
+  }
+}
+
+NetTractionResult NetTractionEstimator::run() {
+  const auto start = std::chrono::steady_clock::now();
+  filter_pass();
+  result_.filter_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_streams();
+  if (o_.progress) o_.progress(1.0);
+  return std::move(result_);
+}
+
+// Each sample: Estimator 1, then the wheel-force estimators on its estimate.
+void NetTractionEstimator::filter_pass() {
+  const auto n = static_cast<Eigen::Index>(samples_.size());
+  const auto sized = [&](FilterTrack& t, Eigen::Index states) {
+    t.state.resize(n, states);
+    t.sigma.resize(n, states);
+  };
+  sized(result_.general, gen::kStates);
+  if (two_axis_) sized(result_.two_axis, wf::kStates);
+  if (run_single_axis_) sized(result_.single_axis, wf::kStates);
+  result_.wheel_acceleration.resize(n, 3);
+  const auto store = [](FilterTrack& t, const UnscentedKalmanFilter& f, Eigen::Index k) {
+    t.state.row(k) = f.x.transpose();
+    t.sigma.row(k) = f.P.diagonal().cwiseMax(0.0).cwiseSqrt().transpose();
+  };
+  for (std::size_t k = 0; k < samples_.size(); ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    if (k > 0) general_step(k);
+    store(result_.general, general_, r);
+    process_.set_torques(samples_[k].torque);
+    result_.wheel_acceleration.row(r) = process_.wheel_accelerations(general_.x).transpose();
+    if (k > 0) contact_angles_ = nt::contact_angle_measurement(rover_, general_.x);  // Eq. 5.56, for both
+    if (two_axis_) wheel_force_step(k, two_axis_filter_, true, result_.two_axis);
+    if (run_single_axis_) wheel_force_step(k, single_axis_filter_, false, result_.single_axis);
+    if (o_.progress && k % 500 == 0) o_.progress(static_cast<double>(k) / static_cast<double>(samples_.size()));
+  }
+}
+
+// Eq. 5.10-5.16 for Estimator 1 with the torques held since the last sample;
+// slips a standing rover cannot measure are gated out.
+void NetTractionEstimator::general_step(std::size_t k) {
+  const Eigen::Vector2d rates(general_.x(gen::kPitchRate), general_.x(gen::kBogieRate));
+  Eigen::VectorXd y = nt::general_measurement(rover_, samples_[k], samples_[k - 1], step_, &rates);
+  Eigen::VectorXd r = r1_;
+  bool standing = false;
+  for (int i = 0; i < 3; ++i) {
+    if (std::isnan(y(gen::kMeasurements - 3 + i))) {
+      y(gen::kMeasurements - 3 + i) = general_.x(gen::kSlip + i);
+      r(gen::kMeasurements - 3 + i) = kUnavailable;
+      standing = true;
+    }
+  }
+  if (standing) ++result_.standstill_samples;
+  process_.set_torques(samples_[k - 1].torque);
+  const UnscentedKalmanFilter::Function f = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
+                                                   Eigen::VectorXd& out) { process_(x, out); };
+  const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
+                                                   Eigen::VectorXd& out) { measurement_(x, out); };
+  // Eq. 5.12's Q added before the sigma points rather than after them: the
+  // same for the random walks, f(x + w) ~ f(x) + F w for the rest, and the
+  // UKF then needs no sigma points along the 22 process noises (half the
+  // augmented state's).
+  general_.P += Q1_;
+  general_.step(f, kNoProcessNoise, h, r.asDiagonal(), y);
+}
+
+// Eq. 5.49-5.67 for Estimator 2 (two_axis) or 3 at sample k.
+void NetTractionEstimator::wheel_force_step(std::size_t k, UnscentedKalmanFilter& filter, bool two_axis,
+                                            FilterTrack& track) {
+  const auto r = static_cast<Eigen::Index>(k);
+  if (k > 0) {
+    const nt::SensorSample& s = samples_[k];
+    const Eigen::VectorXd& x1 = general_.x;
+    Eigen::VectorXd y(wf::kMeasurements);
+    y.head<3>() = contact_angles_;
+    y.segment<3>(3) = s.load;
+    y.tail<3>() = two_axis ? s.perpendicular : nt::perpendicular_from_net_forces(rover_, x1, s.load);
+    Eigen::MatrixXd R = two_axis ? R2_ : R3_;
+    for (int i = 0; i < 3; ++i) {
+      if (std::isnan(y(i)) || std::abs(s.load(i)) < kAirborneLoad) {  // standing, or off the ground
+        y(i) = filter.x(i);
+        R(i, i) = kUnavailable;
+      }
+    }
+    force_measurement_.set_sensor_angles(nt::sensor_angles(x1(gen::kPitch), x1(gen::kBogie)));
+    const UnscentedKalmanFilter::Function f = [](const Eigen::VectorXd& x, const Eigen::VectorXd&,
+                                                 Eigen::VectorXd& out) { out = x; };  // Eq. 5.50-5.52, 5.61
+    const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
+                                                     Eigen::VectorXd& out) { force_measurement_(x, out); };
+    filter.P += Q2_;  // Eq. 5.50-5.52: x + w through the identity, as Q after it
+    filter.step(f, kNoProcessNoise, h, R, y);
+  }
+  track.state.row(r) = filter.x.transpose();
+  track.sigma.row(r) = filter.P.diagonal().cwiseMax(0.0).cwiseSqrt().transpose();
+}
+
+void NetTractionEstimator::write_streams() {
+  const FilterTrack& g = result_.general;
+  const FilterTrack& w = result_.wheel_forces();
+  const auto column = [](const Eigen::MatrixXd& m, int c) {
+    std::vector<double> v(static_cast<std::size_t>(m.rows()));
+    for (Eigen::Index k = 0; k < m.rows(); ++k) v[static_cast<std::size_t>(k)] = m(k, c);
+    return v;
+  };
+  log::Stream wheels("estimate/net_traction/wheels", result_.time);
+  const struct {
+    const char* name;
+    const char* unit;
+    const FilterTrack* track;
+    int first;
+  } quantities[] = {
+      {"normal_load_", "N", &w, wf::kNormalLoad},
+      {"drawbar_pull_", "N", &w, wf::kDrawbarPull},
+      {"resistive_torque_", "N*m", &g, gen::kResistiveTorque},
+      {"slip_", "1", &g, gen::kSlip},
+      {"contact_angle_", "rad", &w, wf::kContactAngle},
+  };
+  for (const auto& q : quantities) {
+    for (int i = 0; i < 3; ++i) {
+      wheels.add_channel(index_name(q.name, i), q.unit, column(q.track->state, q.first + i));
+      wheels.add_channel(std::string(q.name) + "sigma_" + std::to_string(i + 1), q.unit,
+                         column(q.track->sigma, q.first + i), "1-sigma");
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    wheels.add_channel(index_name("wheel_acceleration_", i), "rad/s^2", column(result_.wheel_acceleration, i),
+                       "Eq. 5.24");
+  }
+  result_.estimates.add_stream(std::move(wheels));
+  log::Stream body("estimate/net_traction/body", result_.time);
+  const struct {
+    const char* name;
+    const char* unit;
+    int index;
+  } states[] = {{"pitch", "rad", gen::kPitch},
+                {"bogie_angle", "rad", gen::kBogie},
+                {"pitch_rate", "rad/s", gen::kPitchRate},
+                {"forward_speed", "m/s", gen::kForwardSpeed},
+                {"net_moment_body", "N*m", gen::kMomentBody},
+                {"net_moment_bogie", "N*m", gen::kMomentBogie},
+                {"net_force_x", "N", gen::kForceX},
+                {"net_force_z", "N", gen::kForceZ}};
+  for (const auto& s : states) {
+    body.add_channel(s.name, s.unit, column(g.state, s.index));
+    body.add_channel(std::string(s.name) + "_sigma", s.unit, column(g.sigma, s.index), "1-sigma");
+  }
+  result_.estimates.add_stream(std::move(body));
+  result_.estimates.metadata.extra["net_traction/force_sensors"] = force_sensors_name(result_.force_sensors);
+}
+
+NetTractionErrors tracking_errors(const log::Log& lg, const NetTractionResult& r, const FilterTrack& w,
+                                  double settle_seconds) {
+  NetTractionErrors e;
+  const log::Stream* truth = lg.find_stream("truth/wheels");
+  if (truth == nullptr || r.time.empty() || w.empty()) return e;
+  const struct {
+    const char* name;
+    const FilterTrack* track;
+    int first;
+    Eigen::Vector3d* out;
+  } quantities[] = {{"normal_load_", &w, wf::kNormalLoad, &e.normal_load},
+                    {"drawbar_pull_", &w, wf::kDrawbarPull, &e.drawbar_pull},
+                    {"resistive_torque_", &r.general, gen::kResistiveTorque, &e.resistive_torque},
+                    {"slip_", &r.general, gen::kSlip, &e.slip},
+                    {"contact_angle_", &w, wf::kContactAngle, &e.contact_angle}};
+  for (const auto& q : quantities) {
+    for (int i = 0; i < 3; ++i) {
+      const std::string channel = index_name(q.name, i);
+      if (truth->find_channel(channel) == nullptr) return NetTractionErrors{};
+      const std::vector<double> t = truth->interpolate(channel, r.time);
+      double sum = 0;
+      std::size_t n = 0;
+      for (std::size_t k = 0; k < t.size(); ++k) {
+        if (r.time[k] - r.time.front() < settle_seconds || !std::isfinite(t[k])) continue;
+        const double d = q.track->state(static_cast<Eigen::Index>(k), q.first + i) - t[k];
+        sum += d * d;
+        ++n;
+      }
+      (*q.out)(i) = n > 0 ? std::sqrt(sum / static_cast<double>(n)) : NAN;
+      e.samples = n;
+    }
+  }
+  e.has_truth = e.samples > 0;
+  return e;
+}
+
+NetTractionResult run_net_traction(const log::Log& log, const nt::RoverConstants& rover,
+                                   const NetTractionOptions& options) {
+  return NetTractionEstimator(log, rover, options).run();
+}
+
+}  // namespace roverlab::estimation
