@@ -351,7 +351,8 @@ TEST(Robustness, AbsurdOptionValuesAreUsageErrorsNamingTheOption) {
       {"render log.h5 --time nan -o x.png", "--time"},                                                  // F25
       {"simulate flat_60s --effect gyro-bias=1e300 -o x.h5", "gyro-bias"},                              // F27
       {"simulate flat_60s --effect imu-time-offset=1e9 -o x.h5", "imu-time-offset"},                    // F27
-      {"scenario skid-steer-slip --effect slip=-5 -o x.h5", "slip"},                                    // F27
+      {"scenario skid-steer-slip --effect slip=-5 -o x.h5", "slip"},
+      {"simulate flat_60s --duration 1e6 -o x.h5", "100000"},  // F18: "--duration must be positive" // F27
   };
   for (const auto& [args, option] : cases) {
     const CommandResult r = run_roverlab(args);
