@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -252,25 +253,107 @@ void write_if_changed(const fs::path& path, const std::string& text) {
   if (old != text) io::write_text_atomically(path.string(), text);
 }
 
-int run_snakemake(const std::vector<std::string>& argv) {
+// Snakemake's lines, shortened: the progress ("N of M steps (P%) done") as a
+// progress line on a terminal, errors and summaries as they are; the
+// per-job blocks (rule, input, output, jobid, ...) and scheduler chatter are
+// left out (they stay in DIR/.snakemake/log/). A dry run shows everything.
+class SnakemakeOutput {
+ public:
+  explicit SnakemakeOutput(bool everything) : everything_(everything), terminal_(isatty(STDERR_FILENO) != 0) {}
+  ~SnakemakeOutput() {
+    if (progress_shown_) std::fputc('\n', stderr);
+  }
+  SnakemakeOutput(const SnakemakeOutput&) = delete;
+  SnakemakeOutput& operator=(const SnakemakeOutput&) = delete;
+
+  void line(const std::string& text) {
+    if (everything_) {
+      std::fprintf(stderr, "%s\n", text.c_str());
+      return;
+    }
+    if (text.find(" steps (") != std::string::npos && text.find("done") != std::string::npos) {
+      std::fprintf(stderr, terminal_ ? "\rcampaign: %s" : "campaign: %s\n", text.c_str());
+      progress_shown_ = terminal_;
+      return;
+    }
+    if (text.rfind("Error in rule", 0) == 0) {
+      in_error_ = true;
+      in_block_ = false;
+    } else if (text.empty()) {
+      in_error_ = in_block_ = false;
+      return;
+    } else if (!in_error_ && (in_block_ || starts_block(text) || chatter(text))) {
+      in_block_ = in_block_ || starts_block(text);
+      return;
+    }
+    if (progress_shown_) std::fputc('\n', stderr);
+    progress_shown_ = false;
+    std::fprintf(stderr, "%s\n", text.c_str());
+  }
+
+ private:
+  // A job's block (time stamp, rule, its indented fields) or the job table, up to a blank line.
+  static bool starts_block(const std::string& text) {
+    for (const char* c : {"[", "rule ", "localrule ", "checkpoint ", "Job stats:"}) {
+      if (text.rfind(c, 0) == 0) return true;
+    }
+    return false;
+  }
+  static bool chatter(const std::string& text) {
+    for (const char* c : {"Select jobs to execute", "Building DAG of jobs", "Using shell:", "Provided cores:",
+                          "Rules claiming more threads", "Finished job ", "Complete log:"}) {
+      if (text.rfind(c, 0) == 0) return true;
+    }
+    return false;
+  }
+
+  bool everything_, terminal_;
+  bool in_error_ = false, in_block_ = false, progress_shown_ = false;
+};
+
+int run_snakemake(const std::vector<std::string>& argv, bool everything) {
   std::vector<char*> args;
   args.reserve(argv.size() + 1);
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));  // NOLINT: execv takes char* const*
   args.push_back(nullptr);
+  int fds[2];
+  if (pipe(fds) != 0) throw std::runtime_error("cannot start snakemake (pipe failed)");
   std::fflush(nullptr);
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("cannot start snakemake (fork failed)");
   if (pid == 0) {
+    close(fds[0]);
+    dup2(fds[1], STDOUT_FILENO);
+    dup2(fds[1], STDERR_FILENO);
+    close(fds[1]);
     execv(args[0], args.data());
     std::fprintf(stderr, "roverlab: cannot run %s\n", args[0]);
     _exit(127);
   }
+  close(fds[1]);
   // Ctrl-C reaches snakemake too (same process group): let it stop its jobs
   // and mark what is incomplete, then report its status.
   struct sigaction ignore {};
   struct sigaction old_int {};
   ignore.sa_handler = SIG_IGN;
   sigaction(SIGINT, &ignore, &old_int);
+  {
+    SnakemakeOutput out(everything);
+    std::string pending;
+    char buffer[4096];
+    for (;;) {
+      const ssize_t n = read(fds[0], buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      pending.append(buffer, static_cast<std::size_t>(n));
+      for (std::size_t nl = pending.find('\n'); nl != std::string::npos; nl = pending.find('\n')) {
+        out.line(pending.substr(0, nl));
+        pending.erase(0, nl + 1);
+      }
+    }
+    if (!pending.empty()) out.line(pending);
+  }
+  close(fds[0]);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -312,20 +395,18 @@ int run_campaign(const CampaignOptions& o) {
                                    "--cores",
                                    std::to_string(cores),
                                    "--rerun-incomplete",
-                                   "--keep-going",
-                                   "--quiet",
-                                   "rules"};
+                                   "--keep-going"};
   if (o.profile) {
     const fs::path named = workflows / "profiles" / *o.profile;
     argv.insert(argv.end(), {"--profile", fs::is_directory(named, ec) ? named.string() : *o.profile});
   }
-  if (o.dry_run) argv.insert(argv.end(), {"--dry-run", "--quiet", "progress"});
+  if (o.dry_run) argv.emplace_back("--dry-run");
   // One private Xvfb (when DISPLAY is unset) for every report the steps
   // render, not one each; cluster jobs start their own on their node.
   if (!o.profile && !o.dry_run) views::ensure_display();
   std::printf("campaign: %zu runs in %s, %d cores%s\n", items.size(), o.output.c_str(), cores,
               o.dry_run ? " (dry run: what would run)" : "");
-  const int status = run_snakemake(argv);
+  const int status = run_snakemake(argv, o.dry_run);
   if (status != 0) {
     std::fprintf(stderr,
                  "roverlab: the campaign stopped (snakemake exit %d): see the failed steps above and their logs in "

@@ -91,7 +91,7 @@ if ! "$roverlab" campaign "$here/tiny.json" -o "$out" --profile slurm; then
   echo "FAILED: the campaign did not finish through Slurm"
   exit 1
 fi
-jobs=$(find "$out/runs" -name 'slurm-*.txt' | wc -l)
+jobs=$(find "$out/.snakemake" -maxdepth 1 -name 'slurm-*.txt' | wc -l)
 runs=$(find "$out/runs" -name run.json | wc -l)
 echo "slurm: $runs runs, $jobs Slurm job logs"
 [ "$runs" -eq 2 ] || { echo "FAILED: expected 2 runs, got $runs"; exit 1; }
