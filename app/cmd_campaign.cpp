@@ -88,7 +88,8 @@ class ItemList {
         }
       }
       std::sort(files.begin(), files.end());
-      if (files.empty()) throw InputError(file_, "field '" + e.where + ".folder': no .h5, .hdf5, .mat or .csv log in " + e.folder);
+      if (files.empty())
+        throw InputError(file_, "field '" + e.where + ".folder': no .h5, .hdf5, .mat or .csv log in " + e.folder);
     }
     for (const auto& f : files) {
       json args = {"convert", f.string(), "{output}"};
@@ -100,9 +101,10 @@ class ItemList {
       }
       std::string name = safe_name(f.stem().string());
       for (int n = 2; items_.contains(name); ++n) name = safe_name(f.stem().string()) + "-" + std::to_string(n);
-      items_[name] = {{"kind", "log"},     {"source", f.string()}, {"mapping", mapping ? json(*mapping) : json(nullptr)},
-                      {"seed", nullptr},   {"effects", json::object()}, {"scenario", nullptr},
-                      {"args", args},      {"inputs", inputs}};
+      items_[name] = {
+          {"kind", "log"},   {"source", f.string()},      {"mapping", mapping ? json(*mapping) : json(nullptr)},
+          {"seed", nullptr}, {"effects", json::object()}, {"scenario", nullptr},
+          {"args", args},    {"inputs", inputs}};
     }
   }
 
@@ -110,9 +112,8 @@ class ItemList {
     std::string scenario_file;
     std::string label = e.scenario;
     if (e.command == "simulate") {
-      scenario_file = about_field(e.where + ".simulate", [&] {
-        return io::find_scenario(e.scenario, resource_subfolders("scenarios")).file;
-      });
+      scenario_file = about_field(e.where + ".simulate",
+                                  [&] { return io::find_scenario(e.scenario, resource_subfolders("scenarios")).file; });
       label = fs::path(e.scenario).stem().string();
     }
     for (std::size_t k = 0; k < e.effects.size(); ++k) check_effects(e, k);
@@ -385,17 +386,10 @@ int run_campaign(const CampaignOptions& o) {
   write_if_changed(fs::path(o.output) / "items.json", config.dump(1) + "\n");
   const unsigned machine = std::max(1U, std::thread::hardware_concurrency());
   const int cores = o.cores > 0 ? o.cores : static_cast<int>(machine);
-  std::vector<std::string> argv = {snakemake->string(),
-                                   "--snakefile",
-                                   (workflows / "Snakefile").string(),
-                                   "--directory",
-                                   o.output,
-                                   "--config",
-                                   "items=items.json",
-                                   "--cores",
-                                   std::to_string(cores),
-                                   "--rerun-incomplete",
-                                   "--keep-going"};
+  std::vector<std::string> argv = {snakemake->string(),  "--snakefile", (workflows / "Snakefile").string(),
+                                   "--directory",        o.output,      "--config",
+                                   "items=items.json",   "--cores",     std::to_string(cores),
+                                   "--rerun-incomplete", "--keep-going"};
   if (o.profile) {
     const fs::path named = workflows / "profiles" / *o.profile;
     argv.insert(argv.end(), {"--profile", fs::is_directory(named, ec) ? named.string() : *o.profile});

@@ -93,7 +93,8 @@ CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base
   CampaignSimulations s;
   s.where = entry.where();
   const bool scenario = entry.has("scenario"), simulate = entry.has("simulate");
-  if (scenario == simulate) entry.fail("needs one of \"scenario\" (roverlab scenario) or \"simulate\" (roverlab simulate)");
+  if (scenario == simulate)
+    entry.fail("needs one of \"scenario\" (roverlab scenario) or \"simulate\" (roverlab simulate)");
   if (scenario) {
     s.command = "scenario";
     s.scenario = required_string(entry, "scenario");

@@ -13,8 +13,8 @@ namespace roverlab::io {
 
 // One log, or every log of a folder (not its subfolders: .h5 .hdf5 .mat .csv).
 struct CampaignLogs {
-  std::string file;    // absolute; empty for a folder entry
-  std::string folder;  // absolute; empty for a file entry
+  std::string file;                    // absolute; empty for a folder entry
+  std::string folder;                  // absolute; empty for a file entry
   std::optional<std::string> mapping;  // NAME or FILE, as written
   std::string where;                   // "logs[2]", for messages
 };

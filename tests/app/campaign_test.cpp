@@ -90,9 +90,8 @@ TEST(Campaign, ACampaignFileIsCheckedFieldByField) {
 TEST(Campaign, WithoutSnakemakeItSaysSoInOneLine) {
   TempDir dir;
   write_text(dir.file("c.json"), ci_campaign());
-  const CommandResult r =
-      run_command("PATH=" + dir.path().string() + " " + kExe + " campaign " + quote(dir.file("c.json")) + " -o " +
-                  quote(dir.file("out")));
+  const CommandResult r = run_command("PATH=" + dir.path().string() + " " + kExe + " campaign " +
+                                      quote(dir.file("c.json")) + " -o " + quote(dir.file("out")));
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_NE(r.err.find("snakemake not found"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
