@@ -197,7 +197,7 @@ class ItemList {
 
 fs::path own_executable() {
   std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw std::runtime_error("cannot find the roverlab executable (/proc/self/exe)");
   return exe;
 }
