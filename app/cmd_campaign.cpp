@@ -88,8 +88,10 @@ class ItemList {
         }
       }
       std::sort(files.begin(), files.end());
-      if (files.empty())
-        throw InputError(file_, "field '" + e.where + ".folder': no .h5, .hdf5, .mat or .csv log in " + e.folder);
+      if (files.empty()) {
+        const std::string field = e.where.rfind("--", 0) == 0 ? "" : "field '" + e.where + ".folder': ";
+        throw InputError(file_, field + "no .h5, .hdf5, .mat or .csv log in " + e.folder);
+      }
     }
     for (const auto& f : files) {
       json args = {"convert", f.string(), "{output}"};
@@ -159,10 +161,16 @@ class ItemList {
     try {
       return work();
     } catch (const InputError& e) {
-      throw InputError(file_, "field '" + where + "': " + e.what());
+      throw InputError(file_, place(where) + e.what());
     } catch (const DataError& e) {
-      throw InputError(file_, "field '" + where + "': " + e.what());
+      throw InputError(file_, place(where) + e.what());
     }
+  }
+
+  // "field 'logs[0].mapping': ", or "--mapping: " for a folder given on the command line.
+  static std::string place(const std::string& where) {
+    if (where.rfind("--", 0) == 0) return where.substr(0, where.find('.')) + ": ";
+    return "field '" + where + "': ";
   }
 
   std::string about_mapping(const io::CampaignLogs& e, const std::string& mapping) {
@@ -234,7 +242,7 @@ json campaign_items(const CampaignOptions& o) {
     io::CampaignLogs folder;
     folder.folder = fs::absolute(o.input).lexically_normal().string();
     folder.mapping = o.mapping;
-    folder.where = "logs[0]";
+    folder.where = "--mapping";
     ItemList list(o.input);
     list.add_logs(folder);
     return list.items();
