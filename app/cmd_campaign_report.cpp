@@ -1,0 +1,389 @@
+// `roverlab campaign report RUN_DIR... -o OUT`: the campaign report. Reads
+// each run's run.json (provenance, written by workflows/Snakefile) and
+// report/metrics.json (`roverlab report`), and writes OUT/index.html (a table
+// of every run with its key metrics and verdicts, links to the per-run
+// reports, a histogram per key metric, the named-vs-injected confusion table
+// of the simulated runs), OUT/campaign.csv and OUT/campaign.json.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "app/analysis.h"
+#include "app/command.h"
+#include "app/commands.h"
+#include "core/common/error.h"
+#include "importers/atomic_file.h"
+
+namespace roverlab::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct CampaignReportOptions {
+  std::vector<std::string> runs;
+  std::string output;
+};
+
+// A column of the campaign table: a number (or, for verdicts, a string)
+// taken from one analysis's result document; arrays (per wheel) by their mean.
+struct KeyMetric {
+  const char* key;       // column name in the CSV and JSON
+  const char* title;     // column heading in the HTML
+  const char* analysis;  // analyses/<name> in metrics.json
+  const char* pointer;   // JSON pointer inside its document
+  bool verdict;          // a string, not a number
+};
+
+// Wall-clock fields (contact-angle's wall_seconds) are left out on purpose:
+// a campaign run twice gives the same table.
+const KeyMetric kKeyMetrics[] = {
+    {"ins_final_error_m", "INS final error (m)", "ins-slip", "/ins/final_position_error_m", false},
+    {"ins_position_rmse_m", "INS position RMSE (m)", "ins-slip", "/ins/position_rmse_m", false},
+    {"wheel_odometry_final_error_m", "wheel odometry final error (m)", "ins-slip",
+     "/wheel_odometry/final_position_error_m", false},
+    {"slip_class_accuracy", "slip class accuracy", "ins-slip", "/slip_confusion/accuracy", false},
+    {"odometry_held_out_rmse_m", "odometry held-out RMSE (m)", "odometry", "/baseline/held_out_rmse_m", false},
+    {"odometry_cause", "named cause (odometry)", "odometry", "/cause", true},
+    {"contact_angle_rms_deg", "contact angle RMS (deg, mean of wheels)", "contact-angle", "/rms/contact_angle_deg",
+     false},
+    {"contact_slip_rms", "slip RMS (mean of wheels)", "contact-angle", "/rms/slip", false},
+};
+
+// The cause the odometry study should name for a run's injected effects:
+// the candidate that stands for its one effect (slip=0, firm ground, aside),
+// "none" on firm ground without an effect; empty when no single answer is
+// right (several effects, or the default slip episodes alone, which look
+// like a smaller wheel radius).
+std::string expected_cause(const json& effects) {
+  std::vector<std::string> others;
+  for (const auto& [name, value] : effects.items()) {
+    if (name != "slip") others.push_back(name);
+  }
+  const bool firm = effects.contains("slip") && effects.at("slip") == 0;
+  if (others.empty()) return firm ? "none" : "";
+  if (others.size() > 1) return "";
+  const std::string& effect = others.front();
+  if (effect == "left-radius-scale" || effect == "right-radius-scale") return "per-side scale";
+  if (effect == "radius-scale") return "radius scale";
+  if (effect == "turning-track-factor") return "turning track";
+  if (effect == "wheel-time-offset") return "time offset";
+  return "";
+}
+
+json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string(), "cannot open (is the run finished?)");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(path.string(), std::string("not valid JSON: ") + e.what());
+  }
+}
+
+json metric_value(const json& analyses, const KeyMetric& m) {
+  if (!analyses.contains(m.analysis)) return nullptr;
+  const json& doc = analyses.at(m.analysis);
+  const json::json_pointer ptr(m.pointer);
+  if (!doc.contains(ptr)) return nullptr;
+  const json& v = doc.at(ptr);
+  if (m.verdict) return v.is_string() ? v : json(nullptr);
+  if (v.is_number()) return v;
+  if (v.is_array() && !v.empty()) {
+    double sum = 0;
+    for (const auto& x : v) {
+      if (!x.is_number()) return nullptr;
+      sum += x.get<double>();
+    }
+    return sum / static_cast<double>(v.size());
+  }
+  return nullptr;
+}
+
+std::string effects_text(const json& effects) {
+  std::string text;
+  for (const auto& [name, value] : effects.items()) {
+    char b[96];
+    std::snprintf(b, sizeof b, "%s%s=%.10g", text.empty() ? "" : " ", name.c_str(), value.get<double>());
+    text += b;
+  }
+  return text.empty() ? "none" : text;
+}
+
+std::string csv_cell(const json& v) {
+  if (v.is_null()) return "";
+  if (v.is_number()) return ReportSection::number(v.get<double>(), "%.10g");
+  std::string s = v.is_string() ? v.get<std::string>() : v.dump();
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// One run: its provenance and key metrics.
+json read_run(const fs::path& dir, const fs::path& out) {
+  const json run = read_json(dir / "run.json");
+  if (run.value("format", "") != "roverlab-campaign-run") {
+    throw InputError((dir / "run.json").string(),
+                     "not a RoverLab campaign run ('format' must be roverlab-campaign-run)");
+  }
+  const json metrics = read_json(dir / "report" / "metrics.json");
+  const json analyses = metrics.value("analyses", json::object());
+  json row = {{"name", run.value("name", dir.filename().string())},
+              {"kind", run.value("kind", "")},
+              {"scenario", run.value("scenario", json(nullptr))},
+              {"seed", run.value("seed", json(nullptr))},
+              {"effects", run.value("effects", json::object())},
+              {"roverlab_version", run.value("roverlab_version", "")},
+              {"analyses", json::array()},
+              {"report", fs::proximate(dir / "report" / "index.html", out).generic_string()},
+              {"metrics", json::object()}};
+  for (const auto& [name, doc] : analyses.items()) row["analyses"].push_back(name);
+  for (const auto& m : kKeyMetrics) row["metrics"][m.key] = metric_value(analyses, m);
+  return row;
+}
+
+// A histogram of one metric over the runs, as an SVG file.
+std::string histogram_svg(const std::string& title, const std::vector<double>& values) {
+  const double lo = *std::min_element(values.begin(), values.end());
+  const double hi = *std::max_element(values.begin(), values.end());
+  constexpr int kBins = 12;
+  const double width = hi > lo ? (hi - lo) / kBins : 1.0;
+  std::vector<int> counts(kBins, 0);
+  for (const double v : values) {
+    const int b = hi > lo ? std::min(kBins - 1, static_cast<int>((v - lo) / width)) : kBins / 2;
+    ++counts[static_cast<std::size_t>(b)];
+  }
+  const int most = *std::max_element(counts.begin(), counts.end());
+  constexpr double kW = 360, kH = 200, kLeft = 30, kBottom = 170, kPlotH = 140, kBarW = (kW - kLeft - 10) / kBins;
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kW << "\" height=\"" << kH
+    << "\" font-family=\"sans-serif\" font-size=\"11\">\n<title>" << ReportSection::escape(title) << "</title>\n"
+    << "<text x=\"" << kLeft << "\" y=\"14\">" << ReportSection::escape(title) << " (" << values.size()
+    << " runs)</text>\n";
+  for (int b = 0; b < kBins; ++b) {
+    const double h = most > 0 ? kPlotH * counts[static_cast<std::size_t>(b)] / most : 0;
+    s << "<rect x=\"" << kLeft + b * kBarW << "\" y=\"" << kBottom - h << "\" width=\"" << kBarW - 1 << "\" height=\""
+      << h << "\" fill=\"#58c\"><title>" << counts[static_cast<std::size_t>(b)] << "</title></rect>\n";
+  }
+  s << "<line x1=\"" << kLeft << "\" y1=\"" << kBottom << "\" x2=\"" << kW - 10 << "\" y2=\"" << kBottom
+    << "\" stroke=\"#333\"/>\n<text x=\"" << kLeft << "\" y=\"" << kBottom + 15 << "\">"
+    << ReportSection::number(lo, "%.4g") << "</text>\n<text x=\"" << kW - 10 << "\" y=\"" << kBottom + 15
+    << "\" text-anchor=\"end\">" << ReportSection::number(hi, "%.4g") << "</text>\n<text x=\"4\" y=\""
+    << kBottom - kPlotH + 4 << "\">" << most << "</text>\n</svg>\n";
+  return s.str();
+}
+
+// Named cause (odometry study) against the injected effects, over the
+// simulated runs the study ran on.
+json confusion_table(const json& runs) {
+  std::map<std::string, std::map<std::string, int>> counts;
+  std::map<std::string, std::string> expected;
+  std::set<std::string> columns;
+  int scored = 0, as_expected = 0;
+  for (const auto& r : runs) {
+    const json& analyses = r.at("analyses");
+    if (r.at("kind") == "log" || std::find(analyses.begin(), analyses.end(), "odometry") == analyses.end()) continue;
+    const json& cause = r.at("metrics").at("odometry_cause");
+    const std::string injected = effects_text(r.at("effects"));
+    const std::string named = cause.is_string() ? cause.get<std::string>() : "none";
+    ++counts[injected][named];
+    columns.insert(named);
+    expected[injected] = expected_cause(r.at("effects"));
+    if (!expected[injected].empty()) {
+      ++scored;
+      if (expected[injected] == named) ++as_expected;
+    }
+  }
+  json t = {{"rows", "injected effects"}, {"columns", "named cause"},        {"injected", json::array()},
+            {"named", columns},           {"counts", json::array()},         {"expected", json::array()},
+            {"scored_runs", scored},      {"named_as_expected", as_expected}};
+  for (const auto& [injected, row] : counts) {
+    t["injected"].push_back(injected);
+    json line = json::array();
+    for (const auto& c : columns) line.push_back(row.count(c) > 0 ? row.at(c) : 0);
+    t["counts"].push_back(line);
+    t["expected"].push_back(expected.at(injected).empty() ? json(nullptr) : json(expected.at(injected)));
+  }
+  return t;
+}
+
+class CampaignReportWriter {
+ public:
+  CampaignReportWriter(fs::path out, json runs) : out_(std::move(out)), runs_(std::move(runs)) {}
+
+  void write() {
+    head();
+    table();
+    distributions();
+    confusion();
+    html_ << "<p class=\"note\">Generated by roverlab campaign report. Full precision: campaign.csv, "
+             "campaign.json.</p>\n</body></html>\n";
+    json doc = {{"format", "roverlab-campaign-report"},
+                {"version", 1},
+                {"runs", runs_},
+                {"columns", json::array()},
+                {"summary", summary_},
+                {"confusion", confusion_}};
+    for (const auto& m : kKeyMetrics)
+      doc["columns"].push_back({{"key", m.key}, {"title", m.title}, {"analysis", m.analysis}});
+    io::write_text_atomically((out_ / "campaign.json").string(), doc.dump(1) + "\n");
+    io::write_text_atomically((out_ / "campaign.csv").string(), csv());
+    io::write_text_atomically((out_ / "index.html").string(), html_.str());
+  }
+
+ private:
+  static std::string esc(const std::string& s) { return ReportSection::escape(s); }
+
+  void head() {
+    html_
+        << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>RoverLab campaign report</title>\n"
+        << "<style>body{font-family:sans-serif;max-width:1400px;margin:2em auto;color:#222}"
+        << "table{border-collapse:collapse;margin:1em 0;font-size:90%}td,th{border:1px solid #bbb;padding:3px 6px;"
+        << "text-align:right}th{background:#eef}td.t{text-align:left}.note{color:#555}img{margin:4px}</style>"
+        << "</head><body>\n<h1>RoverLab campaign report</h1>\n<p>" << runs_.size() << " runs";
+    std::set<std::string> versions;
+    for (const auto& r : runs_) versions.insert(r.at("roverlab_version").get<std::string>());
+    for (const auto& v : versions) html_ << ", RoverLab " << esc(v);
+    html_ << ".</p>\n";
+  }
+
+  void table() {
+    html_ << "<h2>Runs</h2>\n<table id=\"runs\"><tr><th>run</th><th>kind</th><th>scenario</th><th>seed</th>"
+             "<th>injected effects</th>";
+    for (const auto& m : kKeyMetrics) html_ << "<th>" << esc(m.title) << "</th>";
+    html_ << "</tr>\n";
+    for (const auto& r : runs_) {
+      const std::string name = r.at("name").get<std::string>();
+      html_ << "<tr id=\"run-" << esc(name) << "\"><td class=\"t\"><a href=\"" << esc(r.at("report").get<std::string>())
+            << "\">" << esc(name) << "</a></td><td class=\"t\">" << esc(r.at("kind").get<std::string>())
+            << "</td><td class=\"t\">" << (r.at("scenario").is_string() ? esc(r.at("scenario").get<std::string>()) : "")
+            << "</td><td>" << (r.at("seed").is_number() ? std::to_string(r.at("seed").get<long>()) : "")
+            << "</td><td class=\"t\">" << esc(effects_text(r.at("effects"))) << "</td>";
+      for (const auto& m : kKeyMetrics) html_ << cell(r.at("metrics").at(m.key));
+      html_ << "</tr>\n";
+    }
+    html_ << "</table>\n";
+  }
+
+  // A metric cell as the HTML shows it: 4 significant digits, an en dash when absent.
+  static std::string cell(const json& v) {
+    if (v.is_string()) return "<td class=\"t\">" + esc(v.get<std::string>()) + "</td>";
+    return "<td>" + ReportSection::number(v, "%.4g") + "</td>";
+  }
+
+  void distributions() {
+    html_ << "<h2>Distributions over the runs</h2>\n";
+    summary_ = json::object();
+    for (const auto& m : kKeyMetrics) {
+      if (m.verdict) continue;
+      std::vector<double> values;
+      for (const auto& r : runs_) {
+        const json& v = r.at("metrics").at(m.key);
+        if (v.is_number() && std::isfinite(v.get<double>())) values.push_back(v.get<double>());
+      }
+      if (values.empty()) continue;
+      double sum = 0;
+      for (const double v : values) sum += v;
+      summary_[m.key] = {{"runs", values.size()},
+                         {"mean", sum / static_cast<double>(values.size())},
+                         {"min", *std::min_element(values.begin(), values.end())},
+                         {"max", *std::max_element(values.begin(), values.end())}};
+      const std::string file = std::string("hist_") + m.key + ".svg";
+      io::write_text_atomically((out_ / file).string(), histogram_svg(m.title, values));
+      html_ << "<img src=\"" << file << "\" alt=\"" << esc(m.title) << "\">\n";
+    }
+    if (summary_.empty()) html_ << "<p class=\"note\">No run has a key metric.</p>\n";
+  }
+
+  void confusion() {
+    confusion_ = confusion_table(runs_);
+    if (confusion_.at("injected").empty()) return;
+    html_ << "<h2>Named cause against injected effect</h2>\n<p>Simulated runs the odometry discrepancy study ran on: "
+             "rows are the effects injected into the simulation, columns the cause the study named.</p>\n"
+             "<table id=\"confusion\"><tr><th>injected</th><th>expected</th>";
+    for (const auto& c : confusion_.at("named")) html_ << "<th>" << esc(c.get<std::string>()) << "</th>";
+    html_ << "</tr>\n";
+    for (std::size_t i = 0; i < confusion_.at("injected").size(); ++i) {
+      const json& expected = confusion_.at("expected").at(i);
+      html_ << "<tr><td class=\"t\">" << esc(confusion_.at("injected").at(i).get<std::string>())
+            << "</td><td class=\"t\">" << (expected.is_string() ? esc(expected.get<std::string>()) : "") << "</td>";
+      std::size_t j = 0;
+      for (const auto& c : confusion_.at("named")) {
+        const bool hit = expected.is_string() && expected == c;
+        html_ << "<td" << (hit ? " style=\"font-weight:bold\"" : "") << ">" << confusion_.at("counts").at(i).at(j++)
+              << "</td>";
+      }
+      html_ << "</tr>\n";
+    }
+    html_ << "</table>\n<p>" << confusion_.at("named_as_expected").get<int>() << " of "
+          << confusion_.at("scored_runs").get<int>()
+          << " runs whose injected effect has one right answer (column \"expected\") had it named. Without "
+             "slip=0 the drive has slip episodes, whose steady slip looks like a smaller wheel radius.</p>\n";
+  }
+
+  std::string csv() const {
+    std::string text = "name,kind,scenario,seed,effects";
+    for (const auto& m : kKeyMetrics) text += std::string(",") + m.key;
+    text += ",report\n";
+    for (const auto& r : runs_) {
+      text += csv_cell(r.at("name")) + "," + csv_cell(r.at("kind")) + "," + csv_cell(r.at("scenario")) + "," +
+              csv_cell(r.at("seed")) + "," + csv_cell(effects_text(r.at("effects")));
+      for (const auto& m : kKeyMetrics) text += "," + csv_cell(r.at("metrics").at(m.key));
+      text += "," + csv_cell(r.at("report")) + "\n";
+    }
+    return text;
+  }
+
+  fs::path out_;
+  json runs_;
+  json summary_ = json::object();
+  json confusion_ = json::object();
+  std::ostringstream html_;
+};
+
+int run_campaign_report(const CampaignReportOptions& o) {
+  if (o.output.empty()) throw UsageError("--output: the report folder's name is empty");
+  const fs::path out(o.output);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out)) throw InputError(o.output, "cannot create the report folder");
+  json runs = json::array();
+  std::set<std::string> names;
+  for (const auto& dir : o.runs) {
+    json row = read_run(dir, out);
+    if (!names.insert(row.at("name").get<std::string>()).second) {
+      throw UsageError("run " + row.at("name").get<std::string>() + " is given twice");
+    }
+    runs.push_back(std::move(row));
+  }
+  CampaignReportWriter(out, std::move(runs)).write();
+  std::printf("wrote %s: %zu runs\n", (out / "index.html").c_str(), o.runs.size());
+  return kSuccess;
+}
+
+}  // namespace
+
+Commands make_campaign_report_commands() {
+  Commands commands;
+  commands.push_back(make_command<CampaignReportOptions>(
+      "campaign report",
+      "The campaign report of finished runs: a table of key metrics and verdicts, histograms, named-vs-injected "
+      "causes; HTML, CSV and JSON",
+      [](CLI::App& cmd, CampaignReportOptions& o) {
+        cmd.add_option("RUN_DIRS", o.runs, "Run folders (runs/NAME: run.json and report/metrics.json)")->required();
+        cmd.add_option("--output,-o", o.output, "Report folder (created if missing)")->required();
+      },
+      run_campaign_report));
+  return commands;
+}
+
+}  // namespace roverlab::app

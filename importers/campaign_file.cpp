@@ -1,0 +1,167 @@
+#include "importers/campaign_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/common/error.h"
+#include "importers/json_resource.h"
+
+namespace roverlab::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMaxSeed = 2147483647.0;
+constexpr std::size_t kMaxRuns = 100000;
+
+std::string absolute_from(const fs::path& base, const std::string& path) {
+  const fs::path p(path);
+  return (p.is_absolute() ? p : base / p).lexically_normal().string();
+}
+
+// A FILE (relative to the campaign file) rather than a resource NAME.
+bool names_a_file(const std::string& s) {
+  return s.find('/') != std::string::npos || (s.size() > 5 && s.compare(s.size() - 5, 5, ".json") == 0);
+}
+
+unsigned seed_of(const JsonNode& node) {
+  const double v = as_number(node);
+  if (!(v >= 0 && v <= kMaxSeed) || std::floor(v) != v) node.fail("a seed is a whole number in 0..2147483647");
+  return static_cast<unsigned>(v);
+}
+
+std::vector<unsigned> read_seeds(const JsonNode& entry) {
+  if (!entry.has("seeds")) return {1};
+  const JsonNode seeds = entry.child("seeds");
+  std::vector<unsigned> out;
+  if (seeds.value().is_array()) {
+    for (const auto& s : required_array(entry, "seeds")) out.push_back(seed_of(s));
+    if (out.empty()) seeds.fail("lists no seed");
+  } else if (seeds.value().is_object()) {
+    const double first = required_number_in(seeds, "first", 0, kMaxSeed);
+    const double count = required_number_in(seeds, "count", 1, static_cast<double>(kMaxRuns));
+    if (std::floor(first) != first) seeds.fail("first", "must be a whole number");
+    if (std::floor(count) != count) seeds.fail("count", "must be a whole number");
+    if (first + count - 1 > kMaxSeed) seeds.fail("count", "the last seed would pass 2147483647");
+    for (double s = first; s < first + count; s += 1) out.push_back(static_cast<unsigned>(s));
+  } else {
+    seeds.fail("expected an array of seeds or {\"first\": N, \"count\": N}");
+  }
+  return out;
+}
+
+std::vector<std::map<std::string, double>> read_effects(const JsonNode& entry) {
+  if (!entry.has("effects")) return {{}};
+  std::vector<std::map<std::string, double>> out;
+  for (const auto& set : required_array(entry, "effects")) {
+    if (!set.value().is_object()) set.fail("expected an object of effect NAME: VALUE ({} for none)");
+    std::map<std::string, double> effects;
+    for (const auto& item : set.value().items()) effects[item.key()] = as_number(set.child(item.key()));
+    out.push_back(effects);
+  }
+  if (out.empty()) entry.fail("effects", "lists no effect set (use [{}] for runs without an effect)");
+  return out;
+}
+
+CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
+  if (!entry.value().is_object()) entry.fail("expected an object with \"file\" or \"folder\"");
+  CampaignLogs logs;
+  logs.where = entry.where();
+  const bool file = entry.has("file"), folder = entry.has("folder");
+  if (file == folder) entry.fail("needs one of \"file\" or \"folder\"");
+  std::error_code ec;
+  if (file) {
+    logs.file = absolute_from(base, required_string(entry, "file"));
+    if (!fs::is_regular_file(logs.file, ec)) entry.fail("file", "no such file: " + logs.file);
+  } else {
+    logs.folder = absolute_from(base, required_string(entry, "folder"));
+    if (!fs::is_directory(logs.folder, ec)) entry.fail("folder", "no such folder: " + logs.folder);
+  }
+  if (entry.has("mapping")) {
+    std::string mapping = required_string(entry, "mapping");
+    // A mapping FILE is relative to the campaign file; a NAME stays a name.
+    if (names_a_file(mapping)) mapping = absolute_from(base, mapping);
+    logs.mapping = mapping;
+  }
+  return logs;
+}
+
+CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base) {
+  if (!entry.value().is_object()) entry.fail("expected an object with \"scenario\" or \"simulate\"");
+  CampaignSimulations s;
+  s.where = entry.where();
+  const bool scenario = entry.has("scenario"), simulate = entry.has("simulate");
+  if (scenario == simulate)
+    entry.fail("needs one of \"scenario\" (roverlab scenario) or \"simulate\" (roverlab simulate)");
+  if (scenario) {
+    s.command = "scenario";
+    s.scenario = required_string(entry, "scenario");
+    const auto& names = campaign_scenario_names();
+    if (std::find(names.begin(), names.end(), s.scenario) == names.end()) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      entry.fail("scenario", "unknown scenario '" + s.scenario + "' (" + list + ")");
+    }
+    if (entry.has("rate")) {
+      if (s.scenario == "skid-steer-slip") entry.fail("rate", "skid-steer-slip has no rate option");
+      s.rate = required_number_in(entry, "rate", 10, 10000);
+    }
+    if (entry.has("duration")) entry.fail("duration", "only \"simulate\" runs take a duration");
+  } else {
+    s.command = "simulate";
+    s.scenario = required_string(entry, "simulate");
+    if (names_a_file(s.scenario)) s.scenario = absolute_from(base, s.scenario);
+    if (entry.has("duration")) {
+      s.duration = required_number_in(entry, "duration", 0, 100000);
+      if (!(*s.duration > 0)) entry.fail("duration", "must be positive");
+    }
+    if (entry.has("rate")) entry.fail("rate", "only flying-rover scenarios take a rate");
+  }
+  s.seeds = read_seeds(entry);
+  s.effects = read_effects(entry);
+  return s;
+}
+
+}  // namespace
+
+const std::vector<std::string>& campaign_scenario_names() {
+  static const std::vector<std::string> names = {"skid-steer-slip", "fl-bogie-rotation", "rear-bogie-rotation",
+                                                 "bump-crossing"};
+  return names;
+}
+
+CampaignFile read_campaign_file(const std::string& path) {
+  const JsonResource file = read_json_resource(path, "campaign");
+  const JsonNode j = file.root();
+  require_format(j, "roverlab-campaign", "campaign");
+  const double version = required_number(j, "version");
+  if (version != 1) j.fail("version", "version " + j.value().at("version").dump() + " is not supported (1 is)");
+  for (const auto& item : j.value().items()) {
+    const std::string& k = item.key();
+    if (k != "format" && k != "version" && k != "name" && k != "description" && k != "logs" && k != "simulations") {
+      j.fail(k, "unknown field (format, version, name, description, logs, simulations)");
+    }
+  }
+  CampaignFile c;
+  c.file = path;
+  c.name = optional_string(j, "name", fs::path(path).stem().string());
+  (void)optional_string(j, "description", "");
+  const fs::path base = fs::absolute(fs::path(path)).parent_path();
+  if (j.has("logs")) {
+    for (const auto& e : required_array(j, "logs")) c.logs.push_back(read_logs(e, base));
+  }
+  std::size_t runs = 0;
+  if (j.has("simulations")) {
+    for (const auto& e : required_array(j, "simulations")) {
+      c.simulations.push_back(read_simulations(e, base));
+      runs += c.simulations.back().seeds.size() * c.simulations.back().effects.size();
+      if (runs > kMaxRuns) e.fail("the campaign would pass 100000 simulated runs");
+    }
+  }
+  if (c.logs.empty() && c.simulations.empty()) j.fail("names no \"logs\" and no \"simulations\"");
+  return c;
+}
+
+}  // namespace roverlab::io
