@@ -2,8 +2,9 @@
 # Starts a one-node Slurm cluster on this machine (munged, slurmctld, slurmd,
 # configuration from tests/slurm/slurm.conf.in in a temporary folder), runs
 # the tiny campaign tests/slurm/tiny.json through workflows/profiles/slurm,
-# checks that its steps ran as Slurm jobs and that the campaign report is
-# there, and stops the daemons it started. Exits 77 (ctest: SKIPPED) with the
+# checks that its steps ran as Slurm jobs, that a second run submits nothing
+# and that the campaign report equals a local run's, and stops the daemons it
+# started. Exits 77 (ctest: SKIPPED) with the
 # reason when Slurm cannot start here: not root, packages missing, a daemon
 # that does not come up.
 # Usage: tests/slurm/run_campaign.sh ROVERLAB_EXE
@@ -102,4 +103,14 @@ grep -q '"roverlab-campaign-report"' "$out/report/campaign.json" || { echo "FAIL
 # A second run submits nothing.
 "$roverlab" campaign "$here/tiny.json" -o "$out" --profile slurm 2>&1 | tee "$work/second.txt"
 grep -q "Nothing to be done" "$work/second.txt" || { echo "FAILED: the second run did work"; exit 1; }
-echo "PASSED: a campaign through Slurm"
+# The same campaign run locally gives the same campaign report (paths aside).
+local=$work/local
+"$roverlab" campaign "$here/tiny.json" -o "$local" >/dev/null ||
+  { echo "FAILED: the local campaign did not finish"; exit 1; }
+if ! diff <(sed "s|$out|OUT|g" "$out/report/campaign.json") <(sed "s|$local|OUT|g" "$local/report/campaign.json") \
+  >"$work/report.diff"; then
+  echo "FAILED: the campaign report through Slurm differs from the local one:"
+  head -20 "$work/report.diff"
+  exit 1
+fi
+echo "PASSED: a campaign through Slurm, its report identical to the local run's"
