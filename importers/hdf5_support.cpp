@@ -202,11 +202,13 @@ std::vector<hsize_t> dataset_shape(hid_t dataset) {
 
 namespace {
 
-// libhdf5 reads a chunked dataset chunk by chunk, at a cost per chunk even
-// where none is stored: a damaged file declaring chunks of one value made a
-// read of a 70 kB log take seconds (found by fuzzing). RoverLab writes chunks
-// of up to 262144 values, MATLAB hundreds of kB: more chunks than this is a
-// damaged file, not a log.
+// What a damaged file can make libhdf5 spend seconds on or RoverLab allocate
+// (found by fuzzing a 70 kB log): a dataset in chunks of one value (libhdf5
+// reads chunk by chunk, at a cost per chunk even where none is stored), a
+// chunk index claiming a 4 GB chunk (libhdf5 allocates and reads it), a
+// dataset declaring gigabytes of values. RoverLab writes chunks of up to
+// 262144 values, MATLAB hundreds of kB: more chunks than this is a damaged
+// file, not a log.
 constexpr double kMaxChunks = 1 << 16;
 
 void check_chunks(hid_t dataset, hid_t space) {
@@ -233,6 +235,28 @@ void check_chunks(hid_t dataset, hid_t space) {
   }
 }
 
+// Throws when the dataset's layout says the file is damaged: more storage or
+// more values than the file can hold (a filtered, i.e. compressed, dataset at
+// deflate's best ratio, about 1000:1), or too many chunks.
+void check_size(hid_t dataset, hid_t space, hssize_t values, std::size_t value_size) {
+  Handle file(H5Iget_file_id(dataset));
+  hsize_t file_size = 0;
+  if (!file.valid() || H5Fget_filesize(file.get(), &file_size) < 0) return;
+  const hsize_t stored = H5Dget_storage_size(dataset);
+  if (stored > file_size) {
+    throw std::runtime_error("dataset claims " + std::to_string(stored) + " bytes of storage, more than the file's " +
+                             std::to_string(file_size) + " (damaged file)");
+  }
+  Handle dcpl(H5Dget_create_plist(dataset));
+  const bool compressed = dcpl.valid() && H5Pget_nfilters(dcpl.get()) > 0;
+  const double holds = (compressed ? 1032.0 : 1.0) * static_cast<double>(file_size);
+  if (static_cast<double>(values) * static_cast<double>(value_size) > holds) {
+    throw std::runtime_error("declares " + std::to_string(values) + " values, more than a file of " +
+                             std::to_string(file_size) + " bytes holds (damaged file)");
+  }
+  check_chunks(dataset, space);
+}
+
 }  // namespace
 
 std::vector<double> read_doubles(hid_t dataset) {
@@ -244,13 +268,13 @@ std::vector<double> read_doubles(hid_t dataset) {
   Handle space(H5Dget_space(dataset));
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   if (n < 0) throw std::runtime_error("cannot read dataset size: " + last_error_text());
+  check_size(dataset, space.get(), n, H5Tget_size(type.get()));
   std::vector<double> values;
   try {
     values.resize(static_cast<std::size_t>(n));
   } catch (const std::bad_alloc&) {
     throw std::runtime_error("declares " + std::to_string(n) + " values, more than memory holds");
   }
-  check_chunks(dataset, space.get());
   if (n > 0 && H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
     const std::string why = last_error_text();
     throw std::runtime_error("cannot read dataset" + (why.empty() ? "" : ": " + why));

@@ -199,7 +199,8 @@ TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
   });
   const CommandResult r = run_roverlab("info " + quote(huge.path()));
   expect_one_line_bad_input(r, huge.path(), "angular_rate_x");
-  EXPECT_NE(r.err.find("more than memory holds"), std::string::npos) << r.err;
+  // Refused before any allocation: more values than the file could hold.
+  EXPECT_NE(r.err.find("declares 1099511627776 values, more than a file of"), std::string::npos) << r.err;
 }
 
 TEST(Robustness, ADatasetInTooManyChunksIsABadInputNotAHang) {
@@ -209,7 +210,7 @@ TEST(Robustness, ADatasetInTooManyChunksIsABadInputNotAHang) {
   const ConvertedLog log(dir);
   log.edit([](hid_t f) {
     ASSERT_GE(H5Ldelete(f, "/streams/imu/time", H5P_DEFAULT), 0);
-    const hsize_t dims = hsize_t{1} << 20, chunk = 1;
+    const hsize_t dims = 100000, chunk = 1;  // 800 kB declared: less than the file, no more than a log may be
     const hid_t space = H5Screate_simple(1, &dims, nullptr);
     const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, 1, &chunk);
@@ -221,7 +222,7 @@ TEST(Robustness, ADatasetInTooManyChunksIsABadInputNotAHang) {
     H5Sclose(space);
   });
   const CommandResult r = run_roverlab("info " + quote(log.path()));
-  expect_one_line_bad_input(r, log.path(), "1048576 chunks");
+  expect_one_line_bad_input(r, log.path(), "100000 chunks");
 }
 
 TEST(Robustness, ACsvThatNeverEndsIsRefused) {
