@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/command.h"
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
 #include "core/analysis/single_wheel_discrepancy.h"
@@ -53,13 +54,15 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
-  const analysis::DiscrepancyReport r = analysis::study_single_wheel(soil, points, options);
+  const analysis::DiscrepancyReport r =
+      about_file(o.file, [&] { return analysis::study_single_wheel(soil, points, options); });
 
   if (o.json) {
     json j = {{"file", o.file},
               {"soil", soil.name},
               {"points", r.points},
               {"measurements", r.measurements},
+              {"held_out_method", r.held_out_method},
               {"unsupported", r.unsupported},
               {"baseline",
                {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score}, {"bic", r.baseline_bic}}},
@@ -116,7 +119,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     std::printf("  %-13s %5zu %9.3f %-3s %8.3f %-3s %9.3f (%5.1f) %9.3f (%5.1f)\n", to_string(s.quantity), s.count,
                 s.rmse * k, u, s.bias * k, u, s.slope_vs_slip * k, s.t_slip, s.slope_vs_load * k * 100.0, s.t_load);
   }
-  std::printf("\ncandidate causes (each fitted with Ceres; held-out = leave-one-out):\n");
+  std::printf("\ncandidate causes (each fitted with Ceres; held-out = %s):\n", r.held_out_method.c_str());
   std::printf("  %-14s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC",
               "held-out sigma");
   std::printf("  %-14s %-24s %22s %10s %14.3f\n", "(baseline)", "-", "-", "0", r.baseline_score);
@@ -128,7 +131,11 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     for (std::size_t i = 0; i < c.fit.parameters.size(); ++i) {
       const auto& p = c.fit.parameters[i];
       char value[64];
-      std::snprintf(value, sizeof value, "%.4g +- %.2g%s", p.value, p.sigma, p.at_bound ? " (bound)" : "");
+      if (std::isfinite(p.sigma)) {
+        std::snprintf(value, sizeof value, "%.4g +- %.2g%s", p.value, p.sigma, p.at_bound ? " (bound)" : "");
+      } else {  // the data cannot pin it down: no sigma to show
+        std::snprintf(value, sizeof value, "%.4g (no sigma)%s", p.value, p.at_bound ? " (bound)" : "");
+      }
       if (i == 0) {
         std::printf("  %-14s %-24s %22s %10.1f %14.3f\n", c.name.c_str(), to_string(p.parameter), value, c.delta_bic,
                     c.held_out_score);

@@ -114,8 +114,9 @@ int run_info(const InfoOptions& options) {
   for (const auto& s : lg.streams()) {
     std::cout << "\nstream " << s.name() << ": " << s.size() << " samples";
     if (s.size() >= 2) {
-      std::cout << ", " << fmt("%.1f", s.mean_rate_hz()) << " Hz, " << fmt("%.2f", s.duration())
-                << " s (t = " << fmt("%.3f", s.start_time()) << " .. " << fmt("%.3f", s.end_time()) << " s)";
+      // %g: a time base of 1e300 s prints as such, not as 300 digits (F42).
+      std::cout << ", " << fmt("%.4g", s.mean_rate_hz()) << " Hz, " << fmt("%.6g", s.duration())
+                << " s (t = " << fmt("%.6g", s.start_time()) << " .. " << fmt("%.6g", s.end_time()) << " s)";
     }
     std::cout << "\n";
     std::size_t width = 4;
@@ -125,7 +126,8 @@ int run_info(const InfoOptions& options) {
       std::string line = "  " + c.name + std::string(width - c.name.size() + 2, ' ');
       std::string unit = "[" + c.unit + "]";
       unit.resize(std::max<std::size_t>(unit.size(), 10), ' ');
-      line += unit + fmt("%12.5g", st.min) + " .. " + fmt("%-12.5g", st.max);
+      line += std::isnan(st.min) ? unit + "no finite values"
+                                 : unit + fmt("%12.5g", st.min) + " .. " + fmt("%-12.5g", st.max);
       if (st.missing > 0) line += " (" + std::to_string(st.missing) + " missing)";
       if (!c.description.empty()) line += "  " + c.description;
       std::cout << line << "\n";
@@ -137,6 +139,11 @@ int run_info(const InfoOptions& options) {
 int run_convert(const ConvertOptions& options) {
   const std::string ext = fs::path(options.output).extension().string();
   const bool to_csv = ext == ".csv";
+  const std::string name = fs::path(options.output).filename().string();
+  if (name == ".h5" || name == ".hdf5" || name == ".csv") {
+    std::cerr << "roverlab convert: " << options.output << ": the output has no name before its extension\n";
+    return kUsageError;
+  }
   if (!to_csv && ext != ".h5" && ext != ".hdf5") {
     std::cerr << "roverlab convert: " << options.output
               << ": output must end in .h5 or .hdf5 (RoverLab HDF5 log) or .csv (one stream)\n";

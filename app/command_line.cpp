@@ -7,6 +7,8 @@
 #include "app/command.h"
 #include "app/commands.h"
 #include "core/common/error.h"
+#include "core/common/library_messages.h"
+#include "views/offscreen.h"
 #include "views/x_display.h"
 
 #ifndef ROVERLAB_VERSION
@@ -81,6 +83,9 @@ int parse_and_run(int argc, char** argv) {
   p.cli.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "roverlab: " + std::string(e.what()) + "\nRun with --help for more information.\n";
   });
+  bool verbose = false;
+  p.cli.add_flag("--verbose", verbose, "Also show the messages of the libraries RoverLab uses (Ceres, VTK)");
+  p.cli.fallthrough();  // --verbose also after the subcommand's name
   Commands commands = all_commands();
   for (auto& c : commands) p.add(*c);
   try {
@@ -95,6 +100,8 @@ int parse_and_run(int argc, char** argv) {
     p.cli.exit(e);
     return kUsageError;
   }
+  route_library_messages(verbose);
+  views::route_vtk_messages(verbose);
   // The deepest command given runs (`terramechanics surface`, not `terramechanics`).
   Command* chosen = nullptr;
   std::size_t depth = 0;

@@ -32,6 +32,12 @@ Rendered render_scene(views::Scene& scene, std::optional<double> time, int w, in
   scene.fit_width(w);
   if (scene.follows_time()) {
     r.time = time.value_or(scene.default_time());
+    if (r.time < scene.start_time() || r.time > scene.end_time()) {
+      char span[96];
+      std::snprintf(span, sizeof span, "--time %g s is outside the log, which spans %.2f .. %.2f s", r.time,
+                    scene.start_time(), scene.end_time());
+      throw UsageError(span);
+    }
     scene.set_time(r.time);
   }
   r.image = views::capture(window);

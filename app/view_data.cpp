@@ -24,6 +24,15 @@ estimation::SkidSteerGeometry rover_geometry(const log::Log& lg) {
   return {};
 }
 
+std::optional<kinematics::RoverModel> rover_kinematics(const log::Log& lg) {
+  if (lg.metadata.rover_id.empty()) return std::nullopt;
+  try {
+    return io::find_rover_named(lg.metadata.rover_id, resource_subfolders("rovers"), "log").dh;
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
 views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::string& quantity,
                                                const std::optional<std::string>& soil_name,
                                                terramechanics::SurfaceFit* fit_out) {
@@ -97,6 +106,7 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
     s.surface = traction_surface_of(in, o.quantity, o.soil);
   } else {
     s.rover = rover_geometry(in.log);
+    s.articulated = rover_kinematics(in.log);
   }
   if (view.uses_channels()) {
     s.channels = o.channels;

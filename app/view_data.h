@@ -19,6 +19,8 @@ namespace roverlab::app {
 // description (resources/rovers/<rover_id>.json) when it is a skid-steer
 // one, else the Pathfinder's defaults.
 estimation::SkidSteerGeometry rover_geometry(const log::Log& log);
+// The log's rover as a DH chain (resources/rovers/<rover_id>.json), when it has one.
+std::optional<kinematics::RoverModel> rover_kinematics(const log::Log& log);
 
 // A traction surface for the view, "drawbar-pull" or "torque": with a soil,
 // the Wong-Reece model on a grid fitted by an order-4 polynomial (seed 003

@@ -1,13 +1,18 @@
 // Wong-Reece evaluation speed (issue 3 targets): one evaluation with the root
 // solve, Simpson <= 2 us and 500-point Riemann <= 300 us; a 100 x 100
-// traction grid <= 50 ms (Simpson), all on one core.
+// traction grid <= 50 ms (Simpson), all on one core. The single-wheel
+// discrepancy study on 5,000 testbed rows in under 10 s (issue 17), linear in
+// the rows.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <random>
 
+#include "core/analysis/single_wheel_discrepancy.h"
 #include "core/terramechanics/model.h"
 #include "core/terramechanics/traction_surface.h"
 #include "importers/soil_file.h"
+#include "importers/wheel_test_csv.h"
 
 namespace {
 
@@ -74,6 +79,35 @@ void BM_PolynomialSurfaceEvaluation(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PolynomialSurfaceEvaluation)->Unit(benchmark::kNanosecond);
+
+// The bundled Ding 2011 rows repeated to `rows`, at loads 60..100 N and with
+// 3 % noise on every measurement: a long testbed file.
+std::vector<WheelTestPoint> testbed_rows(std::size_t rows) {
+  const auto ding = roverlab::io::read_wheel_test_csv(ROVERLAB_SOURCE_DIR "/tests/data/single_wheel/ding2011_tyii.csv");
+  std::mt19937 random(1);
+  std::uniform_real_distribution<double> load(60.0, 100.0);
+  std::normal_distribution<double> noise(1.0, 0.03);
+  std::vector<WheelTestPoint> out;
+  for (std::size_t i = 0; i < rows; ++i) {
+    WheelTestPoint p = ding[i % ding.size()];
+    p.load = load(random);
+    for (auto* m : {&p.drawbar_pull, &p.torque, &p.sinkage}) {
+      if (*m) **m *= noise(random);
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+void BM_SingleWheelStudy(benchmark::State& state) {
+  const auto points = testbed_rows(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    const auto report = roverlab::analysis::study_single_wheel(tyii(), points, {});
+    benchmark::DoNotOptimize(report);
+  }
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_SingleWheelStudy)->Arg(12)->Arg(500)->Arg(5000)->Unit(benchmark::kSecond)->Iterations(1)->Complexity();
 
 }  // namespace
 

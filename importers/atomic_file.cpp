@@ -1,10 +1,12 @@
 #include "importers/atomic_file.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -98,6 +100,10 @@ void write_atomically(const std::string& path, const std::function<void(const st
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
   if (path.empty()) throw InputError("''", "cannot write: the output name is empty");
+  const std::string name = target.filename().string();
+  for (const char* extension : {".h5", ".hdf5", ".csv", ".png", ".html", ".json"}) {
+    if (name == extension) throw InputError(path, "cannot write: the output has no name before its extension");
+  }
   if (!fs::is_directory(folder, ec)) {
     throw InputError(path, "cannot write: folder '" + folder.string() + "' does not exist");
   }
@@ -114,10 +120,29 @@ void write_atomically(const std::string& path, const std::function<void(const st
   const fs::path temporary = folder / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                                        std::to_string(counter++));
   const TemporaryRegistration registration(temporary.string());
+  // Tried first, so that a folder the system will not let us write in (read-only
+  // mount, immutable, /proc) is named as such and not by a library's words.
+  const int probe = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (probe < 0) {
+    throw InputError(path, "cannot write in folder '" + folder.string() + "': " + std::strerror(errno));
+  }
+  ::close(probe);
   try {
     write(temporary.string());
     // A file replaced keeps its permissions (a private 600 log stays private).
     if (exists) ::chmod(temporary.c_str(), existing.st_mode & 07777);
+  } catch (const InputError&) {
+    fs::remove(temporary, ec);
+    throw;
+  } catch (const std::exception& e) {
+    fs::remove(temporary, ec);
+    // A writer's message names the user's file, never the hidden temporary one.
+    std::string message = e.what();
+    for (auto at = message.find(temporary.string()); at != std::string::npos; at = message.find(temporary.string())) {
+      message.replace(at, temporary.string().size(), path);
+    }
+    if (message == e.what()) throw;
+    throw DataError(message);
   } catch (...) {
     fs::remove(temporary, ec);
     throw;

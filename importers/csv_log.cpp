@@ -63,6 +63,10 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
           break;
         }
       }
+      if (columns[time_column].si.si_unit == "1" && cells[time_column].find('[') == std::string_view::npos) {
+        throw InputError(path, where + ": time column '" + columns[time_column].name +
+                                   "' has no unit; write its header as '" + columns[time_column].name + " [s]'");
+      }
       if (columns[time_column].si.si_unit != "s") {
         throw InputError(path, where + ": time column '" + columns[time_column].name + "' has unit '" +
                                    columns[time_column].si.si_unit + "', not a unit of time");

@@ -53,6 +53,23 @@ bool read_line(std::istream& in, std::string& line, int line_number, const std::
   }
 }
 
+// The causes behind a confusing symptom, named: another separator (a European
+// spreadsheet's ';', a tab) or quoted cells.
+void require_plain_commas(const std::string& line, int line_number, const std::string& path) {
+  const std::string where = "line " + std::to_string(line_number) + ": ";
+  if (line.find('"') != std::string::npos) {
+    throw InputError(path,
+                     where + "quoted cells are not read; write cells without quotes (and without commas in them)");
+  }
+  if (line.find(',') != std::string::npos) return;
+  for (const char separator : {';', '\t'}) {
+    if (line.find(separator) != std::string::npos) {
+      throw InputError(path, where + "cells are separated by " + (separator == ';' ? "';'" : "tabs") +
+                                 "; RoverLab reads comma-separated files with '.' as the decimal point");
+    }
+  }
+}
+
 }  // namespace
 
 bool next_content_line(std::istream& in, std::string& line, int& line_number, const std::string& path) {
@@ -60,7 +77,9 @@ bool next_content_line(std::istream& in, std::string& line, int& line_number, co
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::string stripped = trim(line);
-    if (!stripped.empty() && stripped.front() != '#') return true;
+    if (stripped.empty() || stripped.front() == '#') continue;
+    require_plain_commas(stripped, line_number, path);
+    return true;
   }
   return false;
 }

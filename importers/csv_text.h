@@ -24,7 +24,8 @@ std::ifstream open_text_file(const std::string& path);
 
 // Reads the next line that is neither blank nor a '#' comment, without its
 // trailing CR; counts every line read in line_number. False at the end.
-// Throws InputError naming `path` for a NUL byte or a line over kMaxLineBytes.
+// Throws InputError naming `path` for a NUL byte, a line over kMaxLineBytes,
+// quoted cells, or cells separated by something other than commas.
 bool next_content_line(std::istream& in, std::string& line, int& line_number, const std::string& path);
 
 // A cell as an error message shows it: at most 40 characters (a

@@ -202,6 +202,11 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
           // RoverLab writes a unit for every channel ("1" when dimensionless): without
           // one, a channel could be used as anything (an angular rate, a distance).
           if (!unit) throw InputError(path, "stream '" + name + "', channel '" + cname + "' has no unit attribute");
+          const auto channel_shape = h5::dataset_shape(ds.get());
+          if (channel_shape.size() != 1) {
+            throw InputError(path, "stream '" + name + "', channel '" + cname + "': expected a 1-D dataset, found " +
+                                       std::to_string(channel_shape.size()) + "-D");
+          }
           info.channels.push_back(
               ChannelInfo{cname, *unit, h5::read_string_attribute(ds.get(), "description").value_or("")});
         }

@@ -29,6 +29,12 @@ MatFileVersion matlab_file_version(const std::string& path) {
 
 namespace {
 
+// A mapping as the user named it: its file when one was given, else its name.
+std::string mapping_label(const Mapping& mapping) {
+  const bool named_by_its_file = mapping.source.empty() || fs::path(mapping.source).stem() == mapping.name;
+  return named_by_its_file ? "'" + mapping.name + "'" : mapping.source;
+}
+
 struct Variable {
   std::vector<double> values;
   std::vector<hsize_t> shape;
@@ -36,8 +42,13 @@ struct Variable {
 
 Variable read_variable(const std::string& path, hid_t file, const std::string& mapping_name,
                        const std::string& variable) {
-  if (h5::object_kind(file, variable) != h5::ObjectKind::dataset) {
-    throw InputError(path, "mapping '" + mapping_name + "' names variable '" + variable + "', which the file lacks");
+  const h5::ObjectKind kind = h5::object_kind(file, variable);
+  if (kind == h5::ObjectKind::group) {
+    throw InputError(path, "mapping " + mapping_name + " names variable '" + variable +
+                               "', which is a struct or cell array in the file, not a numeric array");
+  }
+  if (kind != h5::ObjectKind::dataset) {
+    throw InputError(path, "mapping " + mapping_name + " names variable '" + variable + "', which the file lacks");
   }
   Handle ds(H5Dopen2(file, variable.c_str(), H5P_DEFAULT));
   Variable v;
@@ -144,7 +155,7 @@ log::Log read_mapped_hdf5(const std::string& path, const Mapping& mapping) {
       for (const auto& cm : sm.channels) {
         auto it = cache.find(cm.variable);
         if (it == cache.end()) {
-          it = cache.emplace(cm.variable, read_variable(path, file.get(), mapping.name, cm.variable)).first;
+          it = cache.emplace(cm.variable, read_variable(path, file.get(), mapping_label(mapping), cm.variable)).first;
         }
         std::vector<double> values = select(path, it->second, cm.variable, cm.component, stream.size());
         const log::UnitConversion si = log::unit_to_si(cm.unit);
@@ -153,7 +164,7 @@ log::Log read_mapped_hdf5(const std::string& path, const Mapping& mapping) {
       }
       out.add_stream(std::move(stream));
     } catch (const DataError& e) {
-      throw InputError(path, std::string(e.what()) + " (mapping '" + mapping.name + "')");
+      throw InputError(path, std::string(e.what()) + " (mapping " + mapping_label(mapping) + ")");
     }
   }
   return out;

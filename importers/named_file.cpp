@@ -12,6 +12,7 @@ std::string find_named_file(const std::string& name_or_file, const std::vector<f
                             const std::string& what) {
   std::error_code ec;
   if (fs::is_regular_file(name_or_file, ec)) return name_or_file;
+  if (fs::is_directory(name_or_file, ec)) throw InputError(name_or_file, "is a folder, not a " + what + " file");
   const bool looks_like_path =
       name_or_file.find('/') != std::string::npos || fs::path(name_or_file).extension() == ".json";
   if (!looks_like_path) {

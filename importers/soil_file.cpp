@@ -11,6 +11,15 @@ terramechanics::Soil load_soil(const std::string& path) {
   const JsonResource file = read_json_resource(path, "soil file");
   const JsonNode j = file.root();
   require_format(j, "roverlab-soil", "soil");
+  if (j.has("version") && optional_number(j, "version", 1) != 1) {
+    j.fail("version", "unsupported soil file version (this RoverLab reads version 1)");
+  }
+  // Units, when written, must be the ones the numbers are read in.
+  for (const auto& [field, unit] : {std::pair{"kc_unit", "Pa/m^(n-1)"}, std::pair{"kphi_unit", "Pa/m^n"}}) {
+    if (j.has(field) && optional_string(j, field, unit) != unit) {
+      j.fail(field, std::string("unit must be \"") + unit + "\"");
+    }
+  }
   terramechanics::Soil s;
   s.name = optional_string(j, "name", "");
   s.source = optional_string(j, "source", "");

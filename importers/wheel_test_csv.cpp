@@ -70,13 +70,15 @@ std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) {
     }
     if (!(p.load > 0.0)) throw InputError(path, where + ": load_N must be positive");
     if (p.slip < -1.0 || p.slip > 1.0) throw InputError(path, where + ": slip must be a ratio in [-1, 1]");
-    // Checked before the cast: a count like 2e51 does not fit an int (found by fuzzing).
     const double grousers = number("grouser_count").value_or(0.0);
-    if (!(grousers >= 0.0 && grousers <= 1000.0) || grousers != std::floor(grousers)) {
-      throw InputError(path, where + ": grouser_count must be a whole number from 0 to 1000");
+    if (grousers < 0.0 || grousers > 1000.0 || grousers != std::floor(grousers)) {
+      throw InputError(path, where + ": grouser_count must be a whole number in [0, 1000]");
     }
     p.wheel.grouser_count = static_cast<int>(grousers);
     p.wheel.grouser_height = number("grouser_height_m").value_or(0.0);
+    if (p.wheel.grouser_height < 0.0 || p.wheel.grouser_height > 0.5 * p.wheel.radius) {
+      throw InputError(path, where + ": grouser_height_m must be in metres, between 0 and half the wheel radius");
+    }
     if (column.count("wheel")) p.wheel_label = csv::trim(cells[column.at("wheel")]);
     p.drawbar_pull = number("drawbar_pull_N");
     p.torque = number("torque_Nm");

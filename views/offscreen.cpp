@@ -1,7 +1,9 @@
 #include "views/offscreen.h"
 
 #include <vtkImageData.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
+#include <vtkObject.h>
 #include <vtkPNGReader.h>
 #include <vtkPNGWriter.h>
 #include <vtkRenderWindow.h>
@@ -48,6 +50,11 @@ Image capture(vtkRenderWindow* window) {
                 3 * static_cast<std::size_t>(img.width));
   }
   return img;
+}
+
+void route_vtk_messages(bool verbose) {
+  vtkObject::SetGlobalWarningDisplay(verbose ? 1 : 0);
+  vtkLogger::SetStderrVerbosity(verbose ? vtkLogger::VERBOSITY_WARNING : vtkLogger::VERBOSITY_OFF);
 }
 
 void write_png(const Image& img, const std::string& path) {

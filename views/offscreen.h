@@ -25,6 +25,10 @@ vtkSmartPointer<vtkRenderWindow> make_offscreen_window(int width, int height);
 // Renders the window and reads its pixels back.
 Image capture(vtkRenderWindow* window);
 
+// VTK's own warnings and error lines: off unless `verbose` (RoverLab says what
+// went wrong in its own words).
+void route_vtk_messages(bool verbose);
+
 // Writes a PNG (to exactly `path`; callers make it atomic).
 void write_png(const Image& image, const std::string& path);
 Image read_png(const std::string& path);

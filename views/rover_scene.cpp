@@ -23,6 +23,7 @@
 
 #include "core/estimation/slip.h"
 #include "core/log/stream.h"
+#include "views/articulated_rover_scene.h"
 #include "views/planar_rover_scene.h"
 #include "views/vtk_parts.h"
 
@@ -436,14 +437,19 @@ void RoverScene::chase(double east, double north, double yaw) {
 
 namespace {
 
-// `rover`: the planar side view for a planar rocker-bogie log, else the 3D
-// skid-steer rover.
+// A DH rover whose joint angles the log holds is drawn articulated.
+bool articulated(const SceneInput& in) {
+  return in.articulated && articulated_rover_needs(*in.log, &*in.articulated).empty();
+}
+
+// `rover`: the planar side view for a planar rocker-bogie log, the
+// articulated 3D rover for a DH rover's log, else the 3D skid-steer rover.
 class RoverView : public View {
  public:
   std::string name() const override { return "rover"; }
   std::string title() const override { return "Rover"; }
   std::string needs(const SceneInput& in) const override {
-    return is_planar_rocker_bogie_log(*in.log) ? std::string() : pose_track_needs(*in.log);
+    return is_planar_rocker_bogie_log(*in.log) || articulated(in) ? std::string() : pose_track_needs(*in.log);
   }
   bool trackball_camera() const override { return true; }
   bool draws_estimates() const override { return true; }
@@ -451,6 +457,7 @@ class RoverView : public View {
  protected:
   std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {
     if (is_planar_rocker_bogie_log(*in.log)) return std::make_unique<PlanarRoverScene>(*in.log);
+    if (articulated(in)) return std::make_unique<ArticulatedRoverScene>(*in.log, *in.articulated);
     return std::make_unique<RoverScene>(*in.log, in.rover);
   }
 };

@@ -260,12 +260,23 @@ class TimeSeriesView : public View {
       if (s == nullptr) return "no stream '" + c.stream + "'";
       if (s->find_channel(c.channel) == nullptr) return "stream '" + c.stream + "' has no channel '" + c.channel + "'";
     }
-    if (!in.channels.empty()) return {};
-    try {
-      default_channels(*in.log);
-    } catch (const DataError& e) {
-      return e.what();
+    std::vector<ChannelRef> shown = in.channels;
+    if (shown.empty()) {
+      try {
+        shown = default_channels(*in.log);
+      } catch (const DataError& e) {
+        return e.what();
+      }
     }
+    if (shown.empty()) return "no channel to plot";
+    // A line needs two finite samples; a chart of NaN would be empty axes.
+    const bool drawable = std::any_of(shown.begin(), shown.end(), [&](const ChannelRef& c) {
+      const auto& values = in.log->stream(c.stream).channel(c.channel).values;
+      return std::count_if(values.begin(), values.end(), [](double v) { return std::isfinite(v); }) >= 2;
+    });
+    if (!drawable)
+      return "no channel to plot has two finite samples (" + shown.front().stream + ":" + shown.front().channel +
+             (shown.size() > 1 ? " and the others are" : " is") + " NaN)";
     return {};
   }
 

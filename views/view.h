@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/estimation/skid_steer_odometry.h"
+#include "core/kinematics/rover_model.h"
 #include "core/log/log.h"
 #include "views/traction_surface_scene.h"
 
@@ -27,11 +28,12 @@ struct ChannelRef {
 
 // What a view is built from. The app fills what the view uses.
 struct SceneInput {
-  const log::Log* log = nullptr;               // null only for views that use_surface_data()
-  std::optional<TractionSurfaceData> surface;  // views that use_surface_data(): built by the app
-  std::vector<ChannelRef> channels;            // plotted channels; empty: the view's default
-  estimation::SkidSteerGeometry rover;         // the rover drawn (skid-steer views)
-  std::optional<double> time;                  // shown first; default: the scene's default_time()
+  const log::Log* log = nullptr;                      // null only for views that use_surface_data()
+  std::optional<TractionSurfaceData> surface;         // views that use_surface_data(): built by the app
+  std::vector<ChannelRef> channels;                   // plotted channels; empty: the view's default
+  estimation::SkidSteerGeometry rover;                // the rover drawn (skid-steer views)
+  std::optional<kinematics::RoverModel> articulated;  // the rover drawn when it has a DH description
+  std::optional<double> time;                         // shown first; default: the scene's default_time()
 };
 
 // A built view: its renderers (or context view) attach to a render window;

@@ -505,6 +505,7 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   views::SceneInput in;
   in.log = &lg;
   in.rover = app::rover_geometry(lg);
+  in.articulated = app::rover_kinematics(lg);
   if (tab.view->uses_channels()) {
     // The chosen channels, or the slip when estimated, or the view's defaults.
     for (const auto& [s, c] : plot_channels_) in.channels.push_back({s, c});

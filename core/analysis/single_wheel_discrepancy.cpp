@@ -34,7 +34,7 @@ Line regress(const std::vector<double>& x, const std::vector<double>& y) {
     sxx += (x[i] - mx) * (x[i] - mx);
     sxy += (x[i] - mx) * (y[i] - my);
   }
-  if (sxx <= 0.0) return {};
+  if (sxx <= 1e-12 * static_cast<double>(n) * (1.0 + mx * mx)) return {};  // x does not vary: no trend
   Line l;
   l.slope = sxy / sxx;
   double sse = 0;
@@ -150,7 +150,8 @@ class SingleWheelStudy {
   void find_quantities();
   void score_baseline();
   CandidateResult fit_candidate(const SingleWheelCandidate& candidate) const;
-  std::vector<PointResidual> leave_one_out(const IdentificationOptions& io, const IdentificationResult& fit) const;
+  void check_points_can_tell_candidates_apart() const;
+  std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit) const;
   void choose_best();
   void write_what_is_wrong();
   void find_partial();
@@ -167,6 +168,10 @@ class SingleWheelStudy {
 DiscrepancyReport SingleWheelStudy::run() {
   if (points_.empty()) throw DataError("no single-wheel points");
   report_.points = points_.size();
+  check_points_can_tell_candidates_apart();
+  report_.held_out_method = !o_.leave_one_out                               ? "in-sample"
+                            : points_.size() <= o_.max_leave_one_out_points ? "leave-one-out"
+                                                                            : std::to_string(o_.folds) + "-fold";
   find_quantities();
   score_baseline();
   any_grousers_ = std::any_of(points_.begin(), points_.end(),
@@ -177,6 +182,24 @@ DiscrepancyReport SingleWheelStudy::run() {
   find_partial();
   write_verdict();
   return std::move(report_);
+}
+
+// A candidate fitted and held out needs a few points, at two slips at least:
+// with one slip no trend with slip exists and the extensions cannot be told
+// apart.
+void SingleWheelStudy::check_points_can_tell_candidates_apart() const {
+  constexpr std::size_t kMinimum = 4;
+  if (points_.size() < kMinimum) {
+    throw DataError("a discrepancy study needs at least " + std::to_string(kMinimum) +
+                    " points, to fit a candidate and hold points out (the file has " + std::to_string(points_.size()) +
+                    ")");
+  }
+  const auto [lo, hi] =
+      std::minmax_element(points_.begin(), points_.end(), [](const auto& a, const auto& b) { return a.slip < b.slip; });
+  if (hi->slip - lo->slip < 0.01) {
+    throw DataError("every point is at slip " + fmt("%.3g", lo->slip) +
+                    "; a discrepancy study needs points at two slips at least, 0.01 apart");
+  }
 }
 
 void SingleWheelStudy::find_quantities() {
@@ -225,37 +248,48 @@ CandidateResult SingleWheelStudy::fit_candidate(const SingleWheelCandidate& cand
   c.in_sample = residual_statistics(c.fit.residuals, points_);
   c.bic = bic_of(c.fit.residuals, io.free.size());
   c.delta_bic = c.bic - report_.baseline_bic;
-  const std::vector<PointResidual> held_out = o_.leave_one_out ? leave_one_out(io, c.fit) : c.fit.residuals;
-  const auto held_stats = residual_statistics(held_out, points_);
+  const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit) : c.fit.residuals;
+  const auto held_stats = residual_statistics(predicted, points_);
   for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
-  c.held_out_score = score_of(held_out);
+  c.held_out_score = score_of(predicted);
   return c;
 }
 
-// Leave-one-out: refit without each point, predict it.
-std::vector<PointResidual> SingleWheelStudy::leave_one_out(const IdentificationOptions& io,
-                                                           const IdentificationResult& fit) const {
-  std::vector<PointResidual> held_out;
-  IdentificationOptions lo = io;
-  lo.model.extensions = fit.extensions;
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    std::vector<WheelTestPoint> train;
-    train.reserve(points_.size() - 1);
-    for (std::size_t j = 0; j < points_.size(); ++j) {
-      if (j != i) train.push_back(points_[j]);
+// Held out: refit without each fold of points (one point each up to
+// max_leave_one_out_points), predict the fold.
+std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOptions& io,
+                                                      const IdentificationResult& fit) const {
+  const std::size_t n = points_.size();
+  const std::size_t folds = n <= o_.max_leave_one_out_points ? n : o_.folds;
+  std::vector<PointResidual> out;
+  IdentificationOptions refit = io;
+  refit.model.extensions = fit.extensions;
+  refit.covariance = false;
+  refit.tolerance = 1e-6;  // started at the fit on all points: a few steps away
+  for (std::size_t fold = 0; fold < folds; ++fold) {
+    std::vector<WheelTestPoint> train, test;
+    std::vector<std::size_t> test_index;
+    train.reserve(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j % folds == fold) {
+        test.push_back(points_[j]);
+        test_index.push_back(j);
+      } else {
+        train.push_back(points_[j]);
+      }
     }
-    const IdentificationResult f = identify_soil(fit.soil, train, lo);
+    const IdentificationResult f = identify_soil(fit.soil, train, refit);
     IdentificationOptions predict_only;
-    predict_only.model = lo.model;
+    predict_only.model = refit.model;
     predict_only.model.extensions = f.extensions;
     predict_only.sigma = o_.sigma;
-    const IdentificationResult pred = identify_soil(f.soil, {points_[i]}, predict_only);
+    const IdentificationResult pred = identify_soil(f.soil, test, predict_only);
     for (auto r : pred.residuals) {
-      r.point = i;
-      held_out.push_back(r);
+      r.point = test_index[r.point];
+      out.push_back(r);
     }
   }
-  return held_out;
+  return out;
 }
 
 // The winner: lowest BIC among applicable candidates; significant when its
@@ -346,7 +380,8 @@ void SingleWheelStudy::write_verdict() {
   const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
   std::string v = "Cause: " + c.name + " (" + c.cause + "),";
   for (const auto& p : c.fit.parameters) {
-    v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) + " +- " + fmt("%.2g", p.sigma) + ";";
+    v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) +
+         (std::isfinite(p.sigma) ? " +- " + fmt("%.2g", p.sigma) : std::string(" (no sigma)")) + ";";
   }
   v += " held-out RMSE";
   for (std::size_t i = 0; i < report_.quantities.size(); ++i) {

@@ -46,7 +46,11 @@ struct DiscrepancyOptions {
   terramechanics::MeasurementSigma sigma;
   double bic_threshold = -10.0;     // "very strong" evidence (Kass & Raftery 1995)
   double min_held_out_gain = 0.10;  // and at least 10 % lower held-out error
-  bool leave_one_out = true;
+  bool leave_one_out = true;        // false: held-out scores are the in-sample ones
+  // Held out: each point alone up to this many points, else `folds` folds
+  // (point i in fold i mod folds), so the cost stays linear in the points.
+  std::size_t max_leave_one_out_points = 100;
+  std::size_t folds = 10;
 };
 
 struct DiscrepancyReport {
@@ -56,6 +60,7 @@ struct DiscrepancyReport {
   double baseline_score = 0.0;                 // RMS residual in sigmas
   double baseline_bic = 0.0;
   std::size_t points = 0, measurements = 0, unsupported = 0;
+  std::string held_out_method;  // "leave-one-out", "10-fold" or "in-sample"
   std::vector<CandidateResult> candidates;
   int best = -1;  // index of the winning candidate, -1 when none is significant
   bool significant = false;

@@ -256,8 +256,8 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
     so.max_num_iterations = options.max_iterations;
-    so.function_tolerance = 1e-12;
-    so.parameter_tolerance = 1e-12;
+    so.function_tolerance = options.tolerance;
+    so.parameter_tolerance = options.tolerance;
     so.logging_type = ceres::SILENT;
     so.minimizer_progress_to_stdout = false;
     ceres::Solver::Summary summary;
@@ -265,14 +265,16 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
     result.converged = summary.termination_type == ceres::CONVERGENCE;
     result.message = summary.message;
 
-    ceres::Covariance::Options co;
-    co.algorithm_type = ceres::DENSE_SVD;
-    co.null_space_rank = 0;
-    ceres::Covariance covariance(co);
-    std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
     std::vector<double> cov(k * k, NAN);
-    result.covariance_ok =
-        covariance.Compute(blocks, &problem) && covariance.GetCovarianceBlock(x.data(), x.data(), cov.data());
+    if (options.covariance) {
+      ceres::Covariance::Options co;
+      co.algorithm_type = ceres::DENSE_SVD;
+      co.null_space_rank = 0;
+      ceres::Covariance covariance(co);
+      std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
+      result.covariance_ok =
+          covariance.Compute(blocks, &problem) && covariance.GetCovarianceBlock(x.data(), x.data(), cov.data());
+    }
     for (std::size_t i = 0; i < k; ++i) {
       EstimatedParameter e;
       e.parameter = options.free[i];

@@ -39,6 +39,8 @@ struct IdentificationOptions {
   MeasurementSigma sigma;
   double huber_sigmas = 3.0;  // Huber loss threshold in sigmas; <= 0: plain least squares
   int max_iterations = 100;
+  double tolerance = 1e-10;  // Ceres' function and parameter tolerance
+  bool covariance = true;    // false: parameters' sigma left NaN (refits for held-out scores)
 };
 
 struct EstimatedParameter {

@@ -7,6 +7,7 @@
 
 #include "core/analysis/single_wheel_candidates.h"
 #include "core/analysis/single_wheel_discrepancy.h"
+#include "core/common/error.h"
 #include "terramechanics_soils.h"
 
 using namespace roverlab;
@@ -122,6 +123,63 @@ TEST(NegativeControl, NoEffectReportsNoSignificantDiscrepancy) {
     EXPECT_NE(r.verdict.find("No significant discrepancy"), std::string::npos);
     EXPECT_LT(r.baseline_score, 1.3);  // residuals at the noise level
   }
+}
+
+// Above max_leave_one_out_points the held-out scores come from folds (the cost
+// stays linear in the points; leave-one-out was quadratic), and the study
+// still names the effect.
+TEST(HiddenEffectInFolds, IsNamedWithTenFoldHeldOutScores) {
+  for (unsigned seed : {1u, 2u}) {
+    const Hidden h = pick_effect(seed, false);
+    analysis::DiscrepancyOptions options;
+    options.max_leave_one_out_points = 20;
+    const auto points = testbed(h, seed, options.sigma);
+    const analysis::DiscrepancyReport r = analysis::study_single_wheel(test::ding_tyii(), points, options);
+    EXPECT_EQ(r.held_out_method, "10-fold");
+    ASSERT_TRUE(r.significant) << h.effect << ": " << r.verdict;
+    const auto& c = r.candidates[static_cast<std::size_t>(r.best)];
+    EXPECT_EQ(c.name, h.effect) << r.verdict;
+    EXPECT_LT(c.held_out_score, 1.3);
+  }
+  analysis::DiscrepancyOptions loo;
+  EXPECT_EQ(analysis::study_single_wheel(test::ding_tyii(), testbed(pick_effect(1, false), 1, loo.sigma), loo)
+                .held_out_method,
+            "leave-one-out");
+}
+
+// F12, F14: too few points, or all at one slip, are refused in words instead
+// of a "trend" with t = 1e9 and NaN sigmas.
+TEST(DegenerateTestbedData, IsRefusedNamingWhatIsMissing) {
+  const analysis::DiscrepancyOptions options;
+  auto points = testbed(pick_effect(1, true), 1, options.sigma);
+  const std::vector<WheelTestPoint> one(points.begin(), points.begin() + 1);
+  try {
+    analysis::study_single_wheel(test::ding_tyii(), one, options);
+    ADD_FAILURE() << "one point was studied";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("at least 4 points"), std::string::npos) << e.what();
+  }
+  for (auto& p : points) p.slip = 0.1;
+  try {
+    analysis::study_single_wheel(test::ding_tyii(), points, options);
+    ADD_FAILURE() << "points at one slip were studied";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("two slips"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ResidualStatistics, NoTrendWhenTheSlipDoesNotVary) {
+  std::vector<WheelTestPoint> points(8);
+  std::vector<PointResidual> residuals;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i].slip = 0.1;
+    points[i].load = 80.0;
+    residuals.push_back({i, Quantity::drawbar_pull, 0.0, 7.845, 0.5});
+  }
+  const auto stats = analysis::residual_statistics(residuals, points);
+  ASSERT_EQ(stats.size(), 1u);
+  EXPECT_EQ(stats[0].slope_vs_slip, 0.0);
+  EXPECT_EQ(stats[0].t_slip, 0.0);
 }
 
 TEST(ResidualStatistics, BiasAndTrends) {

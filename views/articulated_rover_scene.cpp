@@ -1,0 +1,300 @@
+#include "views/articulated_rover_scene.h"
+
+#include <vtkActor.h>
+#include <vtkArrowSource.h>
+#include <vtkCamera.h>
+#include <vtkCubeSource.h>
+#include <vtkCylinderSource.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkTransform.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/common/error.h"
+#include "views/contact_angle_scene.h"
+#include "views/vtk_parts.h"
+
+namespace roverlab::views {
+
+using Eigen::Vector3d;
+
+namespace {
+
+const Vector3d kSideSlipRgb(0.95, 0.55, 0.1);
+const Vector3d kLinkRgb(0.25, 0.27, 0.32);
+const Vector3d kBodyRgb(0.78, 0.8, 0.84);
+
+// Frame origins along a wheel's chain, from g to its drive frame (Eq. 2.8).
+// A DH origin on a joint's axis may lie far from the hardware (the bogie
+// pivot's origin is on the rover's centre line): it is slid along the axis to
+// the point nearest the next origin, where the arm is.
+std::vector<Vector3d> chain_points(const kinematics::RoverModel& m, int wheel, const std::vector<double>& q) {
+  kinematics::Mat4<double> X = kinematics::Mat4<double>::Identity();
+  std::vector<Vector3d> points{Vector3d::Zero()};
+  std::vector<std::pair<std::size_t, Vector3d>> on_axis;
+  for (int li : m.wheels[static_cast<std::size_t>(wheel)].links) {
+    const kinematics::DhLink& l = m.links[static_cast<std::size_t>(li)];
+    if (l.joint >= 0) on_axis.emplace_back(points.size() - 1, X.block<3, 1>(0, 2));
+    const double theta = l.theta + (l.joint >= 0 ? q[static_cast<std::size_t>(l.joint)] : 0.0);
+    kinematics::append_dh<double>(X, theta, l.d, l.a, l.alpha);
+    points.emplace_back(X.block<3, 1>(0, 3));
+  }
+  for (const auto& [i, axis] : on_axis) {
+    if (i > 0) points[i] += (points[i + 1] - points[i]).dot(axis) * axis;
+  }
+  return points;
+}
+
+vtkSmartPointer<vtkActor> arrow_actor(const Vector3d& rgb, double radius_scale) {
+  vtkNew<vtkArrowSource> src;
+  src->SetShaftRadius(0.035 * radius_scale);
+  src->SetTipRadius(0.09 * radius_scale);
+  src->SetTipLength(0.28);
+  src->SetShaftResolution(12);
+  src->SetTipResolution(12);
+  auto a = actor_of(src->GetOutputPort(), rgb);
+  a->GetProperty()->SetLighting(false);
+  return a;
+}
+
+// Places a unit +x arrow at `from`, along `direction`, `length` long.
+void place_arrow(vtkActor* actor, const Vector3d& from, const Vector3d& direction, double length) {
+  const Vector3d x = direction.normalized();
+  Vector3d y = x.unitOrthogonal();
+  const Vector3d z = x.cross(y);
+  vtkNew<vtkMatrix4x4> m;
+  for (int r = 0; r < 3; ++r) {
+    m->SetElement(r, 0, x[r] * length);
+    m->SetElement(r, 1, y[r] * length);
+    m->SetElement(r, 2, z[r] * length);
+    m->SetElement(r, 3, from[r]);
+  }
+  vtkNew<vtkTransform> t;
+  t->SetMatrix(m);
+  actor->SetUserTransform(t);
+}
+
+void set_lines(vtkActor* actor, const std::vector<Vector3d>& points) {
+  vtkPolyDataMapper::SafeDownCast(actor->GetMapper())->SetInputData(polyline(points));
+}
+
+double value_at(const log::Stream* s, const std::string& channel, std::size_t k) {
+  const log::Channel* c = s != nullptr ? s->find_channel(channel) : nullptr;
+  return c != nullptr ? c->values[k] : NAN;
+}
+
+}  // namespace
+
+std::string articulated_rover_needs(const log::Log& lg, const kinematics::RoverModel* rover) {
+  if (rover == nullptr || rover->wheels.empty()) return "the log's rover has no DH description (resources/rovers)";
+  const log::Stream* joints = lg.find_stream("joints");
+  if (joints == nullptr) return "no joints stream: the rover's configuration needs its joint angles";
+  for (const auto& name : rover->joints) {
+    if (joints->find_channel(name) == nullptr) return "stream joints has no channel '" + name + "'";
+  }
+  return {};
+}
+
+struct ArticulatedRoverScene::Parts {
+  vtkSmartPointer<vtkRenderer> renderer = vtkSmartPointer<vtkRenderer>::New();
+  vtkSmartPointer<vtkTextActor> text = vtkSmartPointer<vtkTextActor>::New();
+  std::vector<vtkSmartPointer<vtkActor>> wheels, links, estimate, truth, side_slip, sigma;
+  const log::Stream* joints = nullptr;
+  const log::Stream* estimate_stream = nullptr;
+  const log::Stream* truth_stream = nullptr;
+  const log::Stream* attitude = nullptr;
+  Eigen::Matrix3d attitude_shown = Eigen::Matrix3d::Identity();  // body to level, at the time shown
+};
+
+ArticulatedRoverScene::ArticulatedRoverScene(const log::Log& lg, kinematics::RoverModel rover)
+    : parts_(std::make_unique<Parts>()), rover_(std::move(rover)) {
+  const std::string missing = articulated_rover_needs(lg, &rover_);
+  if (!missing.empty()) throw DataError(missing);
+  Parts& p = *parts_;
+  p.joints = lg.find_stream("joints");
+  p.estimate_stream = lg.find_stream("estimate/contact/wheels");
+  p.truth_stream = lg.find_stream("truth/wheels");
+  for (const char* source : {"truth/body", "estimate/contact/body"}) {
+    const log::Stream* s = lg.find_stream(source);
+    if (p.attitude == nullptr && s != nullptr && s->find_channel("pitch") != nullptr) p.attitude = s;
+  }
+  t0_ = p.joints->start_time();
+  t1_ = p.joints->end_time();
+  if (p.estimate_stream == nullptr) {
+    notes_.emplace_back("no contact-angle estimate in the log: run `roverlab estimate contact-angle` to draw it");
+  }
+  if (p.attitude == nullptr) notes_.emplace_back("no attitude in the log: the body is drawn level");
+
+  const std::size_t n = rover_.wheels.size();
+  const double r = rover_.wheel_radius;
+  centres_.assign(n, Vector3d::Zero());
+  contacts_.assign(n, Vector3d::Zero());
+  directions_.assign(n, Vector3d::Constant(NAN));
+  p.renderer->SetBackground(0.93, 0.94, 0.97);
+  p.renderer->SetBackground2(0.78, 0.82, 0.9);
+  p.renderer->GradientBackgroundOn();
+  for (std::size_t w = 0; w < n; ++w) {
+    vtkNew<vtkCylinderSource> wheel;
+    wheel->SetRadius(r);
+    wheel->SetHeight(0.8 * r);
+    wheel->SetResolution(32);
+    p.wheels.push_back(actor_of(wheel->GetOutputPort(), Vector3d(0.6, 0.6, 0.62)));
+    p.links.push_back(line_actor(polyline({Vector3d::Zero(), Vector3d::UnitX()}), kLinkRgb, 5.0));
+    p.estimate.push_back(arrow_actor(Vector3d(ContactAngleScene::estimate_rgb[0], ContactAngleScene::estimate_rgb[1],
+                                              ContactAngleScene::estimate_rgb[2]),
+                                     1.3));
+    p.truth.push_back(arrow_actor(
+        Vector3d(ContactAngleScene::truth_rgb[0], ContactAngleScene::truth_rgb[1], ContactAngleScene::truth_rgb[2]),
+        0.8));
+    p.side_slip.push_back(arrow_actor(kSideSlipRgb, 0.9));
+    p.sigma.push_back(line_actor(polyline({Vector3d::Zero(), Vector3d::UnitX()}), Vector3d(0.12, 0.35, 0.85), 2.0));
+    for (auto* a : {p.wheels.back().Get(), p.links.back().Get(), p.estimate.back().Get(), p.truth.back().Get(),
+                    p.side_slip.back().Get(), p.sigma.back().Get()}) {
+      p.renderer->AddActor(a);
+    }
+  }
+  // Body: the box spanned by the frames hung from g, ground below the wheels at rest.
+  const std::vector<double> rest(rover_.joints.size(), 0.0);
+  Vector3d lo = Vector3d::Constant(1e9), hi = -lo, centre = Vector3d::Zero();
+  double ground = 0.0;
+  for (std::size_t w = 0; w < n; ++w) {
+    const auto points = chain_points(rover_, static_cast<int>(w), rest);
+    for (const auto& point : points) {
+      lo = lo.cwiseMin(point);
+      hi = hi.cwiseMax(point);
+    }
+    centre += points.back() / static_cast<double>(n);
+    ground = std::min(ground, points.back().z() - r);
+  }
+  // Body: over the wheels, narrower than the track.
+  vtkNew<vtkCubeSource> body;
+  body->SetBounds(0.7 * lo.x(), 0.7 * hi.x(), 0.45 * lo.y(), 0.45 * hi.y(), -0.06, 0.06);
+  p.renderer->AddActor(actor_of(body->GetOutputPort(), kBodyRgb));
+  const double extent = std::max((hi - lo).norm(), 4.0 * r);
+  vtkNew<vtkCubeSource> terrain;
+  terrain->SetBounds(centre.x() - 1.5 * extent, centre.x() + 1.5 * extent, centre.y() - 1.5 * extent,
+                     centre.y() + 1.5 * extent, ground - 0.02, ground - 0.005);
+  auto terrain_actor = actor_of(terrain->GetOutputPort(), Vector3d(0.74, 0.66, 0.53));
+  terrain_actor->GetProperty()->SetOpacity(0.55);
+  p.renderer->AddActor(terrain_actor);
+  p.text->GetTextProperty()->SetFontSize(16);
+  p.text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
+  p.text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  p.text->GetPositionCoordinate()->SetValue(0.02, 0.02);
+  p.renderer->AddViewProp(p.text);
+  vtkCamera* cam = p.renderer->GetActiveCamera();
+  cam->SetFocalPoint(centre.x(), centre.y(), 0.5 * (centre.z() + ground));
+  cam->SetPosition(centre.x() + 0.9 * extent, centre.y() + 1.5 * extent, centre.z() + 0.9 * extent);
+  cam->SetViewUp(0, 0, 1);
+  cam->SetViewAngle(35.0);
+  set_time(t0_);
+}
+
+ArticulatedRoverScene::~ArticulatedRoverScene() = default;
+
+void ArticulatedRoverScene::attach(vtkRenderWindow* window) { window->AddRenderer(parts_->renderer); }
+
+void ArticulatedRoverScene::detach(vtkRenderWindow* window) { window->RemoveRenderer(parts_->renderer); }
+
+void ArticulatedRoverScene::set_time(double t) {
+  Parts& p = *parts_;
+  const std::size_t k = p.joints->nearest_index(t);
+  std::vector<double> q;
+  for (const auto& name : rover_.joints) q.push_back(p.joints->channel(name).values[k]);
+  for (double& v : q) v = std::isfinite(v) ? v : 0.0;
+  p.attitude_shown.setIdentity();
+  if (p.attitude != nullptr) {  // roll and pitch only: the camera follows the heading
+    const std::size_t ka = p.attitude->nearest_index(t);
+    const double roll = value_at(p.attitude, "roll", ka), pitch = value_at(p.attitude, "pitch", ka);
+    if (std::isfinite(roll) && std::isfinite(pitch)) {
+      p.attitude_shown =
+          (Eigen::AngleAxisd(pitch, Vector3d::UnitY()) * Eigen::AngleAxisd(roll, Vector3d::UnitX())).toRotationMatrix();
+    }
+  }
+  const std::size_t ke = p.estimate_stream != nullptr ? p.estimate_stream->nearest_index(t) : 0;
+  const std::size_t kt = p.truth_stream != nullptr ? p.truth_stream->nearest_index(t) : 0;
+  for (std::size_t w = 0; w < rover_.wheels.size(); ++w) pose_wheel(w, q, ke, kt);
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "t = %.2f s   %s\nblue: velocity at the estimated contact angle   green: truth   orange: side slip\n"
+                "wheels: grey at no slip, red at |slip| >= 0.5",
+                t, rover_.name.c_str());
+  p.text->SetInput(line);
+}
+
+// One wheel at joint angles q: chain, wheel, and the arrows at its contact point.
+void ArticulatedRoverScene::pose_wheel(std::size_t w, const std::vector<double>& q, std::size_t ke, std::size_t kt) {
+  Parts& p = *parts_;
+  const double r = rover_.wheel_radius;
+  const int wheel = static_cast<int>(w);
+  const std::string& name = rover_.wheels[w].name;
+  const Eigen::Matrix3d& attitude = p.attitude_shown;
+  std::vector<Vector3d> chain = chain_points(rover_, wheel, q);
+  for (auto& point : chain) point = attitude * point;
+  set_lines(p.links[w], chain);
+  const auto pose = kinematics::wheel_pose<double>(rover_, wheel, q.data(), 0.0, 0.0, kinematics::WheelFrame::drive);
+  const Eigen::Matrix3d R = attitude * pose.R;
+  const Vector3d centre = attitude * pose.r;
+  centres_[w] = centre;
+  vtkNew<vtkMatrix4x4> m;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) m->SetElement(i, j, R(i, j));
+    m->SetElement(i, 3, centre[i]);
+  }
+  vtkNew<vtkTransform> placed;
+  placed->SetMatrix(m);
+  placed->RotateX(90.0);  // the cylinder's axis (y) onto the axle (the drive frame's z)
+  p.wheels[w]->SetUserTransform(placed);
+
+  // The wheel plane: forward f (the drive frame's x, pointing ahead) and up u.
+  const Vector3d axle = R.col(2);
+  Vector3d f = R.col(0);
+  if (f.dot(attitude * Vector3d::UnitX()) < 0.0) f = -f;
+  Vector3d u = axle.cross(f);
+  if (u.z() < 0.0) u = -u;
+  const double gamma = value_at(p.estimate_stream, "contact_angle_" + name, ke);
+  const double gamma_truth = value_at(p.truth_stream, "contact_angle_" + name, kt);
+  const double beta = value_at(p.estimate_stream, "side_slip_" + name, ke);
+  const double sigma = value_at(p.estimate_stream, "contact_angle_" + name + "_sigma", ke);
+  const double at = std::isfinite(gamma) ? gamma : std::isfinite(gamma_truth) ? gamma_truth : 0.0;
+  // Seed 000 Fig. 5.1: the velocity at angle gamma above the wheel's forward
+  // direction; the contact point lies at r along the normal to it.
+  auto along = [&](double angle) { return Vector3d(std::cos(angle) * f + std::sin(angle) * u); };
+  const Vector3d normal = -std::sin(at) * f + std::cos(at) * u;
+  const Vector3d contact = centre - r * normal;
+  contacts_[w] = contact;
+  const double length = 1.8 * r;
+  p.estimate[w]->SetVisibility(std::isfinite(gamma));
+  directions_[w] = std::isfinite(gamma) ? along(gamma) : Vector3d::Constant(NAN);
+  if (std::isfinite(gamma)) place_arrow(p.estimate[w], contact, along(gamma), length);
+  p.truth[w]->SetVisibility(std::isfinite(gamma_truth));
+  if (std::isfinite(gamma_truth)) place_arrow(p.truth[w], contact, along(gamma_truth), 1.4 * r);
+  p.side_slip[w]->SetVisibility(std::isfinite(beta) && std::isfinite(gamma));
+  if (std::isfinite(beta) && std::isfinite(gamma)) {
+    const Vector3d v = along(gamma);
+    place_arrow(p.side_slip[w], contact, std::cos(beta) * v + std::sin(beta) * normal.cross(v), 1.3 * r);
+  }
+  p.sigma[w]->SetVisibility(std::isfinite(sigma) && std::isfinite(gamma));
+  if (std::isfinite(sigma) && std::isfinite(gamma)) {
+    std::vector<Vector3d> fan{contact};
+    for (int i = 0; i <= 16; ++i) fan.emplace_back(contact + length * along(gamma - sigma + sigma * i / 8.0));
+    fan.push_back(contact);
+    set_lines(p.sigma[w], fan);
+  }
+  double slip = value_at(p.estimate_stream, "slip_" + name, ke);
+  if (!std::isfinite(slip)) slip = value_at(p.truth_stream, "slip_" + name, kt);
+  const double redness = std::isfinite(slip) ? std::min(std::abs(slip) / 0.5, 1.0) : 0.0;
+  p.wheels[w]->GetProperty()->SetColor(0.6 + 0.3 * redness, 0.6 - 0.45 * redness, 0.62 - 0.45 * redness);
+}
+
+}  // namespace roverlab::views

@@ -1,0 +1,54 @@
+#pragma once
+// The rover configuration in 3D from its DH description (seed 000 chapter 4):
+// body, the links of every wheel's chain, and wheels of the rover's radius,
+// posed at each time from the log's joint angles (body at the origin, levelled
+// by the log's attitude when it has one). At each wheel's contact point: the
+// direction of the wheel's velocity at the contact angle (estimate blue, truth
+// green; seed 000 Fig. 5.1), the side-slip direction (orange), the estimate's
+// 1-sigma as a fan when the log has it, and the wheel coloured by slip.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/kinematics/rover_model.h"
+#include "core/log/log.h"
+#include "views/view.h"
+
+namespace roverlab::views {
+
+// Empty when the scene can be drawn (a DH rover and a joints stream with its
+// joints), else what is missing.
+std::string articulated_rover_needs(const log::Log& log, const kinematics::RoverModel* rover);
+
+class ArticulatedRoverScene : public Scene {
+ public:
+  ArticulatedRoverScene(const log::Log& log, kinematics::RoverModel rover);
+  ~ArticulatedRoverScene() override;
+  void attach(vtkRenderWindow* window) override;
+  void detach(vtkRenderWindow* window) override;
+  void set_time(double t) override;
+  double start_time() const override { return t0_; }
+  double end_time() const override { return t1_; }
+  std::vector<std::string> notes() const override { return notes_; }
+
+  // What set_time drew, in the body frame g (m): each wheel's centre and
+  // contact point, and the contact-angle arrow's unit direction (estimate;
+  // NaN when the log has none).
+  const std::vector<Eigen::Vector3d>& wheel_centres() const { return centres_; }
+  const std::vector<Eigen::Vector3d>& contact_points() const { return contacts_; }
+  const std::vector<Eigen::Vector3d>& contact_directions() const { return directions_; }
+
+ private:
+  struct Parts;
+  void pose_wheel(std::size_t w, const std::vector<double>& q, std::size_t k_estimate, std::size_t k_truth);
+  std::unique_ptr<Parts> parts_;
+  kinematics::RoverModel rover_;
+  double t0_ = 0, t1_ = 0;
+  std::vector<std::string> notes_;
+  std::vector<Eigen::Vector3d> centres_, contacts_, directions_;
+};
+
+}  // namespace roverlab::views
