@@ -64,7 +64,9 @@ JsonResource read_json_resource(const std::string& path, const std::string& what
   json document;
   try {
     document = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond a double ("1E400",
+    // found by fuzzing: it escaped as an internal failure).
     throw InputError(path, what + " is not valid JSON: " + e.what());
   }
   if (!document.is_object()) {

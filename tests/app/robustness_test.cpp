@@ -260,6 +260,28 @@ TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
   EXPECT_NE(r.err.find("more than the file"), std::string::npos) << r.err;
 }
 
+TEST(Robustness, ADatasetInTooManyChunksIsABadInputNotAHang) {
+  // Found by fuzzing (tests/fuzz/corpus/hdf5_log/too_many_chunks.h5): a time
+  // base declaring chunks of one value made libhdf5 spend seconds on a 70 kB file.
+  TempDir dir;
+  const ConvertedLog log(dir);
+  log.edit([](hid_t f) {
+    ASSERT_GE(H5Ldelete(f, "/streams/imu/time", H5P_DEFAULT), 0);
+    const hsize_t dims = 100000, chunk = 1;  // 800 kB declared: less than the file, no more than a log may be
+    const hid_t space = H5Screate_simple(1, &dims, nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 1, &chunk);
+    const hid_t ds = H5Dcreate2(f, "/streams/imu/time", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    ASSERT_GE(ds, 0);
+    H5Dclose(ds);
+    set_string_attribute(f, "/streams/imu/time", "unit", "s");
+    H5Pclose(dcpl);
+    H5Sclose(space);
+  });
+  const CommandResult r = run_roverlab("info " + quote(log.path()));
+  expect_one_line_bad_input(r, log.path(), "100000 chunks");
+}
+
 TEST(Robustness, ACsvThatNeverEndsIsRefused) {
   TempDir dir;
   const std::string zero = dir.file("zero.csv"), fifo = dir.file("pipe.csv"), binary = dir.file("binary.csv");

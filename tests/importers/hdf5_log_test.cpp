@@ -148,3 +148,17 @@ TEST(Hdf5Log, RejectsNewerFormatVersion) {
     EXPECT_EQ(e.file(), path);
   }
 }
+
+// Found by fuzzing (tests/fuzz/corpus/hdf5_log/chunk_larger_than_file.h5): a
+// 70 kB log whose chunk index claims a 4 GB chunk for one channel made
+// libhdf5 allocate and read it for seconds; it is a damaged file.
+TEST(Hdf5Log, AChunkLargerThanTheFileIsADamagedFile) {
+  const std::string path = std::string(ROVERLAB_TEST_DATA) + "/../fuzz/corpus/hdf5_log/chunk_larger_than_file.h5";
+  try {
+    (void)io::read_hdf5_log(path);
+    FAIL() << "read a damaged file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("angular_rate_z"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than the file's"), std::string::npos) << e.what();
+  }
+}

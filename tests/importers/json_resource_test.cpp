@@ -79,6 +79,12 @@ TEST(JsonResource, UnreadableFilesNameTheFile) {
   EXPECT_EQ(problem_of(dir.file("bad.json"), [&] { io::read_json_resource(dir.file("bad.json"), "soil file"); })
                 .rfind("soil file is not valid JSON: ", 0),
             0u);
+  // Found by fuzzing (tests/fuzz/corpus/json_resources/number_overflow.json): nlohmann's
+  // out_of_range for a number beyond a double escaped as an internal failure.
+  write_text(dir.file("huge.json"), "{\"format\": \"roverlab-soil\", \"version\": 22E22222}");
+  EXPECT_EQ(problem_of(dir.file("huge.json"), [&] { io::read_json_resource(dir.file("huge.json"), "soil file"); })
+                .rfind("soil file is not valid JSON: ", 0),
+            0u);
   write_text(dir.file("list.json"), "[1, 2]");
   EXPECT_NE(
       problem_of(dir.file("list.json"), [&] { io::read_json_resource(dir.file("list.json"), "rover description"); })

@@ -79,6 +79,9 @@ TEST(WheelTestCsv, BadFilesNameLineAndProblem) {
       {head + "0.1,0.1,80,0.1,5\n", "sinkage_m must be in metres"},
       {head + "0.1,0.1,nan,0.1,0.01\n", "finite number"},
       {head, "no data rows"},
+      // Found by fuzzing (tests/fuzz/corpus/wheel_test_csv/grouser_count_2e51.csv): cast to int unchecked.
+      {"radius_m,width_m,load_N,slip,sinkage_m,grouser_count\n0.1,0.1,80,0.1,0.01,2.2e51\n", "grouser_count must be"},
+      {"radius_m,width_m,load_N,slip,sinkage_m,grouser_count\n0.1,0.1,80,0.1,0.01,2.5\n", "grouser_count must be"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string path = dir.file("p" + std::to_string(k) + ".csv");
