@@ -51,6 +51,17 @@ class ReportSection {
   std::filesystem::path folder_;
 };
 
+// A column of the campaign table (`roverlab campaign report`): a number
+// (or, for a verdict, a string) in the analysis's result document; an array
+// (per wheel) is shown by its mean. Wall-clock figures are never key metrics:
+// a campaign run twice gives the same table.
+struct KeyMetric {
+  std::string key;       // column name in the CSV and JSON
+  std::string title;     // column heading in the HTML
+  std::string pointer;   // JSON pointer inside the result document
+  bool verdict = false;  // a string, not a number
+};
+
 class Analysis {
  public:
   virtual ~Analysis() = default;
@@ -77,6 +88,8 @@ class Analysis {
   virtual void print(const nlohmann::json& document, std::FILE* out) const = 0;
   // The result in the HTML report.
   virtual void report(const nlohmann::json& document, ReportSection& section) const = 0;
+  // Its columns in a campaign's table of runs.
+  virtual std::vector<KeyMetric> key_metrics() const { return {}; }
 };
 
 using Analyses = std::vector<std::unique_ptr<Analysis>>;

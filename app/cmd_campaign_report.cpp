@@ -33,30 +33,25 @@ struct CampaignReportOptions {
   std::string output;
 };
 
-// A column of the campaign table: a number (or, for verdicts, a string)
-// taken from one analysis's result document; arrays (per wheel) by their mean.
-struct KeyMetric {
-  const char* key;       // column name in the CSV and JSON
-  const char* title;     // column heading in the HTML
-  const char* analysis;  // analyses/<name> in metrics.json
-  const char* pointer;   // JSON pointer inside its document
-  bool verdict;          // a string, not a number
+// The table's columns: every registered analysis's key metrics
+// (Analysis::key_metrics), in analyses.def order.
+struct KeyColumn {
+  std::string key, title, analysis, pointer;
+  bool verdict = false;
 };
 
-// Wall-clock fields (contact-angle's wall_seconds) are left out on purpose:
-// a campaign run twice gives the same table.
-const KeyMetric kKeyMetrics[] = {
-    {"ins_final_error_m", "INS final error (m)", "ins-slip", "/ins/final_position_error_m", false},
-    {"ins_position_rmse_m", "INS position RMSE (m)", "ins-slip", "/ins/position_rmse_m", false},
-    {"wheel_odometry_final_error_m", "wheel odometry final error (m)", "ins-slip",
-     "/wheel_odometry/final_position_error_m", false},
-    {"slip_class_accuracy", "slip class accuracy", "ins-slip", "/slip_confusion/accuracy", false},
-    {"odometry_held_out_rmse_m", "odometry held-out RMSE (m)", "odometry", "/baseline/held_out_rmse_m", false},
-    {"odometry_cause", "named cause (odometry)", "odometry", "/cause", true},
-    {"contact_angle_rms_deg", "contact angle RMS (deg, mean of wheels)", "contact-angle", "/rms/contact_angle_deg",
-     false},
-    {"contact_slip_rms", "slip RMS (mean of wheels)", "contact-angle", "/rms/slip", false},
-};
+const std::vector<KeyColumn>& key_columns() {
+  static const std::vector<KeyColumn> columns = [] {
+    std::vector<KeyColumn> out;
+    for (const auto& analysis : all_analyses()) {
+      for (const auto& m : analysis->key_metrics()) {
+        out.push_back({m.key, m.title, analysis->name(), m.pointer, m.verdict});
+      }
+    }
+    return out;
+  }();
+  return columns;
+}
 
 // The cause the odometry study should name for a run's injected effects:
 // the candidate that stands for its one effect (slip=0, firm ground, aside),
@@ -89,7 +84,7 @@ json read_json(const fs::path& path) {
   }
 }
 
-json metric_value(const json& analyses, const KeyMetric& m) {
+json metric_value(const json& analyses, const KeyColumn& m) {
   if (!analyses.contains(m.analysis)) return nullptr;
   const json& doc = analyses.at(m.analysis);
   const json::json_pointer ptr(m.pointer);
@@ -147,7 +142,7 @@ json read_run(const fs::path& dir, const fs::path& out) {
               {"report", fs::proximate(dir / "report" / "index.html", out).generic_string()},
               {"metrics", json::object()}};
   for (const auto& [name, doc] : analyses.items()) row["analyses"].push_back(name);
-  for (const auto& m : kKeyMetrics) row["metrics"][m.key] = metric_value(analyses, m);
+  for (const auto& m : key_columns()) row["metrics"][m.key] = metric_value(analyses, m);
   return row;
 }
 
@@ -233,7 +228,7 @@ class CampaignReportWriter {
                 {"columns", json::array()},
                 {"summary", summary_},
                 {"confusion", confusion_}};
-    for (const auto& m : kKeyMetrics)
+    for (const auto& m : key_columns())
       doc["columns"].push_back({{"key", m.key}, {"title", m.title}, {"analysis", m.analysis}});
     io::write_text_atomically((out_ / "campaign.json").string(), doc.dump(1) + "\n");
     io::write_text_atomically((out_ / "campaign.csv").string(), csv());
@@ -259,7 +254,7 @@ class CampaignReportWriter {
   void table() {
     html_ << "<h2>Runs</h2>\n<table id=\"runs\"><tr><th>run</th><th>kind</th><th>scenario</th><th>seed</th>"
              "<th>injected effects</th>";
-    for (const auto& m : kKeyMetrics) html_ << "<th>" << esc(m.title) << "</th>";
+    for (const auto& m : key_columns()) html_ << "<th>" << esc(m.title) << "</th>";
     html_ << "</tr>\n";
     for (const auto& r : runs_) {
       const std::string name = r.at("name").get<std::string>();
@@ -268,7 +263,7 @@ class CampaignReportWriter {
             << "</td><td class=\"t\">" << (r.at("scenario").is_string() ? esc(r.at("scenario").get<std::string>()) : "")
             << "</td><td>" << (r.at("seed").is_number() ? std::to_string(r.at("seed").get<long>()) : "")
             << "</td><td class=\"t\">" << esc(effects_text(r.at("effects"))) << "</td>";
-      for (const auto& m : kKeyMetrics) html_ << cell(r.at("metrics").at(m.key));
+      for (const auto& m : key_columns()) html_ << cell(r.at("metrics").at(m.key));
       html_ << "</tr>\n";
     }
     html_ << "</table>\n";
@@ -283,7 +278,7 @@ class CampaignReportWriter {
   void distributions() {
     html_ << "<h2>Distributions over the runs</h2>\n";
     summary_ = json::object();
-    for (const auto& m : kKeyMetrics) {
+    for (const auto& m : key_columns()) {
       if (m.verdict) continue;
       std::vector<double> values;
       for (const auto& r : runs_) {
@@ -332,12 +327,12 @@ class CampaignReportWriter {
 
   std::string csv() const {
     std::string text = "name,kind,scenario,seed,effects";
-    for (const auto& m : kKeyMetrics) text += std::string(",") + m.key;
+    for (const auto& m : key_columns()) text += std::string(",") + m.key;
     text += ",report\n";
     for (const auto& r : runs_) {
       text += csv_cell(r.at("name")) + "," + csv_cell(r.at("kind")) + "," + csv_cell(r.at("scenario")) + "," +
               csv_cell(r.at("seed")) + "," + csv_cell(effects_text(r.at("effects")));
-      for (const auto& m : kKeyMetrics) text += "," + csv_cell(r.at("metrics").at(m.key));
+      for (const auto& m : key_columns()) text += "," + csv_cell(r.at("metrics").at(m.key));
       text += "," + csv_cell(r.at("report")) + "\n";
     }
     return text;

@@ -69,6 +69,10 @@ class ContactAngleAnalysis : public Analysis {
   void check_options() const override { (void)options(); }
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"contact_angle_rms_deg", "contact angle RMS (deg, mean of wheels)", "/rms/contact_angle_deg"},
+            {"contact_slip_rms", "slip RMS (mean of wheels)", "/rms/slip"}};
+  }
   void report(const json& j, ReportSection& section) const override;
 
  private:

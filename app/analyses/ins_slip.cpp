@@ -121,6 +121,13 @@ class InsSlipAnalysis : public Analysis {
   }
 
   void print(const json& j, std::FILE* out) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {
+        {"ins_final_error_m", "INS final error (m)", "/ins/final_position_error_m"},
+        {"ins_position_rmse_m", "INS position RMSE (m)", "/ins/position_rmse_m"},
+        {"wheel_odometry_final_error_m", "wheel odometry final error (m)", "/wheel_odometry/final_position_error_m"},
+        {"slip_class_accuracy", "slip class accuracy", "/slip_confusion/accuracy"}};
+  }
   void report(const json& j, ReportSection& section) const override;
 
  private:

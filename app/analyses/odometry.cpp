@@ -45,6 +45,10 @@ class OdometryAnalysis : public Analysis {
     return out;
   }
   void print(const json& j, std::FILE* out) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"odometry_held_out_rmse_m", "odometry held-out RMSE (m)", "/baseline/held_out_rmse_m"},
+            {"odometry_cause", "named cause (odometry)", "/cause", true}};
+  }
   void report(const json& j, ReportSection& section) const override;
 
  private:

@@ -55,5 +55,27 @@ TEST(AnalysisRegistry, TextAndReportAreWrittenFromTheResultDocument) {
   std::filesystem::remove_all(folder);
 }
 
+// A campaign's columns come from the analyses: unique keys, and each numeric
+// metric of the INS analysis found in a real result document.
+TEST(AnalysisRegistry, KeyMetricsAreUniqueAndPointIntoTheResultDocument) {
+  std::set<std::string> keys;
+  for (const auto& analysis : app::all_analyses()) {
+    for (const auto& m : analysis->key_metrics()) {
+      EXPECT_TRUE(keys.insert(m.key).second) << "key metric " << m.key << " twice";
+      EXPECT_EQ(m.pointer.rfind('/', 0), 0u) << m.pointer;
+      EXPECT_EQ(m.key.find("wall"), std::string::npos) << "a wall-clock key metric: " << m.key;
+    }
+  }
+  EXPECT_GE(keys.size(), 6u);
+  const log::Log lg = simulation::simulate_skid_steer(simulation::default_slip_scenario(3));
+  const std::unique_ptr<app::Analysis> ins = app::make_analysis("ins-slip");
+  const app::AnalysisResult r = ins->run({lg, "sim.h5", {}});
+  for (const auto& m : ins->key_metrics()) {
+    const nlohmann::json::json_pointer at(m.pointer);
+    ASSERT_TRUE(r.document.contains(at)) << m.pointer;
+    EXPECT_TRUE(r.document.at(at).is_number()) << m.pointer;
+  }
+}
+
 }  // namespace
 }  // namespace roverlab
