@@ -160,6 +160,7 @@ class SingleWheelStudy {
   void write_verdict();
   void write_no_significant_verdict();
   void write_chain_verdict();
+  std::string cause_sentence(const std::string& lead, const CandidateResult& c, const std::string& end) const;
 
   const Soil& soil_;
   const std::vector<WheelTestPoint>& points_;
@@ -464,8 +465,13 @@ void SingleWheelStudy::write_verdict() {
     write_no_significant_verdict();
     return;
   }
-  const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
-  std::string v = "Cause: " + c.name + " (" + c.cause + "),";
+  report_.verdict = cause_sentence("Cause: ", report_.candidates[static_cast<std::size_t>(report_.best)], ".");
+}
+
+// The named cause(s), fitted parameters, held-out gain and BIC change, in words.
+std::string SingleWheelStudy::cause_sentence(const std::string& lead, const CandidateResult& c,
+                                             const std::string& end) const {
+  std::string v = lead + c.name + " (" + c.cause + "),";
   for (const auto& p : c.fit.parameters) {
     v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) +
          (std::isfinite(p.sigma) ? " +- " + fmt("%.2g", p.sigma) : std::string(" (no sigma)")) + ";";
@@ -476,26 +482,12 @@ void SingleWheelStudy::write_verdict() {
          show(report_.quantities[i], report_.baseline_held_out_rmse[i]) + " -> " +
          show(report_.quantities[i], c.held_out_rmse[i]);
   }
-  v += "; delta BIC " + fmt("%.1f", c.delta_bic) + ".";
-  report_.verdict = v;
+  return v + "; delta BIC " + fmt("%.1f", c.delta_bic) + end;
 }
 
 // Several causes: the chain, its parameters and its gain over the baseline.
 void SingleWheelStudy::write_chain_verdict() {
-  const CandidateResult& c = report_.selection.back();
-  std::string v = "Causes (forward selection): " + c.name + " (" + c.cause + "),";
-  for (const auto& p : c.fit.parameters) {
-    v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) +
-         (std::isfinite(p.sigma) ? " +- " + fmt("%.2g", p.sigma) : std::string(" (no sigma)")) + ";";
-  }
-  v += " held-out RMSE";
-  for (std::size_t i = 0; i < report_.quantities.size(); ++i) {
-    v += std::string(i ? "," : "") + " " + words(report_.quantities[i]) + " " +
-         show(report_.quantities[i], report_.baseline_held_out_rmse[i]) + " -> " +
-         show(report_.quantities[i], c.held_out_rmse[i]);
-  }
-  v += "; delta BIC " + fmt("%.1f", c.delta_bic) + " against the baseline.";
-  report_.verdict = v;
+  report_.verdict = cause_sentence("Causes (forward selection): ", report_.selection.back(), " against the baseline.");
 }
 
 void SingleWheelStudy::write_no_significant_verdict() {
