@@ -43,8 +43,9 @@ RockerBogieSimulator::RockerBogieSimulator(const PlanarRockerBogieGeometry& geom
       rng_(run.seed),
       t_(steps_ + 1),
       rec_(4 + 6 * 3 + 3 + 3, std::vector<double>(steps_ + 1)),
-      geo_(8, std::vector<double>(steps_ + 1)),
-      sens_(14, std::vector<double>(steps_ + 1)) {}
+      geo_(8, std::vector<double>(steps_ + 1)) {
+  for (auto& v : sensors_.values) v.assign(steps_ + 1, 0.0);
+}
 
 RockerBogieResult RockerBogieSimulator::run() {
   place_on_path();
@@ -95,7 +96,7 @@ void RockerBogieSimulator::control_step(std::size_t k) {
   const Kinematics kin = rocker_bogie::kinematics(g_, p_, q);
   check_constraints(kin);
   controller(qd);
-  read_sensors(k, time, q, qd, out);
+  read_sensors(k, q, qd, out);
   t_[k] = time;
   record_truth(k, q, kin, out);
 }
@@ -133,33 +134,26 @@ void RockerBogieSimulator::controller(const Vec& qd) {
 double RockerBogieSimulator::noise(double sigma) { return run_.sensor_noise ? sigma * unit_(rng_) : 0.0; }
 
 // Sensor values from the true state; noise of Table 5.1, then the effects.
-void RockerBogieSimulator::read_sensors(std::size_t k, double time, const Vec& q, const Vec& qd,
+void RockerBogieSimulator::read_sensors(std::size_t k, const Vec& q, const Vec& qd,
                                         const DynamicsReport& out) {
-  const RockerBogieEffects& fx = run_.effects;
   const double deg = M_PI / 180.0;
   const double th = q(2);
   const Vec2 xb(std::cos(th), -std::sin(th)), zb(std::sin(th), std::cos(th));  // rover axes in the world
   const Vec2 acc(out.qdd(0), out.qdd(1));
   const Vec2 f = acc + Vec2(0.0, p_.gravity);  // specific force
   const Vec2 vel(qd(0), qd(1));
-  const bool dropped =
-      fx.encoder_dropout_start >= 0 && time >= fx.encoder_dropout_start && time < fx.encoder_dropout_start + 2.0;
-  sens_[0][k] = q(3) + noise(9.155e-4 * deg);
-  for (int i = 0; i < 3; ++i) {
-    const auto ii = static_cast<std::size_t>(i);
-    const double reading = q(4 + i) + noise(2.143e-5 * deg);  // drawn even when dropped: same noise sequence
-    sens_[1 + ii][k] = dropped && k > 0 ? sens_[1 + ii][k - 1] : reading;
-  }
-  sens_[4][k] = qd(2) + noise(0.56 * deg) + fx.gyro_bias;
-  sens_[5][k] = f.dot(xb) + noise(1.245e-3) + fx.accel_bias;
-  sens_[6][k] = f.dot(zb) + noise(1.245e-3) + fx.accel_bias;
-  sens_[7][k] = vel.dot(xb) + noise(1e-3);
+  auto& v = sensors_.values;
+  v[0][k] = q(3) + noise(9.155e-4 * deg);
+  for (int i = 0; i < 3; ++i) v[1 + static_cast<std::size_t>(i)][k] = q(4 + i) + noise(2.143e-5 * deg);
+  v[4][k] = qd(2) + noise(0.56 * deg);
+  v[5][k] = f.dot(xb) + noise(1.245e-3);
+  v[6][k] = f.dot(zb) + noise(1.245e-3);
+  v[7][k] = vel.dot(xb) + noise(1e-3);
   read_force_sensors(k, q, out);
 }
 
 // The soil's force on each wheel (normal load and drawbar pull) in the axes of the link carrying it.
 void RockerBogieSimulator::read_force_sensors(std::size_t k, const Vec& q, const DynamicsReport& out) {
-  const RockerBogieEffects& fx = run_.effects;
   const double th = q(2);
   for (int i = 0; i < 3; ++i) {
     const double gm = out.gamma(i), Wn = normal_(i) / std::cos(gm);
@@ -168,8 +162,8 @@ void RockerBogieSimulator::read_force_sensors(std::size_t k, const Vec& q, const
     const double a = i == 0 ? th : th + q(3);
     const Vec2 lx(std::cos(a), -std::sin(a)), lz(std::sin(a), std::cos(a));
     const auto ii = static_cast<std::size_t>(i);
-    sens_[8 + ii][k] = fx.force_scale * F.dot(lz) + fx.force_offset + noise(3.255e-2);
-    sens_[11 + ii][k] = fx.force_scale * F.dot(lx) + fx.force_offset + noise(3.255e-2);
+    sensors_.values[8 + ii][k] = F.dot(lz) + noise(3.255e-2);
+    sensors_.values[11 + ii][k] = F.dot(lx) + noise(3.255e-2);
   }
 }
 
@@ -228,38 +222,20 @@ void RockerBogieSimulator::write_metadata() {
   lg.metadata.extra["truth/wheel_radius_m"] = std::to_string(g_.wheel_radius);
 }
 
+// Table 5.1's sensors with their noise, then the sensor effects (sensor_effects.h).
 void RockerBogieSimulator::write_sensor_streams() {
-  log::Log& lg = result_.log;
-  {
-    log::Stream st("joints", t_);
-    st.add_channel("bogie_angle", "rad", sens_[0], "16-bit absolute encoder");
-    for (std::size_t i = 0; i < 3; ++i) {
-      st.add_channel("wheel_angle_" + std::to_string(i + 1), "rad", sens_[1 + i], "motor encoder");
+  sensors_.time = t_;
+  apply_sensor_effects(run_.effects, sensors_);
+  const auto& channels = sensor_channels();
+  std::size_t c = 0;
+  while (c < kSensorChannels) {
+    const std::string name = channels[c].stream;
+    log::Stream st(name, name == "imu" ? sensors_.imu_time : sensors_.time);
+    for (; c < kSensorChannels && name == channels[c].stream; ++c) {
+      st.add_channel(channels[c].name, channels[c].unit, sensors_.values[c], channels[c].description);
     }
-    lg.add_stream(std::move(st));
+    result_.log.add_stream(std::move(st));
   }
-  {
-    std::vector<double> ti = t_;
-    for (double& x : ti) x += run_.effects.imu_time_offset;
-    log::Stream st("imu", ti);
-    st.add_channel("pitch_rate", "rad/s", sens_[4], "clockwise positive");
-    st.add_channel("specific_force_x", "m/s^2", sens_[5], "rover axes: x forward");
-    st.add_channel("specific_force_z", "m/s^2", sens_[6], "rover axes: z up");
-    lg.add_stream(std::move(st));
-  }
-  {
-    log::Stream st("velocimeter", t_);
-    st.add_channel("forward_speed", "m/s", sens_[7], "rover x axis");
-    lg.add_stream(std::move(st));
-  }
-  log::Stream st("forces", t_);
-  for (std::size_t i = 0; i < 3; ++i) {
-    st.add_channel("load_" + std::to_string(i + 1), "N", sens_[8 + i], "along the carrying link's z axis");
-  }
-  for (std::size_t i = 0; i < 3; ++i) {
-    st.add_channel("perpendicular_" + std::to_string(i + 1), "N", sens_[11 + i], "along the link's x axis");
-  }
-  lg.add_stream(std::move(st));
 }
 
 void RockerBogieSimulator::write_truth_streams() {

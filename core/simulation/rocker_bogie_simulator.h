@@ -16,6 +16,7 @@
 
 #include "core/simulation/rocker_bogie.h"
 #include "core/simulation/rocker_bogie_dynamics.h"
+#include "core/simulation/sensor_effects.h"
 
 namespace roverlab::simulation {
 
@@ -39,7 +40,7 @@ class RockerBogieSimulator {
   void check_constraints(const rocker_bogie::Kinematics& kin);
   void controller(const Vec& qd);
   double noise(double sigma);
-  void read_sensors(std::size_t k, double time, const Vec& q, const Vec& qd, const rocker_bogie::DynamicsReport& out);
+  void read_sensors(std::size_t k, const Vec& q, const Vec& qd, const rocker_bogie::DynamicsReport& out);
   void read_force_sensors(std::size_t k, const Vec& q, const rocker_bogie::DynamicsReport& out);
   void record_truth(std::size_t k, const Vec& q, const rocker_bogie::Kinematics& kin,
                     const rocker_bogie::DynamicsReport& out);
@@ -67,7 +68,8 @@ class RockerBogieSimulator {
   // x z); sensors (Table 5.1: bogie angle, 3 wheel angles, pitch rate, 2
   // specific forces, forward speed, 3 loads, 3 perpendicular loads).
   std::vector<double> t_;
-  std::vector<std::vector<double>> rec_, geo_, sens_;
+  std::vector<std::vector<double>> rec_, geo_;
+  SensorSeries sensors_;
   RockerBogieResult result_;
 };
 
