@@ -134,8 +134,7 @@ void RockerBogieSimulator::controller(const Vec& qd) {
 double RockerBogieSimulator::noise(double sigma) { return run_.sensor_noise ? sigma * unit_(rng_) : 0.0; }
 
 // Sensor values from the true state; noise of Table 5.1, then the effects.
-void RockerBogieSimulator::read_sensors(std::size_t k, const Vec& q, const Vec& qd,
-                                        const DynamicsReport& out) {
+void RockerBogieSimulator::read_sensors(std::size_t k, const Vec& q, const Vec& qd, const DynamicsReport& out) {
   const double deg = M_PI / 180.0;
   const double th = q(2);
   const Vec2 xb(std::cos(th), -std::sin(th)), zb(std::sin(th), std::cos(th));  // rover axes in the world

@@ -1,0 +1,291 @@
+// `discrepancy rover`: what the planar rocker-bogie simulation gets wrong on
+// a rover log, the cause or causes, the extended model and its held-out gain.
+#include <CLI/CLI.hpp>
+#include <cmath>
+
+#include "app/analysis.h"
+#include "app/command_support.h"
+#include "app/commands.h"
+#include "app/rover_scenario.h"
+#include "core/analysis/rover_discrepancy.h"
+#include "core/common/error.h"
+
+namespace roverlab::app {
+
+namespace {
+
+using nlohmann::json;
+
+json parameters_json(const std::vector<analysis::RoverParameterFit>& ps) {
+  json a = json::array();
+  for (const auto& p : ps) {
+    a.push_back({{"effect", p.effect}, {"unit", p.unit}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}});
+  }
+  return a;
+}
+
+std::string parameters_text(const json& ps) {
+  std::string t;
+  for (const auto& p : ps) {
+    char one[120];
+    std::snprintf(one, sizeof one, "%s%s %.4g+-%s", t.empty() ? "" : ", ", p.at("effect").get<std::string>().c_str(),
+                  p.at("value").get<double>(), ReportSection::number(p.at("sigma"), "%.2g").c_str());
+    t += one;
+  }
+  return t;
+}
+
+// A scatter of points (x, y) as inline SVG, two series (before grey, after blue).
+std::string scatter_svg(const std::string& title, const std::string& xlabel, const std::vector<double>& x,
+                        const std::vector<double>& y0, const std::vector<double>& y1) {
+  double xmin = INFINITY, xmax = -INFINITY, ymax = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (!std::isfinite(x[k]) || !std::isfinite(y0[k])) continue;
+    xmin = std::min(xmin, x[k]);
+    xmax = std::max(xmax, x[k]);
+    ymax = std::max({ymax, y0[k], y1[k]});
+  }
+  std::ostringstream s;
+  const double W = 420, H = 220, L = 50, B = 190, T = 20;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\">"
+    << "<text x=\"" << L << "\" y=\"14\" font-size=\"12\">" << ReportSection::escape(title) << "</text>"
+    << "<line x1=\"" << L << "\" y1=\"" << B << "\" x2=\"" << W - 10 << "\" y2=\"" << B << "\" stroke=\"black\"/>"
+    << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << B << "\" stroke=\"black\"/>"
+    << "<text x=\"" << W / 2 << "\" y=\"" << H - 5 << "\" font-size=\"11\">" << ReportSection::escape(xlabel) << " ("
+    << ReportSection::number(xmin) << " .. " << ReportSection::number(xmax) << ")</text>"
+    << "<text x=\"2\" y=\"" << T + 8 << "\" font-size=\"10\">" << ReportSection::number(ymax) << "</text>";
+  if (!(xmax > xmin) || !(ymax > 0)) return s.str() + "</svg>";
+  const std::size_t stride = std::max<std::size_t>(1, x.size() / 1500);
+  for (int series = 0; series < 2; ++series) {
+    const std::vector<double>& y = series == 0 ? y0 : y1;
+    for (std::size_t k = 0; k < x.size(); k += stride) {
+      if (!std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
+      const double px = L + (x[k] - xmin) / (xmax - xmin) * (W - L - 10), py = B - y[k] / ymax * (B - T);
+      s << "<circle cx=\"" << px << "\" cy=\"" << py << "\" r=\"1.2\" fill=\"" << (series == 0 ? "#999" : "#1f77b4")
+        << "\"/>";
+    }
+  }
+  return s.str() + "</svg>";
+}
+
+class RoverDiscrepancyAnalysis : public Analysis {
+ public:
+  std::string name() const override { return "rover-discrepancy"; }
+  std::string command() const override { return "discrepancy rover"; }
+  std::string title() const override { return "What the rover simulation gets wrong"; }
+  std::string help() const override {
+    return "Planar rocker-bogie log against its scenario's simulation: residuals, the cause or causes, the gain";
+  }
+  std::string log_help() const override {
+    return "Planar rocker-bogie log (joints, imu, velocimeter, forces, commands), e.g. from roverlab simulate";
+  }
+  std::string missing(const log::Log& lg) const override {
+    for (const char* s : {"joints", "imu", "velocimeter", "forces", "commands"}) {
+      if (lg.find_stream(s) == nullptr) return std::string("no ") + s + " stream";
+    }
+    if (scenario_.empty() && lg.metadata.extra.count("scenario") == 0) {
+      return "the log names no scenario: give --scenario";
+    }
+    return "";
+  }
+  void declare(CLI::App& cmd) override {
+    cmd.add_option("--scenario", scenario_,
+                   "Scenario NAME or FILE.json: the model of the run (default: the one the log names)");
+    cmd.add_option("--block", block_, "s, length of the alternating fit/test blocks")
+        ->capture_default_str()
+        ->check(finite_in(0.2, 1000.0));
+  }
+  AnalysisResult run(const AnalysisInput& in) override;
+  void print(const json& j, std::FILE* out) const override;
+  void report(const json& j, ReportSection& section) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"rover_held_out_before", "rover held-out error before (sigmas)", "/baseline/held_out"},
+            {"rover_held_out_after", "rover held-out error after (sigmas)", "/held_out_after"},
+            {"rover_causes", "named causes (rover)", "/causes_text", true}};
+  }
+
+ private:
+  static json document(const std::string& file, const analysis::RoverDiscrepancyReport& r);
+  std::string scenario_;
+  double block_ = 1.0;
+};
+
+AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
+  std::string scenario = scenario_;
+  if (scenario.empty()) {
+    const auto it = in.log.metadata.extra.find("scenario");
+    if (it == in.log.metadata.extra.end()) throw UsageError(in.file + ": the log names no scenario; give --scenario");
+    scenario = it->second;
+  }
+  const analysis::RoverScenarioModel model = load_rover_scenario(scenario);
+  analysis::RoverStudyOptions options;
+  options.block = block_;
+  options.progress = in.progress;
+  const analysis::RoverDiscrepancyReport r =
+      about_file(in.file, [&] { return analysis::study_rover(in.log, model, options); });
+  AnalysisResult out;
+  out.document = document(in.file, r);
+  log::Stream st("estimate/rover_discrepancy/residuals", r.time);
+  st.add_channel("before", "1", r.residual_before, "RMS over channels of the residual in noise sigmas, nominal model");
+  st.add_channel("after", "1", r.residual_after, "the same with the named causes");
+  st.add_channel("slip", "1", r.slip, "mean wheel slip from encoders and velocimeter");
+  out.estimates.add_stream(std::move(st));
+  return out;
+}
+
+json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis::RoverDiscrepancyReport& r) {
+  json j = {{"file", file},
+            {"scenario", r.scenario},
+            {"drive", r.drive},
+            {"held_out_method", r.held_out_method},
+            {"duration_s", r.duration},
+            {"residuals", {{"fit", r.fit_residuals}, {"test", r.test_residuals}}},
+            {"baseline", {{"bic", r.baseline_bic}, {"held_out", r.baseline_held_out}}},
+            {"held_out_after", r.final_held_out},
+            {"simulations", r.simulations},
+            {"what_is_wrong", r.what_is_wrong},
+            {"verdict", r.verdict}};
+  json ch = json::array();
+  for (const auto& c : r.channels) {
+    ch.push_back({{"stream", c.stream},
+                  {"channel", c.channel},
+                  {"unit", c.unit},
+                  {"sigma", c.sigma},
+                  {"rmse", c.rmse},
+                  {"bias", c.bias},
+                  {"drift_per_100s", finite_or_null(c.drift)},
+                  {"t_drift", finite_or_null(c.t_drift)},
+                  {"slope_vs_slip", finite_or_null(c.slope_vs_slip)},
+                  {"t_slip", finite_or_null(c.t_slip)},
+                  {"slope_vs_position", finite_or_null(c.slope_vs_position)},
+                  {"t_position", finite_or_null(c.t_position)},
+                  {"held_out_rmse_before", finite_or_null(c.held_out_rmse_before)},
+                  {"held_out_rmse_after", finite_or_null(c.held_out_rmse_after)}});
+  }
+  j["channels"] = ch;
+  json checks = json::array();
+  for (const auto& c : r.checks) {
+    checks.push_back({{"name", c.name},
+                      {"value", c.value},
+                      {"expected", c.expected},
+                      {"sigma", c.sigma},
+                      {"unit", c.unit},
+                      {"consistent", c.consistent},
+                      {"verdict", c.verdict}});
+  }
+  j["checks"] = checks;
+  json cands = json::array();
+  for (const auto& c : r.candidates) {
+    cands.push_back({{"name", c.name},
+                     {"cause", c.cause},
+                     {"parameters", parameters_json(c.parameters)},
+                     {"chi2", c.chi2},
+                     {"delta_bic", c.delta_bic},
+                     {"held_out", c.held_out},
+                     {"significant", c.significant},
+                     {"simulations", c.simulations},
+                     {"screened", c.screened}});
+  }
+  j["candidates"] = cands;
+  json sel = json::array();
+  std::string causes;
+  for (const auto& s : r.selection) {
+    sel.push_back({{"name", s.name},
+                   {"cause", s.cause},
+                   {"parameters", parameters_json(s.parameters)},
+                   {"delta_bic", s.delta_bic},
+                   {"held_out", s.held_out}});
+    causes += (causes.empty() ? "" : " + ") + s.name;
+  }
+  j["selection"] = sel;
+  j["causes"] = json::array();
+  for (const auto& s : r.selection) j["causes"].push_back(s.name);
+  j["causes_text"] = causes.empty() ? "none" : causes;
+  return j;
+}
+
+void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
+  std::fprintf(out, "%s against scenario %s (%.0f s); %s\n%s\n\n", j.at("file").get<std::string>().c_str(),
+               j.at("scenario").get<std::string>().c_str(), j.at("duration_s").get<double>(),
+               j.at("held_out_method").get<std::string>().c_str(), j.at("drive").get<std::string>().c_str());
+  std::fprintf(out, "  %-28s %11s %11s %11s %13s %9s %15s\n", "channel", "noise", "RMSE", "bias", "drift/100 s",
+               "t drift", "held-out after");
+  for (const auto& c : j.at("channels")) {
+    std::fprintf(out, "  %-28s %11.3g %11.3g %11.3g %13s %9s %15s %s\n",
+                 (c.at("stream").get<std::string>() + "/" + c.at("channel").get<std::string>()).c_str(),
+                 c.at("sigma").get<double>(), c.at("rmse").get<double>(), c.at("bias").get<double>(),
+                 ReportSection::number(c.at("drift_per_100s")).c_str(), ReportSection::number(c.at("t_drift")).c_str(),
+                 ReportSection::number(c.at("held_out_rmse_after")).c_str(), c.at("unit").get<std::string>().c_str());
+  }
+  std::fprintf(out, "\nChecks without simulation:\n");
+  for (const auto& c : j.at("checks")) {
+    std::fprintf(out, "  %s: %.4g (expected %.4g +- %.2g %s): %s\n", c.at("name").get<std::string>().c_str(),
+                 c.at("value").get<double>(), c.at("expected").get<double>(), 3 * c.at("sigma").get<double>(),
+                 c.at("unit").get<std::string>().c_str(), c.at("verdict").get<std::string>().c_str());
+  }
+  std::fprintf(out, "\n%s\n\n  %-22s %-44s %10s %9s\n", j.at("what_is_wrong").get<std::string>().c_str(), "candidate",
+               "fitted", "delta BIC", "held-out");
+  std::fprintf(out, "  %-22s %-44s %10s %9.3g\n", "(nominal)", "", "0", j.at("baseline").at("held_out").get<double>());
+  for (const auto& c : j.at("candidates")) {
+    std::string p = parameters_text(c.at("parameters"));
+    if (p.size() > 44) p = p.substr(0, 43) + "~";
+    std::fprintf(out, "  %-22s %-44s %10.1f %9.3g%s\n", c.at("name").get<std::string>().c_str(), p.c_str(),
+                 c.at("delta_bic").get<double>(), c.at("held_out").get<double>(),
+                 c.at("significant").get<bool>() ? ""
+                 : c.at("screened").get<bool>()  ? "  (screened out)"
+                                                 : "  (not significant)");
+  }
+  std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
+}
+
+void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
+  const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
+  s.html << "<h2>" << title() << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
+         << "</p>\n<p><b>" << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n<p>"
+         << ReportSection::escape(j.at("drive").get<std::string>()) << "; "
+         << ReportSection::escape(j.at("held_out_method").get<std::string>()) << ".</p>\n"
+         << "<table><tr><th>channel</th><th>unit</th><th>noise</th><th>RMSE</th><th>bias</th><th>drift / 100 s</th>"
+            "<th>t (slip)</th><th>t (position)</th><th>held-out before</th><th>held-out after</th></tr>\n";
+  std::string csv =
+      "stream,channel,unit,sigma,rmse,bias,drift_per_100s,t_drift,t_slip,t_position,held_out_before,held_out_after\n";
+  for (const auto& c : j.at("channels")) {
+    s.html << "<tr><td style=\"text-align:left\">"
+           << ReportSection::escape(c.at("stream").get<std::string>() + "/" + c.at("channel").get<std::string>())
+           << "</td><td>" << ReportSection::escape(c.at("unit").get<std::string>()) << "</td><td>"
+           << n(c.at("sigma"), "%.3g") << "</td><td>" << n(c.at("rmse"), "%.3g") << "</td><td>"
+           << n(c.at("bias"), "%.3g") << "</td><td>" << n(c.at("drift_per_100s"), "%.3g") << "</td><td>"
+           << n(c.at("t_slip"), "%.3g") << "</td><td>" << n(c.at("t_position"), "%.3g") << "</td><td>"
+           << n(c.at("held_out_rmse_before"), "%.3g") << "</td><td>" << n(c.at("held_out_rmse_after"), "%.3g")
+           << "</td></tr>\n";
+    csv += c.at("stream").get<std::string>() + "," + c.at("channel").get<std::string>() + "," +
+           c.at("unit").get<std::string>();
+    for (const char* k : {"sigma", "rmse", "bias", "drift_per_100s", "t_drift", "t_slip", "t_position",
+                          "held_out_rmse_before", "held_out_rmse_after"}) {
+      csv += "," + n(c.at(k), "%.6g");
+    }
+    csv += "\n";
+  }
+  s.html
+      << "</table>\n<table><tr><th>candidate</th><th>fitted (+-1 sigma)</th><th>delta BIC</th><th>held-out</th></tr>\n";
+  for (const auto& c : j.at("candidates")) {
+    s.html << "<tr" << (c.at("significant").get<bool>() ? " style=\"font-weight:bold\"" : "")
+           << "><td style=\"text-align:left\">" << ReportSection::escape(c.at("name").get<std::string>())
+           << "</td><td style=\"text-align:left\">" << ReportSection::escape(parameters_text(c.at("parameters")))
+           << "</td><td>" << n(c.at("delta_bic"), "%.1f") << "</td><td>" << n(c.at("held_out"), "%.3g")
+           << "</td></tr>\n";
+  }
+  s.html << "</table>\n<ul>\n";
+  for (const auto& c : j.at("checks")) {
+    s.html << "<li>" << ReportSection::escape(c.at("name").get<std::string>()) << ": " << n(c.at("value"), "%.4g")
+           << " (expected " << n(c.at("expected"), "%.4g")
+           << "): " << ReportSection::escape(c.at("verdict").get<std::string>()) << "</li>\n";
+  }
+  s.html << "</ul>\n";
+  s.write_csv("rover_discrepancy_channels.csv", csv);
+}
+
+}  // namespace
+
+std::unique_ptr<Analysis> make_rover_discrepancy_analysis() { return std::make_unique<RoverDiscrepancyAnalysis>(); }
+
+}  // namespace roverlab::app

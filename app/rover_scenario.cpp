@@ -1,0 +1,65 @@
+#include "app/rover_scenario.h"
+
+#include <cmath>
+
+#include "app/command_support.h"
+#include "app/commands.h"
+#include "app/resources.h"
+#include "core/common/error.h"
+#include "importers/rover_file.h"
+#include "importers/scenario_file.h"
+#include "importers/soil_file.h"
+
+namespace roverlab::app {
+
+analysis::RoverScenarioModel load_rover_scenario(const std::string& name_or_file,
+                                                 const std::optional<std::string>& traction_option) {
+  analysis::RoverScenarioModel model;
+  const io::ScenarioFile sc = io::find_scenario(name_or_file, resource_subfolders("scenarios"));
+  simulation::RockerBogieRun& run = model.run;
+  const std::string path = sc.path;
+  if (path == "rolling") {
+    run.path = simulation::rolling_path();
+  } else if (path == "flat") {
+    run.path = simulation::flat_path();
+  } else if (path == "slope") {
+    if (!(std::abs(sc.slope_deg) < 45)) throw InputError(sc.file, "slope_deg must be within +-45");
+    run.path = simulation::slope_path(sc.slope_deg);
+  } else if (path == "bump") {
+    if (!(sc.bump_length > 0.05) || !(std::abs(sc.bump_height) < 0.5))
+      throw InputError(sc.file, "bump_length_m > 0.05 and |bump_height_m| < 0.5 needed");
+    run.path = simulation::bump_path(sc.bump_height, sc.bump_x, sc.bump_length);
+  } else {
+    throw InputError(sc.file, "path '" + path + "': expected rolling, flat, slope or bump");
+  }
+  const std::string traction = traction_option.value_or(sc.traction);
+  if (traction == "polynomial") {
+    run.traction = simulation::TractionSource::polynomial;
+  } else if (traction == "wong-reece") {
+    run.traction = simulation::TractionSource::wong_reece;
+  } else {
+    throw UsageError("traction " + traction + ": expected polynomial or wong-reece");
+  }
+  run.duration = sc.duration;
+  run.start_x = sc.start_x;
+  about_file(sc.file, [&] {
+    for (const auto& [k, v] : sc.effects) simulation::set_effect(run.effects, k, v);
+  });
+  model.parameters.desired_speed = sc.desired_speed;
+  run.soil = io::find_soil(sc.soil, resource_subfolders("soils"));
+  const io::RoverDescription d = io::find_rover(sc.rover, resource_subfolders("rovers"));
+  if (!d.planar) throw InputError(d.file, "rover '" + d.name + "' is not a planar rocker-bogie description");
+  simulation::PlanarRockerBogieGeometry& g = model.geometry;
+  g.wheel_radius = d.planar->wheel_radius;
+  g.rocker_to_wheel1 = {d.planar->rocker_to_wheel1[0], d.planar->rocker_to_wheel1[1]};
+  g.rocker_to_bogie = {d.planar->rocker_to_bogie[0], d.planar->rocker_to_bogie[1]};
+  g.bogie_to_wheel2 = {d.planar->bogie_to_wheel2[0], d.planar->bogie_to_wheel2[1]};
+  g.bogie_to_wheel3 = {d.planar->bogie_to_wheel3[0], d.planar->bogie_to_wheel3[1]};
+  model.name = sc.name;
+  model.rover = d.name;
+  model.file = sc.file;
+  model.traction = traction;
+  return model;
+}
+
+}  // namespace roverlab::app

@@ -1,0 +1,27 @@
+#include "core/analysis/rover_candidates.h"
+
+namespace roverlab::analysis {
+
+namespace {
+
+class Candidate final : public RoverCandidate {
+ public:
+  const char* name() const override { return "soil strength change"; }
+  const char* cause() const override {
+    return "the soil changes strength where the rover drives (cohesion, friction and moduli scaled from a position on)";
+  }
+  bool physical() const override { return true; }
+  std::vector<RoverCandidateParameter> parameters(const RoverResidualFeatures& features) const override {
+    // The change position starts where the force and torque residuals change level.
+    // Without a change in the residuals, a soil of another strength from the start.
+    if (!std::isfinite(features.change_x)) return {{"soil-strength", "1", 0.9, 0.2, 5.0, 0.01}};
+    const double x0 = features.change_x;
+    return {{"soil-strength", "1", 0.9, 0.2, 5.0, 0.01}, {"effect-start-x", "m", x0, x0 - 0.3, x0 + 0.3, 0.002}};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RoverCandidate> make_soil_strength_rover_candidate() { return std::make_unique<Candidate>(); }
+
+}  // namespace roverlab::analysis

@@ -1,0 +1,48 @@
+#pragma once
+// The candidate causes of the rover discrepancy study: each one a class with
+// its name, its cause in plain words and the effects of the planar
+// rocker-bogie simulation (RockerBogieEffects, set by name through
+// simulation::set_effect) it frees. The list is rover_candidates.def; adding
+// a candidate is one file rover_candidate_X.cpp plus one line there.
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace roverlab::analysis {
+
+// What the study reads off the baseline residuals before fitting, for
+// candidates whose start cannot be a fixed number.
+struct RoverResidualFeatures {
+  double change_time = NAN;  // s: where the force and torque residuals change level most (two-segment fit)
+  double change_x = NAN;     // m: the front wheel's x in the baseline simulation at change_time
+  double hold_start = NAN;   // s: first time the wheel encoders stop changing for 1 s or more (NaN: never)
+};
+
+struct RoverCandidateParameter {
+  std::string effect;  // simulation::set_effect name
+  std::string unit;
+  double start = 0, lower = 0, upper = 0;
+  double step = 0;        // finite-difference step of the fit
+  bool fitted = true;     // false: set from the residual features and held (a discrete start time)
+  double resolution = 0;  // stated 1-sigma of a held parameter
+};
+
+class RoverCandidate {
+ public:
+  virtual ~RoverCandidate() = default;
+  virtual const char* name() const = 0;
+  virtual const char* cause() const = 0;
+  // Whether a trial value needs a new simulation (a physical effect) or only
+  // the sensor effects applied to the one it has (a sensor effect).
+  virtual bool physical() const = 0;
+  // Its parameters with starts taken from the features where it needs them;
+  // empty when the features say it cannot apply (no hold in the encoders).
+  virtual std::vector<RoverCandidateParameter> parameters(const RoverResidualFeatures& features) const = 0;
+};
+
+// One candidate of each entry in rover_candidates.def, in its order.
+std::vector<std::unique_ptr<RoverCandidate>> rover_candidates();
+
+}  // namespace roverlab::analysis

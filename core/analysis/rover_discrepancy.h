@@ -1,0 +1,104 @@
+#pragma once
+// What the planar rocker-bogie simulation (seed 003 chapter 4) gets wrong on
+// a rover log, the cause or causes, the extended model and its held-out gain.
+//
+// The scenario is the model of the run. The simulator is driven by the
+// controller's set points (the scenario's desired speed), not by the logged
+// torques: the logged torques are compared with the simulated controller's.
+// Every sensor channel (Table 5.1) and the torque commands are compared with
+// a noise-free simulation, weighted by each channel's noise (estimated from
+// the residuals' sample-to-sample differences, floored at a stated
+// resolution). The run is cut into blocks of equal time that alternate
+// between fitting and testing; each candidate (rover_candidates.def) is
+// fitted with Ceres on the fit blocks and judged by BIC there and by the
+// normalised error on the test blocks. Forward selection adds causes while
+// one improves BIC by more than 10 and the held-out error falls. The log's
+// truth streams are never read.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/log/log.h"
+#include "core/simulation/rocker_bogie.h"
+
+namespace roverlab::analysis {
+
+struct RoverScenarioModel {
+  std::string name, rover;  // scenario and rover names (the log's rover must match)
+  std::string file;         // the scenario file, named in errors
+  std::string traction;     // polynomial | wong-reece
+  simulation::PlanarRockerBogieGeometry geometry;
+  simulation::RockerBogieParameters parameters;
+  simulation::RockerBogieRun run;  // duration is taken from the log
+};
+
+struct RoverStudyOptions {
+  double block = 1.0;         // s, length of the alternating fit/test blocks
+  double min_delta_bic = 10;  // a cause must lower BIC by more than this
+  int max_causes = 3;
+  std::function<void(double)> progress;  // fraction done; may throw to cancel
+};
+
+struct RoverChannelResiduals {
+  std::string stream, channel, unit;
+  double sigma = 0;                              // noise used to weight it
+  double rmse = 0, bias = 0;                     // whole run
+  double drift = 0, t_drift = 0;                 // unit per 100 s and its t statistic
+  double slope_vs_slip = 0, t_slip = 0;          // unit per unit slip (mean wheel slip from encoders and velocimeter)
+  double slope_vs_position = 0, t_position = 0;  // unit per m of the simulated front-wheel x
+  double held_out_rmse_before = 0, held_out_rmse_after = 0;
+};
+
+struct RoverParameterFit {
+  std::string effect, unit;
+  double value = 0, sigma = 0;
+};
+
+struct RoverCandidateResult {
+  std::string name, cause;
+  std::vector<RoverParameterFit> parameters;
+  double chi2 = 0, delta_bic = 0;  // on the fit blocks, against the model it was added to
+  double held_out = 0;             // normalised RMS on the test blocks
+  bool significant = false;
+  int simulations = 0;
+  bool screened =
+      false;  // its linearised fit could not be significant: not fitted further (chi2 is the linearised one)
+};
+
+struct RoverSelectionStep {
+  std::string name, cause;
+  std::vector<RoverParameterFit> parameters;  // this cause's, refitted with the whole chain
+  double delta_bic = 0, held_out = 0;
+};
+
+struct RoverRedundancyCheck {
+  std::string name;  // what is compared with what
+  double value = 0, expected = 0, sigma = 0;
+  std::string unit, verdict;
+  bool consistent = true;
+};
+
+struct RoverDiscrepancyReport {
+  std::string scenario, drive, held_out_method;
+  double duration = 0;
+  std::size_t fit_residuals = 0, test_residuals = 0;
+  std::vector<RoverChannelResiduals> channels;
+  double baseline_bic = 0, baseline_held_out = 0, final_held_out = 0;
+  std::vector<RoverRedundancyCheck> checks;
+  std::vector<RoverCandidateResult> candidates;  // each alone on the baseline
+  std::vector<RoverSelectionStep> selection;     // the named causes, in order
+  int simulations = 0;
+  std::string what_is_wrong, verdict;
+  // For plots: the measured time of the velocimeter and forces streams and the
+  // normalised residual (sum over channels of r/sigma, RMS per sample) before and after.
+  std::vector<double> time, residual_before, residual_after, slip;
+};
+
+// Throws DataError when the log is not a planar rocker-bogie log of the
+// scenario's rover, has no commands or sensor streams, or is too short for
+// four fit and four test blocks.
+RoverDiscrepancyReport study_rover(const log::Log& log, const RoverScenarioModel& model,
+                                   const RoverStudyOptions& options = {});
+
+}  // namespace roverlab::analysis

@@ -1,0 +1,180 @@
+// The rover discrepancy study's forward selection and verdict.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "core/analysis/rover_candidates.h"
+#include "core/analysis/rover_discrepancy.h"
+#include "core/analysis/rover_fit.h"
+#include "core/analysis/rover_prediction.h"
+
+namespace roverlab::analysis::rover {
+
+namespace {
+
+std::vector<RoverParameterFit> fits_of(const std::vector<FitParameter>& p, std::size_t from) {
+  std::vector<RoverParameterFit> out;
+  for (std::size_t j = from; j < p.size(); ++j)
+    out.push_back({p[j].spec.effect, p[j].spec.unit, p[j].value, p[j].sigma});
+  return out;
+}
+
+struct Trial {
+  FitOutcome fit;
+  double screened_chi2 = 0;  // the linearised fit's
+  double delta_bic = 0;
+  bool significant = false;
+  bool screened = false;  // judged by its linearised fit alone
+  int simulations = 0;
+  bool applies = false;
+};
+
+struct Round {
+  std::vector<Trial> trials;  // one per candidate
+  int best = -1;
+};
+
+// One round of forward selection: every unused candidate on top of the
+// chain (held). Each is screened by one Gauss-Newton step; those that could
+// be significant are fitted, best screen first, skipping any whose screen is
+// more than ten times the chi-square the best fit so far reached.
+Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>>& candidates,
+                const std::vector<bool>& used, const RoverResidualFeatures& f, const std::vector<FitParameter>& chain,
+                double fit, double test, double min_delta_bic) {
+  const double ln_n = std::log(static_cast<double>(pr.count(Part::fit)));
+  Round round;
+  round.trials.resize(candidates.size());
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const std::vector<RoverCandidateParameter> specs = candidates[i]->parameters(f);
+    if (used[i] || specs.empty()) continue;
+    Trial& t = round.trials[i];
+    t.applies = true;
+    t.fit.parameters = chain;
+    for (auto& p : t.fit.parameters) p.free = false;
+    for (const auto& sp : specs) t.fit.parameters.push_back({sp, sp.start, 0.0, true});
+    const int sims = pr.simulations();
+    t.screened_chi2 = linearised_chi2(pr, t.fit.parameters);
+    t.simulations = pr.simulations() - sims;
+    t.screened = true;
+    t.fit.chi2_fit = t.screened_chi2;
+    t.fit.chi2_test = test;
+    t.delta_bic = t.screened_chi2 - fit + static_cast<double>(specs.size()) * ln_n;
+    if (t.delta_bic < -min_delta_bic) order.push_back(i);
+  }
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return round.trials[a].screened_chi2 < round.trials[b].screened_chi2;
+  });
+  double best_fit = INFINITY;
+  for (std::size_t i : order) {
+    Trial& t = round.trials[i];
+    if (t.screened_chi2 > 10 * best_fit + 100) continue;
+    const int sims = pr.simulations();
+    const double k = static_cast<double>(t.fit.parameters.size() - chain.size());
+    t.fit = fit_parameters(pr, t.fit.parameters);
+    t.simulations += pr.simulations() - sims;
+    t.screened = false;
+    t.delta_bic = t.fit.chi2_fit - fit + k * ln_n;
+    t.significant = t.delta_bic < -min_delta_bic && t.fit.chi2_test < test;
+    best_fit = std::min(best_fit, t.fit.chi2_fit);
+    if (t.significant &&
+        (round.best < 0 || t.delta_bic < round.trials[static_cast<std::size_t>(round.best)].delta_bic)) {
+      round.best = static_cast<int>(i);
+    }
+  }
+  return round;
+}
+
+}  // namespace
+
+// Forward selection (issue 13 item 4): each round tries every unused
+// candidate on top of the chain (the chain held), takes the one with the
+// lowest BIC when it improves BIC by more than min_delta_bic and the
+// held-out chi-square falls, then refits the whole chain with it.
+void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStudyOptions& o, RoverDiscrepancyReport& r,
+                   std::vector<FitParameter>& chain) {
+  const auto candidates = rover_candidates();
+  const double ln_n = std::log(static_cast<double>(pr.count(Part::fit)));
+  const double n_test = static_cast<double>(pr.count(Part::test));
+  const simulation::RockerBogieEffects none;
+  double fit = chi2(pr, none, Part::fit), test = chi2(pr, none, Part::test);
+  r.baseline_bic = fit;
+  r.baseline_held_out = std::sqrt(test / n_test);
+  std::vector<bool> used(candidates.size(), false);
+  for (int round = 0; round < o.max_causes; ++round) {
+    if (o.progress) o.progress(static_cast<double>(round) / static_cast<double>(o.max_causes + 1));
+    Round rd = run_round(pr, candidates, used, f, chain, fit, test, o.min_delta_bic);
+    if (round == 0) {
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const Trial& t = rd.trials[i];
+        if (!t.applies) continue;
+        r.candidates.push_back({candidates[i]->name(), candidates[i]->cause(), fits_of(t.fit.parameters, chain.size()),
+                                t.fit.chi2_fit, t.delta_bic, std::sqrt(t.fit.chi2_test / n_test), t.significant,
+                                t.simulations, t.screened});
+      }
+    }
+    if (rd.best < 0) break;
+    const auto b = static_cast<std::size_t>(rd.best);
+    used[b] = true;
+    const Trial& best = rd.trials[b];
+    const std::size_t k = best.fit.parameters.size() - chain.size();
+    FitOutcome joint = best.fit;
+    if (!chain.empty()) {  // refit the whole chain with the new cause
+      std::vector<FitParameter> all = best.fit.parameters;
+      for (auto& p : all) p.free = true;
+      FitOutcome refit = fit_parameters(pr, all);
+      if (refit.chi2_fit <= joint.chi2_fit) joint = std::move(refit);
+    }
+    const double delta_bic = joint.chi2_fit - fit + static_cast<double>(k) * ln_n;
+    chain = joint.parameters;
+    fit = joint.chi2_fit;
+    test = joint.chi2_test;
+    r.selection.push_back({candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic,
+                           std::sqrt(test / n_test)});
+  }
+  r.final_held_out = std::sqrt(test / n_test);
+}
+
+void write_verdict(RoverDiscrepancyReport& r) {
+  const RoverChannelResiduals* worst = nullptr;
+  for (const auto& c : r.channels) {
+    if (worst == nullptr || c.rmse / c.sigma > worst->rmse / worst->sigma) worst = &c;
+  }
+  char buf[600];
+  if (worst == nullptr || worst->rmse / worst->sigma < 1.5) {
+    r.what_is_wrong = "The simulation agrees with every measured channel within its noise.";
+  } else {
+    std::snprintf(
+        buf, sizeof buf,
+        "The simulation disagrees most on %s/%s: RMSE %.3g %s (%.3g noise sigmas), bias %.3g %s, drift %.3g %s "
+        "per 100 s (t = %.3g).",
+        worst->stream.c_str(), worst->channel.c_str(), worst->rmse, worst->unit.c_str(), worst->rmse / worst->sigma,
+        worst->bias, worst->unit.c_str(), worst->drift, worst->unit.c_str(), worst->t_drift);
+    r.what_is_wrong = buf;
+  }
+  if (r.selection.empty()) {
+    r.verdict = worst != nullptr && worst->rmse / worst->sigma >= 1.5
+                    ? "Unexplained: no candidate lowers BIC by more than 10 with a smaller held-out error."
+                    : "No cause: no candidate lowers BIC by more than 10 with a smaller held-out error.";
+    return;
+  }
+  std::string v = r.selection.size() == 1 ? "Cause: " : "Causes, in order: ";
+  for (std::size_t i = 0; i < r.selection.size(); ++i) {
+    const auto& s = r.selection[i];
+    v += (i > 0 ? "; then " : "") + s.name + " (";
+    for (std::size_t j = 0; j < s.parameters.size(); ++j) {
+      const auto& p = s.parameters[j];
+      std::snprintf(buf, sizeof buf, "%s%s = %.4g +- %.2g %s", j > 0 ? ", " : "", p.effect.c_str(), p.value, p.sigma,
+                    p.unit == "1" ? "" : p.unit.c_str());
+      v += buf;
+    }
+    std::snprintf(buf, sizeof buf, "; delta BIC %.1f)", s.delta_bic);
+    v += buf;
+  }
+  std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% lower).", r.baseline_held_out,
+                r.final_held_out, 100 * (1 - r.final_held_out / r.baseline_held_out));
+  r.verdict = v + buf;
+}
+
+}  // namespace roverlab::analysis::rover

@@ -1,0 +1,139 @@
+#include "core/analysis/rover_prediction.h"
+
+#include <cmath>
+
+#include "core/common/error.h"
+
+namespace roverlab::analysis::rover {
+
+namespace {
+
+// Clamped linear interpolation of (t, v) at ascending times.
+std::vector<double> interpolate_at(const std::vector<double>& t, const std::vector<double>& v,
+                                   const std::vector<double>& at) {
+  std::vector<double> out(at.size());
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    const double x = at[k];
+    if (x <= t.front()) {
+      out[k] = v.front();
+      continue;
+    }
+    if (x >= t.back()) {
+      out[k] = v.back();
+      continue;
+    }
+    while (j + 1 < t.size() && t[j + 1] < x) ++j;
+    const double w = (x - t[j]) / (t[j + 1] - t[j]);
+    out[k] = v[j] + w * (v[j + 1] - v[j]);
+  }
+  return out;
+}
+
+MeasuredChannel measured(const log::Log& lg, const std::string& stream, const std::string& name, double block) {
+  const log::Stream* st = lg.find_stream(stream);
+  if (st == nullptr)
+    throw DataError("no " + stream +
+                    " stream (a planar rocker-bogie log has joints, imu, velocimeter, forces and commands)");
+  const log::Channel* c = st->find_channel(name);
+  if (c == nullptr) throw DataError("stream " + stream + " has no channel " + name);
+  MeasuredChannel m{stream, name, c->unit, st->time(), c->values, {}, 1.0};
+  for (double v : m.values) {
+    if (!std::isfinite(v)) throw DataError(stream + "/" + name + " has missing or non-finite samples");
+  }
+  m.fit.resize(m.time.size());
+  const double t0 = m.time.front();
+  for (std::size_t k = 0; k < m.time.size(); ++k) {
+    m.fit[k] = static_cast<std::int64_t>(std::floor((m.time[k] - t0) / block)) % 2 == 0 ? 1 : 0;
+  }
+  return m;
+}
+
+}  // namespace
+
+Predictor::Predictor(const log::Log& lg, const RoverScenarioModel& model, double block) : model_(model) {
+  if (!lg.metadata.rover_id.empty() && lg.metadata.rover_id != model.rover) {
+    throw DataError("the log's rover is " + lg.metadata.rover_id + ", scenario " + model.name + " models " +
+                    model.rover);
+  }
+  if (lg.find_stream("commands") == nullptr)
+    throw DataError("no commands stream (the wheel torques the rover was given)");
+  for (const auto& c : simulation::sensor_channels()) channels_.push_back(measured(lg, c.stream, c.name, block));
+  for (int i = 1; i <= 3; ++i)
+    channels_.push_back(measured(lg, "commands", "wheel_torque_" + std::to_string(i), block));
+  const std::vector<double>& t = channels_.front().time;
+  duration_ = t.back() - t.front();
+  if (!(duration_ >= 8 * block)) {
+    throw DataError("the log lasts " + std::to_string(duration_) + " s; the study needs at least 8 blocks of " +
+                    std::to_string(block) + " s (4 to fit, 4 to test)");
+  }
+}
+
+const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
+  const std::array<double, 5> key{fx.soil_strength, fx.slip_sinkage_n1, fx.grouser_height, fx.wheel_radius_scale,
+                                  fx.effect_start_x};
+  auto it = cache_.find(key);
+  if (it != cache_.end()) return it->second;
+  if (cache_.size() > 16) cache_.clear();
+  simulation::RockerBogieRun run = model_.run;
+  run.duration = channels_.front().time.back();
+  run.sensor_noise = false;
+  run.progress = nullptr;
+  run.effects = simulation::RockerBogieEffects{};
+  run.effects.soil_strength = fx.soil_strength;
+  run.effects.slip_sinkage_n1 = fx.slip_sinkage_n1;
+  run.effects.grouser_height = fx.grouser_height;
+  run.effects.wheel_radius_scale = fx.wheel_radius_scale;
+  run.effects.effect_start_x = fx.effect_start_x;
+  const simulation::RockerBogieResult r = simulation::simulate_rocker_bogie(model_.geometry, model_.parameters, run);
+  ++simulations_;
+  Simulated s;
+  const auto& names = simulation::sensor_channels();
+  for (std::size_t c = 0; c < simulation::kSensorChannels; ++c) {
+    s.sensors.values[c] = r.log.stream(names[c].stream).channel(names[c].name).values;
+  }
+  s.sensors.time = r.log.stream("joints").time();
+  s.sensors.imu_time = s.sensors.time;
+  for (std::size_t i = 0; i < 3; ++i) {
+    s.torque[i] = r.log.stream("commands").channel("wheel_torque_" + std::to_string(i + 1)).values;
+  }
+  s.front_x = r.log.stream("truth/wheels").channel("centre_x_1").values;
+  return cache_.emplace(key, std::move(s)).first->second;
+}
+
+std::array<std::vector<double>, kChannels> Predictor::predict(const simulation::RockerBogieEffects& fx) {
+  const Simulated& sim = simulate(fx);
+  simulation::SensorSeries series = sim.sensors;
+  simulation::apply_sensor_effects(fx, series);
+  std::array<std::vector<double>, kChannels> out;
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    const bool sensor = c < simulation::kSensorChannels;
+    const std::vector<double>& t = sensor && channels_[c].stream == "imu" ? series.imu_time : series.time;
+    const std::vector<double>& v = sensor ? series.values[c] : sim.torque[c - simulation::kSensorChannels];
+    out[c] = interpolate_at(t, v, channels_[c].time);
+  }
+  return out;
+}
+
+std::vector<double> Predictor::residuals(const simulation::RockerBogieEffects& fx, Part part) {
+  const auto p = predict(fx);
+  std::vector<double> r;
+  r.reserve(count(part));
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    const MeasuredChannel& m = channels_[c];
+    for (std::size_t k = 0; k < m.values.size(); ++k) {
+      if (part == Part::all || (m.fit[k] != 0) == (part == Part::fit)) r.push_back((m.values[k] - p[c][k]) / m.sigma);
+    }
+  }
+  return r;
+}
+
+std::size_t Predictor::count(Part part) const {
+  std::size_t n = 0;
+  for (const auto& m : channels_) {
+    for (char f : m.fit) n += part == Part::all || (f != 0) == (part == Part::fit) ? 1 : 0;
+  }
+  return n;
+}
+
+}  // namespace roverlab::analysis::rover
