@@ -1,6 +1,7 @@
 // `discrepancy rover`: what the planar rocker-bogie simulation gets wrong on
 // a rover log, the cause or causes, the extended model and its held-out gain.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "app/analysis.h"
@@ -35,15 +36,18 @@ std::string parameters_text(const json& ps) {
   return t;
 }
 
-// A scatter of points (x, y) as inline SVG, two series (before grey, after blue).
+// A scatter of points (x, y) as inline SVG on a log10 y axis, two series
+// (before grey, after blue): the residual before can be thousands of sigmas.
 std::string scatter_svg(const std::string& title, const std::string& xlabel, const std::vector<double>& x,
                         const std::vector<double>& y0, const std::vector<double>& y1) {
-  double xmin = INFINITY, xmax = -INFINITY, ymax = 0;
+  const auto ly = [](double y) { return std::log10(std::max(y, 0.01)); };
+  double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
   for (std::size_t k = 0; k < x.size(); ++k) {
-    if (!std::isfinite(x[k]) || !std::isfinite(y0[k])) continue;
+    if (!std::isfinite(x[k]) || !std::isfinite(y0[k]) || !std::isfinite(y1[k])) continue;
     xmin = std::min(xmin, x[k]);
     xmax = std::max(xmax, x[k]);
-    ymax = std::max({ymax, y0[k], y1[k]});
+    ymin = std::min({ymin, ly(y0[k]), ly(y1[k])});
+    ymax = std::max({ymax, ly(y0[k]), ly(y1[k])});
   }
   std::ostringstream s;
   const double W = 420, H = 220, L = 50, B = 190, T = 20;
@@ -51,16 +55,18 @@ std::string scatter_svg(const std::string& title, const std::string& xlabel, con
     << "<text x=\"" << L << "\" y=\"14\" font-size=\"12\">" << ReportSection::escape(title) << "</text>"
     << "<line x1=\"" << L << "\" y1=\"" << B << "\" x2=\"" << W - 10 << "\" y2=\"" << B << "\" stroke=\"black\"/>"
     << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << B << "\" stroke=\"black\"/>"
-    << "<text x=\"" << W / 2 << "\" y=\"" << H - 5 << "\" font-size=\"11\">" << ReportSection::escape(xlabel) << " ("
+    << "<text x=\"" << L << "\" y=\"" << H - 5 << "\" font-size=\"11\">" << ReportSection::escape(xlabel) << " ("
     << ReportSection::number(xmin) << " .. " << ReportSection::number(xmax) << ")</text>"
-    << "<text x=\"2\" y=\"" << T + 8 << "\" font-size=\"10\">" << ReportSection::number(ymax) << "</text>";
-  if (!(xmax > xmin) || !(ymax > 0)) return s.str() + "</svg>";
-  const std::size_t stride = std::max<std::size_t>(1, x.size() / 1500);
+    << "<text x=\"2\" y=\"" << T + 8 << "\" font-size=\"10\">" << ReportSection::number(std::pow(10, ymax)) << "</text>"
+    << "<text x=\"2\" y=\"" << B << "\" font-size=\"10\">" << ReportSection::number(std::pow(10, ymin)) << "</text>";
+  if (!(xmax > xmin)) return s.str() + "</svg>";
+  if (!(ymax > ymin)) ymax = ymin + 1;
   for (int series = 0; series < 2; ++series) {
     const std::vector<double>& y = series == 0 ? y0 : y1;
-    for (std::size_t k = 0; k < x.size(); k += stride) {
+    for (std::size_t k = 0; k < x.size(); ++k) {
       if (!std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
-      const double px = L + (x[k] - xmin) / (xmax - xmin) * (W - L - 10), py = B - y[k] / ymax * (B - T);
+      const double px = L + (x[k] - xmin) / (xmax - xmin) * (W - L - 10),
+                   py = B - (ly(y[k]) - ymin) / (ymax - ymin) * (B - T);
       s << "<circle cx=\"" << px << "\" cy=\"" << py << "\" r=\"1.2\" fill=\"" << (series == 0 ? "#999" : "#1f77b4")
         << "\"/>";
     }
@@ -201,6 +207,16 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
   j["causes"] = json::array();
   for (const auto& s : r.selection) j["causes"].push_back(s.name);
   j["causes_text"] = causes.empty() ? "none" : causes;
+  // The residual before and after, decimated to at most 600 samples, for the report's plots.
+  json plot = {{"time", json::array()}, {"before", json::array()}, {"after", json::array()}, {"slip", json::array()}};
+  const std::size_t stride = std::max<std::size_t>(1, r.time.size() / 600);
+  for (std::size_t k = 0; k < r.time.size(); k += stride) {
+    plot["time"].push_back(r.time[k]);
+    plot["before"].push_back(finite_or_null(r.residual_before[k]));
+    plot["after"].push_back(finite_or_null(r.residual_after[k]));
+    plot["slip"].push_back(finite_or_null(r.slip[k]));
+  }
+  j["plot"] = plot;
   return j;
 }
 
@@ -281,6 +297,16 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
            << "): " << ReportSection::escape(c.at("verdict").get<std::string>()) << "</li>\n";
   }
   s.html << "</ul>\n";
+  const auto series = [&](const char* key) {
+    std::vector<double> v;
+    for (const auto& x : j.at("plot").at(key)) v.push_back(x.is_number() ? x.get<double>() : NAN);
+    return v;
+  };
+  const std::vector<double> before = series("before"), after = series("after");
+  s.html << "<p>Residual (RMS over channels, in noise sigmas, log scale): nominal model grey, with the named causes "
+            "blue.</p>\n"
+         << scatter_svg("residual against time", "time (s)", series("time"), before, after)
+         << scatter_svg("residual against slip", "mean wheel slip", series("slip"), before, after) << "\n";
   s.write_csv("rover_discrepancy_channels.csv", csv);
 }
 

@@ -11,7 +11,8 @@ class Candidate final : public RoverCandidate {
   bool physical() const override { return false; }
   std::vector<RoverCandidateParameter> parameters(const RoverResidualFeatures& features) const override {
     if (!std::isfinite(features.hold_start)) return {};
-    // The start is where the encoders stop changing; held, not fitted (a discrete time).
+    // The start is where the encoders stop changing; held, not fitted (a
+    // discrete time known to one 50 Hz sample: uniform, sigma dt / sqrt(12)).
     RoverCandidateParameter p{"encoder-dropout", "s", features.hold_start, 0.0, 1e5, 0.02};
     p.fitted = false;
     p.resolution = 0.02 / std::sqrt(12.0);

@@ -12,7 +12,7 @@ class Candidate final : public RoverCandidate {
   }
   bool physical() const override { return true; }
   std::vector<RoverCandidateParameter> parameters(const RoverResidualFeatures& features) const override {
-    // The change position starts where the force and torque residuals change level.
+    // The change position starts where the logged torques start to depart from the simulation's.
     // Without a change in the residuals, a soil of another strength from the start.
     if (!std::isfinite(features.change_x)) return {{"soil-strength", "1", 0.9, 0.2, 5.0, 0.01}};
     const double x0 = features.change_x;

@@ -15,7 +15,7 @@ namespace roverlab::analysis {
 // What the study reads off the baseline residuals before fitting, for
 // candidates whose start cannot be a fixed number.
 struct RoverResidualFeatures {
-  double change_time = NAN;  // s: where the force and torque residuals change level most (two-segment fit)
+  double change_time = NAN;  // s: where the logged torques start to depart from the simulation's
   double change_x = NAN;     // m: the front wheel's x in the baseline simulation at change_time
   double hold_start = NAN;   // s: first time the wheel encoders stop changing for 1 s or more (NaN: never)
 };

@@ -90,24 +90,24 @@ std::vector<double> sensor_slip(const std::vector<MeasuredChannel>& ch, double r
   return s;
 }
 
-// Where the force and torque residuals change level most: the two-segment
-// split with the largest drop of chi-square (prefix sums); NaN when the drop
-// is under 100 (no change worth a start).
+// Where the simulation starts to disagree with the logged torques: the first
+// sample from which some torque command's residual stays beyond 3 sigma for
+// 5 samples. Only a physical cause moves the torques (sensor effects leave
+// them alone), so this is where a soil change, if any, begins. NaN: never.
 double change_time(const std::vector<MeasuredChannel>& ch, const Prediction& p) {
-  const std::size_t n = ch[8].values.size();
-  std::vector<double> gain(n, 0.0);
-  for (std::size_t c = 8; c < kChannels; ++c) {
-    if (ch[c].values.size() != n) continue;
-    std::vector<double> prefix(n + 1, 0.0);
-    for (std::size_t k = 0; k < n; ++k) prefix[k + 1] = prefix[k] + (ch[c].values[k] - p[c][k]) / ch[c].sigma;
-    const double total = prefix[n];
-    for (std::size_t k = n / 20; k < n - n / 20; ++k) {
-      const double n1 = static_cast<double>(k), n2 = static_cast<double>(n - k), s1 = prefix[k], s2 = total - s1;
-      gain[k] += s1 * s1 / n1 + s2 * s2 / n2 - total * total / static_cast<double>(n);
+  double first = NAN;
+  for (std::size_t c = simulation::kSensorChannels; c < kChannels; ++c) {
+    int run = 0;
+    for (std::size_t k = 0; k < ch[c].values.size(); ++k) {
+      run = std::abs(ch[c].values[k] - p[c][k]) > 3 * ch[c].sigma ? run + 1 : 0;
+      if (run == 5) {
+        const double t = ch[c].time[k - 4];
+        if (!(t >= first)) first = t;
+        break;
+      }
     }
   }
-  const auto best = std::max_element(gain.begin(), gain.end());
-  return *best > 100 ? ch[8].time[static_cast<std::size_t>(best - gain.begin())] : NAN;
+  return first;
 }
 
 // The first time the wheel encoders all stop changing for 1 s or more.
@@ -121,7 +121,8 @@ double hold_start(const std::vector<MeasuredChannel>& ch) {
       start = k;
       continue;
     }
-    if (t[k] - t[start] >= 1.0) return t[start + 1];
+    // The dropout began between the last changing sample and the first held one.
+    if (t[k] - t[start] >= 1.0) return 0.5 * (t[start] + t[start + 1]);
   }
   return NAN;
 }

@@ -27,6 +27,7 @@ class SimulationCost final : public ceres::CostFunction {
     std::copy(r.begin(), r.end(), residuals);
     if (jacobians == nullptr || jacobians[0] == nullptr) return true;
     const std::size_t n = r.size(), m = free_.size();
+    last_x_.assign(x[0], x[0] + m);
     for (std::size_t j = 0; j < m; ++j) {
       FitParameter& q = p[free_[j]];
       const double v = q.value;
@@ -36,13 +37,19 @@ class SimulationCost final : public ceres::CostFunction {
       q.value = v;
       for (std::size_t i = 0; i < n; ++i) jacobians[0][i * m + j] = (r2[i] - r[i]) / h;
     }
+    last_jacobian_.assign(jacobians[0], jacobians[0] + n * m);
     return true;
+  }
+  // The last Jacobian computed, when it was computed at x (saves a simulation per parameter).
+  const std::vector<double>* jacobian_at(const std::vector<double>& x) const {
+    return x == last_x_ ? &last_jacobian_ : nullptr;
   }
 
  private:
   Predictor& predictor_;
   std::vector<FitParameter>& parameters_;
   std::vector<std::size_t> free_;
+  mutable std::vector<double> last_x_, last_jacobian_;
 };
 
 // 1-sigma of the free parameters from (J^T J)^-1 at the solution (residuals in noise units).
@@ -50,10 +57,16 @@ void set_sigmas(const SimulationCost& cost, std::vector<FitParameter>& p, const 
                 const std::vector<double>& x) {
   const auto n = static_cast<std::size_t>(cost.num_residuals());
   const std::size_t m = free.size();
-  std::vector<double> r(n), jac(n * m);
-  const double* xs[] = {x.data()};
-  double* js[] = {jac.data()};
-  cost.Evaluate(xs, r.data(), js);
+  std::vector<double> jac;
+  if (const std::vector<double>* last = cost.jacobian_at(x)) {
+    jac = *last;
+  } else {
+    std::vector<double> r(n);
+    jac.resize(n * m);
+    const double* xs[] = {x.data()};
+    double* js[] = {jac.data()};
+    cost.Evaluate(xs, r.data(), js);
+  }
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
       jac.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
   const Eigen::MatrixXd info = J.transpose() * J;
@@ -129,8 +142,8 @@ FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parame
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = 15;
-    so.function_tolerance = 1e-7;
+    so.max_num_iterations = 8;
+    so.function_tolerance = 1e-5;  // 1e-5 of a chi-square near the residual count: well under one unit
     so.num_threads = 1;
     so.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;

@@ -1,6 +1,7 @@
 #include "core/simulation/rocker_bogie_simulator.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <Eigen/Dense>
@@ -211,7 +212,10 @@ void RockerBogieSimulator::write_metadata() {
       {"imu-time-offset", fx.imu_time_offset, none.imu_time_offset},
   };
   for (const auto& e : effects) {
-    if (e.value != e.neutral) lg.metadata.extra[std::string("truth/effect/") + e.name] = std::to_string(e.value);
+    if (e.value == e.neutral) continue;
+    char value[32];
+    std::snprintf(value, sizeof value, "%.17g", e.value);  // all digits: a study's fit is judged against it
+    lg.metadata.extra[std::string("truth/effect/") + e.name] = value;
   }
   lg.metadata.extra["truth/seed"] = std::to_string(run_.seed);
   lg.metadata.description = "planar rocker-bogie simulation (seed 003 chapter 4) on path: " + run_.path.name;

@@ -1,0 +1,180 @@
+// The rover discrepancy study (issue 13): hidden effects in a simulated
+// planar rocker-bogie log, found again without reading its truth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/analysis/rover_candidates.h"
+#include "core/analysis/rover_discrepancy.h"
+#include "core/common/error.h"
+#include "core/simulation/random_effects.h"
+#include "core/simulation/sensor_effects.h"
+#include "importers/soil_file.h"
+
+using namespace roverlab;
+
+namespace {
+
+analysis::RoverScenarioModel flat_model(double seconds) {
+  analysis::RoverScenarioModel m;
+  m.name = "flat test";
+  m.rover = "kapvik_planar";
+  m.run.soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
+  m.run.path = simulation::flat_path();
+  m.run.duration = seconds;
+  return m;
+}
+
+log::Log measured(const analysis::RoverScenarioModel& m, const std::vector<std::pair<std::string, double>>& effects,
+                  unsigned seed) {
+  simulation::RockerBogieRun run = m.run;
+  run.seed = seed;
+  for (const auto& e : effects) simulation::set_effect(run.effects, e.first, e.second);
+  return simulation::simulate_rocker_bogie(m.geometry, m.parameters, run).log;
+}
+
+std::vector<std::string> causes(const analysis::RoverDiscrepancyReport& r) {
+  std::vector<std::string> out;
+  for (const auto& s : r.selection) out.push_back(s.parameters.front().effect);
+  return out;
+}
+
+const analysis::RoverParameterFit& fitted(const analysis::RoverDiscrepancyReport& r, const std::string& effect) {
+  for (const auto& s : r.selection) {
+    for (const auto& p : s.parameters) {
+      if (p.effect == effect) return p;
+    }
+  }
+  throw std::runtime_error("not fitted: " + effect);
+}
+
+}  // namespace
+
+TEST(RoverDiscrepancy, NoEffectNoCauseAndTheResidualsAreNoise) {
+  const auto m = flat_model(20);
+  for (unsigned seed : {1U, 2U}) {
+    const auto r = analysis::study_rover(measured(m, {}, seed), m);
+    EXPECT_TRUE(r.selection.empty()) << r.verdict;
+    for (const auto& c : r.channels) {
+      if (c.stream != "commands") EXPECT_LT(c.rmse / c.sigma, 1.3) << c.stream << "/" << c.channel;
+    }
+    for (const auto& c : r.checks) EXPECT_TRUE(c.consistent) << c.name << ": " << c.value;
+    EXPECT_NEAR(r.final_held_out, r.baseline_held_out, 1e-12);
+  }
+}
+
+TEST(RoverDiscrepancy, AGyroBiasIsNamedWithItsSizeAndTheCheckWithoutSimulationSeesIt) {
+  const auto m = flat_model(20);
+  const auto r = analysis::study_rover(measured(m, {{"gyro-bias", 0.003}}, 3), m);
+  ASSERT_EQ(causes(r), std::vector<std::string>{"gyro-bias"}) << r.verdict;
+  const auto& p = fitted(r, "gyro-bias");
+  EXPECT_LT(std::abs(p.value - 0.003), 3 * p.sigma)
+      << p.value << " +- " << p.sigma;                                 // one run: 3 sigma; the suite counts 2 sigma
+  EXPECT_FALSE(r.checks.front().consistent) << r.checks.front().name;  // pitch rate vs accelerometers
+}
+
+TEST(RoverDiscrepancy, AWeakerSoilFromAPositionIsNamedWithItsStrengthAndPosition) {
+  const auto m = flat_model(20);
+  const auto r = analysis::study_rover(measured(m, {{"soil-strength", 0.8}, {"effect-start-x", 0.15}}, 4), m);
+  ASSERT_EQ(causes(r), std::vector<std::string>{"soil-strength"}) << r.verdict;
+  EXPECT_NEAR(fitted(r, "soil-strength").value, 0.8, 0.005);
+  EXPECT_NEAR(fitted(r, "effect-start-x").value, 0.15, 0.005);
+  EXPECT_LT(r.final_held_out, 0.1 * r.baseline_held_out);  // the gain, on the test blocks
+}
+
+TEST(RoverDiscrepancy, TwoCausesAtOnceAreBothNamed) {
+  const auto m = flat_model(20);
+  const auto r = analysis::study_rover(measured(m, {{"slip-sinkage", 0.3}, {"force-offset", 0.4}}, 5), m);
+  auto c = causes(r);
+  std::sort(c.begin(), c.end());
+  EXPECT_EQ(c, (std::vector<std::string>{"force-offset", "slip-sinkage"})) << r.verdict;
+  EXPECT_NEAR(fitted(r, "force-offset").value, 0.4, 0.01);
+}
+
+TEST(RoverDiscrepancy, ALogItCannotStudyIsRefusedNamingWhy) {
+  const auto m = flat_model(20);
+  log::Log lg = measured(m, {}, 1);
+  analysis::RoverScenarioModel other = m;
+  other.rover = "exomars_bb2";
+  EXPECT_THROW(analysis::study_rover(lg, other), DataError);  // another rover
+  log::Log short_log = measured(flat_model(5), {}, 1);
+  try {
+    analysis::study_rover(short_log, m);
+    FAIL() << "a 5 s log was studied";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("8 blocks"), std::string::npos) << e.what();
+  }
+  log::Log no_commands;
+  no_commands.metadata = lg.metadata;
+  for (const auto& s : lg.streams()) {
+    if (s.name() != "commands") no_commands.add_stream(s);
+  }
+  try {
+    analysis::study_rover(no_commands, m);
+    FAIL() << "a log without commands was studied";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("commands"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RoverDiscrepancy, EveryCandidateFreesEffectsTheSimulatorKnowsWithinItsBounds) {
+  analysis::RoverResidualFeatures f;
+  f.change_x = 0.3;
+  f.hold_start = 10;
+  const auto cands = analysis::rover_candidates();
+  EXPECT_EQ(cands.size(), 10U);
+  for (const auto& c : cands) {
+    for (const auto& p : c->parameters(f)) {
+      simulation::RockerBogieEffects fx;
+      EXPECT_NO_THROW(simulation::set_effect(fx, p.effect, p.start)) << c->name();
+      EXPECT_NO_THROW(simulation::set_effect(fx, p.effect, p.lower)) << c->name();
+      EXPECT_NO_THROW(simulation::set_effect(fx, p.effect, p.upper)) << c->name();
+      EXPECT_GT(p.step, 0) << c->name();
+    }
+  }
+}
+
+TEST(RoverDiscrepancy, TheSensorEffectsTheStudyFitsAreTheOnesTheSimulatorInjects) {
+  const auto m = flat_model(5);
+  simulation::RockerBogieRun run = m.run;
+  run.sensor_noise = false;
+  const log::Log plain = simulation::simulate_rocker_bogie(m.geometry, m.parameters, run).log;
+  for (const auto& e : std::vector<std::pair<std::string, double>>{{"gyro-bias", 0.01},
+                                                                   {"force-scale", 1.1},
+                                                                   {"force-offset", 2},
+                                                                   {"encoder-dropout", 1},
+                                                                   {"accel-bias", 0.1}}) {
+    run.effects = {};
+    simulation::set_effect(run.effects, e.first, e.second);
+    const log::Log with = simulation::simulate_rocker_bogie(m.geometry, m.parameters, run).log;
+    simulation::SensorSeries s;
+    const auto& names = simulation::sensor_channels();
+    for (std::size_t c = 0; c < simulation::kSensorChannels; ++c) {
+      s.values[c] = plain.stream(names[c].stream).channel(names[c].name).values;
+    }
+    s.time = plain.stream("joints").time();
+    simulation::apply_sensor_effects(run.effects, s);
+    for (std::size_t c = 0; c < simulation::kSensorChannels; ++c) {
+      EXPECT_EQ(s.values[c], with.stream(names[c].stream).channel(names[c].name).values)
+          << e.first << " " << names[c].name;
+    }
+  }
+}
+
+TEST(RandomEffects, TheSeedDrawsNoneOneOrTwoEffectsNeverTwoPhysicalOnes) {
+  int counts[3] = {0, 0, 0};
+  for (unsigned seed = 1; seed <= 200; ++seed) {
+    const auto r = simulation::random_effects(seed, 60, 0.8);
+    ASSERT_LE(r.causes.size(), 2U);
+    ++counts[r.causes.size()];
+    int physical = 0;
+    for (const auto& c : r.causes) {
+      physical += c == "soil-strength" || c == "slip-sinkage" || c == "grousers" || c == "wheel-radius-scale";
+    }
+    EXPECT_LE(physical, 1) << seed;
+    simulation::RockerBogieEffects fx;
+    for (const auto& e : r.effects) EXPECT_NO_THROW(simulation::set_effect(fx, e.first, e.second)) << e.first;
+    EXPECT_EQ(simulation::random_effects(seed, 60, 0.8).effects, r.effects);  // the seed decides
+  }
+  for (int c : counts) EXPECT_GT(c, 25);
+}
