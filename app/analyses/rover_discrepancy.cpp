@@ -20,7 +20,11 @@ using nlohmann::json;
 json parameters_json(const std::vector<analysis::RoverParameterFit>& ps) {
   json a = json::array();
   for (const auto& p : ps) {
-    a.push_back({{"effect", p.effect}, {"unit", p.unit}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}});
+    a.push_back({{"effect", p.effect},
+                 {"unit", p.unit},
+                 {"value", p.value},
+                 {"sigma", finite_or_null(p.sigma)},
+                 {"at_bound", p.at_bound}});
   }
   return a;
 }
@@ -165,6 +169,8 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
                   {"t_slip", finite_or_null(c.t_slip)},
                   {"slope_vs_position", finite_or_null(c.slope_vs_position)},
                   {"t_position", finite_or_null(c.t_position)},
+                  {"slope_vs_load", finite_or_null(c.slope_vs_load)},
+                  {"t_load", finite_or_null(c.t_load)},
                   {"held_out_rmse_before", finite_or_null(c.held_out_rmse_before)},
                   {"held_out_rmse_after", finite_or_null(c.held_out_rmse_after)}});
   }
@@ -261,9 +267,11 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
          << ReportSection::escape(j.at("drive").get<std::string>()) << "; "
          << ReportSection::escape(j.at("held_out_method").get<std::string>()) << ".</p>\n"
          << "<table><tr><th>channel</th><th>unit</th><th>noise</th><th>RMSE</th><th>bias</th><th>drift / 100 s</th>"
-            "<th>t (slip)</th><th>t (position)</th><th>held-out before</th><th>held-out after</th></tr>\n";
+            "<th>t (slip)</th><th>t (position)</th><th>t (load)</th><th>held-out before</th><th>held-out "
+            "after</th></tr>\n";
   std::string csv =
-      "stream,channel,unit,sigma,rmse,bias,drift_per_100s,t_drift,t_slip,t_position,held_out_before,held_out_after\n";
+      "stream,channel,unit,sigma,rmse,bias,drift_per_100s,t_drift,t_slip,t_position,t_load,held_out_before,held_out_"
+      "after\n";
   for (const auto& c : j.at("channels")) {
     s.html << "<tr><td style=\"text-align:left\">"
            << ReportSection::escape(c.at("stream").get<std::string>() + "/" + c.at("channel").get<std::string>())
@@ -271,11 +279,11 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
            << n(c.at("sigma"), "%.3g") << "</td><td>" << n(c.at("rmse"), "%.3g") << "</td><td>"
            << n(c.at("bias"), "%.3g") << "</td><td>" << n(c.at("drift_per_100s"), "%.3g") << "</td><td>"
            << n(c.at("t_slip"), "%.3g") << "</td><td>" << n(c.at("t_position"), "%.3g") << "</td><td>"
-           << n(c.at("held_out_rmse_before"), "%.3g") << "</td><td>" << n(c.at("held_out_rmse_after"), "%.3g")
-           << "</td></tr>\n";
+           << n(c.at("t_load"), "%.3g") << "</td><td>" << n(c.at("held_out_rmse_before"), "%.3g") << "</td><td>"
+           << n(c.at("held_out_rmse_after"), "%.3g") << "</td></tr>\n";
     csv += c.at("stream").get<std::string>() + "," + c.at("channel").get<std::string>() + "," +
            c.at("unit").get<std::string>();
-    for (const char* k : {"sigma", "rmse", "bias", "drift_per_100s", "t_drift", "t_slip", "t_position",
+    for (const char* k : {"sigma", "rmse", "bias", "drift_per_100s", "t_drift", "t_slip", "t_position", "t_load",
                           "held_out_rmse_before", "held_out_rmse_after"}) {
       csv += "," + n(c.at(k), "%.6g");
     }

@@ -142,7 +142,8 @@ void channel_statistics(RoverDiscrepancyReport& r, const std::vector<MeasuredCha
   for (std::size_t c = 0; c < kChannels; ++c) {
     const MeasuredChannel& m = ch[c];
     RoverChannelResiduals s{m.stream, m.name, m.unit, m.sigma};
-    std::vector<double> res(m.values.size()), t100(m.values.size()), x(m.values.size()), sl(m.values.size(), NAN);
+    std::vector<double> res(m.values.size()), t100(m.values.size()), x(m.values.size()), sl(m.values.size(), NAN),
+        load(m.values.size(), NAN);
     double sum = 0, sq = 0;
     for (std::size_t k = 0; k < res.size(); ++k) {
       res[k] = m.values[k] - p[c][k];
@@ -151,17 +152,20 @@ void channel_statistics(RoverDiscrepancyReport& r, const std::vector<MeasuredCha
       t100[k] = m.time[k] / 100.0;
       x[k] = log::interpolate_linear(base.sensors.time, base.front_x, m.time[k]);
       if (slip.size() == res.size()) sl[k] = slip[k];
+      if (ch[8].values.size() == res.size()) load[k] = (ch[8].values[k] + ch[9].values[k] + ch[10].values[k]) / 3;
     }
     const auto n = static_cast<double>(res.size());
     s.bias = sum / n;
     s.rmse = std::sqrt(sq / n);
-    const Ols dt = regress(t100, res), ds = regress(sl, res), dx = regress(x, res);
+    const Ols dt = regress(t100, res), ds = regress(sl, res), dx = regress(x, res), dl = regress(load, res);
     s.drift = dt.slope;
     s.t_drift = dt.t;
     s.slope_vs_slip = ds.slope;
     s.t_slip = ds.t;
     s.slope_vs_position = dx.slope;
     s.t_position = dx.t;
+    s.slope_vs_load = dl.slope;
+    s.t_load = dl.t;
     r.channels.push_back(s);
   }
 }

@@ -47,12 +47,14 @@ struct RoverChannelResiduals {
   double drift = 0, t_drift = 0;                 // unit per 100 s and its t statistic
   double slope_vs_slip = 0, t_slip = 0;          // unit per unit slip (mean wheel slip from encoders and velocimeter)
   double slope_vs_position = 0, t_position = 0;  // unit per m of the simulated front-wheel x
+  double slope_vs_load = 0, t_load = 0;          // unit per N of the mean measured wheel load
   double held_out_rmse_before = 0, held_out_rmse_after = 0;
 };
 
 struct RoverParameterFit {
   std::string effect, unit;
   double value = 0, sigma = 0;
+  bool at_bound = false;  // the fit stopped at a bound of the parameter: the candidate cannot explain it all
 };
 
 struct RoverCandidateResult {

@@ -15,8 +15,12 @@ namespace {
 
 std::vector<RoverParameterFit> fits_of(const std::vector<FitParameter>& p, std::size_t from) {
   std::vector<RoverParameterFit> out;
-  for (std::size_t j = from; j < p.size(); ++j)
-    out.push_back({p[j].spec.effect, p[j].spec.unit, p[j].value, p[j].sigma});
+  for (std::size_t j = from; j < p.size(); ++j) {
+    const RoverCandidateParameter& sp = p[j].spec;
+    const double span = 1e-6 * (sp.upper - sp.lower);
+    const bool at_bound = sp.fitted && (p[j].value <= sp.lower + span || p[j].value >= sp.upper - span);
+    out.push_back({sp.effect, sp.unit, p[j].value, p[j].sigma, at_bound});
+  }
   return out;
 }
 
@@ -165,8 +169,8 @@ void write_verdict(RoverDiscrepancyReport& r) {
     v += (i > 0 ? "; then " : "") + s.name + " (";
     for (std::size_t j = 0; j < s.parameters.size(); ++j) {
       const auto& p = s.parameters[j];
-      std::snprintf(buf, sizeof buf, "%s%s = %.4g +- %.2g %s", j > 0 ? ", " : "", p.effect.c_str(), p.value, p.sigma,
-                    p.unit == "1" ? "" : p.unit.c_str());
+      std::snprintf(buf, sizeof buf, "%s%s = %.4g +- %.2g%s%s%s", j > 0 ? ", " : "", p.effect.c_str(), p.value, p.sigma,
+                    p.unit == "1" ? "" : " ", p.unit == "1" ? "" : p.unit.c_str(), p.at_bound ? ", at its bound" : "");
       v += buf;
     }
     std::snprintf(buf, sizeof buf, "; delta BIC %.1f)", s.delta_bic);
@@ -174,7 +178,16 @@ void write_verdict(RoverDiscrepancyReport& r) {
   }
   std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% lower).", r.baseline_held_out,
                 r.final_held_out, 100 * (1 - r.final_held_out / r.baseline_held_out));
-  r.verdict = v + buf;
+  v += buf;
+  // A cause that explains the log leaves noise: a residual of a few sigmas means the model is still wrong.
+  if (r.final_held_out > 3) {
+    std::snprintf(buf, sizeof buf,
+                  " The simulation still disagrees by %.3g noise sigmas on the test blocks: the scenario may not be "
+                  "this run's model, or the cause is none of the candidates.",
+                  r.final_held_out);
+    v += buf;
+  }
+  r.verdict = v;
 }
 
 }  // namespace roverlab::analysis::rover

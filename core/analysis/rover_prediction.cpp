@@ -1,6 +1,7 @@
 #include "core/analysis/rover_prediction.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/common/error.h"
 
@@ -64,8 +65,11 @@ Predictor::Predictor(const log::Log& lg, const RoverScenarioModel& model, double
   const std::vector<double>& t = channels_.front().time;
   duration_ = t.back() - t.front();
   if (!(duration_ >= 8 * block)) {
-    throw DataError("the log lasts " + std::to_string(duration_) + " s; the study needs at least 8 blocks of " +
-                    std::to_string(block) + " s (4 to fit, 4 to test)");
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the log lasts %.3g s; the study needs at least 8 blocks of %.3g s (4 to fit, 4 to test)", duration_,
+                  block);
+    throw DataError(text);
   }
 }
 
