@@ -369,11 +369,30 @@ TEST(CliInsSlip, OnThePathfinderLogThePseudoMeasurementInsBeatsPureInsAndWheelOd
   const double inertial = p.at("ins").at("final_position_error_m").get<double>();
   const double pseudo_only = q.at("ins").at("final_position_error_m").get<double>();
   EXPECT_NEAR(f.at("distance_m").get<double>(), 34.3, 0.5);
-  EXPECT_NEAR(odometry, 10.6, 0.5);
+  // The initial heading comes from aligning a first pass to the GPS track; the
+  // wheel odometry starts from the same pose and drifts by its own heading.
+  EXPECT_EQ(f.at("initial_heading").at("method"), "aligned");
+  EXPECT_LT(f.at("initial_heading").at("sigma_rad").get<double>(), 0.02);
+  EXPECT_GT(odometry, 5.0);
   EXPECT_GT(inertial, 100.0);              // 70 s of free inertial drift
   EXPECT_LT(pseudo_only, 0.6 * odometry);  // ZUPT, ZARU and NHC alone
   EXPECT_LT(ins, 0.3 * odometry);          // plus gated wheel-speed aiding
   EXPECT_EQ(f.at("slip_confusion").at("counts").size(), 5u);
+  // Issue 14 item 3: from a wrong heading (given: north, where the rover
+  // drove 5 deg east of it) the error as it is grows, the error after the
+  // best rigid alignment over the first stretch stays the aligned run's.
+  const CommandResult north =
+      run_roverlab("estimate ins-slip " + quote(kPathfinder) + " -m wvu_pathfinder --initial-heading 0 --json");
+  ASSERT_EQ(north.exit_code, 0) << north.err;
+  const auto n = nlohmann::json::parse(north.out);
+  EXPECT_EQ(n.at("initial_heading").at("method"), "given");
+  EXPECT_GT(n.at("ins").at("position_rmse_m").get<double>(), 2.0 * f.at("ins").at("position_rmse_m").get<double>());
+  EXPECT_NEAR(n.at("ins").at("aligned_position_rmse_m").get<double>(),
+              f.at("ins").at("aligned_position_rmse_m").get<double>(), 0.05);
+  EXPECT_NEAR(n.at("ins").at("alignment_rotation_rad").get<double>(),
+              f.at("initial_heading").at("heading_rad").get<double>(), 0.01);
+  EXPECT_LT(f.at("ins").at("aligned_position_rmse_m").get<double>(),
+            f.at("wheel_odometry").at("aligned_position_rmse_m").get<double>());
 }
 
 TEST(CliInsSlip, WritesEstimateStreamsAndReadsItsOwnSimulatedLogs) {
