@@ -139,7 +139,8 @@ InsSlipMetrics score_ins_slip(const log::Log& input, const log::Log& estimates, 
   m.standstill_fraction =
       static_cast<double>(std::count(standstill.begin(), standstill.end(), 1.0)) / static_cast<double>(t.size());
   slip_confusion(input, estimates.stream("estimate/ins/slip"), reference, m);
-  const ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  estimation::smooth_reference(ref);  // velocity and distance from the smoothed track
   if (!ref.present) return m;
   m.has_reference = true;
   score_track(ref, pose, estimates.stream("estimate/ins/velocity"), m);
@@ -156,7 +157,8 @@ InsSlipMetrics score_ins_slip(const log::Log& input, const log::Log& estimates, 
 OdometryMetrics score_wheel_odometry(const log::Log& input, const log::Log& estimates,
                                      const InsReferenceStreams& reference) {
   OdometryMetrics m;
-  const ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  estimation::smooth_reference(ref);  // velocity and distance from the smoothed track
   if (!ref.present) return m;
   const auto& t = estimates.stream("estimate/ins/pose").time();
   const log::Stream& odometry = estimates.stream("estimate/odometry/pose");

@@ -23,7 +23,7 @@ struct InsSlipMetrics {
   double final_position_error_3d = 0;
   double position_rmse = 0;       // horizontal, m
   AxisErrors position_rmse_axes;  // as in seed 002 Table 1
-  double velocity_rmse = 0;       // horizontal, m/s, against GPS-differenced velocity
+  double velocity_rmse = 0;       // horizontal, m/s, against the smoothed GPS velocity (reference_track.h)
   double heading_drift = 0;       // rad, heading minus GPS course over the last 5 s of driving
   double distance = 0;            // m along the GPS track
   // After the best rigid alignment (rotation and translation) of the track

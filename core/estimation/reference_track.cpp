@@ -107,7 +107,7 @@ struct CvPass {
     Eigen::Matrix<double, 2, 4> H = Eigen::Matrix<double, 2, 4>::Zero();
     H(0, 0) = H(1, 2) = 1.0;
     Eigen::Vector4d x(ref.east[0], 0.0, ref.north[0], 0.0);
-    Eigen::Matrix4d P = Eigen::Vector4d(r, 1.0, r, 1.0).asDiagonal();
+    Eigen::Matrix4d P = Eigen::Vector4d(r, 100.0, r, 100.0).asDiagonal();  // velocity unknown
     double nll = 0;
     int in_row = 0;
     for (std::size_t i = 0; i < n; ++i) {
