@@ -415,6 +415,22 @@ TEST(CliInsSlip, WritesEstimateStreamsAndReadsItsOwnSimulatedLogs) {
   EXPECT_NE(slip.find_channel("reference_slip"), nullptr);
 }
 
+// Issue 14: loops with turns in place, starting south-east, 3 m GPS noise.
+TEST(CliInsSlip, LoopDriveWithTurnsInPlaceAndNoisyGps) {
+  TempDir dir;
+  const std::string sim = dir.file("loops.h5");
+  ASSERT_EQ(run_roverlab("scenario skid-steer-slip --drive loops --seed 7 -o " + quote(sim)).exit_code, 0);
+  const CommandResult r = run_roverlab("estimate ins-slip " + quote(sim) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  const auto& h = doc.at("initial_heading");
+  EXPECT_EQ(h.at("method"), "aligned");
+  EXPECT_NEAR(h.at("heading_rad").get<double>(), 2.3, 3.0 * h.at("sigma_rad").get<double>());
+  EXPECT_NEAR(doc.at("gps_reference").at("fix_sigma_m").get<double>(), 3.0, 0.3);
+  EXPECT_GE(doc.at("slip_confusion").at("accuracy").get<double>(), 0.9);
+  EXPECT_EQ(run_roverlab("scenario skid-steer-slip --drive spiral -o " + quote(dir.file("x.h5"))).exit_code, 2);
+}
+
 TEST(CliInsSlip, BadInputAndUsage) {
   TempDir dir;
   // A log without an imu stream.
