@@ -259,6 +259,7 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   html << "<h2>" << title() << "</h2>\n";
   report_health(j, s);
+  html << "<p>" << ReportSection::escape(j.at("initial_heading").at("text").get<std::string>()) << ".</p>\n";
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");
@@ -271,6 +272,9 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
          << "</td></tr>\n<tr><td style=\"text-align:left\">wheel odometry</td><td>"
          << n(odo.at("final_position_error_m"), "%.2f") << "</td><td>" << n(odo.at("position_rmse_m"), "%.2f")
          << "</td><td></td></tr></table>\n"
+         << "<p>After the best rigid alignment over the first 20 m of GPS track: RMSE INS "
+         << n(ins.at("aligned_position_rmse_m"), "%.2f") << " m, wheel odometry "
+         << n(odo.at("aligned_position_rmse_m"), "%.2f") << " m.</p>\n"
          << "<p>Velocity RMSE " << n(ins.at("velocity_rmse_mps"), "%.3f") << " m/s; heading drift "
          << ReportSection::number(drift.is_number() ? drift.get<double>() * 180.0 / M_PI : NAN, "%.2f") << " deg over "
          << n(j.at("distance_m"), "%.1f") << " m.</p>\n";
