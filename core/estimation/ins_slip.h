@@ -63,8 +63,11 @@ struct InsSlipOptions {
   double odometry_sigma = 0.05;     // m/s
   double odometry_gate = 6.63;      // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
   // Initial heading and position: the rigid rotation and translation that best
-  // align a first pass's track with the GPS fixes over this much GPS track.
+  // align a first pass's track with the GPS fixes over this much GPS track,
+  // or longer, until the GPS fix noise alone leaves the heading known to
+  // alignment_heading_sigma (or the track ends).
   double alignment_distance = 20.0;       // m
+  double alignment_heading_sigma = 0.01;  // rad (0.57 deg)
   std::optional<double> initial_heading;  // rad clockwise from north; overrides the alignment
   double no_slip = 0.02;                  // |s| at or below which a sample counts as no slip
   // m/s: moving slower than this (wheels and body), or turning in place (one

@@ -132,9 +132,10 @@ void InsSlipEstimator::level() {
 // Initial heading and position: a first pass from heading 0 at the origin,
 // then the rigid rotation and translation that best align its track with the
 // GPS fixes (gate-rejected ones left out) over the first alignment_distance
-// metres of GPS track. The filter is heading-invariant to within the Earth
-// rate's effect, so the second pass from the aligned pose follows the rotated
-// first track.
+// metres of GPS track, or longer until the fix noise alone leaves the heading
+// known to alignment_heading_sigma. The filter is heading-invariant to within
+// the Earth rate's effect, so the second pass from the aligned pose follows
+// the rotated first track.
 void InsSlipEstimator::align_initial_pose() {
   if (o_.initial_heading || !reference_.present) return;
   const auto& t = *in_.time;
@@ -142,18 +143,27 @@ void InsSlipEstimator::align_initial_pose() {
   first.progress = nullptr;
   const InsTrack track = InsFilterPass(in_, first, o_.odometry_aiding).run(0.0, 0.0);
   const std::vector<double> along = distance_along(reference_);
+  const double fix_variance = std::isfinite(reference_.fix_sigma) ? reference_.fix_sigma * reference_.fix_sigma : 0.0;
   std::vector<double> xe, xn, ye, yn;
-  double stretch = 0;
+  double stretch = 0, se = 0, sn = 0, sq = 0;  // running sums of the first pass's points
   for (std::size_t g = 0; g < reference_.time.size(); ++g) {
     const double tg = reference_.time[g];
     if (tg < t.front() || tg > t.back()) continue;
-    if (along[g] > o_.alignment_distance) break;
+    if (along[g] > o_.alignment_distance && xe.size() >= 10) {
+      // Heading variance the fix noise alone leaves: sigma^2 / spread of the points.
+      const auto k = static_cast<double>(xe.size());
+      const double spread = sq - (se * se + sn * sn) / k;
+      if (spread > 0 && fix_variance / spread <= o_.alignment_heading_sigma * o_.alignment_heading_sigma) break;
+    }
     stretch = along[g];
     if (!reference_.outlier.empty() && reference_.outlier[g] != 0) continue;
     xe.push_back(log::interpolate_linear(t, track.east, tg));
     xn.push_back(log::interpolate_linear(t, track.north, tg));
     ye.push_back(reference_.east[g]);
     yn.push_back(reference_.north[g]);
+    se += xe.back();
+    sn += xn.back();
+    sq += xe.back() * xe.back() + xn.back() * xn.back();
   }
   // Too short a stretch to tell a heading (the rover never left the spot).
   if (stretch < 2.0 || xe.size() < 10) return;
@@ -161,14 +171,11 @@ void InsSlipEstimator::align_initial_pose() {
   in_.heading0 = a.rotation;
   in_.east0 = a.east;
   in_.north0 = a.north;
-  heading_ = {InitialHeading::Method::aligned,
-              a.rotation,
-              a.rotation_sigma,
-              a.east,
-              a.north,
-              stretch,
-              a.points,
-              a.residual_rms};
+  // The stated sigma: the fix noise's or the residuals', whichever is larger.
+  const double spread = sq - (se * se + sn * sn) / static_cast<double>(xe.size());
+  const double noise_sigma = spread > 0 ? std::sqrt(fix_variance / spread) : NAN;
+  const double sigma = std::isfinite(noise_sigma) ? std::max(noise_sigma, a.rotation_sigma) : a.rotation_sigma;
+  heading_ = {InitialHeading::Method::aligned, a.rotation, sigma, a.east, a.north, stretch, a.points, a.residual_rms};
 }
 
 log::Log InsSlipEstimator::run() {

@@ -399,11 +399,11 @@ TEST(InsSlipPathfinder, RotatedAndNoisyGpsGiveTheErrorsOfTheOriginal) {
     const InsSlipResult r = run_ins_slip(noisy, {});
     // Scored against the clean track and the clean reference slip.
     const analysis::InsSlipMetrics m = analysis::score_ins_slip(original, r.estimates);
-    // Within 25 % of the original where the original is coarse; 2.5 m of noise
-    // over the 20 m stretch leaves about 0.14 m on the initial position and
-    // 1.2 deg on the heading (0.3 m over the rest of the run), a floor under
-    // the 0.35 m of the clean run (docs/validation/ins-slip.md).
-    EXPECT_LT(m.position_rmse, std::max(1.25 * rmse0, rmse0 + 0.35)) << seed;
+    // Within 25 % of the original, or 0.2 m: 2.5 m of noise leaves about
+    // 0.12 m on the aligned initial position (400 fixes) and 0.57 deg on the
+    // heading (the alignment runs until the noise allows 0.01 rad), a floor
+    // under the 0.35 m of the clean run (docs/validation/ins-slip.md).
+    EXPECT_LT(m.position_rmse, std::max(1.25 * rmse0, rmse0 + 0.2)) << seed;
     EXPECT_NEAR(accuracy_against(r.estimates, base.estimates), accuracy0, 0.05) << seed;
     // The stated heading uncertainty covers the heading's departure from the clean run's.
     EXPECT_LT(std::abs(r.heading.heading - base.heading.heading), 3.0 * r.heading.sigma) << seed;
