@@ -136,12 +136,16 @@ void InsSlipEstimator::level() {
 // known to alignment_heading_sigma. The filter is heading-invariant to within
 // the Earth rate's effect, so the second pass from the aligned pose follows
 // the rotated first track.
+double InsSlipEstimator::pass_share() const {
+  const int passes = (o_.initial_heading || !reference_.present ? 0 : 1) + (o_.odometry_aiding ? 2 : 1);
+  return 1.0 / passes;
+}
+
 void InsSlipEstimator::align_initial_pose() {
   if (o_.initial_heading || !reference_.present) return;
   const auto& t = *in_.time;
-  InsSlipOptions first = o_;
-  first.progress = nullptr;
-  const InsTrack track = InsFilterPass(in_, first, o_.odometry_aiding).run(0.0, 0.0);
+  // Progress (and, through it, cancellation) in thirds or halves: this pass first.
+  const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(0.0, pass_share());
   const std::vector<double> along = distance_along(reference_);
   const double fix_variance = std::isfinite(reference_.fix_sigma) ? reference_.fix_sigma * reference_.fix_sigma : 0.0;
   std::vector<double> xe, xn, ye, yn;
@@ -180,11 +184,13 @@ void InsSlipEstimator::align_initial_pose() {
 
 log::Log InsSlipEstimator::run() {
   align_initial_pose();
+  const double share = pass_share();
+  const double base = o_.initial_heading || !reference_.present ? 0.0 : share;
   // The localisation filter (with wheel-speed aiding if asked), and the slip
   // detector: a filter that never sees the wheel speed it is judged against.
-  const double share = o_.odometry_aiding ? 0.5 : 1.0;
-  const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(0.0, share);
-  const InsTrack detector_track = o_.odometry_aiding ? InsFilterPass(in_, o_, false).run(0.5, 0.5) : InsTrack(0);
+  const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(base, share);
+  const InsTrack detector_track =
+      o_.odometry_aiding ? InsFilterPass(in_, o_, false).run(base + share, share) : InsTrack(0);
   const InsTrack& detector = o_.odometry_aiding ? detector_track : track;
   health_ = track.health;
   if (o_.odometry_aiding) health_.merge(detector_track.health);

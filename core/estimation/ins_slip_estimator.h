@@ -39,6 +39,7 @@ class InsSlipEstimator {
   void detect_standstill();
   void level();
   void align_initial_pose();
+  double pass_share() const;  // each filter pass's share of the progress
   void add_navigation_streams(log::Log& out, const InsTrack& track) const;
   SlipColumns slip_columns(const InsTrack& detector) const;
   void add_reference_slip(SlipColumns& c, double t, double wheel_speed, bool at_rest, bool turning) const;
