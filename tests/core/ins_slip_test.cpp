@@ -9,6 +9,7 @@
 #include "core/estimation/ins_slip.h"
 #include "core/estimation/ins_slip_estimator.h"
 #include "core/estimation/ins_slip_models.h"
+#include "core/estimation/reference_track.h"
 #include "core/estimation/slip.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "importers/mapping.h"
@@ -447,4 +448,63 @@ TEST(InsSlip, LoopsWithTurnsInPlaceAndNoisyGps) {
         seed, distance, rmse, 100 * rmse / distance, r.heading.heading * 180 / M_PI, r.heading.sigma * 180 / M_PI,
         100 * c.accuracy(), c.total(), 100 * r.metrics.confusion_moving.accuracy(), r.metrics.confusion_moving.total());
   }
+}
+
+// The GPS reference (issue 14 item 2): a straight track at 0.7 m/s with 0.5 m
+// white noise and three 40 m outliers. The smoother estimates the fix noise,
+// rejects the outliers by its gate, and its speed is far closer to the truth
+// than central differences of the fixes.
+TEST(ReferenceTrack, SmoothedVelocityRejectsOutliersAndEstimatesTheFixNoise) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::vector<double> t, e, n;
+  for (int i = 0; i < 1200; ++i) {
+    t.push_back(0.1 * i);
+    e.push_back(0.7 * 0.1 * i * std::sin(0.6) + noise(rng));
+    n.push_back(0.7 * 0.1 * i * std::cos(0.6) + noise(rng));
+  }
+  for (int k : {300, 600, 900}) e[static_cast<std::size_t>(k)] += 40.0;
+  log::Log lg;
+  log::Stream gps("gps", t);
+  gps.add_channel("east", "m", e);
+  gps.add_channel("north", "m", n);
+  lg.add_stream(std::move(gps));
+  ReferenceTrack raw = reference_from_gps(lg), ref = raw;
+  smooth_reference(ref);
+  ASSERT_TRUE(ref.smoothed);
+  EXPECT_NEAR(ref.fix_sigma, 0.5, 0.05);
+  for (int k : {300, 600, 900}) EXPECT_EQ(ref.outlier[static_cast<std::size_t>(k)], 1) << k;
+  EXPECT_LT(std::count(ref.outlier.begin(), ref.outlier.end(), 1), 10);
+  double raw_ss = 0, ss = 0;
+  for (std::size_t i = 50; i + 50 < t.size(); ++i) {
+    raw_ss += std::pow(std::hypot(raw.v_east[i], raw.v_north[i]) - 0.7, 2);
+    ss += std::pow(std::hypot(ref.v_east[i], ref.v_north[i]) - 0.7, 2);
+    EXPECT_NEAR(std::atan2(ref.v_east[i], ref.v_north[i]), 0.6, 0.1) << i;  // the course
+  }
+  EXPECT_LT(std::sqrt(ss / 1100.0), 0.05);
+  EXPECT_LT(ss, 0.1 * raw_ss);
+}
+
+// The rigid alignment recovers a rotation and translation and states its
+// uncertainty from the residuals.
+TEST(ReferenceTrack, RigidAlignmentRecoversRotationAndTranslation) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  std::vector<double> xe, xn, ye, yn;
+  const double rot = 2.0, te = 3.0, tn = -1.5;
+  for (int i = 0; i < 200; ++i) {
+    const double a = 0.03 * i;
+    xe.push_back(10.0 * std::sin(a));
+    xn.push_back(0.1 * i);
+    double e = xe.back(), n = xn.back();
+    apply_alignment(RigidAlignment{rot, te, tn}, e, n);
+    ye.push_back(e + noise(rng));
+    yn.push_back(n + noise(rng));
+  }
+  const RigidAlignment a = rigid_alignment(xe, xn, ye, yn);
+  EXPECT_NEAR(std::remainder(a.rotation - rot, 2 * M_PI), 0.0, 3.0 * a.rotation_sigma);
+  EXPECT_LT(a.rotation_sigma, 0.01);
+  EXPECT_NEAR(a.east, te, 0.15);
+  EXPECT_NEAR(a.north, tn, 0.15);
+  EXPECT_NEAR(a.residual_rms, 0.3 * std::sqrt(2.0), 0.1);
 }
