@@ -19,12 +19,14 @@ namespace {
 
 struct SkidSteerScenarioOptions {
   unsigned seed = 1;
+  std::string drive = "default";     // or "loops"
   std::vector<std::string> effects;  // NAME=VALUE
   std::string output;
 };
 
 int run_scenario_skid_steer(const SkidSteerScenarioOptions& o) {
-  simulation::SkidSteerScenario scenario = simulation::default_slip_scenario(o.seed);
+  simulation::SkidSteerScenario scenario =
+      o.drive == "loops" ? simulation::loop_slip_scenario(o.seed) : simulation::default_slip_scenario(o.seed);
   apply_effect_options(o.effects,
                        [&](const std::string& name, double value) { simulation::set_effect(scenario, name, value); });
   const log::Log lg = simulation::simulate_skid_steer(scenario);
@@ -85,6 +87,11 @@ Commands make_scenario_commands() {
       "Four-wheel skid-steer drive with slip episodes of every class, IMU, wheels, GPS (seed 002)",
       [](CLI::App& cmd, SkidSteerScenarioOptions& o) {
         cmd.add_option("--seed", o.seed, "Noise seed")->capture_default_str();
+        cmd.add_option("--drive", o.drive,
+                       "default: straight runs and gentle turns, 1 cm GPS; loops: two laps of a square with turns in "
+                       "place, starting south-east, 3 m GPS noise")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"default", "loops"}));
         cmd.add_option("--effect", o.effects,
                        "Hidden effect NAME=VALUE: left-radius-scale, right-radius-scale, radius-scale, "
                        "turning-track-factor, wheel-time-offset (s), slip (0: firm ground)");

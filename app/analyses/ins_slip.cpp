@@ -2,6 +2,7 @@
 // and slip detection of seed 002, with its metrics against GPS or truth.
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <optional>
 
 #include "app/analyses/health.h"
 #include "app/analysis.h"
@@ -18,6 +19,20 @@ using estimation::SlipClass;
 using nlohmann::json;
 
 const char* class_name(int k) { return estimation::to_string(static_cast<SlipClass>(k)); }
+
+json heading_json(const estimation::InitialHeading& h) {
+  using Method = estimation::InitialHeading::Method;
+  const char* method = h.method == Method::given ? "given" : h.method == Method::aligned ? "aligned" : "assumed_north";
+  return {{"method", method},
+          {"heading_rad", h.heading},
+          {"sigma_rad", finite_or_null(h.sigma)},
+          {"east_m", h.east},
+          {"north_m", h.north},
+          {"stretch_m", h.stretch},
+          {"fixes", h.fixes},
+          {"residual_rms_m", finite_or_null(h.residual_rms)},
+          {"text", estimation::describe(h)}};
+}
 
 json confusion_json(const ConfusionMatrix& c) {
   json j = {{"rows", "estimated"},
@@ -99,6 +114,9 @@ class InsSlipAnalysis : public Analysis {
                  "No wheel forward-speed update in the localisation filter (pseudo-measurements only)");
     cmd.add_flag("--no-smoother", no_smoother_,
                  "Forward filter only, as on board (default: RTS smoothing over the whole log)");
+    cmd.add_option("--initial-heading", initial_heading_deg_,
+                   "Initial heading, deg clockwise from north (default: aligned to the GPS track's first stretch)")
+        ->check(finite_in(-360.0, 360.0));
     cmd.add_option("--odometry-sigma", odometry_sigma_, "Standard deviation of the wheel-speed update, m/s")
         ->capture_default_str()
         ->check(finite_in(1e-4, 10.0));
@@ -112,6 +130,7 @@ class InsSlipAnalysis : public Analysis {
     o.odometry_aiding = !no_odometry_aiding_;
     o.odometry_sigma = odometry_sigma_;
     o.smooth = !no_smoother_;
+    if (initial_heading_deg_) o.initial_heading = *initial_heading_deg_ * M_PI / 180.0;
     o.progress = in.progress;
     estimation::InsSlipResult r = estimation::run_ins_slip(in.log, o);
     AnalysisResult out;
@@ -144,20 +163,29 @@ class InsSlipAnalysis : public Analysis {
               {"duration_s", m.duration},
               {"standstill_fraction", m.standstill_fraction},
               {"has_reference", m.has_reference},
-              {"health", health_json(r.health)}};
+              {"health", health_json(r.health)},
+              {"initial_heading", heading_json(r.heading)}};
     if (m.has_reference) {
       j["distance_m"] = m.distance;
+      j["gps_reference"] = {{"fix_sigma_m", finite_or_null(r.gps_fix_sigma)},
+                            {"accel_psd", finite_or_null(r.gps_accel_psd)},
+                            {"outliers_rejected", r.gps_outliers}};
       j["ins"] = {
           {"final_position_error_m", m.final_position_error},
           {"final_position_error_3d_m", m.final_position_error_3d},
           {"position_rmse_m", m.position_rmse},
           {"position_rmse_enu_m", {m.position_rmse_axes.east, m.position_rmse_axes.north, m.position_rmse_axes.up}},
           {"velocity_rmse_mps", m.velocity_rmse},
-          {"heading_drift_rad", finite_or_null(m.heading_drift)}};
+          {"heading_drift_rad", finite_or_null(m.heading_drift)},
+          {"aligned_position_rmse_m", finite_or_null(m.aligned_position_rmse)},
+          {"aligned_final_position_error_m", finite_or_null(m.aligned_final_position_error)},
+          {"alignment_rotation_rad", finite_or_null(m.alignment_rotation)}};
       j["wheel_odometry"] = {{"final_position_error_m", r.odometry.final_position_error},
-                             {"position_rmse_m", r.odometry.position_rmse}};
+                             {"position_rmse_m", r.odometry.position_rmse},
+                             {"aligned_position_rmse_m", finite_or_null(r.odometry.aligned_position_rmse)}};
     }
     if (m.confusion.total() > 0) j["slip_confusion"] = confusion_json(m.confusion);
+    if (m.confusion_moving.total() > 0) j["slip_confusion_moving"] = confusion_json(m.confusion_moving);
     return j;
   }
 
@@ -165,6 +193,7 @@ class InsSlipAnalysis : public Analysis {
   bool no_odometry_aiding_ = false;  // no wheel forward-speed update in the localisation filter
   bool no_smoother_ = false;         // forward filter only (what the rover had on board)
   double odometry_sigma_ = 0.05;     // m/s
+  std::optional<double> initial_heading_deg_;
 };
 
 const char* on_off(const json& b) { return b.get<bool>() ? "on" : "off"; }
@@ -179,9 +208,18 @@ void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
                aiding ? "on (slip judged by a second pass without it)" : "off",
                u.at("smoother").get<bool>() ? "RTS-smoothed" : "forward filter only");
   print_health(j, out);
+  std::fprintf(out, "%s\n", j.at("initial_heading").at("text").get<std::string>().c_str());
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");
+    const json& g = j.at("gps_reference");
+    std::fprintf(
+        out,
+        "GPS reference: fix noise %.3f m per axis (from its second differences), RTS-smoothed constant-velocity "
+        "model with process noise %.3g m^2/s^3 (most likely), %zu fixes rejected by the 99.9 %% gate\n",
+        g.at("fix_sigma_m").is_number() ? g.at("fix_sigma_m").get<double>() : NAN,
+        g.at("accel_psd").is_number() ? g.at("accel_psd").get<double>() : NAN,
+        g.at("outliers_rejected").get<std::size_t>());
     std::fprintf(out, "\nposition against GPS over %.1f m of track:\n", j.at("distance_m").get<double>());
     std::fprintf(out, "  %-28s %10s %10s   %s\n", "", "final (m)", "RMSE (m)", "RMSE east / north / up (m)");
     std::fprintf(out, "  %-28s %10.2f %10.2f   %.2f / %.2f / %.2f\n",
@@ -195,12 +233,24 @@ void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
     std::fprintf(out, "velocity RMSE %.3f m/s; heading drift %.2f deg (last 5 s of driving)\n",
                  ins.at("velocity_rmse_mps").get<double>(),
                  drift.is_number() ? drift.get<double>() * 180.0 / M_PI : NAN);
+    const auto num = [](const json& v) { return v.is_number() ? v.get<double>() : NAN; };
+    std::fprintf(
+        out,
+        "after the best rigid alignment over the first 20 m of GPS track (rotation %.2f deg): RMSE INS %.2f m, "
+        "wheel odometry %.2f m\n",
+        num(ins.at("alignment_rotation_rad")) * 180.0 / M_PI, num(ins.at("aligned_position_rmse_m")),
+        num(j.at("wheel_odometry").at("aligned_position_rmse_m")));
   } else {
     std::fprintf(out, "no GPS stream: no position metrics\n");
   }
   if (j.contains("slip_confusion")) {
     std::fprintf(out, "\n");
     print_confusion(j.at("slip_confusion"), out);
+  }
+  if (j.contains("slip_confusion_moving")) {
+    const json& c = j.at("slip_confusion_moving");
+    std::fprintf(out, "  moving samples only: accuracy %.1f %% of %ld\n", 100.0 * c.at("accuracy").get<double>(),
+                 c.at("total").get<long>());
   }
 }
 
@@ -209,6 +259,7 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   html << "<h2>" << title() << "</h2>\n";
   report_health(j, s);
+  html << "<p>" << ReportSection::escape(j.at("initial_heading").at("text").get<std::string>()) << ".</p>\n";
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");
@@ -221,6 +272,9 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
          << "</td></tr>\n<tr><td style=\"text-align:left\">wheel odometry</td><td>"
          << n(odo.at("final_position_error_m"), "%.2f") << "</td><td>" << n(odo.at("position_rmse_m"), "%.2f")
          << "</td><td></td></tr></table>\n"
+         << "<p>After the best rigid alignment over the first 20 m of GPS track: RMSE INS "
+         << n(ins.at("aligned_position_rmse_m"), "%.2f") << " m, wheel odometry "
+         << n(odo.at("aligned_position_rmse_m"), "%.2f") << " m.</p>\n"
          << "<p>Velocity RMSE " << n(ins.at("velocity_rmse_mps"), "%.3f") << " m/s; heading drift "
          << ReportSection::number(drift.is_number() ? drift.get<double>() * 180.0 / M_PI : NAN, "%.2f") << " deg over "
          << n(j.at("distance_m"), "%.1f") << " m.</p>\n";

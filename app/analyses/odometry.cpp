@@ -53,6 +53,7 @@ class OdometryAnalysis : public Analysis {
 
  private:
   static json document(const std::string& file, const analysis::OdometryDiscrepancyReport& r);
+  static json candidate_json(const analysis::OdometryCandidate& c);
   double fit_fraction_ = 0.5;
 };
 
@@ -74,21 +75,27 @@ json OdometryAnalysis::document(const std::string& file, const analysis::Odometr
             {"what_is_wrong", r.what_is_wrong},
             {"verdict", r.verdict},
             {"candidates", json::array()}};
-  for (const auto& c : r.candidates) {
-    json cj = {{"name", c.name},
-               {"cause", c.cause},
-               {"parameters", json::array()},
-               {"fit_rmse_m", c.fit_rmse},
-               {"delta_bic", c.delta_bic},
-               {"held_out_rmse_m", c.held_out_rmse},
-               {"held_out_final_m", c.held_out_final},
-               {"significant", c.significant}};
-    for (const auto& p : c.parameters) {
-      cj["parameters"].push_back({{"name", p.name}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}});
-    }
-    j["candidates"].push_back(cj);
-  }
+  for (const auto& c : r.candidates) j["candidates"].push_back(candidate_json(c));
+  // Forward selection: each step the chain so far, refitted together.
+  j["selection"] = json::array();
+  for (const auto& c : r.selection) j["selection"].push_back(candidate_json(c));
+  j["rejected_step"] = r.rejected_step ? candidate_json(*r.rejected_step) : json(nullptr);
   return j;
+}
+
+json OdometryAnalysis::candidate_json(const analysis::OdometryCandidate& c) {
+  json cj = {{"name", c.name},
+             {"cause", c.cause},
+             {"parameters", json::array()},
+             {"fit_rmse_m", c.fit_rmse},
+             {"delta_bic", c.delta_bic},
+             {"held_out_rmse_m", c.held_out_rmse},
+             {"held_out_final_m", c.held_out_final},
+             {"significant", c.significant}};
+  for (const auto& p : c.parameters) {
+    cj["parameters"].push_back({{"name", p.name}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}});
+  }
+  return cj;
 }
 
 // "0.9981+-0.0012", "3 windows", "name 0.5": the fitted parameters in a line.
@@ -127,6 +134,15 @@ void OdometryAnalysis::print(const json& j, std::FILE* out) const {
     std::fprintf(out, "  %-16s %-30s %7.2f m %10.1f %11.2f m %10.2f m%s\n", c.at("name").get<std::string>().c_str(),
                  params.c_str(), num(c.at("fit_rmse_m")), num(c.at("delta_bic")), num(c.at("held_out_rmse_m")),
                  num(c.at("held_out_final_m")), c.at("significant").get<bool>() ? "" : "  (not significant)");
+  }
+  const json& chain = j.at("selection");
+  if (chain.size() >= 2) {
+    std::fprintf(out, "\nforward selection (each step refitted with the ones before):\n");
+    for (const auto& c : chain) {
+      std::fprintf(out, "  %-40s delta BIC %9.1f   held-out RMSE %6.2f m   final %6.2f m\n",
+                   c.at("name").get<std::string>().c_str(), num(c.at("delta_bic")), num(c.at("held_out_rmse_m")),
+                   num(c.at("held_out_final_m")));
+    }
   }
   std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
 }

@@ -48,6 +48,44 @@ void score_track(const ReferenceTrack& ref, const log::Stream& pose, const log::
   }
 }
 
+// Errors after the best rigid alignment of (east, north) onto GPS over the
+// first `distance` metres of GPS track: RMSE and final error over the whole
+// track, and the rotation the alignment needed.
+struct AlignedErrors {
+  double rmse = NAN, final_error = NAN, rotation = NAN;
+};
+AlignedErrors aligned_errors(const ReferenceTrack& ref, const std::vector<double>& t, const std::vector<double>& east,
+                             const std::vector<double>& north, double distance) {
+  AlignedErrors out;
+  const std::vector<double> along = estimation::distance_along(ref);
+  std::vector<double> xe, xn, ye, yn;
+  for (std::size_t g = 0; g < ref.time.size() && along[g] <= distance; ++g) {
+    const double tg = ref.time[g];
+    if (tg < t.front() || tg > t.back()) continue;
+    xe.push_back(log::interpolate_linear(t, east, tg));
+    xn.push_back(log::interpolate_linear(t, north, tg));
+    ye.push_back(ref.east[g]);
+    yn.push_back(ref.north[g]);
+  }
+  if (xe.size() < 3) return out;
+  const estimation::RigidAlignment a = estimation::rigid_alignment(xe, xn, ye, yn);
+  double ss = 0;
+  std::size_t count = 0;
+  for (std::size_t g = 0; g < ref.time.size(); ++g) {
+    const double tg = ref.time[g];
+    if (tg < t.front() || tg > t.back()) continue;
+    double e = log::interpolate_linear(t, east, tg), n = log::interpolate_linear(t, north, tg);
+    if (!std::isfinite(e + n)) continue;
+    estimation::apply_alignment(a, e, n);
+    ss += (e - ref.east[g]) * (e - ref.east[g]) + (n - ref.north[g]) * (n - ref.north[g]);
+    out.final_error = std::hypot(e - ref.east[g], n - ref.north[g]);
+    ++count;
+  }
+  if (count > 0) out.rmse = std::sqrt(ss / static_cast<double>(count));
+  out.rotation = a.rotation;
+  return out;
+}
+
 // Heading minus GPS course over the last 5 s of driving (faster than 0.3 m/s).
 double heading_drift(const ReferenceTrack& ref, const log::Stream& pose) {
   const auto& t = pose.time();
@@ -71,22 +109,23 @@ double heading_drift(const ReferenceTrack& ref, const log::Stream& pose) {
 // Estimated against reference slip classes (seed 002 Table 2), from the
 // estimator's slip stream. Left out: samples too slow to tell (class NaN)
 // and, against GPS, samples without a GPS velocity.
-estimation::ConfusionMatrix slip_confusion(const log::Log& input, const log::Stream& slip,
-                                           const InsReferenceStreams& reference) {
-  estimation::ConfusionMatrix confusion;
+void slip_confusion(const log::Log& input, const log::Stream& slip, const InsReferenceStreams& reference,
+                    InsSlipMetrics& m) {
   const log::Channel* reference_class = slip.find_channel("reference_class");
-  if (reference_class == nullptr) return confusion;
+  if (reference_class == nullptr) return;
   const log::Stream* truth = input.find_stream(reference.truth_slip);
   const bool against_truth = truth != nullptr && truth->find_channel("slip_ratio") != nullptr;
   const auto& estimated_class = values(slip, "slip_class");
   const auto& reference_speed = values(slip, "reference_speed");
+  const log::Channel* at_rest = slip.find_channel("at_rest");
   for (std::size_t k = 0; k < estimated_class.size(); ++k) {
-    if (!std::isfinite(estimated_class[k])) continue;
+    if (!std::isfinite(estimated_class[k]) || !std::isfinite(reference_class->values[k])) continue;
     if (!against_truth && !std::isfinite(reference_speed[k])) continue;
-    confusion.add(static_cast<estimation::SlipClass>(static_cast<int>(estimated_class[k])),
-                  static_cast<estimation::SlipClass>(static_cast<int>(reference_class->values[k])));
+    const auto e = static_cast<estimation::SlipClass>(static_cast<int>(estimated_class[k]));
+    const auto r = static_cast<estimation::SlipClass>(static_cast<int>(reference_class->values[k]));
+    m.confusion.add(e, r);
+    if (at_rest == nullptr || at_rest->values[k] == 0.0) m.confusion_moving.add(e, r);
   }
-  return confusion;
 }
 
 }  // namespace
@@ -99,20 +138,27 @@ InsSlipMetrics score_ins_slip(const log::Log& input, const log::Log& estimates, 
   m.duration = t.back() - t.front();
   m.standstill_fraction =
       static_cast<double>(std::count(standstill.begin(), standstill.end(), 1.0)) / static_cast<double>(t.size());
-  m.confusion = slip_confusion(input, estimates.stream("estimate/ins/slip"), reference);
-  const ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  slip_confusion(input, estimates.stream("estimate/ins/slip"), reference, m);
+  ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  estimation::smooth_reference(ref);  // velocity and distance from the smoothed track
   if (!ref.present) return m;
   m.has_reference = true;
   score_track(ref, pose, estimates.stream("estimate/ins/velocity"), m);
   m.distance = estimation::distance_along(ref).back();
   m.heading_drift = heading_drift(ref, pose);
+  const AlignedErrors a =
+      aligned_errors(ref, t, values(pose, "east"), values(pose, "north"), reference.alignment_distance);
+  m.aligned_position_rmse = a.rmse;
+  m.aligned_final_position_error = a.final_error;
+  m.alignment_rotation = a.rotation;
   return m;
 }
 
 OdometryMetrics score_wheel_odometry(const log::Log& input, const log::Log& estimates,
                                      const InsReferenceStreams& reference) {
   OdometryMetrics m;
-  const ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
+  estimation::smooth_reference(ref);  // velocity and distance from the smoothed track
   if (!ref.present) return m;
   const auto& t = estimates.stream("estimate/ins/pose").time();
   const log::Stream& odometry = estimates.stream("estimate/odometry/pose");
@@ -131,6 +177,7 @@ OdometryMetrics score_wheel_odometry(const log::Log& input, const log::Log& esti
     ++count;
   }
   if (count > 0) m.position_rmse = std::sqrt(so / static_cast<double>(count));
+  m.aligned_position_rmse = aligned_errors(ref, odometry.time(), east, north, reference.alignment_distance).rmse;
   return m;
 }
 

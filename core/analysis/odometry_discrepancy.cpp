@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "core/analysis/odometry_candidates.h"
 #include "core/common/error.h"
@@ -19,6 +20,9 @@ using estimation::ReferenceTrack;
 using estimation::WheelSamples;
 
 double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+// m/s: a part of the drive starts once the reference moves at least this fast.
+constexpr double kUnderWaySpeed = 0.2;
 
 WheelSamples slice(const WheelSamples& w, double t0, double t1) {
   WheelSamples out;
@@ -90,6 +94,78 @@ struct TrackCost {
   }
 };
 
+// Two sets of corrections applied together: scales multiply, time offsets
+// add, slips compose as 1 - (1 - a)(1 - b).
+OdometryCorrections combine(OdometryCorrections a, const OdometryCorrections& b) {
+  a.radius_scale *= b.radius_scale;
+  a.left_scale *= b.left_scale;
+  a.right_scale *= b.right_scale;
+  a.track_factor *= b.track_factor;
+  a.time_offset += b.time_offset;
+  if (a.slip.empty()) {
+    a.slip = b.slip;
+  } else if (!b.slip.empty()) {
+    for (std::size_t i = 0; i < std::min(a.slip.size(), b.slip.size()); ++i)
+      a.slip[i] = 1.0 - (1.0 - a.slip[i]) * (1.0 - b.slip[i]);
+  }
+  return a;
+}
+
+// Several candidates fitted together: their parameters side by side.
+class ChainModel final : public OdometryCandidateModel {
+ public:
+  explicit ChainModel(std::vector<const OdometryCandidateModel*> links) : links_(std::move(links)) {}
+  std::string name() const override {
+    return join([](const OdometryCandidateModel& m) { return m.name(); }, " + ");
+  }
+  std::string cause() const override {
+    return join([](const OdometryCandidateModel& m) { return m.cause(); }, "; and ");
+  }
+  std::vector<CandidateParameter> parameters() const override {
+    std::vector<CandidateParameter> p;
+    for (const auto* m : links_) {
+      const auto q = m->parameters();
+      p.insert(p.end(), q.begin(), q.end());
+    }
+    return p;
+  }
+  OdometryCorrections corrections(const double* x) const override { return apply(x, false); }
+  OdometryCorrections held_out_corrections(const double* x) const override { return apply(x, true); }
+  std::vector<OdometryParameter> summary(const std::vector<double>& x,
+                                         const std::vector<double>& sigma) const override {
+    std::vector<OdometryParameter> out;
+    std::size_t at = 0;
+    for (const auto* m : links_) {
+      const std::size_t k = m->parameters().size();
+      const std::vector<double> xs(x.begin() + static_cast<std::ptrdiff_t>(at),
+                                   x.begin() + static_cast<std::ptrdiff_t>(at + k));
+      const std::vector<double> ss(sigma.begin() + static_cast<std::ptrdiff_t>(at),
+                                   sigma.begin() + static_cast<std::ptrdiff_t>(at + k));
+      const auto part = m->summary(xs, ss);
+      out.insert(out.end(), part.begin(), part.end());
+      at += k;
+    }
+    return out;
+  }
+
+ private:
+  template <class F>
+  std::string join(F f, const char* sep) const {
+    std::string s;
+    for (const auto* m : links_) s += (s.empty() ? "" : sep) + f(*m);
+    return s;
+  }
+  OdometryCorrections apply(const double* x, bool held_out) const {
+    OdometryCorrections c;
+    for (const auto* m : links_) {
+      c = combine(c, held_out ? m->held_out_corrections(x) : m->corrections(x));
+      x += m->parameters().size();
+    }
+    return c;
+  }
+  std::vector<const OdometryCandidateModel*> links_;
+};
+
 // The study's steps: inputs, the split, the baseline's residuals, each
 // candidate's fit and held-out score, and the verdict.
 class OdometryStudy {
@@ -106,6 +182,7 @@ class OdometryStudy {
   std::vector<double> parameter_sigmas(ceres::Problem& problem, std::vector<double>& x,
                                        const std::vector<double>& r_fit) const;
   void choose_cause();
+  void select_forward();
   void write_what_is_wrong();
   void write_verdict();
 
@@ -114,6 +191,7 @@ class OdometryStudy {
   ReferenceTrack ref_;
   WheelSamples wheels_;
   Part fit_, test_;
+  std::vector<std::unique_ptr<OdometryCandidateModel>> models_;
   OdometryDiscrepancyReport rep_;
 };
 
@@ -122,8 +200,10 @@ OdometryDiscrepancyReport OdometryStudy::run() {
   split();
   score_baseline();
   const OdometryCandidateContext context{fit_.wheels, test_.wheels.time.size(), o_};
-  for (const auto& model : odometry_candidates(context)) rep_.candidates.push_back(fit_candidate(*model));
+  models_ = odometry_candidates(context);
+  for (const auto& model : models_) rep_.candidates.push_back(fit_candidate(*model));
   choose_cause();
+  select_forward();
   write_what_is_wrong();
   write_verdict();
   return std::move(rep_);
@@ -155,10 +235,16 @@ void OdometryStudy::split() {
   rep_.distance = dist.back();
   if (rep_.distance < 5.0)
     throw DataError("the reference track covers only " + std::to_string(rep_.distance) + " m (need 5 m)");
-  const double t_begin = std::max(ref_.time.front(), wheels_.time.front());
+  // Each part starts with the rover under way: its heading is the course
+  // over the next metres, which a turn in place before them would falsify.
+  const auto under_way = [&](std::size_t k) { return std::hypot(ref_.v_east[k], ref_.v_north[k]) >= kUnderWaySpeed; };
+  std::size_t first = 0;
+  while (first + 1 < dist.size() && (ref_.time[first] < wheels_.time.front() || !under_way(first))) ++first;
+  const double t_begin = std::max(ref_.time[first], wheels_.time.front());
   const double t_end = std::min(ref_.time.back(), wheels_.time.back());
   std::size_t split = 0;
   while (split + 1 < dist.size() && dist[split] < o_.fit_fraction * rep_.distance) ++split;
+  while (split + 1 < dist.size() && !under_way(split)) ++split;
   rep_.split_time = ref_.time[split];
   rep_.fit_distance = dist[split];
 
@@ -302,6 +388,44 @@ void OdometryStudy::choose_cause() {
   }
 }
 
+// Several causes at once (the single-wheel study's forward selection): the
+// named cause first; then each of the others refitted together with the
+// chain, and of the steps that lower BIC by more than 10 and the held-out
+// RMSE by min_improvement, the one with the lowest BIC is kept. (Chosen by
+// BIC alone, the many-parameter slip episodes win every step: track errors
+// are correlated in time, and BIC counts them as independent.)
+void OdometryStudy::select_forward() {
+  if (rep_.best < 0) return;
+  std::vector<std::size_t> chain{static_cast<std::size_t>(rep_.best)};
+  rep_.selection.push_back(rep_.candidates[static_cast<std::size_t>(rep_.best)]);
+  while (chain.size() < models_.size()) {
+    const OdometryCandidate& at = rep_.selection.back();
+    int next = -1;
+    OdometryCandidate next_fit;
+    std::optional<OdometryCandidate> closest;  // the best step by held-out RMSE, kept or not
+    for (std::size_t i = 0; i < models_.size(); ++i) {
+      if (std::find(chain.begin(), chain.end(), i) != chain.end()) continue;
+      std::vector<const OdometryCandidateModel*> links;
+      links.reserve(chain.size() + 1);
+      for (std::size_t j : chain) links.push_back(models_[j].get());
+      links.push_back(models_[i].get());
+      OdometryCandidate fit = fit_candidate(ChainModel(links));
+      if (!closest || fit.held_out_rmse < closest->held_out_rmse) closest = fit;
+      const bool passes = fit.bic - at.bic < -10.0 && fit.held_out_rmse <= at.held_out_rmse - o_.min_improvement;
+      if (passes && (next < 0 || fit.bic < next_fit.bic)) {
+        next = static_cast<int>(i);
+        next_fit = std::move(fit);
+      }
+    }
+    if (next < 0) {
+      rep_.rejected_step = std::move(closest);
+      break;
+    }
+    chain.push_back(static_cast<std::size_t>(next));
+    rep_.selection.push_back(std::move(next_fit));
+  }
+}
+
 void OdometryStudy::write_what_is_wrong() {
   char buf[512];
   std::snprintf(buf, sizeof buf,
@@ -313,7 +437,7 @@ void OdometryStudy::write_what_is_wrong() {
 }
 
 void OdometryStudy::write_verdict() {
-  char buf[512];
+  char buf[1024];
   if (rep_.best < 0) {
     std::snprintf(buf, sizeof buf,
                   "No candidate explains the disagreement: none cuts the held-out RMSE (%.2f m) by %.0f %% and "
@@ -344,6 +468,22 @@ void OdometryStudy::write_verdict() {
       second = static_cast<int>(i);
     }
   }
+  if (rep_.selection.size() >= 2) {
+    const auto& c = rep_.selection.back();
+    std::string fitted;
+    for (const auto& p : c.parameters) {
+      char one[96];
+      std::snprintf(one, sizeof one, "%s%s = %.4g", fitted.empty() ? "" : ", ", p.name.c_str(), p.value);
+      fitted += one;
+    }
+    std::snprintf(buf, sizeof buf,
+                  " Forward selection keeps %zu causes together: %s (%s), held-out RMSE %.2f m (final %.2f m), "
+                  "delta BIC %.0f against the baseline.",
+                  rep_.selection.size(), c.name.c_str(), fitted.c_str(), c.held_out_rmse, c.held_out_final,
+                  c.delta_bic);
+    rep_.verdict += buf;
+    return;
+  }
   if (second >= 0) {
     const auto& c = rep_.candidates[static_cast<std::size_t>(second)];
     char more[256];
@@ -351,6 +491,14 @@ void OdometryStudy::write_verdict() {
                   " Runner-up: %s (held-out %.2f m); data with other manoeuvres would separate them.", c.name.c_str(),
                   c.held_out_rmse);
     rep_.verdict += more;
+  }
+  if (!rep_.selection.empty() && rep_.rejected_step) {
+    const auto& r = *rep_.rejected_step;
+    std::snprintf(buf, sizeof buf,
+                  " Fitted together, %s change BIC by %.0f more and the held-out RMSE to %.2f m: this drive cannot "
+                  "tell a second cause apart.",
+                  r.name.c_str(), r.bic - rep_.selection.back().bic, r.held_out_rmse);
+    rep_.verdict += buf;
   }
 }
 

@@ -10,6 +10,7 @@
 // episodes (piecewise-constant slip), time offset between wheel and
 // reference streams.
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,6 +59,15 @@ struct OdometryDiscrepancyReport {
   double along_track_rmse = 0, cross_track_rmse = 0;  // m
   std::vector<OdometryCandidate> candidates;
   int best = -1;  // index of the named cause, -1 when none is significant
+  // Forward selection (several causes): the named cause first, then each
+  // step the chain so far plus one more candidate, all refitted together; of
+  // the steps that lower BIC by more than 10 against the chain before and the
+  // held-out RMSE by at least min_improvement, the lowest BIC is kept. Empty
+  // when no cause is named.
+  std::vector<OdometryCandidate> selection;
+  // The further step with the lowest held-out RMSE, tried and not kept
+  // (absent when every candidate is in or no cause is named).
+  std::optional<OdometryCandidate> rejected_step;
   std::string what_is_wrong, verdict;
 };
 

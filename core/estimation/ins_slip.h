@@ -59,13 +59,21 @@ struct InsSlipOptions {
   // Vertical wheel velocity is further from zero than lateral on rough ground
   // (bumps, and the IMU's mounting pitch: 2 deg at 0.7 m/s is 0.025 m/s);
   // see docs/validation/ins-slip.md for the sensitivity on the Pathfinder log.
-  double nhc_vertical_sigma = 0.2;        // m/s
-  double odometry_sigma = 0.05;           // m/s
-  double odometry_gate = 6.63;            // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
-  double heading_distance = 5.0;          // m of GPS track that set the initial heading
-  std::optional<double> initial_heading;  // rad clockwise from north; overrides the GPS heading
+  double nhc_vertical_sigma = 0.2;  // m/s
+  double odometry_sigma = 0.05;     // m/s
+  double odometry_gate = 6.63;      // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
+  // Initial heading and position: the rigid rotation and translation that best
+  // align a first pass's track with the GPS fixes over this much GPS track,
+  // or longer, until the GPS fix noise alone leaves the heading known to
+  // alignment_heading_sigma (or the track ends).
+  double alignment_distance = 20.0;       // m
+  double alignment_heading_sigma = 0.01;  // rad (0.57 deg)
+  std::optional<double> initial_heading;  // rad clockwise from north; overrides the alignment
   double no_slip = 0.02;                  // |s| at or below which a sample counts as no slip
-  double min_slip_speed = 0.1;  // m/s: below it (wheel and body speed both) slip is undefined and reported as 0
+  // m/s: moving slower than this (wheels and body), or turning in place (one
+  // side's wheels turning backwards), slip is undefined (NaN, not scored);
+  // at standstill it is 0 (Eq. 1's third case).
+  double min_slip_speed = 0.1;
   // Robustness (issue 17): IMU screening and gap bridging, the NIS gate of
   // the ZUPT, ZARU and NHC updates, health checks with the physical bounds
   // below (docs/validation/ins-slip.md, "Outliers, gaps, divergence").
@@ -84,11 +92,28 @@ using analysis::AxisErrors;
 using analysis::InsSlipMetrics;
 using analysis::OdometryMetrics;
 
+// How the initial heading was obtained and how well it is known.
+struct InitialHeading {
+  enum class Method { given, aligned, assumed_north } method = Method::assumed_north;
+  double heading = 0;          // rad clockwise from north
+  double sigma = NAN;          // rad, 1 sigma (aligned: from the fit's residuals)
+  double east = 0, north = 0;  // m, initial position
+  double stretch = 0;          // m of GPS track aligned over
+  std::size_t fixes = 0;       // GPS fixes used
+  double residual_rms = NAN;   // m, of the aligned first pass against those fixes
+};
+std::string describe(const InitialHeading& h);
+
 struct InsSlipResult {
   log::Log estimates;  // streams estimate/ins/..., estimate/odometry/pose
   InsSlipMetrics metrics;
   OdometryMetrics odometry;  // plain wheel odometry, same initial pose
   HealthReport health;       // IMU screening and both filter passes
+  InitialHeading heading;
+  // The GPS reference as smoothed (reference_track.h): fix noise, process
+  // noise, fixes the gate rejected; fix_sigma NaN without GPS.
+  double gps_fix_sigma = NAN, gps_accel_psd = NAN;
+  std::size_t gps_outliers = 0;
 };
 
 // Channel names the estimator reads (RoverLab's conventions; see

@@ -70,6 +70,7 @@ void InsSlipEstimator::read_samples() {
   in_.wheel_rates =
       wheel_rates(w.time(), values(w, "angle_FL"), values(w, "angle_FR"), values(w, "angle_RL"), values(w, "angle_RR"));
   reference_ = reference_from_gps(log_, channels_.gps);
+  smooth_reference(reference_);
   in_.time = &imu_->time();
   truth_slip_ = log_.find_stream(channels_.truth_slip);
   if (truth_slip_ != nullptr && truth_slip_->find_channel("slip_ratio") == nullptr) truth_slip_ = nullptr;
@@ -105,7 +106,7 @@ void InsSlipEstimator::detect_standstill() {
 }
 
 // Initial attitude: levelling on the first 5 s at rest (or the first 0.5 s);
-// initial heading from the options, else the reference's initial course.
+// initial heading from the options, else north until align_initial_pose.
 void InsSlipEstimator::level() {
   const std::size_t n = in_.size();
   const auto& t = *in_.time;
@@ -122,19 +123,74 @@ void InsSlipEstimator::level() {
   in_.heading0 = 0.0;
   if (o_.initial_heading) {
     in_.heading0 = *o_.initial_heading;
-  } else if (reference_.present) {
-    in_.heading0 = initial_course(reference_, o_.heading_distance);
-    if (!std::isfinite(in_.heading0)) in_.heading0 = 0.0;
+    heading_.method = InitialHeading::Method::given;
+    heading_.heading = in_.heading0;
   }
   in_.frame = LocalFrame(reference_.latitude, reference_.longitude, reference_.height);
 }
 
+// Initial heading and position: a first pass from heading 0 at the origin,
+// then the rigid rotation and translation that best align its track with the
+// GPS fixes (gate-rejected ones left out) over the first alignment_distance
+// metres of GPS track, or longer until the fix noise alone leaves the heading
+// known to alignment_heading_sigma. The filter is heading-invariant to within
+// the Earth rate's effect, so the second pass from the aligned pose follows
+// the rotated first track.
+double InsSlipEstimator::pass_share() const {
+  const int passes = (o_.initial_heading || !reference_.present ? 0 : 1) + (o_.odometry_aiding ? 2 : 1);
+  return 1.0 / passes;
+}
+
+void InsSlipEstimator::align_initial_pose() {
+  if (o_.initial_heading || !reference_.present) return;
+  const auto& t = *in_.time;
+  // Progress (and, through it, cancellation) in thirds or halves: this pass first.
+  const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(0.0, pass_share());
+  const std::vector<double> along = distance_along(reference_);
+  const double fix_variance = std::isfinite(reference_.fix_sigma) ? reference_.fix_sigma * reference_.fix_sigma : 0.0;
+  std::vector<double> xe, xn, ye, yn;
+  double stretch = 0, se = 0, sn = 0, sq = 0;  // running sums of the first pass's points
+  for (std::size_t g = 0; g < reference_.time.size(); ++g) {
+    const double tg = reference_.time[g];
+    if (tg < t.front() || tg > t.back()) continue;
+    if (along[g] > o_.alignment_distance && xe.size() >= 10) {
+      // Heading variance the fix noise alone leaves: sigma^2 / spread of the points.
+      const auto k = static_cast<double>(xe.size());
+      const double spread = sq - (se * se + sn * sn) / k;
+      if (spread > 0 && fix_variance / spread <= o_.alignment_heading_sigma * o_.alignment_heading_sigma) break;
+    }
+    stretch = along[g];
+    if (!reference_.outlier.empty() && reference_.outlier[g] != 0) continue;
+    xe.push_back(log::interpolate_linear(t, track.east, tg));
+    xn.push_back(log::interpolate_linear(t, track.north, tg));
+    ye.push_back(reference_.east[g]);
+    yn.push_back(reference_.north[g]);
+    se += xe.back();
+    sn += xn.back();
+    sq += xe.back() * xe.back() + xn.back() * xn.back();
+  }
+  // Too short a stretch to tell a heading (the rover never left the spot).
+  if (stretch < 2.0 || xe.size() < 10) return;
+  const RigidAlignment a = rigid_alignment(xe, xn, ye, yn);
+  in_.heading0 = a.rotation;
+  in_.east0 = a.east;
+  in_.north0 = a.north;
+  // The stated sigma: the fix noise's or the residuals', whichever is larger.
+  const double spread = sq - (se * se + sn * sn) / static_cast<double>(xe.size());
+  const double noise_sigma = spread > 0 ? std::sqrt(fix_variance / spread) : NAN;
+  const double sigma = std::isfinite(noise_sigma) ? std::max(noise_sigma, a.rotation_sigma) : a.rotation_sigma;
+  heading_ = {InitialHeading::Method::aligned, a.rotation, sigma, a.east, a.north, stretch, a.points, a.residual_rms};
+}
+
 log::Log InsSlipEstimator::run() {
+  align_initial_pose();
+  const double share = pass_share();
+  const double base = o_.initial_heading || !reference_.present ? 0.0 : share;
   // The localisation filter (with wheel-speed aiding if asked), and the slip
   // detector: a filter that never sees the wheel speed it is judged against.
-  const double share = o_.odometry_aiding ? 0.5 : 1.0;
-  const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(0.0, share);
-  const InsTrack detector_track = o_.odometry_aiding ? InsFilterPass(in_, o_, false).run(0.5, 0.5) : InsTrack(0);
+  const InsTrack track = InsFilterPass(in_, o_, o_.odometry_aiding).run(base, share);
+  const InsTrack detector_track =
+      o_.odometry_aiding ? InsFilterPass(in_, o_, false).run(base + share, share) : InsTrack(0);
   const InsTrack& detector = o_.odometry_aiding ? detector_track : track;
   health_ = track.health;
   if (o_.odometry_aiding) health_.merge(detector_track.health);
@@ -190,34 +246,39 @@ void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& tra
 InsSlipEstimator::SlipColumns InsSlipEstimator::slip_columns(const InsTrack& detector) const {
   const auto& t = *in_.time;
   const WheelSamples& wr = in_.wheel_rates;
+  const double r = o_.rover.wheel_radius;
   SlipColumns c;
   for (std::size_t k = 0; k < wr.time.size(); ++k) {
     const double tk = wr.time[k];
     if (tk < t.front() || tk > t.back()) continue;
-    const double wheel_speed = in_.wheel_speed(k, o_.rover.wheel_radius);
+    const double wheel_speed = in_.wheel_speed(k, r);
     const double v = log::interpolate_linear(t, detector.vx, tk);
-    // At standstill slip is 0 (Eq. 1's third case). Between standstill and
-    // min_slip_speed the ratio is ill-conditioned: reported as NaN and left
-    // out of the confusion matrix.
-    const bool slow_wheels = std::abs(wheel_speed) < o_.min_slip_speed;
+    // At standstill slip is 0 (Eq. 1's third case). Moving slower than
+    // min_slip_speed the ratio is ill-conditioned, and turning in place
+    // (one side's wheels backwards) it has no forward speed to refer to:
+    // NaN, left out of the confusion matrix.
     const bool at_rest = in_.standstill[std::min(imu_->nearest_index(tk), in_.size() - 1)] != 0;
-    const bool undefined = !at_rest && slow_wheels && std::abs(v) < o_.min_slip_speed;
+    const bool turning = wr.left_rate[k] * wr.right_rate[k] < 0.0 &&
+                         0.5 * r * std::abs(wr.left_rate[k] - wr.right_rate[k]) > std::abs(wheel_speed);
+    const bool slow = std::abs(wheel_speed) < o_.min_slip_speed && std::abs(v) < o_.min_slip_speed;
+    const bool undefined = !at_rest && (slow || turning);
     const double s_e = at_rest ? 0.0 : undefined ? NAN : slip_ratio(v, wheel_speed);
     c.time.push_back(tk);
     c.slip.push_back(s_e);
     c.slip_class.push_back(undefined ? NAN : static_cast<double>(classify_slip(s_e, o_.no_slip)));
     c.wheel_speed.push_back(wheel_speed);
     c.forward_speed.push_back(v);
-    add_reference_slip(c, tk, wheel_speed, detector);
+    c.at_rest.push_back(at_rest ? 1.0 : 0.0);
+    add_reference_slip(c, tk, wheel_speed, at_rest, turning);
   }
   return c;
 }
 
-// The reference slip: the log's truth when present, else Eq. 30 from the GPS
-// velocity along the detector's heading.
-void InsSlipEstimator::add_reference_slip(SlipColumns& c, double tk, double wheel_speed,
-                                          const InsTrack& detector) const {
-  const bool slow_wheels = std::abs(wheel_speed) < o_.min_slip_speed;
+// The reference slip: the log's truth when present, else Eq. 30 from the
+// RTS-smoothed GPS velocity projected on the GPS course (its speed), signed
+// by the wheels' direction, so that no heading estimate enters it.
+void InsSlipEstimator::add_reference_slip(SlipColumns& c, double tk, double wheel_speed, bool at_rest,
+                                          bool turning) const {
   if (truth_slip_ != nullptr) {
     const std::size_t j = truth_slip_->nearest_index(tk);
     const double s_r = truth_slip_->channel("slip_ratio").values[j];
@@ -225,15 +286,20 @@ void InsSlipEstimator::add_reference_slip(SlipColumns& c, double tk, double whee
     c.reference_class.push_back(static_cast<double>(classify_slip(s_r, o_.no_slip)));
     c.reference_speed.push_back(NAN);
   } else if (reference_.present) {
-    const auto& t = *in_.time;
     const ReferenceTrack& ref = reference_;
-    const double psi = log::interpolate_linear(t, detector.yaw, tk);
-    const double v_r = log::interpolate_linear(ref.time, ref.v_east, tk) * std::sin(psi) +
-                       log::interpolate_linear(ref.time, ref.v_north, tk) * std::cos(psi);
-    const double s_r = (slow_wheels && std::abs(v_r) < o_.min_slip_speed) ? 0.0 : slip_ratio(v_r, wheel_speed);
+    const double speed = std::hypot(log::interpolate_linear(ref.time, ref.v_east, tk),
+                                    log::interpolate_linear(ref.time, ref.v_north, tk));
+    const double v_r = wheel_speed < 0.0 ? -speed : speed;
+    const bool slow = std::abs(wheel_speed) < o_.min_slip_speed && speed < o_.min_slip_speed;
+    double s_r = slip_ratio(v_r, wheel_speed);
+    if (at_rest) {
+      s_r = 0.0;
+    } else if (slow || turning) {
+      s_r = NAN;
+    }
     c.reference_slip.push_back(s_r);
-    c.reference_class.push_back(static_cast<double>(classify_slip(s_r, o_.no_slip)));
-    c.reference_speed.push_back(v_r);
+    c.reference_class.push_back(std::isfinite(s_r) ? static_cast<double>(classify_slip(s_r, o_.no_slip)) : NAN);
+    c.reference_speed.push_back(std::isfinite(s_r) ? v_r : NAN);
   }
 }
 
@@ -245,9 +311,10 @@ void InsSlipEstimator::add_slip_stream(log::Log& out, const InsTrack& detector) 
   slip.add_channel("slip_class", "1", std::move(c.slip_class), "0 none, 1 low, 2 medium, 3 high, 4 extreme");
   slip.add_channel("wheel_speed", "m/s", std::move(c.wheel_speed), "r omega, mean of the four wheels");
   slip.add_channel("forward_speed", "m/s", std::move(c.forward_speed), "INS body forward speed");
+  slip.add_channel("at_rest", "bool", std::move(c.at_rest), "1 at standstill (slip 0 by Eq. 1's third case)");
   if (truth_slip_ != nullptr || reference_.present) {
     slip.add_channel("reference_speed", "m/s", std::move(c.reference_speed),
-                     "GPS velocity along the INS heading (NaN: truth used)");
+                     "smoothed GPS speed, signed by the wheels (NaN: truth used, or slip undefined)");
     slip.add_channel("reference_slip", "1", std::move(c.reference_slip), truth_slip_ ? "truth" : "Eq. 30, from GPS");
     slip.add_channel("reference_class", "1", std::move(c.reference_class));
   }
@@ -256,7 +323,8 @@ void InsSlipEstimator::add_slip_stream(log::Log& out, const InsTrack& detector) 
 
 // Plain wheel odometry from the same initial pose.
 void InsSlipEstimator::add_odometry_stream(log::Log& out) const {
-  const OdometryTrack odo = dead_reckon(in_.wheel_rates, o_.rover, OdometryCorrections{}, 0.0, 0.0, in_.heading0);
+  const OdometryTrack odo =
+      dead_reckon(in_.wheel_rates, o_.rover, OdometryCorrections{}, in_.east0, in_.north0, in_.heading0);
   log::Stream p("estimate/odometry/pose", odo.time);
   p.add_channel("east", "m", odo.east);
   p.add_channel("north", "m", odo.north);

@@ -24,20 +24,25 @@ class InsSlipEstimator {
   log::Log run();
   // What the IMU screening and both filter passes rejected, bridged and reset (after run).
   const HealthReport& health() const { return health_; }
+  // How the initial heading was obtained (after run).
+  const InitialHeading& initial_heading() const { return heading_; }
+  const ReferenceTrack& reference() const { return reference_; }
 
  private:
   // Slip at the wheel samples within the IMU span, with its reference.
   struct SlipColumns {
-    std::vector<double> time, slip, slip_class, wheel_speed, forward_speed;
+    std::vector<double> time, slip, slip_class, wheel_speed, forward_speed, at_rest;
     std::vector<double> reference_speed, reference_slip, reference_class;
   };
 
   void read_samples();
   void detect_standstill();
   void level();
+  void align_initial_pose();
+  double pass_share() const;  // each filter pass's share of the progress
   void add_navigation_streams(log::Log& out, const InsTrack& track) const;
   SlipColumns slip_columns(const InsTrack& detector) const;
-  void add_reference_slip(SlipColumns& c, double t, double wheel_speed, const InsTrack& detector) const;
+  void add_reference_slip(SlipColumns& c, double t, double wheel_speed, bool at_rest, bool turning) const;
   void add_slip_stream(log::Log& out, const InsTrack& detector) const;
   void add_odometry_stream(log::Log& out) const;
 
@@ -50,6 +55,7 @@ class InsSlipEstimator {
   InsPassInputs in_;
   ScreenedImu imu_screened_;  // the IMU channels the passes read
   HealthReport health_;
+  InitialHeading heading_;
 };
 
 }  // namespace roverlab::estimation

@@ -80,8 +80,8 @@ void InsFilterPass::initialise() {
   const std::size_t n = in_.size();
   s_ = InsState{};
   s_.C_bn = dcm_from_euler(in_.roll0, in_.pitch0, in_.heading0);
-  s_.latitude = in_.frame.latitude;
-  s_.longitude = in_.frame.longitude;
+  s_.latitude = in_.frame.latitude + in_.north0 / in_.frame.rn;
+  s_.longitude = in_.frame.longitude + in_.east0 / (in_.frame.re * std::max(std::cos(in_.frame.latitude), 1e-6));
   s_.height = in_.frame.height;
   const InsErrorMatrix P = initial_covariance();
   P_ = P;

@@ -42,6 +42,7 @@ struct InsPassInputs {
   std::vector<char> standstill;                // per IMU sample
   const ScreenedImu* screened = nullptr;       // what was bridged (the process noise it adds)
   double roll0 = 0, pitch0 = 0, heading0 = 0;  // rad
+  double east0 = 0, north0 = 0;                // m, initial position in the local frame
   LocalFrame frame;
 
   std::size_t size() const { return time->size(); }

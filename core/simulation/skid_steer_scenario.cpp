@@ -29,6 +29,30 @@ SkidSteerScenario default_slip_scenario(unsigned seed) {
   return s;
 }
 
+SkidSteerScenario loop_slip_scenario(unsigned seed) {
+  SkidSteerScenario s;
+  s.seed = seed;
+  s.heading = 2.3;  // rad: south-east
+  s.gps_sigma = 3.0;
+  const double turn = 0.5, quarter = 0.5 * M_PI / turn;  // rad/s, s
+  s.segments = {{5.0, 0.0, 0.0, 0.0}, {quarter, 0.0, -turn, 0.0}, {2.0, 0.0, 0.0, 0.0}};
+  // Each side: 25 s at 0.8 m/s with the side's slip and one episode, a stop, a
+  // quarter turn in place (clockwise), a pause at rest.
+  const double steady[4] = {0.0, 0.04, 0.0, 0.04};
+  const double episode[8] = {0.12, 0.3, 0.55, 0.85, 0.3, 0.12, 0.85, 0.55};
+  for (int side = 0; side < 8; ++side) {
+    const double base = steady[side % 4];
+    const double burst_speed = episode[side] > 0.7 ? 0.3 : 0.8;  // a deep episode slows the rover
+    s.segments.push_back({10.0, 0.8, 0.0, base});
+    s.segments.push_back({4.0, burst_speed, 0.0, episode[side]});
+    s.segments.push_back({9.0, 0.8, 0.0, base});
+    s.segments.push_back({2.5, 0.0, 0.0, base});
+    s.segments.push_back({quarter, 0.0, turn, 0.0});
+    s.segments.push_back({1.5, 0.0, 0.0, 0.0});
+  }
+  return s;
+}
+
 void set_effect(SkidSteerScenario& s, const std::string& name, double value) {
   if (!std::isfinite(value)) throw DataError("effect " + name + ": value is not a number");
   if (name == "left-radius-scale") {
@@ -120,7 +144,8 @@ void SkidSteerSimulator::drive(const DriveSegment& seg) {
   for (long k = 0; k < steps; ++k) {
     const double dv = seg.speed - v_;
     const double a = std::clamp(dv / dt, -sc_.max_acceleration, sc_.max_acceleration);
-    const double yaw_rate = v_ > 1e-6 || seg.speed > 0.0 ? seg.yaw_rate : 0.0;
+    // A stop segment with a yaw rate brakes while turning, then turns in place.
+    const double yaw_rate = seg.yaw_rate;
     // IMU at this sample: specific force f = a_b - g_b on level ground (FRD body axes).
     d_.t.push_back(time_);
     d_.fx.push_back(a + ba_.x() + sc_.accel_vrw / std::sqrt(dt) * unit_(rng_));

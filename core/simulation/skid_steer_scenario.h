@@ -14,7 +14,7 @@ namespace roverlab::simulation {
 struct DriveSegment {
   double duration;  // s
   double speed;     // m/s commanded forward speed (reached with max_acceleration)
-  double yaw_rate;  // rad/s, clockwise positive
+  double yaw_rate;  // rad/s, clockwise positive; with speed 0, a turn in place once stopped
   double slip;      // wheel slip ratio during the segment, 0..0.95
 };
 
@@ -47,6 +47,13 @@ struct SkidSteerScenario {
 // The default test drive: 5 s at rest, then straight runs and turns at
 // 0.5 m/s with 3 s stops every 20 s, and slip episodes of every class.
 SkidSteerScenario default_slip_scenario(unsigned seed);
+
+// Loops with turns in place (issue 14): 5 s at rest, a quarter turn in place,
+// then two laps of a square of about 18 m sides at 0.8 m/s (about 140 m, 4 min), each side
+// ended by a stop and a quarter turn in place; starting towards the south-east
+// (not north); GPS noise of 3 m; firm ground (slip 0) on half the sides, 4 %
+// steady slip on the others, and episodes of 12, 30, 55 and 85 %.
+SkidSteerScenario loop_slip_scenario(unsigned seed);
 
 // Sets a hidden effect by name: left-radius-scale, right-radius-scale,
 // radius-scale (both sides), turning-track-factor, wheel-time-offset, or

@@ -369,11 +369,30 @@ TEST(CliInsSlip, OnThePathfinderLogThePseudoMeasurementInsBeatsPureInsAndWheelOd
   const double inertial = p.at("ins").at("final_position_error_m").get<double>();
   const double pseudo_only = q.at("ins").at("final_position_error_m").get<double>();
   EXPECT_NEAR(f.at("distance_m").get<double>(), 34.3, 0.5);
-  EXPECT_NEAR(odometry, 10.6, 0.5);
+  // The initial heading comes from aligning a first pass to the GPS track; the
+  // wheel odometry starts from the same pose and drifts by its own heading.
+  EXPECT_EQ(f.at("initial_heading").at("method"), "aligned");
+  EXPECT_LT(f.at("initial_heading").at("sigma_rad").get<double>(), 0.02);
+  EXPECT_GT(odometry, 5.0);
   EXPECT_GT(inertial, 100.0);              // 70 s of free inertial drift
   EXPECT_LT(pseudo_only, 0.6 * odometry);  // ZUPT, ZARU and NHC alone
   EXPECT_LT(ins, 0.3 * odometry);          // plus gated wheel-speed aiding
   EXPECT_EQ(f.at("slip_confusion").at("counts").size(), 5u);
+  // Issue 14 item 3: from a wrong heading (given: north, where the rover
+  // drove 5 deg east of it) the error as it is grows, the error after the
+  // best rigid alignment over the first stretch stays the aligned run's.
+  const CommandResult north =
+      run_roverlab("estimate ins-slip " + quote(kPathfinder) + " -m wvu_pathfinder --initial-heading 0 --json");
+  ASSERT_EQ(north.exit_code, 0) << north.err;
+  const auto n = nlohmann::json::parse(north.out);
+  EXPECT_EQ(n.at("initial_heading").at("method"), "given");
+  EXPECT_GT(n.at("ins").at("position_rmse_m").get<double>(), 2.0 * f.at("ins").at("position_rmse_m").get<double>());
+  EXPECT_NEAR(n.at("ins").at("aligned_position_rmse_m").get<double>(),
+              f.at("ins").at("aligned_position_rmse_m").get<double>(), 0.05);
+  EXPECT_NEAR(n.at("ins").at("alignment_rotation_rad").get<double>(),
+              f.at("initial_heading").at("heading_rad").get<double>(), 0.01);
+  EXPECT_LT(f.at("ins").at("aligned_position_rmse_m").get<double>(),
+            f.at("wheel_odometry").at("aligned_position_rmse_m").get<double>());
 }
 
 TEST(CliInsSlip, WritesEstimateStreamsAndReadsItsOwnSimulatedLogs) {
@@ -394,6 +413,22 @@ TEST(CliInsSlip, WritesEstimateStreamsAndReadsItsOwnSimulatedLogs) {
   const auto& slip = lg.stream("estimate/ins/slip");
   EXPECT_NE(slip.find_channel("slip_class"), nullptr);
   EXPECT_NE(slip.find_channel("reference_slip"), nullptr);
+}
+
+// Issue 14: loops with turns in place, starting south-east, 3 m GPS noise.
+TEST(CliInsSlip, LoopDriveWithTurnsInPlaceAndNoisyGps) {
+  TempDir dir;
+  const std::string sim = dir.file("loops.h5");
+  ASSERT_EQ(run_roverlab("scenario skid-steer-slip --drive loops --seed 7 -o " + quote(sim)).exit_code, 0);
+  const CommandResult r = run_roverlab("estimate ins-slip " + quote(sim) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  const auto& h = doc.at("initial_heading");
+  EXPECT_EQ(h.at("method"), "aligned");
+  EXPECT_NEAR(h.at("heading_rad").get<double>(), 2.3, 3.0 * h.at("sigma_rad").get<double>());
+  EXPECT_NEAR(doc.at("gps_reference").at("fix_sigma_m").get<double>(), 3.0, 0.3);
+  EXPECT_GE(doc.at("slip_confusion").at("accuracy").get<double>(), 0.9);
+  EXPECT_EQ(run_roverlab("scenario skid-steer-slip --drive spiral -o " + quote(dir.file("x.h5"))).exit_code, 2);
 }
 
 TEST(CliInsSlip, BadInputAndUsage) {

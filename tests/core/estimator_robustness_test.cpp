@@ -241,11 +241,12 @@ TEST_P(InsRobustness, ThreeImuOutliersChangeThePositionRmseByUnderTenPercentAndA
   EXPECT_NE(dirty.health.status(), estimation::HealthStatus::diverged);
 }
 
-// The dropout at five places. The position RMSE is never more than 20 %
-// worse. On the simulated log it changes by under 20 % either way; on the
-// Pathfinder log it improves at some places (by up to 43 %): the bridge's
-// process noise lets the updates correct an attitude the clean pass holds
-// too confidently (docs/validation/estimator-robustness.md).
+// The dropout at five places: the position RMSE changes by under 20 % either
+// way. On the Pathfinder log it used to improve by up to 43 % (the bridge's
+// process noise let the updates correct an attitude the clean pass held too
+// confidently); with the initial heading aligned to the GPS track (issue 14)
+// that attitude error no longer turns into a heading error over the whole
+// run (docs/validation/estimator-robustness.md).
 TEST_P(InsRobustness, ATenthOfASecondDropoutIsBridgedByPredictionAndReportedAsAGap) {
   const auto clean_run = run(clean());
   const double a = clean_run.metrics.position_rmse;
@@ -254,10 +255,7 @@ TEST_P(InsRobustness, ATenthOfASecondDropoutIsBridgedByPredictionAndReportedAsAG
     const double b = dropped.metrics.position_rmse;
     std::printf("[figures] %s clean %.3f m, 0.1 s dropout at %.0f %% %.3f m\n  dropout: %s\n", GetParam().name, a,
                 100 * at, b, dropped.health.message().c_str());
-    EXPECT_LT(b, 1.2 * a) << at;
-    if (std::string(GetParam().name) != "pathfinder_test17run") {
-      EXPECT_LT(relative_change(b, a), 0.20) << at;
-    }
+    EXPECT_LT(relative_change(b, a), 0.20) << at;
     ASSERT_EQ(dropped.health.gaps.size(), 1u);
     EXPECT_NEAR(dropped.health.gaps[0].end - dropped.health.gaps[0].start, 0.1, 0.02);
     EXPECT_NE(dropped.health.message().find("1 gap of 0.1"), std::string::npos) << dropped.health.message();
