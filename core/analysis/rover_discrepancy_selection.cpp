@@ -75,7 +75,7 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     Trial& t = round.trials[i];
     if (t.screened_chi2 > 10 * best_fit + 100) continue;
     const int sims = pr.simulations();
-    const double k = static_cast<double>(t.fit.parameters.size() - chain.size());
+    const auto k = static_cast<double>(t.fit.parameters.size() - chain.size());
     t.fit = fit_parameters(pr, t.fit.parameters);
     t.simulations += pr.simulations() - sims;
     t.screened = false;
@@ -100,7 +100,7 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
                    std::vector<FitParameter>& chain) {
   const auto candidates = rover_candidates();
   const double ln_n = std::log(static_cast<double>(pr.count(Part::fit)));
-  const double n_test = static_cast<double>(pr.count(Part::test));
+  const auto n_test = static_cast<double>(pr.count(Part::test));
   const simulation::RockerBogieEffects none;
   double fit = chi2(pr, none, Part::fit), test = chi2(pr, none, Part::test);
   r.baseline_bic = fit;
