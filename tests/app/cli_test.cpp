@@ -605,3 +605,28 @@ TEST(CliNetTraction, BadInputAndUsage) {
   ASSERT_EQ(run_roverlab("scenario skid-steer-slip -o " + quote(dir.file("ss.h5"))).exit_code, 0);
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(dir.file("ss.h5"))).exit_code, 3);
 }
+
+// discrepancy rover (issue 13): a log it cannot study is one line, exit 3.
+TEST(Cli, DiscrepancyRoverRefusesALogItCannotStudyInOneLine) {
+  TempDir dir;
+  const std::string shortlog = dir.file("short.h5"), flat = dir.file("flat.h5");
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 5 -o " + quote(shortlog)).exit_code, 0);
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 12 -o " + quote(flat)).exit_code, 0);
+  struct Case {
+    std::string args, problem;
+  };
+  const Case cases[] = {
+      {"discrepancy rover " + quote(shortlog), "8 blocks"},  // too short for fit and test
+      {"discrepancy rover " + quote(kPathfinder) + " -m wvu_pathfinder --scenario flat_60s", "rover"},  // another rover
+      {"discrepancy rover " + quote(flat) + " --scenario nosuch", "nosuch"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = run_roverlab(c.args);
+    EXPECT_EQ(r.exit_code, 3) << c.args << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1U) << r.err;
+    EXPECT_NE(r.err.find(c.problem), std::string::npos) << r.err;
+  }
+  const CommandResult ok = run_roverlab("discrepancy rover " + quote(flat) + " --json");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"causes\": []"), std::string::npos) << ok.out.substr(0, 400);
+}
