@@ -62,7 +62,13 @@ class ContactAngleEstimator {
   Eigen::MatrixXd covariance() const;
   // Outputs.
   double max_cross_correlation() const;
-  void write_streams(ContactAngleResult& result) const;
+  void write_streams(log::Log& estimates) const;
+  // RTS smoother (ContactAngleOptions::smoother): what the forward pass
+  // stores per step, and the backward pass over it into out_.
+  void record_prediction(std::size_t i, const double* x, const double* P11, const double* Pdiag,
+                         const Eigen::Matrix<double, 6, 6>& A, double slip_keep, double angle_keep);
+  void record_filtered(std::size_t i, const double* x, const double* Pdiag, bool segment_start);
+  void smooth(std::size_t steps);
 
   const log::Log& log_;
   const kinematics::RoverModel& m_;
@@ -76,6 +82,14 @@ class ContactAngleEstimator {
   Eigen::VectorXd lower_, upper_;  // physical bounds of the states (NaN: none)
   std::vector<std::string> state_names_;
   std::size_t measurements_missing_ = 0;
+  InnovationStats innovations_;
+  // RTS smoother storage, per step: filtered state and P's diagonal (P is
+  // diagonal after the reset), predicted state, P11 and P's diagonal, the
+  // strapdown Jacobian A and the private states' factors; segment starts
+  // (the first step and each filter reset).
+  bool smooth_ = false;
+  std::vector<double> sm_xf_, sm_pf_, sm_xp_, sm_pp_, sm_p11_, sm_a_, sm_keep_;
+  std::vector<char> sm_start_;
   bool stopped_ = false;
   std::vector<std::vector<double>> fused_rate_;  // joint rates fused with the angles' slope (empty: measured)
   contact::ContactLayout layout_;

@@ -263,14 +263,17 @@ TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
   const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
   auto contact = metrics.at("analyses").at("contact-angle");
   ASSERT_EQ(contact.at("rms").at("contact_angle_deg").size(), 6u);
-  // Wheels on the unmoved side bogies keep near-zero contact angles (C+SS, reset).
+  // Wheels on the unmoved side bogies keep near-zero contact angles (reset).
   for (std::size_t w : {0u, 1u, 4u, 5u}) {
     EXPECT_LT(contact.at("rms").at("contact_angle_deg").at(w).get<double>(), 2.0) << w;
   }
   EXPECT_EQ(metrics.at("analyses").count("ins-slip"), 0u);  // not a skid-steer log
+  // The model chosen by the data (the report's default --model auto), with its evidence.
+  EXPECT_EQ(contact.at("model_selection").at("requested"), "auto");
+  EXPECT_EQ(contact.at("model"), contact.at("model_selection").at("chosen"));  // at 100 Hz: c (1 kHz: c+ss)
+  EXPECT_NE(read_text(folder + "/index.html").find("consistent candidate of least AIC"), std::string::npos);
   // The same document as the command line's for the same options (but for the wall-clock time).
-  const CommandResult cli =
-      run_roverlab("estimate contact-angle " + quote(sim) + " --model c+ss --reset-cross-covariance --json");
+  const CommandResult cli = run_roverlab("estimate contact-angle " + quote(sim) + " --reset-cross-covariance --json");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   auto printed = nlohmann::json::parse(cli.out);
   EXPECT_GT(contact.at("wall_seconds").get<double>(), 0.0);
