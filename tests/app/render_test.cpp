@@ -237,19 +237,30 @@ TEST(Render, ContactAnglesPointWhereTheWheelsMove) {
   EXPECT_NEAR(fl.mean_y, 140.0, 12.0);      // FL's is level with the wheel centre
 }
 
-TEST(Render, PlanarRockerBogieSideViewShowsTheWheelsOnTheTerrain) {
+TEST(Render, PlanarRockerBogieIn3DShowsBothSidesWheelsOnTheTerrainSurface) {
   TempDir dir;
   const std::string sim = dir.file("rb.h5");
   ASSERT_EQ(run_roverlab("simulate bump_crossing --duration 30 -o " + quote(sim)).exit_code, 0);
   const views::Image img = render(quote(sim) + " --view rover -t 25 --size 800x400", dir.file("rb.png"));
-  // Low-slip wheels (yellow-green) around the centre of the picture, the brown terrain below them.
+  // Low-slip wheels (yellow-green) of both sides around the centre of the picture.
   const Region wheels = find_pixels(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
   EXPECT_GT(wheels.count, 3000);
   EXPECT_NEAR(wheels.mean_x, 400, 60);
-  const Region terrain = find_pixels(
-      img, [](int r, int g, int b) { return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g; });
-  EXPECT_GT(terrain.count, 800);
-  EXPECT_GT(terrain.mean_y, wheels.mean_y);
+  const auto is_terrain = [](int r, int g, int b) {
+    return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g;
+  };
+  const Region terrain = find_pixels(img, is_terrain);
+  // The terrain is a surface under the whole rover, not a line: larger than the wheels, centred on them.
+  EXPECT_GT(terrain.count, 2 * wheels.count);
+  EXPECT_NEAR(terrain.mean_x, wheels.mean_x, 80);
+  EXPECT_NEAR(terrain.mean_y, wheels.mean_y, 60);
+  // Both sides: wheels left and right of the picture's middle column of the rover.
+  const Region left = find_pixels(
+      img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; }, 0, static_cast<int>(wheels.mean_x));
+  const Region right = find_pixels(
+      img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; }, static_cast<int>(wheels.mean_x));
+  EXPECT_GT(left.count, 1000);
+  EXPECT_GT(right.count, 1000);
 }
 
 TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
