@@ -44,9 +44,10 @@ struct ContactAngleOptions {
   bool effective_dof = false;
   // Offline fixed-interval Rauch-Tung-Striebel smoother over the forward
   // pass (issue 15; not in seed 000): the estimates streams hold the smoothed
-  // states, ContactAngleResult::filter_rms the forward filter's errors. Needs
-  // the EKF with the cross-covariance reset (the stored covariances are then
-  // block diagonal); DataError otherwise.
+  // states, ContactAngleResult::filter_rms the forward filter's errors. Over
+  // the fast EKF with the cross-covariance reset (DataError otherwise); its
+  // gains come from a companion EKF at the same linearisation points without
+  // the reset (full P).
   bool smoother = false;
   double angle_damping = 1e-3;  // 1/s, A_gamma = A_beta (section 6.2)
   double slip_damping = 1e-3;   // 1/s, A of Eq. 4.15

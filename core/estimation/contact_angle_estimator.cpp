@@ -276,11 +276,10 @@ ContactAngleResult ContactAngleEstimator::run() {
   ContactAngleResult result;
   if (smooth_) {
     const auto nxs = static_cast<std::size_t>(nx);
-    for (auto* v : {&sm_xf_, &sm_pf_, &sm_xp_, &sm_pp_}) v->assign(n * nxs, 0.0);
-    sm_p11_.assign(n * 36, 0.0);
-    sm_a_.assign(n * 36, 0.0);
-    sm_keep_.assign(n * 2, 1.0);
+    sm_xf_.assign(n * nxs, 0.0);
+    sm_xp_.assign(n * nxs, 0.0);
     sm_start_.assign(n, 0);
+    sm_c_.assign(n * nxs * nxs, 0.0F);
   }
   std::size_t steps = 0;  // run (fewer than n when the filter stopped)
   for (std::size_t i = 0; i < n && !stopped_; ++i, ++steps) {
@@ -340,14 +339,15 @@ void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const 
     fe.P = p0_.asDiagonal();
   }
   if (i > 0) {
+    if (smooth_) companion_predict(fe, i, in, ts);  // from the state before this predict
     fe.predict(process_, process_noise(i), in, ts);
-    if (smooth_) {
-      const Eigen::Matrix<double, 6, 6> P11 = fe.P.template topLeftCorner<6, 6>();
-      const Eigen::Matrix<double, FastEkf<NA>::NX, 1> d = fe.P.diagonal();
-      record_prediction(i, fe.x.data(), P11.data(), d.data(), fe.last_A, fe.last_slip_keep, fe.last_angle_keep);
-    }
+    if (smooth_) record_prediction(i, fe.x.data());
   }
   // With the reset, P is blockdiag(P11, diag) after the predict.
+  if (i == 0 && smooth_) {
+    companion<NA>().x = x0_;
+    companion<NA>().P = p0_.asDiagonal();
+  }
   if (update) {
     fe.gate = health_.gate(FastEkf<NA>::NY);
     fe.effective_dof = o_.effective_dof;
@@ -362,8 +362,12 @@ void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const 
     fe.P = Eigen::Matrix<double, FastEkf<NA>::NX, 1>(fe.P.diagonal()).asDiagonal();
   x_ = fe.x;
   if (smooth_) {
-    const Eigen::Matrix<double, FastEkf<NA>::NX, 1> d = fe.P.diagonal();
-    record_filtered(i, fe.x.data(), d.data(), i == 0);
+    if (update && !fe.rejected) {
+      FastEkf<NA>& ff = companion<NA>();
+      ff.gate = HUGE_VAL;
+      ff.update(measurement_, rdiag_, in, false, false);
+    }
+    record_filtered(i, fe.x.data(), i == 0);
   }
 }
 
@@ -448,35 +452,47 @@ void ContactAngleEstimator::reset_filter(std::size_t i) {
   ekf_.x = ukf_.x = x;
   ekf_.P = ukf_.P = P;
   x_ = x;
-  if (smooth_) record_filtered(i, x.data(), p0_.data(), true);  // a new segment: no smoothing across the reset
+  if (smooth_) {
+    record_filtered(i, x.data(), true);
+    full0_.P = P;
+    full6_.P = P;
+    full12_.P = P;
+  }  // a new segment: no smoothing across the reset
 }
 
-void ContactAngleEstimator::record_prediction(std::size_t i, const double* x, const double* P11, const double* Pdiag,
-                                              const Eigen::Matrix<double, 6, 6>& A, double slip_keep,
-                                              double angle_keep) {
+// The smoother's companion filter: the fast EKF's predict and update at the
+// same linearisation points, without the reset, so that its full P holds the
+// couplings the reset drops; from it the RTS gain C_k = P_k|k F^T P_k+1|k^-1.
+template <int NA>
+void ContactAngleEstimator::companion_predict(const FastEkf<NA>& fe, std::size_t i, const Inputs& in, double ts) {
+  constexpr int NX = FastEkf<NA>::NX;
+  FastEkf<NA>& ff = companion<NA>();
+  const Eigen::Matrix<double, NX, NX> Pf = ff.P;
+  ff.x = fe.x;
+  ff.predict(process_, process_noise(i), in, ts);
+  Eigen::Matrix<double, NX, NX> F = Eigen::Matrix<double, NX, NX>::Zero();
+  F.template topLeftCorner<6, 6>() = ff.last_A;
+  for (int j = 6; j < NX; ++j) F(j, j) = j < 12 ? ff.last_slip_keep : ff.last_angle_keep;
+  Eigen::Map<Eigen::Matrix<float, NX, NX>> gain(&sm_c_[(i - 1) * NX * NX]);
+  gain = ff.P.ldlt().solve(F * Pf).transpose().template cast<float>();  // P symmetric: (P_k+1|k^-1 F P_k|k)^T
+}
+
+void ContactAngleEstimator::record_prediction(std::size_t i, const double* x) {
   const auto nx = static_cast<std::size_t>(layout_.nx());
   std::copy(x, x + nx, sm_xp_.begin() + static_cast<std::ptrdiff_t>(i * nx));
-  std::copy(Pdiag, Pdiag + nx, sm_pp_.begin() + static_cast<std::ptrdiff_t>(i * nx));
-  std::copy(P11, P11 + 36, sm_p11_.begin() + static_cast<std::ptrdiff_t>(i * 36));
-  std::copy(A.data(), A.data() + 36, sm_a_.begin() + static_cast<std::ptrdiff_t>(i * 36));
-  sm_keep_[2 * i] = slip_keep;
-  sm_keep_[2 * i + 1] = angle_keep;
 }
 
-void ContactAngleEstimator::record_filtered(std::size_t i, const double* x, const double* Pdiag, bool segment_start) {
+void ContactAngleEstimator::record_filtered(std::size_t i, const double* x, bool segment_start) {
   const auto nx = static_cast<std::size_t>(layout_.nx());
   std::copy(x, x + nx, sm_xf_.begin() + static_cast<std::ptrdiff_t>(i * nx));
-  std::copy(Pdiag, Pdiag + nx, sm_pf_.begin() + static_cast<std::ptrdiff_t>(i * nx));
   if (segment_start) sm_start_[i] = 1;
 }
 
 // The Rauch-Tung-Striebel backward pass, x_k|N = x_k|k + C_k (x_k+1|N - x_k+1|k)
-// with C_k = P_k|k F^T P_k+1|k^-1 (Rauch, Tung and Striebel 1965). With the
-// reset P_k|k is diagonal and F = blockdiag(A, diag(d)), so C is
-// blockdiag(D1 A^T P11^-1, d p_k|k / p_k+1|k): a 6x6 solve and scalars.
+// (Rauch, Tung and Striebel 1965) over the ND filter's states, with the
+// companion's gains C_k (the reset's diagonal P gives a lone random walk's
+// gains, a 0.2 s memory against the filter's 3 s lag: docs/validation).
 void ContactAngleEstimator::smooth(std::size_t steps) {
-  using Vector6d = Eigen::Matrix<double, 6, 1>;
-  using Matrix6d = Eigen::Matrix<double, 6, 6>;
   const int nx = layout_.nx();
   const auto nxs = static_cast<std::size_t>(nx);
   const std::size_t n = steps;
@@ -485,17 +501,11 @@ void ContactAngleEstimator::smooth(std::size_t steps) {
   for (std::size_t k = n - 1; k-- > 0;) {
     const std::size_t k1 = k + 1;
     if (sm_start_[k1] != 0) continue;  // the end of a segment keeps its filtered state
-    const Eigen::Map<const Eigen::VectorXd> xf(&sm_xf_[k * nxs], nx), pf(&sm_pf_[k * nxs], nx);
-    const Eigen::Map<const Eigen::VectorXd> xp(&sm_xp_[k1 * nxs], nx), pp(&sm_pp_[k1 * nxs], nx);
+    const Eigen::Map<const Eigen::VectorXd> xf(&sm_xf_[k * nxs], nx), xp(&sm_xp_[k1 * nxs], nx);
     const Eigen::Map<const Eigen::VectorXd> next(&xs[k1 * nxs], nx);
     Eigen::Map<Eigen::VectorXd> out(&xs[k * nxs], nx);
-    const Eigen::Map<const Matrix6d> A(&sm_a_[k1 * 36]), P11(&sm_p11_[k1 * 36]);
-    const Vector6d u = P11.ldlt().solve(Vector6d(next.head<6>() - xp.head<6>()));
-    out.head<6>() = xf.head<6>() + pf.head<6>().cwiseProduct(A.transpose() * u);
-    for (int j = 6; j < nx; ++j) {
-      const double d = sm_keep_[2 * k1 + (j < 12 ? 0 : 1)];
-      out(j) = xf(j) + pf(j) * d / pp(j) * (next(j) - xp(j));
-    }
+    const Eigen::Map<const Eigen::MatrixXf> C(&sm_c_[k * nxs * nxs], nx, nx);
+    out = xf + C.cast<double>() * (next - xp);
   }
   for (std::size_t k = 0; k < nxs; ++k) {
     for (std::size_t i = 0; i < n; ++i) {

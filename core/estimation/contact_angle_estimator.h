@@ -65,9 +65,10 @@ class ContactAngleEstimator {
   void write_streams(log::Log& estimates) const;
   // RTS smoother (ContactAngleOptions::smoother): what the forward pass
   // stores per step, and the backward pass over it into out_.
-  void record_prediction(std::size_t i, const double* x, const double* P11, const double* Pdiag,
-                         const Eigen::Matrix<double, 6, 6>& A, double slip_keep, double angle_keep);
-  void record_filtered(std::size_t i, const double* x, const double* Pdiag, bool segment_start);
+  template <int NA>
+  void companion_predict(const FastEkf<NA>& fe, std::size_t i, const contact::Inputs& in, double ts);
+  void record_prediction(std::size_t i, const double* x);
+  void record_filtered(std::size_t i, const double* x, bool segment_start);
   void smooth(std::size_t steps);
 
   const log::Log& log_;
@@ -83,13 +84,22 @@ class ContactAngleEstimator {
   std::vector<std::string> state_names_;
   std::size_t measurements_missing_ = 0;
   InnovationStats innovations_;
-  // RTS smoother storage, per step: filtered state and P's diagonal (P is
-  // diagonal after the reset), predicted state, P11 and P's diagonal, the
-  // strapdown Jacobian A and the private states' factors; segment starts
-  // (the first step and each filter reset).
+  // RTS smoother storage, per step: filtered and predicted state, the gain
+  // C_k (single precision) and segment starts (the first step and each
+  // filter reset); the companion filters (full P, no reset) give the gains.
   bool smooth_ = false;
-  std::vector<double> sm_xf_, sm_pf_, sm_xp_, sm_pp_, sm_p11_, sm_a_, sm_keep_;
+  std::vector<double> sm_xf_, sm_xp_;
   std::vector<char> sm_start_;
+  std::vector<float> sm_c_;  // the RTS gain C_k (nx x nx) from the companion's full covariance
+  FastEkf<0> full0_;
+  FastEkf<6> full6_;
+  FastEkf<12> full12_;
+  template <int NA>
+  FastEkf<NA>& companion() {
+    if constexpr (NA == 0) return full0_;
+    else if constexpr (NA == 6) return full6_;
+    else return full12_;
+  }
   bool stopped_ = false;
   std::vector<std::vector<double>> fused_rate_;  // joint rates fused with the angles' slope (empty: measured)
   contact::ContactLayout layout_;

@@ -284,7 +284,10 @@ TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
   EXPECT_EQ(contact.at("model"), contact.at("model_selection").at("chosen"));  // at 100 Hz: c (1 kHz: c+ss)
   EXPECT_NE(read_text(folder + "/index.html").find("consistent candidate of least AIC"), std::string::npos);
   // The same document as the command line's for the same options (but for the wall-clock time).
-  const CommandResult cli = run_roverlab("estimate contact-angle " + quote(sim) + " --reset-cross-covariance --json");
+  EXPECT_TRUE(contact.at("smoother").get<bool>());  // the report smooths; the filter's errors beside
+  EXPECT_EQ(contact.at("filter_rms").at("slip").size(), 6u);
+  const CommandResult cli =
+      run_roverlab("estimate contact-angle " + quote(sim) + " --reset-cross-covariance --smoother --json");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   auto printed = nlohmann::json::parse(cli.out);
   EXPECT_GT(contact.at("wall_seconds").get<double>(), 0.0);

@@ -492,7 +492,7 @@ TEST(ModelSelection, TheEstimateStreamsNameTheirModel) {
   EXPECT_EQ(wheels.size(), lg.stream("imu").size());  // the streams themselves unchanged
 }
 
-TEST(Smoother, RtsKeepsTheForwardFilterBesideAndEndsOnIt) {
+TEST(Smoother, RtsLowersTheMovingBogiesErrorsKeepsTheFilterBesideAndEndsOnIt) {
   auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
   sc.rate = 200.0;
   const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
@@ -517,9 +517,11 @@ TEST(Smoother, RtsKeepsTheForwardFilterBesideAndEndsOnIt) {
   const std::size_t last = s.size() - 1;
   EXPECT_EQ(s.channel("contact_angle_FL").values[last], f.channel("contact_angle_FL").values[last]);
   EXPECT_NE(s.channel("contact_angle_FL").values[last / 2], f.channel("contact_angle_FL").values[last / 2]);
-  // Both errors are of the same size (the reset's diagonal P makes poor smoother gains: the docs' figures).
+  // The moving bogie's wheels (FL, ML): the data after each sample lower the contact-angle error.
+  for (std::size_t w : {0u, 1u}) EXPECT_LT(r.rms.contact_angle[w], r.filter_rms.contact_angle[w]) << w;
+  // Elsewhere within 10 % of the filter (the quiet wheels' slips rise 7-8 % at 200 Hz: docs/validation).
   for (std::size_t w = 0; w < 6; ++w) {
-    EXPECT_LT(r.rms.contact_angle[w], 2.0 * r.filter_rms.contact_angle[w] + 0.01) << w;
+    EXPECT_LT(r.rms.contact_angle[w], 1.1 * r.filter_rms.contact_angle[w] + 1e-3) << w;
     EXPECT_LT(r.rms.slip[w], 1.1 * r.filter_rms.slip[w]) << w;
   }
 }
