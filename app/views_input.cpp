@@ -37,9 +37,8 @@ const nlohmann::json* ViewInput::result(const std::string& name) const {
 }
 
 void ViewInput::add(const Analysis& analysis, AnalysisResult r) {
-  for (const auto& s : r.estimates.streams()) {
-    if (log.find_stream(s.name()) == nullptr) log.add_stream(s);
-  }
+  // An analysis run again (another model chosen in the GUI) replaces its streams.
+  for (const auto& s : r.estimates.streams()) log.replace_stream(s);
   AnalysisRun run{analysis.name(), analysis.title(), std::move(r.document)};
   for (auto& a : analyses) {
     if (a.name == run.name) {

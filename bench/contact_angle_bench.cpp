@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/estimation/contact_angle.h"
+#include "core/estimation/contact_model_selection.h"
 #include "core/simulation/flying_rover.h"
 #include "importers/rover_file.h"
 
@@ -52,6 +53,42 @@ BENCHMARK(BM_ContactAngleUkf2Min1kHz)->Unit(benchmark::kSecond)->Iterations(1)->
 
 void BM_ContactAngleUkf2Min1kHzNoReset(benchmark::State& state) { run(state, estimation::FilterKind::ukf, false); }
 BENCHMARK(BM_ContactAngleUkf2Min1kHzNoReset)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+// --model auto (issue 15): smooth, C and C+SS forward passes with the reset,
+// in three threads or one after another.
+void select(benchmark::State& state, bool parallel) {
+  const double seconds = 120.0;
+  static const log::Log lg = scenario(seconds);
+  estimation::ContactAngleOptions o;
+  o.reset_cross_covariance = true;
+  estimation::ModelSelectionOptions so;
+  so.parallel = parallel;
+  for (auto _ : state) {
+    auto r = estimation::select_contact_model(lg, bb2(), o, so);
+    benchmark::DoNotOptimize(r);
+  }
+}
+
+void BM_ContactAngleAuto2Min1kHz(benchmark::State& state) { select(state, true); }
+BENCHMARK(BM_ContactAngleAuto2Min1kHz)->Unit(benchmark::kSecond)->Iterations(2)->UseRealTime();
+
+void BM_ContactAngleAuto2Min1kHzSequential(benchmark::State& state) { select(state, false); }
+BENCHMARK(BM_ContactAngleAuto2Min1kHzSequential)->Unit(benchmark::kSecond)->Iterations(2)->UseRealTime();
+
+// The RTS smoother over the C+SS EKF with the reset: forward pass, storage, backward pass.
+void BM_ContactAngleEkfSmoother2Min1kHz(benchmark::State& state) {
+  const double seconds = 120.0;
+  static const log::Log lg = scenario(seconds);
+  estimation::ContactAngleOptions o;
+  o.model = estimation::ContactModel::contact_side_slip;
+  o.reset_cross_covariance = true;
+  o.smoother = true;
+  for (auto _ : state) {
+    auto r = estimation::run_contact_angle(lg, bb2(), o);
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_ContactAngleEkfSmoother2Min1kHz)->Unit(benchmark::kSecond)->Iterations(3)->UseRealTime();
 
 }  // namespace
 

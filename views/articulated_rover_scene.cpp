@@ -21,6 +21,7 @@
 #include <cstdio>
 
 #include "core/common/error.h"
+#include "core/estimation/contact_model_selection.h"
 #include "views/contact_angle_scene.h"
 #include "views/vtk_parts.h"
 
@@ -224,11 +225,14 @@ void ArticulatedRoverScene::set_time(double t) {
   const std::size_t ke = p.estimate_stream != nullptr ? p.estimate_stream->nearest_index(t) : 0;
   const std::size_t kt = p.truth_stream != nullptr ? p.truth_stream->nearest_index(t) : 0;
   for (std::size_t w = 0; w < rover_.wheels.size(); ++w) pose_wheel(w, q, ke, kt);
-  char line[320];
-  std::snprintf(line, sizeof line,
-                "t = %.2f s   %s\nblue: velocity at the estimated contact angle   green: truth   orange: side slip\n"
-                "wheels: grey at no slip, red at |slip| >= 0.5",
-                t, rover_.name.c_str());
+  char line[480];
+  // The estimates' model, as the estimator named it (chosen by the data, or set by hand and maybe rejected).
+  const std::string model = p.estimate_stream != nullptr ? estimation::model_label(*p.estimate_stream) : "";
+  std::snprintf(
+      line, sizeof line,
+      "t = %.2f s   %s%s%s\nblue: velocity at the estimated contact angle   green: truth   orange: side slip\n"
+      "wheels: grey at no slip, red at |slip| >= 0.5",
+      t, rover_.name.c_str(), model.empty() ? "" : "   ", model.c_str());
   p.text->SetInput(line);
 }
 

@@ -18,6 +18,7 @@
 #include <cstdio>
 
 #include "core/common/error.h"
+#include "core/estimation/contact_model_selection.h"
 #include "views/vtk_parts.h"
 
 namespace roverlab::views {
@@ -209,7 +210,9 @@ void ContactAngleScene::show_panel(std::size_t w, std::size_t k, std::size_t kr)
   if (std::isfinite(gt)) len += std::snprintf(line + len, sizeof line - len, " (truth %.1f)", gt * d);
   if (std::isfinite(b)) len += std::snprintf(line + len, sizeof line - len, "\nside slip %.1f deg", b * d);
   if (std::isfinite(b) && std::isfinite(bt)) std::snprintf(line + len, sizeof line - len, " (truth %.1f)", bt * d);
-  panel.text->SetInput(line);
+  // The first panel names the estimates' model (chosen by the data, or set by hand and maybe rejected).
+  const std::string model = w == 0 ? estimation::model_label(*parts_->estimate) : "";
+  panel.text->SetInput(model.empty() ? line : (std::string(line) + "\n" + model).c_str());
 }
 
 namespace {

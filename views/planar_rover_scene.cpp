@@ -2,11 +2,14 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCubeSource.h>
+#include <vtkCylinderSource.h>
 #include <vtkLineSource.h>
 #include <vtkNew.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
-#include <vtkRegularPolygonSource.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
@@ -31,16 +34,20 @@ bool is_planar_rocker_bogie_log(const log::Log& lg) {
          w->find_channel("centre_z_3") && p->size() >= 2;
 }
 
+// Side s (0: left, +y; 1: right, mirrored) of the 3D rover.
 struct PlanarRoverScene::Parts {
   vtkSmartPointer<vtkRenderer> renderer;
-  vtkSmartPointer<vtkRegularPolygonSource> wheel[3];
-  vtkSmartPointer<vtkActor> wheel_actor[3];
-  vtkSmartPointer<vtkLineSource> link[4];  // body->wheel 1, body->bogie pivot, pivot->wheel 2, pivot->wheel 3
+  vtkSmartPointer<vtkActor> wheel_actor[2][3];
+  // Per side: body->wheel 1, body->bogie pivot, pivot->wheel 2, pivot->wheel 3.
+  vtkSmartPointer<vtkLineSource> link[2][4];
+  vtkSmartPointer<vtkLineSource> axle;  // between the two rocker pivots
+  vtkSmartPointer<vtkActor> body;
   vtkSmartPointer<vtkTextActor> text;
   const log::Stream* pose = nullptr;
   const log::Stream* wheels = nullptr;
-  double radius = 0.075;
+  double radius = 0.075, track = 0.5, width = 0.06, wheelbase = 0.5;
   Eigen::Vector2d centre[3];
+  double side_y(int side) const { return side == 0 ? 0.5 * track : -0.5 * track; }
 };
 
 PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
@@ -54,6 +61,12 @@ PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
   if (r != lg.metadata.extra.end()) p.radius = std::stod(r->second);
   t0_ = p.pose->start_time();
   t1_ = p.pose->end_time();
+  // Track: the wheelbase at the start (the planar model has none); wheels 0.8 radius wide.
+  const auto& x1 = p.wheels->channel("centre_x_1").values;
+  const auto& x3 = p.wheels->channel("centre_x_3").values;
+  p.wheelbase = std::isfinite(x1[0] - x3[0]) && std::abs(x1[0] - x3[0]) > 1e-3 ? std::abs(x1[0] - x3[0]) : 0.5;
+  p.track = p.wheelbase;
+  p.width = 0.8 * p.radius;
   p.renderer = vtkSmartPointer<vtkRenderer>::New();
   p.renderer->SetBackground(0.95, 0.96, 0.98);
   add_terrain();
@@ -64,36 +77,73 @@ PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
 
 PlanarRoverScene::~PlanarRoverScene() = default;
 
-// Terrain: the wheel centres' tracks, a wheel radius lower, sorted along x.
+// Terrain: the wheel centres' tracks, a wheel radius lower, sorted along x,
+// extruded across the track as a surface.
 void PlanarRoverScene::add_terrain() {
   Parts& p = *parts_;
   std::map<double, double> profile;
   for (int i = 1; i <= 3; ++i) {
     const auto& xs = p.wheels->channel("centre_x_" + std::to_string(i)).values;
     const auto& zs = p.wheels->channel("centre_z_" + std::to_string(i)).values;
-    for (std::size_t k = 0; k < xs.size(); ++k) profile[std::round(xs[k] * 1000.0) / 1000.0] = zs[k] - p.radius;
+    for (std::size_t k = 0; k < xs.size(); ++k) {
+      if (std::isfinite(xs[k]) && std::isfinite(zs[k])) profile[std::round(xs[k] * 1000.0) / 1000.0] = zs[k] - p.radius;
+    }
   }
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(profile.size());
-  for (const auto& [x, z] : profile) points.emplace_back(x, z, 0.0);
-  p.renderer->AddActor(line_actor(segments(points), {0.55, 0.45, 0.3}, 4.0));
+  const double half = 0.5 * p.track + 1.5 * p.width;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> quads;
+  vtkIdType n = 0;
+  for (const auto& [x, z] : profile) {
+    points->InsertNextPoint(x, -half, z);
+    points->InsertNextPoint(x, half, z);
+    if (n > 0) {
+      const vtkIdType q[4] = {2 * (n - 1), 2 * n, 2 * n + 1, 2 * (n - 1) + 1};
+      quads->InsertNextCell(4, q);
+    }
+    ++n;
+  }
+  vtkNew<vtkPolyData> surface;
+  surface->SetPoints(points);
+  surface->SetPolys(quads);
+  vtkSmartPointer<vtkActor> ground = actor_of(surface.GetPointer(), {0.55, 0.45, 0.3});
+  ground->GetProperty()->SetLighting(false);  // the terrain's colour as it is, whatever the view
+  p.renderer->AddActor(ground);
+  // The profile's edge on both sides, darker: the relief reads at any angle.
+  for (double y : {-half, half}) {
+    std::vector<Eigen::Vector3d> edge;
+    edge.reserve(profile.size());
+    for (const auto& [x, z] : profile) edge.emplace_back(x, y, z + 0.002);
+    p.renderer->AddActor(line_actor(polyline(edge), {0.35, 0.27, 0.17}, 2.0));
+  }
 }
 
-// The body/rocker and bogie links, and the three wheels.
+// Both sides' rocker and bogie links and wheels (cylinders along y), the
+// axle between the rocker pivots and the body box.
 void PlanarRoverScene::add_links_and_wheels() {
   Parts& p = *parts_;
-  for (auto& link : p.link) {
-    link = vtkSmartPointer<vtkLineSource>::New();
-    p.renderer->AddActor(line_actor(link->GetOutputPort(), {0.25, 0.25, 0.3}, 6.0));
+  vtkNew<vtkCylinderSource> wheel;  // its axis is y: the wheels' axle
+  wheel->SetRadius(p.radius);
+  wheel->SetHeight(p.width);
+  wheel->SetResolution(40);
+  for (int side = 0; side < 2; ++side) {
+    for (auto& link : p.link[side]) {
+      link = vtkSmartPointer<vtkLineSource>::New();
+      p.renderer->AddActor(line_actor(link->GetOutputPort(), {0.25, 0.25, 0.3}, 6.0));
+    }
+    for (int i = 0; i < 3; ++i) {
+      p.wheel_actor[side][i] = actor_of(wheel->GetOutputPort(), {1.0, 1.0, 1.0});
+      p.wheel_actor[side][i]->GetProperty()->SetLighting(false);  // the slip class's colour as it is
+      p.renderer->AddActor(p.wheel_actor[side][i]);
+    }
   }
-  for (int i = 0; i < 3; ++i) {
-    p.wheel[i] = vtkSmartPointer<vtkRegularPolygonSource>::New();
-    p.wheel[i]->SetNumberOfSides(48);
-    p.wheel[i]->SetRadius(p.radius);
-    p.wheel_actor[i] = actor_of(p.wheel[i]->GetOutputPort(), {1.0, 1.0, 1.0});
-    p.wheel_actor[i]->GetProperty()->SetLighting(false);
-    p.renderer->AddActor(p.wheel_actor[i]);
-  }
+  p.axle = vtkSmartPointer<vtkLineSource>::New();
+  p.renderer->AddActor(line_actor(p.axle->GetOutputPort(), {0.25, 0.25, 0.3}, 5.0));
+  vtkNew<vtkCubeSource> box;
+  box->SetXLength(0.5 * p.wheelbase);
+  box->SetYLength(std::max(0.1, p.track - 2.0 * p.width));
+  box->SetZLength(0.15 * p.wheelbase);
+  p.body = actor_of(box->GetOutputPort(), {0.72, 0.74, 0.8});
+  p.renderer->AddActor(p.body);
 }
 
 void PlanarRoverScene::add_text_and_camera() {
@@ -104,9 +154,7 @@ void PlanarRoverScene::add_text_and_camera() {
   p.text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   p.text->GetPositionCoordinate()->SetValue(0.01, 0.9);
   p.renderer->AddViewProp(p.text);
-  vtkCamera* cam = p.renderer->GetActiveCamera();
-  cam->ParallelProjectionOn();
-  cam->SetParallelScale(0.45);
+  p.renderer->GetActiveCamera()->SetViewAngle(30.0);
 }
 
 vtkRenderer* PlanarRoverScene::renderer() const { return parts_->renderer; }
@@ -117,6 +165,10 @@ void PlanarRoverScene::detach(vtkRenderWindow* window) { window->RemoveRenderer(
 
 Eigen::Vector2d PlanarRoverScene::wheel_centre(int i) const { return parts_->centre[i]; }
 
+double PlanarRoverScene::track() const { return parts_->track; }
+
+double PlanarRoverScene::wheel_width() const { return parts_->width; }
+
 void PlanarRoverScene::set_time(double t) {
   Parts& p = *parts_;
   const std::size_t k = p.pose->nearest_index(t), kw = p.wheels->nearest_index(t);
@@ -125,24 +177,36 @@ void PlanarRoverScene::set_time(double t) {
   for (int i = 0; i < 3; ++i) {
     const std::string n = std::to_string(i + 1);
     p.centre[i] = {p.wheels->channel("centre_x_" + n).values[kw], p.wheels->channel("centre_z_" + n).values[kw]};
-    p.wheel[i]->SetCenter(p.centre[i].x(), p.centre[i].y(), 0.01);
     const double s = p.wheels->find_channel("slip_" + n) ? p.wheels->channel("slip_" + n).values[kw] : NAN;
     const Eigen::Vector3d c = slip_class_colour(std::isfinite(s) ? static_cast<int>(estimation::classify_slip(s)) : -1);
-    p.wheel_actor[i]->GetProperty()->SetColor(c.x(), c.y(), c.z());
+    for (int side = 0; side < 2; ++side) {
+      p.wheel_actor[side][i]->SetPosition(p.centre[i].x(), p.side_y(side), p.centre[i].y());
+      p.wheel_actor[side][i]->GetProperty()->SetColor(c.x(), c.y(), c.z());
+    }
   }
-  p.link[0]->SetPoint1(body.x(), body.y(), 0.005);
-  p.link[0]->SetPoint2(p.centre[0].x(), p.centre[0].y(), 0.005);
-  p.link[1]->SetPoint1(body.x(), body.y(), 0.005);
-  p.link[1]->SetPoint2(pivot.x(), pivot.y(), 0.005);
-  for (int i = 2; i < 4; ++i) {
-    p.link[i]->SetPoint1(pivot.x(), pivot.y(), 0.005);
-    p.link[i]->SetPoint2(p.centre[i - 1].x(), p.centre[i - 1].y(), 0.005);
+  // The links run inside the wheels (half a wheel width nearer the body).
+  for (int side = 0; side < 2; ++side) {
+    const double y = p.side_y(side) + (side == 0 ? -1.0 : 1.0) * p.width;
+    const auto at = [y](const Eigen::Vector2d& v) { return Eigen::Vector3d(v.x(), y, v.y()); };
+    const std::pair<Eigen::Vector2d, Eigen::Vector2d> ends[4] = {
+        {body, p.centre[0]}, {body, pivot}, {pivot, p.centre[1]}, {pivot, p.centre[2]}};
+    for (int l = 0; l < 4; ++l) {
+      p.link[side][l]->SetPoint1(at(ends[l].first).data());
+      p.link[side][l]->SetPoint2(at(ends[l].second).data());
+    }
   }
+  const double pitch = p.pose->channel("pitch").values[k];
+  p.axle->SetPoint1(body.x(), p.side_y(0) - p.width, body.y());
+  p.axle->SetPoint2(body.x(), p.side_y(1) + p.width, body.y());
+  p.body->SetPosition(body.x(), 0.0, body.y() + 0.05 * p.wheelbase);
+  p.body->SetOrientation(0.0, std::isfinite(pitch) ? -pitch * 180.0 / M_PI : 0.0, 0.0);
   show_text(t, k, kw);
+  // Obliquely from the front left, above, following the body.
+  const double d = 3.6 * p.wheelbase;
   vtkCamera* cam = p.renderer->GetActiveCamera();
-  cam->SetFocalPoint(body.x(), body.y() - 0.1, 0.0);
-  cam->SetPosition(body.x(), body.y() - 0.1, 5.0);
-  cam->SetViewUp(0, 1, 0);
+  cam->SetFocalPoint(body.x(), 0.0, body.y() - 0.15 * p.wheelbase);
+  cam->SetPosition(body.x() + 0.5 * d, 0.9 * d, body.y() + 0.45 * d);
+  cam->SetViewUp(0, 0, 1);
   p.renderer->ResetCameraClippingRange();
 }
 

@@ -1,8 +1,11 @@
 #pragma once
-// The rover view of a planar rocker-bogie log (seed 003, one side seen from
-// the side): the terrain profile traced by the wheel centres (one wheel
-// radius below), the body/rocker and bogie links, the three wheels coloured
-// by slip class, at the timeline's time.
+// The rover view of a planar rocker-bogie log (seed 003) in 3D: the planar
+// simulation's side (rocker and bogie links, three wheels of the log's
+// radius, coloured by slip class) drawn on both sides of a body box, the
+// other side mirrored at a track equal to the wheelbase (the planar model has
+// no track); the terrain profile traced by the wheel centres (one wheel
+// radius below) extruded across the track as a surface; at the timeline's
+// time, seen obliquely from the front left.
 
 #include <memory>
 #include <string>
@@ -33,6 +36,9 @@ class PlanarRoverScene : public Scene {
   double end_time() const override { return t1_; }
   // Position (x, z) of wheel i (0..2) at the last set_time.
   Eigen::Vector2d wheel_centre(int i) const;
+  // The drawn track (m, between the two sides' wheel planes) and wheel width.
+  double track() const;
+  double wheel_width() const;
 
  private:
   struct Parts;

@@ -442,7 +442,7 @@ bool articulated(const SceneInput& in) {
   return in.articulated && articulated_rover_needs(*in.log, &*in.articulated).empty();
 }
 
-// `rover`: the planar side view for a planar rocker-bogie log, the
+// `rover`: the planar rover in 3D for a planar rocker-bogie log, the
 // articulated 3D rover for a DH rover's log, else the 3D skid-steer rover.
 class RoverView : public View {
  public:

@@ -13,6 +13,7 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/estimation/contact_angle.h"
+#include "core/estimation/contact_model_selection.h"
 #include "importers/rover_file.h"
 
 namespace roverlab::app {
@@ -31,6 +32,51 @@ json degrees(const std::vector<double>& radians) {
   json out = json::array();
   for (double v : radians) out.push_back(v * kDeg);
   return out;
+}
+
+json candidate_json(const estimation::ModelEvidence& e);
+
+json rms_json(const estimation::StateErrors& e) {
+  json rms = {{"velocity_mps", e.velocity}, {"slip", e.slip}, {"samples", e.samples}};
+  if (!e.contact_angle.empty()) rms["contact_angle_deg"] = degrees(e.contact_angle);
+  if (!e.side_slip.empty()) rms["side_slip_deg"] = degrees(e.side_slip);
+  return rms;
+}
+
+// --model auto: the choice and its evidence, one line per candidate.
+void print_selection(const json& s, std::FILE* out) {
+  std::fprintf(out, "model auto: %s\n", s.at("reason").get<std::string>().c_str());
+  std::fprintf(out, "  %-7s %6s %9s %10s %14s %16s %10s\n", "model", "states", "mean NIS", "windows >", "ln L", "AIC",
+               "verdict");
+  for (const json& c : s.at("candidates")) {
+    const auto num = [&](const char* key) { return c.at(key).is_number() ? c.at(key).get<double>() : NAN; };
+    std::fprintf(out, "  %-7s %6d %9.3f %9.0f%% %14.1f %16.1f %10s\n", c.at("model").get<std::string>().c_str(),
+                 c.at("states").get<int>(), num("mean_nis"), 100.0 * num("nis_windows_above_band"),
+                 num("log_likelihood"), num("aic"),
+                 c.at("diverged").get<bool>()     ? "diverged"
+                 : c.at("consistent").get<bool>() ? "consistent"
+                                                  : "rejected");
+  }
+}
+
+// One table of RMS errors in the layout of seed 000 Tables 6.2-6.5.
+void print_rms(const json& rms, const json& wheels, const char* what, std::FILE* out) {
+  std::fprintf(out, "\nRMS errors of the %s over %zu moving samples (layout of seed 000 Tables 6.2-6.5):\n", what,
+               rms.at("samples").get<std::size_t>());
+  std::fprintf(out, "  %-6s %14s %12s %16s %16s\n", "", "velocity (m/s)", "slip (-)", "contact (deg)",
+               "side slip (deg)");
+  const char* axes[3] = {"x", "y", "z"};
+  for (std::size_t w = 0; w < 6; ++w) {
+    char vel[32] = "";
+    if (w < 3) std::snprintf(vel, sizeof vel, "%s %.4f", axes[w], rms.at("velocity_mps").at(w).get<double>());
+    char ca[32] = "-", ss[32] = "-";
+    if (rms.contains("contact_angle_deg"))
+      std::snprintf(ca, sizeof ca, "%.4f", rms.at("contact_angle_deg").at(w).get<double>());
+    if (rms.contains("side_slip_deg"))
+      std::snprintf(ss, sizeof ss, "%.4f", rms.at("side_slip_deg").at(w).get<double>());
+    std::fprintf(out, "  %-6s %14s %12.4f %16s %16s\n", wheels.at(w).get<std::string>().c_str(), vel,
+                 rms.at("slip").at(w).get<double>(), ca, ss);
+  }
 }
 
 class ContactAngleAnalysis : public Analysis {
@@ -61,10 +107,12 @@ class ContactAngleAnalysis : public Analysis {
   }
 
   void declare(CLI::App& cmd) override;
-  // The views show model C+SS with the seed's cross-covariance reset.
+  // The views and the report (a finished run, inspected offline): the model the data
+  // choose, the seed's cross-covariance reset, the RTS smoother.
   void use_view_defaults() override {
-    model_ = "c+ss";
+    model_ = "auto";
     reset_cross_covariance_ = true;
+    smoother_ = true;
   }
   void check_options() const override { (void)options(); }
   AnalysisResult run(const AnalysisInput& in) override;
@@ -85,10 +133,12 @@ class ContactAngleAnalysis : public Analysis {
   estimation::ContactAngleOptions options() const;
   json document(const std::string& file, const kinematics::RoverModel& rover, const estimation::ContactAngleResult& r,
                 double wall) const;
+  static json selection_json(const estimation::ModelSelection& s);
 
   std::optional<std::string> rover_;  // default: the log's rover id, else exomars_bb2
-  std::string model_ = "c", filter_ = "ekf", angle_model_ = "random-walk";
+  std::string model_ = "auto", filter_ = "ekf", angle_model_ = "random-walk";
   bool reset_cross_covariance_ = false;
+  bool smoother_ = false;
   std::string process_noise_ = "seed";  // seed (1e-5 per step, section 6.2) | imu (from the IMU noise alone)
   std::optional<double> velocity_variance_, attitude_variance_, slip_variance_, angle_variance_;
   double joint_rate_window_ = 0.0;
@@ -96,11 +146,16 @@ class ContactAngleAnalysis : public Analysis {
 
 void ContactAngleAnalysis::declare(CLI::App& cmd) {
   cmd.add_option("--rover", rover_, "Rover NAME (resources/rovers) or FILE (default: the log's rover)");
-  cmd.add_option("--model", model_, "smooth | c | c+ss")->capture_default_str();
+  cmd.add_option(
+         "--model", model_,
+         "auto (smooth, c and c+ss run; the consistent one of least AIC on the innovations) | smooth | c | c+ss")
+      ->capture_default_str();
   cmd.add_option("--filter", filter_, "ekf | ukf")->capture_default_str();
   cmd.add_option("--angle-model", angle_model_, "random-walk | damped")->capture_default_str();
   cmd.add_flag("--reset-cross-covariance", reset_cross_covariance_,
                "Zero P's off-diagonal elements every step (the seed's workaround)");
+  cmd.add_flag("--smoother", smoother_,
+               "Offline RTS smoother over the EKF's forward pass (needs --reset-cross-covariance); errors of both");
   cmd.add_option(
          "--process-noise", process_noise_,
          "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
@@ -122,13 +177,16 @@ void ContactAngleAnalysis::declare(CLI::App& cmd) {
 estimation::ContactAngleOptions ContactAngleAnalysis::options() const {
   estimation::ContactAngleOptions o;
   try {
-    o.model = estimation::parse_contact_model(model_);
+    if (model_ != "auto") o.model = estimation::parse_contact_model(model_);
     o.filter = estimation::parse_filter_kind(filter_);
     o.angle_model = estimation::parse_angle_model(angle_model_);
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
   o.reset_cross_covariance = reset_cross_covariance_;
+  o.smoother = smoother_;
+  if (smoother_ && (o.filter != estimation::FilterKind::ekf || !reset_cross_covariance_))
+    throw UsageError("--smoother: runs over the EKF with --reset-cross-covariance only");
   if (process_noise_ == "imu") {
     o.attitude_variance = o.velocity_variance = 1e-12;
   } else if (process_noise_ != "seed") {
@@ -147,12 +205,54 @@ AnalysisResult ContactAngleAnalysis::run(const AnalysisInput& in) {
   const kinematics::RoverModel rover = dh_rover(rover_description(in.log, in.file));
   o.progress = in.progress;
   const auto start = std::chrono::steady_clock::now();
-  estimation::ContactAngleResult r = estimation::run_contact_angle(in.log, rover, o);
+  std::optional<estimation::ModelSelection> selection;
+  if (model_ == "auto") selection = estimation::select_contact_model(in.log, rover, o);
+  estimation::ContactAngleResult r =
+      selection ? std::move(selection->result) : estimation::run_contact_angle(in.log, rover, o);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   AnalysisResult out;
   out.document = document(in.file, rover, r, wall);
+  if (selection) {
+    out.document["model"] = estimation::to_string(selection->chosen);
+    out.document["model_selection"] = selection_json(*selection);
+    estimation::label_model(
+        r.estimates,
+        std::string("model ") + estimation::to_string(selection->chosen) +
+            (selection->supported ? ", chosen by the data" : ", chosen by the data but not consistent with them"));
+  } else {
+    const estimation::ModelEvidence e = estimation::model_evidence(o.model, r);
+    out.document["model_evidence"] = candidate_json(e);
+    char rejected[96];
+    std::snprintf(rejected, sizeof rejected, "; the data reject it (mean NIS %.1f per dof)", e.mean_nis);
+    estimation::label_model(r.estimates, "model " + model_ + ", set by hand" + (e.consistent ? "" : rejected));
+  }
   out.estimates = std::move(r.estimates);
   return out;
+}
+
+json candidate_json(const estimation::ModelEvidence& e) {
+  const auto band = estimation::mean_nis_band(std::max(e.innovations.dof, 1.0));
+  return {{"model", estimation::to_string(e.model)},
+          {"states", e.states},
+          {"updates", e.innovations.updates},
+          {"mean_nis", finite_or_null(e.mean_nis)},
+          {"mean_nis_band_95", {band.first, band.second}},
+          {"nis_windows_above_band", e.nis_out_of_band},
+          {"log_likelihood", finite_or_null(e.innovations.log_likelihood)},
+          {"effective_dof", e.innovations.effective_dof},
+          {"aic", finite_or_null(e.aic)},
+          {"diverged", e.diverged},
+          {"consistent", e.consistent}};
+}
+
+json ContactAngleAnalysis::selection_json(const estimation::ModelSelection& s) {
+  json candidates = json::array();
+  for (const auto& e : s.candidates) candidates.push_back(candidate_json(e));
+  return {{"requested", "auto"},
+          {"chosen", estimation::to_string(s.chosen)},
+          {"supported", s.supported},
+          {"reason", s.reason},
+          {"candidates", candidates}};
 }
 
 json ContactAngleAnalysis::document(const std::string& file, const kinematics::RoverModel& rover,
@@ -173,11 +273,10 @@ json ContactAngleAnalysis::document(const std::string& file, const kinematics::R
             {"wheels", names},
             {"has_truth", r.has_truth},
             {"health", health_json(r.health)}};
+  j["smoother"] = r.smoothed;
   if (r.has_truth) {
-    json rms = {{"velocity_mps", r.rms.velocity}, {"slip", r.rms.slip}, {"samples", r.rms.samples}};
-    if (!r.rms.contact_angle.empty()) rms["contact_angle_deg"] = degrees(r.rms.contact_angle);
-    if (!r.rms.side_slip.empty()) rms["side_slip_deg"] = degrees(r.rms.side_slip);
-    j["rms"] = rms;
+    j["rms"] = rms_json(r.rms);  // of the smoothed states with the smoother
+    if (r.smoothed) j["filter_rms"] = rms_json(r.filter_rms);
   }
   return j;
 }
@@ -188,27 +287,21 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
                str("rover").c_str(), str("model").c_str(), str("filter").c_str(), str("angle_model").c_str(),
                j.at("reset_cross_covariance").get<bool>() ? ", cross-covariances reset" : "",
                j.at("seconds").get<double>(), j.at("wall_seconds").get<double>());
+  if (j.contains("model_selection")) print_selection(j.at("model_selection"), out);
+  if (j.contains("model_evidence") && !j.at("model_evidence").at("consistent").get<bool>()) {
+    const json& e = j.at("model_evidence");
+    std::fprintf(out, "warning: the data reject model %s: mean NIS %.2f per dof, %.0f %% of NIS windows above band%s\n",
+                 str("model").c_str(), e.at("mean_nis").is_number() ? e.at("mean_nis").get<double>() : NAN,
+                 100.0 * e.at("nis_windows_above_band").get<double>(),
+                 e.at("diverged").get<bool>() ? ", diverged" : "");
+  }
   const auto standstill = j.at("standstill_samples").get<std::size_t>();
   if (standstill > 0) std::fprintf(out, "standstill: %zu samples held and left out\n", standstill);
   print_health(j, out);
   if (j.at("has_truth").get<bool>()) {
-    const json& rms = j.at("rms");
-    std::fprintf(out, "\nRMS errors over %zu moving samples (layout of seed 000 Tables 6.2-6.5):\n",
-                 rms.at("samples").get<std::size_t>());
-    std::fprintf(out, "  %-6s %14s %12s %16s %16s\n", "", "velocity (m/s)", "slip (-)", "contact (deg)",
-                 "side slip (deg)");
-    const char* axes[3] = {"x", "y", "z"};
-    for (std::size_t w = 0; w < 6; ++w) {
-      char vel[32] = "";
-      if (w < 3) std::snprintf(vel, sizeof vel, "%s %.4f", axes[w], rms.at("velocity_mps").at(w).get<double>());
-      char ca[32] = "-", ss[32] = "-";
-      if (rms.contains("contact_angle_deg"))
-        std::snprintf(ca, sizeof ca, "%.4f", rms.at("contact_angle_deg").at(w).get<double>());
-      if (rms.contains("side_slip_deg"))
-        std::snprintf(ss, sizeof ss, "%.4f", rms.at("side_slip_deg").at(w).get<double>());
-      std::fprintf(out, "  %-6s %14s %12.4f %16s %16s\n", j.at("wheels").at(w).get<std::string>().c_str(), vel,
-                   rms.at("slip").at(w).get<double>(), ca, ss);
-    }
+    const bool smoothed = j.value("smoother", false);
+    print_rms(j.at("rms"), j.at("wheels"), smoothed ? "RTS smoother" : "filter", out);
+    if (smoothed) print_rms(j.at("filter_rms"), j.at("wheels"), "forward filter (EKF)", out);
   } else {
     std::fprintf(out, "no truth streams: no errors\n");
   }
@@ -216,31 +309,53 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
 }
 
 void ContactAngleAnalysis::report(const json& j, ReportSection& s) const {
+  std::string model = j.at("model").get<std::string>();
+  for (char& c : model) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::string filter = j.at("filter").get<std::string>();
+  for (char& c : filter) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  s.html << "<h2>Contact-angle estimator (seed 000, model " << model << ", " << filter << ")</h2>\n";
+  if (j.contains("model_selection")) {
+    const json& sel = j.at("model_selection");
+    s.html << "<p>" << (sel.at("supported").get<bool>() ? "" : "<b>Warning:</b> ")
+           << ReportSection::escape(sel.at("reason").get<std::string>())
+           << ".</p>\n<table><tr><th>model</th><th>states</th><th>mean NIS</th><th>NIS windows above band</th>"
+              "<th>AIC</th><th>verdict</th></tr>\n";
+    for (const json& c : sel.at("candidates")) {
+      s.html << "<tr><td>" << c.at("model").get<std::string>() << "</td><td>" << c.at("states").get<int>()
+             << "</td><td>" << ReportSection::number(c.at("mean_nis"), "%.3f") << "</td><td>"
+             << ReportSection::number(100.0 * c.at("nis_windows_above_band").get<double>(), "%.0f") << " %</td><td>"
+             << ReportSection::number(c.at("aic"), "%.1f") << "</td><td>"
+             << (c.at("diverged").get<bool>()     ? "diverged"
+                 : c.at("consistent").get<bool>() ? "consistent"
+                                                  : "rejected")
+             << "</td></tr>\n";
+    }
+    s.html << "</table>\n";
+  }
   if (!j.at("has_truth").get<bool>()) {
     report_health(j, s);
     return;
   }
   const json& rms = j.at("rms");
-  std::string model = j.at("model").get<std::string>();
-  for (char& c : model) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  std::string filter = j.at("filter").get<std::string>();
-  for (char& c : filter) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  s.html << "<h2>Contact-angle estimator (seed 000, model " << model << ", " << filter
-         << ")</h2>\n<table><tr><th>wheel</th><th>slip RMS</th>"
-            "<th>contact angle RMS (deg)</th><th>side slip RMS (deg)</th></tr>\n";
+  const json* filter_rms = j.value("smoother", false) ? &j.at("filter_rms") : nullptr;
   const json none;
+  // A cell: the smoother's figure and the forward filter's, or the filter's alone.
+  const auto cell = [&](const char* key, std::size_t k, const char* format) {
+    const auto at = [&](const json& r) { return r.contains(key) ? r.at(key).at(k) : none; };
+    std::string text = ReportSection::number(at(rms), format);
+    if (filter_rms != nullptr) text += " / " + ReportSection::number(at(*filter_rms), format);
+    return text;
+  };
+  const char* of = filter_rms != nullptr ? " (smoother / filter)" : "";
+  s.html << "<table><tr><th>wheel</th><th>slip RMS" << of << "</th><th>contact angle RMS (deg)" << of
+         << "</th><th>side slip RMS (deg)" << of << "</th></tr>\n";
   for (std::size_t k = 0; k < rms.at("slip").size(); ++k) {
     s.html << "<tr><td>" << ReportSection::escape(j.at("wheels").at(k).get<std::string>()) << "</td><td>"
-           << ReportSection::number(rms.at("slip").at(k), "%.4f") << "</td><td>"
-           << ReportSection::number(rms.contains("contact_angle_deg") ? rms.at("contact_angle_deg").at(k) : none,
-                                    "%.3f")
-           << "</td><td>"
-           << ReportSection::number(rms.contains("side_slip_deg") ? rms.at("side_slip_deg").at(k) : none, "%.3f")
-           << "</td></tr>\n";
+           << cell("slip", k, "%.4f") << "</td><td>" << cell("contact_angle_deg", k, "%.3f") << "</td><td>"
+           << cell("side_slip_deg", k, "%.3f") << "</td></tr>\n";
   }
-  const json& v = rms.at("velocity_mps");
-  s.html << "</table>\n<p>Velocity RMS x / y / z: " << ReportSection::number(v.at(0), "%.4f") << " / "
-         << ReportSection::number(v.at(1), "%.4f") << " / " << ReportSection::number(v.at(2), "%.4f") << " m/s over "
+  s.html << "</table>\n<p>Velocity RMS x / y / z" << of << ": " << cell("velocity_mps", 0, "%.4f") << ", "
+         << cell("velocity_mps", 1, "%.4f") << ", " << cell("velocity_mps", 2, "%.4f") << " m/s over "
          << rms.at("samples").get<std::size_t>() << " moving samples.</p>\n";
   report_health(j, s);
 }

@@ -4,7 +4,9 @@
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkRenderWindowInteractor.h>
+#include <CLI/CLI.hpp>
 #include <QAction>
+#include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QComboBox>
@@ -146,6 +148,20 @@ void MainWindow::build_menus() {
   for (const auto& a : app::all_analyses()) {
     QAction* run = analysis->addAction("Run: " + q(a->title()));
     connect(run, &QAction::triggered, this, [this, name = a->name()] { run_analyses({name}, true); });
+  }
+  // The contact-angle model the views show: chosen by the data (auto) or by hand; the estimator runs again.
+  QMenu* model = analysis->addMenu("Contact-angle &model");
+  auto* models = new QActionGroup(this);
+  for (const char* m : {"auto", "smooth", "c", "c+ss"}) {
+    QAction* act = model->addAction(m == std::string("auto") ? "auto (chosen by the data)" : QString(m).toUpper());
+    act->setCheckable(true);
+    act->setChecked(contact_model_ == m);
+    models->addAction(act);
+    connect(act, &QAction::triggered, this, [this, m] {
+      contact_model_ = m;
+      if (input_ && input_->log.find_stream("estimate/contact/wheels") != nullptr)
+        run_analyses({"contact-angle"}, true);
+    });
   }
 }
 
@@ -390,6 +406,11 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
       continue;
     }
     a->use_view_defaults();
+    if (a->name() == "contact-angle") {  // the model chosen in the Analysis menu
+      CLI::App options;
+      a->declare(options);
+      options.parse("--model " + contact_model_, false);
+    }
     todo.push_back(std::move(a));
   }
   if (todo.empty()) return;

@@ -35,6 +35,10 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     result.has_truth = true;
     result.rms = std::move(*errors);
   }
+  if (result.smoothed) {
+    if (auto errors = analysis::contact_angle_errors(lg, result.filter_estimates))
+      result.filter_rms = std::move(*errors);
+  }
   return result;
 }
 

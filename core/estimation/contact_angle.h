@@ -40,6 +40,15 @@ struct ContactAngleOptions {
   // The plain augmented UKF: every sigma point through f and h, without the
   // closed forms for additive noises and the incremental h (the reference).
   bool reference_ukf = false;
+  // The fast EKF sums each update's tr(H K) into InnovationStats (model selection).
+  bool effective_dof = false;
+  // Offline fixed-interval Rauch-Tung-Striebel smoother over the forward
+  // pass (issue 15; not in seed 000): the estimates streams hold the smoothed
+  // states, ContactAngleResult::filter_rms the forward filter's errors. Over
+  // the fast EKF with the cross-covariance reset (DataError otherwise); its
+  // gains come from a companion EKF at the same linearisation points without
+  // the reset (full P).
+  bool smoother = false;
   double angle_damping = 1e-3;  // 1/s, A_gamma = A_beta (section 6.2)
   double slip_damping = 1e-3;   // 1/s, A of Eq. 4.15
   // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).
@@ -71,14 +80,37 @@ struct StateErrors {
   std::size_t samples = 0;                             // moving samples compared
 };
 
+// The measurement updates' innovations, the evidence for a model (model
+// selection, contact_model_selection.h): the NIS y^T S^-1 y summed with its
+// degrees of freedom, and the Gaussian log-likelihood of the innovations
+// (the prediction-error decomposition) summed over the updates.
+struct InnovationStats {
+  std::size_t updates = 0;    // offered to the gate (accepted or rejected)
+  double nis_sum = 0;         // sum of y^T S^-1 y
+  double dof = 0;             // sum of the measurement dimensions
+  double log_likelihood = 0;  // sum of -(y^T S^-1 y + ln det S + m ln 2 pi) / 2
+  double effective_dof = 0;   // sum of tr(H K) (fast EKF with ContactAngleOptions::effective_dof)
+  void add(double nis, double log_det_s, int m, double dof_used = 0) {
+    ++updates;
+    effective_dof += dof_used;
+    nis_sum += nis;
+    dof += m;
+    log_likelihood -= 0.5 * (nis + log_det_s + m * std::log(2.0 * M_PI));
+  }
+};
+
 struct ContactAngleResult {
   log::Log estimates;  // estimate/contact/body, estimate/contact/wheels
   bool has_truth = false;
-  StateErrors rms;     // against truth/body and truth/wheels, moving samples only
-  double seconds = 0;  // of log processed
+  StateErrors rms;  // against truth/body and truth/wheels, moving samples only (smoothed with the smoother)
+  bool smoothed = false;
+  log::Log filter_estimates;  // with the smoother: the forward filter's streams
+  StateErrors filter_rms;     // with the smoother: the forward filter's errors
+  double seconds = 0;         // of log processed
   std::size_t standstill_samples = 0;
   double max_cross_correlation = 0;  // largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end
   HealthReport health;               // outliers, gaps, gated updates, divergences
+  InnovationStats innovations;
 };
 
 // Needs streams imu (angular_rate_*, specific_force_* in the rover's body

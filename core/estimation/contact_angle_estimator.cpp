@@ -18,6 +18,9 @@ ContactAngleEstimator::ContactAngleEstimator(const log::Log& log, const kinemati
     : log_(log), m_(rover), o_(options), health_(options.health) {
   if (m_.wheels.size() != 6) throw DataError("rover " + m_.name + ": the estimator expects six wheels");
   if (m_.joints.size() > 16) throw DataError("rover " + m_.name + ": more than 16 joints");
+  smooth_ = o_.smoother;
+  if (smooth_ && (o_.filter != FilterKind::ekf || o_.reference_ekf || !o_.reset_cross_covariance))
+    throw DataError("the smoother runs over the EKF with the cross-covariance reset only");
   read_channels();
   layout_.na = o_.model == ContactModel::smooth ? 0 : o_.model == ContactModel::contact ? 6 : 12;
   layout_.nq = static_cast<int>(m_.joints.size());
@@ -271,7 +274,15 @@ ContactAngleResult ContactAngleEstimator::run() {
   valid_.assign(n, 0.0);
   diverged_.assign(n, 0.0);
   ContactAngleResult result;
-  for (std::size_t i = 0; i < n && !stopped_; ++i) {
+  if (smooth_) {
+    const auto nxs = static_cast<std::size_t>(nx);
+    sm_xf_.assign(n * nxs, 0.0);
+    sm_xp_.assign(n * nxs, 0.0);
+    sm_start_.assign(n, 0);
+    sm_c_.assign(n * nxs * nxs, 0.0F);
+  }
+  std::size_t steps = 0;  // run (fewer than n when the filter stopped)
+  for (std::size_t i = 0; i < n && !stopped_; ++i, ++steps) {
     const Inputs in = inputs_at(i);
     const double ts = i == 0 ? 0.0 : t[i] - t[i - 1];
     const bool still = at_standstill(in);
@@ -297,7 +308,13 @@ ContactAngleResult ContactAngleEstimator::run() {
   result.health.invalid_fraction =
       static_cast<double>(std::count(diverged_.begin(), diverged_.end(), 1.0)) / static_cast<double>(n);
   result.max_cross_correlation = max_cross_correlation();
-  write_streams(result);
+  result.innovations = innovations_;
+  if (smooth_) {
+    write_streams(result.filter_estimates);
+    smooth(steps);
+    result.smoothed = true;
+  }
+  write_streams(result.estimates);
   result.seconds = t.back() - t.front();
   if (o_.progress) o_.progress(1.0);
   return result;
@@ -321,18 +338,37 @@ void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const 
     fe.x = x0_;
     fe.P = p0_.asDiagonal();
   }
-  if (i > 0) fe.predict(process_, process_noise(i), in, ts);
+  if (i > 0) {
+    if (smooth_) companion_predict(fe, i, in, ts);  // from the state before this predict
+    fe.predict(process_, process_noise(i), in, ts);
+    if (smooth_) record_prediction(i, fe.x.data());
+  }
   // With the reset, P is blockdiag(P11, diag) after the predict.
+  if (i == 0 && smooth_) {
+    companion<NA>().x = x0_;
+    companion<NA>().P = p0_.asDiagonal();
+  }
   if (update) {
     fe.gate = health_.gate(FastEkf<NA>::NY);
-    if (fe.update(measurement_, rdiag_, in, o_.reset_cross_covariance, o_.reset_cross_covariance))
+    fe.effective_dof = o_.effective_dof;
+    if (fe.update(measurement_, rdiag_, in, o_.reset_cross_covariance, o_.reset_cross_covariance)) {
       health_.record(imu_->time()[i], fe.nis, FastEkf<NA>::NY);
+      innovations_.add(fe.nis, fe.log_det_s, FastEkf<NA>::NY, fe.dof_used);
+    }
   }
   // The diagonal evaluated first: P = P.diagonal().asDiagonal() zeroes P (Eigen sets it to 0, then copies the
   // diagonal).
   if ((!update || fe.rejected) && o_.reset_cross_covariance)
     fe.P = Eigen::Matrix<double, FastEkf<NA>::NX, 1>(fe.P.diagonal()).asDiagonal();
   x_ = fe.x;
+  if (smooth_) {
+    if (update && !fe.rejected) {
+      FastEkf<NA>& ff = companion<NA>();
+      ff.gate = HUGE_VAL;
+      ff.update(measurement_, rdiag_, in, false, false);
+    }
+    record_filtered(i, fe.x.data(), i == 0);
+  }
 }
 
 // The fast EKF's reference: Jacobians by ceres::Jet, dense algebra.
@@ -341,7 +377,10 @@ void ContactAngleEstimator::generic_ekf_step(std::size_t i, const Inputs& in, do
   if (update) {
     const auto ny = static_cast<int>(y_meas_.size());
     const UpdateResult u = ekf_.update_diagonal(measurement_.linearize(ekf_.x, in), rdiag_, y_meas_, health_.gate(ny));
-    if (u.ok || u.rejected) health_.record(imu_->time()[i], u.nis, ny);
+    if (u.ok || u.rejected) {
+      health_.record(imu_->time()[i], u.nis, ny);
+      innovations_.add(u.nis, u.log_det_s, ny);
+    }
   }
   if (o_.reset_cross_covariance) ekf_.reset_cross_covariance();
   x_ = ekf_.x;
@@ -359,7 +398,10 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
   if (i > 0 && update) {
     const auto ny = static_cast<int>(y_meas_.size());
     ukf_.gate = health_.gate(ny);
-    if (ukf_.step(f, Q_, h, R_ukf_, y_meas_)) health_.record(imu_->time()[i], ukf_.nis, ny);
+    if (ukf_.step(f, Q_, h, R_ukf_, y_meas_)) {
+      health_.record(imu_->time()[i], ukf_.nis, ny);
+      innovations_.add(ukf_.nis, ukf_.log_det_pyy, ny);
+    }
   } else if (i > 0) {  // predict only: the state's mean through f with zero noise
     Eigen::VectorXd next;
     f(ukf_.x, Eigen::VectorXd::Zero(layout_.np()), next);
@@ -410,6 +452,66 @@ void ContactAngleEstimator::reset_filter(std::size_t i) {
   ekf_.x = ukf_.x = x;
   ekf_.P = ukf_.P = P;
   x_ = x;
+  if (smooth_) {
+    record_filtered(i, x.data(), true);
+    full0_.P = P;
+    full6_.P = P;
+    full12_.P = P;
+  }  // a new segment: no smoothing across the reset
+}
+
+// The smoother's companion filter: the fast EKF's predict and update at the
+// same linearisation points, without the reset, so that its full P holds the
+// couplings the reset drops; from it the RTS gain C_k = P_k|k F^T P_k+1|k^-1.
+template <int NA>
+void ContactAngleEstimator::companion_predict(const FastEkf<NA>& fe, std::size_t i, const Inputs& in, double ts) {
+  constexpr int NX = FastEkf<NA>::NX;
+  FastEkf<NA>& ff = companion<NA>();
+  const Eigen::Matrix<double, NX, NX> Pf = ff.P;
+  ff.x = fe.x;
+  ff.predict(process_, process_noise(i), in, ts);
+  Eigen::Matrix<double, NX, NX> F = Eigen::Matrix<double, NX, NX>::Zero();
+  F.template topLeftCorner<6, 6>() = ff.last_A;
+  for (int j = 6; j < NX; ++j) F(j, j) = j < 12 ? ff.last_slip_keep : ff.last_angle_keep;
+  Eigen::Map<Eigen::Matrix<float, NX, NX>> gain(&sm_c_[(i - 1) * NX * NX]);
+  gain = ff.P.ldlt().solve(F * Pf).transpose().template cast<float>();  // P symmetric: (P_k+1|k^-1 F P_k|k)^T
+}
+
+void ContactAngleEstimator::record_prediction(std::size_t i, const double* x) {
+  const auto nx = static_cast<std::size_t>(layout_.nx());
+  std::copy(x, x + nx, sm_xp_.begin() + static_cast<std::ptrdiff_t>(i * nx));
+}
+
+void ContactAngleEstimator::record_filtered(std::size_t i, const double* x, bool segment_start) {
+  const auto nx = static_cast<std::size_t>(layout_.nx());
+  std::copy(x, x + nx, sm_xf_.begin() + static_cast<std::ptrdiff_t>(i * nx));
+  if (segment_start) sm_start_[i] = 1;
+}
+
+// The Rauch-Tung-Striebel backward pass, x_k|N = x_k|k + C_k (x_k+1|N - x_k+1|k)
+// (Rauch, Tung and Striebel 1965) over the ND filter's states, with the
+// companion's gains C_k (the reset's diagonal P gives a lone random walk's
+// gains, a 0.2 s memory against the filter's 3 s lag: docs/validation).
+void ContactAngleEstimator::smooth(std::size_t steps) {
+  const int nx = layout_.nx();
+  const auto nxs = static_cast<std::size_t>(nx);
+  const std::size_t n = steps;
+  if (n == 0) return;
+  std::vector<double> xs = sm_xf_;
+  for (std::size_t k = n - 1; k-- > 0;) {
+    const std::size_t k1 = k + 1;
+    if (sm_start_[k1] != 0) continue;  // the end of a segment keeps its filtered state
+    const Eigen::Map<const Eigen::VectorXd> xf(&sm_xf_[k * nxs], nx), xp(&sm_xp_[k1 * nxs], nx);
+    const Eigen::Map<const Eigen::VectorXd> next(&xs[k1 * nxs], nx);
+    Eigen::Map<Eigen::VectorXd> out(&xs[k * nxs], nx);
+    const Eigen::Map<const Eigen::MatrixXf> C(&sm_c_[k * nxs * nxs], nx, nx);
+    out = xf + C.cast<double>() * (next - xp);
+  }
+  for (std::size_t k = 0; k < nxs; ++k) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (std::isfinite(out_[k][i])) out_[k][i] = xs[i * nxs + k];
+    }
+  }
 }
 
 Eigen::MatrixXd ContactAngleEstimator::covariance() const {
@@ -447,11 +549,11 @@ std::vector<double> masked(const std::vector<double>& v, const std::vector<doubl
 }  // namespace
 
 // Streams; slip and angles are invalid (NaN) at standstill, every state where the filter diverged.
-void ContactAngleEstimator::write_streams(ContactAngleResult& result) const {
+void ContactAngleEstimator::write_streams(log::Log& estimates) const {
   const auto& t = imu_->time();
   const int nw = layout_.nw, na = layout_.na;
-  result.estimates.metadata = log_.metadata;
-  result.estimates.metadata.extra["estimator"] = "contact-angle (seed 000)";
+  estimates.metadata = log_.metadata;
+  estimates.metadata.extra["estimator"] = "contact-angle (seed 000)";
   log::Stream body("estimate/contact/body", t);
   std::vector<double> trusted(diverged_.size());  // the body states are invalid only where the filter diverged
   for (std::size_t i = 0; i < trusted.size(); ++i) trusted[i] = 1.0 - diverged_[i];
@@ -461,7 +563,7 @@ void ContactAngleEstimator::write_streams(ContactAngleResult& result) const {
   body.add_channel("yaw", "rad", masked(out_[0], trusted));
   body.add_channel("pitch", "rad", masked(out_[1], trusted));
   body.add_channel("roll", "rad", masked(out_[2], trusted));
-  result.estimates.add_stream(std::move(body));
+  estimates.add_stream(std::move(body));
   log::Stream s("estimate/contact/wheels", t);
   auto name = [&](int w) { return m_.wheels[static_cast<std::size_t>(w)].name; };
   auto state = [&](int k) { return masked(out_[static_cast<std::size_t>(k)], valid_); };
@@ -472,7 +574,7 @@ void ContactAngleEstimator::write_streams(ContactAngleResult& result) const {
                 "0 at standstill (slip and angles undefined, held) and where the filter diverged");
   s.add_channel("bridged", "bool", std::vector<double>(imu_screened_.bridged.begin(), imu_screened_.bridged.end()),
                 "1 where the IMU sample was rejected or missing: prediction from the last usable one");
-  result.estimates.add_stream(std::move(s));
+  estimates.add_stream(std::move(s));
 }
 
 }  // namespace roverlab::estimation

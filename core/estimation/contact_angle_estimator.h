@@ -62,7 +62,14 @@ class ContactAngleEstimator {
   Eigen::MatrixXd covariance() const;
   // Outputs.
   double max_cross_correlation() const;
-  void write_streams(ContactAngleResult& result) const;
+  void write_streams(log::Log& estimates) const;
+  // RTS smoother (ContactAngleOptions::smoother): what the forward pass
+  // stores per step, and the backward pass over it into out_.
+  template <int NA>
+  void companion_predict(const FastEkf<NA>& fe, std::size_t i, const contact::Inputs& in, double ts);
+  void record_prediction(std::size_t i, const double* x);
+  void record_filtered(std::size_t i, const double* x, bool segment_start);
+  void smooth(std::size_t steps);
 
   const log::Log& log_;
   const kinematics::RoverModel& m_;
@@ -76,6 +83,23 @@ class ContactAngleEstimator {
   Eigen::VectorXd lower_, upper_;  // physical bounds of the states (NaN: none)
   std::vector<std::string> state_names_;
   std::size_t measurements_missing_ = 0;
+  InnovationStats innovations_;
+  // RTS smoother storage, per step: filtered and predicted state, the gain
+  // C_k (single precision) and segment starts (the first step and each
+  // filter reset); the companion filters (full P, no reset) give the gains.
+  bool smooth_ = false;
+  std::vector<double> sm_xf_, sm_xp_;
+  std::vector<char> sm_start_;
+  std::vector<float> sm_c_;  // the RTS gain C_k (nx x nx) from the companion's full covariance
+  FastEkf<0> full0_;
+  FastEkf<6> full6_;
+  FastEkf<12> full12_;
+  template <int NA>
+  FastEkf<NA>& companion() {
+    if constexpr (NA == 0) return full0_;
+    else if constexpr (NA == 6) return full6_;
+    else return full12_;
+  }
   bool stopped_ = false;
   std::vector<std::vector<double>> fused_rate_;  // joint rates fused with the angles' slope (empty: measured)
   contact::ContactLayout layout_;

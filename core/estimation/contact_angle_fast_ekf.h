@@ -101,6 +101,15 @@ class FastEkf {
   // normalised innovation squared z^T z and whether the gate rejected it.
   double gate = HUGE_VAL;
   double nis = 0;
+  double log_det_s = 0;  // ln det S of the last update (its innovation's likelihood)
+  // When set, the update's effective degrees of freedom tr(H K) (the hat
+  // matrix's trace: how much of the measurement the state absorbed).
+  bool effective_dof = false;
+  double dof_used = 0;
+  // The last predict's strapdown Jacobian A and the private states' factor
+  // d (slip, angle): F = blockdiag(A, diag(d)), for the RTS smoother.
+  Eigen::Matrix<double, 6, 6> last_A = Eigen::Matrix<double, 6, 6>::Identity();
+  double last_slip_keep = 1, last_angle_keep = 1;
   bool rejected = false;
 
   // Eq. 2.14-2.15 with F = blockdiag(A, diag(d)): P11 <- A P11 A^T + G G^T,
@@ -108,6 +117,9 @@ class FastEkf {
   void predict(const contact::ContactProcessModel& f, const Eigen::VectorXd& q, const contact::Inputs& in, double ts) {
     Eigen::Matrix<double, 6, 6> A, G;  // G: noise Jacobian times the noise standard deviations
     f.strapdown_step(x.data(), in, ts, A, G);
+    last_A = A;
+    last_slip_keep = f.slip_keep(ts);
+    last_angle_keep = f.angle_keep(ts);
     for (int c = 0; c < 6; ++c) G.col(c) *= std::sqrt(q(NX + c));
     Eigen::Matrix<double, NR, 1> d;
     d.template head<6>().setConstant(f.slip_keep(ts));
@@ -167,9 +179,16 @@ class FastEkf {
       rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
       for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
     }
+    Eigen::Matrix<double, NY, NY> HPHt;
+    if (effective_dof) HPHt = S;
     h.add_noise_covariance(lin, r, S);
     Eigen::Matrix<double, NY, NY> Lm;
     if (!cholesky(S, Lm)) return false;
+    if (effective_dof) {  // tr(H K) = tr(S^-1 H P H^T) = tr(L^-1 H P H^T L^-T)
+      const auto L = Lm.template triangularView<Eigen::Lower>();
+      const Eigen::Matrix<double, NY, NY> Y = L.solve(HPHt);
+      dof_used = L.solve(Eigen::Matrix<double, NY, NY>(Y.transpose())).trace();
+    }
     // W^T = P H^T L^-T and z = L^-1 (y - h) by forward substitution, so
     // that K = W^T L^-1 and K (y - h) = W^T z.
     Eigen::Matrix<double, NX, NY> Wt = PHt;
@@ -183,6 +202,7 @@ class FastEkf {
       z(r) /= Lm(r, r);
     }
     nis = z.squaredNorm();  // y^T S^-1 y of Eq. 2.16's innovation (seed 000), S = L L^T; gated
+    log_det_s = 2.0 * Lm.diagonal().array().log().sum();
     rejected = !(nis <= gate);
     if (rejected) return true;
     x.noalias() += Wt * z;

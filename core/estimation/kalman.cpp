@@ -14,6 +14,7 @@ UpdateResult kalman_update(Eigen::MatrixXd& P, const Eigen::MatrixXd& H, const E
   const Eigen::LLT<Eigen::MatrixXd> llt(S);
   if (llt.info() != Eigen::Success) return r;
   r.nis = innovation.dot(llt.solve(innovation));
+  r.log_det_s = 2.0 * Eigen::MatrixXd(llt.matrixL()).diagonal().array().log().sum();
   if (!(r.nis <= gate)) {
     r.rejected = true;
     return r;

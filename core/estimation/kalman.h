@@ -14,6 +14,7 @@ void propagate_covariance(Eigen::MatrixXd& P, const Eigen::MatrixXd& Phi, const 
 struct UpdateResult {
   Eigen::VectorXd correction;  // K y
   double nis = 0.0;            // normalised innovation squared y^T S^-1 y
+  double log_det_s = 0.0;      // ln det S (the innovation's likelihood)
   bool ok = false;             // false when S is not positive definite or the gate rejected it
   bool rejected = false;       // nis above the gate: state and P left unchanged
 };

@@ -291,6 +291,7 @@ bool UnscentedKalmanFilter::correct(const Eigen::VectorXd& y) {
   if (syy.info() != Eigen::Success) return false;
   const Eigen::VectorXd z = syy.matrixL().solve(y - ym_);  // NIS of Eq. 2.20's innovation (seed 000): |z|^2, gated
   nis = z.squaredNorm();
+  log_det_pyy = 2.0 * Eigen::MatrixXd(syy.matrixL()).diagonal().array().log().sum();
   rejected = !(nis <= gate);
   if (rejected) return true;  // x and P as predicted
   const Eigen::MatrixXd W = syy.matrixL().solve(Pxy_.transpose());

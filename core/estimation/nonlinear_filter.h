@@ -68,6 +68,7 @@ class UnscentedKalmanFilter {
   // is then left as predicted).
   double gate = HUGE_VAL;
   double nis = 0;
+  double log_det_pyy = 0;  // ln det Pyy of the last update (its innovation's likelihood)
   bool rejected = false;
   // One predict-update cycle on sigma points of the augmented state
   // [x; n_p; n_m] (Eq. 2.18-2.20). Returns false when a covariance is not

@@ -12,6 +12,16 @@ Stream& Log::add_stream(Stream stream) {
   return streams_.back();
 }
 
+Stream& Log::replace_stream(Stream stream) {
+  for (auto& s : streams_) {
+    if (s.name() == stream.name()) {
+      s = std::move(stream);
+      return s;
+    }
+  }
+  return add_stream(std::move(stream));
+}
+
 const Stream* Log::find_stream(std::string_view name) const {
   for (const auto& s : streams_) {
     if (s.name() == name) return &s;

@@ -25,6 +25,9 @@ class Log {
   // Adds a stream; throws DataError when its name is taken. The reference is
   // valid until the next add_stream.
   Stream& add_stream(Stream stream);
+  // Replaces the stream of that name in place (adds it when absent): an
+  // estimator run again. References to the old stream's data are invalid.
+  Stream& replace_stream(Stream stream);
 
   const std::vector<Stream>& streams() const { return streams_; }
   const Stream* find_stream(std::string_view name) const;

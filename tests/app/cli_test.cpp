@@ -506,6 +506,26 @@ TEST(CliContactAngle, ScenarioThenEstimatePrintsTheErrorTable) {
   const CommandResult text = run_roverlab("estimate contact-angle " + quote(sim) + " --model c");
   EXPECT_EQ(text.exit_code, 0);
   EXPECT_NE(text.out.find("Tables 6.2-6.5"), std::string::npos);
+  // --model auto (the default): three candidates, the choice and its evidence, in JSON and in words.
+  const CommandResult automatic =
+      run_roverlab("estimate contact-angle " + quote(sim) + " --reset-cross-covariance --json");
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
+  const auto chosen = nlohmann::json::parse(automatic.out);
+  const auto& selection = chosen.at("model_selection");
+  ASSERT_EQ(selection.at("candidates").size(), 3u);
+  EXPECT_EQ(chosen.at("model"), selection.at("chosen"));
+  for (const auto& c : selection.at("candidates")) {
+    EXPECT_GT(c.at("updates").get<double>(), 1000.0);
+    EXPECT_GT(c.at("effective_dof").get<double>(), 0.0);
+  }
+  const CommandResult words = run_roverlab("estimate contact-angle " + quote(sim) + " --reset-cross-covariance");
+  EXPECT_NE(words.out.find("model auto: model " + selection.at("chosen").get<std::string>()), std::string::npos)
+      << words.out;
+  // A model set by hand that the data reject says so.
+  const CommandResult smooth =
+      run_roverlab("estimate contact-angle " + quote(sim) + " --model smooth --reset-cross-covariance --json");
+  ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
+  EXPECT_FALSE(nlohmann::json::parse(smooth.out).at("model_evidence").at("consistent").get<bool>());
 }
 
 TEST(CliContactAngle, BadInputAndUsage) {

@@ -6,6 +6,7 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkOpenGLRenderWindow.h>
+#include <QAction>
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QMessageBox>
@@ -20,7 +21,12 @@
 #include <thread>
 
 #include "app/gui/main_window.h"
+#include "app/resources.h"
+#include "core/estimation/contact_model_selection.h"
 #include "core/estimation/ins_slip.h"
+#include "core/simulation/flying_rover.h"
+#include "importers/hdf5_log.h"
+#include "importers/rover_file.h"
 #include "test_support.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
@@ -225,4 +231,42 @@ int main(int argc, char** argv) {
   QApplication::setOrganizationName("RoverLabTest");
   QApplication::setApplicationName("RoverLabTest");
   return RUN_ALL_TESTS();
+}
+
+TEST(Gui, TheContactAngleModelIsNamedAndTheAnalysisMenuSwitchesIt) {
+  // A flying-rover FL-bogie log (100 Hz): opened, the estimator runs with
+  // --model auto and the streams name the model the data chose; the menu's
+  // C+SS runs it again with that model, which replaces the streams.
+  TempDir dir;
+  const std::string file = dir.file("fl.h5");
+  {
+    const auto rover = *io::find_rover("exomars_bb2", app::resource_subfolders("rovers")).dh;
+    auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", rover);
+    sc.rate = 100.0;
+    log::Log lg = simulation::simulate_flying_rover(rover, sc);
+    lg.metadata.rover_id = "exomars_bb2";
+    io::write_hdf5_log(lg, file);
+  }
+  gui::MainWindow w;
+  w.set_quiet(true);
+  w.show();
+  w.open_file(QString::fromStdString(file));
+  ASSERT_TRUE(wait_until([&] { return w.has_log(); }, 60000));
+  ASSERT_TRUE(wait_until([&] { return w.input()->log.find_stream("estimate/contact/wheels") != nullptr; }, 120000));
+  ASSERT_TRUE(wait_idle(w));
+  const auto label = [&] { return estimation::model_label(w.input()->log.stream("estimate/contact/wheels")); };
+  EXPECT_NE(label().find("chosen by the data"), std::string::npos) << label();
+  const nlohmann::json* doc = w.input()->result("contact-angle");
+  ASSERT_NE(doc, nullptr);
+  EXPECT_EQ(doc->at("model_selection").at("candidates").size(), 3u);
+  QAction* css = nullptr;
+  for (QAction* a : w.findChildren<QAction*>()) {
+    if (a->text() == "C+SS") css = a;
+  }
+  ASSERT_NE(css, nullptr);
+  css->trigger();
+  ASSERT_TRUE(wait_until([&] { return label().rfind("model c+ss, set by hand", 0) == 0; }, 120000)) << label();
+  ASSERT_TRUE(wait_idle(w));
+  EXPECT_NE(w.input()->log.stream("estimate/contact/wheels").find_channel("side_slip_FL"), nullptr);
+  EXPECT_EQ(w.input()->result("contact-angle")->at("model"), "c+ss");
 }

@@ -237,19 +237,30 @@ TEST(Render, ContactAnglesPointWhereTheWheelsMove) {
   EXPECT_NEAR(fl.mean_y, 140.0, 12.0);      // FL's is level with the wheel centre
 }
 
-TEST(Render, PlanarRockerBogieSideViewShowsTheWheelsOnTheTerrain) {
+TEST(Render, PlanarRockerBogieIn3DShowsBothSidesWheelsOnTheTerrainSurface) {
   TempDir dir;
   const std::string sim = dir.file("rb.h5");
   ASSERT_EQ(run_roverlab("simulate bump_crossing --duration 30 -o " + quote(sim)).exit_code, 0);
   const views::Image img = render(quote(sim) + " --view rover -t 25 --size 800x400", dir.file("rb.png"));
-  // Low-slip wheels (yellow-green) around the centre of the picture, the brown terrain below them.
+  // Low-slip wheels (yellow-green) of both sides around the centre of the picture.
   const Region wheels = find_pixels(img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; });
   EXPECT_GT(wheels.count, 3000);
   EXPECT_NEAR(wheels.mean_x, 400, 60);
-  const Region terrain = find_pixels(
-      img, [](int r, int g, int b) { return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g; });
-  EXPECT_GT(terrain.count, 800);
-  EXPECT_GT(terrain.mean_y, wheels.mean_y);
+  const auto is_terrain = [](int r, int g, int b) {
+    return r > 120 && r < 170 && g > 100 && g < 140 && b < 110 && r > g;
+  };
+  const Region terrain = find_pixels(img, is_terrain);
+  // The terrain is a surface under the whole rover, not a line: larger than the wheels, centred on them.
+  EXPECT_GT(terrain.count, 2 * wheels.count);
+  EXPECT_NEAR(terrain.mean_x, wheels.mean_x, 80);
+  EXPECT_NEAR(terrain.mean_y, wheels.mean_y, 60);
+  // Both sides: wheels left and right of the picture's middle column of the rover.
+  const Region left = find_pixels(
+      img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; }, 0, static_cast<int>(wheels.mean_x));
+  const Region right = find_pixels(
+      img, [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; }, static_cast<int>(wheels.mean_x));
+  EXPECT_GT(left.count, 1000);
+  EXPECT_GT(right.count, 1000);
 }
 
 TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
@@ -263,14 +274,20 @@ TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
   const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
   auto contact = metrics.at("analyses").at("contact-angle");
   ASSERT_EQ(contact.at("rms").at("contact_angle_deg").size(), 6u);
-  // Wheels on the unmoved side bogies keep near-zero contact angles (C+SS, reset).
+  // Wheels on the unmoved side bogies keep near-zero contact angles (reset).
   for (std::size_t w : {0u, 1u, 4u, 5u}) {
     EXPECT_LT(contact.at("rms").at("contact_angle_deg").at(w).get<double>(), 2.0) << w;
   }
   EXPECT_EQ(metrics.at("analyses").count("ins-slip"), 0u);  // not a skid-steer log
+  // The model chosen by the data (the report's default --model auto), with its evidence.
+  EXPECT_EQ(contact.at("model_selection").at("requested"), "auto");
+  EXPECT_EQ(contact.at("model"), contact.at("model_selection").at("chosen"));  // at 100 Hz: c (1 kHz: c+ss)
+  EXPECT_NE(read_text(folder + "/index.html").find("consistent candidate of least AIC"), std::string::npos);
   // The same document as the command line's for the same options (but for the wall-clock time).
+  EXPECT_TRUE(contact.at("smoother").get<bool>());  // the report smooths; the filter's errors beside
+  EXPECT_EQ(contact.at("filter_rms").at("slip").size(), 6u);
   const CommandResult cli =
-      run_roverlab("estimate contact-angle " + quote(sim) + " --model c+ss --reset-cross-covariance --json");
+      run_roverlab("estimate contact-angle " + quote(sim) + " --reset-cross-covariance --smoother --json");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   auto printed = nlohmann::json::parse(cli.out);
   EXPECT_GT(contact.at("wall_seconds").get<double>(), 0.0);

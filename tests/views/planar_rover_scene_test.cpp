@@ -74,3 +74,61 @@ TEST(PlanarRoverScene, RefusesALogWithoutTheRockerBogieTruth) {
   EXPECT_FALSE(views::is_planar_rocker_bogie_log(log::Log{}));
   EXPECT_THROW(views::PlanarRoverScene{log::Log{}}, DataError);
 }
+
+namespace {
+
+// The body held still while the bogie turns by 0.3 rad over 10 s: wheel 2
+// (extreme slip, red) rises, wheel 3 (low slip) sinks.
+log::Log turning_bogie() {
+  log::Log lg = planar_drive();
+  const auto& t = lg.stream("truth/pose").time();
+  const std::size_t n = t.size();
+  log::Log out;
+  out.metadata = lg.metadata;
+  log::Stream pose("truth/pose", t);
+  std::vector<double> angle(n), pivot_x(n, -0.15), pivot_z(n, 0.15);
+  for (std::size_t i = 0; i < n; ++i) angle[i] = 0.03 * t[i];
+  pose.add_channel("x", "m", std::vector<double>(n, 0.0));
+  pose.add_channel("z", "m", std::vector<double>(n, 0.25));
+  pose.add_channel("pitch", "rad", std::vector<double>(n, 0.0));
+  pose.add_channel("bogie_angle", "rad", angle);
+  pose.add_channel("bogie_pivot_x", "m", pivot_x);
+  pose.add_channel("bogie_pivot_z", "m", pivot_z);
+  out.add_stream(std::move(pose));
+  log::Stream wheels("truth/wheels", t);
+  const Eigen::Vector2d arm[3] = {{0.35, -0.1}, {0.1, -0.075}, {-0.1, -0.075}};  // wheel 1 from the pivot at rest
+  for (int w = 0; w < 3; ++w) {
+    std::vector<double> cx(n), cz(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = w == 0 ? 0.0 : angle[i];  // wheel 1 hangs on the rocker
+      cx[i] = -0.15 + std::cos(a) * arm[w].x() - std::sin(a) * arm[w].y();
+      cz[i] = 0.15 + std::sin(a) * arm[w].x() + std::cos(a) * arm[w].y();
+    }
+    const std::string k = std::to_string(w + 1);
+    wheels.add_channel("centre_x_" + k, "m", cx);
+    wheels.add_channel("centre_z_" + k, "m", cz);
+    wheels.add_channel("slip_" + k, "1", std::vector<double>(n, w == 1 ? 0.9 : 0.1));
+  }
+  out.add_stream(std::move(wheels));
+  return out;
+}
+
+}  // namespace
+
+TEST(PlanarRoverScene, InThreeDimensionsTheWheelPixelsMoveAsTheBogieTurns) {
+  const log::Log lg = turning_bogie();
+  views::PlanarRoverScene scene(lg);
+  EXPECT_GT(scene.track(), 0.4);  // both sides drawn a wheelbase apart
+  const auto red = [](int r, int g, int b) { return r > 180 && g < 80 && b < 80; };
+  const auto green = [](int r, int g, int b) { return g - b > 90 && g >= r && g > 120; };
+  const views::Image before = render_scene(scene, 480, 360, 0.0);
+  const Region red0 = find_pixels(before, red), green0 = find_pixels(before, green);
+  const views::Image after = render_scene(scene, 480, 360, 10.0);
+  const Region red1 = find_pixels(after, red), green1 = find_pixels(after, green);
+  ASSERT_GT(red0.count, 200);  // wheel 2 on both sides
+  ASSERT_GT(green0.count, 400);
+  // Wheel 2 rose 3.3 cm: its pixels move up (smaller rows); the wheels 1 and 3 (3 sank 1.6 cm) do not follow it.
+  EXPECT_LT(red1.mean_y, red0.mean_y - 4.0);
+  EXPECT_GT(green1.mean_y, green0.mean_y - 1.0);
+  EXPECT_NEAR(scene.wheel_centre(1).y(), 0.15 + std::sin(0.3) * 0.1 - std::cos(0.3) * 0.075, 1e-9);
+}
