@@ -219,6 +219,7 @@ NetTractionResult NetTractionEstimator::run() {
   const auto start = std::chrono::steady_clock::now();
   filter_pass();
   result_.filter_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  path_positions();
   write_streams();
   if (o_.progress) o_.progress(1.0);
   return std::move(result_);
@@ -249,6 +250,32 @@ void NetTractionEstimator::filter_pass() {
     if (two_axis_) wheel_force_step(k, two_axis_filter_, true, result_.two_axis);
     if (run_single_axis_) wheel_force_step(k, single_axis_filter_, false, result_.single_axis);
     if (o_.progress && k % 500 == 0) o_.progress(static_cast<double>(k) / static_cast<double>(samples_.size()));
+  }
+}
+
+// Where each wheel is along the path, with no truth: the body's x from
+// Estimator 1's forward speed (Eq. 5.20, zdot_0^R = 0: xdot_0 = xdot_0^R cos
+// theta), trapezoids, plus each wheel's offset at the estimated pitch and
+// bogie angle (Eq. 4.19-4.21); wheel 1 starts at x = 0.
+void NetTractionEstimator::path_positions() {
+  const Eigen::MatrixXd& g = result_.general.state;
+  const auto n = g.rows();
+  result_.wheel_x.resize(n, 3);
+  const auto& geo = rover_.geometry;
+  const auto offsets = [&](Eigen::Index k) {
+    const double th = g(k, gen::kPitch), tb = th + g(k, gen::kBogie);
+    const Eigen::Vector2d pivot = simulation::rocker_bogie::rotate(th, geo.rocker_to_bogie);
+    return Eigen::Vector3d(simulation::rocker_bogie::rotate(th, geo.rocker_to_wheel1).x(),
+                           (pivot + simulation::rocker_bogie::rotate(tb, geo.bogie_to_wheel2)).x(),
+                           (pivot + simulation::rocker_bogie::rotate(tb, geo.bogie_to_wheel3)).x());
+  };
+  const auto speed = [&](Eigen::Index k) { return g(k, gen::kForwardSpeed) * std::cos(g(k, gen::kPitch)); };
+  double x0 = n > 0 ? -offsets(0)(0) : 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (k > 0)
+      x0 += 0.5 * (speed(k) + speed(k - 1)) *
+            (result_.time[static_cast<std::size_t>(k)] - result_.time[static_cast<std::size_t>(k - 1)]);
+    result_.wheel_x.row(k) = (offsets(k).array() + x0).transpose();
   }
 }
 
@@ -341,6 +368,10 @@ void NetTractionEstimator::write_streams() {
   for (int i = 0; i < 3; ++i) {
     wheels.add_channel(index_name("wheel_acceleration_", i), "rad/s^2", column(result_.wheel_acceleration, i),
                        "Eq. 5.24");
+  }
+  for (int i = 0; i < 3; ++i) {
+    wheels.add_channel(index_name("path_x_", i), "m", column(result_.wheel_x, i),
+                       "wheel centre's x, dead-reckoned from wheel 1 at 0");
   }
   result_.estimates.add_stream(std::move(wheels));
   log::Stream body("estimate/net_traction/body", result_.time);

@@ -43,8 +43,11 @@ struct FilterTrack {
 
 struct NetTractionResult {  // NOLINT(bugprone-exception-escape): std::map's move in LogMetadata
   std::vector<double> time;
-  FilterTrack general, two_axis, single_axis;           // Estimators 1, 2, 3 (2 or 3 empty when not run)
-  Eigen::MatrixXd wheel_acceleration;                   // Eq. 5.24 at each sample (N x 3), rad/s^2
+  FilterTrack general, two_axis, single_axis;  // Estimators 1, 2, 3 (2 or 3 empty when not run)
+  Eigen::MatrixXd wheel_acceleration;          // Eq. 5.24 at each sample (N x 3), rad/s^2
+  // Each wheel centre's x along the path (N x 3, m), dead-reckoned from
+  // Estimator 1 with the front wheel (wheel 1) at x = 0 at the first sample.
+  Eigen::MatrixXd wheel_x;
   ForceSensors force_sensors = ForceSensors::two_axis;  // the estimator the streams come from
   std::size_t standstill_samples = 0;                   // samples with no slip measured (the rover stood)
   double filter_seconds = 0;                            // wall time of the filter pass
@@ -74,6 +77,7 @@ class NetTractionEstimator {
   void filter_pass();
   void general_step(std::size_t k);
   void wheel_force_step(std::size_t k, UnscentedKalmanFilter& filter, bool two_axis, FilterTrack& track);
+  void path_positions();
   void write_streams();
 
   const log::Log& log_;
