@@ -303,6 +303,11 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
                   {"seconds", seconds},
                   {"filter_seconds", r.filter_seconds},
                   {"standstill_samples", r.standstill_samples},
+                  {"rejected_updates",
+                   {{"estimator_1", r.rejected_updates[0]},
+                    {"estimator_2", r.rejected_updates[1]},
+                    {"estimator_3", r.rejected_updates[2]},
+                    {"gate_probability", estimation::NetTractionOptions{}.gate_probability}}},
                   {"steady_state",
                    {{"max_wheel_acceleration", analysis::SteadyStateOptions{}.max_wheel_acceleration},
                     {"average_s", analysis::SteadyStateOptions{}.average_seconds},
@@ -395,6 +400,10 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
                j.at("filter_seconds").get<double>());
   const auto standstill = j.at("standstill_samples").get<std::size_t>();
   if (standstill > 0) std::fprintf(out, "standstill: %zu samples without a slip measurement\n", standstill);
+  const json& gated = j.at("rejected_updates");
+  std::fprintf(out, "NIS gate (issue 17) rejected %zu, %zu and %zu updates of Estimators 1, 2 and 3\n",
+               gated.at("estimator_1").get<std::size_t>(), gated.at("estimator_2").get<std::size_t>(),
+               gated.at("estimator_3").get<std::size_t>());
   std::fprintf(out, "steady state: |wheel acceleration| <= %.4g rad/s^2, averaged over %.1f s\n",
                j.at("steady_state").at("max_wheel_acceleration").get<double>(),
                j.at("steady_state").at("average_s").get<double>());

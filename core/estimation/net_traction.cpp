@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/estimation/filter_health.h"
 
 namespace roverlab::estimation {
 
@@ -21,6 +22,11 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr double kAirborneLoad = 1.0;  // N
 // Variance of a measurement that is not available (gated out).
 constexpr double kUnavailable = 1e8;
+// The NIS gate (issue 17) closes after this many samples (the filters'
+// convergence, 5 s at 50 Hz) and opens again for as long after this many
+// rejections in a row (0.5 s).
+constexpr std::size_t kGateSettle = 250;
+constexpr std::size_t kMaxRejected = 25;
 // The process noise is added to P before each step (see general_step).
 const Eigen::MatrixXd kNoProcessNoise(0, 0);
 
@@ -178,6 +184,7 @@ void NetTractionEstimator::assemble_noise() {
 }
 
 void NetTractionEstimator::initial_state() {
+  open_until_.fill(kGateSettle);
   using namespace gen;  // NOLINT(google-build-using-namespace)
   const nt::SensorSample& s0 = samples_.front();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(kStates);
@@ -294,6 +301,7 @@ void NetTractionEstimator::general_step(std::size_t k) {
     }
   }
   if (standing) ++result_.standstill_samples;
+  general_.gate = gate(0, k, static_cast<int>((r.array() < kUnavailable).count()));
   process_.set_torques(samples_[k - 1].torque);
   const UnscentedKalmanFilter::Function f = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
                                                    Eigen::VectorXd& out) { process_(x, out); };
@@ -305,6 +313,31 @@ void NetTractionEstimator::general_step(std::size_t k) {
   // augmented state's).
   general_.P += Q1_;
   general_.step(f, kNoProcessNoise, h, r.asDiagonal(), y);
+  count_rejection(0, k, general_.rejected);
+}
+
+// Filter `which`'s NIS gate at sample k (issue 17): the chi-square quantile
+// of the gate probability for `dof` measurements; none while the filters
+// converge (the first kGateSettle samples), nor for kGateSettle samples after
+// kMaxRejected rejections in a row (a lasting change, not an outlier: the
+// filter converges on it again).
+double NetTractionEstimator::gate(int which, std::size_t k, int dof) {
+  if (!(o_.gate_probability < 1.0) || dof <= 0 || k < open_until_.at(static_cast<std::size_t>(which))) {
+    return HUGE_VAL;
+  }
+  double& g = gates_.at(static_cast<std::size_t>(std::min(dof, static_cast<int>(gates_.size()) - 1)));
+  if (g == 0.0) g = chi_square_quantile(dof, o_.gate_probability);
+  return g;
+}
+
+void NetTractionEstimator::count_rejection(int which, std::size_t k, bool rejected) {
+  const auto i = static_cast<std::size_t>(which);
+  if (rejected) ++result_.rejected_updates.at(i);
+  rejected_in_a_row_.at(i) = rejected ? rejected_in_a_row_.at(i) + 1 : 0;
+  if (rejected_in_a_row_.at(i) >= kMaxRejected) {  // open for a new convergence
+    open_until_.at(i) = k + kGateSettle;
+    rejected_in_a_row_.at(i) = 0;
+  }
 }
 
 // Eq. 5.49-5.67 for Estimator 2 (two_axis) or 3 at sample k.
@@ -331,7 +364,10 @@ void NetTractionEstimator::wheel_force_step(std::size_t k, UnscentedKalmanFilter
     const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
                                                      Eigen::VectorXd& out) { force_measurement_(x, out); };
     filter.P += Q2_;  // Eq. 5.50-5.52: x + w through the identity, as Q after it
+    const int which = two_axis ? 1 : 2;
+    filter.gate = gate(which, k, static_cast<int>((R.diagonal().array() < kUnavailable).count()));
     filter.step(f, kNoProcessNoise, h, R, y);
+    count_rejection(which, k, filter.rejected);
   }
   track.state.row(r) = filter.x.transpose();
   track.sigma.row(r) = filter.P.diagonal().cwiseMax(0.0).cwiseSqrt().transpose();
