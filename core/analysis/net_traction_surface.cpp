@@ -258,17 +258,27 @@ namespace {
 class PrefixFits {
  public:
   PrefixFits(int order, double load_mid, double load_half, double slip_mid, double slip_half)
-      : order_(order), load_mid_(load_mid), load_half_(load_half), slip_mid_(slip_mid), slip_half_(slip_half) {
-    const auto p = static_cast<Eigen::Index>(terramechanics::PolynomialSurface::term_count(order));
+      : order_(std::clamp(order, 1, 6)),
+        load_mid_(load_mid),
+        load_half_(load_half),
+        slip_mid_(slip_mid),
+        slip_half_(slip_half) {
+    const auto p = static_cast<Eigen::Index>(terramechanics::PolynomialSurface::term_count(order_));
     A_ = Eigen::MatrixXd::Zero(p, p);
     b_ = Eigen::MatrixXd::Zero(p, 2);
     phi_.resize(p);
   }
   void add(const TractionPoint& pt) {
     const double w = (pt.load - load_mid_) / load_half_, s = (pt.slip - slip_mid_) / slip_half_;
+    std::array<double, 8> sk{}, wl{};  // powers 0..order (at most 6)
+    sk[0] = wl[0] = 1.0;
+    for (int p = 1; p <= order_; ++p) {
+      sk[static_cast<std::size_t>(p)] = sk[static_cast<std::size_t>(p - 1)] * s;
+      wl[static_cast<std::size_t>(p)] = wl[static_cast<std::size_t>(p - 1)] * w;
+    }
     for (Eigen::Index i = 0; i < phi_.size(); ++i) {
       const auto [k, l] = terramechanics::PolynomialSurface::exponents(static_cast<std::size_t>(i));
-      phi_(i) = std::pow(s, k) * std::pow(w, l);
+      phi_(i) = sk[static_cast<std::size_t>(k)] * wl[static_cast<std::size_t>(l)];
     }
     A_.selfadjointView<Eigen::Lower>().rankUpdate(phi_);
     const Eigen::Vector2d y(pt.drawbar_pull, pt.resistive_torque);
