@@ -81,7 +81,9 @@ json changes_json(const analysis::ChangeDetection& d) {
             {"min_points", o.min_points},
             {"points", d.points},
             {"largest_statistic", d.largest_statistic},
-            {"largest_at_m", d.largest_at}}}};
+            {"largest_at_m", d.largest_at},
+            {"min_path_m", o.min_path},
+            {"not_run", d.not_run}}}};
 }
 
 // The averaged steady-state points (at most 1500, evenly spaced) for the
@@ -377,6 +379,10 @@ void print_changes(const json& e, std::FILE* out) {
   if (!e.contains("change_points")) return;
   const json& d = e.at("change_detector");
   const json& c = e.at("change_points");
+  if (!d.at("not_run").get<std::string>().empty()) {
+    std::fprintf(out, " soil change: not tested (%s)\n", d.at("not_run").get<std::string>().c_str());
+    return;
+  }
   if (c.empty()) {
     std::fprintf(out, " soil change: none (largest statistic %.3f at x = %.2f m, threshold %.2f)\n",
                  d.at("largest_statistic").get<double>(), d.at("largest_at_m").get<double>(),
@@ -482,7 +488,9 @@ void NetTractionAnalysis::report(const json& j, ReportSection& s) const {
     if (e.contains("change_points")) {
       s.html << "<p>Soil change (section 5.9, threshold "
              << ReportSection::number(e.at("change_detector").at("threshold"), "%.2f") << "): ";
-      if (e.at("change_points").empty()) {
+      if (!e.at("change_detector").at("not_run").get<std::string>().empty()) {
+        s.html << "not tested: " << ReportSection::escape(e.at("change_detector").at("not_run").get<std::string>());
+      } else if (e.at("change_points").empty()) {
         s.html << "none (largest statistic "
                << ReportSection::number(e.at("change_detector").at("largest_statistic"), "%.3f") << ")";
       }

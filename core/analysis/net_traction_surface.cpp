@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include <Eigen/Dense>
@@ -357,7 +358,19 @@ ChangeDetection detect_traction_changes(const std::vector<TractionPoint>& points
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const TractionPoint& a, const TractionPoint& b) { return a.x < b.x; });
   out.points = sorted.size();
-  if (sorted.empty()) return out;
+  double front_lo = HUGE_VAL, front_hi = -HUGE_VAL;
+  for (const auto& p : sorted) {
+    if (p.wheel != 1) continue;
+    front_lo = std::min(front_lo, p.x);
+    front_hi = std::max(front_hi, p.x);
+  }
+  if (!(front_hi - front_lo >= o.min_path)) {
+    char why[160];
+    std::snprintf(why, sizeof why, "the front wheel's points span %.2f m of path; the scan needs %.2f m",
+                  std::max(front_hi - front_lo, 0.0), o.min_path);
+    out.not_run = why;
+    return out;
+  }
   // lambda on a grid of positions along the path.
   std::vector<std::pair<double, double>> scan;  // (x, lambda)
   for (double x = sorted.front().x + o.step; x < sorted.back().x; x += o.step) {

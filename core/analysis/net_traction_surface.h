@@ -96,6 +96,9 @@ struct ChangeDetectorOptions {
   double ignore_before = -HUGE_VAL;  // s: points earlier than this are left out (the filters' convergence)
   std::size_t min_points = 50;
   std::size_t min_wheel_points = 20;  // on each side, from at least two wheels
+  // The front wheel's points must span this much path (m): on shorter runs
+  // the scan's no-change values reach the threshold (calibration).
+  double min_path = 1.1;
   int max_changes = 3;
 };
 struct ChangePoint {
@@ -109,6 +112,7 @@ struct ChangeDetection {
   double largest_statistic = 0;      // lambda's largest value (the evidence when there is no change)
   double largest_at = 0;             // m, where it was
   std::size_t points = 0;
+  std::string not_run;  // why the scan did not run (empty when it did)
 };
 ChangeDetection detect_traction_changes(const std::vector<TractionPoint>& points,
                                         const ChangeDetectorOptions& options = {});
