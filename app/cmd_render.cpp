@@ -57,6 +57,7 @@ int run_render(const RenderOptions& o) {
   if (fs::path(o.output).extension() != ".png") throw UsageError("--output " + o.output + ": must end in .png");
   ViewInputOptions vo;
   if (view->draws_estimates()) vo.analyses = estimators();
+  if (view->uses_surface_data() && !o.soil) vo.analyses = {"net-traction"};  // a rover's own surfaces
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
   views::ensure_display();
   ViewOptions options;

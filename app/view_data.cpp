@@ -33,6 +33,51 @@ std::optional<kinematics::RoverModel> rover_kinematics(const log::Log& lg) {
   }
 }
 
+namespace {
+
+terramechanics::PolynomialSurface surface_from(const nlohmann::json& order, const nlohmann::json& coefficients) {
+  std::vector<double> c;
+  for (const auto& v : coefficients) c.push_back(v.is_number() ? v.get<double>() : NAN);
+  return {order.get<int>(), c};
+}
+
+// A rover's own traction surfaces (the net-traction analysis, seed 003
+// section 5.7): its estimated points coloured by wheel, the surface fitted
+// to them and, with truth, the true local model; the streams' estimator's.
+bool net_traction_surface(const ViewInput& in, bool dp, views::TractionSurfaceData& d,
+                          terramechanics::SurfaceFit* fit_out) {
+  const nlohmann::json* r = in.result("net-traction");
+  if (r == nullptr || !r->contains("estimators")) return false;
+  const std::string sensors = r->value("force_sensors", std::string("two-axis"));
+  if (!r->at("estimators").contains(sensors)) return false;
+  const nlohmann::json& e = r->at("estimators").at(sensors);
+  const char* key = dp ? "drawbar_pull" : "resistive_torque";
+  if (!e.contains(key) || !e.contains("estimated_points")) return false;
+  const nlohmann::json& q = e.at(key);
+  d.surface = surface_from(q.at("order"), q.at("coefficients"));
+  if (q.contains("truth_coefficients")) d.reference = surface_from(q.at("order"), q.at("truth_coefficients"));
+  d.load_min = q.at("region").at("load_N").at(0).get<double>();
+  d.load_max = q.at("region").at("load_N").at(1).get<double>();
+  d.slip_min = q.at("region").at("slip").at(0).get<double>();
+  d.slip_max = q.at("region").at("slip").at(1).get<double>();
+  const nlohmann::json& p = e.at("estimated_points");
+  const nlohmann::json& values = p.at(dp ? "drawbar_pull_N" : "resistive_torque_Nm");
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!values.at(i).is_number() || !p.at("load_N").at(i).is_number() || !p.at("slip").at(i).is_number()) continue;
+    d.points.push_back(
+        {p.at("load_N").at(i).get<double>(), p.at("slip").at(i).get<double>(), values.at(i).get<double>(), 1.0});
+    d.point_group.push_back(p.at("wheel").at(i).get<int>());
+  }
+  d.quantity += std::string(" (rover's estimates, ") + sensors + (d.reference ? "; grey: true local model)" : ")");
+  if (fit_out) {
+    fit_out->surface = d.surface;
+    fit_out->error = terramechanics::fit_error(d.surface, d.points);
+  }
+  return true;
+}
+
+}  // namespace
+
 views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::string& quantity,
                                                const std::optional<std::string>& soil_name,
                                                terramechanics::SurfaceFit* fit_out) {
@@ -44,10 +89,12 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   views::TractionSurfaceData d;
   d.quantity = dp ? "drawbar pull" : "resistive torque";
   d.unit = dp ? "N" : "N m";
+  if (!in.is_wheel_test() && !soil_name && net_traction_surface(in, dp, d, fit_out)) return d;
   if (!in.is_wheel_test() && !soil_name) {
     throw InputError(in.file,
-                     "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm) "
-                     "or --soil NAME for the model surface");
+                     "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm), "
+                     "a planar rocker-bogie log the net-traction estimator can run on, or --soil NAME for the "
+                     "model surface");
   }
   std::set<double> loads;
   double load_lo = std::numeric_limits<double>::infinity(), load_hi = -load_lo;

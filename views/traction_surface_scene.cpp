@@ -64,6 +64,13 @@ void surface_colour(double f, double rgb[3]) {
   }
 }
 
+void group_colour(int group, double rgb[3]) {
+  // Away from the surface's blue-white-red: green, purple, brown.
+  static constexpr double kColours[3][3] = {{0.0, 0.62, 0.15}, {0.55, 0.1, 0.75}, {0.55, 0.35, 0.05}};
+  const auto& c = kColours[static_cast<std::size_t>(((group - 1) % 3 + 3) % 3)];
+  for (int k = 0; k < 3; ++k) rgb[k] = c[k];
+}
+
 namespace {
 
 // The surface's values on an n x n grid over the load and slip ranges (load
@@ -101,6 +108,20 @@ SurfaceGrid sample_surface(const TractionSurfaceData& d, int grid) {
   }
   if (!(g.hi > g.lo)) g.hi = g.lo + 1.0;
   return g;
+}
+
+// The reference surface's values on the same grid (empty without one); the
+// shown value range grows to hold them.
+SurfaceGrid sample_reference(const TractionSurfaceData& d, SurfaceGrid& shown) {
+  SurfaceGrid r;
+  if (!d.reference) return r;
+  TractionSurfaceData ref = d;
+  ref.surface = *d.reference;
+  ref.points.clear();
+  r = sample_surface(ref, shown.n);
+  shown.lo = std::min(shown.lo, r.lo);
+  shown.hi = std::max(shown.hi, r.hi);
+  return r;
 }
 
 // Display coordinates: load and slip over [0, 1], the value over [0, kHeight].
@@ -149,33 +170,52 @@ vtkSmartPointer<vtkActor> surface_actor(const SurfaceGrid& g, const DisplayBox& 
   return actor;
 }
 
-// The data points as dark spheres, each with its residual as a line to the surface.
-void add_points(vtkRenderer* renderer, const TractionSurfaceData& d, const DisplayBox& box) {
-  if (d.points.empty()) return;
+// The data points of one group (0: ungrouped, dark) as spheres, each with
+// its residual as a line to the surface while there are few points.
+void add_point_group(vtkRenderer* renderer, const TractionSurfaceData& d, const DisplayBox& box, int group) {
   vtkNew<vtkPoints> centres;
   std::vector<Eigen::Vector3d> residuals;
-  for (const auto& p : d.points) {
+  for (std::size_t i = 0; i < d.points.size(); ++i) {
+    if ((d.point_group.size() == d.points.size() ? d.point_group[i] : 0) != group) continue;
+    const auto& p = d.points[i];
     const double x = box.x(p.load), y = box.y(p.slip);
     centres->InsertNextPoint(x, y, box.z(p.value));
     residuals.emplace_back(x, y, box.z(p.value));
     residuals.emplace_back(x, y, box.z(d.surface(p.load, p.slip)));
   }
+  if (centres->GetNumberOfPoints() == 0) return;
+  const bool many = d.points.size() > 300;  // a rover's estimates: smaller, no residual lines
   vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(0.012);
-  sphere->SetThetaResolution(12);
-  sphere->SetPhiResolution(12);
+  sphere->SetRadius(many ? 0.007 : 0.012);
+  sphere->SetThetaResolution(many ? 6 : 12);
+  sphere->SetPhiResolution(many ? 6 : 12);
   vtkNew<vtkGlyph3D> glyphs;
   glyphs->SetSourceConnection(sphere->GetOutputPort());
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(centres);
   glyphs->SetInputData(cloud);
   glyphs->SetScaleModeToDataScalingOff();
-  auto spheres = actor_of(glyphs->GetOutputPort(), {0.1, 0.1, 0.1});
+  Eigen::Vector3d colour(0.1, 0.1, 0.1);
+  if (group > 0) group_colour(group, colour.data());
+  auto spheres = actor_of(glyphs->GetOutputPort(), colour);
   spheres->GetMapper()->ScalarVisibilityOff();
+  spheres->GetProperty()->SetAmbient(0.6);
   renderer->AddActor(spheres);
-  auto lines = actor_of(segments(residuals, true), {0.1, 0.1, 0.1});
+  if (many) return;
+  auto lines = actor_of(segments(residuals, true), colour);
   lines->GetProperty()->SetLineWidth(2.0);
   renderer->AddActor(lines);
+}
+
+void add_points(vtkRenderer* renderer, const TractionSurfaceData& d, const DisplayBox& box) {
+  if (d.points.empty()) return;
+  std::vector<int> groups = {0};
+  if (d.point_group.size() == d.points.size()) {
+    groups = d.point_group;
+    std::sort(groups.begin(), groups.end());
+    groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  }
+  for (int g : groups) add_point_group(renderer, d, box, g);
 }
 
 // Axes in real units around the display box.
@@ -229,7 +269,8 @@ void place_camera(vtkRenderer* renderer) {
 
 TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, int grid) {
   if (!(d.load_max > d.load_min) || !(d.slip_max > d.slip_min)) throw DataError("empty load or slip range");
-  const SurfaceGrid g = sample_surface(d, grid);
+  SurfaceGrid g = sample_surface(d, grid);
+  const SurfaceGrid reference = sample_reference(d, g);
   const DisplayBox box{d, g.lo, g.hi};
   auto lut = lookup(g.lo, g.hi);
   TractionSurfaceScene out;
@@ -238,6 +279,13 @@ TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, i
   out.renderer = vtkSmartPointer<vtkRenderer>::New();
   out.renderer->SetBackground(1.0, 1.0, 1.0);
   out.renderer->AddActor(surface_actor(g, box, d.quantity, lut));
+  if (d.reference) {
+    auto ref = surface_actor(reference, box, d.quantity, lut);
+    ref->GetMapper()->ScalarVisibilityOff();
+    ref->GetProperty()->SetColor(0.55, 0.55, 0.55);
+    ref->GetProperty()->SetOpacity(0.35);
+    out.renderer->AddActor(ref);
+  }
   add_points(out.renderer, d, box);
   out.renderer->AddActor(axes_of(d, g.lo, g.hi, out.renderer->GetActiveCamera()));
   out.renderer->AddViewProp(colour_bar(lut, d.unit));

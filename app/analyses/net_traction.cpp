@@ -62,6 +62,51 @@ json quantity_json(const analysis::QuantityFit& f, const analysis::TraversedRegi
   return j;
 }
 
+// Section 5.9: where along the path the traction relationship changed.
+json changes_json(const analysis::ChangeDetection& d) {
+  json points = json::array();
+  for (const auto& c : d.changes) {
+    points.push_back({{"x_m", c.x},
+                      {"front_wheel_time_s", finite_or_null(c.front_wheel_time)},
+                      {"statistic", c.statistic},
+                      {"points_before", c.before},
+                      {"points_after", c.after}});
+  }
+  const analysis::ChangeDetectorOptions o;
+  return {{"change_points", points},
+          {"change_detector",
+           {{"statistic", "sum over DP and tau_R of ln(RSS of one Eq. 2.28 surface / RSS of two split at x)"},
+            {"order", o.order},
+            {"threshold", o.threshold},
+            {"min_points", o.min_points},
+            {"points", d.points},
+            {"largest_statistic", d.largest_statistic},
+            {"largest_at_m", d.largest_at},
+            {"min_path_m", o.min_path},
+            {"not_run", d.not_run}}}};
+}
+
+// The averaged steady-state points (at most 1500, evenly spaced) for the
+// traction-surface view, as columns.
+json points_json(const std::vector<analysis::TractionPoint>& points) {
+  constexpr std::size_t kMost = 1500;
+  const std::size_t stride = std::max<std::size_t>(1, (points.size() + kMost - 1) / kMost);
+  json wheel = json::array(), load = json::array(), slip = json::array(), dp = json::array(), tau = json::array(),
+       x = json::array();
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    const auto& p = points[i];
+    wheel.push_back(p.wheel);
+    load.push_back(finite_or_null(p.load));
+    slip.push_back(finite_or_null(p.slip));
+    dp.push_back(finite_or_null(p.drawbar_pull));
+    tau.push_back(finite_or_null(p.resistive_torque));
+    x.push_back(finite_or_null(p.x));
+  }
+  return {{"every", stride}, {"wheel", wheel},       {"load_N", load},
+          {"slip", slip},    {"drawbar_pull_N", dp}, {"resistive_torque_Nm", tau},
+          {"x_m", x}};
+}
+
 class NetTractionAnalysis : public Analysis {
  public:
   std::string name() const override { return "net-traction"; }
@@ -107,6 +152,14 @@ class NetTractionAnalysis : public Analysis {
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;
   void report(const json& j, ReportSection& section) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"net_traction_tau_r_rms_percent", "net traction: tau_R surface RMS vs truth (%)",
+             "/summary/resistive_torque_rms_percent"},
+            {"net_traction_dp_rms_percent", "net traction: DP surface RMS vs truth (%)",
+             "/summary/drawbar_pull_rms_percent"},
+            {"net_traction_changes", "net traction: soil changes found", "/summary/change_count"},
+            {"net_traction_change_x_m", "net traction: first soil change at x (m)", "/summary/first_change_x_m"}};
+  }
 
  private:
   static std::optional<io::RoverDescription> rover_of(const log::Log& lg, const std::string& file) {
@@ -208,6 +261,8 @@ json NetTractionAnalysis::fits(const log::Log& lg, const estimation::NetTraction
            {"drawbar_pull", quantity_json(m.drawbar_pull, m.region)},
            {"resistive_torque", quantity_json(m.resistive_torque, m.region)}};
       j["soil"] = soil_fit(m.estimated_points, wheel_radius);
+      j["estimated_points"] = points_json(m.estimated_points);
+      j.update(changes_json(m.changes));
     } catch (const DataError& err) {
       j = {{"error", err.what()}};
     }
@@ -250,12 +305,34 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
                   {"seconds", seconds},
                   {"filter_seconds", r.filter_seconds},
                   {"standstill_samples", r.standstill_samples},
+                  {"rejected_updates",
+                   {{"estimator_1", r.rejected_updates[0]},
+                    {"estimator_2", r.rejected_updates[1]},
+                    {"estimator_3", r.rejected_updates[2]},
+                    {"gate_probability", estimation::NetTractionOptions{}.gate_probability}}},
                   {"steady_state",
                    {{"max_wheel_acceleration", analysis::SteadyStateOptions{}.max_wheel_acceleration},
                     {"average_s", analysis::SteadyStateOptions{}.average_seconds},
                     {"settle_s", analysis::SteadyStateOptions{}.settle_seconds}}},
                   {"has_truth", in.log.find_stream("truth/wheels") != nullptr},
                   {"estimators", fits(in.log, r, g.wheel_radius)}};
+  // The streams' estimator's figures, for the campaign table and the views.
+  const json& chosen = out.document.at("estimators").at(estimation::force_sensors_name(r.force_sensors));
+  const auto at = [&](const char* q, const char* k) {
+    return chosen.contains(q) && chosen.at(q).contains("rms_vs_truth") ? chosen.at(q).at("rms_vs_truth").at(k)
+                                                                       : json(nullptr);
+  };
+  json summary = {{"drawbar_pull_rms_percent", at("drawbar_pull", "rms_percent")},
+                  {"resistive_torque_rms_percent", at("resistive_torque", "rms_percent")},
+                  {"points", chosen.value("points", std::size_t{0})},
+                  {"change_count", nullptr},
+                  {"first_change_x_m", nullptr}};
+  if (chosen.contains("change_points")) {
+    out.document["change_points"] = chosen.at("change_points");
+    summary["change_count"] = chosen.at("change_points").size();
+    if (!chosen.at("change_points").empty()) summary["first_change_x_m"] = chosen.at("change_points").at(0).at("x_m");
+  }
+  out.document["summary"] = summary;
   out.estimates = std::move(r.estimates);
   return out;
 }
@@ -297,6 +374,31 @@ void print_table(const json& q, const char* label, std::FILE* out) {
   }
 }
 
+// Section 5.9's change detector, one line per change (x of the wheels along the path).
+void print_changes(const json& e, std::FILE* out) {
+  if (!e.contains("change_points")) return;
+  const json& d = e.at("change_detector");
+  const json& c = e.at("change_points");
+  if (!d.at("not_run").get<std::string>().empty()) {
+    std::fprintf(out, " soil change: not tested (%s)\n", d.at("not_run").get<std::string>().c_str());
+    return;
+  }
+  if (c.empty()) {
+    std::fprintf(out, " soil change: none (largest statistic %.3f at x = %.2f m, threshold %.2f)\n",
+                 d.at("largest_statistic").get<double>(), d.at("largest_at_m").get<double>(),
+                 d.at("threshold").get<double>());
+    return;
+  }
+  for (const json& p : c) {
+    std::fprintf(
+        out,
+        " soil change at x = %.2f m (front wheel there at %s s; statistic %.3f > %.2f; %zu points before, %zu after)\n",
+        p.at("x_m").get<double>(), ReportSection::number(p.at("front_wheel_time_s"), "%.1f").c_str(),
+        p.at("statistic").get<double>(), d.at("threshold").get<double>(), p.at("points_before").get<std::size_t>(),
+        p.at("points_after").get<std::size_t>());
+  }
+}
+
 void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "%s: rover %s, %s force sensors (streams), %.1f s of log, filters %.2f s\n",
                j.at("file").get<std::string>().c_str(), j.at("rover").get<std::string>().c_str(),
@@ -304,6 +406,10 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
                j.at("filter_seconds").get<double>());
   const auto standstill = j.at("standstill_samples").get<std::size_t>();
   if (standstill > 0) std::fprintf(out, "standstill: %zu samples without a slip measurement\n", standstill);
+  const json& gated = j.at("rejected_updates");
+  std::fprintf(out, "NIS gate (issue 17) rejected %zu, %zu and %zu updates of Estimators 1, 2 and 3\n",
+               gated.at("estimator_1").get<std::size_t>(), gated.at("estimator_2").get<std::size_t>(),
+               gated.at("estimator_3").get<std::size_t>());
   std::fprintf(out, "steady state: |wheel acceleration| <= %.4g rad/s^2, averaged over %.1f s\n",
                j.at("steady_state").at("max_wheel_acceleration").get<double>(),
                j.at("steady_state").at("average_s").get<double>());
@@ -341,6 +447,7 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
       std::fprintf(out, "  with n free the points cannot tell %s from %s\n", pair.at(0).get<std::string>().c_str(),
                    pair.at(1).get<std::string>().c_str());
     }
+    print_changes(e, out);
   }
 }
 
@@ -375,6 +482,21 @@ void NetTractionAnalysis::report(const json& j, ReportSection& s) const {
         s.html << ", against the true local model RMS "
                << ReportSection::number(f.at("rms_vs_truth").at("rms_percent"), "%.2f") << " % and largest "
                << ReportSection::number(f.at("rms_vs_truth").at("max_percent"), "%.2f") << " % of its range";
+      }
+      s.html << ".</p>\n";
+    }
+    if (e.contains("change_points")) {
+      s.html << "<p>Soil change (section 5.9, threshold "
+             << ReportSection::number(e.at("change_detector").at("threshold"), "%.2f") << "): ";
+      if (!e.at("change_detector").at("not_run").get<std::string>().empty()) {
+        s.html << "not tested: " << ReportSection::escape(e.at("change_detector").at("not_run").get<std::string>());
+      } else if (e.at("change_points").empty()) {
+        s.html << "none (largest statistic "
+               << ReportSection::number(e.at("change_detector").at("largest_statistic"), "%.3f") << ")";
+      }
+      for (const json& p : e.at("change_points")) {
+        s.html << "at x = " << ReportSection::number(p.at("x_m"), "%.2f") << " m (statistic "
+               << ReportSection::number(p.at("statistic"), "%.3f") << ") ";
       }
       s.html << ".</p>\n";
     }

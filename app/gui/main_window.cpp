@@ -433,6 +433,7 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
       rebuild_tree();
       QWidget* shown = rebuild_views();  // a view the new estimates made available comes to the front
       rebuild_analysis();
+      rebuild_surface();  // a rover's net-traction estimates feed the traction-surface tab
       if (shown != nullptr) tabs_->setCurrentWidget(shown);
       set_time(t);
     };

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+
+#include <Eigen/Dense>
 
 #include "core/common/error.h"
 
@@ -32,6 +35,7 @@ std::vector<TractionPoint> averaged_points(const std::vector<double>& time, cons
     while (k < time.size()) {
       const double end = time[k] + o.average_seconds;
       TractionPoint sum;
+      const bool has_x = s.x.size() == time.size();
       int n = 0;
       for (; k < time.size() && time[k] < end - 1e-9; ++k) {
         if (!mask[w][k]) continue;
@@ -41,12 +45,14 @@ std::vector<TractionPoint> averaged_points(const std::vector<double>& time, cons
         sum.slip += v[1];
         sum.drawbar_pull += v[2];
         sum.resistive_torque += v[3];
+        sum.time += time[k];
+        if (has_x) sum.x += s.x[k];
         ++n;
       }
       if (n == 0) continue;
       const double inv = 1.0 / n;
       points.push_back({sum.load * inv, sum.slip * inv, sum.drawbar_pull * inv, sum.resistive_torque * inv,
-                        static_cast<int>(w) + 1});
+                        static_cast<int>(w) + 1, sum.time * inv, sum.x * inv});
     }
   }
   return points;
@@ -137,12 +143,14 @@ std::array<WheelSeries, 3> estimated_series(const estimation::NetTractionResult&
     s.slip.resize(n);
     s.drawbar_pull.resize(n);
     s.resistive_torque.resize(n);
+    if (static_cast<std::size_t>(r.wheel_x.rows()) == n) s.x.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       const auto row = static_cast<Eigen::Index>(k);
       s.load[k] = w.state(row, wf::kNormalLoad + i);
       s.drawbar_pull[k] = w.state(row, wf::kDrawbarPull + i);
       s.slip[k] = r.general.state(row, gen::kSlip + i);
       s.resistive_torque[k] = r.general.state(row, gen::kResistiveTorque + i);
+      if (!s.x.empty()) s.x[k] = r.wheel_x(row, i);
     }
   }
   return out;
@@ -201,6 +209,11 @@ NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation
   const std::vector<TractionPoint>* tp = has_truth ? &truth_points : nullptr;
   m.drawbar_pull = fit_quantity(points, tp, m.region, TractionQuantity::drawbar_pull, order, max_order);
   m.resistive_torque = fit_quantity(points, tp, m.region, TractionQuantity::resistive_torque, order, max_order);
+  if (r.wheel_x.rows() > 0 && !r.time.empty()) {
+    ChangeDetectorOptions c;
+    c.ignore_before = r.time.front() + kChangeSettleSeconds;
+    m.changes = detect_traction_changes(points, c);
+  }
   return m;
 }
 
@@ -235,6 +248,169 @@ SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points
       }
     }
   }
+  return out;
+}
+
+namespace {
+
+// Residual sums of squares of Eq. 2.28 fits to the first k points (k = 0..n)
+// of a sequence, for DP and tau_R, by accumulated normal equations (W and s
+// scaled to about [-1, 1]: the polynomial space is the same).
+class PrefixFits {
+ public:
+  PrefixFits(int order, double load_mid, double load_half, double slip_mid, double slip_half)
+      : order_(std::clamp(order, 1, 6)),
+        load_mid_(load_mid),
+        load_half_(load_half),
+        slip_mid_(slip_mid),
+        slip_half_(slip_half) {
+    const auto p = static_cast<Eigen::Index>(terramechanics::PolynomialSurface::term_count(order_));
+    A_ = Eigen::MatrixXd::Zero(p, p);
+    b_ = Eigen::MatrixXd::Zero(p, 2);
+    phi_.resize(p);
+  }
+  void add(const TractionPoint& pt) {
+    const double w = (pt.load - load_mid_) / load_half_, s = (pt.slip - slip_mid_) / slip_half_;
+    std::array<double, 8> sk{}, wl{};  // powers 0..order (at most 6)
+    sk[0] = wl[0] = 1.0;
+    for (int p = 1; p <= order_; ++p) {
+      sk[static_cast<std::size_t>(p)] = sk[static_cast<std::size_t>(p - 1)] * s;
+      wl[static_cast<std::size_t>(p)] = wl[static_cast<std::size_t>(p - 1)] * w;
+    }
+    for (Eigen::Index i = 0; i < phi_.size(); ++i) {
+      const auto [k, l] = terramechanics::PolynomialSurface::exponents(static_cast<std::size_t>(i));
+      phi_(i) = sk[static_cast<std::size_t>(k)] * wl[static_cast<std::size_t>(l)];
+    }
+    A_.selfadjointView<Eigen::Lower>().rankUpdate(phi_);
+    const Eigen::Vector2d y(pt.drawbar_pull, pt.resistive_torque);
+    b_ += phi_ * y.transpose();
+    yy_ += y.cwiseProduct(y);
+  }
+  // RSS of DP and tau_R fitted to the points added so far.
+  Eigen::Vector2d rss() const {
+    Eigen::MatrixXd A = A_.selfadjointView<Eigen::Lower>();
+    A.diagonal().array() += 1e-10 * (1.0 + A.diagonal().maxCoeff());
+    const Eigen::MatrixXd coef = A.ldlt().solve(b_);
+    Eigen::Vector2d out;
+    for (int q = 0; q < 2; ++q) out(q) = std::max(yy_(q) - b_.col(q).dot(coef.col(q)), 0.0);
+    return out;
+  }
+
+ private:
+  int order_;
+  double load_mid_, load_half_, slip_mid_, slip_half_;
+  Eigen::MatrixXd A_, b_;
+  Eigen::VectorXd phi_;
+  Eigen::Vector2d yy_ = Eigen::Vector2d::Zero();
+};
+
+// lambda at x: the points within window of x on either side, fitted by one
+// surface and by two split at x (see the header); -1 with too few points.
+double split_statistic(const std::vector<TractionPoint>& sorted, double x, const ChangeDetectorOptions& o) {
+  const auto by_x = [](const TractionPoint& p, double v) { return p.x < v; };
+  const auto lo = std::lower_bound(sorted.begin(), sorted.end(), x - o.window, by_x);
+  const auto mid = std::lower_bound(lo, sorted.end(), x, by_x);
+  const auto hi = std::lower_bound(mid, sorted.end(), x + o.window, by_x);
+  if (static_cast<std::size_t>(mid - lo) < o.min_points || static_cast<std::size_t>(hi - mid) < o.min_points) {
+    return -1.0;
+  }
+  // Each side seen by at least two wheels: one wheel alone spans a narrow
+  // band of loads (the start and the end of a run).
+  const auto wheels = [&](auto a, auto b) {
+    std::array<std::size_t, 3> n{};
+    for (auto it = a; it != b; ++it) ++n[static_cast<std::size_t>(std::clamp(it->wheel, 1, 3) - 1)];
+    return std::count_if(n.begin(), n.end(), [&](std::size_t c) { return c >= o.min_wheel_points; });
+  };
+  if (wheels(lo, mid) < 2 || wheels(mid, hi) < 2) return -1.0;
+  double wl = lo->load, wh = wl, sl = lo->slip, sh = sl;
+  for (auto it = lo; it != hi; ++it) {
+    wl = std::min(wl, it->load);
+    wh = std::max(wh, it->load);
+    sl = std::min(sl, it->slip);
+    sh = std::max(sh, it->slip);
+  }
+  const auto fits = [&] {
+    return PrefixFits(o.order, 0.5 * (wl + wh), std::max(0.5 * (wh - wl), 1e-9), 0.5 * (sl + sh),
+                      std::max(0.5 * (sh - sl), 1e-9));
+  };
+  PrefixFits one = fits(), before = fits(), after = fits();
+  for (auto it = lo; it != hi; ++it) {
+    one.add(*it);
+    (it < mid ? before : after).add(*it);
+  }
+  const Eigen::Vector2d r1 = one.rss(), r2 = before.rss() + after.rss();
+  double lambda = 0;
+  for (int q = 0; q < 2; ++q) lambda += std::log(std::max(r1(q), 1e-300) / std::max(r2(q), 1e-300));
+  return lambda;
+}
+
+}  // namespace
+
+ChangeDetection detect_traction_changes(const std::vector<TractionPoint>& points, const ChangeDetectorOptions& o) {
+  ChangeDetection out;
+  std::vector<TractionPoint> sorted;
+  sorted.reserve(points.size());
+  for (const auto& p : points) {
+    if (p.time >= o.ignore_before && std::isfinite(p.x + p.load + p.slip + p.drawbar_pull + p.resistive_torque)) {
+      sorted.push_back(p);
+    }
+  }
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const TractionPoint& a, const TractionPoint& b) { return a.x < b.x; });
+  out.points = sorted.size();
+  double front_lo = HUGE_VAL, front_hi = -HUGE_VAL;
+  for (const auto& p : sorted) {
+    if (p.wheel != 1) continue;
+    front_lo = std::min(front_lo, p.x);
+    front_hi = std::max(front_hi, p.x);
+  }
+  if (!(front_hi - front_lo >= o.min_path)) {
+    char why[160];
+    std::snprintf(why, sizeof why, "the front wheel's points span %.2f m of path; the scan needs %.2f m",
+                  std::max(front_hi - front_lo, 0.0), o.min_path);
+    out.not_run = why;
+    return out;
+  }
+  // lambda on a grid of positions along the path.
+  std::vector<std::pair<double, double>> scan;  // (x, lambda)
+  for (double x = sorted.front().x + o.step; x < sorted.back().x; x += o.step) {
+    const double lambda = split_statistic(sorted, x, o);
+    if (lambda < 0) continue;
+    scan.emplace_back(x, lambda);
+    if (lambda > out.largest_statistic) {
+      out.largest_statistic = lambda;
+      out.largest_at = x;
+    }
+  }
+  // The largest peaks above the threshold, at least a window apart.
+  std::vector<char> used(scan.size(), 0);
+  while (static_cast<int>(out.changes.size()) < o.max_changes) {
+    std::size_t best = scan.size();
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      if (!used[i] && (best == scan.size() || scan[i].second > scan[best].second)) best = i;
+    }
+    if (best == scan.size() || !(scan[best].second > o.threshold)) break;
+    const double x = scan[best].first;
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      if (std::abs(scan[i].first - x) < o.window) used[i] = 1;
+    }
+    ChangePoint c;
+    c.x = x;
+    c.statistic = scan[best].second;
+    const auto by_x = [](const TractionPoint& p, double v) { return p.x < v; };
+    const auto mid = std::lower_bound(sorted.begin(), sorted.end(), x, by_x);
+    c.before = static_cast<std::size_t>(mid - std::lower_bound(sorted.begin(), mid, x - o.window, by_x));
+    c.after = static_cast<std::size_t>(std::lower_bound(mid, sorted.end(), x + o.window, by_x) - mid);
+    c.front_wheel_time = NAN;
+    for (const auto& p : sorted) {
+      if (p.wheel == 1 && p.x >= x && (std::isnan(c.front_wheel_time) || p.time < c.front_wheel_time)) {
+        c.front_wheel_time = p.time;
+      }
+    }
+    out.changes.push_back(c);
+  }
+  std::sort(out.changes.begin(), out.changes.end(),
+            [](const ChangePoint& a, const ChangePoint& b) { return a.x < b.x; });
   return out;
 }
 

@@ -8,6 +8,7 @@
 // as section 5.8 and Table 5.2 compare them.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -19,9 +20,10 @@
 
 namespace roverlab::analysis {
 
-// One wheel's series on a common time base.
+// One wheel's series on a common time base; x (the wheel centre's position
+// along the path, m) may be empty.
 struct WheelSeries {
-  std::vector<double> load, slip, drawbar_pull, resistive_torque;
+  std::vector<double> load, slip, drawbar_pull, resistive_torque, x;
 };
 
 struct SteadyStateOptions {
@@ -40,6 +42,7 @@ std::array<std::vector<bool>, 3> steady_state_mask(const std::vector<double>& ti
 struct TractionPoint {
   double load = 0, slip = 0, drawbar_pull = 0, resistive_torque = 0;
   int wheel = 0;
+  double time = 0, x = 0;  // s, and m along the path (0 when the series has no x)
 };
 
 // The kept samples of every wheel averaged over consecutive windows of
@@ -75,6 +78,45 @@ SurfaceComparison compare_surfaces(const terramechanics::PolynomialSurface& esti
                                    const terramechanics::PolynomialSurface& reference, const TraversedRegion& region,
                                    int resolution = 40);
 
+// Section 5.9 (issue 12 item 6): where along the path the traction
+// relationship changed. Each point sits at its own wheel's x, so a split at
+// X puts a wheel's points after it once that wheel has passed X. Statistic,
+// on the points within `window` of X on either side: the log-likelihood
+// ratio, per point, of two Eq. 2.28 surfaces (before and after X) against
+// one, for DP and for tau_R with Gaussian residuals of unknown variance,
+// lambda(X) = sum over the two quantities of ln(RSS_one / (RSS_before +
+// RSS_after)). It is scanned along the path every `step` (at least
+// min_points on each side); a change is a peak above `threshold`, the next
+// one at least a window away from it.
+struct ChangeDetectorOptions {
+  int order = 3;           // of the surfaces: over a window, order 2 leaves more misfit to mistake for a change
+  double window = 0.7;     // m either side of X
+  double step = 0.01;      // m
+  double threshold = 2.4;  // on lambda (calibration: docs/validation/net-traction.md)
+  double ignore_before = -HUGE_VAL;  // s: points earlier than this are left out (the filters' convergence)
+  std::size_t min_points = 50;
+  std::size_t min_wheel_points = 20;  // on each side, from at least two wheels
+  // The front wheel's points must span this much path (m): on shorter runs
+  // the scan's no-change values reach the threshold (calibration).
+  double min_path = 1.1;
+  int max_changes = 3;
+};
+struct ChangePoint {
+  double x = 0;                 // m: along the path (the wheels' x)
+  double front_wheel_time = 0;  // s: the first point of wheel 1 at or past x (NaN if none)
+  double statistic = 0;         // lambda there
+  std::size_t before = 0, after = 0;
+};
+struct ChangeDetection {
+  std::vector<ChangePoint> changes;  // sorted by x
+  double largest_statistic = 0;      // lambda's largest value (the evidence when there is no change)
+  double largest_at = 0;             // m, where it was
+  std::size_t points = 0;
+  std::string not_run;  // why the scan did not run (empty when it did)
+};
+ChangeDetection detect_traction_changes(const std::vector<TractionPoint>& points,
+                                        const ChangeDetectorOptions& options = {});
+
 // One quantity's surface rebuilt from the estimates and, with truth, the
 // true local model of the same order over the same region.
 struct QuantityFit {
@@ -87,7 +129,11 @@ struct NetTractionModel {
   std::vector<TractionPoint> estimated_points;  // the averaged steady-state points
   TraversedRegion region;
   QuantityFit drawbar_pull, resistive_torque;
+  // Section 5.9 on estimated_points (x from NetTractionResult::wheel_x),
+  // leaving out the first kChangeSettleSeconds of the log.
+  ChangeDetection changes;
 };
+constexpr double kChangeSettleSeconds = 20.0;
 // Section 5.7 on one wheel-force estimator's output (Estimator 1's slips
 // and resistive torques with its loads and drawbar pulls): order 0 chooses
 // by cross-validation. Throws DataError when too few points remain.

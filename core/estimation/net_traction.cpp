@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/estimation/filter_health.h"
 
 namespace roverlab::estimation {
 
@@ -21,6 +22,11 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr double kAirborneLoad = 1.0;  // N
 // Variance of a measurement that is not available (gated out).
 constexpr double kUnavailable = 1e8;
+// The NIS gate (issue 17) closes after this many samples (the filters'
+// convergence, 5 s at 50 Hz) and opens again for as long after this many
+// rejections in a row (0.5 s).
+constexpr std::size_t kGateSettle = 250;
+constexpr std::size_t kMaxRejected = 25;
 // The process noise is added to P before each step (see general_step).
 const Eigen::MatrixXd kNoProcessNoise(0, 0);
 
@@ -178,6 +184,7 @@ void NetTractionEstimator::assemble_noise() {
 }
 
 void NetTractionEstimator::initial_state() {
+  open_until_.fill(kGateSettle);
   using namespace gen;  // NOLINT(google-build-using-namespace)
   const nt::SensorSample& s0 = samples_.front();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(kStates);
@@ -219,6 +226,7 @@ NetTractionResult NetTractionEstimator::run() {
   const auto start = std::chrono::steady_clock::now();
   filter_pass();
   result_.filter_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  path_positions();
   write_streams();
   if (o_.progress) o_.progress(1.0);
   return std::move(result_);
@@ -252,6 +260,32 @@ void NetTractionEstimator::filter_pass() {
   }
 }
 
+// Where each wheel is along the path, with no truth: the body's x from
+// Estimator 1's forward speed (Eq. 5.20, zdot_0^R = 0: xdot_0 = xdot_0^R cos
+// theta), trapezoids, plus each wheel's offset at the estimated pitch and
+// bogie angle (Eq. 4.19-4.21); wheel 1 starts at x = 0.
+void NetTractionEstimator::path_positions() {
+  const Eigen::MatrixXd& g = result_.general.state;
+  const auto n = g.rows();
+  result_.wheel_x.resize(n, 3);
+  const auto& geo = rover_.geometry;
+  const auto offsets = [&](Eigen::Index k) {
+    const double th = g(k, gen::kPitch), tb = th + g(k, gen::kBogie);
+    const Eigen::Vector2d pivot = simulation::rocker_bogie::rotate(th, geo.rocker_to_bogie);
+    return Eigen::Vector3d(simulation::rocker_bogie::rotate(th, geo.rocker_to_wheel1).x(),
+                           (pivot + simulation::rocker_bogie::rotate(tb, geo.bogie_to_wheel2)).x(),
+                           (pivot + simulation::rocker_bogie::rotate(tb, geo.bogie_to_wheel3)).x());
+  };
+  const auto speed = [&](Eigen::Index k) { return g(k, gen::kForwardSpeed) * std::cos(g(k, gen::kPitch)); };
+  double x0 = n > 0 ? -offsets(0)(0) : 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (k > 0)
+      x0 += 0.5 * (speed(k) + speed(k - 1)) *
+            (result_.time[static_cast<std::size_t>(k)] - result_.time[static_cast<std::size_t>(k - 1)]);
+    result_.wheel_x.row(k) = (offsets(k).array() + x0).transpose();
+  }
+}
+
 // Eq. 5.10-5.16 for Estimator 1 with the torques held since the last sample;
 // slips a standing rover cannot measure are gated out.
 void NetTractionEstimator::general_step(std::size_t k) {
@@ -267,6 +301,7 @@ void NetTractionEstimator::general_step(std::size_t k) {
     }
   }
   if (standing) ++result_.standstill_samples;
+  general_.gate = gate(0, k, static_cast<int>((r.array() < kUnavailable).count()));
   process_.set_torques(samples_[k - 1].torque);
   const UnscentedKalmanFilter::Function f = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
                                                    Eigen::VectorXd& out) { process_(x, out); };
@@ -278,6 +313,31 @@ void NetTractionEstimator::general_step(std::size_t k) {
   // augmented state's).
   general_.P += Q1_;
   general_.step(f, kNoProcessNoise, h, r.asDiagonal(), y);
+  count_rejection(0, k, general_.rejected);
+}
+
+// Filter `which`'s NIS gate at sample k (issue 17): the chi-square quantile
+// of the gate probability for `dof` measurements; none while the filters
+// converge (the first kGateSettle samples), nor for kGateSettle samples after
+// kMaxRejected rejections in a row (a lasting change, not an outlier: the
+// filter converges on it again).
+double NetTractionEstimator::gate(int which, std::size_t k, int dof) {
+  if (!(o_.gate_probability < 1.0) || dof <= 0 || k < open_until_.at(static_cast<std::size_t>(which))) {
+    return HUGE_VAL;
+  }
+  double& g = gates_.at(static_cast<std::size_t>(std::min(dof, static_cast<int>(gates_.size()) - 1)));
+  if (g == 0.0) g = chi_square_quantile(dof, o_.gate_probability);
+  return g;
+}
+
+void NetTractionEstimator::count_rejection(int which, std::size_t k, bool rejected) {
+  const auto i = static_cast<std::size_t>(which);
+  if (rejected) ++result_.rejected_updates.at(i);
+  rejected_in_a_row_.at(i) = rejected ? rejected_in_a_row_.at(i) + 1 : 0;
+  if (rejected_in_a_row_.at(i) >= kMaxRejected) {  // open for a new convergence
+    open_until_.at(i) = k + kGateSettle;
+    rejected_in_a_row_.at(i) = 0;
+  }
 }
 
 // Eq. 5.49-5.67 for Estimator 2 (two_axis) or 3 at sample k.
@@ -304,7 +364,10 @@ void NetTractionEstimator::wheel_force_step(std::size_t k, UnscentedKalmanFilter
     const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
                                                      Eigen::VectorXd& out) { force_measurement_(x, out); };
     filter.P += Q2_;  // Eq. 5.50-5.52: x + w through the identity, as Q after it
+    const int which = two_axis ? 1 : 2;
+    filter.gate = gate(which, k, static_cast<int>((R.diagonal().array() < kUnavailable).count()));
     filter.step(f, kNoProcessNoise, h, R, y);
+    count_rejection(which, k, filter.rejected);
   }
   track.state.row(r) = filter.x.transpose();
   track.sigma.row(r) = filter.P.diagonal().cwiseMax(0.0).cwiseSqrt().transpose();
@@ -341,6 +404,10 @@ void NetTractionEstimator::write_streams() {
   for (int i = 0; i < 3; ++i) {
     wheels.add_channel(index_name("wheel_acceleration_", i), "rad/s^2", column(result_.wheel_acceleration, i),
                        "Eq. 5.24");
+  }
+  for (int i = 0; i < 3; ++i) {
+    wheels.add_channel(index_name("path_x_", i), "m", column(result_.wheel_x, i),
+                       "wheel centre's x, dead-reckoned from wheel 1 at 0");
   }
   result_.estimates.add_stream(std::move(wheels));
   log::Stream body("estimate/net_traction/body", result_.time);

@@ -7,6 +7,7 @@
 // normal load and drawbar pull, their measurements built from the force
 // sensors and Estimator 1's estimate (Figure 5.1).
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -33,6 +34,11 @@ struct NetTractionOptions {
   // loads) for comparison.
   bool compare_single_axis = true;
   std::function<void(double)> progress;  // fraction done; may throw to cancel
+  // Issue 17: an update whose normalised innovation squared exceeds the
+  // chi-square quantile of this probability (degrees of freedom: the
+  // measurements available at that step) is rejected and the filter keeps
+  // its prediction; >= 1: no gate.
+  double gate_probability = 1.0 - 1e-9;
 };
 
 // One filter's estimates: one row per sample, its state and 1-sigma.
@@ -43,10 +49,14 @@ struct FilterTrack {
 
 struct NetTractionResult {  // NOLINT(bugprone-exception-escape): std::map's move in LogMetadata
   std::vector<double> time;
-  FilterTrack general, two_axis, single_axis;           // Estimators 1, 2, 3 (2 or 3 empty when not run)
-  Eigen::MatrixXd wheel_acceleration;                   // Eq. 5.24 at each sample (N x 3), rad/s^2
+  FilterTrack general, two_axis, single_axis;  // Estimators 1, 2, 3 (2 or 3 empty when not run)
+  Eigen::MatrixXd wheel_acceleration;          // Eq. 5.24 at each sample (N x 3), rad/s^2
+  // Each wheel centre's x along the path (N x 3, m), dead-reckoned from
+  // Estimator 1 with the front wheel (wheel 1) at x = 0 at the first sample.
+  Eigen::MatrixXd wheel_x;
   ForceSensors force_sensors = ForceSensors::two_axis;  // the estimator the streams come from
   std::size_t standstill_samples = 0;                   // samples with no slip measured (the rover stood)
+  std::array<std::size_t, 3> rejected_updates{};        // by the NIS gate, Estimators 1, 2, 3
   double filter_seconds = 0;                            // wall time of the filter pass
   // estimate/net_traction/wheels and estimate/net_traction/body.
   log::Log estimates;
@@ -74,6 +84,9 @@ class NetTractionEstimator {
   void filter_pass();
   void general_step(std::size_t k);
   void wheel_force_step(std::size_t k, UnscentedKalmanFilter& filter, bool two_axis, FilterTrack& track);
+  void path_positions();
+  double gate(int which, std::size_t k, int dof);
+  void count_rejection(int which, std::size_t k, bool rejected);
   void write_streams();
 
   const log::Log& log_;
@@ -88,6 +101,9 @@ class NetTractionEstimator {
   UnscentedKalmanFilter general_, two_axis_filter_, single_axis_filter_;
   Eigen::MatrixXd Q1_, Q2_, R2_, R3_;
   Eigen::VectorXd r1_;                                        // Estimator 1's measurement variances, before gating
+  std::array<double, 12> gates_{};                            // NIS gate by degrees of freedom (0: not yet computed)
+  std::array<std::size_t, 3> rejected_in_a_row_{};            // by Estimator 1, 2, 3
+  std::array<std::size_t, 3> open_until_{};                   // the gate is open before this sample
   Eigen::Vector3d contact_angles_ = Eigen::Vector3d::Zero();  // this sample's, from Estimator 1
   NetTractionResult result_;
 };

@@ -590,8 +590,18 @@ TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
   EXPECT_LT(tau.at("rms_vs_truth").at("rms_percent").get<double>(),
             15.0);  // 60 s: a small region; tests/core holds the 200 s figures
   EXPECT_LT(j.at("estimators").at("two-axis").at("tracking_rms").at("resistive_torque_Nm").at(0).get<double>(), 0.01);
+  // Section 5.9, and the campaign's key metrics
+  // point at the streams' estimator's figures; the points for the view.
+  // 60 s is too short a path for the scan (0.6 m after its 20 s): it says so.
+  EXPECT_TRUE(j.at("change_points").empty());
+  EXPECT_NE(j.at("estimators").at("two-axis").at("change_detector").at("not_run").get<std::string>(), "");
+  EXPECT_EQ(j.at("summary").at("change_count"), 0);
+  EXPECT_EQ(j.at("summary").at("resistive_torque_rms_percent"), tau.at("rms_vs_truth").at("rms_percent"));
+  EXPECT_GT(j.at("estimators").at("two-axis").at("estimated_points").at("wheel").size(), 100u);
+  EXPECT_NE(text.out.find("soil change: not tested (the front wheel's points span"), std::string::npos);
   const log::Log out = io::read_hdf5_log(dir.file("out.h5"));
   EXPECT_NE(out.stream("estimate/net_traction/wheels").find_channel("drawbar_pull_sigma_3"), nullptr);
+  EXPECT_NE(out.stream("estimate/net_traction/wheels").find_channel("path_x_1"), nullptr);
   EXPECT_NE(out.find_stream("estimate/net_traction/body"), nullptr);
   // Single-axis on request: only Estimator 3 beside Estimator 1.
   const CommandResult single =
