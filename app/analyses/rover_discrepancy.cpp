@@ -178,9 +178,9 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
   json checks = json::array();
   for (const auto& c : r.checks) {
     checks.push_back({{"name", c.name},
-                      {"value", c.value},
-                      {"expected", c.expected},
-                      {"sigma", c.sigma},
+                      {"value", finite_or_null(c.value)},
+                      {"expected", finite_or_null(c.expected)},
+                      {"sigma", finite_or_null(c.sigma)},
                       {"unit", c.unit},
                       {"consistent", c.consistent},
                       {"verdict", c.verdict}});
@@ -241,8 +241,11 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
   }
   std::fprintf(out, "\nChecks without simulation:\n");
   for (const auto& c : j.at("checks")) {
-    std::fprintf(out, "  %s: %.4g (expected %.4g +- %.2g %s): %s\n", c.at("name").get<std::string>().c_str(),
-                 c.at("value").get<double>(), c.at("expected").get<double>(), 3 * c.at("sigma").get<double>(),
+    const json& sigma = c.at("sigma");
+    std::fprintf(out, "  %s: %s (expected %s +- %s %s): %s\n", c.at("name").get<std::string>().c_str(),
+                 ReportSection::number(c.at("value"), "%.4g").c_str(),
+                 ReportSection::number(c.at("expected"), "%.4g").c_str(),
+                 ReportSection::number(sigma.is_number() ? json(3 * sigma.get<double>()) : sigma, "%.2g").c_str(),
                  c.at("unit").get<std::string>().c_str(), c.at("verdict").get<std::string>().c_str());
   }
   std::fprintf(out, "\n%s\n\n  %-22s %-44s %10s %9s\n", j.at("what_is_wrong").get<std::string>().c_str(), "candidate",

@@ -203,10 +203,11 @@ std::vector<double> residual_series(const std::vector<MeasuredChannel>& ch, cons
 
 }  // namespace
 
-// Defined in rover_discrepancy_checks.cpp and rover_discrepancy_selection.cpp.
+// Defined in rover_discrepancy_checks.cpp, _traction.cpp and _selection.cpp.
 namespace rover {
 std::vector<RoverRedundancyCheck> redundancy_checks(const std::vector<MeasuredChannel>& channels,
                                                     const RoverScenarioModel& model);
+std::vector<RoverRedundancyCheck> traction_checks(const log::Log& log, const RoverScenarioModel& model);
 void select_causes(Predictor& predictor, const RoverResidualFeatures& features, const RoverStudyOptions& options,
                    RoverDiscrepancyReport& report, std::vector<FitParameter>& chain);
 void write_verdict(RoverDiscrepancyReport& report);
@@ -232,6 +233,7 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   channel_statistics(r, predictor.channels(), p0, slip, base);
   held_out_rmse(r, predictor.channels(), p0, false);
   r.checks = redundancy_checks(predictor.channels(), model);
+  for (auto& c : traction_checks(lg, model)) r.checks.push_back(std::move(c));
   r.fit_residuals = predictor.count(Part::fit);
   r.test_residuals = predictor.count(Part::test);
   const RoverResidualFeatures f = features(predictor.channels(), p0, base);

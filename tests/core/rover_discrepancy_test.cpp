@@ -71,15 +71,22 @@ TEST(RoverDiscrepancy, AGyroBiasIsNamedWithItsSizeAndTheCheckWithoutSimulationSe
   EXPECT_LT(std::abs(p.value - 0.003), 3 * p.sigma)
       << p.value << " +- " << p.sigma;                                 // one run: 3 sigma; the suite counts 2 sigma
   EXPECT_FALSE(r.checks.front().consistent) << r.checks.front().name;  // pitch rate vs accelerometers
+  for (const auto& c : r.checks) {  // a sensor cause leaves the traction on the model's surfaces
+    if (c.name.find("net-traction") != std::string::npos) EXPECT_TRUE(c.consistent) << c.name << ": " << c.value;
+  }
 }
 
 TEST(RoverDiscrepancy, AWeakerSoilFromAPositionIsNamedWithItsStrengthAndPosition) {
-  const auto m = flat_model(20);
+  const auto m = flat_model(40);  // long enough for the traction check's mean to see the weaker soil
   const auto r = analysis::study_rover(measured(m, {{"soil-strength", 0.8}, {"effect-start-x", 0.15}}, 4), m);
   ASSERT_EQ(causes(r), std::vector<std::string>{"soil-strength"}) << r.verdict;
   EXPECT_NEAR(fitted(r, "soil-strength").value, 0.8, 0.005);
   EXPECT_NEAR(fitted(r, "effect-start-x").value, 0.15, 0.005);
   EXPECT_LT(r.final_held_out, 0.1 * r.baseline_held_out);  // the gain, on the test blocks
+  bool traction_departs = false;                           // the check without simulation sees a physical cause
+  for (const auto& c : r.checks)
+    traction_departs |= c.name.find("net-traction drawbar") != std::string::npos && !c.consistent;
+  EXPECT_TRUE(traction_departs);
 }
 
 TEST(RoverDiscrepancy, TwoCausesAtOnceAreBothNamed) {
