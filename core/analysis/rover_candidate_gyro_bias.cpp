@@ -2,21 +2,9 @@
 
 namespace roverlab::analysis {
 
-namespace {
-
-class Candidate final : public RoverCandidate {
- public:
-  const char* name() const override { return "gyro bias"; }
-  const char* cause() const override { return "the pitch-rate gyro reads a constant bias"; }
-  bool physical() const override { return false; }
-  std::vector<RoverCandidateParameter> parameters(const RoverResidualFeatures& features) const override {
-    (void)features;
-    return {{"gyro-bias", "rad/s", 0.0, -0.5, 0.5, 1e-4}};
-  }
-};
-
-}  // namespace
-
-std::unique_ptr<RoverCandidate> make_gyro_bias_rover_candidate() { return std::make_unique<Candidate>(); }
+std::unique_ptr<RoverCandidate> make_gyro_bias_rover_candidate() {
+  return fixed_rover_candidate("gyro bias", "the pitch-rate gyro reads a constant bias", false,
+                               {{"gyro-bias", "rad/s", 0.0, -0.5, 0.5, 1e-4}});
+}
 
 }  // namespace roverlab::analysis

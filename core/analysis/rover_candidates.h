@@ -42,6 +42,10 @@ class RoverCandidate {
   virtual std::vector<RoverCandidateParameter> parameters(const RoverResidualFeatures& features) const = 0;
 };
 
+// A candidate whose parameters do not depend on the residual features.
+std::unique_ptr<RoverCandidate> fixed_rover_candidate(const char* name, const char* cause, bool physical,
+                                                      std::vector<RoverCandidateParameter> parameters);
+
 // One candidate of each entry in rover_candidates.def, in its order.
 std::vector<std::unique_ptr<RoverCandidate>> rover_candidates();
 

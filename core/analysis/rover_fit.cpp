@@ -91,15 +91,27 @@ double chi2(Predictor& predictor, const simulation::RockerBogieEffects& effects,
   return s;
 }
 
-double linearised_chi2(Predictor& predictor, std::vector<FitParameter>& parameters) {
-  std::vector<std::size_t> free;
-  std::vector<double> x;
+namespace {
+
+// The indices and values of the parameters a fit moves; a held parameter
+// that is never fitted gets its stated resolution as its sigma.
+void free_parameters(std::vector<FitParameter>& parameters, std::vector<std::size_t>& free, std::vector<double>& x) {
   for (std::size_t j = 0; j < parameters.size(); ++j) {
-    if (parameters[j].free && parameters[j].spec.fitted) {
+    if (!parameters[j].spec.fitted) {
+      parameters[j].sigma = parameters[j].spec.resolution;
+    } else if (parameters[j].free) {
       free.push_back(j);
       x.push_back(parameters[j].value);
     }
   }
+}
+
+}  // namespace
+
+double linearised_chi2(Predictor& predictor, std::vector<FitParameter>& parameters) {
+  std::vector<std::size_t> free;
+  std::vector<double> x;
+  free_parameters(parameters, free, x);
   const SimulationCost cost(predictor, parameters, free);
   const auto n = static_cast<std::size_t>(cost.num_residuals());
   const std::size_t m = free.size();
@@ -122,14 +134,7 @@ double linearised_chi2(Predictor& predictor, std::vector<FitParameter>& paramete
 FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters) {
   std::vector<std::size_t> free;
   std::vector<double> x;
-  for (std::size_t j = 0; j < parameters.size(); ++j) {
-    if (parameters[j].free && parameters[j].spec.fitted) {
-      free.push_back(j);
-      x.push_back(parameters[j].value);
-    } else if (!parameters[j].spec.fitted) {
-      parameters[j].sigma = parameters[j].spec.resolution;
-    }
-  }
+  free_parameters(parameters, free, x);
   if (!free.empty()) {
     ceres::Problem::Options po;
     po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
