@@ -56,7 +56,9 @@ TEST(RoverDiscrepancy, NoEffectNoCauseAndTheResidualsAreNoise) {
     const auto r = analysis::study_rover(measured(m, {}, seed), m);
     EXPECT_TRUE(r.selection.empty()) << r.verdict;
     for (const auto& c : r.channels) {
-      if (c.stream != "commands") EXPECT_LT(c.rmse / c.sigma, 1.3) << c.stream << "/" << c.channel;
+      if (c.stream != "commands") {
+        EXPECT_LT(c.rmse / c.sigma, 1.3) << c.stream << "/" << c.channel;
+      }
     }
     for (const auto& c : r.checks) EXPECT_TRUE(c.consistent) << c.name << ": " << c.value;
     EXPECT_NEAR(r.final_held_out, r.baseline_held_out, 1e-12);
@@ -72,7 +74,9 @@ TEST(RoverDiscrepancy, AGyroBiasIsNamedWithItsSizeAndTheCheckWithoutSimulationSe
       << p.value << " +- " << p.sigma;                                 // one run: 3 sigma; the suite counts 2 sigma
   EXPECT_FALSE(r.checks.front().consistent) << r.checks.front().name;  // pitch rate vs accelerometers
   for (const auto& c : r.checks) {  // a sensor cause leaves the traction on the model's surfaces
-    if (c.name.find("net-traction") != std::string::npos) EXPECT_TRUE(c.consistent) << c.name << ": " << c.value;
+    if (c.name.find("net-traction") != std::string::npos) {
+      EXPECT_TRUE(c.consistent) << c.name << ": " << c.value;
+    }
   }
 }
 
