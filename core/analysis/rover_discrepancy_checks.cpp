@@ -1,5 +1,6 @@
 // The rover discrepancy study's checks that need no simulation: the sensors
 // against each other and against the static balance of the scenario's masses.
+#include <array>
 #include <cmath>
 
 #include "core/analysis/rover_discrepancy.h"
@@ -23,7 +24,33 @@ RoverRedundancyCheck check(std::string name, double value, double expected, doub
   return c;
 }
 
+// Mean slip over the run from the velocimeter and the wheel encoders:
+// 1 - (distance the body moved) / (nominal radius x mean wheel angle turned).
+double run_slip(const std::vector<double>& time, const std::vector<double>& speed,
+                const std::array<const std::vector<double>*, 3>& wheel_angles, double radius) {
+  double distance = 0;
+  for (std::size_t k = 1; k < time.size() && k < speed.size(); ++k) {
+    distance += 0.5 * (speed[k] + speed[k - 1]) * (time[k] - time[k - 1]);
+  }
+  double turned = 0;
+  for (const auto* a : wheel_angles) turned += (a->back() - a->front()) / 3;
+  return turned * radius > 0 ? 1 - distance / (turned * radius) : NAN;
+}
+
 }  // namespace
+
+// The velocimeter against the wheel encoders times the nominal radius: the
+// mean slip they give, against the same from the simulation's channels (a
+// wheel radius or soil cause changes it; a sensor bias does not).
+RoverRedundancyCheck slip_check(const std::vector<MeasuredChannel>& ch,
+                                const std::array<std::vector<double>, kChannels>& predicted, double radius) {
+  const double measured = run_slip(ch[7].time, ch[7].values, {&ch[1].values, &ch[2].values, &ch[3].values}, radius);
+  const double model = run_slip(ch[7].time, predicted[7], {&predicted[1], &predicted[2], &predicted[3]}, radius);
+  // Stated tolerance: 0.005 of slip (the velocimeter's noise integrates to far less).
+  return check("velocimeter vs wheel encoders x nominal radius: mean slip over the run", measured, model, 0.005 / 3, "",
+               "the body moves as far as the model's wheels and slip say",
+               "the body moves another distance than the wheels and the model's slip say: wheel radius or soil");
+}
 
 std::vector<RoverRedundancyCheck> redundancy_checks(const std::vector<MeasuredChannel>& ch,
                                                     const RoverScenarioModel& model) {
