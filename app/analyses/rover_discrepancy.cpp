@@ -239,7 +239,7 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
                  ReportSection::number(c.at("drift_per_100s")).c_str(), ReportSection::number(c.at("t_drift")).c_str(),
                  ReportSection::number(c.at("held_out_rmse_after")).c_str(), c.at("unit").get<std::string>().c_str());
   }
-  std::fprintf(out, "\nChecks without simulation:\n");
+  std::fprintf(out, "\nChecks among the sensors, and against the model's slip and traction surfaces:\n");
   for (const auto& c : j.at("checks")) {
     const json& sigma = c.at("sigma");
     std::fprintf(out, "  %s: %s (expected %s +- %s %s): %s\n", c.at("name").get<std::string>().c_str(),
