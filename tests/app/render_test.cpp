@@ -147,8 +147,8 @@ TEST(Render, TractionSurfaceSpansItsColourMapAndShowsTheMeasuredPoints) {
 // the surface fitted to them, and the true local model translucent grey.
 TEST(Render, TractionSurfaceOfARoverLogShowsItsEstimatedPointsByWheelAndTheTrueSurface) {
   TempDir dir;
-  const CommandResult sim = run_roverlab("simulate rolling_200s --duration 40 --effect soil-strength=2.5 -o " +
-                                         quote(dir.file("roll.h5")));
+  const CommandResult sim =
+      run_roverlab("simulate rolling_200s --duration 40 --effect soil-strength=2.5 -o " + quote(dir.file("roll.h5")));
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const views::Image img =
       render(quote(dir.file("roll.h5")) + " --view traction-surface --quantity torque --size 800x600",
@@ -156,9 +156,8 @@ TEST(Render, TractionSurfaceOfARoverLogShowsItsEstimatedPointsByWheelAndTheTrueS
   const Region green = find_pixels(img, [](int r, int g, int b) { return g > 110 && r < 80 && b < 110; });
   const Region purple = find_pixels(img, [](int r, int g, int b) { return r > 100 && b > 140 && g < 80; });
   const Region brown = find_pixels(img, [](int r, int g, int b) { return r > 120 && g > 70 && g < 170 && b < 60; });
-  const Region grey = find_pixels(img, [](int r, int g, int b) {
-    return std::abs(r - g) < 10 && std::abs(g - b) < 10 && r > 150 && r < 235;
-  });
+  const Region grey = find_pixels(
+      img, [](int r, int g, int b) { return std::abs(r - g) < 10 && std::abs(g - b) < 10 && r > 150 && r < 235; });
   EXPECT_GT(green.count, 30);   // wheel 1's points
   EXPECT_GT(purple.count, 30);  // wheel 2's
   EXPECT_GT(brown.count, 30);   // wheel 3's
