@@ -239,8 +239,14 @@ json NetTractionAnalysis::soil_fit(const std::vector<analysis::TractionPoint>& p
   for (const auto& [a, b] : three.confounded) {
     confounded.push_back({terramechanics::to_string(a), terramechanics::to_string(b)});
   }
-  return {{"start_soil", start.name}, {"points", two.points}, {"converged", two.fit.converged},
-          {"parameters", params},     {"correlation", corr},  {"cannot_tell_apart_with_n_free", confounded}};
+  return {{"start_soil", start.name},
+          {"points", two.points},
+          {"converged", two.fit.converged},
+          {"parameters", params},
+          {"correlation", corr},
+          {"reduced_chi2", finite_or_null(two.reduced_chi2)},
+          {"residual_correlation_factor", finite_or_null(two.correlation_factor)},
+          {"cannot_tell_apart_with_n_free", confounded}};
 }
 
 json NetTractionAnalysis::fits(const log::Log& lg, const estimation::NetTractionResult& r, double wheel_radius) const {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -217,11 +219,47 @@ NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation
   return m;
 }
 
+namespace {
+
+// tau = 1 + 2 sum_k rho_k (k >= 1, while rho_k > 0: Geyer's initial positive
+// sequence) of the normalised residuals, pooled over the sequences of one
+// wheel and one quantity (residuals in point order, points in time order).
+double residual_correlation_factor(const std::vector<terramechanics::PointResidual>& residuals,
+                                   const std::vector<int>& wheel_of_point) {
+  std::map<std::pair<int, int>, std::vector<double>> sequences;
+  for (const auto& r : residuals) {
+    const double z = (r.predicted - r.measured) / r.sigma;
+    if (!std::isfinite(z)) continue;
+    sequences[{wheel_of_point[r.point], static_cast<int>(r.quantity)}].push_back(z);
+  }
+  double c0 = 0.0;
+  std::size_t longest = 0;
+  for (const auto& entry : sequences) {
+    for (double z : entry.second) c0 += z * z;
+    longest = std::max(longest, entry.second.size());
+  }
+  if (!(c0 > 0.0)) return 1.0;
+  double tau = 1.0;
+  for (std::size_t lag = 1; lag < longest / 2; ++lag) {
+    double ck = 0.0;
+    for (const auto& entry : sequences) {
+      const std::vector<double>& z = entry.second;
+      for (std::size_t i = 0; i + lag < z.size(); ++i) ck += z[i] * z[i + lag];
+    }
+    if (!(ck > 0.0)) break;
+    tau += 2.0 * ck / c0;
+  }
+  return tau;
+}
+
+}  // namespace
+
 SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points, const terramechanics::Soil& start,
                                         const terramechanics::Wheel& wheel,
                                         const std::vector<terramechanics::Parameter>& free, std::size_t max_points) {
   if (points.size() < 10) throw DataError("too few steady-state points to fit the soil");
   std::vector<terramechanics::WheelTestPoint> test;
+  std::vector<int> wheel_of_point;
   const std::size_t stride = std::max<std::size_t>(1, (points.size() + max_points - 1) / max_points);
   for (std::size_t i = 0; i < points.size(); i += stride) {
     terramechanics::WheelTestPoint p;
@@ -232,6 +270,7 @@ SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points
     p.drawbar_pull = points[i].drawbar_pull;
     p.torque = points[i].resistive_torque;
     test.push_back(p);
+    wheel_of_point.push_back(points[i].wheel);
   }
   terramechanics::IdentificationOptions o;
   o.free = free;
@@ -241,6 +280,13 @@ SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points
   out.points = test.size();
   out.fit = terramechanics::identify_soil(start, test, o);
   const std::size_t k = free.size();
+  if (out.fit.measurements > k) {
+    // identify_soil widened the sigmas by sqrt(max(1, chi2 / (m - k))).
+    out.reduced_chi2 = out.fit.chi2 / static_cast<double>(out.fit.measurements - k);
+    out.correlation_factor = residual_correlation_factor(out.fit.residuals, wheel_of_point);
+    const double scale = std::sqrt(out.reduced_chi2 * out.correlation_factor / std::max(1.0, out.reduced_chi2));
+    for (auto& e : out.fit.parameters) e.sigma *= scale;
+  }
   if (out.fit.correlation.size() == k * k) {
     for (std::size_t i = 0; i < k; ++i) {
       for (std::size_t j = i + 1; j < k; ++j) {

@@ -146,10 +146,17 @@ NetTractionModel rebuild_net_traction_model(const log::Log& log, const estimatio
 // and resistive torque at each load and slip), from `start`, with +-1
 // sigma, correlations, and the pairs the points cannot tell apart
 // (|correlation| above 0.95). At most max_points points (evenly spaced).
+// The sigmas account for the points' errors: scaled to the residuals' own
+// variance (chi2 / (m - k), down as well as up) and widened by sqrt(tau),
+// tau = 1 + 2 sum_k rho_k of the residuals' autocorrelation along each
+// wheel's points (the estimates' errors and the model's misfit persist over
+// many points: m points carry the information of about m / tau).
 struct SoilFromRover {
   terramechanics::IdentificationResult fit;
   std::vector<std::pair<terramechanics::Parameter, terramechanics::Parameter>> confounded;
   std::size_t points = 0;
+  double reduced_chi2 = 1.0;        // chi2 / (m - k) at the solution
+  double correlation_factor = 1.0;  // tau
 };
 SoilFromRover identify_soil_from_points(const std::vector<TractionPoint>& points, const terramechanics::Soil& start,
                                         const terramechanics::Wheel& wheel,

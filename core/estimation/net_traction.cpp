@@ -312,7 +312,8 @@ void NetTractionEstimator::general_step(std::size_t k) {
   // UKF then needs no sigma points along the 22 process noises (half the
   // augmented state's).
   general_.P += Q1_;
-  general_.step(f, kNoProcessNoise, h, r.asDiagonal(), y);
+  R1_step_ = r.asDiagonal();
+  general_.step(f, kNoProcessNoise, h, R1_step_, y);
   count_rejection(0, k, general_.rejected);
 }
 
@@ -351,7 +352,8 @@ void NetTractionEstimator::wheel_force_step(std::size_t k, UnscentedKalmanFilter
     y.head<3>() = contact_angles_;
     y.segment<3>(3) = s.load;
     y.tail<3>() = two_axis ? s.perpendicular : nt::perpendicular_from_net_forces(rover_, x1, s.load);
-    Eigen::MatrixXd R = two_axis ? R2_ : R3_;
+    Eigen::MatrixXd& R = R_step_;
+    R = two_axis ? R2_ : R3_;
     for (int i = 0; i < 3; ++i) {
       if (std::isnan(y(i)) || std::abs(s.load(i)) < kAirborneLoad) {  // standing, or off the ground
         y(i) = filter.x(i);

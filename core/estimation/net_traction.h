@@ -100,8 +100,9 @@ class NetTractionEstimator {
   net_traction::ForceMeasurementModel force_measurement_;
   UnscentedKalmanFilter general_, two_axis_filter_, single_axis_filter_;
   Eigen::MatrixXd Q1_, Q2_, R2_, R3_;
-  Eigen::VectorXd r1_;                                        // Estimator 1's measurement variances, before gating
-  std::array<double, 12> gates_{};                            // NIS gate by degrees of freedom (0: not yet computed)
+  Eigen::VectorXd r1_;                // Estimator 1's measurement variances, before gating
+  Eigen::MatrixXd R1_step_, R_step_;  // this step's gated measurement covariances (kept: no allocation per step)
+  std::array<double, 12> gates_{};    // NIS gate by degrees of freedom (0: not yet computed)
   std::array<std::size_t, 3> rejected_in_a_row_{};            // by Estimator 1, 2, 3
   std::array<std::size_t, 3> open_until_{};                   // the gate is open before this sample
   Eigen::Vector3d contact_angles_ = Eigen::Vector3d::Zero();  // this sample's, from Estimator 1

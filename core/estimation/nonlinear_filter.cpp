@@ -53,17 +53,20 @@ int nonzeros(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Index* idx) {
 }
 
 // M += w sum_i e_i e_i^T (w >= 0) on M's lower triangle: sparse columns
-// entry by entry, the rest as one symmetric rank update. The caller fills
-// the upper triangle when done.
-void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
-  std::vector<Eigen::Index> dense;
-  Eigen::Index idx[kSparse];
+// entry by entry, the rest as one symmetric rank update (all of E's columns
+// when none is sparse, else copied into D). The caller fills the upper
+// triangle when done. `dense` and D are scratch, kept between calls.
+void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w, std::vector<Eigen::Index>& dense,
+               Eigen::MatrixXd& D) {
+  dense.clear();
+  Eigen::Index idx[kSparse], zero = 0;
   for (Eigen::Index i = 0; i < E.cols(); ++i) {
     const int k = nonzeros(E.col(i), idx);
     if (k < 0) {
       dense.push_back(i);
       continue;
     }
+    zero += k == 0 ? 1 : 0;
     const double* e = E.col(i).data();
     for (int a = 0; a < k; ++a) {
       const double wa = w * e[idx[a]];
@@ -72,26 +75,38 @@ void add_outer(Eigen::MatrixXd& M, const Eigen::MatrixXd& E, double w) {
     }
   }
   if (dense.empty()) return;
-  Eigen::MatrixXd D(E.rows(), static_cast<Eigen::Index>(dense.size()));
+  if (static_cast<Eigen::Index>(dense.size()) + zero == E.cols()) {  // zero columns add nothing
+    M.selfadjointView<Eigen::Lower>().rankUpdate(E, w);
+    return;
+  }
+  D.resize(E.rows(), static_cast<Eigen::Index>(dense.size()));
   for (std::size_t i = 0; i < dense.size(); ++i) D.col(static_cast<Eigen::Index>(i)) = E.col(dense[i]);
   M.selfadjointView<Eigen::Lower>().rankUpdate(D, w);
 }
 
-// M += w sum_i a_i b_i^T: columns of A that are sparse row by row.
-void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double w) {
-  std::vector<Eigen::Index> dense;
-  Eigen::Index idx[kSparse];
+// M += w sum_i a_i b_i^T: columns of A that are sparse row by row, the
+// rest as one product (all of A and B when none is sparse). `dense`, DA and
+// DB are scratch.
+void add_cross(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double w,
+               std::vector<Eigen::Index>& dense, Eigen::MatrixXd& DA, Eigen::MatrixXd& DB) {
+  dense.clear();
+  Eigen::Index idx[kSparse], zero = 0;
   for (Eigen::Index i = 0; i < A.cols(); ++i) {
     const int k = nonzeros(A.col(i), idx);
     if (k < 0) {
       dense.push_back(i);
       continue;
     }
+    zero += k == 0 ? 1 : 0;
     for (int a = 0; a < k; ++a) M.row(idx[a]) += (w * A(idx[a], i)) * B.col(i).transpose();
   }
   if (dense.empty()) return;
-  Eigen::MatrixXd DA(A.rows(), static_cast<Eigen::Index>(dense.size())),
-      DB(B.rows(), static_cast<Eigen::Index>(dense.size()));
+  if (static_cast<Eigen::Index>(dense.size()) + zero == A.cols()) {
+    M.noalias() += w * (A * B.transpose());
+    return;
+  }
+  DA.resize(A.rows(), static_cast<Eigen::Index>(dense.size()));
+  DB.resize(B.rows(), static_cast<Eigen::Index>(dense.size()));
   for (std::size_t i = 0; i < dense.size(); ++i) {
     DA.col(static_cast<Eigen::Index>(i)) = A.col(dense[i]);
     DB.col(static_cast<Eigen::Index>(i)) = B.col(dense[i]);
@@ -123,12 +138,19 @@ bool UnscentedKalmanFilter::factor_covariances(const Eigen::MatrixXd& Q, const E
     if (!(P.diagonal().array() > 0.0).all()) return false;
     Sx_ = (c_ * P.diagonal().cwiseSqrt()).asDiagonal();
   } else {
-    const Eigen::LLT<Eigen::MatrixXd> llt(P);
-    if (llt.info() != Eigen::Success) return false;
-    Sx_ = c_ * Eigen::MatrixXd(llt.matrixL());
+    llt_x_.compute(P);
+    if (llt_x_.info() != Eigen::Success) return false;
+    Sx_ = llt_x_.matrixL();
+    Sx_ *= c_;
   }
   auto factor = [](const Eigen::MatrixXd& M, Eigen::MatrixXd& last, Eigen::MatrixXd& S) {
     if (last.rows() == M.rows() && last.cols() == M.cols() && last == M) return true;
+    if (M.isDiagonal(0.0)) {  // the Cholesky factor of a diagonal matrix, without the general factorisation
+      if (!(M.diagonal().array() > 0.0).all()) return false;
+      last = M;
+      S = M.diagonal().cwiseSqrt().asDiagonal();
+      return true;
+    }
     const Eigen::LLT<Eigen::MatrixXd> l(M);
     if (l.info() != Eigen::Success) return false;
     last = M;
@@ -153,7 +175,12 @@ void UnscentedKalmanFilter::propagate_sigma_points(const Function& f, Eigen::Ind
   const Eigen::Index nx = x.size();
   const Eigen::Index nf = 1 + 2 * (nx + np - pa_);
   X_.resize(nx, nf);
-  Eigen::VectorXd xs(nx), nps = Eigen::VectorXd::Zero(np), fx(nx);
+  Eigen::VectorXd& xs = xs_;
+  Eigen::VectorXd& nps = nps_;
+  Eigen::VectorXd& fx = fx_;
+  xs.resize(nx);
+  fx.resize(nx);
+  nps.setZero(np);
   f(x, nps, fx);
   X_.col(0) = fx;
   for (Eigen::Index d = 0; d < nx; ++d) {
@@ -256,45 +283,59 @@ void UnscentedKalmanFilter::covariances(const Eigen::MatrixXd& Q, const Eigen::M
   const double wi = wi_;
   X_.colwise() -= X0_;
   Y_.col(0).setZero();
-  const Eigen::VectorXd sx = wi * X_.rowwise().sum();
-  const Eigen::VectorXd sy = wi * (Y_.rowwise().sum() + Yp_.rowwise().sum() + Ym_.rowwise().sum());
-  const Eigen::VectorXd xm = X0_ + sx;
+  Eigen::VectorXd& sx = sx_;
+  Eigen::VectorXd& sy = sy_;
+  sx.noalias() = X_.rowwise().sum();
+  sx *= wi;
+  sy.noalias() = Y_.rowwise().sum();
+  if (Yp_.cols() > 0) sy.noalias() += Yp_.rowwise().sum();
+  if (Ym_.cols() > 0) sy.noalias() += Ym_.rowwise().sum();
+  sy *= wi;
   ym_ = Y0_ + sy;
   const double W2 = wc0_ + 2.0 * static_cast<double>(L_) * wi - 2.0;
   Pxx_ = W2 * sx * sx.transpose();
-  add_outer(Pxx_, X_, wi);
+  add_outer(Pxx_, X_, wi, dense_, D_);
   Pxx_.triangularView<Eigen::StrictlyUpper>() = Pxx_.transpose();
   if (pa > 0) Pxx_ += Q.topLeftCorner(nx, nx);
   Pyy_ = W2 * sy * sy.transpose();
-  add_outer(Pyy_, Y_, wi);
-  add_outer(Pyy_, Yp_, wi);
-  add_outer(Pyy_, Ym_, wi);
+  add_outer(Pyy_, Y_, wi, dense_, D_);
+  add_outer(Pyy_, Yp_, wi, dense_, D_);
+  add_outer(Pyy_, Ym_, wi, dense_, D_);
   Pyy_.triangularView<Eigen::StrictlyUpper>() = Pyy_.transpose();
   if (ma_ > 0) Pyy_ += R.bottomRightCorner(ny, ny);
   // Pxy: f's points, and delta_j (e_j+ - e_j-)^T along the additive process
   // noises (delta_j = c SQ_j, a column of the triangular factor).
   Pxy_ = W2 * sx * sy.transpose();
-  add_cross(Pxy_, X_, Y_, wi);
+  add_cross(Pxy_, X_, Y_, wi, dense_, D_, DB_);
   if (pa > 0) {
     Eigen::MatrixXd Yd(pa, ny);
     for (Eigen::Index j = 0; j < pa; ++j) Yd.row(j) = (c_ * wi) * (Yp_.col(2 * j) - Yp_.col(2 * j + 1)).transpose();
     Pxy_.noalias() += SQ_.topLeftCorner(nx, pa).triangularView<Eigen::Lower>() * Yd;
   }
-  x = xm;
-  P = 0.5 * (Pxx_ + Pxx_.transpose());
+  x = X0_ + sx;
+  if (pa > 0) {
+    P = 0.5 * (Pxx_ + Pxx_.transpose());
+  } else {
+    P = Pxx_;  // symmetric already: its upper triangle is a copy of the lower
+  }
 }
 
 // Eq. 2.20 with Pyy = L L^T: K = Pxy Pyy^-1 = W^T L^-1 for W = L^-1 Pxy^T,
 // so K (y - ym) = W^T L^-1 (y - ym) and K Pyy K^T = W^T W.
 bool UnscentedKalmanFilter::correct(const Eigen::VectorXd& y) {
-  const Eigen::LLT<Eigen::MatrixXd> syy(Pyy_);
+  Eigen::LLT<Eigen::MatrixXd>& syy = llt_y_;
+  syy.compute(Pyy_);
   if (syy.info() != Eigen::Success) return false;
-  const Eigen::VectorXd z = syy.matrixL().solve(y - ym_);  // NIS of Eq. 2.20's innovation (seed 000): |z|^2, gated
+  Eigen::VectorXd& z = z_;
+  z = y - ym_;
+  syy.matrixL().solveInPlace(z);  // NIS of Eq. 2.20's innovation (seed 000): |z|^2, gated
   nis = z.squaredNorm();
-  log_det_pyy = 2.0 * Eigen::MatrixXd(syy.matrixL()).diagonal().array().log().sum();
+  log_det_pyy = 2.0 * syy.matrixLLT().diagonal().array().log().sum();
   rejected = !(nis <= gate);
   if (rejected) return true;  // x and P as predicted
-  const Eigen::MatrixXd W = syy.matrixL().solve(Pxy_.transpose());
+  Eigen::MatrixXd& W = W_;
+  W = Pxy_.transpose();
+  syy.matrixL().solveInPlace(W);
   x.noalias() += W.transpose() * z;
   if (diagonal_only) {
     P = Eigen::VectorXd(P.diagonal() - W.colwise().squaredNorm().transpose()).asDiagonal();

@@ -104,6 +104,13 @@ class UnscentedKalmanFilter {
   Eigen::MatrixXd Sx_, Yp_, Ym_, Dp_, Pxx_, Pyy_, Pxy_;
   Eigen::VectorXd X0_, Y0_, hy_, ym_;
   std::vector<Eigen::Index> changed_x_, changed_n_;
+  // Scratch kept between steps (no allocation per step once sized): the
+  // factorisations, f's arguments, the mean offsets, the innovation and gain
+  // terms, and the dense columns of the outer products.
+  Eigen::LLT<Eigen::MatrixXd> llt_x_, llt_y_;
+  Eigen::VectorXd xs_, nps_, fx_, sx_, sy_, z_;
+  Eigen::MatrixXd W_, D_, DB_;
+  std::vector<Eigen::Index> dense_;
 };
 
 }  // namespace roverlab::estimation

@@ -32,17 +32,22 @@ namespace {
 // rover traverses it (docs/validation/simulation.md).
 // Each test runs in its own process (gtest_discover_tests): only the
 // surface test simulates the whole 200 s; the others take shorter runs.
-const log::Log& rolling_log(int seconds) {
-  static std::map<int, log::Log> logs;
-  auto it = logs.find(seconds);
-  if (it == logs.end()) {
-    simulation::RockerBogieRun run;
-    run.soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
-    run.path = simulation::rolling_path();
-    run.effects.soil_strength = 2.5;
-    run.duration = seconds;
-    it = logs.emplace(seconds, simulation::simulate_rocker_bogie({}, {}, run).log).first;
-  }
+simulation::RockerBogieRun rolling_run(int seconds, simulation::TractionSource traction) {
+  simulation::RockerBogieRun run;
+  run.soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
+  run.path = simulation::rolling_path();
+  run.effects.soil_strength = 2.5;
+  run.duration = seconds;
+  run.traction = traction;
+  return run;
+}
+
+const log::Log& rolling_log(int seconds, simulation::TractionSource traction = simulation::TractionSource::polynomial) {
+  static std::map<std::pair<int, simulation::TractionSource>, log::Log> logs;
+  const auto key = std::make_pair(seconds, traction);
+  auto it = logs.find(key);
+  if (it == logs.end())
+    it = logs.emplace(key, simulation::simulate_rocker_bogie({}, {}, rolling_run(seconds, traction)).log).first;
   return it->second;
 }
 
@@ -209,24 +214,61 @@ TEST(NetTraction, RebuiltSurfacesMatchTheTrueLocalModelAndGiveTheSoil) {
   // The true local model of order 2 is itself a close fit to the truth there.
   EXPECT_LT(two.drawbar_pull.truth.error.rmse, 0.05 * two.drawbar_pull.comparison.range);
 
-  // Issue 12 item 5, on the same points (one 200 s simulation per test
-  // process): the soil from the rover's own estimates. The run's soil is
-  // TYII with cohesion, tan(friction angle), kc and kphi scaled by 2.5.
-  const auto& m = two;
+  // Issue 12 item 5 on the same points: the soil fitted to them comes out
+  // low (2.22) because this run's traction is the simulator's order-5
+  // surrogate of Wong-Reece (seed 003 Appendix A), not Wong-Reece: fitted to
+  // the surrogate's own exact values at the same loads and slips, Wong-Reece
+  // gives the same strength. SoilFromTheEstimatesRecoversTheSimulatedStrength
+  // holds the estimates themselves to the truth on a Wong-Reece run.
+  const auto soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
+  using P = terramechanics::Parameter;
+  const auto s =
+      analysis::identify_soil_from_points(two.estimated_points, soil, {}, {P::soil_strength, P::shear_modulus});
+  ASSERT_TRUE(s.fit.converged && s.fit.covariance_ok);
+  const simulation::rocker_bogie::TractionModel surrogate({}, rolling_run(200, simulation::TractionSource::polynomial),
+                                                          true);
+  std::vector<analysis::TractionPoint> exact = two.estimated_points;
+  std::size_t unsupported = 0;
+  for (auto& p : exact) {
+    const auto t = surrogate.evaluate(p.load, p.slip, false, unsupported);
+    p.drawbar_pull = t.drawbar_pull;
+    p.resistive_torque = t.resistive_torque;
+  }
+  const auto e = analysis::identify_soil_from_points(exact, soil, {}, {P::soil_strength, P::shear_modulus});
+  ASSERT_TRUE(e.fit.converged);
+  std::printf("soil strength from the estimates %.3f +- %.3f (tau %.1f), from the surrogate's exact values %.3f\n",
+              s.fit.parameters[0].value, s.fit.parameters[0].sigma, s.correlation_factor, e.fit.parameters[0].value);
+  EXPECT_LT(e.fit.parameters[0].value, 2.35);  // the surrogate's own misfit: 2.5 is not what it encodes here
+  EXPECT_NEAR(s.fit.parameters[0].value, e.fit.parameters[0].value, 2.0 * s.fit.parameters[0].sigma);
+  EXPECT_LT(std::abs(s.fit.correlation[1]), 0.95);
+  EXPECT_TRUE(s.confounded.empty());
+  // With the sinkage exponent free as well, the region cannot tell the three apart.
+  const auto three =
+      analysis::identify_soil_from_points(two.estimated_points, soil, {}, {P::soil_strength, P::n, P::shear_modulus});
+  EXPECT_FALSE(three.confounded.empty());
+}
+
+// Issue 12 item 5: on the validation run simulated with Wong-Reece traction
+// (the model the identification fits), the soil fitted to the estimated
+// steady-state points recovers the simulated strength (TYII x 2.5) and
+// shear modulus within 2 sigma.
+TEST(NetTraction, SoilFromTheEstimatesRecoversTheSimulatedStrength) {
+  const auto& lg = rolling_log(200, simulation::TractionSource::wong_reece);
+  const auto r = estimation::run_net_traction(lg, {}, {});
+  const auto m = analysis::rebuild_net_traction_model(lg, r, r.two_axis, {}, 2);
   const auto soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
   using P = terramechanics::Parameter;
   const auto s =
       analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::shear_modulus});
   ASSERT_TRUE(s.fit.converged && s.fit.covariance_ok);
-  EXPECT_NEAR(s.fit.parameters[0].value, 2.5, 0.375);    // 2.22 +- 0.03: within 15 %
-  EXPECT_NEAR(s.fit.parameters[1].value, 0.0114, 6e-4);  // K, m: 0.01124 +- 0.0001
-  EXPECT_GT(s.fit.parameters[0].sigma, 0.0);
-  EXPECT_LT(std::abs(s.fit.correlation[1]), 0.95);
-  EXPECT_TRUE(s.confounded.empty());
-  // With the sinkage exponent free as well, the region cannot tell the three apart.
-  const auto three =
-      analysis::identify_soil_from_points(m.estimated_points, soil, {}, {P::soil_strength, P::n, P::shear_modulus});
-  EXPECT_FALSE(three.confounded.empty());
+  const auto& strength = s.fit.parameters[0];
+  const auto& k = s.fit.parameters[1];
+  EXPECT_GT(strength.sigma, 0.0);
+  std::printf("soil strength %.3f +- %.3f, K %.5f +- %.5f m (tau %.1f, reduced chi2 %.1f)\n", strength.value,
+              strength.sigma, k.value, k.sigma, s.correlation_factor, s.reduced_chi2);
+  EXPECT_LT(strength.sigma, 0.12);
+  EXPECT_NEAR(strength.value, 2.5, 2.0 * strength.sigma);
+  EXPECT_NEAR(k.value, soil.shear_modulus, 2.0 * k.sigma);
 }
 
 namespace {
