@@ -339,7 +339,9 @@ TEST(NetTraction, DISABLED_ChangeDetectorCalibration) {
         const auto m = analysis::rebuild_net_traction_model(lg, r, r.two_axis, {}, 2);
         std::printf(" | strength %.2f: largest %.2f at %.2f m, %zu change(s)", strength, m.changes.largest_statistic,
                     m.changes.largest_at, m.changes.changes.size());
-        if (strength == 1.0) EXPECT_TRUE(m.changes.changes.empty()) << seconds << " s, seed " << seed;
+        if (strength == 1.0) {
+          EXPECT_TRUE(m.changes.changes.empty()) << seconds << " s, seed " << seed;
+        }
         if (strength == 0.75) {
           ASSERT_EQ(m.changes.changes.size(), 1u) << seconds << " s, seed " << seed;
           EXPECT_NEAR(m.changes.changes[0].x, x, 0.3) << seconds << " s, seed " << seed;
