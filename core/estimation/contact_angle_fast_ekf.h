@@ -177,7 +177,13 @@ class FastEkf {
     for (int w = 0; w < 6; ++w) {
       auto rows = S.template middleRows<3>(3 * w);
       rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
-      for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
+      if (block_diagonal) {  // a private row of P H^T: its own wheel's block only
+        for (int p = 0; p < npriv; ++p)
+          S.template block<3, 3>(3 * w, 3 * w).noalias() +=
+              lin[w].d.col(3 + p) * PHt.template block<1, 3>(priv[w][p], 3 * w);
+      } else {
+        for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
+      }
     }
     Eigen::Matrix<double, NY, NY> HPHt;
     if (effective_dof) HPHt = S;
@@ -190,19 +196,24 @@ class FastEkf {
       dof_used = L.solve(Eigen::Matrix<double, NY, NY>(Y.transpose())).trace();
     }
     // W^T = P H^T L^-T and z = L^-1 (y - h) by forward substitution, so
-    // that K = W^T L^-1 and K (y - h) = W^T z.
+    // that K = W^T L^-1 and K (y - h) = W^T z. Column-oriented: once W's
+    // row c is final, it is taken from every later row (independent
+    // length-NX updates instead of a chain of dot products).
     Eigen::Matrix<double, NX, NY> Wt = PHt;
     Eigen::Matrix<double, NY, 1> z = innov;
-    for (int r = 0; r < NY; ++r) {
-      for (int c = 0; c < r; ++c) {
+    for (int c = 0; c < NY; ++c) {
+      Wt.col(c) *= inv_diag_(c);
+      z(c) *= inv_diag_(c);
+      for (int r = c + 1; r < NY; ++r) {
         Wt.col(r) -= Lm(r, c) * Wt.col(c);
         z(r) -= Lm(r, c) * z(c);
       }
-      Wt.col(r) /= Lm(r, r);
-      z(r) /= Lm(r, r);
     }
     nis = z.squaredNorm();  // y^T S^-1 y of Eq. 2.16's innovation (seed 000), S = L L^T; gated
-    log_det_s = 2.0 * Lm.diagonal().array().log().sum();
+    // ln det S = 2 sum ln L_ii, three logarithms of products of six (an
+    // L_ii is the square root of a variance: no overflow or underflow).
+    log_det_s = 0.0;
+    for (int i = 0; i < NY; i += 6) log_det_s += 2.0 * std::log(Lm.diagonal().template segment<6>(i).prod());
     rejected = !(nis <= gate);
     if (rejected) return true;
     x.noalias() += Wt * z;
@@ -233,20 +244,32 @@ class FastEkf {
   }
 
  private:
-  // S = L L^T for a small fixed-size S (Cholesky-Banachiewicz on L^T's
-  // contiguous columns; Eigen's LLT goes through dynamic-size kernels here).
-  // False when S is not positive definite.
-  static bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
-    Eigen::Matrix<double, NY, NY> U = Eigen::Matrix<double, NY, NY>::Zero();  // L^T
-    for (int i = 0; i < NY; ++i) {
-      for (int j = 0; j < i; ++j) U(j, i) = (S(i, j) - U.col(i).head(j).dot(U.col(j).head(j))) / U(j, j);
-      const double d = S(i, i) - U.col(i).head(i).squaredNorm();
+  // S = L L^T for a small fixed-size S, right-looking (outer-product)
+  // Cholesky on L's contiguous columns: each step scales a column and takes
+  // its outer product from the lower triangle to its right, independent
+  // multiply-adds the compiler vectorises (a dot product per element chains
+  // them). Only L's lower triangle is set; inv_diag_ keeps 1 / L_ii. False
+  // when S is not positive definite.
+  bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
+    L = S;
+    double* a = L.data();
+    for (int j = 0; j < NY; ++j) {
+      double* lj = a + j * NY;
+      const double d = lj[j];
       if (!(d > 0.0)) return false;
-      U(i, i) = std::sqrt(d);
+      lj[j] = std::sqrt(d);
+      const double inv = 1.0 / lj[j];
+      inv_diag_(j) = inv;
+      for (int r = j + 1; r < NY; ++r) lj[r] *= inv;
+      for (int c = j + 1; c < NY; ++c) {
+        double* lc = a + c * NY;
+        const double f = lj[c];
+        for (int r = c; r < NY; ++r) lc[r] -= f * lj[r];
+      }
     }
-    L = U.transpose();
     return true;
   }
+  Eigen::Matrix<double, NY, 1> inv_diag_;
 };
 
 }  // namespace roverlab::estimation
