@@ -199,14 +199,31 @@ class FastEkf {
     // that K = W^T L^-1 and K (y - h) = W^T z. Column-oriented: once W's
     // row c is final, it is taken from every later row (independent
     // length-NX updates instead of a chain of dot products).
-    Eigen::Matrix<double, NX, NY> Wt = PHt;
+    Eigen::Matrix<double, NX, NY> Wt;
     Eigen::Matrix<double, NY, 1> z = innov;
     for (int c = 0; c < NY; ++c) {
-      Wt.col(c) *= inv_diag_(c);
       z(c) *= inv_diag_(c);
-      for (int r = c + 1; r < NY; ++r) {
-        Wt.col(r) -= Lm(r, c) * Wt.col(c);
-        z(r) -= Lm(r, c) * z(c);
+      for (int r = c + 1; r < NY; ++r) z(r) -= Lm(r, c) * z(c);
+    }
+    if (block_diagonal) {
+      // With the reset a private state's row of P H^T (and of W^T) is zero
+      // left of its wheel's columns: with the private rows ordered by wheel,
+      // wheel b's columns touch only the first 6 + npriv (b + 1) rows.
+      Eigen::Matrix<double, NX, NY> Wp;
+      Wp.template topRows<6>() = PHt.template topRows<6>();
+      for (int w = 0; w < 6; ++w) {
+        for (int p = 0; p < npriv; ++p) Wp.row(6 + npriv * w + p) = PHt.row(priv[w][p]);
+      }
+      substitute_by_wheel<0>(Lm, Wp);
+      Wt.template topRows<6>() = Wp.template topRows<6>();
+      for (int w = 0; w < 6; ++w) {
+        for (int p = 0; p < npriv; ++p) Wt.row(priv[w][p]) = Wp.row(6 + npriv * w + p);
+      }
+    } else {
+      Wt = PHt;
+      for (int c = 0; c < NY; ++c) {
+        Wt.col(c) *= inv_diag_(c);
+        for (int r = c + 1; r < NY; ++r) Wt.col(r) -= Lm(r, c) * Wt.col(c);
       }
     }
     nis = z.squaredNorm();  // y^T S^-1 y of Eq. 2.16's innovation (seed 000), S = L L^T; gated
@@ -244,6 +261,18 @@ class FastEkf {
   }
 
  private:
+  // The forward substitution W^T <- W^T L^-T over wheel B's three columns
+  // and on, each column's nonzero head only (private rows ordered by wheel).
+  template <int B>
+  void substitute_by_wheel(const Eigen::Matrix<double, NY, NY>& L, Eigen::Matrix<double, NX, NY>& Wp) const {
+    constexpr int len = 6 + (1 + NA / 6) * (B + 1);
+    for (int c = 3 * B; c < 3 * B + 3; ++c) {
+      Wp.col(c).template head<len>() *= inv_diag_(c);
+      for (int r = c + 1; r < NY; ++r) Wp.col(r).template head<len>() -= L(r, c) * Wp.col(c).template head<len>();
+    }
+    if constexpr (B < 5) substitute_by_wheel<B + 1>(L, Wp);
+  }
+
   // S = L L^T for a small fixed-size S, right-looking (outer-product)
   // Cholesky on L's contiguous columns: each step scales a column and takes
   // its outer product from the lower triangle to its right, independent
