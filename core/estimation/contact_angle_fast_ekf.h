@@ -273,27 +273,48 @@ class FastEkf {
     if constexpr (B < 5) substitute_by_wheel<B + 1>(L, Wp);
   }
 
-  // S = L L^T for a small fixed-size S, right-looking (outer-product)
-  // Cholesky on L's contiguous columns: each step scales a column and takes
-  // its outer product from the lower triangle to its right, independent
-  // multiply-adds the compiler vectorises (a dot product per element chains
-  // them). Only L's lower triangle is set; inv_diag_ keeps 1 / L_ii. False
-  // when S is not positive definite.
+  // S = L L^T for a small fixed-size S, right-looking over 3 x 3 blocks
+  // (one wheel's rows): factor the diagonal block, scale the blocks below it
+  // by its inverse, take their outer products from the trailing lower
+  // blocks; every product a fixed-size 3 x 3 one the compiler unrolls. Only
+  // L's lower triangle is set; inv_diag_ keeps 1 / L_ii. False when S is not
+  // positive definite.
   bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
+    constexpr int nb = NY / 3;
     L = S;
-    double* a = L.data();
-    for (int j = 0; j < NY; ++j) {
-      double* lj = a + j * NY;
-      const double d = lj[j];
-      if (!(d > 0.0)) return false;
-      lj[j] = std::sqrt(d);
-      const double inv = 1.0 / lj[j];
-      inv_diag_(j) = inv;
-      for (int r = j + 1; r < NY; ++r) lj[r] *= inv;
-      for (int c = j + 1; c < NY; ++c) {
-        double* lc = a + c * NY;
-        const double f = lj[c];
-        for (int r = c; r < NY; ++r) lc[r] -= f * lj[r];
+    for (int J = 0; J < nb; ++J) {
+      auto D = L.template block<3, 3>(3 * J, 3 * J);
+      if (!(D(0, 0) > 0.0)) return false;
+      D(0, 0) = std::sqrt(D(0, 0));
+      const double i0 = 1.0 / D(0, 0);
+      D(1, 0) *= i0;
+      D(2, 0) *= i0;
+      const double d1 = D(1, 1) - D(1, 0) * D(1, 0);
+      if (!(d1 > 0.0)) return false;
+      D(1, 1) = std::sqrt(d1);
+      const double i1 = 1.0 / D(1, 1);
+      D(2, 1) = (D(2, 1) - D(2, 0) * D(1, 0)) * i1;
+      const double d2 = D(2, 2) - D(2, 0) * D(2, 0) - D(2, 1) * D(2, 1);
+      if (!(d2 > 0.0)) return false;
+      D(2, 2) = std::sqrt(d2);
+      const double i2 = 1.0 / D(2, 2);
+      inv_diag_.template segment<3>(3 * J) << i0, i1, i2;
+      Eigen::Matrix3d Mt = Eigen::Matrix3d::Zero();  // (L_JJ^-1)^T
+      Mt(0, 0) = i0;
+      Mt(1, 1) = i1;
+      Mt(2, 2) = i2;
+      Mt(0, 1) = -D(1, 0) * i0 * i1;
+      Mt(1, 2) = -D(2, 1) * i1 * i2;
+      Mt(0, 2) = -(D(2, 0) * i0 + D(2, 1) * Mt(0, 1)) * i2;
+      for (int I = J + 1; I < nb; ++I) {
+        auto B = L.template block<3, 3>(3 * I, 3 * J);
+        B = (B * Mt).eval();
+      }
+      for (int I = J + 1; I < nb; ++I) {
+        const Eigen::Matrix3d LIJ = L.template block<3, 3>(3 * I, 3 * J);
+        for (int K = J + 1; K <= I; ++K)
+          L.template block<3, 3>(3 * I, 3 * K).noalias() -=
+              LIJ.lazyProduct(L.template block<3, 3>(3 * K, 3 * J).transpose());
       }
     }
     return true;
