@@ -116,7 +116,7 @@ double process_cpu_seconds() {
 void whole_process(benchmark::State& state, estimation::FilterKind filter) {
   const double seconds = 120.0;
   static const std::string in = [&] {
-    const std::string path = "/tmp/roverlab_bench_contact_angle_2min.h5";
+    std::string path = "/tmp/roverlab_bench_contact_angle_2min.h5";
     io::write_hdf5_log(scenario(seconds), path);
     return path;
   }();
