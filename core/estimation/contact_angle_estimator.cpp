@@ -173,14 +173,27 @@ void ContactAngleEstimator::fuse_joint_rates() {
   }
 }
 
+namespace {
+
+// The stream's sample nearest to t, IMU sample i's time: i itself when the
+// stream shares the IMU's time base there (as Stream::nearest_index would
+// find on its sorted times), else by that binary search.
+std::size_t nearest_sample(const log::Stream& s, std::size_t i, double t) {
+  const auto& ts = s.time();
+  if (i < ts.size() && ts[i] == t && (i + 1 == ts.size() || ts[i + 1] > t)) return i;
+  return std::min(s.nearest_index(t), s.size() - 1);
+}
+
+}  // namespace
+
 Inputs ContactAngleEstimator::inputs_at(std::size_t i) const {
   const auto& t = imu_->time();
   const int nq = layout_.nq, nw = layout_.nw;
   Inputs in;
   in.gyro = Eigen::Vector3d((*imu_ch_[0])[i], (*imu_ch_[1])[i], (*imu_ch_[2])[i]);
   in.accel = Eigen::Vector3d((*imu_ch_[3])[i], (*imu_ch_[4])[i], (*imu_ch_[5])[i]);
-  const std::size_t kj = std::min(joints_->nearest_index(t[i]), joints_->size() - 1);
-  const std::size_t kw = std::min(wheels_->nearest_index(t[i]), wheels_->size() - 1);
+  const std::size_t kj = nearest_sample(*joints_, i, t[i]);
+  const std::size_t kw = nearest_sample(*wheels_, i, t[i]);
   for (int j = 0; j < nq; ++j) {
     const auto ju = static_cast<std::size_t>(j);
     in.q[j] = (*q_ch_[ju])[kj];

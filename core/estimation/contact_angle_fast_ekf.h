@@ -177,7 +177,13 @@ class FastEkf {
     for (int w = 0; w < 6; ++w) {
       auto rows = S.template middleRows<3>(3 * w);
       rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
-      for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
+      if (block_diagonal) {  // a private row of P H^T: its own wheel's block only
+        for (int p = 0; p < npriv; ++p)
+          S.template block<3, 3>(3 * w, 3 * w).noalias() +=
+              lin[w].d.col(3 + p) * PHt.template block<1, 3>(priv[w][p], 3 * w);
+      } else {
+        for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
+      }
     }
     Eigen::Matrix<double, NY, NY> HPHt;
     if (effective_dof) HPHt = S;
@@ -190,19 +196,41 @@ class FastEkf {
       dof_used = L.solve(Eigen::Matrix<double, NY, NY>(Y.transpose())).trace();
     }
     // W^T = P H^T L^-T and z = L^-1 (y - h) by forward substitution, so
-    // that K = W^T L^-1 and K (y - h) = W^T z.
-    Eigen::Matrix<double, NX, NY> Wt = PHt;
+    // that K = W^T L^-1 and K (y - h) = W^T z. Column-oriented: once W's
+    // row c is final, it is taken from every later row (independent
+    // length-NX updates instead of a chain of dot products).
+    Eigen::Matrix<double, NX, NY> Wt;
     Eigen::Matrix<double, NY, 1> z = innov;
-    for (int r = 0; r < NY; ++r) {
-      for (int c = 0; c < r; ++c) {
-        Wt.col(r) -= Lm(r, c) * Wt.col(c);
-        z(r) -= Lm(r, c) * z(c);
+    for (int c = 0; c < NY; ++c) {
+      z(c) *= inv_diag_(c);
+      for (int r = c + 1; r < NY; ++r) z(r) -= Lm(r, c) * z(c);
+    }
+    if (block_diagonal) {
+      // With the reset a private state's row of P H^T (and of W^T) is zero
+      // left of its wheel's columns: with the private rows ordered by wheel,
+      // wheel b's columns touch only the first 6 + npriv (b + 1) rows.
+      Eigen::Matrix<double, NX, NY> Wp;
+      Wp.template topRows<6>() = PHt.template topRows<6>();
+      for (int w = 0; w < 6; ++w) {
+        for (int p = 0; p < npriv; ++p) Wp.row(6 + npriv * w + p) = PHt.row(priv[w][p]);
       }
-      Wt.col(r) /= Lm(r, r);
-      z(r) /= Lm(r, r);
+      substitute_by_wheel<0>(Lm, Wp);
+      Wt.template topRows<6>() = Wp.template topRows<6>();
+      for (int w = 0; w < 6; ++w) {
+        for (int p = 0; p < npriv; ++p) Wt.row(priv[w][p]) = Wp.row(6 + npriv * w + p);
+      }
+    } else {
+      Wt = PHt;
+      for (int c = 0; c < NY; ++c) {
+        Wt.col(c) *= inv_diag_(c);
+        for (int r = c + 1; r < NY; ++r) Wt.col(r) -= Lm(r, c) * Wt.col(c);
+      }
     }
     nis = z.squaredNorm();  // y^T S^-1 y of Eq. 2.16's innovation (seed 000), S = L L^T; gated
-    log_det_s = 2.0 * Lm.diagonal().array().log().sum();
+    // ln det S = 2 sum ln L_ii, three logarithms of products of six (an
+    // L_ii is the square root of a variance: no overflow or underflow).
+    log_det_s = 0.0;
+    for (int i = 0; i < NY; i += 6) log_det_s += 2.0 * std::log(Lm.diagonal().template segment<6>(i).prod());
     rejected = !(nis <= gate);
     if (rejected) return true;
     x.noalias() += Wt * z;
@@ -233,20 +261,65 @@ class FastEkf {
   }
 
  private:
-  // S = L L^T for a small fixed-size S (Cholesky-Banachiewicz on L^T's
-  // contiguous columns; Eigen's LLT goes through dynamic-size kernels here).
-  // False when S is not positive definite.
-  static bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
-    Eigen::Matrix<double, NY, NY> U = Eigen::Matrix<double, NY, NY>::Zero();  // L^T
-    for (int i = 0; i < NY; ++i) {
-      for (int j = 0; j < i; ++j) U(j, i) = (S(i, j) - U.col(i).head(j).dot(U.col(j).head(j))) / U(j, j);
-      const double d = S(i, i) - U.col(i).head(i).squaredNorm();
-      if (!(d > 0.0)) return false;
-      U(i, i) = std::sqrt(d);
+  // The forward substitution W^T <- W^T L^-T over wheel B's three columns
+  // and on, each column's nonzero head only (private rows ordered by wheel).
+  template <int B>
+  void substitute_by_wheel(const Eigen::Matrix<double, NY, NY>& L, Eigen::Matrix<double, NX, NY>& Wp) const {
+    constexpr int len = 6 + (1 + NA / 6) * (B + 1);
+    for (int c = 3 * B; c < 3 * B + 3; ++c) {
+      Wp.col(c).template head<len>() *= inv_diag_(c);
+      for (int r = c + 1; r < NY; ++r) Wp.col(r).template head<len>() -= L(r, c) * Wp.col(c).template head<len>();
     }
-    L = U.transpose();
+    if constexpr (B < 5) substitute_by_wheel<B + 1>(L, Wp);
+  }
+
+  // S = L L^T for a small fixed-size S, right-looking over 3 x 3 blocks
+  // (one wheel's rows): factor the diagonal block, scale the blocks below it
+  // by its inverse, take their outer products from the trailing lower
+  // blocks; every product a fixed-size 3 x 3 one the compiler unrolls. Only
+  // L's lower triangle is set; inv_diag_ keeps 1 / L_ii. False when S is not
+  // positive definite.
+  bool cholesky(const Eigen::Matrix<double, NY, NY>& S, Eigen::Matrix<double, NY, NY>& L) {
+    constexpr int nb = NY / 3;
+    L = S;
+    for (int J = 0; J < nb; ++J) {
+      auto D = L.template block<3, 3>(3 * J, 3 * J);
+      if (!(D(0, 0) > 0.0)) return false;
+      D(0, 0) = std::sqrt(D(0, 0));
+      const double i0 = 1.0 / D(0, 0);
+      D(1, 0) *= i0;
+      D(2, 0) *= i0;
+      const double d1 = D(1, 1) - D(1, 0) * D(1, 0);
+      if (!(d1 > 0.0)) return false;
+      D(1, 1) = std::sqrt(d1);
+      const double i1 = 1.0 / D(1, 1);
+      D(2, 1) = (D(2, 1) - D(2, 0) * D(1, 0)) * i1;
+      const double d2 = D(2, 2) - D(2, 0) * D(2, 0) - D(2, 1) * D(2, 1);
+      if (!(d2 > 0.0)) return false;
+      D(2, 2) = std::sqrt(d2);
+      const double i2 = 1.0 / D(2, 2);
+      inv_diag_.template segment<3>(3 * J) << i0, i1, i2;
+      Eigen::Matrix3d Mt = Eigen::Matrix3d::Zero();  // (L_JJ^-1)^T
+      Mt(0, 0) = i0;
+      Mt(1, 1) = i1;
+      Mt(2, 2) = i2;
+      Mt(0, 1) = -D(1, 0) * i0 * i1;
+      Mt(1, 2) = -D(2, 1) * i1 * i2;
+      Mt(0, 2) = -(D(2, 0) * i0 + D(2, 1) * Mt(0, 1)) * i2;
+      for (int I = J + 1; I < nb; ++I) {
+        auto B = L.template block<3, 3>(3 * I, 3 * J);
+        B = (B * Mt).eval();
+      }
+      for (int I = J + 1; I < nb; ++I) {
+        const Eigen::Matrix3d LIJ = L.template block<3, 3>(3 * I, 3 * J);
+        for (int K = J + 1; K <= I; ++K)
+          L.template block<3, 3>(3 * I, 3 * K).noalias() -=
+              LIJ.lazyProduct(L.template block<3, 3>(3 * K, 3 * J).transpose());
+      }
+    }
     return true;
   }
+  Eigen::Matrix<double, NY, 1> inv_diag_;
 };
 
 }  // namespace roverlab::estimation
