@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "app/analysis.h"
 #include "app/command_support.h"
@@ -45,7 +46,8 @@ std::string parameters_text(const json& ps) {
 std::string scatter_svg(const std::string& title, const std::string& xlabel, const std::vector<double>& x,
                         const std::vector<double>& y0, const std::vector<double>& y1) {
   const auto ly = [](double y) { return std::log10(std::max(y, 0.01)); };
-  double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double xmin = inf, xmax = -inf, ymin = inf, ymax = -inf;
   for (std::size_t k = 0; k < x.size(); ++k) {
     if (!std::isfinite(x[k]) || !std::isfinite(y0[k]) || !std::isfinite(y1[k])) continue;
     xmin = std::min(xmin, x[k]);

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "core/analysis/rover_candidates.h"
@@ -70,7 +71,7 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return round.trials[a].screened_chi2 < round.trials[b].screened_chi2;
   });
-  double best_fit = INFINITY;
+  double best_fit = std::numeric_limits<double>::infinity();
   for (std::size_t i : order) {
     Trial& t = round.trials[i];
     if (t.screened_chi2 > 10 * best_fit + 100) continue;
