@@ -69,7 +69,13 @@ struct InsSlipOptions {
   double alignment_distance = 20.0;       // m
   double alignment_heading_sigma = 0.01;  // rad (0.57 deg)
   std::optional<double> initial_heading;  // rad clockwise from north; overrides the alignment
-  double no_slip = 0.02;                  // |s| at or below which a sample counts as no slip
+  // |s| at or below which a sample counts as no slip (seed 002 section 3.1:
+  // "s ~ 0"). Unset: 0.02 against slip truth or without a reference; 0
+  // against GPS, where Eq. 30's third case (standstill) is the only "none": a
+  // GPS speed cannot resolve |s| <= 0.02 while moving, and seed 002 Table 2's
+  // no-slip counts are its runs' standstill samples
+  // (docs/validation/ins-slip.md, "Slip classes on real data").
+  std::optional<double> no_slip;
   // m/s: moving slower than this (wheels and body), or turning in place (one
   // side's wheels turning backwards), slip is undefined (NaN, not scored);
   // at standstill it is 0 (Eq. 1's third case).
@@ -114,6 +120,7 @@ struct InsSlipResult {
   // noise, fixes the gate rejected; fix_sigma NaN without GPS.
   double gps_fix_sigma = NAN, gps_accel_psd = NAN;
   std::size_t gps_outliers = 0;
+  double no_slip = NAN;  // the |s| band of the "none" class used (InsSlipOptions::no_slip)
 };
 
 // Channel names the estimator reads (RoverLab's conventions; see

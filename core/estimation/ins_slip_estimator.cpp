@@ -242,6 +242,11 @@ void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& tra
   out.add_stream(std::move(st));
 }
 
+double InsSlipEstimator::no_slip() const {
+  if (o_.no_slip) return *o_.no_slip;
+  return truth_slip_ == nullptr && reference_.present ? 0.0 : 0.02;
+}
+
 // Slip at the wheel samples within the IMU span (Eq. 1 with Eq. 29).
 InsSlipEstimator::SlipColumns InsSlipEstimator::slip_columns(const InsTrack& detector) const {
   const auto& t = *in_.time;
@@ -265,7 +270,7 @@ InsSlipEstimator::SlipColumns InsSlipEstimator::slip_columns(const InsTrack& det
     const double s_e = at_rest ? 0.0 : undefined ? NAN : slip_ratio(v, wheel_speed);
     c.time.push_back(tk);
     c.slip.push_back(s_e);
-    c.slip_class.push_back(undefined ? NAN : static_cast<double>(classify_slip(s_e, o_.no_slip)));
+    c.slip_class.push_back(undefined ? NAN : static_cast<double>(classify_slip(s_e, no_slip())));
     c.wheel_speed.push_back(wheel_speed);
     c.forward_speed.push_back(v);
     c.at_rest.push_back(at_rest ? 1.0 : 0.0);
@@ -283,7 +288,7 @@ void InsSlipEstimator::add_reference_slip(SlipColumns& c, double tk, double whee
     const std::size_t j = truth_slip_->nearest_index(tk);
     const double s_r = truth_slip_->channel("slip_ratio").values[j];
     c.reference_slip.push_back(s_r);
-    c.reference_class.push_back(static_cast<double>(classify_slip(s_r, o_.no_slip)));
+    c.reference_class.push_back(static_cast<double>(classify_slip(s_r, no_slip())));
     c.reference_speed.push_back(NAN);
   } else if (reference_.present) {
     const ReferenceTrack& ref = reference_;
@@ -298,7 +303,7 @@ void InsSlipEstimator::add_reference_slip(SlipColumns& c, double tk, double whee
       s_r = NAN;
     }
     c.reference_slip.push_back(s_r);
-    c.reference_class.push_back(std::isfinite(s_r) ? static_cast<double>(classify_slip(s_r, o_.no_slip)) : NAN);
+    c.reference_class.push_back(std::isfinite(s_r) ? static_cast<double>(classify_slip(s_r, no_slip())) : NAN);
     c.reference_speed.push_back(std::isfinite(s_r) ? v_r : NAN);
   }
 }

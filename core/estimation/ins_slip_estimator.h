@@ -27,6 +27,8 @@ class InsSlipEstimator {
   // How the initial heading was obtained (after run).
   const InitialHeading& initial_heading() const { return heading_; }
   const ReferenceTrack& reference() const { return reference_; }
+  // The |s| band of the "none" class (InsSlipOptions::no_slip).
+  double no_slip() const;
 
  private:
   // Slip at the wheel samples within the IMU span, with its reference.

@@ -138,6 +138,8 @@ TEST(Cli, UsageErrorsExitTwoAndHelpExitsZero) {
   EXPECT_EQ(run_roverlab("frobnicate").exit_code, 2);
   EXPECT_EQ(run_roverlab("info").exit_code, 2);
   EXPECT_EQ(run_roverlab("info x.h5 --no-such-option").exit_code, 2);
+  EXPECT_EQ(run_roverlab("estimate ins-slip " + quote(kPathfinder) + " -m wvu_pathfinder --no-slip-band 0.5").exit_code,
+            2);
   EXPECT_EQ(run_roverlab("convert " + quote(kPathfinder) + " out.txt -m wvu_pathfinder").exit_code, 2);
   for (const std::string cmd : {"", "info ", "convert ", "mappings "}) {
     const CommandResult r = run_roverlab(cmd + "--help");

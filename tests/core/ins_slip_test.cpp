@@ -414,6 +414,50 @@ TEST(InsSlipPathfinder, RotatedAndNoisyGpsGiveTheErrorsOfTheOriginal) {
   }
 }
 
+// Seed 002 section 3.1 and Table 2: "no slip" is s ~ 0; against GPS the
+// default takes it as Eq. 30's third case only (standstill), since a GPS speed
+// cannot resolve |s| <= 0.02 while moving. The band changes the classes, not
+// the slip ratios.
+TEST(InsSlipPathfinder, AgainstGpsNoSlipIsStandstillAndTheBandOnlyMovesClasses) {
+  const log::Log lg = pathfinder_log();
+  const InsSlipResult paper = run_ins_slip(lg, {});
+  EXPECT_EQ(paper.no_slip, 0.0);
+  InsSlipOptions o;
+  o.no_slip = 0.02;
+  const InsSlipResult band = run_ins_slip(lg, o);
+  EXPECT_EQ(band.no_slip, 0.02);
+  const auto& a = paper.estimates.stream("estimate/ins/slip");
+  const auto& b = band.estimates.stream("estimate/ins/slip");
+  const auto& at_rest = a.channel("at_rest").values;
+  long moving_none_in_band = 0, moving_scored = 0;
+  for (std::size_t k = 0; k < at_rest.size(); ++k) {
+    const double rc = a.channel("reference_class").values[k], ec = a.channel("slip_class").values[k];
+    if (std::isfinite(rc)) {
+      EXPECT_EQ(rc == 0.0, at_rest[k] == 1.0) << k;
+    }
+    if (std::isfinite(ec)) {
+      EXPECT_EQ(ec == 0.0, at_rest[k] == 1.0) << k;
+    }
+    const double sa = a.channel("slip_ratio").values[k], sb = b.channel("slip_ratio").values[k];
+    if (std::isfinite(sa) || std::isfinite(sb)) {
+      EXPECT_EQ(sa, sb) << k;
+    }
+    const double rb = b.channel("reference_class").values[k];
+    if (at_rest[k] == 0.0 && std::isfinite(rb)) {
+      ++moving_scored;
+      moving_none_in_band += rb == 0.0 ? 1 : 0;
+    }
+  }
+  // With the 0.02 band the GPS reference of the steady drive (true slip about
+  // -0.007) lands on both sides of the none/low boundary.
+  EXPECT_GT(moving_none_in_band, moving_scored / 10);
+  EXPECT_LT(moving_none_in_band, moving_scored * 9 / 10);
+  std::printf(
+      "[figures] Pathfinder slip classes: standstill-only none %.3f (moving %.3f), 0.02 band %.3f (moving %.3f)\n",
+      paper.metrics.confusion.accuracy(), paper.metrics.confusion_moving.accuracy(), band.metrics.confusion.accuracy(),
+      band.metrics.confusion_moving.accuracy());
+}
+
 // Issue 14: a simulated loop drive with turns in place, starting south-east,
 // with 3 m of GPS noise: position RMSE at most 2 % of the distance driven,
 // slip-class accuracy at least 90 %.
