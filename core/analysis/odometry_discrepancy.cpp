@@ -446,13 +446,18 @@ void OdometryStudy::write_verdict() {
     rep_.verdict = buf;
     return;
   }
+  // "name = value, ..." of fitted parameters.
+  const auto parameters_text = [](const std::vector<OdometryParameter>& ps) {
+    std::string text;
+    for (const auto& p : ps) {
+      char one[96];
+      std::snprintf(one, sizeof one, "%s%s = %.4g", text.empty() ? "" : ", ", p.name.c_str(), p.value);
+      text += one;
+    }
+    return text;
+  };
   const auto& b = rep_.candidates[static_cast<std::size_t>(rep_.best)];
-  std::string params;
-  for (const auto& p : b.parameters) {
-    char one[96];
-    std::snprintf(one, sizeof one, "%s%s = %.4g", params.empty() ? "" : ", ", p.name.c_str(), p.value);
-    params += one;
-  }
+  const std::string params = parameters_text(b.parameters);
   std::snprintf(buf, sizeof buf,
                 "Cause: %s (%s). Fitted on the first %.0f %% of the drive (%s), it cuts the position RMSE on the "
                 "rest from %.2f m to %.2f m (final error %.2f m -> %.2f m).",
@@ -470,12 +475,7 @@ void OdometryStudy::write_verdict() {
   }
   if (rep_.selection.size() >= 2) {
     const auto& c = rep_.selection.back();
-    std::string fitted;
-    for (const auto& p : c.parameters) {
-      char one[96];
-      std::snprintf(one, sizeof one, "%s%s = %.4g", fitted.empty() ? "" : ", ", p.name.c_str(), p.value);
-      fitted += one;
-    }
+    const std::string fitted = parameters_text(c.parameters);
     std::snprintf(buf, sizeof buf,
                   " Forward selection keeps %zu causes together: %s (%s), held-out RMSE %.2f m (final %.2f m), "
                   "delta BIC %.0f against the baseline.",
