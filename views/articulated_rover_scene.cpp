@@ -1,7 +1,6 @@
 #include "views/articulated_rover_scene.h"
 
 #include <vtkActor.h>
-#include <vtkArrowSource.h>
 #include <vtkCamera.h>
 #include <vtkCubeSource.h>
 #include <vtkCylinderSource.h>
@@ -57,15 +56,7 @@ std::vector<Vector3d> chain_points(const kinematics::RoverModel& m, int wheel, c
 }
 
 vtkSmartPointer<vtkActor> arrow_actor(const Vector3d& rgb, double radius_scale) {
-  vtkNew<vtkArrowSource> src;
-  src->SetShaftRadius(0.035 * radius_scale);
-  src->SetTipRadius(0.09 * radius_scale);
-  src->SetTipLength(0.28);
-  src->SetShaftResolution(12);
-  src->SetTipResolution(12);
-  auto a = actor_of(src->GetOutputPort(), rgb);
-  a->GetProperty()->SetLighting(false);
-  return a;
+  return unlit_arrow(rgb, 0.035 * radius_scale, 0.09 * radius_scale, 0.28, 12);
 }
 
 // Places a unit +x arrow at `from`, along `direction`, `length` long.

@@ -1,7 +1,6 @@
 #include "views/contact_angle_scene.h"
 
 #include <vtkActor.h>
-#include <vtkArrowSource.h>
 #include <vtkCamera.h>
 #include <vtkCubeSource.h>
 #include <vtkNew.h>
@@ -32,13 +31,7 @@ vtkSmartPointer<vtkActor> flat_actor(vtkAlgorithmOutput* port, const double rgb[
 }
 
 vtkSmartPointer<vtkActor> arrow(const double rgb[3], double width) {
-  vtkNew<vtkArrowSource> src;
-  src->SetShaftRadius(0.03 * width);
-  src->SetTipRadius(0.08 * width);
-  src->SetTipLength(0.25);
-  src->SetShaftResolution(16);
-  src->SetTipResolution(16);
-  return flat_actor(src->GetOutputPort(), rgb);
+  return unlit_arrow(Eigen::Vector3d(rgb[0], rgb[1], rgb[2]), 0.03 * width, 0.08 * width, 0.25, 16);
 }
 
 // Places an arrow of length `len` from (x, y) at angle `a` (rad, counter-clockwise from +x).

@@ -2,6 +2,7 @@
 
 #include <vtkActor.h>
 #include <vtkAlgorithmOutput.h>
+#include <vtkArrowSource.h>
 #include <vtkCellArray.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
@@ -33,6 +34,19 @@ vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, const Eigen::Vector
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputConnection(port);
   return actor_with(mapper, rgb);
+}
+
+vtkSmartPointer<vtkActor> unlit_arrow(const Eigen::Vector3d& rgb, double shaft_radius, double tip_radius,
+                                      double tip_length, int resolution) {
+  vtkNew<vtkArrowSource> src;
+  src->SetShaftRadius(shaft_radius);
+  src->SetTipRadius(tip_radius);
+  src->SetTipLength(tip_length);
+  src->SetShaftResolution(resolution);
+  src->SetTipResolution(resolution);
+  auto a = actor_of(src->GetOutputPort(), rgb);
+  a->GetProperty()->SetLighting(false);
+  return a;
 }
 
 vtkSmartPointer<vtkActor> actor_of(vtkPolyData* data, const Eigen::Vector3d& rgb) {

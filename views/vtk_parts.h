@@ -1,7 +1,7 @@
 #pragma once
 // The small VTK pieces every scene repeats: an actor drawing a source's
 // output or a poly data through its own mapper, polylines and line segments
-// built from points, and the unlit line style the scenes draw tracks,
+// built from points, unlit arrows, and the unlit line style the scenes draw tracks,
 // links and residuals in.
 
 #include <vector>
@@ -19,6 +19,11 @@ namespace roverlab::views {
 vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, const Eigen::Vector3d& rgb);
 // An actor of colour `rgb` drawing `data` through a new mapper.
 vtkSmartPointer<vtkActor> actor_of(vtkPolyData* data, const Eigen::Vector3d& rgb);
+
+// An unlit arrow of colour `rgb` (vtkArrowSource: along +x, length 1) with
+// the given shaft and tip radii, tip length and resolution of both.
+vtkSmartPointer<vtkActor> unlit_arrow(const Eigen::Vector3d& rgb, double shaft_radius, double tip_radius,
+                                      double tip_length, int resolution);
 
 // One polyline cell through `points`, in order.
 vtkSmartPointer<vtkPolyData> polyline(const std::vector<Eigen::Vector3d>& points);
