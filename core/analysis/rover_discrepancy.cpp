@@ -227,7 +227,7 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   char method[200];
   std::snprintf(method, sizeof method, "alternating blocks of %.3g s: even blocks fit, odd blocks test", options.block);
   r.held_out_method = method;
-  const simulation::RockerBogieEffects none;
+  const simulation::RockerBogieEffects& none = predictor.scenario_effects();  // the nominal model
   const Prediction p0 = predictor.predict(none);
   set_noise(predictor.channels(), p0);
   const Simulated& base = predictor.simulate(none);
@@ -242,7 +242,7 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   const RoverResidualFeatures f = features(predictor.channels(), p0, base);
   std::vector<FitParameter> chain;
   select_causes(predictor, f, options, r, chain);
-  const Prediction p1 = predictor.predict(effects_of(chain));
+  const Prediction p1 = predictor.predict(effects_of(predictor.scenario_effects(), chain));
   held_out_rmse(r, predictor.channels(), p1, true);
   r.time = predictor.channels()[0].time;
   r.residual_before = residual_series(predictor.channels(), p0);

@@ -102,7 +102,7 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
   const auto candidates = rover_candidates();
   const double ln_n = std::log(static_cast<double>(pr.count(Part::fit)));
   const auto n_test = static_cast<double>(pr.count(Part::test));
-  const simulation::RockerBogieEffects none;
+  const simulation::RockerBogieEffects& none = pr.scenario_effects();  // the nominal model
   double fit = chi2(pr, none, Part::fit), test = chi2(pr, none, Part::test);
   r.baseline_bic = fit;
   r.baseline_held_out = std::sqrt(test / n_test);

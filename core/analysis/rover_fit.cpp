@@ -23,7 +23,7 @@ class SimulationCost final : public ceres::CostFunction {
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
     std::vector<FitParameter> p = parameters_;
     for (std::size_t j = 0; j < free_.size(); ++j) p[free_[j]].value = x[0][j];
-    const std::vector<double> r = predictor_.residuals(effects_of(p), Part::fit);
+    const std::vector<double> r = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);
     std::copy(r.begin(), r.end(), residuals);
     if (jacobians == nullptr || jacobians[0] == nullptr) return true;
     const std::size_t n = r.size(), m = free_.size();
@@ -33,7 +33,7 @@ class SimulationCost final : public ceres::CostFunction {
       const double v = q.value;
       const double h = v + q.spec.step <= q.spec.upper ? q.spec.step : -q.spec.step;
       q.value = v + h;
-      const std::vector<double> r2 = predictor_.residuals(effects_of(p), Part::fit);
+      const std::vector<double> r2 = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);
       q.value = v;
       for (std::size_t i = 0; i < n; ++i) jacobians[0][i * m + j] = (r2[i] - r[i]) / h;
     }
@@ -79,8 +79,9 @@ void set_sigmas(const SimulationCost& cost, std::vector<FitParameter>& p, const 
 
 }  // namespace
 
-simulation::RockerBogieEffects effects_of(const std::vector<FitParameter>& parameters) {
-  simulation::RockerBogieEffects fx;
+simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& scenario,
+                                          const std::vector<FitParameter>& parameters) {
+  simulation::RockerBogieEffects fx = scenario;
   for (const auto& p : parameters) simulation::set_effect(fx, p.spec.effect, p.value);
   return fx;
 }
@@ -157,7 +158,7 @@ FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parame
     set_sigmas(cost, parameters, free, x);
   }
   FitOutcome out;
-  const simulation::RockerBogieEffects fx = effects_of(parameters);
+  const simulation::RockerBogieEffects fx = effects_of(predictor.scenario_effects(), parameters);
   out.chi2_fit = chi2(predictor, fx, Part::fit);
   out.chi2_test = chi2(predictor, fx, Part::test);
   out.parameters = std::move(parameters);

@@ -22,7 +22,9 @@ struct FitOutcome {
   double chi2_fit = 0, chi2_test = 0;
 };
 
-simulation::RockerBogieEffects effects_of(const std::vector<FitParameter>& parameters);
+// The scenario's effects with the parameters' values set over them.
+simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& scenario,
+                                          const std::vector<FitParameter>& parameters);
 
 // Fits the free parameters (spec.fitted and free); the others are held.
 FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters);

@@ -74,8 +74,15 @@ Predictor::Predictor(const log::Log& lg, const RoverScenarioModel& model, double
 }
 
 const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
-  const std::array<double, 5> key{fx.soil_strength, fx.slip_sinkage_n1, fx.grouser_height, fx.wheel_radius_scale,
-                                  fx.effect_start_x};
+  // Only the physical effects change the run; the sensor effects are applied to its series.
+  simulation::RockerBogieEffects physical;
+  physical.soil_strength = fx.soil_strength;
+  physical.slip_sinkage_n1 = fx.slip_sinkage_n1;
+  physical.grouser_height = fx.grouser_height;
+  physical.wheel_radius_scale = fx.wheel_radius_scale;
+  physical.effect_start_x = fx.effect_start_x;
+  const std::array<double, 5> key{physical.soil_strength, physical.slip_sinkage_n1, physical.grouser_height,
+                                  physical.wheel_radius_scale, physical.effect_start_x};
   auto it = cache_.find(key);
   if (it != cache_.end()) return it->second;
   if (cache_.size() > 16) cache_.clear();
@@ -83,12 +90,7 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
   run.duration = channels_.front().time.back();
   run.sensor_noise = false;
   run.progress = nullptr;
-  run.effects = simulation::RockerBogieEffects{};
-  run.effects.soil_strength = fx.soil_strength;
-  run.effects.slip_sinkage_n1 = fx.slip_sinkage_n1;
-  run.effects.grouser_height = fx.grouser_height;
-  run.effects.wheel_radius_scale = fx.wheel_radius_scale;
-  run.effects.effect_start_x = fx.effect_start_x;
+  run.effects = physical;
   const simulation::RockerBogieResult r = simulation::simulate_rocker_bogie(model_.geometry, model_.parameters, run);
   ++simulations_;
   Simulated s;

@@ -43,6 +43,8 @@ class Predictor {
   const std::vector<MeasuredChannel>& channels() const { return channels_; }
   std::vector<MeasuredChannel>& channels() { return channels_; }
   double duration() const { return duration_; }
+  // The scenario's own effects: part of the model, the start of every trial.
+  const simulation::RockerBogieEffects& scenario_effects() const { return model_.run.effects; }
   int simulations() const { return simulations_; }
 
   // The simulation under `effects` (physical part cached).

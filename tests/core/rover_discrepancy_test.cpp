@@ -65,6 +65,14 @@ TEST(RoverDiscrepancy, NoEffectNoCauseAndTheResidualsAreNoise) {
   }
 }
 
+TEST(RoverDiscrepancy, TheScenariosOwnEffectsArePartOfTheModel) {
+  auto m = flat_model(20);
+  simulation::set_effect(m.run.effects, "gyro-bias", 0.003);  // a gyro bias the scenario file already states
+  simulation::set_effect(m.run.effects, "slip-sinkage", 0.3);
+  const auto r = analysis::study_rover(measured(m, {}, 6), m);
+  EXPECT_TRUE(r.selection.empty()) << r.verdict;
+}
+
 TEST(RoverDiscrepancy, AGyroBiasIsNamedWithItsSizeAndTheCheckWithoutSimulationSeesIt) {
   const auto m = flat_model(20);
   const auto r = analysis::study_rover(measured(m, {{"gyro-bias", 0.003}}, 3), m);
