@@ -59,23 +59,6 @@ vtkSmartPointer<vtkActor> arrow_actor(const Vector3d& rgb, double radius_scale) 
   return unlit_arrow(rgb, 0.035 * radius_scale, 0.09 * radius_scale, 0.28, 12);
 }
 
-// Places a unit +x arrow at `from`, along `direction`, `length` long.
-void place_arrow(vtkActor* actor, const Vector3d& from, const Vector3d& direction, double length) {
-  const Vector3d x = direction.normalized();
-  Vector3d y = x.unitOrthogonal();
-  const Vector3d z = x.cross(y);
-  vtkNew<vtkMatrix4x4> m;
-  for (int r = 0; r < 3; ++r) {
-    m->SetElement(r, 0, x[r] * length);
-    m->SetElement(r, 1, y[r] * length);
-    m->SetElement(r, 2, z[r] * length);
-    m->SetElement(r, 3, from[r]);
-  }
-  vtkNew<vtkTransform> t;
-  t->SetMatrix(m);
-  actor->SetUserTransform(t);
-}
-
 void set_lines(vtkActor* actor, const std::vector<Vector3d>& points) {
   vtkPolyDataMapper::SafeDownCast(actor->GetMapper())->SetInputData(polyline(points));
 }

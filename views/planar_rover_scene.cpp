@@ -9,6 +9,7 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -22,6 +23,7 @@
 
 #include "core/common/error.h"
 #include "core/estimation/slip.h"
+#include "views/contact_angle_scene.h"
 #include "views/rover_scene.h"
 #include "views/vtk_parts.h"
 
@@ -43,8 +45,12 @@ struct PlanarRoverScene::Parts {
   vtkSmartPointer<vtkLineSource> axle;  // between the two rocker pivots
   vtkSmartPointer<vtkActor> body;
   vtkSmartPointer<vtkTextActor> text;
+  // Contact arrows per side and wheel: estimate, its 1-sigma fan, truth.
+  vtkSmartPointer<vtkActor> estimate[2][3], sigma[2][3], truth[2][3];
+  Eigen::Vector2d direction[2][3];  // [truth][wheel]
   const log::Stream* pose = nullptr;
   const log::Stream* wheels = nullptr;
+  const log::Stream* estimates = nullptr;
   double radius = 0.075, track = 0.5, width = 0.06, wheelbase = 0.5;
   Eigen::Vector2d centre[3];
   double side_y(int side) const { return side == 0 ? 0.5 * track : -0.5 * track; }
@@ -57,6 +63,11 @@ PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
   Parts& p = *parts_;
   p.pose = lg.find_stream("truth/pose");
   p.wheels = lg.find_stream("truth/wheels");
+  p.estimates = lg.find_stream("estimate/net_traction/wheels");
+  if (p.estimates == nullptr)
+    notes_.emplace_back(
+        "no net-traction estimate in the log: run `roverlab estimate net-traction` to draw the estimated contact "
+        "angles");
   const auto r = lg.metadata.extra.find("truth/wheel_radius_m");
   if (r != lg.metadata.extra.end()) p.radius = std::stod(r->second);
   t0_ = p.pose->start_time();
@@ -71,6 +82,7 @@ PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
   p.renderer->SetBackground(0.95, 0.96, 0.98);
   add_terrain();
   add_links_and_wheels();
+  add_contact_arrows();
   add_text_and_camera();
   set_time(t0_);
 }
@@ -146,6 +158,76 @@ void PlanarRoverScene::add_links_and_wheels() {
   p.renderer->AddActor(p.body);
 }
 
+void PlanarRoverScene::add_contact_arrows() {
+  Parts& p = *parts_;
+  const Eigen::Vector3d blue(ContactAngleScene::estimate_rgb[0], ContactAngleScene::estimate_rgb[1],
+                             ContactAngleScene::estimate_rgb[2]);
+  const Eigen::Vector3d green(ContactAngleScene::truth_rgb[0], ContactAngleScene::truth_rgb[1],
+                              ContactAngleScene::truth_rgb[2]);
+  for (int side = 0; side < 2; ++side) {
+    for (int i = 0; i < 3; ++i) {
+      p.estimate[side][i] = unlit_arrow(blue, 0.045, 0.12, 0.28, 12);
+      p.truth[side][i] = unlit_arrow(green, 0.03, 0.08, 0.28, 12);
+      p.sigma[side][i] = line_actor(polyline({Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()}), blue, 2.0);
+      for (auto* a : {p.estimate[side][i].Get(), p.truth[side][i].Get(), p.sigma[side][i].Get()})
+        p.renderer->AddActor(a);
+    }
+  }
+}
+
+namespace {
+
+double value_at(const log::Stream* s, const std::string& channel, double t) {
+  const log::Channel* c = s != nullptr ? s->find_channel(channel) : nullptr;
+  return c != nullptr ? c->values[s->nearest_index(t)] : NAN;
+}
+
+}  // namespace
+
+// Seed 003 Eq. 4.40: the path's direction at the contact angle gamma,
+// (cos gamma, sin gamma) in (x, z); the contact point a radius below the
+// centre along the normal to it, on the outer face of each side's wheel.
+void PlanarRoverScene::place_contact_arrows(double t) {
+  Parts& p = *parts_;
+  const auto along = [](double angle) { return Eigen::Vector2d(std::cos(angle), std::sin(angle)); };
+  for (int i = 0; i < 3; ++i) {
+    const std::string n = std::to_string(i + 1);
+    const double gamma = value_at(p.estimates, "contact_angle_" + n, t);
+    const double sigma = value_at(p.estimates, "contact_angle_sigma_" + n, t);
+    const double gamma_truth = value_at(p.wheels, "contact_angle_" + n, t);
+    p.direction[0][i] = std::isfinite(gamma) ? along(gamma) : Eigen::Vector2d::Constant(NAN);
+    p.direction[1][i] = std::isfinite(gamma_truth) ? along(gamma_truth) : Eigen::Vector2d::Constant(NAN);
+    const double at = std::isfinite(gamma) ? gamma : std::isfinite(gamma_truth) ? gamma_truth : 0.0;
+    const Eigen::Vector2d contact = p.centre[i] - p.radius * Eigen::Vector2d(-std::sin(at), std::cos(at));
+    const double length = 2.2 * p.radius;
+    for (int side = 0; side < 2; ++side) {
+      const double y = p.side_y(side) + (side == 0 ? 1.0 : -1.0) * (0.5 * p.width + 0.01);
+      const auto in_3d = [y](const Eigen::Vector2d& v) { return Eigen::Vector3d(v.x(), y, v.y()); };
+      const auto point = [&](double angle, double l) { return in_3d(contact + l * along(angle)); };
+      const bool estimated = std::isfinite(gamma);
+      p.estimate[side][i]->SetVisibility(estimated);
+      if (estimated) place_arrow(p.estimate[side][i], in_3d(contact), point(gamma, 1.0) - in_3d(contact), length);
+      p.truth[side][i]->SetVisibility(std::isfinite(gamma_truth));
+      // The truth a little further out, so that an estimate on it does not hide it.
+      const Eigen::Vector3d out(0.0, side == 0 ? 0.02 : -0.02, 0.0);
+      if (std::isfinite(gamma_truth))
+        place_arrow(p.truth[side][i], in_3d(contact) + out, point(gamma_truth, 1.0) - in_3d(contact), 1.6 * p.radius);
+      const bool fan = estimated && std::isfinite(sigma);
+      p.sigma[side][i]->SetVisibility(fan);
+      if (fan) {
+        std::vector<Eigen::Vector3d> points{in_3d(contact)};
+        for (int j = 0; j <= 16; ++j) points.push_back(point(gamma - sigma + sigma * j / 8.0, length));
+        points.push_back(in_3d(contact));
+        vtkPolyDataMapper::SafeDownCast(p.sigma[side][i]->GetMapper())->SetInputData(polyline(points));
+      }
+    }
+  }
+}
+
+Eigen::Vector2d PlanarRoverScene::contact_direction(int i, bool truth) const {
+  return parts_->direction[truth ? 1 : 0][i];
+}
+
 void PlanarRoverScene::add_text_and_camera() {
   Parts& p = *parts_;
   p.text = vtkSmartPointer<vtkTextActor>::New();
@@ -200,6 +282,7 @@ void PlanarRoverScene::set_time(double t) {
   p.axle->SetPoint2(body.x(), p.side_y(1) + p.width, body.y());
   p.body->SetPosition(body.x(), 0.0, body.y() + 0.05 * p.wheelbase);
   p.body->SetOrientation(0.0, std::isfinite(pitch) ? -pitch * 180.0 / M_PI : 0.0, 0.0);
+  place_contact_arrows(t);
   show_text(t, k, kw);
   // Obliquely from the front left, above, following the body.
   const double d = 3.6 * p.wheelbase;
@@ -212,7 +295,7 @@ void PlanarRoverScene::set_time(double t) {
 
 void PlanarRoverScene::show_text(double t, std::size_t k, std::size_t kw) {
   Parts& p = *parts_;
-  char line[256];
+  char line[512];
   int len = std::snprintf(line, sizeof line, "t = %.2f s   x = %.2f m   pitch %.1f deg   bogie %.1f deg", t,
                           p.pose->channel("x").values[k], p.pose->channel("pitch").values[k] * 180 / M_PI,
                           p.pose->channel("bogie_angle").values[k] * 180 / M_PI);
@@ -222,6 +305,8 @@ void PlanarRoverScene::show_text(double t, std::size_t k, std::size_t kw) {
     if (std::isfinite(s))
       len += std::snprintf(line + len, sizeof line - len, "%s slip %d: %.2f", i == 0 ? "\n" : "   ", i + 1, s);
   }
+  std::snprintf(line + len, sizeof line - len, "\ncontact-angle arrows: %sgreen truth",
+                p.estimates != nullptr ? "blue estimate (1-sigma fan), " : "");
   p.text->SetInput(line);
 }
 

@@ -5,10 +5,14 @@
 // other side mirrored at a track equal to the wheelbase (the planar model has
 // no track); the terrain profile traced by the wheel centres (one wheel
 // radius below) extruded across the track as a surface; at the timeline's
-// time, seen obliquely from the front left.
+// time, seen obliquely from the front left. At each wheel's contact point,
+// on the outer face of both sides, the direction of the path at the contact
+// angle: the net-traction estimate (seed 003 Eq. 5.56) in blue with its
+// 1-sigma fan, the truth in green.
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <vtkSmartPointer.h>
 #include <Eigen/Core>
@@ -36,6 +40,10 @@ class PlanarRoverScene : public Scene {
   double end_time() const override { return t1_; }
   // Position (x, z) of wheel i (0..2) at the last set_time.
   Eigen::Vector2d wheel_centre(int i) const;
+  // Unit direction (x, z) of wheel i's contact arrow at the last set_time:
+  // the estimate's (`truth` false) or the truth's; NaN when the log has none.
+  Eigen::Vector2d contact_direction(int i, bool truth) const;
+  std::vector<std::string> notes() const override { return notes_; }
   // The drawn track (m, between the two sides' wheel planes) and wheel width.
   double track() const;
   double wheel_width() const;
@@ -45,8 +53,11 @@ class PlanarRoverScene : public Scene {
   void add_terrain();
   void add_links_and_wheels();
   void add_text_and_camera();
+  void add_contact_arrows();
+  void place_contact_arrows(double t);
   void show_text(double t, std::size_t k, std::size_t kw);
   std::unique_ptr<Parts> parts_;
+  std::vector<std::string> notes_;
   double t0_ = 0, t1_ = 0;
 };
 

@@ -5,12 +5,16 @@
 #include <vtkArrowSource.h>
 #include <vtkCellArray.h>
 #include <vtkIdList.h>
+#include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyLine.h>
 #include <vtkProperty.h>
+#include <vtkTransform.h>
+
+#include <Eigen/Geometry>
 
 namespace roverlab::views {
 
@@ -53,6 +57,22 @@ vtkSmartPointer<vtkActor> actor_of(vtkPolyData* data, const Eigen::Vector3d& rgb
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(data);
   return actor_with(mapper, rgb);
+}
+
+void place_arrow(vtkActor* actor, const Eigen::Vector3d& from, const Eigen::Vector3d& direction, double length) {
+  const Eigen::Vector3d x = direction.normalized();
+  const Eigen::Vector3d y = x.unitOrthogonal();
+  const Eigen::Vector3d z = x.cross(y);
+  vtkNew<vtkMatrix4x4> m;
+  for (int r = 0; r < 3; ++r) {
+    m->SetElement(r, 0, x[r] * length);
+    m->SetElement(r, 1, y[r] * length);
+    m->SetElement(r, 2, z[r] * length);
+    m->SetElement(r, 3, from[r]);
+  }
+  vtkNew<vtkTransform> t;
+  t->SetMatrix(m);
+  actor->SetUserTransform(t);
 }
 
 vtkSmartPointer<vtkPolyData> polyline(const std::vector<Eigen::Vector3d>& points) {

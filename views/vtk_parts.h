@@ -25,6 +25,10 @@ vtkSmartPointer<vtkActor> actor_of(vtkPolyData* data, const Eigen::Vector3d& rgb
 vtkSmartPointer<vtkActor> unlit_arrow(const Eigen::Vector3d& rgb, double shaft_radius, double tip_radius,
                                       double tip_length, int resolution);
 
+// Places `actor`, drawing a unit +x arrow, at `from` along `direction`,
+// `length` long (its user transform).
+void place_arrow(vtkActor* actor, const Eigen::Vector3d& from, const Eigen::Vector3d& direction, double length);
+
 // One polyline cell through `points`, in order.
 vtkSmartPointer<vtkPolyData> polyline(const std::vector<Eigen::Vector3d>& points);
 // Line segments: one two-point cell from each point to the next (a path),

@@ -132,3 +132,65 @@ TEST(PlanarRoverScene, InThreeDimensionsTheWheelPixelsMoveAsTheBogieTurns) {
   EXPECT_GT(green1.mean_y, green0.mean_y - 1.0);
   EXPECT_NEAR(scene.wheel_centre(1).y(), 0.15 + std::sin(0.3) * 0.1 - std::cos(0.3) * 0.075, 1e-9);
 }
+
+namespace {
+
+// The flat drive with every wheel's contact angle set to `truth` and its
+// net-traction estimate to `estimate` (1-sigma 0.05 rad).
+log::Log drive_with_contact_angles(double truth, double estimate) {
+  const log::Log base = planar_drive();
+  log::Log lg;
+  lg.metadata = base.metadata;
+  lg.add_stream(base.stream("truth/pose"));
+  log::Stream wheels = base.stream("truth/wheels");
+  const std::vector<double> t = wheels.time();
+  const std::size_t n = t.size();
+  log::Stream est("estimate/net_traction/wheels", t);
+  for (int w = 1; w <= 3; ++w) {
+    const std::string k = std::to_string(w);
+    wheels.add_channel("contact_angle_" + k, "rad", std::vector<double>(n, truth));
+    est.add_channel("contact_angle_" + k, "rad", std::vector<double>(n, estimate));
+    est.add_channel("contact_angle_sigma_" + k, "rad", std::vector<double>(n, 0.05));
+  }
+  lg.add_stream(std::move(wheels));
+  lg.add_stream(std::move(est));
+  return lg;
+}
+
+bool estimate_blue(int r, int g, int b) { return b > 180 && r < 90 && g < 140; }
+bool truth_green(int r, int g, int b) { return g > 120 && r < 60 && b < 90; }
+
+}  // namespace
+
+TEST(PlanarRoverScene, TheContactArrowsPointAlongThePathAtTheContactAngle) {
+  const log::Log climbing = drive_with_contact_angles(0.4, 0.3), level = drive_with_contact_angles(0.0, 0.0);
+  views::PlanarRoverScene climbing_scene(climbing), level_scene(level);
+  const views::Image up = render_scene(climbing_scene, 480, 360, 5.0);
+  const views::Image flat = render_scene(level_scene, 480, 360, 5.0);
+  EXPECT_TRUE(climbing_scene.notes().empty());
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(climbing_scene.contact_direction(i, false).y(), std::sin(0.3), 1e-12);  // forward and up
+    EXPECT_NEAR(climbing_scene.contact_direction(i, false).x(), std::cos(0.3), 1e-12);
+    EXPECT_NEAR(climbing_scene.contact_direction(i, true).y(), std::sin(0.4), 1e-12);
+    EXPECT_NEAR(level_scene.contact_direction(i, true).y(), 0.0, 1e-12);
+  }
+  // On screen both arrows rise with the contact angle.
+  const Region blue_up = find_pixels(up, estimate_blue), blue_flat = find_pixels(flat, estimate_blue);
+  const Region green_up = find_pixels(up, truth_green), green_flat = find_pixels(flat, truth_green);
+  ASSERT_GT(blue_up.count, 100);
+  ASSERT_GT(blue_flat.count, 100);
+  ASSERT_GT(green_up.count, 20);
+  ASSERT_GT(green_flat.count, 20);
+  EXPECT_LT(blue_up.mean_y, blue_flat.mean_y - 3.0);
+  EXPECT_LT(green_up.mean_y, green_flat.mean_y - 3.0);
+}
+
+TEST(PlanarRoverScene, WithoutAnEstimateNoBlueArrowIsDrawnAndANoteSaysHowToGetOne) {
+  const log::Log lg = planar_drive();
+  views::PlanarRoverScene scene(lg);
+  const views::Image img = render_scene(scene, 480, 360, 5.0);
+  ASSERT_EQ(scene.notes().size(), 1U);
+  EXPECT_NE(scene.notes()[0].find("estimate net-traction"), std::string::npos);
+  EXPECT_TRUE(std::isnan(scene.contact_direction(0, false).x()));
+  EXPECT_EQ(find_pixels(img, estimate_blue).count, 0);
+}
