@@ -315,6 +315,16 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
   html << "<h2>" << title() << "</h2>\n";
   report_health(j, s);
   html << "<p>" << ReportSection::escape(j.at("initial_heading").at("text").get<std::string>()) << ".</p>\n";
+  if (j.contains("imu_vibration") && j.at("imu_vibration").at("detector_speed_error_mps").is_number()) {
+    const json& v = j.at("imu_vibration");
+    html << "<p>IMU vibration while moving: " << n(v.at("forward_vibration_mps2"), "%.2f") << " / "
+         << n(v.at("vertical_vibration_mps2"), "%.2f") << " m/s^2 RMS forward / vertical; the vertical channel wanders "
+         << n(v.at("vertical_walk_mps_per_sqrt_s"), "%.3f") << " m/s/sqrt(s) (the filter models "
+         << n(v.at("modelled_walk_mps_per_sqrt_s"), "%.4f") << "), forward about "
+         << n(v.at("forward_walk_mps_per_sqrt_s"), "%.3f") << ": over the longest drive between stops ("
+         << n(v.at("longest_drive_s"), "%.0f") << " s) the slip detector's speed is known to about "
+         << n(v.at("detector_speed_error_mps"), "%.2f") << " m/s RMS.</p>\n";
+  }
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");
