@@ -207,7 +207,9 @@ class InsSlipAnalysis : public Analysis {
                           {"forward_walk_mps_per_sqrt_s", finite_or_null(v.forward_walk)},
                           {"modelled_walk_mps_per_sqrt_s", finite_or_null(v.modelled_walk)},
                           {"longest_drive_s", v.longest_drive},
-                          {"detector_speed_error_mps", finite_or_null(v.speed_error)}};
+                          {"detector_speed_error_mps", finite_or_null(v.speed_error)},
+                          {"median_speed_mps", finite_or_null(v.median_speed)},
+                          {"slip_resolution", finite_or_null(v.slip_resolution)}};
     j["no_slip_band"] = finite_or_null(r.no_slip);
     if (m.confusion.total() > 0) j["slip_confusion"] = confusion_json(m.confusion);
     if (m.confusion_moving.total() > 0) j["slip_confusion_moving"] = confusion_json(m.confusion_moving);
@@ -233,11 +235,16 @@ void print_vibration(const json& j, std::FILE* out) {
   std::fprintf(out,
                "IMU vibration while moving: %.2f / %.2f m/s^2 RMS forward / vertical; the vertical channel wanders "
                "%.3f m/s/sqrt(s) (the filter models %.4f), forward about %.3f: over the longest drive between stops "
-               "(%.0f s) the slip detector's speed is known to about %.2f m/s RMS\n",
+               "(%.0f s) the slip detector's speed is known to about %.2f m/s RMS",
                v.at("forward_vibration_mps2").get<double>(), v.at("vertical_vibration_mps2").get<double>(),
                v.at("vertical_walk_mps_per_sqrt_s").get<double>(), v.at("modelled_walk_mps_per_sqrt_s").get<double>(),
                v.at("forward_walk_mps_per_sqrt_s").get<double>(), v.at("longest_drive_s").get<double>(),
                v.at("detector_speed_error_mps").get<double>());
+  if (v.contains("slip_resolution") && v.at("slip_resolution").is_number()) {
+    std::fprintf(out, ", at the median speed of %.2f m/s a slip of about %.2f", v.at("median_speed_mps").get<double>(),
+                 v.at("slip_resolution").get<double>());
+  }
+  std::fprintf(out, "\n");
 }
 
 void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
@@ -323,7 +330,9 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
          << n(v.at("modelled_walk_mps_per_sqrt_s"), "%.4f") << "), forward about "
          << n(v.at("forward_walk_mps_per_sqrt_s"), "%.3f") << ": over the longest drive between stops ("
          << n(v.at("longest_drive_s"), "%.0f") << " s) the slip detector's speed is known to about "
-         << n(v.at("detector_speed_error_mps"), "%.2f") << " m/s RMS.</p>\n";
+         << n(v.at("detector_speed_error_mps"), "%.2f") << " m/s RMS, at the median speed of "
+         << n(v.at("median_speed_mps"), "%.2f") << " m/s a slip of about " << n(v.at("slip_resolution"), "%.2f")
+         << ".</p>\n";
   }
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");

@@ -127,6 +127,8 @@ struct ImuVibration {
   double vertical_vibration = NAN;  // m/s^2 RMS, body z
   double longest_drive = 0;         // s, the longest stretch between standstills
   double speed_error = NAN;         // m/s: expected RMS forward speed error of the detector over it
+  double median_speed = NAN;        // m/s: the wheels' median speed while moving
+  double slip_resolution = NAN;     // speed_error / median_speed: the |s| the detector cannot resolve
 };
 
 struct InsSlipResult {

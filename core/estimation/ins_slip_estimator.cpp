@@ -351,6 +351,7 @@ ImuVibration InsSlipEstimator::vibration() const {
     fz[i] = (*in_.fz)[i];
   }
   const std::vector<double> sx = moving_std(fx, half), sz = moving_std(fz, half);
+  std::vector<double> speeds;  // the wheels', while moving and not too slow to count
   double vib_x = 0, vib_z = 0, walk = 0;
   std::size_t moving = 0, windows = 0;
   bool bridge = false;
@@ -381,6 +382,8 @@ ImuVibration InsSlipEstimator::vibration() const {
     for (std::size_t i = a; i < b; ++i) {
       vib_x += sx[i] * sx[i];
       vib_z += sz[i] * sz[i];
+      const double speed = std::abs(in_.wheel_speed(in_.wheel_index(t[i]), o_.rover.wheel_radius));
+      if (speed >= o_.min_slip_speed) speeds.push_back(speed);
     }
     moving += b - a;
     if (count > 0) {
@@ -409,6 +412,12 @@ ImuVibration InsSlipEstimator::vibration() const {
   // (without vibration the forward RMS is the manoeuvres, not an error).
   v.forward_walk = v.vertical_walk * std::min(1.0, v.forward_vibration / v.vertical_vibration);
   v.speed_error = v.forward_walk * std::sqrt(v.longest_drive / (bridge ? 6.0 : 2.0));
+  if (!speeds.empty()) {
+    const auto mid = speeds.begin() + static_cast<std::ptrdiff_t>(speeds.size() / 2);
+    std::nth_element(speeds.begin(), mid, speeds.end());
+    v.median_speed = *mid;
+    v.slip_resolution = v.speed_error / v.median_speed;
+  }
   return v;
 }
 

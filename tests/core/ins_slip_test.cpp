@@ -2,6 +2,7 @@
 // logs with known biases and slip episodes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -473,6 +474,13 @@ TEST(InsSlipPathfinder, VibrationPredictsTheDetectorsSpeedError) {
   const double measured = std::sqrt(ss / count);
   EXPECT_GT(v.speed_error, measured / 1.5);
   EXPECT_LT(v.speed_error, measured * 1.5);
+  // The wheels' median speed while moving is the GPS's (no slip to speak of on this drive).
+  std::vector<double> gps;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (rest[k] == 0 && std::isfinite(ref[k]) && std::abs(ref[k]) >= 0.1) gps.push_back(std::abs(ref[k]));
+  std::nth_element(gps.begin(), gps.begin() + static_cast<std::ptrdiff_t>(gps.size() / 2), gps.end());
+  EXPECT_NEAR(v.median_speed, gps[gps.size() / 2], 0.03);
+  EXPECT_NEAR(v.slip_resolution, v.speed_error / v.median_speed, 1e-12);
   std::printf("[figures] vibration: vertical walk %.3f, forward %.3f m/s/sqrt(s); predicted %.3f, measured %.3f m/s\n",
               v.vertical_walk, v.forward_walk, v.speed_error, measured);
   const InsSlipResult sim = run_ins_slip(simulation::simulate_skid_steer(simulation::default_slip_scenario(1)), {});
