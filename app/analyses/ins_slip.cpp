@@ -121,6 +121,12 @@ class InsSlipAnalysis : public Analysis {
                    "|s| up to which a sample is in the 'none' slip class (default: 0 against GPS, i.e. "
                    "standstill only as in seed 002 Table 2; 0.02 against slip truth)")
         ->check(finite_in(0.0, 0.2));
+    cmd.add_option("--imu-mounting", imu_mounting_deg_,
+                   "IMU roll,pitch,yaw against the chassis, deg: the NHC and wheel speed hold in chassis axes "
+                   "(default 0,0,0)")
+        ->expected(3)
+        ->delimiter(',')
+        ->check(finite_in(-30.0, 30.0));
     cmd.add_option("--odometry-sigma", odometry_sigma_, "Standard deviation of the wheel-speed update, m/s")
         ->capture_default_str()
         ->check(finite_in(1e-4, 10.0));
@@ -136,6 +142,8 @@ class InsSlipAnalysis : public Analysis {
     o.smooth = !no_smoother_;
     if (initial_heading_deg_) o.initial_heading = *initial_heading_deg_ * M_PI / 180.0;
     o.no_slip = no_slip_;
+    if (imu_mounting_deg_.size() == 3)
+      o.imu_mounting = Eigen::Vector3d(imu_mounting_deg_[0], imu_mounting_deg_[1], imu_mounting_deg_[2]) * M_PI / 180.0;
     o.progress = in.progress;
     estimation::InsSlipResult r = estimation::run_ins_slip(in.log, o);
     AnalysisResult out;
@@ -158,13 +166,16 @@ class InsSlipAnalysis : public Analysis {
   static json document(const std::string& file, const estimation::InsSlipOptions& o,
                        const estimation::InsSlipResult& r) {
     const estimation::InsSlipMetrics& m = r.metrics;
+    const double deg = 180.0 / M_PI;
+    const json mounting = {o.imu_mounting.x() * deg, o.imu_mounting.y() * deg, o.imu_mounting.z() * deg};
     json j = {{"file", file},
               {"updates",
                {{"zupt", o.zupt},
                 {"zaru", o.zaru},
                 {"nhc", o.nhc},
                 {"odometry_aiding", o.odometry_aiding},
-                {"smoother", o.smooth}}},
+                {"smoother", o.smooth},
+                {"imu_mounting_deg", mounting}}},
               {"duration_s", m.duration},
               {"standstill_fraction", m.standstill_fraction},
               {"has_reference", m.has_reference},
@@ -189,6 +200,16 @@ class InsSlipAnalysis : public Analysis {
                              {"position_rmse_m", r.odometry.position_rmse},
                              {"aligned_position_rmse_m", finite_or_null(r.odometry.aligned_position_rmse)}};
     }
+    const estimation::ImuVibration& v = r.vibration;
+    j["imu_vibration"] = {{"forward_vibration_mps2", finite_or_null(v.forward_vibration)},
+                          {"vertical_vibration_mps2", finite_or_null(v.vertical_vibration)},
+                          {"vertical_walk_mps_per_sqrt_s", finite_or_null(v.vertical_walk)},
+                          {"forward_walk_mps_per_sqrt_s", finite_or_null(v.forward_walk)},
+                          {"modelled_walk_mps_per_sqrt_s", finite_or_null(v.modelled_walk)},
+                          {"longest_drive_s", v.longest_drive},
+                          {"detector_speed_error_mps", finite_or_null(v.speed_error)},
+                          {"median_speed_mps", finite_or_null(v.median_speed)},
+                          {"slip_resolution", finite_or_null(v.slip_resolution)}};
     j["no_slip_band"] = finite_or_null(r.no_slip);
     if (m.confusion.total() > 0) j["slip_confusion"] = confusion_json(m.confusion);
     if (m.confusion_moving.total() > 0) j["slip_confusion_moving"] = confusion_json(m.confusion_moving);
@@ -201,9 +222,30 @@ class InsSlipAnalysis : public Analysis {
   double odometry_sigma_ = 0.05;     // m/s
   std::optional<double> initial_heading_deg_;
   std::optional<double> no_slip_;
+  std::vector<double> imu_mounting_deg_;  // roll, pitch, yaw of the IMU against the chassis
 };
 
 const char* on_off(const json& b) { return b.get<bool>() ? "on" : "off"; }
+
+// What the IMU's vibration leaves the slip detector (estimation::ImuVibration).
+void print_vibration(const json& j, std::FILE* out) {
+  if (!j.contains("imu_vibration")) return;
+  const json& v = j.at("imu_vibration");
+  if (!v.at("detector_speed_error_mps").is_number()) return;
+  std::fprintf(out,
+               "IMU vibration while moving: %.2f / %.2f m/s^2 RMS forward / vertical; the vertical channel wanders "
+               "%.3f m/s/sqrt(s) (the filter models %.4f), forward about %.3f: over the longest drive between stops "
+               "(%.0f s) the slip detector's speed is known to about %.2f m/s RMS",
+               v.at("forward_vibration_mps2").get<double>(), v.at("vertical_vibration_mps2").get<double>(),
+               v.at("vertical_walk_mps_per_sqrt_s").get<double>(), v.at("modelled_walk_mps_per_sqrt_s").get<double>(),
+               v.at("forward_walk_mps_per_sqrt_s").get<double>(), v.at("longest_drive_s").get<double>(),
+               v.at("detector_speed_error_mps").get<double>());
+  if (v.contains("slip_resolution") && v.at("slip_resolution").is_number()) {
+    std::fprintf(out, ", at the median speed of %.2f m/s a slip of about %.2f", v.at("median_speed_mps").get<double>(),
+                 v.at("slip_resolution").get<double>());
+  }
+  std::fprintf(out, "\n");
+}
 
 void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
   const json& u = j.at("updates");
@@ -214,8 +256,18 @@ void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
                on_off(u.at("zaru")), on_off(u.at("nhc")),
                aiding ? "on (slip judged by a second pass without it)" : "off",
                u.at("smoother").get<bool>() ? "RTS-smoothed" : "forward filter only");
+  if (u.contains("imu_mounting_deg")) {
+    const json& m = u.at("imu_mounting_deg");
+    if (m.at(0).get<double>() != 0.0 || m.at(1).get<double>() != 0.0 || m.at(2).get<double>() != 0.0) {
+      std::fprintf(out,
+                   "IMU mounting against the chassis: roll %.2f, pitch %.2f, yaw %.2f deg (NHC and wheel speed "
+                   "in chassis axes)\n",
+                   m.at(0).get<double>(), m.at(1).get<double>(), m.at(2).get<double>());
+    }
+  }
   print_health(j, out);
   std::fprintf(out, "%s\n", j.at("initial_heading").at("text").get<std::string>().c_str());
+  print_vibration(j, out);
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");
@@ -270,6 +322,18 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
   html << "<h2>" << title() << "</h2>\n";
   report_health(j, s);
   html << "<p>" << ReportSection::escape(j.at("initial_heading").at("text").get<std::string>()) << ".</p>\n";
+  if (j.contains("imu_vibration") && j.at("imu_vibration").at("detector_speed_error_mps").is_number()) {
+    const json& v = j.at("imu_vibration");
+    html << "<p>IMU vibration while moving: " << n(v.at("forward_vibration_mps2"), "%.2f") << " / "
+         << n(v.at("vertical_vibration_mps2"), "%.2f") << " m/s^2 RMS forward / vertical; the vertical channel wanders "
+         << n(v.at("vertical_walk_mps_per_sqrt_s"), "%.3f") << " m/s/sqrt(s) (the filter models "
+         << n(v.at("modelled_walk_mps_per_sqrt_s"), "%.4f") << "), forward about "
+         << n(v.at("forward_walk_mps_per_sqrt_s"), "%.3f") << ": over the longest drive between stops ("
+         << n(v.at("longest_drive_s"), "%.0f") << " s) the slip detector's speed is known to about "
+         << n(v.at("detector_speed_error_mps"), "%.2f") << " m/s RMS, at the median speed of "
+         << n(v.at("median_speed_mps"), "%.2f") << " m/s a slip of about " << n(v.at("slip_resolution"), "%.2f")
+         << ".</p>\n";
+  }
   if (j.at("has_reference").get<bool>()) {
     const json& ins = j.at("ins");
     const json& enu = ins.at("position_rmse_enu_m");

@@ -39,6 +39,7 @@ InsSlipResult run_ins_slip(const log::Log& lg, const InsSlipOptions& o, const In
   result.gps_accel_psd = ref.accel_psd;
   result.gps_outliers = static_cast<std::size_t>(std::count(ref.outlier.begin(), ref.outlier.end(), 1));
   result.no_slip = estimator.no_slip();
+  result.vibration = estimator.vibration();
   const analysis::InsReferenceStreams reference{names.gps, names.truth_slip};
   result.metrics = analysis::score_ins_slip(lg, result.estimates, reference);
   result.odometry = analysis::score_wheel_odometry(lg, result.estimates, reference);

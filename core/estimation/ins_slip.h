@@ -60,8 +60,11 @@ struct InsSlipOptions {
   // (bumps, and the IMU's mounting pitch: 2 deg at 0.7 m/s is 0.025 m/s);
   // see docs/validation/ins-slip.md for the sensitivity on the Pathfinder log.
   double nhc_vertical_sigma = 0.2;  // m/s
-  double odometry_sigma = 0.05;     // m/s
-  double odometry_gate = 6.63;      // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
+  // IMU axes relative to the chassis (roll, pitch, yaw, rad): the NHC and
+  // the wheel speed hold in chassis axes. Zero: IMU aligned with the chassis.
+  Eigen::Vector3d imu_mounting = Eigen::Vector3d::Zero();
+  double odometry_sigma = 0.05;  // m/s
+  double odometry_gate = 6.63;   // chi-square(1) 99 %: wheel speeds this far off (slip) are not used
   // Initial heading and position: the rigid rotation and translation that best
   // align a first pass's track with the GPS fixes over this much GPS track,
   // or longer, until the GPS fix noise alone leaves the heading known to
@@ -110,6 +113,24 @@ struct InitialHeading {
 };
 std::string describe(const InitialHeading& h);
 
+// What the IMU's vibration leaves the unaided slip detector: the vertical
+// specific force integrated while driving wanders like a random walk that a
+// ground vehicle's bounded height cannot have (an IMU error, measured without
+// GPS); scaled by the forward-to-vertical vibration ratio it predicts the
+// forward speed error of the detector between the stops (ZUPTs) that bound
+// a drive. See docs/validation/ins-slip.md, "Slip classes on real data".
+struct ImuVibration {
+  double vertical_walk = NAN;       // m/s/sqrt(s): vertical velocity random walk while moving
+  double forward_walk = NAN;        // m/s/sqrt(s): vertical_walk x forward / vertical vibration (at most 1)
+  double modelled_walk = NAN;       // m/s/sqrt(s): the filter's ImuNoise::accel_vrw
+  double forward_vibration = NAN;   // m/s^2 RMS, body x, above 5 Hz, while moving
+  double vertical_vibration = NAN;  // m/s^2 RMS, body z
+  double longest_drive = 0;         // s, the longest stretch between standstills
+  double speed_error = NAN;         // m/s: expected RMS forward speed error of the detector over it
+  double median_speed = NAN;        // m/s: the wheels' median speed while moving
+  double slip_resolution = NAN;     // speed_error / median_speed: the |s| the detector cannot resolve
+};
+
 struct InsSlipResult {
   log::Log estimates;  // streams estimate/ins/..., estimate/odometry/pose
   InsSlipMetrics metrics;
@@ -121,6 +142,7 @@ struct InsSlipResult {
   double gps_fix_sigma = NAN, gps_accel_psd = NAN;
   std::size_t gps_outliers = 0;
   double no_slip = NAN;  // the |s| band of the "none" class used (InsSlipOptions::no_slip)
+  ImuVibration vibration;
 };
 
 // Channel names the estimator reads (RoverLab's conventions; see

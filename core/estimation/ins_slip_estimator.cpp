@@ -326,6 +326,101 @@ void InsSlipEstimator::add_slip_stream(log::Log& out, const InsTrack& detector) 
   out.add_stream(std::move(slip));
 }
 
+namespace {
+// Window over which the vertical velocity increments are taken: long enough
+// that real bumps (bounded vertical speed) add little to a random walk.
+constexpr double kWalkWindow = 4.0;  // s
+// Vibration: deviation from a centred moving mean over this span.
+constexpr double kVibrationSpan = 0.2;  // s
+}  // namespace
+
+// Vertical velocity random walk while moving: the specific force along the
+// gravity direction of the nearest standstill, minus g, integrated over
+// windows of kWalkWindow; a white acceleration error q gives increments of
+// q^2 W. Over a drive of T s between two ZUPTs the smoothed speed error is a
+// Brownian bridge, RMS q sqrt(T / 6); with one end open, q sqrt(T / 2).
+ImuVibration InsSlipEstimator::vibration() const {
+  ImuVibration v;
+  v.modelled_walk = o_.noise.accel_vrw;
+  const auto& t = *in_.time;
+  const std::size_t n = in_.size();
+  const auto half = static_cast<std::size_t>(std::max(1.0, 0.5 * kVibrationSpan * imu_->mean_rate_hz()));
+  std::vector<double> fx(n), fz(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    fx[i] = (*in_.fx)[i];
+    fz[i] = (*in_.fz)[i];
+  }
+  const std::vector<double> sx = moving_std(fx, half), sz = moving_std(fz, half);
+  std::vector<double> speeds;  // the wheels', while moving and not too slow to count
+  double vib_x = 0, vib_z = 0, walk = 0;
+  std::size_t moving = 0, windows = 0;
+  bool bridge = false;
+  for (std::size_t a = 0; a < n;) {
+    if (in_.standstill[a] != 0) {
+      ++a;
+      continue;
+    }
+    std::size_t b = a;
+    while (b < n && in_.standstill[b] == 0) ++b;
+    // Gravity in body axes: the mean force over up to 2 s of standstill before the drive, else after it.
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    std::size_t count = 0;
+    for (std::size_t i = a; i-- > 0 && in_.standstill[i] != 0 && t[a] - t[i] < 2.0;) {
+      g += in_.force(i);
+      ++count;
+    }
+    if (count == 0) {
+      for (std::size_t i = b; i < n && in_.standstill[i] != 0 && t[i] - t[b] < 2.0; ++i) {
+        g += in_.force(i);
+        ++count;
+      }
+    }
+    if (t[b - 1] - t[a] > v.longest_drive) {
+      v.longest_drive = t[b - 1] - t[a];
+      bridge = a > 0 && b < n;  // a ZUPT at both ends
+    }
+    for (std::size_t i = a; i < b; ++i) {
+      vib_x += sx[i] * sx[i];
+      vib_z += sz[i] * sz[i];
+      const double speed = std::abs(in_.wheel_speed(in_.wheel_index(t[i]), o_.rover.wheel_radius));
+      if (speed >= o_.min_slip_speed) speeds.push_back(speed);
+    }
+    moving += b - a;
+    if (count > 0) {
+      g /= static_cast<double>(count);
+      const double g_norm = g.norm();
+      const Eigen::Vector3d up = g / g_norm;
+      double dv = 0, start = t[a];
+      for (std::size_t i = a + 1; i < b; ++i) {
+        dv += (in_.force(i - 1).dot(up) - g_norm) * (t[i] - t[i - 1]);
+        if (t[i] - start >= kWalkWindow) {
+          walk += dv * dv / (t[i] - start);
+          ++windows;
+          dv = 0;
+          start = t[i];
+        }
+      }
+    }
+    a = b;
+  }
+  if (moving == 0) return v;
+  v.forward_vibration = std::sqrt(vib_x / static_cast<double>(moving));
+  v.vertical_vibration = std::sqrt(vib_z / static_cast<double>(moving));
+  if (windows == 0 || v.vertical_vibration <= 0) return v;
+  v.vertical_walk = std::sqrt(walk / static_cast<double>(windows));
+  // The vertical channel's error scaled by the vibration ratio, never above it
+  // (without vibration the forward RMS is the manoeuvres, not an error).
+  v.forward_walk = v.vertical_walk * std::min(1.0, v.forward_vibration / v.vertical_vibration);
+  v.speed_error = v.forward_walk * std::sqrt(v.longest_drive / (bridge ? 6.0 : 2.0));
+  if (!speeds.empty()) {
+    const auto mid = speeds.begin() + static_cast<std::ptrdiff_t>(speeds.size() / 2);
+    std::nth_element(speeds.begin(), mid, speeds.end());
+    v.median_speed = *mid;
+    v.slip_resolution = v.speed_error / v.median_speed;
+  }
+  return v;
+}
+
 // Plain wheel odometry from the same initial pose.
 void InsSlipEstimator::add_odometry_stream(log::Log& out) const {
   const OdometryTrack odo =

@@ -29,6 +29,8 @@ class InsSlipEstimator {
   const ReferenceTrack& reference() const { return reference_; }
   // The |s| band of the "none" class (InsSlipOptions::no_slip).
   double no_slip() const;
+  // The IMU's vibration and what it leaves the detector (ImuVibration).
+  ImuVibration vibration() const;
 
  private:
   // Slip at the wheel samples within the IMU span, with its reference.

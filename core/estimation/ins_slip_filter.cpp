@@ -47,6 +47,15 @@ void InsTrack::record(std::size_t i, const InsState& s, const LocalFrame& f) {
   }
 }
 
+namespace {
+// IMU axes to chassis axes: the IMU rotated by the mounting roll, pitch and
+// yaw against the chassis, as a body against the navigation frame.
+Eigen::Matrix3d mounting_dcm(const InsSlipOptions& o) {
+  const Eigen::Vector3d& m = o.imu_mounting;
+  return dcm_from_euler(m.x(), m.y(), m.z());
+}
+}  // namespace
+
 std::size_t InsPassInputs::wheel_index(double t) const {
   return std::min(wheels->nearest_index(t), wheel_rates.time.size() - 1);
 }
@@ -58,8 +67,8 @@ InsFilterPass::InsFilterPass(const InsPassInputs& inputs, const InsSlipOptions& 
       process_(options.noise, options.ins),
       zupt_{options.zupt_sigma},
       zaru_{options.zaru_sigma},
-      nhc_{options.nhc_lever_arm, options.nhc_lateral_sigma, options.nhc_vertical_sigma},
-      wheel_speed_{options.odometry_sigma, options.odometry_gate},
+      nhc_{options.nhc_lever_arm, options.nhc_lateral_sigma, options.nhc_vertical_sigma, mounting_dcm(options)},
+      wheel_speed_{options.odometry_sigma, options.odometry_gate, mounting_dcm(options)},
       health_(options.health) {}
 
 InsErrorMatrix InsFilterPass::initial_covariance() const {

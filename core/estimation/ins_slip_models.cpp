@@ -35,10 +35,10 @@ InsMeasurement ZeroAngularRateUpdate::at(const InsState& s, const Eigen::Vector3
 
 InsMeasurement NonHolonomicUpdate::at(const InsState& s, const Eigen::Matrix3d& C_nb, const Eigen::Vector3d& w) const {
   InsMeasurement m;  // Eq. 21-23
-  const Eigen::Vector3d v_wheel = C_nb * s.v_n - skew(w) * lever_arm;
+  const Eigen::Vector3d v_wheel = C_cb * (C_nb * s.v_n - skew(w) * lever_arm);
   m.H = Eigen::MatrixXd::Zero(2, 15);
-  m.H.block<2, 3>(0, 0) = (C_nb * skew(s.v_n)).bottomRows<2>();  // attitude term, dropped in Eq. 22
-  m.H.block<2, 3>(0, 3) = C_nb.bottomRows<2>();
+  m.H.block<2, 3>(0, 0) = (C_cb * C_nb * skew(s.v_n)).bottomRows<2>();  // attitude term, dropped in Eq. 22
+  m.H.block<2, 3>(0, 3) = (C_cb * C_nb).bottomRows<2>();
   m.R = Eigen::MatrixXd::Zero(2, 2);
   m.R(0, 0) = lateral_sigma * lateral_sigma;
   m.R(1, 1) = vertical_sigma * vertical_sigma;
@@ -49,10 +49,10 @@ InsMeasurement NonHolonomicUpdate::at(const InsState& s, const Eigen::Matrix3d& 
 InsMeasurement WheelSpeedUpdate::at(const InsState& s, const Eigen::Matrix3d& C_nb, double wheel_speed) const {
   InsMeasurement m;
   m.H = Eigen::MatrixXd::Zero(1, 15);
-  m.H.block<1, 3>(0, 0) = (C_nb * skew(s.v_n)).topRows<1>();
-  m.H.block<1, 3>(0, 3) = C_nb.topRows<1>();
+  m.H.block<1, 3>(0, 0) = (C_cb * C_nb * skew(s.v_n)).topRows<1>();
+  m.H.block<1, 3>(0, 3) = (C_cb * C_nb).topRows<1>();
   m.y = Eigen::VectorXd(1);
-  m.y(0) = wheel_speed - (C_nb * s.v_n).x();
+  m.y(0) = wheel_speed - (C_cb * C_nb * s.v_n).x();
   m.R = Eigen::MatrixXd::Identity(1, 1) * sigma * sigma;
   m.gate = gate;
   return m;

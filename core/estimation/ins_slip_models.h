@@ -60,16 +60,18 @@ struct ZeroAngularRateUpdate {
 // nav-to-body rotation at the start of the update epoch, w the bias-corrected
 // angular rate.
 struct NonHolonomicUpdate {
-  Eigen::Vector3d lever_arm;             // body frame, IMU to wheel-axle centre, m
-  double lateral_sigma, vertical_sigma;  // m/s
+  Eigen::Vector3d lever_arm;                           // body frame, IMU to wheel-axle centre, m
+  double lateral_sigma, vertical_sigma;                // m/s
+  Eigen::Matrix3d C_cb = Eigen::Matrix3d::Identity();  // IMU body to chassis axes (mounting)
   InsMeasurement at(const InsState& s, const Eigen::Matrix3d& C_nb, const Eigen::Vector3d& w) const;
 };
 
 // Forward speed from the wheels (seed 002 section 5.1), gated so that slipping
 // wheels are not used. C_nb as for NonHolonomicUpdate.
 struct WheelSpeedUpdate {
-  double sigma;  // m/s
-  double gate;   // chi-square(1) quantile
+  double sigma;                                        // m/s
+  double gate;                                         // chi-square(1) quantile
+  Eigen::Matrix3d C_cb = Eigen::Matrix3d::Identity();  // IMU body to chassis axes (mounting)
   InsMeasurement at(const InsState& s, const Eigen::Matrix3d& C_nb, double wheel_speed) const;
 };
 

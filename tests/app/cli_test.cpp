@@ -433,6 +433,22 @@ TEST(CliInsSlip, LoopDriveWithTurnsInPlaceAndNoisyGps) {
   EXPECT_EQ(run_roverlab("scenario skid-steer-slip --drive spiral -o " + quote(dir.file("x.h5"))).exit_code, 2);
 }
 
+// --imu-mounting: the NHC and wheel speed then hold in chassis axes; the
+// angles are stated in the JSON and the text, and change the detector.
+TEST(CliInsSlip, ImuMountingIsStatedAndUsed) {
+  const std::string cmd = "estimate ins-slip " + quote(kPathfinder) + " -m wvu_pathfinder";
+  const CommandResult plain = run_roverlab(cmd + " --json");
+  const CommandResult mounted = run_roverlab(cmd + " --imu-mounting 0,-2,0 --json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(mounted.exit_code, 0) << mounted.err;
+  const auto a = nlohmann::json::parse(plain.out), b = nlohmann::json::parse(mounted.out);
+  EXPECT_EQ(a.at("updates").at("imu_mounting_deg"), nlohmann::json::array({0.0, 0.0, 0.0}));
+  EXPECT_NEAR(b.at("updates").at("imu_mounting_deg").at(1).get<double>(), -2.0, 1e-12);
+  EXPECT_NE(a.at("slip_confusion").at("accuracy").get<double>(), b.at("slip_confusion").at("accuracy").get<double>());
+  const CommandResult text = run_roverlab(cmd + " --imu-mounting 0,-2,0");
+  EXPECT_NE(text.out.find("IMU mounting against the chassis: roll 0.00, pitch -2.00"), std::string::npos) << text.out;
+}
+
 TEST(CliInsSlip, BadInputAndUsage) {
   TempDir dir;
   // A log without an imu stream.
@@ -452,6 +468,14 @@ TEST(CliInsSlip, BadInputAndUsage) {
     EXPECT_EQ(r.exit_code, 3) << name << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("o.h5")));
+  }
+  // --imu-mounting takes three angles within +-30 deg.
+  for (const std::string bad : {"0,2", "0,45,0", "0,nan,0"}) {
+    const CommandResult r = run_roverlab("estimate ins-slip " + quote(kPathfinder) +
+                                         " -m wvu_pathfinder --imu-mounting " + bad + " -o " + quote(dir.file("o.h5")));
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("imu-mounting"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir.file("o.h5")));
   }
   EXPECT_EQ(run_roverlab("scenario skid-steer-slip --effect wheel-size=2 -o " + quote(dir.file("s.h5"))).exit_code, 2);

@@ -2,6 +2,7 @@
 // logs with known biases and slip episodes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -318,6 +319,38 @@ TEST(InsSlipModels, PseudoMeasurementsAboutTheNominalState) {
   EXPECT_EQ(w.gate, 6.63);
 }
 
+// With the IMU pitched against the chassis (imu_mounting), the NHC and the
+// wheel speed hold in chassis axes: a velocity along the chassis's forward
+// axis satisfies them, and the same velocity breaks the constraints the
+// unrotated update asserts by v sin(pitch).
+TEST(InsSlipModels, ConstraintsHoldInChassisAxesWithAMountingAngle) {
+  const double pitch = -2.0 * M_PI / 180.0;                      // IMU nose down against the chassis
+  const Eigen::Matrix3d C_cb = dcm_from_euler(0.0, pitch, 0.0);  // IMU to chassis
+  InsState s;
+  s.C_bn = dcm_from_euler(0.01, 0.03, 0.4);  // IMU attitude
+  // 0.7 m/s along the chassis's forward axis, in the navigation frame.
+  s.v_n = s.C_bn * C_cb.transpose() * Eigen::Vector3d(0.7, 0.0, 0.0);
+  const Eigen::Matrix3d C_nb = s.C_bn.transpose();
+  const NonHolonomicUpdate mounted{Eigen::Vector3d::Zero(), 0.05, 0.2, C_cb};
+  EXPECT_LT(mounted.at(s, C_nb, Eigen::Vector3d::Zero()).y.norm(), 1e-12);
+  const NonHolonomicUpdate aligned{Eigen::Vector3d::Zero(), 0.05, 0.2};
+  EXPECT_NEAR(std::abs(aligned.at(s, C_nb, Eigen::Vector3d::Zero()).y(1)), 0.7 * std::sin(-pitch), 1e-9);
+  const WheelSpeedUpdate wheel{0.05, 6.63, C_cb};
+  EXPECT_NEAR(wheel.at(s, C_nb, 0.7).y(0), 0.0, 1e-12);
+  // H is the derivative of the chassis velocity: an attitude and velocity
+  // correction dx (applied by correct()) moves the innovation by -H dx,
+  // to first order.
+  s.v_n += Eigen::Vector3d(0.01, -0.02, 0.015);
+  InsErrorVector dx = InsErrorVector::Zero();
+  dx.segment<3>(0) = Eigen::Vector3d(2e-4, -1e-4, 3e-4);
+  dx.segment<3>(3) = Eigen::Vector3d(1e-4, 2e-4, -1e-4);
+  InsState t = s;
+  correct(t, dx);
+  const InsMeasurement m0 = mounted.at(s, s.C_bn.transpose(), Eigen::Vector3d::Zero());
+  const Eigen::VectorXd y1 = mounted.at(t, t.C_bn.transpose(), Eigen::Vector3d::Zero()).y;
+  EXPECT_LT((y1 - (m0.y - m0.H * dx)).norm(), 0.01 * (m0.H * dx).norm());  // to second order
+}
+
 // Issue 14 item 6: the bundled Pathfinder log with its GPS track rotated
 // about the first fix (the same as starting towards another direction: the
 // IMU and wheels see the same motion) and with white noise on the GPS. The
@@ -412,6 +445,47 @@ TEST(InsSlipPathfinder, RotatedAndNoisyGpsGiveTheErrorsOfTheOriginal) {
                 r.heading.heading * 180 / M_PI, r.heading.sigma * 180 / M_PI, m.position_rmse,
                 accuracy_against(r.estimates, base.estimates));
   }
+}
+
+// What limits the slip classes on the Pathfinder log: the IMU's vibration.
+// Its vertical channel, integrated while driving, wanders far more than the
+// filter's noise model (a ground vehicle cannot climb and sink by metres);
+// scaled to the forward axis, that walk predicts the unaided detector's
+// forward speed error against GPS over the drive between the two stops.
+// On the simulated drive (datasheet noise, no vibration) it predicts little.
+TEST(InsSlipPathfinder, VibrationPredictsTheDetectorsSpeedError) {
+  const InsSlipResult r = run_ins_slip(pathfinder_log(), {});
+  const ImuVibration& v = r.vibration;
+  EXPECT_GT(v.vertical_walk, 10.0 * v.modelled_walk);
+  EXPECT_GT(v.vertical_vibration, v.forward_vibration);
+  const log::Stream& slip = r.estimates.stream("estimate/ins/slip");
+  const auto& t = slip.time();
+  const auto& fwd = slip.channel("forward_speed").values;
+  const auto& ref = slip.channel("reference_speed").values;
+  const auto& rest = slip.channel("at_rest").values;
+  double ss = 0;
+  int count = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (rest[k] != 0 || !std::isfinite(ref[k]) || !std::isfinite(fwd[k])) continue;
+    ss += (fwd[k] - ref[k]) * (fwd[k] - ref[k]);
+    ++count;
+  }
+  ASSERT_GT(count, 300);
+  const double measured = std::sqrt(ss / count);
+  EXPECT_GT(v.speed_error, measured / 1.5);
+  EXPECT_LT(v.speed_error, measured * 1.5);
+  // The wheels' median speed while moving is the GPS's (no slip to speak of on this drive).
+  std::vector<double> gps;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (rest[k] == 0 && std::isfinite(ref[k]) && std::abs(ref[k]) >= 0.1) gps.push_back(std::abs(ref[k]));
+  std::nth_element(gps.begin(), gps.begin() + static_cast<std::ptrdiff_t>(gps.size() / 2), gps.end());
+  EXPECT_NEAR(v.median_speed, gps[gps.size() / 2], 0.03);
+  EXPECT_NEAR(v.slip_resolution, v.speed_error / v.median_speed, 1e-12);
+  std::printf("[figures] vibration: vertical walk %.3f, forward %.3f m/s/sqrt(s); predicted %.3f, measured %.3f m/s\n",
+              v.vertical_walk, v.forward_walk, v.speed_error, measured);
+  const InsSlipResult sim = run_ins_slip(simulation::simulate_skid_steer(simulation::default_slip_scenario(1)), {});
+  EXPECT_LT(sim.vibration.vertical_walk, 10.0 * sim.vibration.modelled_walk);
+  EXPECT_LT(sim.vibration.speed_error, 0.1 * v.speed_error);
 }
 
 // Seed 002 section 3.1 and Table 2: "no slip" is s ~ 0; against GPS the
