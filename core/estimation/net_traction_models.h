@@ -15,6 +15,7 @@
 // of the path under the wheel (positive uphill).
 
 #include <array>
+#include <cmath>
 
 #include <Eigen/Core>
 
@@ -53,6 +54,12 @@ constexpr int kContactAngle = 0, kNormalLoad = 3, kDrawbarPull = 6, kStates = 9;
 constexpr int kMeasurements = 9;
 }  // namespace wheel_force
 
+// The fixed-size state and measurement vectors of the three filters.
+using GeneralState = Eigen::Matrix<double, general::kStates, 1>;
+using GeneralMeasurement = Eigen::Matrix<double, general::kMeasurements, 1>;
+using WheelForceState = Eigen::Matrix<double, wheel_force::kStates, 1>;
+using WheelForceMeasurement = Eigen::Matrix<double, wheel_force::kMeasurements, 1>;
+
 // What the estimators take from the rover: its geometry (data, from the
 // rover description) and Table 4.1's masses, inertias and damping.
 struct RoverConstants {
@@ -68,6 +75,7 @@ struct RoverConstants {
 struct ConfigurationTerms {
   simulation::rocker_bogie::Mat inertia = simulation::rocker_bogie::Mat::Zero();
   simulation::rocker_bogie::Vec gravity = simulation::rocker_bogie::Vec::Zero();  // dV/dPhi
+  double sin_pitch = 0, cos_pitch = 1;
 };
 ConfigurationTerms configuration_terms(const RoverConstants& rover, double pitch, double bogie);
 
@@ -88,8 +96,10 @@ class GeneralProcessModel {
   GeneralProcessModel(const RoverConstants& rover, double step);
   void set_torques(const Eigen::Vector3d& torques) { torques_ = torques; }
   // Eq. 5.24: the wheels' angular accelerations at state x.
-  Eigen::Vector3d wheel_accelerations(const Eigen::VectorXd& x) const;
-  void operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  Eigen::Vector3d wheel_accelerations(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // For Eigen::VectorXd and GeneralState.
+  template <class State>
+  void operator()(const State& x, State& out) const;
 
  private:
   // The configuration terms at (pitch, bogie): most sigma points share the
@@ -110,10 +120,15 @@ class GeneralProcessModel {
 class GeneralMeasurementModel {
  public:
   explicit GeneralMeasurementModel(double gravity = 9.81) : gravity_(gravity) {}
-  void operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  // For Eigen::VectorXd and GeneralState / GeneralMeasurement.
+  template <class State, class Measurement>
+  void operator()(const State& x, Measurement& out) const;
 
  private:
   double gravity_;
+  // The last pitch's sine and cosine: half the sigma points share the
+  // centre's propagated pitch.
+  mutable double pitch_ = NAN, sin_ = 0, cos_ = 1;
 };
 
 // One sample of the sensor vector z (Eq. 5.17) and the commanded torques.
@@ -130,8 +145,8 @@ struct SensorSample {
 // them in place of the gyro and the differenced bogie angle, as Estimators 2
 // and 3 use estimates for the contact angles (Eq. 5.55): the gyro's noise
 // (0.56 deg/s) would otherwise dominate the slips.
-Eigen::VectorXd general_measurement(const RoverConstants& rover, const SensorSample& now, const SensorSample& before,
-                                    double step, const Eigen::Vector2d* rates = nullptr);
+GeneralMeasurement general_measurement(const RoverConstants& rover, const SensorSample& now, const SensorSample& before,
+                                       double step, const Eigen::Vector2d* rates = nullptr);
 
 // The angle of the link carrying each wheel's force sensor (epsilon of
 // Figure 5.9, clockwise): the body for wheel 1, the bogie for wheels 2 and 3.
@@ -143,21 +158,29 @@ Eigen::Vector3d sensor_angles(double pitch, double bogie);
 class ForceMeasurementModel {
  public:
   void set_sensor_angles(const Eigen::Vector3d& angles) { angles_ = angles; }
-  void operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  // For Eigen::VectorXd and WheelForceState / WheelForceMeasurement.
+  template <class State, class Measurement>
+  void operator()(const State& x, Measurement& out) const;
 
  private:
   Eigen::Vector3d angles_ = Eigen::Vector3d::Zero();
+  // Each wheel's last angle gamma + epsilon with its sine and cosine: a
+  // sigma point moves wheel i's contact angle only along the first i + 1
+  // directions of the state's (lower triangular) factor.
+  mutable std::array<double, 3> angle_{NAN, NAN, NAN}, sin_{}, cos_{};
 };
 
 // Eq. 5.55-5.56: contact angles measured from Estimator 1's configuration
 // and generalised velocity (the direction of each wheel centre's velocity).
-Eigen::Vector3d contact_angle_measurement(const RoverConstants& rover, const Eigen::VectorXd& general_state);
+Eigen::Vector3d contact_angle_measurement(const RoverConstants& rover,
+                                          const Eigen::Ref<const Eigen::VectorXd>& general_state);
 
 // Eq. 5.63-5.66: the loads across the links that single-axis sensors do not
 // see, from Estimator 1's net bogie moment and horizontal force and the
 // sensed loads along the links. Wheels 2 and 3 (one bogie, one line of
 // action) share their sum in proportion to their loads.
-Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover, const Eigen::VectorXd& general_state,
+Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover,
+                                              const Eigen::Ref<const Eigen::VectorXd>& general_state,
                                               const Eigen::Vector3d& loads);
 
 }  // namespace roverlab::estimation::net_traction

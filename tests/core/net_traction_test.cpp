@@ -16,7 +16,9 @@
 
 #include "core/analysis/net_traction_surface.h"
 #include "core/common/error.h"
+#include "core/estimation/fixed_unscented_filter.h"
 #include "core/estimation/net_traction.h"
+#include "core/estimation/nonlinear_filter.h"
 #include "core/simulation/rocker_bogie.h"
 #include "core/simulation/rocker_bogie_dynamics.h"
 #include "importers/soil_file.h"
@@ -195,6 +197,66 @@ TEST(NetTraction, WheelForceEstimatorsLoseTheForceSplitAtStandstillAndTheContact
     EXPECT_EQ(lifted.rank, 8);
     EXPECT_EQ(lifted.lost, (std::vector<int>{wf::kContactAngle}));
   }
+}
+
+// The estimators run on fixed-size filters (bench/net_traction_bench.cpp):
+// the same transform as the generic UKF (nonlinear_filter.h) with additive
+// noises, so both must give the same estimates up to rounding over a stretch
+// of the run (Estimator 1's 22 states; Estimators 2 and 3's identity process).
+TEST(NetTraction, FixedSizeFiltersGiveTheGenericUkfsEstimates) {
+  const auto& r = rolling_result(20);
+  nt::RoverConstants rover;
+  nt::GeneralProcessModel f(rover, 0.02);
+  f.set_torques(Eigen::Vector3d(0.6, 0.5, 0.55));
+  const nt::GeneralMeasurementModel h;
+  nt::ForceMeasurementModel hw;
+  hw.set_sensor_angles(Eigen::Vector3d(0.05, 0.1, 0.1));
+  const auto same = [](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    return (a - b).norm() <= 1e-9 * (1.0 + b.norm());
+  };
+  estimation::FixedUnscentedFilter<gen::kStates, gen::kMeasurements> fixed;
+  estimation::UnscentedKalmanFilter generic;
+  estimation::FixedUnscentedFilter<wf::kStates, wf::kMeasurements> fixed_w;
+  estimation::UnscentedKalmanFilter generic_w;
+  generic.additive_measurement_noise = generic_w.additive_measurement_noise = true;
+  const Eigen::Index k0 = 250;
+  fixed.x = generic.x = r.general.state.row(k0).transpose();
+  fixed.P = generic.P = (r.general.sigma.row(k0).array().square() + 1e-6).matrix().asDiagonal();
+  fixed_w.x = generic_w.x = r.two_axis.state.row(k0).transpose();
+  fixed_w.P = generic_w.P = (r.two_axis.sigma.row(k0).array().square() + 1e-4).matrix().asDiagonal();
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(gen::kStates, 1e-5);
+  const Eigen::VectorXd rg = Eigen::VectorXd::Constant(gen::kMeasurements, 1e-4);
+  const Eigen::VectorXd rw = Eigen::VectorXd::Constant(wf::kMeasurements, 1e-3);
+  const Eigen::MatrixXd none(0, 0);
+  const auto fg = [&](const Eigen::VectorXd& x, const Eigen::VectorXd&, Eigen::VectorXd& out) { f(x, out); };
+  const auto hg = [&](const Eigen::VectorXd& x, const Eigen::VectorXd&, Eigen::VectorXd& out) { h(x, out); };
+  const auto identity = [](const Eigen::VectorXd& x, const Eigen::VectorXd&, Eigen::VectorXd& out) { out = x; };
+  const auto hwg = [&](const Eigen::VectorXd& x, const Eigen::VectorXd&, Eigen::VectorXd& out) { hw(x, out); };
+  const auto ff = [&](const nt::GeneralState& x, nt::GeneralState& out) { f(x, out); };
+  const auto hf = [&](const nt::GeneralState& x, nt::GeneralMeasurement& out) { h(x, out); };
+  const auto hwf = [&](const nt::WheelForceState& x, nt::WheelForceMeasurement& out) { hw(x, out); };
+  for (Eigen::Index k = k0 + 1; k < k0 + 41; ++k) {  // measurements of the run's later estimates, offset
+    Eigen::VectorXd y(gen::kMeasurements), yw(wf::kMeasurements);
+    h(Eigen::VectorXd(r.general.state.row(k).transpose()), y);
+    y.array() += 0.01;
+    hw(Eigen::VectorXd(r.two_axis.state.row(k).transpose()), yw);
+    yw.array() += 0.1;
+    generic.P.diagonal() += q;
+    fixed.P.diagonal() += q;
+    ASSERT_TRUE(generic.step(fg, none, hg, rg.asDiagonal(), y));
+    ASSERT_TRUE(fixed.step(ff, hf, rg, y));
+    generic_w.P.diagonal().array() += 1e-3;
+    fixed_w.P.diagonal().array() += 1e-3;
+    ASSERT_TRUE(generic_w.step(identity, none, hwg, rw.asDiagonal(), yw));
+    ASSERT_TRUE(fixed_w.update(hwf, rw, yw));
+    EXPECT_NEAR(fixed.nis, generic.nis, 1e-9 * (1.0 + generic.nis));
+    EXPECT_NEAR(fixed_w.log_det_pyy, generic_w.log_det_pyy, 1e-9 * (1.0 + std::abs(generic_w.log_det_pyy)));
+  }
+  EXPECT_TRUE(same(fixed.x, generic.x)) << (fixed.x - generic.x).norm();
+  EXPECT_TRUE(same(fixed.P, generic.P)) << (fixed.P - generic.P).norm();
+  EXPECT_TRUE(same(fixed_w.x, generic_w.x)) << (fixed_w.x - generic_w.x).norm();
+  EXPECT_TRUE(same(fixed_w.P, generic_w.P)) << (fixed_w.P - generic_w.P).norm();
+  EXPECT_GT((fixed.x - Eigen::VectorXd(r.general.state.row(k0).transpose())).norm(), 1e-3);  // it moved
 }
 
 // Section 5.8 / Table 5.2: order-2 surfaces from the estimates against the
