@@ -219,6 +219,24 @@ NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation
   return m;
 }
 
+estimation::NetTractionResult single_axis_second_pass(const log::Log& lg,
+                                                      const estimation::net_traction::RoverConstants& rover,
+                                                      const estimation::NetTractionOptions& options,
+                                                      const estimation::NetTractionResult& first_pass,
+                                                      const SteadyStateOptions& steady) {
+  constexpr int kShapeOrder = 2;
+  const NetTractionModel m = rebuild_net_traction_model(lg, first_pass, first_pass.single_axis, steady, kShapeOrder);
+  const terramechanics::PolynomialSurface shape = m.drawbar_pull.estimate.surface;
+  const TraversedRegion region = m.region;
+  estimation::NetTractionOptions o = options;
+  o.force_sensors = estimation::ForceSensors::single_axis;
+  o.bogie_split_shape = [shape, region](double load, double slip) {
+    return shape(std::clamp(load, region.load_min, region.load_max),
+                 std::clamp(slip, region.slip_min, region.slip_max));
+  };
+  return estimation::run_net_traction(lg, rover, o);
+}
+
 namespace {
 
 // tau = 1 + 2 sum_k rho_k (k >= 1, while rho_k > 0: Geyer's initial positive

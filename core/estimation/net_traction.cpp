@@ -339,7 +339,13 @@ void NetTractionEstimator::wheel_force_step(std::size_t k, WheelForceFilter& fil
     nt::WheelForceMeasurement y;
     y.head<3>() = contact_angles_;
     y.segment<3>(3) = s.load;
-    y.tail<3>() = two_axis ? s.perpendicular : nt::perpendicular_from_net_forces(rover_, x1, s.load);
+    if (two_axis) {
+      y.tail<3>() = s.perpendicular;
+    } else if (o_.bogie_split_shape) {
+      y.tail<3>() = nt::perpendicular_from_net_forces(rover_, x1, s.load, contact_angles_, o_.bogie_split_shape);
+    } else {
+      y.tail<3>() = nt::perpendicular_from_net_forces(rover_, x1, s.load);  // Eq. 5.66
+    }
     nt::WheelForceMeasurement R = two_axis ? r2_ : r3_;
     for (int i = 0; i < 3; ++i) {
       if (std::isnan(y(i)) || std::abs(s.load(i)) < kAirborneLoad) {  // standing, or off the ground

@@ -33,6 +33,10 @@ struct NetTractionOptions {
   // With two-axis sensors, also run Estimator 3 (ignoring the perpendicular
   // loads) for comparison.
   bool compare_single_axis = true;
+  // Estimator 3's split of the bogie's perpendicular load between wheels 2
+  // and 3: empty, Eq. 5.66 (in proportion to their sensed loads); else by
+  // this drawbar-pull shape (net_traction::perpendicular_from_net_forces).
+  net_traction::DrawbarPullShape bogie_split_shape;
   std::function<void(double)> progress;  // fraction done; may throw to cancel
   // Issue 17: an update whose normalised innovation squared exceeds the
   // chi-square quantile of this probability (degrees of freedom: the

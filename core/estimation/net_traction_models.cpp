@@ -256,4 +256,45 @@ Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover, const
   return perp;
 }
 
+// Eq. 5.66 refined by a drawbar-pull shape: F_perp,i = F_L,i (mu_i - t) /
+// (1 + mu_i t) (Eq. 5.58-5.59 divided), t = tan(a) of the bogie wheels'
+// common angle a, mu_i = shape(W_i, s_i) / W_i + delta, delta solved by
+// Newton for Eq. 5.64's sum.
+Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                              const Eigen::Vector3d& loads, const Eigen::Vector3d& contact_angles,
+                                              const DrawbarPullShape& shape) {
+  Eigen::Vector3d perp = perpendicular_from_net_forces(rover, x, loads);  // Eq. 5.64-5.66
+  if (!shape || !std::isfinite(contact_angles(1)) || !std::isfinite(contact_angles(2))) return perp;
+  const double sum = perp(1) + perp(2);
+  const double a = 0.5 * (contact_angles(1) + contact_angles(2)) + sensor_angles(x(kPitch), x(kBogie))(1);
+  const double t = std::tan(a);
+  double m[2], fl[2];
+  for (int j = 0; j < 2; ++j) {
+    const int i = j + 1;
+    const double load = loads(i) * std::cos(a) - perp(i) * std::sin(a);  // W of Eq. 5.66's split
+    if (!(load > 1.0)) return perp;
+    m[j] = shape(load, x(kSlip + i)) / load;
+    if (!(std::abs(m[j]) < 1.0)) return perp;
+    fl[j] = loads(i);
+  }
+  double delta = 0.0, g = -sum;
+  Eigen::Vector2d split = perp.tail<2>();
+  for (int it = 0; it < 8; ++it) {
+    g = -sum;
+    double dg = 0;
+    for (int j = 0; j < 2; ++j) {
+      const double mu = m[j] + delta, den = 1.0 + mu * t;
+      split(j) = fl[j] * (mu - t) / den;
+      g += split(j);
+      dg += fl[j] * (1.0 + t * t) / (den * den);
+    }
+    if (std::abs(g) < 1e-9 * (1.0 + std::abs(sum)) || !(std::abs(dg) > 1e-12)) break;
+    delta -= g / dg;
+  }
+  const bool solved = split.allFinite() && std::abs(g) < 1e-6 * (1.0 + std::abs(sum)) && std::abs(m[0] + delta) < 1.0 &&
+                      std::abs(m[1] + delta) < 1.0;
+  if (solved) perp.tail<2>() = split;
+  return perp;
+}
+
 }  // namespace roverlab::estimation::net_traction

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 
 #include <Eigen/Core>
 
@@ -182,5 +183,25 @@ Eigen::Vector3d contact_angle_measurement(const RoverConstants& rover,
 Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover,
                                               const Eigen::Ref<const Eigen::VectorXd>& general_state,
                                               const Eigen::Vector3d& loads);
+
+// A drawbar-pull surface DP(W, s) (N) whose shape splits the bogie's
+// perpendicular load (below); only differences of DP/W between wheels 2 and
+// 3 matter.
+using DrawbarPullShape = std::function<double(double load, double slip)>;
+
+// Eq. 5.63-5.66 with Eq. 5.66's split refined by a drawbar-pull shape.
+// Eq. 5.66 is exact when the two bogie wheels have the same contact angle
+// and the same DP/W; this keeps the first assumption (their angle a is the
+// mean of the measured contact angles, Eq. 5.56, plus the bogie's) and
+// drops the second: with mu = DP/W, F_perp = F_L (mu - tan a) / (1 + mu tan
+// a), mu_i = shape(W_i, s_i) / W_i + delta (W_i from Eq. 5.66's split, s_i
+// Estimator 1's slips) and one common delta solved so that F_perp2 +
+// F_perp3 is Eq. 5.64's sum. Only the shape's difference of DP/W between
+// the two wheels matters. Falls back to Eq. 5.66 where a contact angle is
+// not measured, |mu| would reach 1, or the solve fails.
+Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover,
+                                              const Eigen::Ref<const Eigen::VectorXd>& general_state,
+                                              const Eigen::Vector3d& loads, const Eigen::Vector3d& contact_angles,
+                                              const DrawbarPullShape& shape);
 
 }  // namespace roverlab::estimation::net_traction
