@@ -9,7 +9,9 @@
 // its matrices live on the stack and its products are unrolled by Eigen.
 // Used by the net-traction estimators (22 + 11 and 9 + 9).
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -30,6 +32,10 @@ class FixedUnscentedFilter {
   double gate = HUGE_VAL;  // NIS gate of the update (a chi-square quantile)
   double nis = 0, log_det_pyy = 0;
   bool rejected = false;
+  // The model's promise that measurement j is state copied_state[j]
+  // unchanged (h's row j copies it; -1: it does not). Pxy's column j is
+  // then Pxx's column copied_state[j] and is not summed again.
+  std::array<int, NY> copied_state = not_copied();
 
   // One predict-update cycle: f(const State&, State&) and
   // h(const State&, Measurement&). Returns false when P or Pyy is not
@@ -53,11 +59,22 @@ class FixedUnscentedFilter {
     lower_outer_sum(EX_, Pxx_);
     Pxx_ *= wi_;
     Pxx_.noalias() += W2_ * sx * sx.transpose();
-    outer_sum(EX_, EY_, Pxy_);
-    Pxy_ *= wi_;
-    Pxy_.noalias() += W2_ * sx * sy_.transpose();
     x = X0_ + sx;
     P = Pxx_.template selfadjointView<Eigen::Lower>();
+    int summed[NY], n = 0;
+    for (int j = 0; j < NY; ++j) {
+      if (copied_state[static_cast<std::size_t>(j)] < 0) summed[n++] = j;
+    }
+    Pxy_.setZero();
+    for (int k = 0; k < kPoints; ++k) {
+      for (int i = 0; i < n; ++i) Pxy_.col(summed[i]) += EX_.col(k) * EY_(summed[i], k);
+    }
+    Pxy_ *= wi_;
+    Pxy_.noalias() += W2_ * sx * sy_.transpose();
+    for (int j = 0; j < NY; ++j) {
+      if (copied_state[static_cast<std::size_t>(j)] >= 0)
+        Pxy_.col(j) = P.col(copied_state[static_cast<std::size_t>(j)]);
+    }
     return correct(r, y);
   }
 
@@ -98,6 +115,12 @@ class FixedUnscentedFilter {
         for (int i = j; i < N; ++i) m[i] += e[i] * ej;
       }
     }
+  }
+
+  static std::array<int, NY> not_copied() {
+    std::array<int, NY> a{};
+    a.fill(-1);
+    return a;
   }
 
   // M = A B^T as a sum of outer products (independent accumulations: a
@@ -153,20 +176,21 @@ class FixedUnscentedFilter {
     llt_y_.compute(Pyy_);
     if (llt_y_.info() != Eigen::Success) return false;
     const Eigen::Matrix<double, NY, NY>& Ly = llt_y_.matrixLLT();  // lower triangle: L
-    Eigen::Matrix<double, NY, 1 + NX> B;  // [y - ym, Pxy^T], then L^-1 of it (forward substitution)
-    B.col(0) = y - (Y0_ + sy_);
-    B.template rightCols<NX>() = Pxy_.transpose();
+    // Bt = [y - ym, Pxy^T]^T, then (L^-1 [y - ym, Pxy^T])^T: forward
+    // substitution on contiguous columns.
+    Eigen::Matrix<double, 1 + NX, NY> Bt;
+    Bt.row(0) = (y - (Y0_ + sy_)).transpose();
+    Bt.template bottomRows<NX>() = Pxy_;
     for (int i = 0; i < NY; ++i) {
-      for (int j = 0; j < i; ++j) B.row(i) -= Ly(i, j) * B.row(j);
-      B.row(i) /= Ly(i, i);
+      for (int j = 0; j < i; ++j) Bt.col(i) -= Ly(i, j) * Bt.col(j);
+      Bt.col(i) /= Ly(i, i);
     }
-    nis = B.col(0).squaredNorm();
+    nis = Bt.row(0).squaredNorm();
     log_det_pyy = 2.0 * Ly.diagonal().array().log().sum();
     rejected = !(nis <= gate);
     if (rejected) return true;  // x and P as predicted
-    const auto z = B.col(0);
-    const Eigen::Matrix<double, NX, NY> Wt = B.template rightCols<NX>().transpose();
-    x.noalias() += Wt * z;
+    const Eigen::Matrix<double, NX, NY> Wt = Bt.template bottomRows<NX>();
+    x.noalias() += Wt * Bt.row(0).transpose();
     Covariance KK;
     lower_outer_sum(Wt, KK);
     P -= KK;

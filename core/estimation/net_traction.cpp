@@ -203,6 +203,7 @@ void NetTractionEstimator::initial_state() {
   p.segment<3>(kSlip).setConstant(0.25);
   general_.x = x;
   general_.P = p.asDiagonal();
+  general_.copied_state = kCopiedStates;  // Pxy's columns of those measurements are Pxx's
   nt::WheelForceState x2 = nt::WheelForceState::Zero(), p2;
   x2.segment<3>(wf::kNormalLoad) = s0.load;
   p2.head<3>().setConstant(0.1);

@@ -46,6 +46,9 @@ constexpr int kSlip = 19;               // i_1..3 (3)
 constexpr int kStates = 22;
 // Eq. 5.37: wheel rates (3), pitch, bogie, specific force x and z, forward speed, slips (3).
 constexpr int kMeasurements = 11;
+// Eq. 5.44 and 5.47: the measurements h_1 copies from a state (-1: computed).
+constexpr std::array<int, kMeasurements> kCopiedStates = {
+    kWheelRate, kWheelRate + 1, kWheelRate + 2, kPitch, kBogie, -1, -1, kForwardSpeed, kSlip, kSlip + 1, kSlip + 2};
 }  // namespace general
 
 // Eq. 5.48: Estimators 2 and 3: contact angles (3), normal loads (3), drawbar pulls (3).

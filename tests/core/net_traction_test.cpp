@@ -219,6 +219,7 @@ TEST(NetTraction, FixedSizeFiltersGiveTheGenericUkfsEstimates) {
   estimation::FixedUnscentedFilter<wf::kStates, wf::kMeasurements> fixed_w;
   estimation::UnscentedKalmanFilter generic_w;
   generic.additive_measurement_noise = generic_w.additive_measurement_noise = true;
+  fixed.copied_state = gen::kCopiedStates;
   const Eigen::Index k0 = 250;
   fixed.x = generic.x = r.general.state.row(k0).transpose();
   fixed.P = generic.P = (r.general.sigma.row(k0).array().square() + 1e-6).matrix().asDiagonal();
