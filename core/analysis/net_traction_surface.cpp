@@ -225,9 +225,17 @@ estimation::NetTractionResult single_axis_second_pass(const log::Log& lg,
                                                       const estimation::NetTractionResult& first_pass,
                                                       const SteadyStateOptions& steady) {
   constexpr int kShapeOrder = 2;
-  const NetTractionModel m = rebuild_net_traction_model(lg, first_pass, first_pass.single_axis, steady, kShapeOrder);
-  const terramechanics::PolynomialSurface shape = m.drawbar_pull.estimate.surface;
-  const TraversedRegion region = m.region;
+  std::array<std::vector<double>, 3> acceleration;  // the points of rebuild_net_traction_model
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::VectorXd c = first_pass.wheel_acceleration.col(i);
+    acceleration[static_cast<std::size_t>(i)].assign(c.data(), c.data() + c.size());
+  }
+  const std::vector<TractionPoint> points =
+      averaged_points(first_pass.time, estimated_series(first_pass, first_pass.single_axis),
+                      steady_state_mask(first_pass.time, acceleration, steady), steady);
+  const TraversedRegion region = traversed_region(points);
+  const terramechanics::PolynomialSurface shape =
+      fit_traction_surface(surface_samples(points, TractionQuantity::drawbar_pull), kShapeOrder).surface;
   estimation::NetTractionOptions o = options;
   o.force_sensors = estimation::ForceSensors::single_axis;
   o.bogie_split_shape = [shape, region](double load, double slip) {
