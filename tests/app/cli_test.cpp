@@ -609,7 +609,22 @@ TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
   const CommandResult single =
       run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors single-axis --json");
   ASSERT_EQ(single.exit_code, 0) << single.err;
-  EXPECT_EQ(nlohmann::json::parse(single.out).at("estimators").count("two-axis"), 0u);
+  const nlohmann::json sj = nlohmann::json::parse(single.out);
+  EXPECT_EQ(sj.at("estimators").count("two-axis"), 0u);
+  // The bogie split is stated: by default the two-pass shape split, on
+  // request Eq. 5.66 alone; they differ.
+  const nlohmann::json& split = sj.at("estimators").at("single-axis").at("bogie_split");
+  EXPECT_EQ(split.at("method"), "shape");
+  EXPECT_EQ(split.at("passes"), 2);
+  EXPECT_NE(split.at("assumption").get<std::string>().find("contact angle"), std::string::npos);
+  const CommandResult eq = run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors single-axis --json " +
+                                        "--bogie-split eq-5.66");
+  ASSERT_EQ(eq.exit_code, 0) << eq.err;
+  const nlohmann::json ej = nlohmann::json::parse(eq.out).at("estimators").at("single-axis");
+  EXPECT_EQ(ej.at("bogie_split").at("method"), "eq-5.66");
+  EXPECT_NE(ej.at("drawbar_pull").at("coefficients"),
+            sj.at("estimators").at("single-axis").at("drawbar_pull").at("coefficients"));
+  EXPECT_NE(text.out.find("bogie split (section 5.6): shape, 2 pass(es)"), std::string::npos);
 }
 
 TEST(CliNetTraction, BadInputAndUsage) {
@@ -628,6 +643,7 @@ TEST(CliNetTraction, BadInputAndUsage) {
   EXPECT_NE(r.err.find("no forces stream"), std::string::npos) << r.err;
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --order 9").exit_code, 2);
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors three-axis").exit_code, 2);
+  EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --bogie-split halves").exit_code, 2);
   // A rover that has not moved yet (0.3 s of spin-up) is refused in one line.
   ASSERT_EQ(run_roverlab("simulate flat_60s --duration 0.3 -o " + quote(dir.file("still.h5"))).exit_code, 0);
   const CommandResult still = run_roverlab("estimate net-traction " + quote(dir.file("still.h5")));
