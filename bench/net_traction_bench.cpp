@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "core/analysis/net_traction_surface.h"
 #include "core/estimation/net_traction.h"
 #include "core/simulation/rocker_bogie.h"
 #include "importers/soil_file.h"
@@ -38,6 +39,20 @@ void BM_ThreeEstimators200s(benchmark::State& state) {
       benchmark::Counter(200.0 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ThreeEstimators200s)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
+
+// Single-axis sensors' second pass (`--bogie-split shape`, the default):
+// the order-2 DP surface of the first pass's points, then Estimators 1 and 3
+// again with the shape split. Not part of the three-UKF target; it adds to
+// `estimate net-traction`'s time.
+void BM_SingleAxisSecondPass200s(benchmark::State& state) {
+  const log::Log& lg = rolling_log();
+  const estimation::NetTractionResult first = estimation::run_net_traction(lg, {}, {});
+  for (auto _ : state) {
+    auto r = analysis::single_axis_second_pass(lg, {}, {}, first, {});
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_SingleAxisSecondPass200s)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 
 }  // namespace
 

@@ -219,6 +219,32 @@ NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation
   return m;
 }
 
+estimation::NetTractionResult single_axis_second_pass(const log::Log& lg,
+                                                      const estimation::net_traction::RoverConstants& rover,
+                                                      const estimation::NetTractionOptions& options,
+                                                      const estimation::NetTractionResult& first_pass,
+                                                      const SteadyStateOptions& steady) {
+  constexpr int kShapeOrder = 2;
+  std::array<std::vector<double>, 3> acceleration;  // the points of rebuild_net_traction_model
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::VectorXd c = first_pass.wheel_acceleration.col(i);
+    acceleration[static_cast<std::size_t>(i)].assign(c.data(), c.data() + c.size());
+  }
+  const std::vector<TractionPoint> points =
+      averaged_points(first_pass.time, estimated_series(first_pass, first_pass.single_axis),
+                      steady_state_mask(first_pass.time, acceleration, steady), steady);
+  const TraversedRegion region = traversed_region(points);
+  const terramechanics::PolynomialSurface shape =
+      fit_traction_surface(surface_samples(points, TractionQuantity::drawbar_pull), kShapeOrder).surface;
+  estimation::NetTractionOptions o = options;
+  o.force_sensors = estimation::ForceSensors::single_axis;
+  o.bogie_split_shape = [shape, region](double load, double slip) {
+    return shape(std::clamp(load, region.load_min, region.load_max),
+                 std::clamp(slip, region.slip_min, region.slip_max));
+  };
+  return estimation::run_net_traction(lg, rover, o);
+}
+
 namespace {
 
 // tau = 1 + 2 sum_k rho_k (k >= 1, while rho_k > 0: Geyer's initial positive

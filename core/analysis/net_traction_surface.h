@@ -141,6 +141,19 @@ NetTractionModel rebuild_net_traction_model(const log::Log& log, const estimatio
                                             const estimation::FilterTrack& wheel_forces,
                                             const SteadyStateOptions& options, int order, int max_order = 4);
 
+// Section 5.6's single-axis estimator in two passes: pass 1 (first_pass,
+// Eq. 5.66: the bogie's perpendicular load split in proportion to the
+// sensed loads); pass 2 runs Estimators 1 and 3 again with the split from
+// the order-2 DP(W, s) surface fitted to pass 1's steady-state points (all
+// wheels), held at the edge of their region beyond it
+// (net_traction::perpendicular_from_net_forces with a shape). Throws
+// DataError when pass 1 leaves too few points.
+estimation::NetTractionResult single_axis_second_pass(const log::Log& log,
+                                                      const estimation::net_traction::RoverConstants& rover,
+                                                      const estimation::NetTractionOptions& options,
+                                                      const estimation::NetTractionResult& first_pass,
+                                                      const SteadyStateOptions& steady);
+
 // Issue 12 item 5: soil parameters fitted (Ceres, core/terramechanics/
 // soil_identification.h) to the estimated steady-state points (drawbar pull
 // and resistive torque at each load and slip), from `start`, with +-1

@@ -27,8 +27,6 @@ constexpr double kUnavailable = 1e8;
 // rejections in a row (0.5 s).
 constexpr std::size_t kGateSettle = 250;
 constexpr std::size_t kMaxRejected = 25;
-// The process noise is added to P before each step (see general_step).
-const Eigen::MatrixXd kNoProcessNoise(0, 0);
 
 const char* const kStreams[] = {"joints", "imu", "velocimeter", "forces", "commands"};
 
@@ -152,7 +150,7 @@ void NetTractionEstimator::read_sensors() {
 // the measurements built from the sensors.
 void NetTractionEstimator::assemble_noise() {
   using namespace gen;  // NOLINT(google-build-using-namespace)
-  Eigen::VectorXd q(kStates);
+  nt::GeneralState& q = q1_;
   q.segment<3>(kWheelRate).setConstant(1e-9);
   q.segment<3>(kResistiveTorque).setConstant(4e-6);
   q(kPitch) = q(kBogie) = 1e-10;
@@ -163,31 +161,26 @@ void NetTractionEstimator::assemble_noise() {
   q(kForceX) = q(kForceZ) = 2e-3;
   q(kForwardSpeed) = 1e-8;
   q.segment<3>(kSlip).setConstant(2e-6);
-  Q1_ = q.asDiagonal();
   const double encoder = 2.143e-5 * kDeg, accel = 1.245e-3;
-  r1_.resize(kMeasurements);
   r1_.head<3>().setConstant(2.0 * encoder * encoder / (step_ * step_));  // Eq. 5.38 of two readings
   r1_(3) = 1e-3 * 1e-3;  // Eq. 5.39: accelerometer noise and the rover's own accelerations
   r1_(4) = std::pow(9.155e-4 * kDeg, 2);
   r1_(5) = r1_(6) = accel * accel;
   r1_(7) = 1e-3 * 1e-3;
   r1_.tail<3>().setConstant(0.06 * 0.06);  // the velocimeter's 1 mm/s over a 2 cm/s rim speed
-  Eigen::VectorXd q2(wf::kStates), r2(wf::kMeasurements);
-  q2.head<3>().setConstant(2e-7);
-  q2.tail<6>().setConstant(2.5e-3);
-  Q2_ = q2.asDiagonal();
-  r2.head<3>().setConstant(0.03 * 0.03);
-  r2.tail<6>().setConstant(3.255e-2 * 3.255e-2);
-  R2_ = r2.asDiagonal();
-  r2.tail<3>().setConstant(0.5 * 0.5);  // Eq. 5.64-5.66: built from Estimator 1's net forces
-  R3_ = r2.asDiagonal();
+  q2_.head<3>().setConstant(2e-7);
+  q2_.tail<6>().setConstant(2.5e-3);
+  r2_.head<3>().setConstant(0.03 * 0.03);
+  r2_.tail<6>().setConstant(3.255e-2 * 3.255e-2);
+  r3_ = r2_;
+  r3_.tail<3>().setConstant(0.5 * 0.5);  // Eq. 5.64-5.66: built from Estimator 1's net forces
 }
 
 void NetTractionEstimator::initial_state() {
   open_until_.fill(kGateSettle);
   using namespace gen;  // NOLINT(google-build-using-namespace)
   const nt::SensorSample& s0 = samples_.front();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(kStates);
+  nt::GeneralState x = nt::GeneralState::Zero();
   x(kPitch) = std::atan2(-s0.specific_force_x, s0.specific_force_z);
   x(kBogie) = s0.bogie;
   x.segment<3>(kResistiveTorque) = s0.torque;
@@ -197,7 +190,7 @@ void NetTractionEstimator::initial_state() {
   x(kMomentBody) = c.gravity(2) + s0.torque.sum();
   x(kMomentBogie) = c.gravity(3) + s0.torque(1) + s0.torque(2);
   x(kForceZ) = c.gravity(1);
-  Eigen::VectorXd p(kStates);
+  nt::GeneralState p;
   p.segment<3>(kWheelRate).setConstant(1e-4);
   p.segment<3>(kResistiveTorque).setConstant(1.0);
   p(kPitch) = 1e-4;
@@ -210,15 +203,14 @@ void NetTractionEstimator::initial_state() {
   p.segment<3>(kSlip).setConstant(0.25);
   general_.x = x;
   general_.P = p.asDiagonal();
-  general_.additive_process_noise = general_.additive_measurement_noise = true;
-  Eigen::VectorXd x2 = Eigen::VectorXd::Zero(wf::kStates), p2(wf::kStates);
+  general_.copied_state = kCopiedStates;  // Pxy's columns of those measurements are Pxx's
+  nt::WheelForceState x2 = nt::WheelForceState::Zero(), p2;
   x2.segment<3>(wf::kNormalLoad) = s0.load;
   p2.head<3>().setConstant(0.1);
   p2.tail<6>().setConstant(100.0);
-  for (UnscentedKalmanFilter* f : {&two_axis_filter_, &single_axis_filter_}) {
+  for (WheelForceFilter* f : {&two_axis_filter_, &single_axis_filter_}) {
     f->x = x2;
     f->P = p2.asDiagonal();
-    f->additive_process_noise = f->additive_measurement_noise = true;
   }
 }
 
@@ -243,7 +235,7 @@ void NetTractionEstimator::filter_pass() {
   if (two_axis_) sized(result_.two_axis, wf::kStates);
   if (run_single_axis_) sized(result_.single_axis, wf::kStates);
   result_.wheel_acceleration.resize(n, 3);
-  const auto store = [](FilterTrack& t, const UnscentedKalmanFilter& f, Eigen::Index k) {
+  const auto store = [](FilterTrack& t, const GeneralFilter& f, Eigen::Index k) {
     t.state.row(k) = f.x.transpose();
     t.sigma.row(k) = f.P.diagonal().cwiseMax(0.0).cwiseSqrt().transpose();
   };
@@ -290,8 +282,8 @@ void NetTractionEstimator::path_positions() {
 // slips a standing rover cannot measure are gated out.
 void NetTractionEstimator::general_step(std::size_t k) {
   const Eigen::Vector2d rates(general_.x(gen::kPitchRate), general_.x(gen::kBogieRate));
-  Eigen::VectorXd y = nt::general_measurement(rover_, samples_[k], samples_[k - 1], step_, &rates);
-  Eigen::VectorXd r = r1_;
+  nt::GeneralMeasurement y = nt::general_measurement(rover_, samples_[k], samples_[k - 1], step_, &rates);
+  nt::GeneralMeasurement r = r1_;
   bool standing = false;
   for (int i = 0; i < 3; ++i) {
     if (std::isnan(y(gen::kMeasurements - 3 + i))) {
@@ -303,17 +295,14 @@ void NetTractionEstimator::general_step(std::size_t k) {
   if (standing) ++result_.standstill_samples;
   general_.gate = gate(0, k, static_cast<int>((r.array() < kUnavailable).count()));
   process_.set_torques(samples_[k - 1].torque);
-  const UnscentedKalmanFilter::Function f = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
-                                                   Eigen::VectorXd& out) { process_(x, out); };
-  const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
-                                                   Eigen::VectorXd& out) { measurement_(x, out); };
+  const auto f = [this](const nt::GeneralState& x, nt::GeneralState& out) { process_(x, out); };
+  const auto h = [this](const nt::GeneralState& x, nt::GeneralMeasurement& out) { measurement_(x, out); };
   // Eq. 5.12's Q added before the sigma points rather than after them: the
   // same for the random walks, f(x + w) ~ f(x) + F w for the rest, and the
   // UKF then needs no sigma points along the 22 process noises (half the
   // augmented state's).
-  general_.P += Q1_;
-  R1_step_ = r.asDiagonal();
-  general_.step(f, kNoProcessNoise, h, R1_step_, y);
+  general_.P.diagonal() += q1_;
+  general_.step(f, h, r, y);
   count_rejection(0, k, general_.rejected);
 }
 
@@ -342,33 +331,35 @@ void NetTractionEstimator::count_rejection(int which, std::size_t k, bool reject
 }
 
 // Eq. 5.49-5.67 for Estimator 2 (two_axis) or 3 at sample k.
-void NetTractionEstimator::wheel_force_step(std::size_t k, UnscentedKalmanFilter& filter, bool two_axis,
+void NetTractionEstimator::wheel_force_step(std::size_t k, WheelForceFilter& filter, bool two_axis,
                                             FilterTrack& track) {
   const auto r = static_cast<Eigen::Index>(k);
   if (k > 0) {
     const nt::SensorSample& s = samples_[k];
-    const Eigen::VectorXd& x1 = general_.x;
-    Eigen::VectorXd y(wf::kMeasurements);
+    const nt::GeneralState& x1 = general_.x;
+    nt::WheelForceMeasurement y;
     y.head<3>() = contact_angles_;
     y.segment<3>(3) = s.load;
-    y.tail<3>() = two_axis ? s.perpendicular : nt::perpendicular_from_net_forces(rover_, x1, s.load);
-    Eigen::MatrixXd& R = R_step_;
-    R = two_axis ? R2_ : R3_;
+    if (two_axis) {
+      y.tail<3>() = s.perpendicular;
+    } else if (o_.bogie_split_shape) {
+      y.tail<3>() = nt::perpendicular_from_net_forces(rover_, x1, s.load, contact_angles_, o_.bogie_split_shape);
+    } else {
+      y.tail<3>() = nt::perpendicular_from_net_forces(rover_, x1, s.load);  // Eq. 5.66
+    }
+    nt::WheelForceMeasurement R = two_axis ? r2_ : r3_;
     for (int i = 0; i < 3; ++i) {
       if (std::isnan(y(i)) || std::abs(s.load(i)) < kAirborneLoad) {  // standing, or off the ground
         y(i) = filter.x(i);
-        R(i, i) = kUnavailable;
+        R(i) = kUnavailable;
       }
     }
     force_measurement_.set_sensor_angles(nt::sensor_angles(x1(gen::kPitch), x1(gen::kBogie)));
-    const UnscentedKalmanFilter::Function f = [](const Eigen::VectorXd& x, const Eigen::VectorXd&,
-                                                 Eigen::VectorXd& out) { out = x; };  // Eq. 5.50-5.52, 5.61
-    const UnscentedKalmanFilter::Function h = [this](const Eigen::VectorXd& x, const Eigen::VectorXd&,
-                                                     Eigen::VectorXd& out) { force_measurement_(x, out); };
-    filter.P += Q2_;  // Eq. 5.50-5.52: x + w through the identity, as Q after it
+    const auto h = [this](const nt::WheelForceState& x, nt::WheelForceMeasurement& out) { force_measurement_(x, out); };
+    filter.P.diagonal() += q2_;  // Eq. 5.50-5.52: x + w through the identity, as Q after it
     const int which = two_axis ? 1 : 2;
-    filter.gate = gate(which, k, static_cast<int>((R.diagonal().array() < kUnavailable).count()));
-    filter.step(f, kNoProcessNoise, h, R, y);
+    filter.gate = gate(which, k, static_cast<int>((R.array() < kUnavailable).count()));
+    filter.update(h, R, y);  // Eq. 5.50-5.52, 5.61: the identity process model
     count_rejection(which, k, filter.rejected);
   }
   track.state.row(r) = filter.x.transpose();

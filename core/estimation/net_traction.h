@@ -16,8 +16,8 @@
 
 #include <Eigen/Core>
 
+#include "core/estimation/fixed_unscented_filter.h"
 #include "core/estimation/net_traction_models.h"
-#include "core/estimation/nonlinear_filter.h"
 #include "core/log/log.h"
 
 namespace roverlab::estimation {
@@ -33,6 +33,10 @@ struct NetTractionOptions {
   // With two-axis sensors, also run Estimator 3 (ignoring the perpendicular
   // loads) for comparison.
   bool compare_single_axis = true;
+  // Estimator 3's split of the bogie's perpendicular load between wheels 2
+  // and 3: empty, Eq. 5.66 (in proportion to their sensed loads); else by
+  // this drawbar-pull shape (net_traction::perpendicular_from_net_forces).
+  net_traction::DrawbarPullShape bogie_split_shape;
   std::function<void(double)> progress;  // fraction done; may throw to cancel
   // Issue 17: an update whose normalised innovation squared exceeds the
   // chi-square quantile of this probability (degrees of freedom: the
@@ -83,7 +87,10 @@ class NetTractionEstimator {
   void initial_state();
   void filter_pass();
   void general_step(std::size_t k);
-  void wheel_force_step(std::size_t k, UnscentedKalmanFilter& filter, bool two_axis, FilterTrack& track);
+  using GeneralFilter = FixedUnscentedFilter<net_traction::general::kStates, net_traction::general::kMeasurements>;
+  using WheelForceFilter =
+      FixedUnscentedFilter<net_traction::wheel_force::kStates, net_traction::wheel_force::kMeasurements>;
+  void wheel_force_step(std::size_t k, WheelForceFilter& filter, bool two_axis, FilterTrack& track);
   void path_positions();
   double gate(int which, std::size_t k, int dof);
   void count_rejection(int which, std::size_t k, bool rejected);
@@ -98,11 +105,16 @@ class NetTractionEstimator {
   net_traction::GeneralProcessModel process_;
   net_traction::GeneralMeasurementModel measurement_;
   net_traction::ForceMeasurementModel force_measurement_;
-  UnscentedKalmanFilter general_, two_axis_filter_, single_axis_filter_;
-  Eigen::MatrixXd Q1_, Q2_, R2_, R3_;
-  Eigen::VectorXd r1_;                // Estimator 1's measurement variances, before gating
-  Eigen::MatrixXd R1_step_, R_step_;  // this step's gated measurement covariances (kept: no allocation per step)
-  std::array<double, 12> gates_{};    // NIS gate by degrees of freedom (0: not yet computed)
+  // Fixed-size filters (the generic UKF's algebra at compile-time sizes).
+  GeneralFilter general_;
+  WheelForceFilter two_axis_filter_, single_axis_filter_;
+  // Process noise variances per step and measurement noise variances
+  // (before gating) of Estimator 1 and of Estimators 2 and 3.
+  net_traction::GeneralState q1_;
+  net_traction::GeneralMeasurement r1_;
+  net_traction::WheelForceState q2_;
+  net_traction::WheelForceMeasurement r2_, r3_;
+  std::array<double, 12> gates_{};                            // NIS gate by degrees of freedom (0: not yet computed)
   std::array<std::size_t, 3> rejected_in_a_row_{};            // by Estimator 1, 2, 3
   std::array<std::size_t, 3> open_until_{};                   // the gate is open before this sample
   Eigen::Vector3d contact_angles_ = Eigen::Vector3d::Zero();  // this sample's, from Estimator 1

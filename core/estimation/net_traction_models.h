@@ -15,6 +15,8 @@
 // of the path under the wheel (positive uphill).
 
 #include <array>
+#include <cmath>
+#include <functional>
 
 #include <Eigen/Core>
 
@@ -44,6 +46,9 @@ constexpr int kSlip = 19;               // i_1..3 (3)
 constexpr int kStates = 22;
 // Eq. 5.37: wheel rates (3), pitch, bogie, specific force x and z, forward speed, slips (3).
 constexpr int kMeasurements = 11;
+// Eq. 5.44 and 5.47: the measurements h_1 copies from a state (-1: computed).
+constexpr std::array<int, kMeasurements> kCopiedStates = {
+    kWheelRate, kWheelRate + 1, kWheelRate + 2, kPitch, kBogie, -1, -1, kForwardSpeed, kSlip, kSlip + 1, kSlip + 2};
 }  // namespace general
 
 // Eq. 5.48: Estimators 2 and 3: contact angles (3), normal loads (3), drawbar pulls (3).
@@ -52,6 +57,12 @@ constexpr int kContactAngle = 0, kNormalLoad = 3, kDrawbarPull = 6, kStates = 9;
 // Eq. 5.53: contact angles (3), loads along the links (3), loads across them (3).
 constexpr int kMeasurements = 9;
 }  // namespace wheel_force
+
+// The fixed-size state and measurement vectors of the three filters.
+using GeneralState = Eigen::Matrix<double, general::kStates, 1>;
+using GeneralMeasurement = Eigen::Matrix<double, general::kMeasurements, 1>;
+using WheelForceState = Eigen::Matrix<double, wheel_force::kStates, 1>;
+using WheelForceMeasurement = Eigen::Matrix<double, wheel_force::kMeasurements, 1>;
 
 // What the estimators take from the rover: its geometry (data, from the
 // rover description) and Table 4.1's masses, inertias and damping.
@@ -68,6 +79,7 @@ struct RoverConstants {
 struct ConfigurationTerms {
   simulation::rocker_bogie::Mat inertia = simulation::rocker_bogie::Mat::Zero();
   simulation::rocker_bogie::Vec gravity = simulation::rocker_bogie::Vec::Zero();  // dV/dPhi
+  double sin_pitch = 0, cos_pitch = 1;
 };
 ConfigurationTerms configuration_terms(const RoverConstants& rover, double pitch, double bogie);
 
@@ -88,8 +100,10 @@ class GeneralProcessModel {
   GeneralProcessModel(const RoverConstants& rover, double step);
   void set_torques(const Eigen::Vector3d& torques) { torques_ = torques; }
   // Eq. 5.24: the wheels' angular accelerations at state x.
-  Eigen::Vector3d wheel_accelerations(const Eigen::VectorXd& x) const;
-  void operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  Eigen::Vector3d wheel_accelerations(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // For Eigen::VectorXd and GeneralState.
+  template <class State>
+  void operator()(const State& x, State& out) const;
 
  private:
   // The configuration terms at (pitch, bogie): most sigma points share the
@@ -110,10 +124,15 @@ class GeneralProcessModel {
 class GeneralMeasurementModel {
  public:
   explicit GeneralMeasurementModel(double gravity = 9.81) : gravity_(gravity) {}
-  void operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  // For Eigen::VectorXd and GeneralState / GeneralMeasurement.
+  template <class State, class Measurement>
+  void operator()(const State& x, Measurement& out) const;
 
  private:
   double gravity_;
+  // The last pitch's sine and cosine: half the sigma points share the
+  // centre's propagated pitch.
+  mutable double pitch_ = NAN, sin_ = 0, cos_ = 1;
 };
 
 // One sample of the sensor vector z (Eq. 5.17) and the commanded torques.
@@ -130,8 +149,8 @@ struct SensorSample {
 // them in place of the gyro and the differenced bogie angle, as Estimators 2
 // and 3 use estimates for the contact angles (Eq. 5.55): the gyro's noise
 // (0.56 deg/s) would otherwise dominate the slips.
-Eigen::VectorXd general_measurement(const RoverConstants& rover, const SensorSample& now, const SensorSample& before,
-                                    double step, const Eigen::Vector2d* rates = nullptr);
+GeneralMeasurement general_measurement(const RoverConstants& rover, const SensorSample& now, const SensorSample& before,
+                                       double step, const Eigen::Vector2d* rates = nullptr);
 
 // The angle of the link carrying each wheel's force sensor (epsilon of
 // Figure 5.9, clockwise): the body for wheel 1, the bogie for wheels 2 and 3.
@@ -143,21 +162,49 @@ Eigen::Vector3d sensor_angles(double pitch, double bogie);
 class ForceMeasurementModel {
  public:
   void set_sensor_angles(const Eigen::Vector3d& angles) { angles_ = angles; }
-  void operator()(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  // For Eigen::VectorXd and WheelForceState / WheelForceMeasurement.
+  template <class State, class Measurement>
+  void operator()(const State& x, Measurement& out) const;
 
  private:
   Eigen::Vector3d angles_ = Eigen::Vector3d::Zero();
+  // Each wheel's last angle gamma + epsilon with its sine and cosine: a
+  // sigma point moves wheel i's contact angle only along the first i + 1
+  // directions of the state's (lower triangular) factor.
+  mutable std::array<double, 3> angle_{NAN, NAN, NAN}, sin_{}, cos_{};
 };
 
 // Eq. 5.55-5.56: contact angles measured from Estimator 1's configuration
 // and generalised velocity (the direction of each wheel centre's velocity).
-Eigen::Vector3d contact_angle_measurement(const RoverConstants& rover, const Eigen::VectorXd& general_state);
+Eigen::Vector3d contact_angle_measurement(const RoverConstants& rover,
+                                          const Eigen::Ref<const Eigen::VectorXd>& general_state);
 
 // Eq. 5.63-5.66: the loads across the links that single-axis sensors do not
 // see, from Estimator 1's net bogie moment and horizontal force and the
 // sensed loads along the links. Wheels 2 and 3 (one bogie, one line of
 // action) share their sum in proportion to their loads.
-Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover, const Eigen::VectorXd& general_state,
+Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover,
+                                              const Eigen::Ref<const Eigen::VectorXd>& general_state,
                                               const Eigen::Vector3d& loads);
+
+// A drawbar-pull surface DP(W, s) (N) whose shape splits the bogie's
+// perpendicular load (below); only differences of DP/W between wheels 2 and
+// 3 matter.
+using DrawbarPullShape = std::function<double(double load, double slip)>;
+
+// Eq. 5.63-5.66 with Eq. 5.66's split refined by a drawbar-pull shape.
+// Eq. 5.66 is exact when the two bogie wheels have the same contact angle
+// and the same DP/W; this keeps the first assumption (their angle a is the
+// mean of the measured contact angles, Eq. 5.56, plus the bogie's) and
+// drops the second: with mu = DP/W, F_perp = F_L (mu - tan a) / (1 + mu tan
+// a), mu_i = shape(W_i, s_i) / W_i + delta (W_i from Eq. 5.66's split, s_i
+// Estimator 1's slips) and one common delta solved so that F_perp2 +
+// F_perp3 is Eq. 5.64's sum. Only the shape's difference of DP/W between
+// the two wheels matters. Falls back to Eq. 5.66 where a contact angle is
+// not measured, |mu| would reach 1, or the solve fails.
+Eigen::Vector3d perpendicular_from_net_forces(const RoverConstants& rover,
+                                              const Eigen::Ref<const Eigen::VectorXd>& general_state,
+                                              const Eigen::Vector3d& loads, const Eigen::Vector3d& contact_angles,
+                                              const DrawbarPullShape& shape);
 
 }  // namespace roverlab::estimation::net_traction

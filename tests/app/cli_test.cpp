@@ -633,7 +633,23 @@ TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
   const CommandResult single =
       run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors single-axis --json");
   ASSERT_EQ(single.exit_code, 0) << single.err;
-  EXPECT_EQ(nlohmann::json::parse(single.out).at("estimators").count("two-axis"), 0u);
+  const nlohmann::json sj = nlohmann::json::parse(single.out);
+  EXPECT_EQ(sj.at("estimators").count("two-axis"), 0u);
+  // The bogie split is stated: by default Eq. 5.66 (one pass), on request
+  // the two-pass shape split; they differ.
+  const nlohmann::json& split = sj.at("estimators").at("single-axis").at("bogie_split");
+  EXPECT_EQ(split.at("method"), "eq-5.66");
+  EXPECT_EQ(split.at("passes"), 1);
+  const CommandResult shaped =
+      run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors single-axis --json --bogie-split shape");
+  ASSERT_EQ(shaped.exit_code, 0) << shaped.err;
+  const nlohmann::json hj = nlohmann::json::parse(shaped.out).at("estimators").at("single-axis");
+  EXPECT_EQ(hj.at("bogie_split").at("method"), "shape");
+  EXPECT_EQ(hj.at("bogie_split").at("passes"), 2);
+  EXPECT_NE(hj.at("bogie_split").at("assumption").get<std::string>().find("contact angle"), std::string::npos);
+  EXPECT_NE(hj.at("drawbar_pull").at("coefficients"),
+            sj.at("estimators").at("single-axis").at("drawbar_pull").at("coefficients"));
+  EXPECT_NE(text.out.find("bogie split (section 5.6): eq-5.66, 1 pass(es)"), std::string::npos);
 }
 
 TEST(CliNetTraction, BadInputAndUsage) {
@@ -652,6 +668,7 @@ TEST(CliNetTraction, BadInputAndUsage) {
   EXPECT_NE(r.err.find("no forces stream"), std::string::npos) << r.err;
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --order 9").exit_code, 2);
   EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors three-axis").exit_code, 2);
+  EXPECT_EQ(run_roverlab("estimate net-traction " + quote(sim) + " --bogie-split halves").exit_code, 2);
   // A rover that has not moved yet (0.3 s of spin-up) is refused in one line.
   ASSERT_EQ(run_roverlab("simulate flat_60s --duration 0.3 -o " + quote(dir.file("still.h5"))).exit_code, 0);
   const CommandResult still = run_roverlab("estimate net-traction " + quote(dir.file("still.h5")));
