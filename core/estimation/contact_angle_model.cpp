@@ -262,6 +262,9 @@ void WheelMeasurementModel::set_inputs(const Inputs& in) {
   in_ = in;
   for (int w = 0; w < layout_.nw; ++w) {
     geometry_[w] = wheel_geometry(*m_, w, in.q);
+    const WheelGeometry& g = geometry_[w];
+    joint_velocity_[w].setZero();
+    for (int k = 0; k < g.nj; ++k) joint_velocity_[w] += g.J[k] * in.qdot[g.joint[k]];
     memo_[w][0].gamma = memo_[w][1].gamma = NAN;
   }
 }
@@ -292,12 +295,14 @@ const WheelMeasurementModel::RotationMemo& WheelMeasurementModel::rotation(int w
   hit->gamma = gamma;
   hit->beta = beta;
   hit->C = final_rotation(frame_, hit->cg, hit->sg, hit->cb, hit->sb);
+  hit->T.noalias() = (geometry_[w].Rd * hit->C).transpose();
   return *hit;
 }
 
 // One wheel's three rows of h, from its geometry at the measured joint
 // angles (recomputed only for a sigma point that moves one of its joints)
-// and its final rotation (kept while gamma and beta repeat).
+// and its final rotation (kept while gamma and beta repeat), with the
+// joints' share of the wheel velocity at the measured rates kept too.
 void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, const Eigen::VectorXd& nz,
                                            Eigen::VectorXd& y) {
   const int nw = layout_.nw, nq = layout_.nq, na = layout_.na;
@@ -305,22 +310,32 @@ void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, cons
   const Eigen::Vector3d omega = in.gyro - nz.head<3>();
   const double* nzq = nz.data() + 3;        // joint-angle noises
   const double* nzqd = nz.data() + 3 + nq;  // joint-rate noises
-  double qd[kMaxJoints], qn[kMaxJoints];
-  const WheelGeometry* g = &geometry_[w];
-  WheelGeometry moved;
-  for (int k = 0; k < g->nj; ++k) {
-    const int j = g->joint[k];
-    qd[j] = in.qdot[j] - nzqd[j];
-    if (nzq[j] != 0.0 && g == &geometry_[w]) {
-      for (int i = 0; i < nq; ++i) qn[i] = in.q[i] - nzq[i];
-      moved = wheel_geometry(*m_, w, qn);
-      g = &moved;
-    }
+  const WheelGeometry& g = geometry_[w];
+  bool moved = false, rate_noise = false;
+  for (int k = 0; k < g.nj; ++k) {
+    moved = moved || nzq[g.joint[k]] != 0.0;
+    rate_noise = rate_noise || nzqd[g.joint[k]] != 0.0;
   }
   const double gamma = na >= 6 ? x(12 + w) : 0.0, beta = na >= 12 ? x(18 + w) : 0.0;
   const RotationMemo& rot = rotation(w, gamma, beta);
-  const Eigen::Vector3d u =
-      wheel_measurement(*g, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
+  Eigen::Vector3d u;
+  if (!moved) {  // wheel_measurement at the measured joint angles, (R_d C)^T kept: Eq. 4.8, 4.20 / Table 5.1
+    Eigen::Vector3d wv = x.segment<3>(3) + omega.cross(g.r);
+    if (rate_noise) {
+      for (int k = 0; k < g.nj; ++k) wv += g.J[k] * (in.qdot[g.joint[k]] - nzqd[g.joint[k]]);
+    } else {
+      wv += joint_velocity_[w];
+    }
+    u.noalias() = rot.T * wv;
+    const double sc = frame_ == kinematics::WheelFrame::side_slip ? rot.cb : 1.0;
+    u.x() = sc * u.x() / ((1.0 - x(6 + w)) * m_->wheel_radius);
+  } else {  // a joint-angle noise moves the wheel: its geometry again
+    double qd[kMaxJoints], qn[kMaxJoints];
+    for (int k = 0; k < g.nj; ++k) qd[g.joint[k]] = in.qdot[g.joint[k]] - nzqd[g.joint[k]];
+    for (int i = 0; i < nq; ++i) qn[i] = in.q[i] - nzq[i];
+    const WheelGeometry moved_geometry = wheel_geometry(*m_, w, qn);
+    u = wheel_measurement(moved_geometry, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
+  }
   for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
 }
 

@@ -242,10 +242,11 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
                             const Eigen::VectorXd& y0, Eigen::VectorXd& y);
 
  private:
-  // A wheel's final rotation at (gamma, beta) with their cosines and sines.
+  // A wheel's final rotation at (gamma, beta) with their cosines and sines,
+  // and T = (R_d C)^T, g to the final frame at the measured joint angles.
   struct RotationMemo {
     double gamma = NAN, beta = NAN, cg = 1.0, sg = 0.0, cb = 1.0, sb = 0.0;
-    Eigen::Matrix3d C;
+    Eigen::Matrix3d C, T;
   };
   const RotationMemo& rotation(int wheel, double gamma, double beta);
   void evaluate_wheel(int wheel, const Eigen::VectorXd& x, const Eigen::VectorXd& n, Eigen::VectorXd& y);
@@ -255,8 +256,9 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
   ContactLayout layout_;
   std::vector<std::vector<int>> wheels_of_joint_;
   Inputs in_;
-  WheelGeometry geometry_[6];  // at the measured joint angles
-  RotationMemo memo_[6][2];    // kept while gamma and beta repeat
+  WheelGeometry geometry_[6];          // at the measured joint angles
+  Eigen::Vector3d joint_velocity_[6];  // sum_k J_k qdot_k there, at the measured joint rates
+  RotationMemo memo_[6][2];            // kept while gamma and beta repeat
 };
 
 }  // namespace roverlab::estimation::contact
