@@ -99,6 +99,8 @@ WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, k
   // Table 5.2: the contact frame is the drive frame turned by -gamma about
   // its axle then by pi/2 about x; the side-slip frame turns by beta more.
   Eigen::Matrix3d C = Eigen::Matrix3d::Identity(), dC_dg = Eigen::Matrix3d::Zero(), dC_db = Eigen::Matrix3d::Zero();
+  const bool ss = frame == kinematics::WheelFrame::side_slip;
+  const double cb = ss ? std::cos(beta) : 1.0, sb = ss ? std::sin(beta) : 0.0;  // one sincos
   if (frame != kinematics::WheelFrame::drive) {
     const double cg = std::cos(gamma), sg = std::sin(gamma);
     Eigen::Matrix3d Rz, dRz;  // Rz(-gamma) and its derivative with respect to gamma
@@ -108,8 +110,7 @@ WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, k
     Rx << 1, 0, 0, 0, 0, -1, 0, 1, 0;
     C = Rz * Rx;
     dC_dg = dRz * Rx;
-    if (frame == kinematics::WheelFrame::side_slip) {
-      const double cb = std::cos(beta), sb = std::sin(beta);
+    if (ss) {
       Eigen::Matrix3d Rb, dRb;
       Rb << cb, -sb, 0, sb, cb, 0, 0, 0, 1;
       dRb << -sb, -cb, 0, cb, -sb, 0, 0, 0, 0;
@@ -133,14 +134,13 @@ WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, k
     D.col(11 + k) = Rt * Jq[k];
   }
   // Eq. 4.20 / Table 5.1: rate = (cos beta) u_x / ((1 - s) r), then u_y, u_z.
-  const bool ss = frame == kinematics::WheelFrame::side_slip;
-  const double den = (1.0 - slip) * m.wheel_radius, sc = ss ? std::cos(beta) : 1.0;
+  const double den = (1.0 - slip) * m.wheel_radius, sc = cb;
   WheelLinearization out;
   out.value = Eigen::Vector3d(sc * u.x() / den, u.y(), u.z());
   out.d = D;
   out.d.row(0) *= sc / den;
   out.d(0, 3) = sc * u.x() / ((1.0 - slip) * den);
-  if (ss) out.d(0, 5) -= std::sin(beta) * u.x() / den;
+  if (ss) out.d(0, 5) -= sb * u.x() / den;
   return out;
 }
 
