@@ -89,8 +89,7 @@ inline void WheelMeasurementModel::add_noise_covariance(const WheelLinearization
           B.noalias() += r(3 + nw + nq + j) * lin[w1].d.col(11 + a) * lin[w2].d.col(11 + b).transpose();
         }
       }
-      S.template block<3, 3>(3 * w1, 3 * w2) += B;
-      if (w2 != w1) S.template block<3, 3>(3 * w2, 3 * w1) += B.transpose();
+      S.template block<3, 3>(3 * w1, 3 * w2) += B;  // lower blocks only: the factorisation reads no more
     }
   }
 }
@@ -170,36 +169,23 @@ class FastEkf {
       innov.template segment<3>(3 * w) = Eigen::Vector3d(in.wheel_rate[w], 0.0, 0.0) - lin[w].value;
       for (int p = 0; p < 3; ++p) priv[w][p] = 6 + 6 * p + w;
     }
-    // P H^T and H P H^T, one wheel (three rows of H) at a time.
+    // P H^T and H P H^T, one wheel (three rows of H) at a time; with the
+    // reset S's lower blocks straight from P11's velocity block and the
+    // private variances, P H^T only if the Joseph form follows.
     Eigen::Matrix<double, NX, NY> PHt;
+    Eigen::Matrix<double, NY, NY> S;
     if (block_diagonal) {
-      // After the seed's reset P = blockdiag(P11, diag): a private row of
-      // P H^T holds its own wheel's three columns only.
-      PHt.setZero();
-      for (int w = 0; w < 6; ++w) {
-        PHt.template block<6, 3>(0, 3 * w).noalias() =
-            P.template block<6, 3>(0, 3) * lin[w].d.template leftCols<3>().transpose();
-        for (int p = 0; p < npriv; ++p) {
-          const int c = priv[w][p];
-          PHt.template block<1, 3>(c, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
-        }
-      }
+      reset_hpht(lin, S);
+      if (effective_dof) S.template triangularView<Eigen::StrictlyUpper>() = S.transpose();
     } else {
       for (int w = 0; w < 6; ++w) {
         auto cols = PHt.template middleCols<3>(3 * w);
         cols.noalias() = P.template middleCols<3>(3) * lin[w].d.template leftCols<3>().transpose();
         for (int p = 0; p < npriv; ++p) cols.noalias() += P.col(priv[w][p]) * lin[w].d.col(3 + p).transpose();
       }
-    }
-    Eigen::Matrix<double, NY, NY> S;
-    for (int w = 0; w < 6; ++w) {
-      auto rows = S.template middleRows<3>(3 * w);
-      rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
-      if (block_diagonal) {  // a private row of P H^T: its own wheel's block only
-        for (int p = 0; p < npriv; ++p)
-          S.template block<3, 3>(3 * w, 3 * w).noalias() +=
-              lin[w].d.col(3 + p) * PHt.template block<1, 3>(priv[w][p], 3 * w);
-      } else {
+      for (int w = 0; w < 6; ++w) {
+        auto rows = S.template middleRows<3>(3 * w);
+        rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
         for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
       }
     }
@@ -228,6 +214,7 @@ class FastEkf {
     if (rejected) return true;
     const bool reset = block_diagonal && diagonal_only;
     if (reset && reset_update(lin, Lm, z)) return true;  // else x is updated: the Joseph form follows
+    if (block_diagonal) reset_pht(lin, PHt);
     Eigen::Matrix<double, NX, NY> Wt;
     gain_factor(PHt, Lm, block_diagonal, priv, Wt);
     if (!reset) x.noalias() += Wt * z;
@@ -258,6 +245,40 @@ class FastEkf {
   }
 
  private:
+  // With the reset (P12 = 0, P22 diagonal): H P H^T's lower 3 x 3 blocks,
+  // H_w P_vv H_w2^T plus each private variance's P_cc h h^T on its own
+  // wheel's block (the factorisation reads only these); the rest zero.
+  void reset_hpht(const contact::WheelLinearization* lin, Eigen::Matrix<double, NY, NY>& S) const {
+    constexpr int npriv = 1 + NA / 6;
+    const Eigen::Matrix3d Pvv = P.template block<3, 3>(3, 3);
+    Eigen::Matrix3d A[6];
+    for (int w = 0; w < 6; ++w) A[w].noalias() = lin[w].d.template leftCols<3>() * Pvv;
+    S.setZero();
+    for (int w = 0; w < 6; ++w) {
+      for (int w2 = 0; w2 <= w; ++w2)
+        S.template block<3, 3>(3 * w, 3 * w2).noalias() = A[w] * lin[w2].d.template leftCols<3>().transpose();
+      for (int p = 0; p < npriv; ++p) {
+        const double v = P(6 + 6 * p + w, 6 + 6 * p + w);
+        S.template block<3, 3>(3 * w, 3 * w).noalias() += (v * lin[w].d.col(3 + p)) * lin[w].d.col(3 + p).transpose();
+      }
+    }
+  }
+
+  // P H^T with the reset: the attitude and velocity rows P11's velocity
+  // columns times H_v^T, a private row its own wheel's three columns only.
+  void reset_pht(const contact::WheelLinearization* lin, Eigen::Matrix<double, NX, NY>& PHt) const {
+    constexpr int npriv = 1 + NA / 6;
+    PHt.setZero();
+    for (int w = 0; w < 6; ++w) {
+      PHt.template block<6, 3>(0, 3 * w).noalias() =
+          P.template block<6, 3>(0, 3) * lin[w].d.template leftCols<3>().transpose();
+      for (int p = 0; p < npriv; ++p) {
+        const int c = 6 + 6 * p + w;
+        PHt.template block<1, 3>(c, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
+      }
+    }
+  }
+
   // W^T = P H^T L^-T by forward substitution, so that K = W^T L^-1 and
   // K (y - h) = W^T z. Column-oriented: once W's row c is final, it is
   // taken from every later row (independent length-NX updates instead of a

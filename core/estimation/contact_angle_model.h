@@ -219,9 +219,10 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
 
   // The fast EKF: one wheel linearised by hand at state x.
   WheelLinearization linearize_wheel(int wheel, const double* x, const Inputs& in) const;
-  // S += M R M^T for R = diag(r): wheel-rate, lateral and normal noises on
-  // their own rows; the gyro noise couples every wheel, a joint's noise the
-  // wheels it carries.
+  // S += M R M^T for R = diag(r) on S's lower 3 x 3 blocks (wheel w1 >= w2;
+  // the fast EKF's factorisation reads only those): wheel-rate, lateral and
+  // normal noises on their own rows; the gyro noise couples every wheel, a
+  // joint's noise the wheels it carries.
   void add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r,
                             Eigen::Matrix<double, 18, 18>& S) const;
 
