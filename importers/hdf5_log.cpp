@@ -127,6 +127,10 @@ void write_parts(const log::LogMetadata& meta, std::initializer_list<const log::
 struct Hdf5LogReader::File {
   Handle file;
   Handle streams;
+  // Dataset access without a chunk cache: a dataset is read chunk by chunk
+  // straight into the caller's buffer (through the default 1 MiB cache a
+  // chunk below that size was copied, its buffer allocated first).
+  Handle uncached;
 };
 
 namespace {
@@ -162,6 +166,8 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
   if (!fs::exists(path, ec)) throw InputError(path, "no such file");
   if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
   if (!h5::is_hdf5_file(path)) throw InputError(path, "not an HDF5 file");
+  file_->uncached = Handle(H5Pcreate(H5P_DATASET_ACCESS));
+  H5Pset_chunk_cache(file_->uncached.get(), 0, 0, 1.0);
   file_->file = Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file_->file.valid()) {
     const std::string why = h5::last_error_text();
@@ -274,7 +280,7 @@ void read_si(const std::string& path, hid_t dataset, const std::string& what, co
 void Hdf5LogReader::read_time_into(const std::string& stream, std::vector<double>& values) const {
   Handle group(H5Gopen2(file_->streams.get(), stream.c_str(), H5P_DEFAULT));
   if (!group.valid()) throw InputError(path_, "no stream '" + stream + "'");
-  Handle ds(H5Dopen2(group.get(), "time", H5P_DEFAULT));
+  Handle ds(H5Dopen2(group.get(), "time", file_->uncached.get()));
   if (!ds.valid()) throw InputError(path_, "stream '" + stream + "' has no time");
   read_si(path_, ds.get(), "stream '" + stream + "', time", "s", values, "s");
 }
@@ -285,7 +291,7 @@ void Hdf5LogReader::read_channel_into(const std::string& stream, const std::stri
   if (h5::object_kind(file_->streams.get(), where) != h5::ObjectKind::dataset) {
     throw InputError(path_, "no channel '" + channel + "' in stream '" + stream + "'");
   }
-  Handle ds(H5Dopen2(file_->streams.get(), where.c_str(), H5P_DEFAULT));
+  Handle ds(H5Dopen2(file_->streams.get(), where.c_str(), file_->uncached.get()));
   read_si(path_, ds.get(), "stream '" + stream + "', channel '" + channel + "'", "1", values);
 }
 
