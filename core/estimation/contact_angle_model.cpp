@@ -97,50 +97,38 @@ WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, k
     for (int a = 0; a < nj; ++a) dw[k] += z[std::min(a, k)].cross(Jq[std::max(a, k)]) * qd[a];
   }
   // Table 5.2: the contact frame is the drive frame turned by -gamma about
-  // its axle then by pi/2 about x; the side-slip frame turns by beta more.
+  // its axle then by pi/2 about x, C = Rz(-gamma) Rx(pi/2); the side-slip
+  // frame turns by beta more, C Rz(beta). In closed form, with derivatives.
   Eigen::Matrix3d C = Eigen::Matrix3d::Identity(), dC_dg = Eigen::Matrix3d::Zero(), dC_db = Eigen::Matrix3d::Zero();
   const bool ss = frame == kinematics::WheelFrame::side_slip;
   const double cb = ss ? std::cos(beta) : 1.0, sb = ss ? std::sin(beta) : 0.0;  // one sincos
   if (frame != kinematics::WheelFrame::drive) {
     const double cg = std::cos(gamma), sg = std::sin(gamma);
-    Eigen::Matrix3d Rz, dRz;  // Rz(-gamma) and its derivative with respect to gamma
-    Rz << cg, sg, 0, -sg, cg, 0, 0, 0, 1;
-    dRz << -sg, cg, 0, -cg, -sg, 0, 0, 0, 0;
-    Eigen::Matrix3d Rx;  // Rx(pi/2)
-    Rx << 1, 0, 0, 0, 0, -1, 0, 1, 0;
-    C = Rz * Rx;
-    dC_dg = dRz * Rx;
-    if (ss) {
-      Eigen::Matrix3d Rb, dRb;
-      Rb << cb, -sb, 0, sb, cb, 0, 0, 0, 1;
-      dRb << -sb, -cb, 0, cb, -sb, 0, 0, 0, 0;
-      dC_db = C * dRb;
-      dC_dg = dC_dg * Rb;
-      C = C * Rb;
-    }
+    C << cg * cb, -cg * sb, -sg, -sg * cb, sg * sb, -cg, sb, cb, 0;
+    dC_dg << -sg * cb, sg * sb, -cg, -cg * cb, cg * sb, sg, 0, 0, 0;
+    if (ss) dC_db << -cg * sb, -cg * cb, 0, sg * sb, sg * cb, 0, cb, -sb, 0;
   }
   const Eigen::Matrix3d Rt = (Rd * C).transpose();
   const Eigen::Vector3d wd = Rd.transpose() * w;
   const Eigen::Vector3d u = C.transpose() * wd;
-  Eigen::Matrix<double, 3, 13> D = Eigen::Matrix<double, 3, 13>::Zero();
+  WheelLinearization out;
+  Eigen::Matrix<double, 3, 13>& D = out.d;
+  D.setZero();
   D.leftCols<3>() = Rt;
   D.col(4) = dC_dg.transpose() * wd;
   D.col(5) = dC_db.transpose() * wd;
-  Eigen::Matrix3d rx;  // d(omega x r)/d(gyro noise) = [r]x since omega = gyro - noise
-  rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  D.block<3, 3>(0, 6) = Rt * rx;
+  // d(omega x r)/d(gyro noise) = [r]x since omega = gyro - noise: row k of R^T [r]x is (R^T)_k x r.
+  for (int k = 0; k < 3; ++k) D.block<1, 3>(k, 6) = Rt.row(k).cross(r.transpose());
   for (int k = 0; k < nj; ++k) {
     D.col(9 + k) = Rt * (dw[k] - z[k].cross(w));  // d(R^T w) = R^T (dw - z_k x w)
     D.col(11 + k) = Rt * Jq[k];
   }
   // Eq. 4.20 / Table 5.1: rate = (cos beta) u_x / ((1 - s) r), then u_y, u_z.
   const double den = (1.0 - slip) * m.wheel_radius, sc = cb;
-  WheelLinearization out;
   out.value = Eigen::Vector3d(sc * u.x() / den, u.y(), u.z());
-  out.d = D;
-  out.d.row(0) *= sc / den;
-  out.d(0, 3) = sc * u.x() / ((1.0 - slip) * den);
-  if (ss) out.d(0, 5) -= sb * u.x() / den;
+  D.row(0) *= sc / den;
+  D(0, 3) = sc * u.x() / ((1.0 - slip) * den);
+  if (ss) D(0, 5) -= sb * u.x() / den;
   return out;
 }
 
