@@ -58,10 +58,7 @@ void refuse_overwriting_input(const std::string& input, const std::string& outpu
 }
 
 void write_log_with(const log::Log& base, const log::Log& added, const std::string& path) {
-  log::Log out = base;
-  for (const auto& s : added.streams()) out.add_stream(s);
-  for (const auto& [key, value] : added.metadata.extra) out.metadata.extra[key] = value;
-  io::write_hdf5_log(out, path);
+  io::write_hdf5_log(base, added, path);  // no copy of the (possibly large) input log
 }
 
 }  // namespace roverlab::app

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <initializer_list>
 
 #include "core/common/error.h"
 #include "core/log/units.h"
@@ -56,7 +57,33 @@ void write_vector(hid_t parent, const std::string& name, const std::vector<doubl
   if (!description.empty()) h5::write_string_attribute(dataset.get(), "description", description);
 }
 
-void write_file(const log::Log& log, const std::string& path) {
+// One stream under `streams`: nested names ("truth/imu") become nested
+// groups; only the last is a stream.
+void write_stream(hid_t streams, const log::Stream& stream) {
+  Handle group;
+  hid_t parent = streams;
+  std::size_t begin = 0;
+  const std::string& name = stream.name();
+  while (true) {
+    const std::size_t slash = name.find('/', begin);
+    const std::string segment = name.substr(begin, slash - begin);
+    Handle next = slash == std::string::npos ? make_group(parent, segment) : open_or_make_group(parent, segment);
+    group = std::move(next);
+    parent = group.get();
+    if (slash == std::string::npos) break;
+    begin = slash + 1;
+  }
+  h5::write_string_attribute(group.get(), "roverlab_kind", "stream");
+  write_vector(group.get(), "time", stream.time(), "s", "");
+  Handle channels = make_group(group.get(), "channels");
+  for (const auto& c : stream.channels()) {
+    write_vector(channels.get(), c.name, c.values, c.unit, c.description);
+  }
+}
+
+// The file of a log with `metadata` and the streams of `parts`, one after
+// another (a log and the streams added to it, without copying either).
+void write_file(const log::LogMetadata& meta, std::initializer_list<const log::Log*> parts, const std::string& path) {
   h5::silence_errors();
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
   H5Pset_link_creation_order(fcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
@@ -65,40 +92,34 @@ void write_file(const log::Log& log, const std::string& path) {
 
   h5::write_string_attribute(file.get(), "format", kLogFormatName);
   h5::write_int_attribute(file.get(), "format_version", kLogFormatVersion);
-  h5::write_string_attribute(file.get(), "rover_id", log.metadata.rover_id);
-  h5::write_string_attribute(file.get(), "source_file", log.metadata.source_file);
-  h5::write_string_attribute(file.get(), "description", log.metadata.description);
+  h5::write_string_attribute(file.get(), "rover_id", meta.rover_id);
+  h5::write_string_attribute(file.get(), "source_file", meta.source_file);
+  h5::write_string_attribute(file.get(), "description", meta.description);
   Handle metadata = make_group(file.get(), "metadata");
-  for (const auto& [key, value] : log.metadata.extra) {
+  for (const auto& [key, value] : meta.extra) {
     h5::write_string_attribute(metadata.get(), key.c_str(), value);
   }
 
   Handle streams = make_group(file.get(), "streams");
-  for (const auto& stream : log.streams()) {
-    // Nested names ("truth/imu") become nested groups; only the last is a stream.
-    Handle group;
-    hid_t parent = streams.get();
-    std::size_t begin = 0;
-    const std::string& name = stream.name();
-    while (true) {
-      const std::size_t slash = name.find('/', begin);
-      const std::string segment = name.substr(begin, slash - begin);
-      Handle next = slash == std::string::npos ? make_group(parent, segment) : open_or_make_group(parent, segment);
-      group = std::move(next);
-      parent = group.get();
-      if (slash == std::string::npos) break;
-      begin = slash + 1;
-    }
-    h5::write_string_attribute(group.get(), "roverlab_kind", "stream");
-    write_vector(group.get(), "time", stream.time(), "s", "");
-    Handle channels = make_group(group.get(), "channels");
-    for (const auto& c : stream.channels()) {
-      write_vector(channels.get(), c.name, c.values, c.unit, c.description);
-    }
+  for (const log::Log* part : parts) {
+    for (const auto& stream : part->streams()) write_stream(streams.get(), stream);
   }
   if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) {
     throw std::runtime_error("cannot flush file: " + h5::last_error_text());
   }
+}
+
+// Writes atomically; a failure is an InputError naming the path.
+void write_parts(const log::LogMetadata& meta, std::initializer_list<const log::Log*> parts, const std::string& path) {
+  write_atomically(path, [&](const std::string& temporary) {
+    try {
+      write_file(meta, parts, temporary);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw InputError(path, std::string("cannot write HDF5 log: ") + e.what());
+    }
+  });
 }
 
 }  // namespace
@@ -106,6 +127,10 @@ void write_file(const log::Log& log, const std::string& path) {
 struct Hdf5LogReader::File {
   Handle file;
   Handle streams;
+  // Dataset access without a chunk cache: a dataset is read chunk by chunk
+  // straight into the caller's buffer (through the default 1 MiB cache a
+  // chunk below that size was copied, its buffer allocated first).
+  Handle uncached;
 };
 
 namespace {
@@ -141,6 +166,8 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
   if (!fs::exists(path, ec)) throw InputError(path, "no such file");
   if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
   if (!h5::is_hdf5_file(path)) throw InputError(path, "not an HDF5 file");
+  file_->uncached = Handle(H5Pcreate(H5P_DATASET_ACCESS));
+  H5Pset_chunk_cache(file_->uncached.get(), 0, 0, 1.0);
   file_->file = Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file_->file.valid()) {
     const std::string why = h5::last_error_text();
@@ -225,11 +252,10 @@ namespace {
 
 // Reads a dataset and converts it from its "unit" attribute (default_unit
 // when absent) to SI.
-std::vector<double> read_si(const std::string& path, hid_t dataset, const std::string& what,
-                            const std::string& default_unit, const std::string& expected_si = {}) {
-  std::vector<double> values;
+void read_si(const std::string& path, hid_t dataset, const std::string& what, const std::string& default_unit,
+             std::vector<double>& values, const std::string& expected_si = {}) {
   try {
-    values = h5::read_doubles(dataset);
+    h5::read_doubles(dataset, values);
   } catch (const std::runtime_error& e) {
     throw InputError(path, what + ": " + e.what() + " (truncated or corrupt file?)");
   }
@@ -247,26 +273,38 @@ std::vector<double> read_si(const std::string& path, hid_t dataset, const std::s
   if (si.factor != 1.0 || si.offset != 0.0) {
     for (double& v : values) v = v * si.factor + si.offset;
   }
-  return values;
 }
 
 }  // namespace
 
-std::vector<double> Hdf5LogReader::read_time(const std::string& stream) const {
+void Hdf5LogReader::read_time_into(const std::string& stream, std::vector<double>& values) const {
   Handle group(H5Gopen2(file_->streams.get(), stream.c_str(), H5P_DEFAULT));
   if (!group.valid()) throw InputError(path_, "no stream '" + stream + "'");
-  Handle ds(H5Dopen2(group.get(), "time", H5P_DEFAULT));
+  Handle ds(H5Dopen2(group.get(), "time", file_->uncached.get()));
   if (!ds.valid()) throw InputError(path_, "stream '" + stream + "' has no time");
-  return read_si(path_, ds.get(), "stream '" + stream + "', time", "s", "s");
+  read_si(path_, ds.get(), "stream '" + stream + "', time", "s", values, "s");
 }
 
-std::vector<double> Hdf5LogReader::read_channel(const std::string& stream, const std::string& channel) const {
+void Hdf5LogReader::read_channel_into(const std::string& stream, const std::string& channel,
+                                      std::vector<double>& values) const {
   const std::string where = stream + "/channels/" + channel;
   if (h5::object_kind(file_->streams.get(), where) != h5::ObjectKind::dataset) {
     throw InputError(path_, "no channel '" + channel + "' in stream '" + stream + "'");
   }
-  Handle ds(H5Dopen2(file_->streams.get(), where.c_str(), H5P_DEFAULT));
-  return read_si(path_, ds.get(), "stream '" + stream + "', channel '" + channel + "'", "1");
+  Handle ds(H5Dopen2(file_->streams.get(), where.c_str(), file_->uncached.get()));
+  read_si(path_, ds.get(), "stream '" + stream + "', channel '" + channel + "'", "1", values);
+}
+
+std::vector<double> Hdf5LogReader::read_time(const std::string& stream) const {
+  std::vector<double> values;
+  read_time_into(stream, values);
+  return values;
+}
+
+std::vector<double> Hdf5LogReader::read_channel(const std::string& stream, const std::string& channel) const {
+  std::vector<double> values;
+  read_channel_into(stream, channel, values);
+  return values;
 }
 
 log::Stream Hdf5LogReader::read_stream(const std::string& stream) const {
@@ -281,6 +319,17 @@ log::Stream Hdf5LogReader::read_stream(const std::string& stream) const {
     return out;
   } catch (const DataError& e) {
     throw InputError(path_, e.what());
+  }
+}
+
+void Hdf5LogReader::read_all_discarding() const {
+  std::vector<double> buffer;
+  for (const auto& info : catalog_) {
+    read_time_into(info.name, buffer);
+    for (const auto& c : info.channels) {
+      (void)log::unit_to_si(c.unit);  // as read_stream: an unknown unit is a DataError there too
+      read_channel_into(info.name, c.name, buffer);
+    }
   }
 }
 
@@ -309,16 +358,15 @@ bool is_roverlab_hdf5(const std::string& path) {
 
 log::Log read_hdf5_log(const std::string& path) { return Hdf5LogReader(path).read_all(); }
 
-void write_hdf5_log(const log::Log& log, const std::string& path) {
-  write_atomically(path, [&](const std::string& temporary) {
-    try {
-      write_file(log, temporary);
-    } catch (const InputError&) {
-      throw;
-    } catch (const std::runtime_error& e) {
-      throw InputError(path, std::string("cannot write HDF5 log: ") + e.what());
-    }
-  });
+void write_hdf5_log(const log::Log& log, const std::string& path) { write_parts(log.metadata, {&log}, path); }
+
+void write_hdf5_log(const log::Log& base, const log::Log& added, const std::string& path) {
+  for (const auto& s : added.streams()) {
+    if (base.find_stream(s.name()) != nullptr) throw DataError("stream '" + s.name() + "' appears twice");
+  }
+  log::LogMetadata meta = base.metadata;
+  for (const auto& [key, value] : added.metadata.extra) meta.extra[key] = value;
+  write_parts(meta, {&base, &added}, path);
 }
 
 }  // namespace roverlab::io

@@ -45,8 +45,14 @@ class Hdf5LogReader {
   std::vector<double> read_time(const std::string& stream) const;
   log::Stream read_stream(const std::string& stream) const;
   log::Log read_all() const;
+  // Every dataset read_all reads, through the same library calls, into one
+  // buffer that is then dropped: the crash guard's trial read
+  // (importers/crash_guard.h) without a second log in memory.
+  void read_all_discarding() const;
 
  private:
+  void read_time_into(const std::string& stream, std::vector<double>& values) const;
+  void read_channel_into(const std::string& stream, const std::string& channel, std::vector<double>& values) const;
   struct File;
   std::string path_;
   std::unique_ptr<File> file_;
@@ -63,5 +69,10 @@ log::Log read_hdf5_log(const std::string& path);
 // Writes atomically (temporary file, then rename). Throws InputError naming
 // the path when it cannot be written.
 void write_hdf5_log(const log::Log& log, const std::string& path);
+// The same for `base` with the streams of `added` after its own and added's
+// metadata.extra entries over base's, without copying either log. A stream
+// of `added` that `base` has too is a DataError ("appears twice"), as
+// Log::add_stream.
+void write_hdf5_log(const log::Log& base, const log::Log& added, const std::string& path);
 
 }  // namespace roverlab::io

@@ -251,6 +251,12 @@ void check_storage(hid_t dataset, hid_t space) {
 }  // namespace
 
 std::vector<double> read_doubles(hid_t dataset) {
+  std::vector<double> values;
+  read_doubles(dataset, values);
+  return values;
+}
+
+void read_doubles(hid_t dataset, std::vector<double>& values) {
   Handle type(H5Dget_type(dataset));
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_FLOAT && cls != H5T_INTEGER) {
@@ -276,7 +282,6 @@ std::vector<double> read_doubles(hid_t dataset) {
                              std::to_string(file_size) + " bytes) can hold");
   }
   check_storage(dataset, space.get());
-  std::vector<double> values;
   try {
     values.resize(static_cast<std::size_t>(n));
   } catch (const std::bad_alloc&) {
@@ -286,7 +291,6 @@ std::vector<double> read_doubles(hid_t dataset) {
     const std::string why = last_error_text();
     throw std::runtime_error("cannot read dataset" + (why.empty() ? "" : ": " + why));
   }
-  return values;
 }
 
 }  // namespace roverlab::io::h5

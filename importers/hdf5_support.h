@@ -60,5 +60,7 @@ std::vector<hsize_t> dataset_shape(hid_t dataset);
 // Whole numeric dataset converted to double (integer or float storage).
 // Throws std::runtime_error with the HDF5 message when the read fails.
 std::vector<double> read_doubles(hid_t dataset);
+// The same into `values` (resized; its memory reused when large enough).
+void read_doubles(hid_t dataset, std::vector<double>& values);
 
 }  // namespace roverlab::io::h5

@@ -52,16 +52,17 @@ LoadedLog load_log(const std::string& path, const LoadOptions& options) {
   if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
   // A pipe or a device never ends (and opening a pipe blocks): not a log.
   if (!fs::is_regular_file(path, ec)) throw InputError(path, "not a regular file (a pipe or a device?)");
-  const auto read = [&]() -> LoadedLog {
+  // Recognising the file opens it with the HDF5 library too.
+  const auto find = [&] {
     const LogReader* reader = find_log_reader(path, options);
-    if (!reader) {
-      throw InputError(path, "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
-    }
-    return {reader->read(path, options), reader->name()};
+    if (!reader) throw InputError(path, "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
+    return reader;
   };
-  // The HDF5 library may crash on a damaged file: a child tries it first.
-  if (has_hdf5_signature(path)) survive_crash(path, [&] { (void)read(); });
-  return read();
+  // The HDF5 library may crash on a damaged file: a child tries it first
+  // (the reader's trial read: the same library calls, the samples dropped).
+  if (has_hdf5_signature(path)) survive_crash(path, [&] { find()->trial_read(path, options); });
+  const LogReader* reader = find();
+  return {reader->read(path, options), reader->name()};
 }
 
 }  // namespace roverlab::io

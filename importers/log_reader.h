@@ -37,6 +37,10 @@ class LogReader {
   virtual Confidence can_read(const std::string& path, const LoadOptions& options) const = 0;
   // Throws InputError naming the file and the problem.
   virtual log::Log read(const std::string& path, const LoadOptions& options) const = 0;
+  // What load_log's crash guard runs in its forked child first
+  // (importers/crash_guard.h): the library calls read() makes on the file;
+  // the samples need not be kept. read() itself unless a reader does better.
+  virtual void trial_read(const std::string& path, const LoadOptions& options) const { (void)read(path, options); }
 };
 
 // True when the file name ends in one of `extensions` (".h5"; case counts).

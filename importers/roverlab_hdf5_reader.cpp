@@ -23,6 +23,10 @@ class RoverLabHdf5Reader final : public LogReader {
   }
 
   log::Log read(const std::string& path, const LoadOptions&) const override { return read_hdf5_log(path); }
+  // Each dataset into one reused buffer: no second copy of the log in the child.
+  void trial_read(const std::string& path, const LoadOptions&) const override {
+    Hdf5LogReader(path).read_all_discarding();
+  }
 };
 
 }  // namespace

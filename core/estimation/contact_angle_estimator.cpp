@@ -352,8 +352,8 @@ void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const 
     fe.P = p0_.asDiagonal();
   }
   if (i > 0) {
-    if (smooth_) companion_predict(fe, i, in, ts);  // from the state before this predict
-    fe.predict(process_, process_noise(i), in, ts);
+    if (smooth_) companion_predict(fe, i, in, ts);                              // from the state before this predict
+    fe.predict(process_, process_noise(i), in, ts, o_.reset_cross_covariance);  // with the reset P is diagonal here
     if (smooth_) record_prediction(i, fe.x.data());
   }
   // With the reset, P is blockdiag(P11, diag) after the predict.

@@ -32,7 +32,18 @@ inline void ContactProcessModel::strapdown_step(double* att_v, const Inputs& in,
     nf[k] = Jt(0.0, 6 + k);
     nw[k] = Jt(0.0, 9 + k);
   }
-  strapdown<Jt>(a, v, zeros, zeros, nf, nw, in, g_i_, ts, an, vn);
+  // The attitude's cosines and sines as Jets from one sincos each (ceres'
+  // cos and sin of a Jet take a cos and a sin each): d cos = -sin, d sin = cos.
+  Jt trig[6];
+  for (int k = 0; k < 3; ++k) {
+    const double c = std::cos(att_v[k]), s = std::sin(att_v[k]);
+    trig[2 * k] = Jt(c);
+    trig[2 * k].v[k] = -s;
+    trig[2 * k + 1] = Jt(s);
+    trig[2 * k + 1].v[k] = c;
+  }
+  const contact::AttitudeTrig<Jt> tr{trig[0], trig[1], trig[2], trig[3], trig[4], trig[5]};
+  strapdown<Jt>(a, tr, v, zeros, zeros, nf, nw, in, g_i_, ts, an, vn);
   for (int k = 0; k < 3; ++k) {
     att_v[k] = an[k].a;
     att_v[3 + k] = vn[k].a;
@@ -78,8 +89,7 @@ inline void WheelMeasurementModel::add_noise_covariance(const WheelLinearization
           B.noalias() += r(3 + nw + nq + j) * lin[w1].d.col(11 + a) * lin[w2].d.col(11 + b).transpose();
         }
       }
-      S.template block<3, 3>(3 * w1, 3 * w2) += B;
-      if (w2 != w1) S.template block<3, 3>(3 * w2, 3 * w1) += B.transpose();
+      S.template block<3, 3>(3 * w1, 3 * w2) += B;  // lower blocks only: the factorisation reads no more
     }
   }
 }
@@ -113,8 +123,10 @@ class FastEkf {
   bool rejected = false;
 
   // Eq. 2.14-2.15 with F = blockdiag(A, diag(d)): P11 <- A P11 A^T + G G^T,
-  // P12 <- A P12 D, P22 <- D P22 D + Q22.
-  void predict(const contact::ContactProcessModel& f, const Eigen::VectorXd& q, const contact::Inputs& in, double ts) {
+  // P12 <- A P12 D, P22 <- D P22 D + Q22. p_diagonal: P12 is zero and P22
+  // diagonal on entry (the seed's reset), and so they stay.
+  void predict(const contact::ContactProcessModel& f, const Eigen::VectorXd& q, const contact::Inputs& in, double ts,
+               bool p_diagonal = false) {
     Eigen::Matrix<double, 6, 6> A, G;  // G: noise Jacobian times the noise standard deviations
     f.strapdown_step(x.data(), in, ts, A, G);
     last_A = A;
@@ -128,8 +140,13 @@ class FastEkf {
     const Eigen::Matrix<double, 6, 6> AP = A.lazyProduct(P.template topLeftCorner<6, 6>());
     Eigen::Matrix<double, 6, 6> P11 = AP.lazyProduct(A.transpose()) + G.lazyProduct(G.transpose());
     P11.diagonal() += q.template head<6>();
-    const Eigen::Matrix<double, 6, NR> P12 = A.lazyProduct(P.template topRightCorner<6, NR>()) * d.asDiagonal();
     P.template topLeftCorner<6, 6>() = 0.5 * (P11 + P11.transpose());
+    if (p_diagonal) {
+      auto P22 = P.template bottomRightCorner<NR, NR>().diagonal();
+      P22 = P22.cwiseProduct(d.cwiseProduct(d)) + q.segment(6, NR);
+      return;
+    }
+    const Eigen::Matrix<double, 6, NR> P12 = A.lazyProduct(P.template topRightCorner<6, NR>()) * d.asDiagonal();
     P.template topRightCorner<6, NR>() = P12;
     P.template bottomLeftCorner<NR, 6>() = P12.transpose();
     P.template bottomRightCorner<NR, NR>() = P.template bottomRightCorner<NR, NR>().cwiseProduct(d * d.transpose());
@@ -152,36 +169,23 @@ class FastEkf {
       innov.template segment<3>(3 * w) = Eigen::Vector3d(in.wheel_rate[w], 0.0, 0.0) - lin[w].value;
       for (int p = 0; p < 3; ++p) priv[w][p] = 6 + 6 * p + w;
     }
-    // P H^T and H P H^T, one wheel (three rows of H) at a time.
+    // P H^T and H P H^T, one wheel (three rows of H) at a time; with the
+    // reset S's lower blocks straight from P11's velocity block and the
+    // private variances, P H^T only if the Joseph form follows.
     Eigen::Matrix<double, NX, NY> PHt;
+    Eigen::Matrix<double, NY, NY> S;
     if (block_diagonal) {
-      // After the seed's reset P = blockdiag(P11, diag): a private row of
-      // P H^T holds its own wheel's three columns only.
-      PHt.setZero();
-      for (int w = 0; w < 6; ++w) {
-        PHt.template block<6, 3>(0, 3 * w).noalias() =
-            P.template block<6, 3>(0, 3) * lin[w].d.template leftCols<3>().transpose();
-        for (int p = 0; p < npriv; ++p) {
-          const int c = priv[w][p];
-          PHt.template block<1, 3>(c, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
-        }
-      }
+      reset_hpht(lin, S);
+      if (effective_dof) S.template triangularView<Eigen::StrictlyUpper>() = S.transpose();
     } else {
       for (int w = 0; w < 6; ++w) {
         auto cols = PHt.template middleCols<3>(3 * w);
         cols.noalias() = P.template middleCols<3>(3) * lin[w].d.template leftCols<3>().transpose();
         for (int p = 0; p < npriv; ++p) cols.noalias() += P.col(priv[w][p]) * lin[w].d.col(3 + p).transpose();
       }
-    }
-    Eigen::Matrix<double, NY, NY> S;
-    for (int w = 0; w < 6; ++w) {
-      auto rows = S.template middleRows<3>(3 * w);
-      rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
-      if (block_diagonal) {  // a private row of P H^T: its own wheel's block only
-        for (int p = 0; p < npriv; ++p)
-          S.template block<3, 3>(3 * w, 3 * w).noalias() +=
-              lin[w].d.col(3 + p) * PHt.template block<1, 3>(priv[w][p], 3 * w);
-      } else {
+      for (int w = 0; w < 6; ++w) {
+        auto rows = S.template middleRows<3>(3 * w);
+        rows.noalias() = lin[w].d.template leftCols<3>() * PHt.template middleRows<3>(3);
         for (int p = 0; p < npriv; ++p) rows.noalias() += lin[w].d.col(3 + p) * PHt.row(priv[w][p]);
       }
     }
@@ -195,36 +199,11 @@ class FastEkf {
       const Eigen::Matrix<double, NY, NY> Y = L.solve(HPHt);
       dof_used = L.solve(Eigen::Matrix<double, NY, NY>(Y.transpose())).trace();
     }
-    // W^T = P H^T L^-T and z = L^-1 (y - h) by forward substitution, so
-    // that K = W^T L^-1 and K (y - h) = W^T z. Column-oriented: once W's
-    // row c is final, it is taken from every later row (independent
-    // length-NX updates instead of a chain of dot products).
-    Eigen::Matrix<double, NX, NY> Wt;
+    // z = L^-1 (y - h) by forward substitution.
     Eigen::Matrix<double, NY, 1> z = innov;
     for (int c = 0; c < NY; ++c) {
       z(c) *= inv_diag_(c);
       for (int r = c + 1; r < NY; ++r) z(r) -= Lm(r, c) * z(c);
-    }
-    if (block_diagonal) {
-      // With the reset a private state's row of P H^T (and of W^T) is zero
-      // left of its wheel's columns: with the private rows ordered by wheel,
-      // wheel b's columns touch only the first 6 + npriv (b + 1) rows.
-      Eigen::Matrix<double, NX, NY> Wp;
-      Wp.template topRows<6>() = PHt.template topRows<6>();
-      for (int w = 0; w < 6; ++w) {
-        for (int p = 0; p < npriv; ++p) Wp.row(6 + npriv * w + p) = PHt.row(priv[w][p]);
-      }
-      substitute_by_wheel<0>(Lm, Wp);
-      Wt.template topRows<6>() = Wp.template topRows<6>();
-      for (int w = 0; w < 6; ++w) {
-        for (int p = 0; p < npriv; ++p) Wt.row(priv[w][p]) = Wp.row(6 + npriv * w + p);
-      }
-    } else {
-      Wt = PHt;
-      for (int c = 0; c < NY; ++c) {
-        Wt.col(c) *= inv_diag_(c);
-        for (int r = c + 1; r < NY; ++r) Wt.col(r) -= Lm(r, c) * Wt.col(c);
-      }
     }
     nis = z.squaredNorm();  // y^T S^-1 y of Eq. 2.16's innovation (seed 000), S = L L^T; gated
     // ln det S = 2 sum ln L_ii, three logarithms of products of six (an
@@ -233,8 +212,13 @@ class FastEkf {
     for (int i = 0; i < NY; i += 6) log_det_s += 2.0 * std::log(Lm.diagonal().template segment<6>(i).prod());
     rejected = !(nis <= gate);
     if (rejected) return true;
-    x.noalias() += Wt * z;
-    if (diagonal_only) {
+    const bool reset = block_diagonal && diagonal_only;
+    if (reset && reset_update(lin, Lm, z)) return true;  // else x is updated: the Joseph form follows
+    if (block_diagonal) reset_pht(lin, PHt);
+    Eigen::Matrix<double, NX, NY> Wt;
+    gain_factor(PHt, Lm, block_diagonal, priv, Wt);
+    if (!reset) x.noalias() += Wt * z;
+    if (diagonal_only && !reset) {
       // The diagonal of the Joseph form with the optimal gain:
       // P_ii - (K H P)_ii - (P H^T K^T)_ii + (K S K^T)_ii = P_ii - |W_i|^2.
       const Eigen::Matrix<double, NX, 1> diag = P.diagonal() - Wt.rowwise().squaredNorm();
@@ -261,16 +245,123 @@ class FastEkf {
   }
 
  private:
+  // With the reset (P12 = 0, P22 diagonal): H P H^T's lower 3 x 3 blocks,
+  // H_w P_vv H_w2^T plus each private variance's P_cc h h^T on its own
+  // wheel's block (the factorisation reads only these); the rest zero.
+  void reset_hpht(const contact::WheelLinearization* lin, Eigen::Matrix<double, NY, NY>& S) const {
+    constexpr int npriv = 1 + NA / 6;
+    const Eigen::Matrix3d Pvv = P.template block<3, 3>(3, 3);
+    Eigen::Matrix3d A[6];
+    for (int w = 0; w < 6; ++w) A[w].noalias() = lin[w].d.template leftCols<3>() * Pvv;
+    S.setZero();
+    for (int w = 0; w < 6; ++w) {
+      for (int w2 = 0; w2 <= w; ++w2)
+        S.template block<3, 3>(3 * w, 3 * w2).noalias() = A[w] * lin[w2].d.template leftCols<3>().transpose();
+      for (int p = 0; p < npriv; ++p) {
+        const double v = P(6 + 6 * p + w, 6 + 6 * p + w);
+        S.template block<3, 3>(3 * w, 3 * w).noalias() += (v * lin[w].d.col(3 + p)) * lin[w].d.col(3 + p).transpose();
+      }
+    }
+  }
+
+  // P H^T with the reset: the attitude and velocity rows P11's velocity
+  // columns times H_v^T, a private row its own wheel's three columns only.
+  void reset_pht(const contact::WheelLinearization* lin, Eigen::Matrix<double, NX, NY>& PHt) const {
+    constexpr int npriv = 1 + NA / 6;
+    PHt.setZero();
+    for (int w = 0; w < 6; ++w) {
+      PHt.template block<6, 3>(0, 3 * w).noalias() =
+          P.template block<6, 3>(0, 3) * lin[w].d.template leftCols<3>().transpose();
+      for (int p = 0; p < npriv; ++p) {
+        const int c = 6 + 6 * p + w;
+        PHt.template block<1, 3>(c, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
+      }
+    }
+  }
+
+  // W^T = P H^T L^-T by forward substitution, so that K = W^T L^-1 and
+  // K (y - h) = W^T z. Column-oriented: once W's row c is final, it is
+  // taken from every later row (independent length-NX updates instead of a
+  // chain of dot products).
+  void gain_factor(const Eigen::Matrix<double, NX, NY>& PHt, const Eigen::Matrix<double, NY, NY>& Lm,
+                   bool block_diagonal, const int (&priv)[6][3], Eigen::Matrix<double, NX, NY>& Wt) const {
+    constexpr int npriv = 1 + NA / 6;
+    if (block_diagonal) {
+      // With the reset a private state's row of P H^T (and of W^T) is zero
+      // left of its wheel's columns: with the private rows ordered by wheel,
+      // wheel b's columns touch only the first 6 + npriv (b + 1) rows.
+      Eigen::Matrix<double, NX, NY> Wp;
+      Wp.template topRows<6>() = PHt.template topRows<6>();
+      for (int w = 0; w < 6; ++w) {
+        for (int p = 0; p < npriv; ++p) Wp.row(6 + npriv * w + p) = PHt.row(priv[w][p]);
+      }
+      substitute_by_wheel<0, 6>(Lm, Wp);
+      Wt.template topRows<6>() = Wp.template topRows<6>();
+      for (int w = 0; w < 6; ++w) {
+        for (int p = 0; p < npriv; ++p) Wt.row(priv[w][p]) = Wp.row(6 + npriv * w + p);
+      }
+    } else {
+      Wt = PHt;
+      for (int c = 0; c < NY; ++c) {
+        Wt.col(c) *= inv_diag_(c);
+        for (int r = c + 1; r < NY; ++r) Wt.col(r) -= Lm(r, c) * Wt.col(c);
+      }
+    }
+  }
+
+  // The update with the reset (P12 = 0, P22 diagonal) that keeps only P's
+  // diagonal, without W^T: x += P H^T S^-1 (y - h) = P H^T s with
+  // s = L^-T z; |W_i|^2 = (P H^T S^-1 H P)_ii from V = L^-1 [H_v, the
+  // private rows of P H^T] (H_v: the velocity columns of H; the attitude and
+  // velocity rows of P H^T are P11's velocity columns times H_v^T). False,
+  // with x updated, when a variance would not stay positive.
+  bool reset_update(const contact::WheelLinearization* lin, const Eigen::Matrix<double, NY, NY>& Lm,
+                    const Eigen::Matrix<double, NY, 1>& z) {
+    constexpr int npriv = 1 + NA / 6;
+    Eigen::Matrix<double, NY, 1> s = z;  // L^T s = z, column-oriented backward substitution
+    for (int c = NY - 1; c >= 0; --c) {
+      s(c) *= inv_diag_(c);
+      for (int r = 0; r < c; ++r) s(r) -= Lm(c, r) * s(c);
+    }
+    Eigen::Matrix<double, 3 + NR, NY> V = Eigen::Matrix<double, 3 + NR, NY>::Zero();  // H_v^T, private rows by wheel
+    Eigen::Vector3d hs = Eigen::Vector3d::Zero();                                     // H_v^T s
+    for (int w = 0; w < 6; ++w) {
+      const Eigen::Matrix3d Hw = lin[w].d.template leftCols<3>();
+      V.template block<3, 3>(0, 3 * w) = Hw.transpose();
+      hs.noalias() += Hw.transpose() * s.template segment<3>(3 * w);
+      for (int p = 0; p < npriv; ++p) {
+        const int c = 6 + 6 * p + w;
+        V.template block<1, 3>(3 + npriv * w + p, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
+        x(c) += V.template block<1, 3>(3 + npriv * w + p, 3 * w).dot(s.template segment<3>(3 * w));
+      }
+    }
+    x.template head<6>().noalias() += P.template block<6, 3>(0, 3) * hs;
+    substitute_by_wheel<0, 3>(Lm, V);
+    const Eigen::Matrix3d G = V.template topRows<3>() * V.template topRows<3>().transpose();  // H_v^T S^-1 H_v
+    Eigen::Matrix<double, NX, 1> diag = P.diagonal();
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Vector3d a = P.template block<1, 3>(i, 3).transpose();
+      diag(i) -= a.dot(G * a);
+    }
+    for (int w = 0; w < 6; ++w) {
+      for (int p = 0; p < npriv; ++p) diag(6 + 6 * p + w) -= V.row(3 + npriv * w + p).squaredNorm();
+    }
+    if (!(diag.array() > 0.0).all()) return false;
+    P = diag.asDiagonal();
+    return true;
+  }
+
   // The forward substitution W^T <- W^T L^-T over wheel B's three columns
-  // and on, each column's nonzero head only (private rows ordered by wheel).
-  template <int B>
-  void substitute_by_wheel(const Eigen::Matrix<double, NY, NY>& L, Eigen::Matrix<double, NX, NY>& Wp) const {
-    constexpr int len = 6 + (1 + NA / 6) * (B + 1);
+  // and on, each column's nonzero head only: Top dense rows, then the
+  // private rows ordered by wheel.
+  template <int B, int Top, int R>
+  void substitute_by_wheel(const Eigen::Matrix<double, NY, NY>& L, Eigen::Matrix<double, R, NY>& Wp) const {
+    constexpr int len = Top + (1 + NA / 6) * (B + 1);
     for (int c = 3 * B; c < 3 * B + 3; ++c) {
       Wp.col(c).template head<len>() *= inv_diag_(c);
       for (int r = c + 1; r < NY; ++r) Wp.col(r).template head<len>() -= L(r, c) * Wp.col(c).template head<len>();
     }
-    if constexpr (B < 5) substitute_by_wheel<B + 1>(L, Wp);
+    if constexpr (B < 5) substitute_by_wheel<B + 1, Top>(L, Wp);
   }
 
   // S = L L^T for a small fixed-size S, right-looking over 3 x 3 blocks

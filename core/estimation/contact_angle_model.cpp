@@ -97,50 +97,38 @@ WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, k
     for (int a = 0; a < nj; ++a) dw[k] += z[std::min(a, k)].cross(Jq[std::max(a, k)]) * qd[a];
   }
   // Table 5.2: the contact frame is the drive frame turned by -gamma about
-  // its axle then by pi/2 about x; the side-slip frame turns by beta more.
+  // its axle then by pi/2 about x, C = Rz(-gamma) Rx(pi/2); the side-slip
+  // frame turns by beta more, C Rz(beta). In closed form, with derivatives.
   Eigen::Matrix3d C = Eigen::Matrix3d::Identity(), dC_dg = Eigen::Matrix3d::Zero(), dC_db = Eigen::Matrix3d::Zero();
+  const bool ss = frame == kinematics::WheelFrame::side_slip;
+  const double cb = ss ? std::cos(beta) : 1.0, sb = ss ? std::sin(beta) : 0.0;  // one sincos
   if (frame != kinematics::WheelFrame::drive) {
     const double cg = std::cos(gamma), sg = std::sin(gamma);
-    Eigen::Matrix3d Rz, dRz;  // Rz(-gamma) and its derivative with respect to gamma
-    Rz << cg, sg, 0, -sg, cg, 0, 0, 0, 1;
-    dRz << -sg, cg, 0, -cg, -sg, 0, 0, 0, 0;
-    Eigen::Matrix3d Rx;  // Rx(pi/2)
-    Rx << 1, 0, 0, 0, 0, -1, 0, 1, 0;
-    C = Rz * Rx;
-    dC_dg = dRz * Rx;
-    if (frame == kinematics::WheelFrame::side_slip) {
-      const double cb = std::cos(beta), sb = std::sin(beta);
-      Eigen::Matrix3d Rb, dRb;
-      Rb << cb, -sb, 0, sb, cb, 0, 0, 0, 1;
-      dRb << -sb, -cb, 0, cb, -sb, 0, 0, 0, 0;
-      dC_db = C * dRb;
-      dC_dg = dC_dg * Rb;
-      C = C * Rb;
-    }
+    C << cg * cb, -cg * sb, -sg, -sg * cb, sg * sb, -cg, sb, cb, 0;
+    dC_dg << -sg * cb, sg * sb, -cg, -cg * cb, cg * sb, sg, 0, 0, 0;
+    if (ss) dC_db << -cg * sb, -cg * cb, 0, sg * sb, sg * cb, 0, cb, -sb, 0;
   }
   const Eigen::Matrix3d Rt = (Rd * C).transpose();
   const Eigen::Vector3d wd = Rd.transpose() * w;
   const Eigen::Vector3d u = C.transpose() * wd;
-  Eigen::Matrix<double, 3, 13> D = Eigen::Matrix<double, 3, 13>::Zero();
+  WheelLinearization out;
+  Eigen::Matrix<double, 3, 13>& D = out.d;
+  D.setZero();
   D.leftCols<3>() = Rt;
   D.col(4) = dC_dg.transpose() * wd;
   D.col(5) = dC_db.transpose() * wd;
-  Eigen::Matrix3d rx;  // d(omega x r)/d(gyro noise) = [r]x since omega = gyro - noise
-  rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  D.block<3, 3>(0, 6) = Rt * rx;
+  // d(omega x r)/d(gyro noise) = [r]x since omega = gyro - noise: row k of R^T [r]x is (R^T)_k x r.
+  for (int k = 0; k < 3; ++k) D.block<1, 3>(k, 6) = Rt.row(k).cross(r.transpose());
   for (int k = 0; k < nj; ++k) {
     D.col(9 + k) = Rt * (dw[k] - z[k].cross(w));  // d(R^T w) = R^T (dw - z_k x w)
     D.col(11 + k) = Rt * Jq[k];
   }
   // Eq. 4.20 / Table 5.1: rate = (cos beta) u_x / ((1 - s) r), then u_y, u_z.
-  const bool ss = frame == kinematics::WheelFrame::side_slip;
-  const double den = (1.0 - slip) * m.wheel_radius, sc = ss ? std::cos(beta) : 1.0;
-  WheelLinearization out;
+  const double den = (1.0 - slip) * m.wheel_radius, sc = cb;
   out.value = Eigen::Vector3d(sc * u.x() / den, u.y(), u.z());
-  out.d = D;
-  out.d.row(0) *= sc / den;
-  out.d(0, 3) = sc * u.x() / ((1.0 - slip) * den);
-  if (ss) out.d(0, 5) -= std::sin(beta) * u.x() / den;
+  D.row(0) *= sc / den;
+  D(0, 3) = sc * u.x() / ((1.0 - slip) * den);
+  if (ss) D(0, 5) -= sb * u.x() / den;
   return out;
 }
 
@@ -262,6 +250,9 @@ void WheelMeasurementModel::set_inputs(const Inputs& in) {
   in_ = in;
   for (int w = 0; w < layout_.nw; ++w) {
     geometry_[w] = wheel_geometry(*m_, w, in.q);
+    const WheelGeometry& g = geometry_[w];
+    joint_velocity_[w].setZero();
+    for (int k = 0; k < g.nj; ++k) joint_velocity_[w] += g.J[k] * in.qdot[g.joint[k]];
     memo_[w][0].gamma = memo_[w][1].gamma = NAN;
   }
 }
@@ -292,12 +283,14 @@ const WheelMeasurementModel::RotationMemo& WheelMeasurementModel::rotation(int w
   hit->gamma = gamma;
   hit->beta = beta;
   hit->C = final_rotation(frame_, hit->cg, hit->sg, hit->cb, hit->sb);
+  hit->T.noalias() = (geometry_[w].Rd * hit->C).transpose();
   return *hit;
 }
 
 // One wheel's three rows of h, from its geometry at the measured joint
 // angles (recomputed only for a sigma point that moves one of its joints)
-// and its final rotation (kept while gamma and beta repeat).
+// and its final rotation (kept while gamma and beta repeat), with the
+// joints' share of the wheel velocity at the measured rates kept too.
 void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, const Eigen::VectorXd& nz,
                                            Eigen::VectorXd& y) {
   const int nw = layout_.nw, nq = layout_.nq, na = layout_.na;
@@ -305,22 +298,32 @@ void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, cons
   const Eigen::Vector3d omega = in.gyro - nz.head<3>();
   const double* nzq = nz.data() + 3;        // joint-angle noises
   const double* nzqd = nz.data() + 3 + nq;  // joint-rate noises
-  double qd[kMaxJoints], qn[kMaxJoints];
-  const WheelGeometry* g = &geometry_[w];
-  WheelGeometry moved;
-  for (int k = 0; k < g->nj; ++k) {
-    const int j = g->joint[k];
-    qd[j] = in.qdot[j] - nzqd[j];
-    if (nzq[j] != 0.0 && g == &geometry_[w]) {
-      for (int i = 0; i < nq; ++i) qn[i] = in.q[i] - nzq[i];
-      moved = wheel_geometry(*m_, w, qn);
-      g = &moved;
-    }
+  const WheelGeometry& g = geometry_[w];
+  bool moved = false, rate_noise = false;
+  for (int k = 0; k < g.nj; ++k) {
+    moved = moved || nzq[g.joint[k]] != 0.0;
+    rate_noise = rate_noise || nzqd[g.joint[k]] != 0.0;
   }
   const double gamma = na >= 6 ? x(12 + w) : 0.0, beta = na >= 12 ? x(18 + w) : 0.0;
   const RotationMemo& rot = rotation(w, gamma, beta);
-  const Eigen::Vector3d u =
-      wheel_measurement(*g, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
+  Eigen::Vector3d u;
+  if (!moved) {  // wheel_measurement at the measured joint angles, (R_d C)^T kept: Eq. 4.8, 4.20 / Table 5.1
+    Eigen::Vector3d wv = x.segment<3>(3) + omega.cross(g.r);
+    if (rate_noise) {
+      for (int k = 0; k < g.nj; ++k) wv += g.J[k] * (in.qdot[g.joint[k]] - nzqd[g.joint[k]]);
+    } else {
+      wv += joint_velocity_[w];
+    }
+    u.noalias() = rot.T * wv;
+    const double sc = frame_ == kinematics::WheelFrame::side_slip ? rot.cb : 1.0;
+    u.x() = sc * u.x() / ((1.0 - x(6 + w)) * m_->wheel_radius);
+  } else {  // a joint-angle noise moves the wheel: its geometry again
+    double qd[kMaxJoints], qn[kMaxJoints];
+    for (int k = 0; k < g.nj; ++k) qd[g.joint[k]] = in.qdot[g.joint[k]] - nzqd[g.joint[k]];
+    for (int i = 0; i < nq; ++i) qn[i] = in.q[i] - nzq[i];
+    const WheelGeometry moved_geometry = wheel_geometry(*m_, w, qn);
+    u = wheel_measurement(moved_geometry, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
+  }
   for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
 }
 

@@ -219,9 +219,10 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
 
   // The fast EKF: one wheel linearised by hand at state x.
   WheelLinearization linearize_wheel(int wheel, const double* x, const Inputs& in) const;
-  // S += M R M^T for R = diag(r): wheel-rate, lateral and normal noises on
-  // their own rows; the gyro noise couples every wheel, a joint's noise the
-  // wheels it carries.
+  // S += M R M^T for R = diag(r) on S's lower 3 x 3 blocks (wheel w1 >= w2;
+  // the fast EKF's factorisation reads only those): wheel-rate, lateral and
+  // normal noises on their own rows; the gyro noise couples every wheel, a
+  // joint's noise the wheels it carries.
   void add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r,
                             Eigen::Matrix<double, 18, 18>& S) const;
 
@@ -242,10 +243,11 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
                             const Eigen::VectorXd& y0, Eigen::VectorXd& y);
 
  private:
-  // A wheel's final rotation at (gamma, beta) with their cosines and sines.
+  // A wheel's final rotation at (gamma, beta) with their cosines and sines,
+  // and T = (R_d C)^T, g to the final frame at the measured joint angles.
   struct RotationMemo {
     double gamma = NAN, beta = NAN, cg = 1.0, sg = 0.0, cb = 1.0, sb = 0.0;
-    Eigen::Matrix3d C;
+    Eigen::Matrix3d C, T;
   };
   const RotationMemo& rotation(int wheel, double gamma, double beta);
   void evaluate_wheel(int wheel, const Eigen::VectorXd& x, const Eigen::VectorXd& n, Eigen::VectorXd& y);
@@ -255,8 +257,9 @@ class WheelMeasurementModel {  // NOLINT(bugprone-reserved-identifier): as Wheel
   ContactLayout layout_;
   std::vector<std::vector<int>> wheels_of_joint_;
   Inputs in_;
-  WheelGeometry geometry_[6];  // at the measured joint angles
-  RotationMemo memo_[6][2];    // kept while gamma and beta repeat
+  WheelGeometry geometry_[6];          // at the measured joint angles
+  Eigen::Vector3d joint_velocity_[6];  // sum_k J_k qdot_k there, at the measured joint rates
+  RotationMemo memo_[6][2];            // kept while gamma and beta repeat
 };
 
 }  // namespace roverlab::estimation::contact

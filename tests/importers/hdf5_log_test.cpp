@@ -83,6 +83,52 @@ TEST(Hdf5Log, RoundTripIsBitExactInOrderWithMetadata) {
   expect_identical(original, io::read_hdf5_log(dir.file("log.h5")));
 }
 
+// A log with added streams, written without copying the log (what the CLI's
+// -o does), reads back as the log with the streams added; a stream the log
+// has already is refused as Log::add_stream refuses it.
+TEST(Hdf5Log, WritesALogWithAddedStreamsAsTheMergedLog) {
+  TempDir dir;
+  const log::Log base = sample_log();
+  log::Log added;
+  added.metadata.extra["estimator"] = "test";
+  added.metadata.extra["operator"] = "K. Roe";  // added's entry wins, as write_log_with's merge
+  log::Stream est("estimate/contact/wheels", {0.0, 0.5});
+  est.add_channel("slip_FL", "1", {0.01, -0.02});
+  added.add_stream(std::move(est));
+  io::write_hdf5_log(base, added, dir.file("merged.h5"));
+  log::Log merged = base;
+  for (const auto& s : added.streams()) merged.add_stream(s);
+  for (const auto& [key, value] : added.metadata.extra) merged.metadata.extra[key] = value;
+  expect_identical(merged, io::read_hdf5_log(dir.file("merged.h5")));
+  log::Log again;
+  again.add_stream(log::Stream("truth/joints", {0.0}));
+  EXPECT_THROW(io::write_hdf5_log(base, again, dir.file("twice.h5")), DataError);
+  EXPECT_FALSE(fs::exists(dir.file("twice.h5")));
+}
+
+// The crash guard's trial read goes through every dataset (and fails where
+// the real read fails) without returning the samples.
+TEST(Hdf5Log, ReadsEveryDatasetDiscardingItLikeReadAll) {
+  TempDir dir;
+  io::write_hdf5_log(sample_log(), dir.file("log.h5"));
+  EXPECT_NO_THROW(io::Hdf5LogReader(dir.file("log.h5")).read_all_discarding());
+  // A damaged channel late in the file: the same error as read_all's.
+  const std::string damaged = std::string(ROVERLAB_TEST_DATA) + "/../fuzz/corpus/hdf5_log/chunk_larger_than_file.h5";
+  std::string full, trial;
+  try {
+    (void)io::Hdf5LogReader(damaged).read_all();
+  } catch (const InputError& e) {
+    full = e.what();
+  }
+  try {
+    io::Hdf5LogReader(damaged).read_all_discarding();
+  } catch (const InputError& e) {
+    trial = e.what();
+  }
+  EXPECT_NE(full.find("angular_rate_z"), std::string::npos) << full;
+  EXPECT_EQ(trial, full);
+}
+
 TEST(Hdf5Log, CatalogWithoutReadingAndOneChannelAlone) {
   TempDir dir;
   io::write_hdf5_log(sample_log(), dir.file("log.h5"));
