@@ -146,10 +146,10 @@ class NetTractionAnalysis : public Analysis {
         ->check(finite_in(0.0, 1e7));
     cmd.add_option("--bogie-split", bogie_split_,
                    "Single-axis sensors: split of the bogie's perpendicular load, eq-5.66 (in proportion to the "
-                   "sensed loads, the seed's) or shape (a second pass with DP/W of each bogie wheel from the first "
-                   "pass's DP(W, s) surface)")
+                   "sensed loads, the seed's), shape (a second pass with DP/W of each bogie wheel from the first "
+                   "pass's DP(W, s) surface) or auto (shape unless it makes the DP points fit one surface 25 % worse)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"eq-5.66", "shape"}));
+        ->check(CLI::IsMember({"auto", "eq-5.66", "shape"}));
   }
   void check_options() const override {
     (void)order();
@@ -220,7 +220,7 @@ class NetTractionAnalysis : public Analysis {
   std::string order_ = "2";  // the seed's Table 5.2
   // The seed's. The shape split is better on the 200 s validation runs but
   // worse on 100-150 s ones (docs/validation/net-traction.md).
-  std::string bogie_split_ = "eq-5.66";
+  std::string bogie_split_ = "auto";
   std::string soil_ = "ding_tyii";
   double window_ = 0.0;
 };
@@ -311,18 +311,30 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
   o.progress = in.progress;
   estimation::NetTractionResult r = estimation::run_net_traction(in.log, rover, o);
   bool shape_split = false;
-  if (bogie_split_ == "shape" && !r.single_axis.empty()) {  // section 5.6's split in two passes
+  json split_evidence = nullptr;
+  if (bogie_split_ != "eq-5.66" && !r.single_axis.empty()) {  // section 5.6's split in two passes
     analysis::SteadyStateOptions so;
     so.window_seconds = window_;
     try {
       estimation::NetTractionResult second = analysis::single_axis_second_pass(in.log, rover, o, r, so);
-      if (r.force_sensors == estimation::ForceSensors::single_axis) {
-        r = std::move(second);
+      if (bogie_split_ == "auto") {  // keep the second pass only if its points stay as consistent
+        const double first_rmse = analysis::single_axis_drawbar_pull_fit_rmse(r, so);
+        const double second_rmse = analysis::single_axis_drawbar_pull_fit_rmse(second, so);
+        const bool keep = second_rmse < analysis::kSecondPassFitGrowthLimit * first_rmse;
+        split_evidence = {{"first_pass_dp_fit_rmse_N", first_rmse},
+                          {"second_pass_dp_fit_rmse_N", second_rmse},
+                          {"growth_limit", analysis::kSecondPassFitGrowthLimit},
+                          {"kept", keep ? "shape" : "eq-5.66"}};
+        shape_split = keep;  // else Eq. 5.66's pass stays
       } else {
+        shape_split = true;
+      }
+      if (shape_split && r.force_sensors == estimation::ForceSensors::single_axis) {
+        r = std::move(second);
+      } else if (shape_split) {
         r.single_axis = std::move(second.single_axis);
         r.rejected_updates[2] = second.rejected_updates[2];
       }
-      shape_split = true;
     } catch (const DataError&) {  // too few points for the shape: Eq. 5.66 alone (the fits say why)
     }
   }
@@ -350,6 +362,8 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
   json& single = out.document.at("estimators")["single-axis"];
   if (!single.is_null()) {
     single["bogie_split"] = {
+        {"requested", bogie_split_},
+        {"auto_evidence", split_evidence},
         {"method", shape_split ? "shape" : "eq-5.66"},
         {"passes", shape_split ? 2 : 1},
         {"assumption",
@@ -465,6 +479,14 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
                    e.at("bogie_split").at("method").get<std::string>().c_str(),
                    e.at("bogie_split").at("passes").get<int>(),
                    e.at("bogie_split").at("assumption").get<std::string>().c_str());
+      const json& ev = e.at("bogie_split").at("auto_evidence");
+      if (ev.is_object()) {
+        std::fprintf(out,
+                     " chosen by auto: DP points' order-2 fit RMS %.3g N (Eq. 5.66) against %.3g N (shape); shape is "
+                     "kept below %.3g times\n",
+                     ev.at("first_pass_dp_fit_rmse_N").get<double>(), ev.at("second_pass_dp_fit_rmse_N").get<double>(),
+                     ev.at("growth_limit").get<double>());
+      }
     }
     if (e.contains("tracking_rms")) {
       std::fprintf(out, " RMS error per wheel over %zu samples:\n",

@@ -219,20 +219,36 @@ NetTractionModel rebuild_net_traction_model(const log::Log& lg, const estimation
   return m;
 }
 
+namespace {
+
+constexpr int kShapeOrder = 2;
+
+// The steady-state points of a pass's single-axis estimates, as
+// rebuild_net_traction_model averages them.
+std::vector<TractionPoint> single_axis_points(const estimation::NetTractionResult& pass,
+                                              const SteadyStateOptions& steady) {
+  std::array<std::vector<double>, 3> acceleration;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::VectorXd c = pass.wheel_acceleration.col(i);
+    acceleration[static_cast<std::size_t>(i)].assign(c.data(), c.data() + c.size());
+  }
+  return averaged_points(pass.time, estimated_series(pass, pass.single_axis),
+                         steady_state_mask(pass.time, acceleration, steady), steady);
+}
+
+}  // namespace
+
+double single_axis_drawbar_pull_fit_rmse(const estimation::NetTractionResult& pass, const SteadyStateOptions& steady) {
+  const std::vector<TractionPoint> points = single_axis_points(pass, steady);
+  return fit_traction_surface(surface_samples(points, TractionQuantity::drawbar_pull), kShapeOrder).error.rmse;
+}
+
 estimation::NetTractionResult single_axis_second_pass(const log::Log& lg,
                                                       const estimation::net_traction::RoverConstants& rover,
                                                       const estimation::NetTractionOptions& options,
                                                       const estimation::NetTractionResult& first_pass,
                                                       const SteadyStateOptions& steady) {
-  constexpr int kShapeOrder = 2;
-  std::array<std::vector<double>, 3> acceleration;  // the points of rebuild_net_traction_model
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::VectorXd c = first_pass.wheel_acceleration.col(i);
-    acceleration[static_cast<std::size_t>(i)].assign(c.data(), c.data() + c.size());
-  }
-  const std::vector<TractionPoint> points =
-      averaged_points(first_pass.time, estimated_series(first_pass, first_pass.single_axis),
-                      steady_state_mask(first_pass.time, acceleration, steady), steady);
+  const std::vector<TractionPoint> points = single_axis_points(first_pass, steady);
   const TraversedRegion region = traversed_region(points);
   const terramechanics::PolynomialSurface shape =
       fit_traction_surface(surface_samples(points, TractionQuantity::drawbar_pull), kShapeOrder).surface;

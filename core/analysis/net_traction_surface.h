@@ -154,6 +154,17 @@ estimation::NetTractionResult single_axis_second_pass(const log::Log& log,
                                                       const estimation::NetTractionResult& first_pass,
                                                       const SteadyStateOptions& steady);
 
+// RMS residual of the order-2 DP(W, s) surface fitted to a pass's
+// single-axis steady-state points (all wheels): how consistent with one
+// smooth surface the pass's drawbar pulls are. Throws DataError when there
+// are too few points.
+double single_axis_drawbar_pull_fit_rmse(const estimation::NetTractionResult& pass, const SteadyStateOptions& steady);
+
+// The second pass is kept when its fit RMS grows by less than this factor
+// over the first's (measured: 4-10 % where the second pass is closer to the
+// true local model, 39-56 % where it is further; docs/validation/net-traction.md).
+constexpr double kSecondPassFitGrowthLimit = 1.25;
+
 // Issue 12 item 5: soil parameters fitted (Ceres, core/terramechanics/
 // soil_identification.h) to the estimated steady-state points (drawbar pull
 // and resistive torque at each load and slip), from `start`, with +-1

@@ -635,11 +635,24 @@ TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
   ASSERT_EQ(single.exit_code, 0) << single.err;
   const nlohmann::json sj = nlohmann::json::parse(single.out);
   EXPECT_EQ(sj.at("estimators").count("two-axis"), 0u);
-  // The bogie split is stated: by default Eq. 5.66 (one pass), on request
-  // the two-pass shape split; they differ.
+  // The bogie split is stated: by default auto, with its evidence (on this
+  // short run the second pass's points fit worse: Eq. 5.66, one pass); on
+  // request Eq. 5.66 alone or the two-pass shape split; they differ.
   const nlohmann::json& split = sj.at("estimators").at("single-axis").at("bogie_split");
-  EXPECT_EQ(split.at("method"), "eq-5.66");
-  EXPECT_EQ(split.at("passes"), 1);
+  EXPECT_EQ(split.at("requested"), "auto");
+  const nlohmann::json& evidence = split.at("auto_evidence");
+  const bool shape_kept =
+      evidence.at("second_pass_dp_fit_rmse_N").get<double>() <
+      evidence.at("growth_limit").get<double>() * evidence.at("first_pass_dp_fit_rmse_N").get<double>();
+  EXPECT_EQ(split.at("method"), shape_kept ? "shape" : "eq-5.66");
+  EXPECT_EQ(evidence.at("kept"), split.at("method"));
+  const CommandResult plain =
+      run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors single-axis --json --bogie-split eq-5.66");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const nlohmann::json pj = nlohmann::json::parse(plain.out).at("estimators").at("single-axis");
+  EXPECT_EQ(pj.at("bogie_split").at("method"), "eq-5.66");
+  EXPECT_EQ(pj.at("bogie_split").at("passes"), 1);
+  EXPECT_TRUE(pj.at("bogie_split").at("auto_evidence").is_null());
   const CommandResult shaped =
       run_roverlab("estimate net-traction " + quote(sim) + " --force-sensors single-axis --json --bogie-split shape");
   ASSERT_EQ(shaped.exit_code, 0) << shaped.err;
@@ -647,9 +660,9 @@ TEST(CliNetTraction, SimulateThenEstimatePrintsTheTablesAndTheSurfaceFits) {
   EXPECT_EQ(hj.at("bogie_split").at("method"), "shape");
   EXPECT_EQ(hj.at("bogie_split").at("passes"), 2);
   EXPECT_NE(hj.at("bogie_split").at("assumption").get<std::string>().find("contact angle"), std::string::npos);
-  EXPECT_NE(hj.at("drawbar_pull").at("coefficients"),
-            sj.at("estimators").at("single-axis").at("drawbar_pull").at("coefficients"));
-  EXPECT_NE(text.out.find("bogie split (section 5.6): eq-5.66, 1 pass(es)"), std::string::npos);
+  EXPECT_NE(hj.at("drawbar_pull").at("coefficients"), pj.at("drawbar_pull").at("coefficients"));
+  EXPECT_NE(text.out.find("bogie split (section 5.6): "), std::string::npos);
+  EXPECT_NE(text.out.find("chosen by auto: DP points' order-2 fit RMS"), std::string::npos);
 }
 
 TEST(CliNetTraction, BadInputAndUsage) {

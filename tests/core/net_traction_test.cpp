@@ -298,6 +298,27 @@ TEST(NetTraction, TheShapeSplitRecoversTheBogieWheelsLoadsAcrossTheirLinks) {
   EXPECT_EQ(unmeasured, proportional);
 }
 
+// `--bogie-split auto` (the default): the second pass is kept only when its
+// drawbar pulls fit one order-2 surface about as well as the first pass's
+// (RMS grown by less than 25 %). On the 200 s run it is kept and is closer to
+// the true local model; on the 100 s run (a smaller region, a poorer pass-1
+// shape) it is refused and would have been further from it.
+TEST(NetTraction, AutoKeepsTheSecondPassOnlyWhereItsPointsStayConsistent) {
+  for (const int seconds : {200, 100}) {
+    const auto& r = rolling_result(seconds);
+    const auto second = analysis::single_axis_second_pass(rolling_log(seconds), {}, {}, r, {});
+    const double growth =
+        analysis::single_axis_drawbar_pull_fit_rmse(second, {}) / analysis::single_axis_drawbar_pull_fit_rmse(r, {});
+    const bool kept = growth < analysis::kSecondPassFitGrowthLimit;
+    const auto one = analysis::rebuild_net_traction_model(rolling_log(seconds), r, r.single_axis, {}, 2);
+    const auto two = analysis::rebuild_net_traction_model(rolling_log(seconds), second, second.single_axis, {}, 2);
+    std::printf("%d s: fit RMS growth %.2f, DP vs truth Eq. 5.66 %.2f %%, shape %.2f %%\n", seconds, growth,
+                one.drawbar_pull.comparison.rms_percent, two.drawbar_pull.comparison.rms_percent);
+    EXPECT_EQ(kept, seconds == 200) << seconds << " s: growth " << growth;
+    EXPECT_EQ(kept, two.drawbar_pull.comparison.rms_percent < one.drawbar_pull.comparison.rms_percent) << seconds;
+  }
+}
+
 // Section 5.8 / Table 5.2: order-2 surfaces from the estimates against the
 // true local model over the traversed region, in % of the quantity's range.
 TEST(NetTraction, RebuiltSurfacesMatchTheTrueLocalModelAndGiveTheSoil) {
