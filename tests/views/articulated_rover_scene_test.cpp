@@ -46,7 +46,6 @@ log::Log bb2_log(double fl_angle) {
 }
 
 bool slipping_red(int r, int g, int b) { return r > 120 && g < 80 && b < 80; }
-bool estimate_blue(int r, int g, int b) { return b > 180 && r < 90 && g < 140; }
 
 }  // namespace
 

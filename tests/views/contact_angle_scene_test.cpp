@@ -30,8 +30,6 @@ log::Log contact_estimate() {
   return lg;
 }
 
-bool estimate_blue(int r, int g, int b) { return b > 180 && r < 90 && g < 140; }
-
 }  // namespace
 
 TEST(ContactAngleScene, OnePanelPerWheelWithTheArrowAlongItsVelocity) {

@@ -157,7 +157,6 @@ log::Log drive_with_contact_angles(double truth, double estimate) {
   return lg;
 }
 
-bool estimate_blue(int r, int g, int b) { return b > 180 && r < 90 && g < 140; }
 bool truth_green(int r, int g, int b) { return g > 120 && r < 60 && b < 90; }
 
 }  // namespace

@@ -44,4 +44,7 @@ inline std::vector<double> times(double duration, double dt) {
   return t;
 }
 
+// The pixels of an estimate's arrow (ContactAngleScene::estimate_rgb, unlit).
+inline bool estimate_blue(int r, int g, int b) { return b > 180 && r < 90 && g < 140; }
+
 }  // namespace roverlab::test
