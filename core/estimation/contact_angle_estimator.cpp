@@ -258,15 +258,17 @@ void ContactAngleEstimator::initial_state() {
   p0_.segment(3, 3).setConstant(1e-4);
   p0_.segment(6, 6).setConstant(1e-4);
   if (layout_.na > 0) p0_.segment(12, layout_.na).setConstant(1e-3);
-  ukf_.additive_process_noise = ukf_.additive_measurement_noise = !o_.reference_ukf;  // Eq. 4.15-4.17, 4.20
-  ukf_.diagonal_only = o_.reset_cross_covariance && !o_.reference_ukf;
-  if (!o_.reference_ukf) {
-    ukf_.h_incremental = [this](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz,
-                                const std::vector<Eigen::Index>& cx, const std::vector<Eigen::Index>& cn,
-                                const Eigen::VectorXd& y0, Eigen::VectorXd& out_y) {
-      measurement_.evaluate_incremental(xs, nz, cx, cn, y0, out_y);
-    };
-  }
+  // The fixed-size UKFs: closed forms along the additive noises (Eq. 4.15-4.17, 4.20), h per wheel reached.
+  const Eigen::MatrixXd P0 = p0_.asDiagonal();
+  auto init = [&](auto& u) {
+    u.set_noises(qdiag_, R_ukf_.diagonal());
+    u.filter.diagonal_only = o_.reset_cross_covariance;
+    u.filter.x = x0_;
+    u.filter.P = P0;
+  };
+  if (layout_.na == 0) init(ukf0_);
+  if (layout_.na == 6) init(ukf6_);
+  if (layout_.na == 12) init(ukf12_);
   ekf_.x = ukf_.x = x0_;
   ekf_.P = ukf_.P = Eigen::MatrixXd(p0_.asDiagonal());
   y_meas_ = Eigen::VectorXd::Zero(layout_.ny());
@@ -399,7 +401,15 @@ void ContactAngleEstimator::generic_ekf_step(std::size_t i, const Inputs& in, do
   x_ = ekf_.x;
 }
 
+// The reference UKF: the generic augmented filter, every sigma point through f and h.
 void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts, bool update) {
+  measurement_.set_inputs(in);
+  if (!o_.reference_ukf) {
+    if (layout_.na == 0) fixed_ukf_step(ukf0_, i, in, ts, update);
+    if (layout_.na == 6) fixed_ukf_step(ukf6_, i, in, ts, update);
+    if (layout_.na == 12) fixed_ukf_step(ukf12_, i, in, ts, update);
+    return;
+  }
   // The filter's f and h: this step's inputs bound to the models.
   const auto f = [&](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_x) {
     process_.evaluate(xs, nz, in, ts, out_x);
@@ -407,7 +417,6 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
   const auto h = [this](const Eigen::VectorXd& xs, const Eigen::VectorXd& nz, Eigen::VectorXd& out_y) {
     measurement_.evaluate(xs, nz, out_y);
   };
-  measurement_.set_inputs(in);
   if (i > 0 && update) {
     const auto ny = static_cast<int>(y_meas_.size());
     ukf_.gate = health_.gate(ny);
@@ -424,6 +433,25 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
   x_ = ukf_.x;
 }
 
+// The same on the fixed-size filter of the model (the same estimates).
+template <int NA>
+void ContactAngleEstimator::fixed_ukf_step(ContactAngleUkf<NA>& u, std::size_t i, const Inputs& in, double ts,
+                                           bool update) {
+  if (i > 0 && update) {
+    constexpr int ny = ContactAngleUkf<NA>::NY;
+    u.filter.gate = health_.gate(ny);
+    if (u.step(process_, measurement_, in, ts, y_meas_)) {
+      health_.record(imu_->time()[i], u.filter.nis, ny);
+      innovations_.add(u.filter.nis, u.filter.log_det_pyy, ny);
+    }
+  } else if (i > 0) {
+    u.predict(process_, in, ts);
+  }
+  using Covariance = typename ContactAngleUkf<NA>::Filter::Covariance;
+  if (o_.reset_cross_covariance) u.filter.P = Covariance(u.filter.P.diagonal().asDiagonal());
+  x_ = u.filter.x;
+}
+
 // After each step: P finite and positive definite, the state finite and
 // within its bounds, the updates not gated away for long. On divergence the
 // filter is reset (or stops once the resets are used up).
@@ -431,8 +459,14 @@ void ContactAngleEstimator::check_health(std::size_t i) {
   const double t = imu_->time()[i];
   // P where it lives (no copy at every step).
   const bool fast = o_.filter == FilterKind::ekf && !o_.reference_ekf;
+  const auto check = [&](const Eigen::Ref<const Eigen::MatrixXd>& P) {
+    return health_.check(t, P, x_, lower_, upper_, state_names_);
+  };
   const std::string why =
-      !fast ? health_.check(t, o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P, x_, lower_, upper_, state_names_)
+      fast_ukf() ? (layout_.na == 0   ? check(ukf0_.filter.P)
+                    : layout_.na == 6 ? check(ukf6_.filter.P)
+                                      : check(ukf12_.filter.P))
+      : !fast    ? health_.check(t, o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P, x_, lower_, upper_, state_names_)
       : layout_.na == 0 ? health_.check(t, fast0_.P, x_, lower_, upper_, state_names_)
       : layout_.na == 6 ? health_.check(t, fast6_.P, x_, lower_, upper_, state_names_)
                         : health_.check(t, fast12_.P, x_, lower_, upper_, state_names_);
@@ -464,6 +498,9 @@ void ContactAngleEstimator::reset_filter(std::size_t i) {
   if (layout_.na == 12) fast12_.x = x, fast12_.P = P;
   ekf_.x = ukf_.x = x;
   ekf_.P = ukf_.P = P;
+  if (layout_.na == 0) ukf0_.filter.x = x, ukf0_.filter.P = P;
+  if (layout_.na == 6) ukf6_.filter.x = x, ukf6_.filter.P = P;
+  if (layout_.na == 12) ukf12_.filter.x = x, ukf12_.filter.P = P;
   x_ = x;
   if (smooth_) {
     record_filtered(i, x.data(), true);
@@ -532,6 +569,11 @@ Eigen::MatrixXd ContactAngleEstimator::covariance() const {
     return layout_.na == 0   ? Eigen::MatrixXd(fast0_.P)
            : layout_.na == 6 ? Eigen::MatrixXd(fast6_.P)
                              : Eigen::MatrixXd(fast12_.P);
+  }
+  if (fast_ukf()) {
+    return layout_.na == 0   ? Eigen::MatrixXd(ukf0_.filter.P)
+           : layout_.na == 6 ? Eigen::MatrixXd(ukf6_.filter.P)
+                             : Eigen::MatrixXd(ukf12_.filter.P);
   }
   return o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P;
 }

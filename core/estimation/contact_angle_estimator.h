@@ -15,6 +15,7 @@
 #include "core/estimation/contact_angle.h"
 #include "core/estimation/contact_angle_fast_ekf.h"
 #include "core/estimation/contact_angle_model.h"
+#include "core/estimation/contact_angle_ukf.h"
 #include "core/estimation/nonlinear_filter.h"
 #include "core/kinematics/rover_model.h"
 #include "core/log/log.h"
@@ -56,6 +57,9 @@ class ContactAngleEstimator {
   void fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const contact::Inputs& in, double ts, bool update);
   void generic_ekf_step(std::size_t i, const contact::Inputs& in, double ts, bool update);
   void ukf_step(std::size_t i, const contact::Inputs& in, double ts, bool update);
+  template <int NA>
+  void fixed_ukf_step(ContactAngleUkf<NA>& u, std::size_t i, const contact::Inputs& in, double ts, bool update);
+  bool fast_ukf() const { return o_.filter == FilterKind::ukf && !o_.reference_ukf; }
   // Health: the checks after a step, and the reset (docs/validation/contact-angle.md).
   void check_health(std::size_t i);
   void reset_filter(std::size_t i);
@@ -117,7 +121,10 @@ class ContactAngleEstimator {
   // Filters and the state they leave after each step.
   Eigen::VectorXd x0_, p0_, x_, y_meas_;
   ExtendedKalmanFilter ekf_;
-  UnscentedKalmanFilter ukf_;
+  UnscentedKalmanFilter ukf_;  // the reference UKF; the fixed-size ones per model:
+  ContactAngleUkf<0> ukf0_;
+  ContactAngleUkf<6> ukf6_;
+  ContactAngleUkf<12> ukf12_;
   FastEkf<0> fast0_;
   FastEkf<6> fast6_;
   FastEkf<12> fast12_;

@@ -7,7 +7,10 @@
 // UnscentedKalmanFilter (nonlinear_filter.h) on the augmented state [x; v]
 // (L = NX + NY), with the same weights, gate and results up to rounding;
 // its matrices live on the stack and its products are unrolled by Eigen.
-// Used by the net-traction estimators (22 + 11 and 9 + 9).
+// Used by the net-traction estimators (22 + 11 and 9 + 9). step_augmented
+// is the generic filter's full augmented step (non-additive process and
+// measurement noises besides the additive ones), used by the contact-angle
+// UKF (contact_angle_ukf.cpp).
 
 #include <array>
 #include <cmath>
@@ -32,6 +35,9 @@ class FixedUnscentedFilter {
   double gate = HUGE_VAL;  // NIS gate of the update (a chi-square quantile)
   double nis = 0, log_det_pyy = 0;
   bool rejected = false;
+  // The seed's workaround inside the step (step_augmented): P is diagonal on
+  // entry and only the diagonal of the updated P is computed and kept.
+  bool diagonal_only = false;
   // The model's promise that measurement j is state copied_state[j]
   // unchanged (h's row j copies it; -1: it does not). Pxy's column j is
   // then Pxx's column copied_state[j] and is not summed again.
@@ -78,6 +84,132 @@ class FixedUnscentedFilter {
     return correct(r, y);
   }
 
+  // The generic UnscentedKalmanFilter's step (Eq. 2.18-2.20, seed 000) on
+  // the augmented state [x; w_a; w_n; v_n; v_a] with uncorrelated noises:
+  // x' = f(x, w_n) + w_a (w_a ~ N(0, diag(q)), w_n ~ N(0, diag(qn)), NW of
+  // them), y = h(x', v_n) + v_a (v_n ~ N(0, diag(rn)), nrn of them, v_a ~
+  // N(0, diag(r))); L = 2 NX + NW + nrn + NY, the same points and weights.
+  // The model m provides f(x, j, v, out): f with w_n's entry j = v (j < 0:
+  // w_n = 0); h(x, out): h at zero noise, the centre the next calls refer
+  // to; h_moved(x, changed, n, out): h at a point that differs from the
+  // centre in the n listed states; h_noise(j, v, out): h at the centre with
+  // v_n's entry j = v. Deviations are summed where they are nonzero (a point
+  // moves a few states, a few measurements). Returns false when a covariance
+  // is not positive definite (the state is then left as it was, or as
+  // predicted).
+  template <int NW, class Model>
+  bool step_augmented(Model& m, const State& q, const Eigen::Matrix<double, NW, 1>& qn, const double* rn, int nrn,
+                      const Measurement& r, const Measurement& y) {
+    nis = 0;
+    rejected = false;
+    const double L = 2.0 * NX + NW + nrn + NY;
+    const double lambda = alpha * alpha * (L + kappa) - L;
+    const double c = std::sqrt(L + lambda);
+    wi_ = 0.5 / (L + lambda);
+    W2_ = lambda / (L + lambda) + (1.0 - alpha * alpha + beta) + 2.0 * L * wi_ - 2.0;
+    if (diagonal_only) {
+      if (!(P.diagonal().array() > 0.0).all()) return false;
+      S_ = (c * P.diagonal().cwiseSqrt()).asDiagonal();
+    } else {
+      llt_x_.compute(P);
+      if (llt_x_.info() != Eigen::Success) return false;
+      S_ = c * llt_x_.matrixL().toDenseMatrix();
+    }
+    bool noises_positive = (q.array() > 0.0).all() && (qn.array() > 0.0).all() && (r.array() > 0.0).all();
+    for (int j = 0; j < nrn; ++j) noises_positive = noises_positive && rn[j] > 0.0;
+    if (!noises_positive) return false;
+    m.f(x, -1, 0.0, X0_);
+    m.h(X0_, Y0_);
+    State sx = State::Zero();
+    sy_.setZero();
+    Pxx_.setZero();
+    Pyy_.setZero();
+    Pxy_.setZero();
+    State xp, ex;
+    Measurement hy, ey;
+    int ix[NX], iy[NY], changed[NX];
+    // One point through f (deviation ex) and h (deviation ey).
+    auto add_state_point = [&]() {
+      ex = xp - X0_;
+      int nxc = 0;
+      for (int k = 0; k < NX; ++k) {
+        if (ex(k) != 0.0) changed[nxc++] = k;
+      }
+      m.h_moved(xp, changed, nxc, hy);
+      ey = hy - Y0_;
+      const int nyc = nonzeros(ey, iy);
+      sx += ex;
+      sy_ += ey;
+      for (int a = 0; a < nxc; ++a) {
+        ix[a] = changed[a];
+        const double ea = ex(ix[a]);
+        if (diagonal_only) {
+          Pxx_(ix[a], ix[a]) += ea * ea;
+        } else {
+          for (int b = 0; b <= a; ++b) Pxx_(ix[a], ix[b]) += ea * ex(ix[b]);
+        }
+        for (int b = 0; b < nyc; ++b) Pxy_(ix[a], iy[b]) += ea * ey(iy[b]);
+      }
+      add_lower(ey, iy, nyc, Pyy_);
+    };
+    for (int d = 0; d < NX; ++d) {  // along the state
+      for (int k = 0; k < 2; ++k) {
+        m.f(k == 0 ? State(x + S_.col(d)) : State(x - S_.col(d)), -1, 0.0, xp);
+        add_state_point();
+      }
+    }
+    for (int j = 0; j < NW; ++j) {  // along the non-additive process noises
+      for (int k = 0; k < 2; ++k) {
+        m.f(x, j, (k == 0 ? c : -c) * std::sqrt(qn(j)), xp);
+        add_state_point();
+      }
+    }
+    // Along the additive process noises: X0 +- delta_j e_j through h only;
+    // Pxy gains delta_j (ey+ - ey-)^T, Pxx q (a pair adds 2 wi delta^2 = q_j).
+    Eigen::Matrix<double, NX, NY> Pxy_additive;
+    for (int j = 0; j < NX; ++j) {
+      const double delta = c * std::sqrt(q(j));
+      Measurement pair = Measurement::Zero();
+      for (int k = 0; k < 2; ++k) {
+        xp = X0_;
+        xp(j) += k == 0 ? delta : -delta;
+        changed[0] = j;
+        m.h_moved(xp, changed, 1, hy);
+        ey = hy - Y0_;
+        sy_ += ey;
+        add_lower(ey, iy, nonzeros(ey, iy), Pyy_);
+        pair += k == 0 ? ey : Measurement(-ey);
+      }
+      Pxy_additive.row(j) = (c * wi_ * std::sqrt(q(j))) * pair.transpose();
+    }
+    for (int j = 0; j < nrn; ++j) {  // along the non-additive measurement noises: h only
+      for (int k = 0; k < 2; ++k) {
+        m.h_noise(j, (k == 0 ? c : -c) * std::sqrt(rn[j]), hy);
+        ey = hy - Y0_;
+        sy_ += ey;
+        add_lower(ey, iy, nonzeros(ey, iy), Pyy_);
+      }
+    }
+    // Means X0 + wi sum ex, Y0 + wi sum ey; covariances wi sum e e^T + (W - 2) s s^T.
+    sx *= wi_;
+    sy_ *= wi_;
+    Pxx_ *= wi_;
+    Pyy_ *= wi_;
+    Pxy_ *= wi_;
+    Pxy_ += Pxy_additive;
+    Pxy_.noalias() += W2_ * sx * sy_.transpose();
+    Pyy_.noalias() += W2_ * sy_ * sy_.transpose();
+    x = X0_ + sx;
+    if (diagonal_only) {
+      P = (Pxx_.diagonal() + W2_ * sx.cwiseAbs2() + q).asDiagonal();
+    } else {
+      Pxx_.noalias() += W2_ * sx * sx.transpose();
+      P = Pxx_.template selfadjointView<Eigen::Lower>();
+      P.diagonal() += q;
+    }
+    return correct(r, y);
+  }
+
   // The same with the identity as process model (a random walk, Eq.
   // 5.50-5.52 of seed 003): the transform returns x and P unchanged, so only
   // h is evaluated; the sigma points' deviations are +-c S's columns.
@@ -114,6 +246,24 @@ class FixedUnscentedFilter {
         double* m = M.col(j).data();
         for (int i = j; i < N; ++i) m[i] += e[i] * ej;
       }
+    }
+  }
+
+  // The indices of v's nonzero entries into idx; their count.
+  template <int N>
+  static int nonzeros(const Eigen::Matrix<double, N, 1>& v, int* idx) {
+    int n = 0;
+    for (int k = 0; k < N; ++k) {
+      if (v(k) != 0.0) idx[n++] = k;
+    }
+    return n;
+  }
+
+  // M's lower triangle += e e^T over e's n nonzero entries idx (ascending).
+  static void add_lower(const Measurement& e, const int* idx, int n, Eigen::Matrix<double, NY, NY>& M) {
+    for (int a = 0; a < n; ++a) {
+      const double ea = e(idx[a]);
+      for (int b = 0; b <= a; ++b) M(idx[a], idx[b]) += ea * e(idx[b]);
     }
   }
 
@@ -191,6 +341,10 @@ class FixedUnscentedFilter {
     if (rejected) return true;  // x and P as predicted
     const Eigen::Matrix<double, NX, NY> Wt = Bt.template bottomRows<NX>();
     x.noalias() += Wt * Bt.row(0).transpose();
+    if (diagonal_only) {  // only P's diagonal is kept
+      P.diagonal() -= Wt.rowwise().squaredNorm();
+      return true;
+    }
     Covariance KK;
     lower_outer_sum(Wt, KK);
     P -= KK;

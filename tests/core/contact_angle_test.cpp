@@ -300,6 +300,38 @@ TEST(ContactAngle, UkfShortcutsGiveThePlainAugmentedUkfsEstimates) {
   }
 }
 
+TEST(ContactAngle, FixedSizeUkfEqualsTheGenericUkfForEveryModel) {
+  // The fixed-size UKF of each model (12, 18, 24 states) against the generic
+  // augmented UKF: the same estimates, NIS sums and gate decisions.
+  auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
+  sc.rate = 50.0;
+  sc.duration = 20.0;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  for (auto model : {estimation::ContactModel::smooth, estimation::ContactModel::contact,
+                     estimation::ContactModel::contact_side_slip}) {
+    for (bool reset : {false, true}) {
+      estimation::ContactAngleOptions o;
+      o.model = model;
+      o.filter = estimation::FilterKind::ukf;
+      o.reset_cross_covariance = reset;
+      const auto fixed = estimation::run_contact_angle(lg, bb2(), o);
+      o.reference_ukf = true;
+      const auto ref = estimation::run_contact_angle(lg, bb2(), o);
+      std::size_t compared = 0;
+      const double worst = largest_estimate_difference(fixed, ref, &compared);
+      EXPECT_GT(compared, 10000u);
+      EXPECT_LT(worst, 1e-9) << "model " << static_cast<int>(model) << " reset " << reset;
+      EXPECT_GT(fixed.innovations.updates, 500u);
+      EXPECT_EQ(fixed.innovations.updates, ref.innovations.updates);
+      EXPECT_EQ(fixed.health.updates_rejected, ref.health.updates_rejected);
+      EXPECT_NEAR(fixed.innovations.nis_sum, ref.innovations.nis_sum, 1e-6 * ref.innovations.nis_sum);
+      EXPECT_NEAR(fixed.innovations.log_likelihood, ref.innovations.log_likelihood,
+                  1e-9 * std::abs(ref.innovations.log_likelihood));
+      EXPECT_NEAR(fixed.max_cross_correlation, ref.max_cross_correlation, 1e-6);
+    }
+  }
+}
+
 TEST(ContactAngle, StandstillHoldsTheStatesAndMarksThemInvalid) {
   auto s = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
   s.rate = 100.0;
