@@ -80,20 +80,35 @@ BENCHMARK(BM_ContactAngleAuto2Min1kHz)->Unit(benchmark::kSecond)->Iterations(2)-
 void BM_ContactAngleAuto2Min1kHzSequential(benchmark::State& state) { select(state, false); }
 BENCHMARK(BM_ContactAngleAuto2Min1kHzSequential)->Unit(benchmark::kSecond)->Iterations(2)->UseRealTime();
 
-// The RTS smoother over the C+SS EKF with the reset: forward pass, storage, backward pass.
-void BM_ContactAngleEkfSmoother2Min1kHz(benchmark::State& state) {
+// The smoothers over the C+SS filters with the reset. RTS (EKF): forward
+// pass, storage, backward pass. Two-filter: the filter over the log and over
+// the log reversed in time, the fusion and the errors.
+void smoother(benchmark::State& state, estimation::FilterKind filter, estimation::SmootherMethod method) {
   const double seconds = 120.0;
   static const log::Log lg = scenario(seconds);
   estimation::ContactAngleOptions o;
   o.model = estimation::ContactModel::contact_side_slip;
+  o.filter = filter;
   o.reset_cross_covariance = true;
   o.smoother = true;
+  o.smoother_method = method;
   for (auto _ : state) {
     auto r = estimation::run_contact_angle(lg, bb2(), o);
     benchmark::DoNotOptimize(r);
   }
 }
+void BM_ContactAngleEkfSmoother2Min1kHz(benchmark::State& state) {
+  smoother(state, estimation::FilterKind::ekf, estimation::SmootherMethod::rts);
+}
 BENCHMARK(BM_ContactAngleEkfSmoother2Min1kHz)->Unit(benchmark::kSecond)->Iterations(3)->UseRealTime();
+void BM_ContactAngleEkfTwoFilterSmoother2Min1kHz(benchmark::State& state) {
+  smoother(state, estimation::FilterKind::ekf, estimation::SmootherMethod::two_filter);
+}
+BENCHMARK(BM_ContactAngleEkfTwoFilterSmoother2Min1kHz)->Unit(benchmark::kSecond)->Iterations(3)->UseRealTime();
+void BM_ContactAngleUkfTwoFilterSmoother2Min1kHz(benchmark::State& state) {
+  smoother(state, estimation::FilterKind::ukf, estimation::SmootherMethod::two_filter);
+}
+BENCHMARK(BM_ContactAngleUkfTwoFilterSmoother2Min1kHz)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 // Issue 15: the whole process of `roverlab estimate contact-angle --model c+ss
 // --reset-cross-covariance LOG -o OUT.h5` on the 2-minute run at 1 kHz (a

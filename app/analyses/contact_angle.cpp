@@ -108,7 +108,7 @@ class ContactAngleAnalysis : public Analysis {
 
   void declare(CLI::App& cmd) override;
   // The views and the report (a finished run, inspected offline): the model the data
-  // choose, the seed's cross-covariance reset, the RTS smoother.
+  // choose, the seed's cross-covariance reset, the two-filter smoother.
   void use_view_defaults() override {
     model_ = "auto";
     reset_cross_covariance_ = true;
@@ -139,6 +139,7 @@ class ContactAngleAnalysis : public Analysis {
   std::string model_ = "auto", filter_ = "ekf", angle_model_ = "random-walk";
   bool reset_cross_covariance_ = false;
   bool smoother_ = false;
+  std::string smoother_method_ = "two-filter";
   std::string process_noise_ = "seed";  // seed (1e-5 per step, section 6.2) | imu (from the IMU noise alone)
   std::optional<double> velocity_variance_, attitude_variance_, slip_variance_, angle_variance_;
   double joint_rate_window_ = 0.0;
@@ -154,8 +155,11 @@ void ContactAngleAnalysis::declare(CLI::App& cmd) {
   cmd.add_option("--angle-model", angle_model_, "random-walk | damped")->capture_default_str();
   cmd.add_flag("--reset-cross-covariance", reset_cross_covariance_,
                "Zero P's off-diagonal elements every step (the seed's workaround)");
-  cmd.add_flag("--smoother", smoother_,
-               "Offline RTS smoother over the EKF's forward pass (needs --reset-cross-covariance); errors of both");
+  cmd.add_flag("--smoother", smoother_, "Offline smoother over the filter's pass (--smoother-method); errors of both");
+  cmd.add_option("--smoother-method", smoother_method_,
+                 "two-filter: the filter forward and over the log reversed in time, fused by their variances (any "
+                 "filter) | rts: Rauch-Tung-Striebel (the EKF with --reset-cross-covariance only)")
+      ->capture_default_str();
   cmd.add_option(
          "--process-noise", process_noise_,
          "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
@@ -185,8 +189,14 @@ estimation::ContactAngleOptions ContactAngleAnalysis::options() const {
   }
   o.reset_cross_covariance = reset_cross_covariance_;
   o.smoother = smoother_;
-  if (smoother_ && (o.filter != estimation::FilterKind::ekf || !reset_cross_covariance_))
-    throw UsageError("--smoother: runs over the EKF with --reset-cross-covariance only");
+  try {
+    o.smoother_method = estimation::parse_smoother_method(smoother_method_);
+  } catch (const DataError& e) {
+    throw UsageError(std::string("--smoother-method: ") + e.what());
+  }
+  if (smoother_ && o.smoother_method == estimation::SmootherMethod::rts &&
+      (o.filter != estimation::FilterKind::ekf || !reset_cross_covariance_))
+    throw UsageError("--smoother-method rts: runs over the EKF with --reset-cross-covariance only");
   if (process_noise_ == "imu") {
     o.attitude_variance = o.velocity_variance = 1e-12;
   } else if (process_noise_ != "seed") {
@@ -274,6 +284,7 @@ json ContactAngleAnalysis::document(const std::string& file, const kinematics::R
             {"has_truth", r.has_truth},
             {"health", health_json(r.health)}};
   j["smoother"] = r.smoothed;
+  if (r.smoothed) j["smoother_method"] = smoother_method_;
   if (r.has_truth) {
     j["rms"] = rms_json(r.rms);  // of the smoothed states with the smoother
     if (r.smoothed) j["filter_rms"] = rms_json(r.filter_rms);
@@ -300,8 +311,12 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
   print_health(j, out);
   if (j.at("has_truth").get<bool>()) {
     const bool smoothed = j.value("smoother", false);
-    print_rms(j.at("rms"), j.at("wheels"), smoothed ? "RTS smoother" : "filter", out);
-    if (smoothed) print_rms(j.at("filter_rms"), j.at("wheels"), "forward filter (EKF)", out);
+    const std::string method = j.value("smoother_method", "two-filter") == "rts" ? "RTS" : "two-filter";
+    print_rms(j.at("rms"), j.at("wheels"), smoothed ? (method + " smoother").c_str() : "filter", out);
+    if (smoothed) {
+      const std::string filter = "forward filter (" + j.value("filter", std::string("ekf")) + ")";
+      print_rms(j.at("filter_rms"), j.at("wheels"), filter.c_str(), out);
+    }
   } else {
     std::fprintf(out, "no truth streams: no errors\n");
   }

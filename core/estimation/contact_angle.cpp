@@ -5,6 +5,7 @@
 #include "core/analysis/estimate_errors.h"
 #include "core/common/error.h"
 #include "core/estimation/contact_angle_estimator.h"
+#include "core/estimation/contact_angle_two_filter.h"
 
 namespace roverlab::estimation {
 
@@ -21,6 +22,12 @@ FilterKind parse_filter_kind(const std::string& s) {
   throw DataError("filter '" + s + "': expected ekf or ukf");
 }
 
+SmootherMethod parse_smoother_method(const std::string& s) {
+  if (s == "two-filter") return SmootherMethod::two_filter;
+  if (s == "rts") return SmootherMethod::rts;
+  throw DataError("smoother '" + s + "': expected two-filter or rts");
+}
+
 AngleModel parse_angle_model(const std::string& s) {
   if (s == "random-walk") return AngleModel::random_walk;
   if (s == "damped") return AngleModel::damped;
@@ -29,6 +36,7 @@ AngleModel parse_angle_model(const std::string& s) {
 
 ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::RoverModel& m,
                                      const ContactAngleOptions& o) {
+  if (o.smoother && o.smoother_method == SmootherMethod::two_filter) return run_contact_angle_two_filter(lg, m, o);
   ContactAngleEstimator estimator(lg, m, o);
   ContactAngleResult result = estimator.run();
   if (auto errors = analysis::contact_angle_errors(lg, result.estimates)) {

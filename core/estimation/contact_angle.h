@@ -24,10 +24,12 @@ namespace roverlab::estimation {
 enum class ContactModel { smooth, contact, contact_side_slip };
 enum class FilterKind { ekf, ukf };
 enum class AngleModel { random_walk, damped };
+enum class SmootherMethod { two_filter, rts };
 
-ContactModel parse_contact_model(const std::string& s);  // smooth | c | c+ss
-FilterKind parse_filter_kind(const std::string& s);      // ekf | ukf
-AngleModel parse_angle_model(const std::string& s);      // random-walk | damped
+ContactModel parse_contact_model(const std::string& s);      // smooth | c | c+ss
+FilterKind parse_filter_kind(const std::string& s);          // ekf | ukf
+AngleModel parse_angle_model(const std::string& s);          // random-walk | damped
+SmootherMethod parse_smoother_method(const std::string& s);  // two-filter | rts
 
 struct ContactAngleOptions {
   ContactModel model = ContactModel::contact;
@@ -42,13 +44,18 @@ struct ContactAngleOptions {
   bool reference_ukf = false;
   // The fast EKF sums each update's tr(H K) into InnovationStats (model selection).
   bool effective_dof = false;
-  // Offline fixed-interval Rauch-Tung-Striebel smoother over the forward
-  // pass (issue 15; not in seed 000): the estimates streams hold the smoothed
-  // states, ContactAngleResult::filter_rms the forward filter's errors. Over
-  // the fast EKF with the cross-covariance reset (DataError otherwise); its
-  // gains come from a companion EKF at the same linearisation points without
-  // the reset (full P).
+  // Offline fixed-interval smoother (issue 15; not in seed 000): the
+  // estimates streams hold the smoothed states, ContactAngleResult::filter_rms
+  // the forward filter's errors. two_filter (contact_angle_two_filter.h): the
+  // filter forward and over the log reversed in time, fused by their
+  // variances; any filter. rts: Rauch-Tung-Striebel over the fast EKF with
+  // the cross-covariance reset (DataError otherwise), its gains from a
+  // companion EKF at the same linearisation points without the reset.
   bool smoother = false;
+  SmootherMethod smoother_method = SmootherMethod::two_filter;
+  // Keep the diagonal of the filter's covariance at every sample
+  // (ContactAngleResult::variance): the two-filter smoother's weights.
+  bool record_variance = false;
   double angle_damping = 1e-3;  // 1/s, A_gamma = A_beta (section 6.2)
   double slip_damping = 1e-3;   // 1/s, A of Eq. 4.15
   // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).
@@ -111,6 +118,10 @@ struct ContactAngleResult {
   double max_cross_correlation = 0;  // largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end
   HealthReport health;               // outliers, gaps, gated updates, divergences
   InnovationStats innovations;
+  // With ContactAngleOptions::record_variance: per state (yaw, pitch, roll,
+  // velocity x y z, slips, contact angles, side-slip angles), per IMU
+  // sample, the diagonal of the filter's P after the step.
+  std::vector<std::vector<double>> variance;
 };
 
 // Needs streams imu (angular_rate_*, specific_force_* in the rover's body

@@ -18,9 +18,10 @@ ContactAngleEstimator::ContactAngleEstimator(const log::Log& log, const kinemati
     : log_(log), m_(rover), o_(options), health_(options.health) {
   if (m_.wheels.size() != 6) throw DataError("rover " + m_.name + ": the estimator expects six wheels");
   if (m_.joints.size() > 16) throw DataError("rover " + m_.name + ": more than 16 joints");
-  smooth_ = o_.smoother;
+  // The RTS smoother lives here; the two-filter one runs this estimator twice.
+  smooth_ = o_.smoother && o_.smoother_method == SmootherMethod::rts;
   if (smooth_ && (o_.filter != FilterKind::ekf || o_.reference_ekf || !o_.reset_cross_covariance))
-    throw DataError("the smoother runs over the EKF with the cross-covariance reset only");
+    throw DataError("the RTS smoother runs over the EKF with the cross-covariance reset only");
   read_channels();
   layout_.na = o_.model == ContactModel::smooth ? 0 : o_.model == ContactModel::contact ? 6 : 12;
   layout_.nq = static_cast<int>(m_.joints.size());
@@ -296,6 +297,7 @@ ContactAngleResult ContactAngleEstimator::run() {
     sm_start_.assign(n, 0);
     sm_c_.assign(n * nxs * nxs, 0.0F);
   }
+  if (o_.record_variance) result.variance.assign(static_cast<std::size_t>(nx), std::vector<double>(n, NAN));
   std::size_t steps = 0;  // run (fewer than n when the filter stopped)
   for (std::size_t i = 0; i < n && !stopped_; ++i, ++steps) {
     const Inputs in = inputs_at(i);
@@ -307,6 +309,10 @@ ContactAngleResult ContactAngleEstimator::run() {
     filter_step(i, in, ts, !still && measured && imu_screened_.bridged[i] == 0);
     check_health(i);
     for (int k = 0; k < nx; ++k) out_[static_cast<std::size_t>(k)][i] = x_(k);
+    if (o_.record_variance) {
+      const Eigen::VectorXd p = covariance_diagonal();
+      for (int k = 0; k < nx; ++k) result.variance[static_cast<std::size_t>(k)][i] = p(k);
+    }
     diverged_[i] = health_.invalid_at(t[i]) ? 1.0 : 0.0;
     valid_[i] = still || diverged_[i] != 0.0 ? 0.0 : 1.0;
     result.standstill_samples += still;
@@ -576,6 +582,20 @@ Eigen::MatrixXd ContactAngleEstimator::covariance() const {
                              : Eigen::MatrixXd(ukf12_.filter.P);
   }
   return o_.filter == FilterKind::ekf ? ekf_.P : ukf_.P;
+}
+
+Eigen::VectorXd ContactAngleEstimator::covariance_diagonal() const {
+  if (o_.filter == FilterKind::ekf && !o_.reference_ekf) {
+    return layout_.na == 0   ? Eigen::VectorXd(fast0_.P.diagonal())
+           : layout_.na == 6 ? Eigen::VectorXd(fast6_.P.diagonal())
+                             : Eigen::VectorXd(fast12_.P.diagonal());
+  }
+  if (fast_ukf()) {
+    return layout_.na == 0   ? Eigen::VectorXd(ukf0_.filter.P.diagonal())
+           : layout_.na == 6 ? Eigen::VectorXd(ukf6_.filter.P.diagonal())
+                             : Eigen::VectorXd(ukf12_.filter.P.diagonal());
+  }
+  return o_.filter == FilterKind::ekf ? Eigen::VectorXd(ekf_.P.diagonal()) : Eigen::VectorXd(ukf_.P.diagonal());
 }
 
 // Largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end.

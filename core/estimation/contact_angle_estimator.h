@@ -64,6 +64,7 @@ class ContactAngleEstimator {
   void check_health(std::size_t i);
   void reset_filter(std::size_t i);
   Eigen::MatrixXd covariance() const;
+  Eigen::VectorXd covariance_diagonal() const;
   // Outputs.
   double max_cross_correlation() const;
   void write_streams(log::Log& estimates) const;

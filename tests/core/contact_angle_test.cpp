@@ -11,6 +11,7 @@
 #include "core/estimation/contact_angle.h"
 #include "core/estimation/contact_angle_estimator.h"
 #include "core/estimation/contact_angle_model.h"
+#include "core/estimation/contact_angle_two_filter.h"
 #include "core/estimation/contact_model_selection.h"
 #include "core/kinematics/rover_model.h"
 #include "core/simulation/flying_rover.h"
@@ -511,6 +512,7 @@ TEST(Smoother, RtsLowersTheMovingBogiesErrorsKeepsTheFilterBesideAndEndsOnIt) {
   estimation::ContactAngleOptions o;
   o.reset_cross_covariance = true;
   o.smoother = true;
+  o.smoother_method = estimation::SmootherMethod::rts;
   const auto r = estimation::run_contact_angle(lg, bb2(), o);
   ASSERT_TRUE(r.smoothed);
   ASSERT_EQ(r.filter_rms.contact_angle.size(), 6u);
@@ -538,15 +540,88 @@ TEST(Smoother, RtsLowersTheMovingBogiesErrorsKeepsTheFilterBesideAndEndsOnIt) {
   }
 }
 
-TEST(Smoother, NeedsTheEkfWithTheReset) {
+TEST(Smoother, RtsNeedsTheEkfWithTheReset) {
   auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
   sc.rate = 50.0;
   sc.duration = 5.0;
   const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
   estimation::ContactAngleOptions o;
   o.smoother = true;
+  o.smoother_method = estimation::SmootherMethod::rts;
   EXPECT_THROW(estimation::run_contact_angle(lg, bb2(), o), DataError);
   o.reset_cross_covariance = true;
   o.filter = estimation::FilterKind::ukf;
   EXPECT_THROW(estimation::run_contact_angle(lg, bb2(), o), DataError);
+}
+
+TEST(Smoother, TheLogReversedTwiceIsTheLogAndOnceNegatesTheRatesOnly) {
+  auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
+  sc.rate = 50.0;
+  sc.duration = 4.0;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  const log::Log once = estimation::reversed_in_time(lg);
+  const log::Log twice = estimation::reversed_in_time(once);
+  EXPECT_EQ(once.find_stream("truth/wheels"), nullptr);  // the backward run never sees truth
+  for (const char* name : {"imu", "joints", "wheels"}) {
+    const auto& a = lg.stream(name);
+    const auto& b = twice.stream(name);
+    ASSERT_EQ(a.size(), b.size()) << name;
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a.time()[i], b.time()[i], 1e-9) << name;
+    for (const auto& c : a.channels()) EXPECT_EQ(c.values, b.channel(c.name).values) << name << " " << c.name;
+  }
+  const auto& imu = lg.stream("imu");
+  const auto& back = once.stream("imu");
+  const std::size_t n = imu.size();
+  EXPECT_DOUBLE_EQ(back.time().front(), imu.time().front());  // the same span, mirrored
+  EXPECT_DOUBLE_EQ(back.time().back(), imu.time().back());
+  EXPECT_EQ(back.channel("angular_rate_y").values[1], -imu.channel("angular_rate_y").values[n - 2]);
+  EXPECT_EQ(back.channel("specific_force_z").values[1], imu.channel("specific_force_z").values[n - 2]);
+  const auto& wheels = lg.stream("wheels");
+  const std::size_t nw = wheels.size();
+  EXPECT_EQ(once.stream("wheels").channel("rate_FL").values[0], -wheels.channel("rate_FL").values[nw - 1]);
+  const auto& joints = lg.stream("joints");
+  const std::size_t nj = joints.size();
+  EXPECT_EQ(once.stream("joints").channel("bogie_R").values[0], joints.channel("bogie_R").values[nj - 1]);
+  EXPECT_EQ(once.stream("joints").channel("bogie_R_rate").values[0], -joints.channel("bogie_R_rate").values[nj - 1]);
+}
+
+// The two-filter smoother over the UKF (which has no RTS smoother here) on the
+// rear-bogie scenario: the moving bogie's contact and side-slip angles and
+// every wheel's slip come closer to the truth than the forward filter's; the
+// forward errors are the plain filter's.
+TEST(Smoother, TwoFilterOverTheUkfLowersTheMovingBogiesErrors) {
+  // At the seed's 1 kHz: at 200 Hz the angles' random walk (1e-5 per step)
+  // is five times slower and both passes lag alike (gain about 3 %).
+  const auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
+  ASSERT_EQ(sc.rate, 1000.0);
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  estimation::ContactAngleOptions o;
+  o.model = estimation::ContactModel::contact_side_slip;
+  o.filter = estimation::FilterKind::ukf;
+  o.reset_cross_covariance = true;
+  o.smoother = true;  // two-filter, the default method
+  const auto r = estimation::run_contact_angle(lg, bb2(), o);
+  ASSERT_TRUE(r.smoothed);
+  o.smoother = false;
+  const auto plain = estimation::run_contact_angle(lg, bb2(), o);
+  EXPECT_EQ(r.filter_rms.contact_angle, plain.rms.contact_angle);
+  EXPECT_EQ(r.filter_rms.side_slip, plain.rms.side_slip);
+  for (std::size_t w : {2u, 3u}) {  // RL, RR: the rear bogie turns
+    EXPECT_LT(r.rms.contact_angle[w], 0.95 * r.filter_rms.contact_angle[w]) << w;
+    EXPECT_LT(r.rms.side_slip[w], 0.95 * r.filter_rms.side_slip[w]) << w;
+  }
+  for (std::size_t w = 0; w < 6; ++w) EXPECT_LT(r.rms.slip[w], r.filter_rms.slip[w]) << w;
+}
+
+// Without the seed's reset the filter's slips drift (seed 000's column O);
+// the backward run drifts the other way and the fusion halves the error.
+TEST(Smoother, TwoFilterOverTheFilterWithoutTheResetHalvesTheSlipError) {
+  const auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  estimation::ContactAngleOptions o;
+  o.smoother = true;
+  const auto r = estimation::run_contact_angle(lg, bb2(), o);
+  ASSERT_TRUE(r.smoothed);
+  for (std::size_t w = 0; w < 6; ++w) EXPECT_LT(r.rms.slip[w], 0.5 * r.filter_rms.slip[w]) << w;
+  EXPECT_LT(r.rms.velocity[0], 0.5 * r.filter_rms.velocity[0]);
 }

@@ -1,0 +1,29 @@
+#pragma once
+// A two-filter fixed-interval smoother over the contact-angle filter of seed
+// 000 (issue 15; not in the seed): the filter runs forward over the log and
+// again over the log reversed in time, and the two estimates of each state at
+// each sample are fused by their variances (Fraser and Potter's smoother,
+// with the diagonal of each filter's P). It works over any of the filters
+// (fast or generic EKF, UKF), with or without the cross-covariance reset.
+
+#include "core/estimation/contact_angle.h"
+#include "core/kinematics/rover_model.h"
+#include "core/log/log.h"
+
+namespace roverlab::estimation {
+
+// The log as the rover would have logged it driving its path backwards: the
+// imu, joints and wheels streams with t' = t_first + t_last - t (t of the imu
+// stream), their samples in reverse order, angular rates, joint rates and
+// wheel rates negated; specific force and joint angles unchanged. Other
+// streams (truth) are left out.
+log::Log reversed_in_time(const log::Log& log);
+
+// The forward filter's run with the smoothed states in `estimates` and the
+// forward filter's in `filter_estimates` (errors in rms and filter_rms when
+// the log has truth). Yaw is the forward filter's (the backward run starts
+// from its own heading).
+ContactAngleResult run_contact_angle_two_filter(const log::Log& log, const kinematics::RoverModel& rover,
+                                                const ContactAngleOptions& options);
+
+}  // namespace roverlab::estimation
