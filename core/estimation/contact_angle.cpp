@@ -36,9 +36,9 @@ AngleModel parse_angle_model(const std::string& s) {
 
 ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::RoverModel& m,
                                      const ContactAngleOptions& o) {
-  if (o.smoother && o.smoother_method == SmootherMethod::two_filter) return run_contact_angle_two_filter(lg, m, o);
-  ContactAngleEstimator estimator(lg, m, o);
-  ContactAngleResult result = estimator.run();
+  ContactAngleResult result = o.smoother && o.smoother_method == SmootherMethod::two_filter
+                                  ? run_contact_angle_two_filter(lg, m, o)
+                                  : ContactAngleEstimator(lg, m, o).run();
   if (auto errors = analysis::contact_angle_errors(lg, result.estimates)) {
     result.has_truth = true;
     result.rms = std::move(*errors);

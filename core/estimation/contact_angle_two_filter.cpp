@@ -6,7 +6,6 @@
 #include <utility>
 #include <vector>
 
-#include "core/analysis/estimate_errors.h"
 #include "core/common/error.h"
 #include "core/estimation/contact_angle_estimator.h"
 
@@ -113,11 +112,6 @@ ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinema
   result.estimates = std::move(smoothed);
   result.smoothed = true;
   result.variance.clear();
-  if (auto errors = analysis::contact_angle_errors(lg, result.estimates)) {
-    result.has_truth = true;
-    result.rms = std::move(*errors);
-  }
-  if (auto errors = analysis::contact_angle_errors(lg, result.filter_estimates)) result.filter_rms = std::move(*errors);
   return result;
 }
 

@@ -20,9 +20,9 @@ namespace roverlab::estimation {
 log::Log reversed_in_time(const log::Log& log);
 
 // The forward filter's run with the smoothed states in `estimates` and the
-// forward filter's in `filter_estimates` (errors in rms and filter_rms when
-// the log has truth). Yaw is the forward filter's (the backward run starts
-// from its own heading).
+// forward filter's in `filter_estimates`, not yet scored against truth
+// (run_contact_angle does that for every method). Yaw is the forward
+// filter's (the backward run starts from its own heading).
 ContactAngleResult run_contact_angle_two_filter(const log::Log& log, const kinematics::RoverModel& rover,
                                                 const ContactAngleOptions& options);
 
