@@ -262,6 +262,11 @@ void read_doubles(hid_t dataset, std::vector<double>& values) {
   if (cls != H5T_FLOAT && cls != H5T_INTEGER) {
     throw std::runtime_error("dataset is not numeric");
   }
+  // A damaged type can claim values 0 bytes wide, which would let any declared count pass the check below.
+  const std::size_t width = H5Tget_size(type.get());
+  if (width == 0 || width > 16) {
+    throw std::runtime_error("dataset's values are " + std::to_string(width) + " bytes wide (damaged file)");
+  }
   Handle space(H5Dget_space(dataset));
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   if (n < 0) throw std::runtime_error("cannot read dataset size: " + last_error_text());
@@ -275,7 +280,7 @@ void read_doubles(hid_t dataset, std::vector<double>& values) {
   }
   Handle create(H5Dget_create_plist(dataset));
   const int filters = create.get() >= 0 ? H5Pget_nfilters(create.get()) : 0;
-  const double stored = static_cast<double>(n) * static_cast<double>(H5Tget_size(type.get()));
+  const double stored = static_cast<double>(n) * static_cast<double>(width);
   const double room = (filters > 0 ? 1000.0 : 1.0) * static_cast<double>(file_size) + 4096.0;
   if (file_size > 0 && stored > room) {
     throw std::runtime_error("declares " + std::to_string(n) + " values, more than the file (" +

@@ -260,6 +260,15 @@ TEST(Robustness, ADatasetDeclaringTerabytesIsABadInput) {
   EXPECT_NE(r.err.find("more than the file"), std::string::npos) << r.err;
 }
 
+TEST(Robustness, AValueTypeZeroBytesWideIsABadInput) {
+  // Found by fuzzing the MATLAB importer (tests/data/robustness/README.md): a
+  // float type 0 bytes wide let a declared 1.08e18 values pass the
+  // declared-size check, and the reader tried to allocate them.
+  const std::string file = kData + "/robustness/matlab_value_width_0.mat";
+  const CommandResult r = run_roverlab("info " + quote(file) + " --mapping wvu_pathfinder");
+  expect_one_line_bad_input(r, file, "values are 0 bytes wide");
+}
+
 TEST(Robustness, ADatasetInTooManyChunksIsABadInputNotAHang) {
   // Found by fuzzing (tests/fuzz/corpus/hdf5_log/too_many_chunks.h5): a time
   // base declaring chunks of one value made libhdf5 spend seconds on a 70 kB file.
