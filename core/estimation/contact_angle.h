@@ -56,8 +56,14 @@ struct ContactAngleOptions {
   // Keep the diagonal of the filter's covariance at every sample
   // (ContactAngleResult::variance): the two-filter smoother's weights.
   bool record_variance = false;
-  double angle_damping = 1e-3;  // 1/s, A_gamma = A_beta (section 6.2)
-  double slip_damping = 1e-3;   // 1/s, A of Eq. 4.15
+  // Initial standard deviations of the slips and of the contact and side-slip
+  // angles about 0 (flat ground, no slip: how the seed's runs start). The
+  // two-filter smoother's backward pass starts where the log ends, on ground
+  // of unknown slope: it uses wide ones (contact_angle_two_filter.cpp).
+  double initial_slip_sigma = 0.01;              // (1e-4 as a variance)
+  double initial_angle_sigma = std::sqrt(1e-3);  // rad
+  double angle_damping = 1e-3;                   // 1/s, A_gamma = A_beta (section 6.2)
+  double slip_damping = 1e-3;                    // 1/s, A of Eq. 4.15
   // Process noise variances per step (section 6.2: 1e-5, slip 1e-6).
   double attitude_variance = 1e-5, velocity_variance = 1e-5, slip_variance = 1e-6, angle_variance = 1e-5;
   double lateral_variance = 1e-5;  // n_vy, n_vz

@@ -257,8 +257,8 @@ void ContactAngleEstimator::initial_state() {
   p0_.resize(nx);
   p0_.segment(0, 3).setConstant(1e-4);
   p0_.segment(3, 3).setConstant(1e-4);
-  p0_.segment(6, 6).setConstant(1e-4);
-  if (layout_.na > 0) p0_.segment(12, layout_.na).setConstant(1e-3);
+  p0_.segment(6, 6).setConstant(o_.initial_slip_sigma * o_.initial_slip_sigma);
+  if (layout_.na > 0) p0_.segment(12, layout_.na).setConstant(o_.initial_angle_sigma * o_.initial_angle_sigma);
   // The fixed-size UKFs: closed forms along the additive noises (Eq. 4.15-4.17, 4.20), h per wheel reached.
   const Eigen::MatrixXd P0 = p0_.asDiagonal();
   auto init = [&](auto& u) {

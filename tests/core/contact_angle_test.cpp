@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "core/analysis/estimate_errors.h"
 #include "core/common/error.h"
@@ -613,15 +615,39 @@ TEST(Smoother, TwoFilterOverTheUkfLowersTheMovingBogiesErrors) {
   for (std::size_t w = 0; w < 6; ++w) EXPECT_LT(r.rms.slip[w], r.filter_rms.slip[w]) << w;
 }
 
+// The backward run starts where the log ends, on a bogie turned 20-40 deg:
+// started as sure of flat ground as the forward run, it made the smoothed
+// contact angles worse than the filter's on these seeds (12.0 and 11.3 deg
+// against 9.6 and 8.9); started uninformed, better (7.7 and 7.1).
+TEST(Smoother, TwoFilterBeatsTheFilterOnATurnedBogieAtTheLogsEnd) {
+  for (unsigned seed : {2u, 4u}) {
+    auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
+    sc.seed = seed;
+    sc.rate = 200.0;
+    const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+    estimation::ContactAngleOptions o;
+    o.reset_cross_covariance = true;
+    o.smoother = true;
+    const auto r = estimation::run_contact_angle(lg, bb2(), o);
+    ASSERT_TRUE(r.smoothed);
+    const auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / v.size(); };
+    EXPECT_LT(mean(r.rms.contact_angle), 0.9 * mean(r.filter_rms.contact_angle)) << "seed " << seed;
+    EXPECT_LT(r.rms.contact_angle[0], r.filter_rms.contact_angle[0]) << "FL, seed " << seed;
+    EXPECT_LT(mean(r.rms.slip), mean(r.filter_rms.slip)) << "seed " << seed;
+  }
+}
+
 // Without the seed's reset the filter's slips drift (seed 000's column O);
-// the backward run drifts the other way and the fusion halves the error.
-TEST(Smoother, TwoFilterOverTheFilterWithoutTheResetHalvesTheSlipError) {
+// the backward run drifts the other way and the fusion takes over a quarter
+// off the error (4.6 to 3.3; it halved it while the backward run started as
+// sure of flat ground as the forward one, which cost the reset's runs more).
+TEST(Smoother, TwoFilterOverTheFilterWithoutTheResetCutsTheSlipDrift) {
   const auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
   const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
   estimation::ContactAngleOptions o;
   o.smoother = true;
   const auto r = estimation::run_contact_angle(lg, bb2(), o);
   ASSERT_TRUE(r.smoothed);
-  for (std::size_t w = 0; w < 6; ++w) EXPECT_LT(r.rms.slip[w], 0.5 * r.filter_rms.slip[w]) << w;
-  EXPECT_LT(r.rms.velocity[0], 0.5 * r.filter_rms.velocity[0]);
+  for (std::size_t w = 0; w < 6; ++w) EXPECT_LT(r.rms.slip[w], 0.8 * r.filter_rms.slip[w]) << w;
+  EXPECT_LT(r.rms.velocity[0], 0.8 * r.filter_rms.velocity[0]);
 }

@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <numeric>
+#include <ostream>
 #include <string>
 
 #include "core/estimation/contact_angle.h"
@@ -103,11 +104,12 @@ log::Log flying_rover_log(const std::string& scenario, unsigned seed, double rat
   return simulation::simulate_flying_rover(bb2(), s);
 }
 
-estimation::ContactAngleOptions contact_options(estimation::FilterKind filter) {
+estimation::ContactAngleOptions contact_options(estimation::FilterKind filter, bool smoother) {
   estimation::ContactAngleOptions o;
   o.model = estimation::ContactModel::contact;
   o.filter = filter;
   o.reset_cross_covariance = true;
+  o.smoother = smoother;  // the two-filter smoother, --smoother's default
   return o;
 }
 
@@ -124,12 +126,15 @@ struct ContactCase {
   const char* scenario;
   unsigned seed;
   double rate;
+  bool smoother = false;
 };
+// Test names show the case's name, not its bytes.
+void PrintTo(const ContactCase& c, std::ostream* os) { *os << c.name; }
 
 class ContactAngleRobustness : public ::testing::TestWithParam<ContactCase> {
  protected:
   estimation::ContactAngleResult run(const log::Log& lg) const {
-    return estimation::run_contact_angle(lg, bb2(), contact_options(GetParam().filter));
+    return estimation::run_contact_angle(lg, bb2(), contact_options(GetParam().filter, GetParam().smoother));
   }
   const log::Log& clean() const {
     static std::map<std::string, log::Log> logs;
@@ -201,8 +206,13 @@ TEST_P(ContactAngleRobustness, AStuckGyroOverSecondsIsReportedAsDivergenceNotSil
 
 INSTANTIATE_TEST_SUITE_P(
     EkfAndUkf, ContactAngleRobustness,
-    ::testing::Values(ContactCase{"ekf_bump_crossing_seed3", estimation::FilterKind::ekf, "bump-crossing", 3, 100.0},
-                      ContactCase{"ukf_rear_bogie_seed5", estimation::FilterKind::ukf, "rear-bogie-rotation", 5, 50.0}),
+    ::testing::Values(
+        ContactCase{"ekf_bump_crossing_seed3", estimation::FilterKind::ekf, "bump-crossing", 3, 100.0},
+        ContactCase{"ukf_rear_bogie_seed5", estimation::FilterKind::ukf, "rear-bogie-rotation", 5, 50.0},
+        // The smoother runs the filter over the log reversed in time too:
+        // the same screening must hold in both passes and in their fusion.
+        ContactCase{"ekf_smoother_fl_bogie_seed4", estimation::FilterKind::ekf, "fl-bogie-rotation", 4, 200.0, true},
+        ContactCase{"ukf_smoother_bump_crossing_seed7", estimation::FilterKind::ukf, "bump-crossing", 7, 50.0, true}),
     [](const ::testing::TestParamInfo<ContactCase>& info) { return std::string(info.param.name); });
 
 // --- INS slip ------------------------------------------------------------
@@ -211,6 +221,7 @@ struct InsCase {
   const char* name;
   std::function<log::Log()> make;
 };
+void PrintTo(const InsCase& c, std::ostream* os) { *os << c.name; }
 
 log::Log pathfinder_log() {
   return io::read_mapped_hdf5(std::string(ROVERLAB_TEST_DATA) + "/test17run.mat",
@@ -299,7 +310,7 @@ TEST(FilterHealth, ChiSquareQuantilesMatchTheTables) {
 TEST(FilterHealth, AGapLongerThanTheLongestBridgedIsStillRefused) {
   const log::Log lg = flying_rover_log("bump-crossing", 3, 50.0);
   try {
-    estimation::run_contact_angle(with_dropout(lg, 1.5), bb2(), contact_options(estimation::FilterKind::ekf));
+    estimation::run_contact_angle(with_dropout(lg, 1.5), bb2(), contact_options(estimation::FilterKind::ekf, false));
     FAIL() << "a 1.5 s dropout was bridged";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("a gap of"), std::string::npos) << e.what();
