@@ -61,11 +61,12 @@ BENCHMARK(BM_ContactAngleUkf2Min1kHzNoReset)->Unit(benchmark::kSecond)->Iteratio
 
 // --model auto (issue 15): smooth, C and C+SS forward passes with the reset,
 // in three threads or one after another.
-void select(benchmark::State& state, bool parallel) {
+void select(benchmark::State& state, bool parallel, bool smoother = false) {
   const double seconds = 120.0;
   static const log::Log lg = scenario(seconds);
   estimation::ContactAngleOptions o;
   o.reset_cross_covariance = true;
+  o.smoother = smoother;
   estimation::ModelSelectionOptions so;
   so.parallel = parallel;
   for (auto _ : state) {
@@ -79,6 +80,11 @@ BENCHMARK(BM_ContactAngleAuto2Min1kHz)->Unit(benchmark::kSecond)->Iterations(2)-
 
 void BM_ContactAngleAuto2Min1kHzSequential(benchmark::State& state) { select(state, false); }
 BENCHMARK(BM_ContactAngleAuto2Min1kHzSequential)->Unit(benchmark::kSecond)->Iterations(2)->UseRealTime();
+
+// The views' and the report's default: auto with the two-filter smoother, whose
+// forward pass is the chosen candidate's run (one backward run added).
+void BM_ContactAngleAutoTwoFilter2Min1kHzSequential(benchmark::State& state) { select(state, false, true); }
+BENCHMARK(BM_ContactAngleAutoTwoFilter2Min1kHzSequential)->Unit(benchmark::kSecond)->Iterations(2)->UseRealTime();
 
 // The smoothers over the C+SS filters with the reset. RTS (EKF): forward
 // pass, storage, backward pass. Two-filter: the filter over the log and over

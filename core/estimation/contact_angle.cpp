@@ -39,6 +39,11 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   ContactAngleResult result = o.smoother && o.smoother_method == SmootherMethod::two_filter
                                   ? run_contact_angle_two_filter(lg, m, o)
                                   : ContactAngleEstimator(lg, m, o).run();
+  score_contact_angle(lg, result);
+  return result;
+}
+
+void score_contact_angle(const log::Log& lg, ContactAngleResult& result) {
   if (auto errors = analysis::contact_angle_errors(lg, result.estimates)) {
     result.has_truth = true;
     result.rms = std::move(*errors);
@@ -47,7 +52,6 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
     if (auto errors = analysis::contact_angle_errors(lg, result.filter_estimates))
       result.filter_rms = std::move(*errors);
   }
-  return result;
 }
 
 }  // namespace roverlab::estimation

@@ -138,4 +138,8 @@ struct ContactAngleResult {
 ContactAngleResult run_contact_angle(const log::Log& log, const kinematics::RoverModel& rover,
                                      const ContactAngleOptions& options = {});
 
+// Scores a finished run against the log's truth as run_contact_angle does:
+// rms (and filter_rms when smoothed), has_truth.
+void score_contact_angle(const log::Log& log, ContactAngleResult& result);
+
 }  // namespace roverlab::estimation

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <functional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,11 +99,17 @@ ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinema
   o.record_variance = true;
   const auto progress = options.progress;
   if (progress) o.progress = [&](double f) { progress(0.5 * f); };
-  ContactAngleResult result = ContactAngleEstimator(lg, m, o).run();
-  const log::Log backward_log = reversed_in_time(lg);
-  // The backward run starts levelled from its own first samples: independent
-  // of the forward run, as the fusion assumes.
-  if (progress) o.progress = [&](double f) { progress(0.5 + 0.5 * f); };
+  return run_contact_angle_two_filter(lg, m, options, ContactAngleEstimator(lg, m, o).run());
+}
+
+ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinematics::RoverModel& m,
+                                                const ContactAngleOptions& options, ContactAngleResult forward) {
+  if (forward.variance.empty()) throw std::logic_error("two-filter smoother: the forward run has no variances");
+  ContactAngleOptions o = options;
+  o.smoother = false;
+  o.record_variance = true;
+  const auto progress = options.progress;
+  o.progress = progress ? std::function<void(double)>([&](double f) { progress(0.5 + 0.5 * f); }) : nullptr;
   // The log's end is not flat ground without slip: the backward run starts
   // nearly uninformed there (17 deg, slip 0.1), as the fusion assumes. With
   // the forward run's prior (1.8 deg, 0.01) it held a wrong flat contact with
@@ -109,8 +117,11 @@ ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinema
   // smoothed contact angles were 16-90 % worse than the filter's.
   o.initial_angle_sigma = 0.3;
   o.initial_slip_sigma = 0.1;
-  const ContactAngleResult backward = ContactAngleEstimator(backward_log, m, o).run();
+  // The backward run starts levelled from its own first samples: independent
+  // of the forward run, as the fusion assumes.
+  const ContactAngleResult backward = ContactAngleEstimator(reversed_in_time(lg), m, o).run();
 
+  ContactAngleResult result = std::move(forward);
   result.filter_estimates = result.estimates;
   log::Log smoothed;
   smoothed.metadata = result.estimates.metadata;

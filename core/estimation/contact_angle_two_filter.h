@@ -26,4 +26,10 @@ log::Log reversed_in_time(const log::Log& log);
 ContactAngleResult run_contact_angle_two_filter(const log::Log& log, const kinematics::RoverModel& rover,
                                                 const ContactAngleOptions& options);
 
+// The same over a forward run already made with `options` and
+// record_variance (the model selection's candidate): only the backward run
+// and the fusion are done; progress goes from 0.5 to 1.
+ContactAngleResult run_contact_angle_two_filter(const log::Log& log, const kinematics::RoverModel& rover,
+                                                const ContactAngleOptions& options, ContactAngleResult forward);
+
 }  // namespace roverlab::estimation

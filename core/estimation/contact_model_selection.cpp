@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <future>
 #include <limits>
 #include <utility>
+
+#include "core/estimation/contact_angle_two_filter.h"
 
 namespace roverlab::estimation {
 
@@ -62,12 +65,19 @@ ModelSelection select_contact_model(const log::Log& lg, const kinematics::RoverM
   evidence_options.reference_ekf = false;
   evidence_options.effective_dof = true;
   evidence_options.smoother = false;  // the forward pass's innovations are the evidence
+  // The two-filter smoother over the fast EKF: the chosen candidate's run is
+  // its forward pass (they keep their variances), so only the backward run is added.
+  const bool smooth_chosen_run = options.smoother && options.smoother_method == SmootherMethod::two_filter &&
+                                 options.filter == FilterKind::ekf && !options.reference_ekf;
+  evidence_options.record_variance = smooth_chosen_run;
+  std::function<void(double)> progress = options.progress;
+  if (smooth_chosen_run && progress) progress = [&options](double f) { options.progress(0.5 * f); };
   ContactAngleResult runs[3];
   const auto run_model = [&](int k, bool with_progress) {
     ContactAngleOptions o = evidence_options;
     o.model = models[k];
-    if (with_progress && options.progress) {
-      o.progress = [&options, k, &s](double f) { options.progress(s.parallel ? f : (k + f) / 3.0); };
+    if (with_progress && progress) {
+      o.progress = [&progress, k, &s](double f) { progress(s.parallel ? f : (k + f) / 3.0); };
     } else {
       o.progress = nullptr;
     }
@@ -102,7 +112,12 @@ ModelSelection select_contact_model(const log::Log& lg, const kinematics::RoverM
       std::string("model ") + to_string(out.chosen) +
       (out.supported ? " is the consistent candidate of least AIC (" : ": no candidate is consistent; least AIC (") +
       describe(chosen) + ")";
-  if (options.filter == FilterKind::ukf || options.reference_ekf || options.smoother) {
+  if (smooth_chosen_run) {
+    ContactAngleOptions o = options;
+    o.model = out.chosen;
+    out.result = run_contact_angle_two_filter(lg, rover, o, std::move(runs[best]));
+    score_contact_angle(lg, out.result);
+  } else if (options.filter == FilterKind::ukf || options.reference_ekf || options.smoother) {
     ContactAngleOptions o = options;
     o.model = out.chosen;
     out.result = run_contact_angle(lg, rover, o);

@@ -2,6 +2,7 @@
 // on the flying-rover scenarios.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -497,6 +498,36 @@ TEST(ModelSelection, TheChosenRunIsThatModelsRunAndThreadsChangeNothing) {
   EXPECT_EQ(par.result.rms.side_slip, direct.rms.side_slip);
 }
 
+// With the two-filter smoother (the views' default) the chosen candidate's
+// run is the smoother's forward pass: the result is the direct smoothed run's,
+// and progress still rises to 1.
+TEST(ModelSelection, TheSmootherReusesTheChosenCandidatesRun) {
+  auto s = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
+  s.rate = 200.0;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  estimation::ContactAngleOptions o;
+  o.reset_cross_covariance = true;
+  o.smoother = true;
+  std::vector<double> fractions;
+  o.progress = [&fractions](double f) { fractions.push_back(f); };
+  estimation::ModelSelectionOptions so;
+  so.parallel = false;
+  const auto selected = estimation::select_contact_model(lg, bb2(), o, so);
+  ASSERT_TRUE(selected.result.smoothed);
+  ASSERT_FALSE(fractions.empty());
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_NEAR(fractions.back(), 1.0, 0.02);
+  EXPECT_LT(fractions.front(), 0.5);  // the candidates fill the first half, the backward run the second
+  o.progress = nullptr;
+  o.model = selected.chosen;
+  const auto direct = estimation::run_contact_angle(lg, bb2(), o);
+  std::size_t compared = 0;
+  EXPECT_EQ(largest_estimate_difference(selected.result, direct, &compared), 0.0);
+  EXPECT_GT(compared, 1000u);
+  EXPECT_EQ(selected.result.rms.contact_angle, direct.rms.contact_angle);
+  EXPECT_EQ(selected.result.filter_rms.contact_angle, direct.filter_rms.contact_angle);
+}
+
 TEST(ModelSelection, TheEstimateStreamsNameTheirModel) {
   log::Log lg;
   auto s = select_on("fl-bogie-rotation", &lg);
@@ -630,7 +661,9 @@ TEST(Smoother, TwoFilterBeatsTheFilterOnATurnedBogieAtTheLogsEnd) {
     o.smoother = true;
     const auto r = estimation::run_contact_angle(lg, bb2(), o);
     ASSERT_TRUE(r.smoothed);
-    const auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / v.size(); };
+    const auto mean = [](const std::vector<double>& v) {
+      return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+    };
     EXPECT_LT(mean(r.rms.contact_angle), 0.9 * mean(r.filter_rms.contact_angle)) << "seed " << seed;
     EXPECT_LT(r.rms.contact_angle[0], r.filter_rms.contact_angle[0]) << "FL, seed " << seed;
     EXPECT_LT(mean(r.rms.slip), mean(r.filter_rms.slip)) << "seed " << seed;
