@@ -624,27 +624,40 @@ std::vector<double> masked(const std::vector<double>& v, const std::vector<doubl
 }  // namespace
 
 // Streams; slip and angles are invalid (NaN) at standstill, every state where the filter diverged.
+std::vector<StateChannel> state_channels(const kinematics::RoverModel& m, int angle_states) {
+  const char* body = "estimate/contact/body";
+  const char* wheels = "estimate/contact/wheels";
+  std::vector<StateChannel> out = {{body, "velocity_x", "m/s", 3}, {body, "velocity_y", "m/s", 4},
+                                   {body, "velocity_z", "m/s", 5}, {body, "yaw", "rad", 0},
+                                   {body, "pitch", "rad", 1},      {body, "roll", "rad", 2}};
+  const int nw = static_cast<int>(m.wheels.size());
+  const auto add = [&](const char* prefix, const char* unit, int first) {
+    for (int w = 0; w < nw; ++w)
+      out.push_back({wheels, prefix + m.wheels[static_cast<std::size_t>(w)].name, unit, first + w});
+  };
+  add("slip_", "1", 6);
+  if (angle_states >= 6) add("contact_angle_", "rad", 12);
+  if (angle_states >= 12) add("side_slip_", "rad", 18);
+  return out;
+}
+
 void ContactAngleEstimator::write_streams(log::Log& estimates) const {
   const auto& t = imu_->time();
-  const int nw = layout_.nw, na = layout_.na;
   estimates.metadata = log_.metadata;
   estimates.metadata.extra["estimator"] = "contact-angle (seed 000)";
   log::Stream body("estimate/contact/body", t);
+  log::Stream s("estimate/contact/wheels", t);
   std::vector<double> trusted(diverged_.size());  // the body states are invalid only where the filter diverged
   for (std::size_t i = 0; i < trusted.size(); ++i) trusted[i] = 1.0 - diverged_[i];
-  body.add_channel("velocity_x", "m/s", masked(out_[3], trusted), "body frame g");
-  body.add_channel("velocity_y", "m/s", masked(out_[4], trusted));
-  body.add_channel("velocity_z", "m/s", masked(out_[5], trusted));
-  body.add_channel("yaw", "rad", masked(out_[0], trusted));
-  body.add_channel("pitch", "rad", masked(out_[1], trusted));
-  body.add_channel("roll", "rad", masked(out_[2], trusted));
+  for (const StateChannel& c : state_channels(m_, layout_.na)) {
+    const auto& values = out_[static_cast<std::size_t>(c.state)];
+    if (c.stream == body.name()) {
+      body.add_channel(c.name, c.unit, masked(values, trusted), c.state == 3 ? "body frame g" : "");
+    } else {
+      s.add_channel(c.name, c.unit, masked(values, valid_));
+    }
+  }
   estimates.add_stream(std::move(body));
-  log::Stream s("estimate/contact/wheels", t);
-  auto name = [&](int w) { return m_.wheels[static_cast<std::size_t>(w)].name; };
-  auto state = [&](int k) { return masked(out_[static_cast<std::size_t>(k)], valid_); };
-  for (int w = 0; w < nw; ++w) s.add_channel("slip_" + name(w), "1", state(6 + w));
-  for (int w = 0; w < nw && na >= 6; ++w) s.add_channel("contact_angle_" + name(w), "rad", state(12 + w));
-  for (int w = 0; w < nw && na >= 12; ++w) s.add_channel("side_slip_" + name(w), "rad", state(18 + w));
   s.add_channel("valid", "bool", valid_,
                 "0 at standstill (slip and angles undefined, held) and where the filter diverged");
   s.add_channel("bridged", "bool", std::vector<double>(imu_screened_.bridged.begin(), imu_screened_.bridged.end()),

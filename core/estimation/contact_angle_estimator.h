@@ -22,6 +22,18 @@
 
 namespace roverlab::estimation {
 
+// An estimate channel and the state it holds (the state order of
+// ContactAngleResult::variance: yaw, pitch, roll, velocity x y z, slips,
+// contact angles, side-slip angles), in the order the estimator writes them;
+// the angles' channels only for the `angle_states` the model has (0, 6, 12).
+struct StateChannel {
+  const char* stream;  // estimate/contact/body or estimate/contact/wheels
+  std::string name;
+  const char* unit;
+  int state;
+};
+std::vector<StateChannel> state_channels(const kinematics::RoverModel& rover, int angle_states);
+
 class ContactAngleEstimator {
  public:
   // Reads the log's imu, joints and wheels streams (throws DataError naming

@@ -42,14 +42,9 @@ log::Stream reversed(const log::Stream& s, double mirror) {
 
 // The state index (ContactAngleResult::variance order) of an estimate
 // channel, -1 for the flags.
-int state_index(const std::string& channel, const kinematics::RoverModel& m) {
-  const char* body[6] = {"yaw", "pitch", "roll", "velocity_x", "velocity_y", "velocity_z"};
-  for (int k = 0; k < 6; ++k)
-    if (channel == body[k]) return k;
-  const std::pair<const char*, int> kinds[3] = {{"slip_", 6}, {"contact_angle_", 12}, {"side_slip_", 18}};
-  for (const auto& [prefix, first] : kinds)
-    for (std::size_t w = 0; w < m.wheels.size(); ++w)
-      if (channel == prefix + m.wheels[w].name) return first + static_cast<int>(w);
+int state_index(const std::string& stream, const std::string& channel, const kinematics::RoverModel& m) {
+  for (const StateChannel& c : state_channels(m, 12))
+    if (c.name == channel && stream == c.stream) return c.state;
   return -1;
 }
 
@@ -61,7 +56,7 @@ log::Stream fused(const log::Stream& fwd, const log::Stream& bwd, const ContactA
   const std::size_t n = fwd.size();
   log::Stream out(fwd.name(), fwd.time());
   for (const auto& c : fwd.channels()) {
-    const int k = state_index(c.name, m);
+    const int k = state_index(fwd.name(), c.name, m);
     std::vector<double> v = c.values;
     if (k > 0) {  // yaw (0) stays the forward run's: the backward run starts from its own heading
       const double sign = k >= 3 && k <= 5 ? -1.0 : 1.0;  // body velocity changes sign
