@@ -95,6 +95,7 @@ std::optional<std::string> read_string_attribute(hid_t object, const char* name)
     return out;
   }
   const size_t size = H5Tget_size(type.get());
+  if (size == 0 || size > 65536) return std::nullopt;  // more than an attribute stored in its header holds: damaged
   std::string buffer(size + 1, '\0');
   Handle mem(H5Tcopy(H5T_C_S1));
   H5Tset_size(mem.get(), size + 1);

@@ -22,6 +22,9 @@ ContactAngleEstimator::ContactAngleEstimator(const log::Log& log, const kinemati
   smooth_ = o_.smoother && o_.smoother_method == SmootherMethod::rts;
   if (smooth_ && (o_.filter != FilterKind::ekf || o_.reference_ekf || !o_.reset_cross_covariance))
     throw DataError("the RTS smoother runs over the EKF with the cross-covariance reset only");
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!positive(o_.initial_angle_sigma) || !positive(o_.initial_slip_sigma))
+    throw DataError("the initial angle and slip standard deviations must be finite and positive");
   read_channels();
   layout_.na = o_.model == ContactModel::smooth ? 0 : o_.model == ContactModel::contact ? 6 : 12;
   layout_.nq = static_cast<int>(m_.joints.size());
