@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <string>
 #include <thread>
 
 #include "core/common/error.h"
@@ -74,6 +75,12 @@ void survive_crash(const std::string& path, const std::function<void()>& trial) 
   if (WIFSIGNALED(status)) {
     throw InputError(path, std::string("corrupt HDF5 file: the HDF5 library crashed reading it (") +
                                strsignal(WTERMSIG(status)) + "); the file is damaged");
+  }
+  // The child ends only by _exit(0) above: any other status is a library (or
+  // an allocator's out-of-memory handler) ending the process from inside.
+  if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    throw InputError(path, "corrupt HDF5 file: reading it ended the process (exit status " +
+                               std::to_string(WEXITSTATUS(status)) + "); the file is damaged");
   }
 }
 

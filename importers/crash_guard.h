@@ -16,7 +16,8 @@ namespace roverlab::io {
 bool has_hdf5_signature(const std::string& path);
 
 // Runs `trial` in a forked child and waits for it. Throws InputError(path,
-// "corrupt HDF5 file: ...") when the child dies by a signal; returns
+// "corrupt HDF5 file: ...") when the child dies by a signal or exits with
+// a status other than 0 (something in the read ended the process); returns
 // otherwise, whatever the trial threw (the real read here then gives the same,
 // clean error). Without a child to spare it returns at once.
 void survive_crash(const std::string& path, const std::function<void()>& trial);
