@@ -306,6 +306,11 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
                  100.0 * e.at("nis_windows_above_band").get<double>(),
                  e.at("diverged").get<bool>() ? ", diverged" : "");
   }
+  if (j.value("smoother", false) && !j.value("reset_cross_covariance", false)) {
+    std::fprintf(out,
+                 "warning: smoothed without --reset-cross-covariance: the filter's variances do not describe its "
+                 "errors, and the smoothed angles can be worse than the filter's (docs/validation/contact-angle.md)\n");
+  }
   const auto standstill = j.at("standstill_samples").get<std::size_t>();
   if (standstill > 0) std::fprintf(out, "standstill: %zu samples held and left out\n", standstill);
   print_health(j, out);

@@ -552,6 +552,15 @@ TEST(CliContactAngle, ScenarioThenEstimatePrintsTheErrorTable) {
       run_roverlab("estimate contact-angle " + quote(sim) + " --model smooth --reset-cross-covariance --json");
   ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
   EXPECT_FALSE(nlohmann::json::parse(smooth.out).at("model_evidence").at("consistent").get<bool>());
+  // Smoothing the run without the reset is allowed but said to be unreliable; with it, nothing is said.
+  const std::string warning = "warning: smoothed without --reset-cross-covariance";
+  const CommandResult bare = run_roverlab("estimate contact-angle " + quote(sim) + " --model c --smoother");
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  EXPECT_NE(bare.out.find(warning), std::string::npos) << bare.out;
+  const CommandResult reset =
+      run_roverlab("estimate contact-angle " + quote(sim) + " --model c --smoother --reset-cross-covariance");
+  ASSERT_EQ(reset.exit_code, 0) << reset.err;
+  EXPECT_EQ(reset.out.find(warning), std::string::npos) << reset.out;
 }
 
 TEST(CliContactAngle, BadInputAndUsage) {
