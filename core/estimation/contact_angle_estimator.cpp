@@ -626,7 +626,6 @@ std::vector<double> masked(const std::vector<double>& v, const std::vector<doubl
 
 }  // namespace
 
-// Streams; slip and angles are invalid (NaN) at standstill, every state where the filter diverged.
 std::vector<StateChannel> state_channels(const kinematics::RoverModel& m, int angle_states) {
   const char* body = "estimate/contact/body";
   const char* wheels = "estimate/contact/wheels";
@@ -644,6 +643,7 @@ std::vector<StateChannel> state_channels(const kinematics::RoverModel& m, int an
   return out;
 }
 
+// Streams; slip and angles are invalid (NaN) at standstill, every state where the filter diverged.
 void ContactAngleEstimator::write_streams(log::Log& estimates) const {
   const auto& t = imu_->time();
   estimates.metadata = log_.metadata;

@@ -168,11 +168,17 @@ TEST(Kinematics, ContactAndSideSlipAnglesOfAWheelVelocity) {
 
 namespace {
 
-estimation::ContactAngleResult run(const std::string& scenario, double rate, estimation::ContactModel model,
-                                   estimation::FilterKind filter, bool reset, log::Log* keep = nullptr) {
+// A bundled flying-rover scenario simulated at `rate` with noise seed `seed`.
+log::Log simulated(const std::string& scenario, double rate, unsigned seed = 1) {
   auto s = simulation::flying_rover_scenario(scenario, bb2());
   s.rate = rate;
-  const log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  s.seed = seed;
+  return simulation::simulate_flying_rover(bb2(), s);
+}
+
+estimation::ContactAngleResult run(const std::string& scenario, double rate, estimation::ContactModel model,
+                                   estimation::FilterKind filter, bool reset, log::Log* keep = nullptr) {
+  const log::Log lg = simulated(scenario, rate);
   if (keep) *keep = lg;
   estimation::ContactAngleOptions o;
   o.model = model;
@@ -261,9 +267,7 @@ TEST(ContactAngle, FastEkfEqualsTheGenericEkfWithJetJacobians) {
   // The structured fast EKF (hand Jacobians, fixed-size block algebra,
   // expanded Joseph form) against the generic one, every model, with and
   // without the reset, over the whole rear-bogie run at 100 Hz.
-  auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
-  sc.rate = 100.0;
-  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  const log::Log lg = simulated("rear-bogie-rotation", 100.0);
   for (auto model : {estimation::ContactModel::smooth, estimation::ContactModel::contact,
                      estimation::ContactModel::contact_side_slip}) {
     for (bool reset : {false, true}) {
@@ -351,9 +355,7 @@ TEST(ContactAngle, MissingStreamsAreDataErrors) {
 }
 
 TEST(ContactAngle, TheEstimatorReadsNoTruthAndRunContactAngleScoresItsStreams) {
-  auto s = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
-  s.rate = 100.0;
-  const log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  const log::Log lg = simulated("fl-bogie-rotation", 100.0);
   estimation::ContactAngleOptions o;
   o.model = estimation::ContactModel::contact_side_slip;
   const auto plain = estimation::ContactAngleEstimator(lg, bb2(), o).run();
@@ -502,9 +504,7 @@ TEST(ModelSelection, TheChosenRunIsThatModelsRunAndThreadsChangeNothing) {
 // run is the smoother's forward pass: the result is the direct smoothed run's,
 // and progress still rises to 1.
 TEST(ModelSelection, TheSmootherReusesTheChosenCandidatesRun) {
-  auto s = simulation::flying_rover_scenario("rear-bogie-rotation", bb2());
-  s.rate = 200.0;
-  const log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  const log::Log lg = simulated("rear-bogie-rotation", 200.0);
   estimation::ContactAngleOptions o;
   o.reset_cross_covariance = true;
   o.smoother = true;
@@ -539,9 +539,7 @@ TEST(ModelSelection, TheEstimateStreamsNameTheirModel) {
 }
 
 TEST(Smoother, RtsLowersTheMovingBogiesErrorsKeepsTheFilterBesideAndEndsOnIt) {
-  auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
-  sc.rate = 200.0;
-  const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+  const log::Log lg = simulated("fl-bogie-rotation", 200.0);
   estimation::ContactAngleOptions o;
   o.reset_cross_covariance = true;
   o.smoother = true;
@@ -652,10 +650,7 @@ TEST(Smoother, TwoFilterOverTheUkfLowersTheMovingBogiesErrors) {
 // against 9.6 and 8.9); started uninformed, better (7.7 and 7.1).
 TEST(Smoother, TwoFilterBeatsTheFilterOnATurnedBogieAtTheLogsEnd) {
   for (unsigned seed : {2u, 4u}) {
-    auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", bb2());
-    sc.seed = seed;
-    sc.rate = 200.0;
-    const log::Log lg = simulation::simulate_flying_rover(bb2(), sc);
+    const log::Log lg = simulated("fl-bogie-rotation", 200.0, seed);
     estimation::ContactAngleOptions o;
     o.reset_cross_covariance = true;
     o.smoother = true;
