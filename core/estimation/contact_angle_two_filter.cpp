@@ -116,9 +116,12 @@ ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinema
   // The backward run starts levelled from its own first samples: independent
   // of the forward run, as the fusion assumes.
   const ContactAngleResult backward = ContactAngleEstimator(reversed_in_time(lg), m, o).run();
+  const log::Stream& imu = lg.stream("imu");
+  const double mirror = imu.start_time() + imu.end_time();  // as reversed_in_time
 
   ContactAngleResult result = std::move(forward);
   result.filter_estimates = result.estimates;
+  result.health.merge_reversed(backward.health, mirror);
   log::Log smoothed;
   smoothed.metadata = result.estimates.metadata;
   for (const auto& s : result.estimates.streams())

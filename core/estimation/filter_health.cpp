@@ -283,6 +283,23 @@ void HealthReport::merge(const HealthReport& o) {
   nis_out_of_band_fraction = std::max(nis_out_of_band_fraction, o.nis_out_of_band_fraction);
 }
 
+void HealthReport::merge_reversed(const HealthReport& b, double mirror) {
+  updates_rejected += b.updates_rejected;
+  updates += b.updates;
+  nis_out_of_band_fraction = std::max(nis_out_of_band_fraction, b.nis_out_of_band_fraction);
+  if (b.resets == 0 && !b.stopped) return;
+  const double t = mirror - b.divergence_time;
+  std::string reason = "backward pass: " + b.divergence_reason;
+  if (b.stopped) reason += ", then stopped (the forward filter's states kept where it has none)";
+  if (resets == 0 && !stopped) {
+    divergence_time = t;
+    divergence_reason = reason;
+  } else {
+    divergence_reason += "; " + reason + " at t = " + format("%.2f s", t);
+  }
+  resets += b.resets;
+}
+
 double FilterHealthMonitor::gate(int dof) {
   const auto d = static_cast<std::size_t>(std::max(dof, 1));
   if (gates_.size() <= d) gates_.resize(d + 1, NAN);

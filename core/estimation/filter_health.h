@@ -125,6 +125,12 @@ struct HealthReport {
   std::string message() const;
   // Adds another pass's counts (the INS runs two filters over one log).
   void merge(const HealthReport& other);
+  // Adds a pass over the log reversed in time (t' = mirror - t) whose
+  // estimates are fused with this pass's (the two-filter smoother): its gated
+  // updates and resets, its divergence in the log's clock with a reason that
+  // names it. Where it diverged the fused states are this pass's, so the
+  // invalid fraction and `stopped` stay this pass's.
+  void merge_reversed(const HealthReport& reversed, double mirror);
 };
 
 // Watches one filter pass. The estimator offers each update's NIS to

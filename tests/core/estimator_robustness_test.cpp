@@ -202,6 +202,14 @@ TEST_P(ContactAngleRobustness, AStuckGyroOverSecondsIsReportedAsDivergenceNotSil
   const std::size_t n = valid.size();
   EXPECT_EQ(std::count(valid.end() - static_cast<std::ptrdiff_t>(n / 6), valid.end(), 0.0), 0);
   EXPECT_TRUE(std::isfinite(s.channel("contact_angle_FL").values.back()));
+  if (!GetParam().smoother) return;
+  // The backward pass meets the stuck gyro too: its resets are counted and
+  // named, in the log's clock, beside the forward filter's.
+  auto o = contact_options(GetParam().filter, false);
+  const auto forward = estimation::run_contact_angle(with_stuck(clean(), "angular_rate_z", 20.0, 4.0), bb2(), o);
+  EXPECT_GT(stuck.health.resets, forward.health.resets) << stuck.health.message();
+  EXPECT_EQ(stuck.health.invalid_fraction, forward.health.invalid_fraction);
+  EXPECT_NE(stuck.health.message().find("backward pass: "), std::string::npos) << stuck.health.message();
 }
 
 INSTANTIATE_TEST_SUITE_P(
