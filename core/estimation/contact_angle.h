@@ -122,7 +122,8 @@ struct ContactAngleResult {
   double seconds = 0;         // of log processed
   std::size_t standstill_samples = 0;
   double max_cross_correlation = 0;  // largest |P_ij| / sqrt(P_ii P_jj), i != j, at the end
-  HealthReport health;               // outliers, gaps, gated updates, divergences
+  HealthReport health;         // outliers, gaps, gated updates, divergences (both passes of the two-filter smoother)
+  HealthReport filter_health;  // with the smoother: the forward filter's alone (its model's evidence)
   InnovationStats innovations;
   // With ContactAngleOptions::record_variance: per state (yaw, pitch, roll,
   // velocity x y z, slips, contact angles, side-slip angles), per IMU

@@ -337,6 +337,7 @@ ContactAngleResult ContactAngleEstimator::run() {
     write_streams(result.filter_estimates);
     smooth(steps);
     result.smoothed = true;
+    result.filter_health = result.health;  // RTS: one pass
   }
   write_streams(result.estimates);
   result.seconds = t.back() - t.front();

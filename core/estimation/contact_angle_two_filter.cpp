@@ -111,8 +111,8 @@ ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinema
   // the forward run's prior (1.8 deg, 0.01) it held a wrong flat contact with
   // confidence and the fusion trusted it: on fl-bogie-rotation seeds 2-5 the
   // smoothed contact angles were 16-90 % worse than the filter's.
-  o.initial_angle_sigma = std::max(options.initial_angle_sigma, 0.3);
-  o.initial_slip_sigma = std::max(options.initial_slip_sigma, 0.1);
+  o.initial_angle_sigma = std::max(options.initial_angle_sigma, backward_initial_angle_sigma);
+  o.initial_slip_sigma = std::max(options.initial_slip_sigma, backward_initial_slip_sigma);
   // The backward run starts levelled from its own first samples: independent
   // of the forward run, as the fusion assumes.
   const ContactAngleResult backward = ContactAngleEstimator(reversed_in_time(lg), m, o).run();
@@ -121,6 +121,7 @@ ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinema
 
   ContactAngleResult result = std::move(forward);
   result.filter_estimates = result.estimates;
+  result.filter_health = result.health;
   result.health.merge_reversed(backward.health, mirror);
   log::Log smoothed;
   smoothed.metadata = result.estimates.metadata;

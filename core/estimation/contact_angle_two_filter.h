@@ -19,6 +19,11 @@ namespace roverlab::estimation {
 // streams (truth) are left out.
 log::Log reversed_in_time(const log::Log& log);
 
+// The backward run's prior, at least: nearly uninformed at the log's end
+// (contact and side-slip angles 0.3 rad = 17 deg, slips 0.1).
+constexpr double backward_initial_angle_sigma = 0.3;  // rad
+constexpr double backward_initial_slip_sigma = 0.1;
+
 // The forward filter's run with the smoothed states in `estimates` and the
 // forward filter's in `filter_estimates`, not yet scored against truth
 // (run_contact_angle does that for every method). Yaw is the forward

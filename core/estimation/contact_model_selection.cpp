@@ -36,8 +36,11 @@ ModelEvidence model_evidence(ContactModel model, const ContactAngleResult& r, co
   e.innovations = r.innovations;
   const InnovationStats& in = r.innovations;
   e.mean_nis = in.dof > 0 ? in.nis_sum / in.dof : NAN;
-  e.nis_out_of_band = r.health.nis_out_of_band_fraction;
-  e.diverged = r.health.resets > 0 || r.health.stopped;
+  // The forward filter's health, as its innovations: a smoothed run's report
+  // adds the backward pass's, which a candidate run (--model auto) has not.
+  const HealthReport& h = r.smoothed ? r.filter_health : r.health;
+  e.nis_out_of_band = h.nis_out_of_band_fraction;
+  e.diverged = h.resets > 0 || h.stopped;
   // AIC with the effective degrees of freedom sum tr(H K), on the prediction-error likelihood.
   e.aic = in.updates > 0 && in.effective_dof > 0 ? -2.0 * in.log_likelihood + 2.0 * in.effective_dof
                                                  : std::numeric_limits<double>::infinity();

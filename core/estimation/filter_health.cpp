@@ -288,14 +288,15 @@ void HealthReport::merge_reversed(const HealthReport& b, double mirror) {
   updates += b.updates;
   nis_out_of_band_fraction = std::max(nis_out_of_band_fraction, b.nis_out_of_band_fraction);
   if (b.resets == 0 && !b.stopped) return;
-  const double t = mirror - b.divergence_time;
-  std::string reason = "backward pass: " + b.divergence_reason;
+  const double t = mirror - b.divergence_time;  // NaN stays NaN
+  std::string reason = "backward pass, " + std::to_string(b.resets) + (b.resets == 1 ? " reset" : " resets");
   if (b.stopped) reason += ", then stopped (the forward filter's states kept where it has none)";
   if (resets == 0 && !stopped) {
     divergence_time = t;
-    divergence_reason = reason;
+    divergence_reason = reason + ": " + b.divergence_reason;
   } else {
-    divergence_reason += "; " + reason + " at t = " + format("%.2f s", t);
+    divergence_reason +=
+        "; " + reason + (std::isnan(t) ? "" : ", from t = " + format("%.2f s", t)) + ": " + b.divergence_reason;
   }
   resets += b.resets;
 }

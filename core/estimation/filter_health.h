@@ -112,10 +112,13 @@ struct HealthReport {
   std::size_t updates = 0;               // measurement updates offered to the gate
   std::vector<TimeGap> gaps;             // bridged by prediction
   std::size_t resets = 0;
-  bool stopped = false;                 // resets exhausted: the rest is invalid
-  double invalid_fraction = 0;          // samples marked invalid for divergence
-  double divergence_time = NAN;         // first, s
-  std::string divergence_reason;        // first
+  bool stopped = false;         // resets exhausted: the rest is invalid
+  double invalid_fraction = 0;  // samples marked invalid for divergence
+  // The first divergence, s, and why; after merge_reversed, the forward
+  // pass's when it diverged, else the reversed pass's first (in the log's
+  // clock, its latest), with the reversed pass's named in the reason.
+  double divergence_time = NAN;
+  std::string divergence_reason;
   double nis_out_of_band_fraction = 0;  // share of NIS windows above their band
   // ok: nothing rejected, bridged or reset; degraded: inputs or updates
   // rejected or gaps bridged; diverged: a filter was reset or stopped.
@@ -128,8 +131,9 @@ struct HealthReport {
   // Adds a pass over the log reversed in time (t' = mirror - t) whose
   // estimates are fused with this pass's (the two-filter smoother): its gated
   // updates and resets, its divergence in the log's clock with a reason that
-  // names it. Where it diverged the fused states are this pass's, so the
-  // invalid fraction and `stopped` stay this pass's.
+  // names it with its count of resets. `resets` is then both passes' sum;
+  // where the reversed pass diverged the fused states are this pass's, so
+  // the invalid fraction and `stopped` stay this pass's.
   void merge_reversed(const HealthReport& reversed, double mirror);
 };
 

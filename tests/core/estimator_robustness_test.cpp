@@ -209,7 +209,20 @@ TEST_P(ContactAngleRobustness, AStuckGyroOverSecondsIsReportedAsDivergenceNotSil
   const auto forward = estimation::run_contact_angle(with_stuck(clean(), "angular_rate_z", 20.0, 4.0), bb2(), o);
   EXPECT_GT(stuck.health.resets, forward.health.resets) << stuck.health.message();
   EXPECT_EQ(stuck.health.invalid_fraction, forward.health.invalid_fraction);
-  EXPECT_NE(stuck.health.message().find("backward pass: "), std::string::npos) << stuck.health.message();
+  EXPECT_EQ(stuck.filter_health.resets, forward.health.resets);
+  EXPECT_EQ(stuck.health.divergence_time, forward.health.divergence_time);
+  // The backward pass's first divergence, in the log's clock, lies within
+  // the stuck stretch [t0, t0 + 4 s): it meets the stretch's end first.
+  const std::string m = stuck.health.message();
+  const std::size_t at = m.find("backward pass, ");
+  ASSERT_NE(at, std::string::npos) << m;
+  const std::size_t from = m.find("from t = ", at);
+  ASSERT_NE(from, std::string::npos) << m;
+  const double tb = std::stod(m.substr(from + 9));
+  const auto& t = clean().stream("imu").time();
+  const double t0 = t[2 * t.size() / 5];
+  EXPECT_GT(tb, t0) << m;
+  EXPECT_LT(tb, t0 + 4.0) << m;
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -323,6 +336,56 @@ TEST(FilterHealth, AGapLongerThanTheLongestBridgedIsStillRefused) {
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("a gap of"), std::string::npos) << e.what();
   }
+}
+
+// The two-filter smoother's report: a reversed pass's divergence at t' is
+// at mirror - t' in the log's clock and named; the fused samples there are
+// the forward pass's, so its invalid fraction and `stopped` do not carry over.
+TEST(FilterHealth, AReversedPassIsMergedInTheLogsClock) {
+  estimation::HealthReport backward;
+  backward.updates = 100;
+  backward.updates_rejected = 7;
+  backward.resets = 2;
+  backward.divergence_time = 3.0;
+  backward.divergence_reason = "every update rejected by the NIS gate for 1 s";
+  backward.invalid_fraction = 0.2;
+
+  estimation::HealthReport clean;  // the forward pass did not diverge
+  clean.updates = 100;
+  clean.merge_reversed(backward, 10.0);
+  EXPECT_EQ(clean.updates, 200u);
+  EXPECT_EQ(clean.updates_rejected, 7u);
+  EXPECT_EQ(clean.resets, 2u);
+  EXPECT_DOUBLE_EQ(clean.divergence_time, 7.0);
+  EXPECT_EQ(clean.divergence_reason, "backward pass, 2 resets: every update rejected by the NIS gate for 1 s");
+  EXPECT_EQ(clean.invalid_fraction, 0.0);
+  EXPECT_EQ(clean.status(), estimation::HealthStatus::diverged);
+
+  estimation::HealthReport diverged;  // both did: the forward pass's time stays
+  diverged.resets = 1;
+  diverged.divergence_time = 2.0;
+  diverged.divergence_reason = "covariance not finite";
+  diverged.merge_reversed(backward, 10.0);
+  EXPECT_EQ(diverged.resets, 3u);
+  EXPECT_DOUBLE_EQ(diverged.divergence_time, 2.0);
+  EXPECT_EQ(diverged.divergence_reason,
+            "covariance not finite; backward pass, 2 resets, from t = 7.00 s: "
+            "every update rejected by the NIS gate for 1 s");
+
+  backward.stopped = true;  // the reversed pass stopped: the forward one did not
+  estimation::HealthReport forward;
+  forward.merge_reversed(backward, 10.0);
+  EXPECT_FALSE(forward.stopped);
+  EXPECT_NE(forward.message().find("then stopped (the forward filter's states kept"), std::string::npos)
+      << forward.message();
+
+  estimation::HealthReport quiet;  // a reversed pass without divergence adds its updates only
+  estimation::HealthReport calm;
+  calm.updates = 5;
+  quiet.merge_reversed(calm, 10.0);
+  EXPECT_EQ(quiet.updates, 5u);
+  EXPECT_EQ(quiet.status(), estimation::HealthStatus::ok);
+  EXPECT_TRUE(std::isnan(quiet.divergence_time));
 }
 
 TEST(FilterHealth, TheMonitorSeesACovarianceThatIsNotPositiveDefinite) {
