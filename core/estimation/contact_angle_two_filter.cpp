@@ -76,12 +76,17 @@ log::Stream fused(const log::Stream& fwd, const log::Stream& bwd, const ContactA
   return out;
 }
 
+// The reversed log's clock: t' = mirror - t, the imu stream's span kept.
+double mirror_time(const log::Log& lg) {
+  const log::Stream& imu = lg.stream("imu");
+  if (imu.empty()) throw DataError("stream 'imu' is empty");
+  return imu.start_time() + imu.end_time();
+}
+
 }  // namespace
 
 log::Log reversed_in_time(const log::Log& lg) {
-  const log::Stream& imu = lg.stream("imu");
-  if (imu.empty()) throw DataError("stream 'imu' is empty");
-  const double mirror = imu.start_time() + imu.end_time();
+  const double mirror = mirror_time(lg);
   log::Log r;
   r.metadata = lg.metadata;
   for (const char* name : {"imu", "joints", "wheels"}) r.add_stream(reversed(lg.stream(name), mirror));
@@ -116,13 +121,11 @@ ContactAngleResult run_contact_angle_two_filter(const log::Log& lg, const kinema
   // The backward run starts levelled from its own first samples: independent
   // of the forward run, as the fusion assumes.
   const ContactAngleResult backward = ContactAngleEstimator(reversed_in_time(lg), m, o).run();
-  const log::Stream& imu = lg.stream("imu");
-  const double mirror = imu.start_time() + imu.end_time();  // as reversed_in_time
 
   ContactAngleResult result = std::move(forward);
   result.filter_estimates = result.estimates;
   result.filter_health = result.health;
-  result.health.merge_reversed(backward.health, mirror);
+  result.health.merge_reversed(backward.health, mirror_time(lg));
   log::Log smoothed;
   smoothed.metadata = result.estimates.metadata;
   for (const auto& s : result.estimates.streams())
