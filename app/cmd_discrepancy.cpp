@@ -37,7 +37,7 @@ json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
   for (const auto& s : stats) {
     j[to_string(s.quantity)] = {{"count", s.count},   {"rmse", s.rmse},
                                 {"bias", s.bias},     {"slope_vs_slip", s.slope_vs_slip},
-                                {"t_slip", s.t_slip}, {"slope_vs_load", s.slope_vs_load},
+                                {"t_slip", s.t_slip}, {"t_bias", s.t_bias}, {"slope_vs_load", s.slope_vs_load},
                                 {"t_load", s.t_load}, {"unit", unit_of(s.quantity)}};
   }
   return j;
@@ -57,6 +57,16 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
       {"cause", r.selection.empty() ? json(nullptr) : json(r.selection.back().name)},
       {"what_is_wrong", r.what_is_wrong},
       {"verdict", r.verdict}};
+  j["quantities"] = json::array();
+  for (const auto& v : r.quantity_verdicts) {
+    j["quantities"].push_back({{"quantity", to_string(v.quantity)},
+                               {"significant", v.significant},
+                               {"explained_by", v.explained_by.empty() ? json(nullptr) : json(v.explained_by)},
+                               {"best_candidate", v.best_candidate},
+                               {"held_out_rmse_before", nullable(v.held_out_before)},
+                               {"held_out_rmse_after", nullable(v.held_out_after)},
+                               {"sentence", v.sentence}});
+  }
   j["partial"] = json::array();
   for (const auto& [q, index] : r.partial) {
     j["partial"].push_back(

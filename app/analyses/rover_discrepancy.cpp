@@ -9,6 +9,7 @@
 #include "app/command_support.h"
 #include "app/commands.h"
 #include "app/rover_scenario.h"
+#include "core/analysis/likelihood.h"
 #include "core/analysis/rover_discrepancy.h"
 #include "core/common/error.h"
 
@@ -33,10 +34,10 @@ json parameters_json(const std::vector<analysis::RoverParameterFit>& ps) {
 std::string parameters_text(const json& ps) {
   std::string t;
   for (const auto& p : ps) {
-    char one[120];
-    std::snprintf(one, sizeof one, "%s%s %.4g+-%s", t.empty() ? "" : ", ", p.at("effect").get<std::string>().c_str(),
-                  p.at("value").get<double>(), ReportSection::number(p.at("sigma"), "%.2g").c_str());
-    t += one;
+    const json& sigma = p.at("sigma");
+    t += (t.empty() ? "" : ", ") + p.at("effect").get<std::string>() + " " +
+         roverlab::analysis::format_estimate(p.at("value").get<double>(), sigma.is_number() ? sigma.get<double>() : NAN,
+                                   p.at("unit").get<std::string>());
   }
   return t;
 }
@@ -193,7 +194,7 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
     cands.push_back({{"name", c.name},
                      {"cause", c.cause},
                      {"parameters", parameters_json(c.parameters)},
-                     {"chi2", c.chi2},
+                     {"minus_two_log_l", c.minus_two_log_l},
                      {"delta_bic", c.delta_bic},
                      {"held_out", c.held_out},
                      {"significant", c.significant},
@@ -256,8 +257,8 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
   for (const auto& c : j.at("candidates")) {
     std::string p = parameters_text(c.at("parameters"));
     if (p.size() > 44) p = p.substr(0, 43) + "~";
-    std::fprintf(out, "  %-22s %-44s %10.1f %9.3g%s\n", c.at("name").get<std::string>().c_str(), p.c_str(),
-                 c.at("delta_bic").get<double>(), c.at("held_out").get<double>(),
+    std::fprintf(out, "  %-22s %-44s %10s %9.3g%s\n", c.at("name").get<std::string>().c_str(), p.c_str(),
+                 roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()).c_str(), c.at("held_out").get<double>(),
                  c.at("significant").get<bool>() ? ""
                  : c.at("screened").get<bool>()  ? "  (screened out)"
                                                  : "  (not significant)");
@@ -300,7 +301,7 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
     s.html << "<tr" << (c.at("significant").get<bool>() ? " style=\"font-weight:bold\"" : "")
            << "><td style=\"text-align:left\">" << ReportSection::escape(c.at("name").get<std::string>())
            << "</td><td style=\"text-align:left\">" << ReportSection::escape(parameters_text(c.at("parameters")))
-           << "</td><td>" << n(c.at("delta_bic"), "%.1f") << "</td><td>" << n(c.at("held_out"), "%.3g")
+           << "</td><td>" << roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()) << "</td><td>" << n(c.at("held_out"), "%.3g")
            << "</td></tr>\n";
   }
   s.html << "</table>\n<ul>\n";

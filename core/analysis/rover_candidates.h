@@ -18,6 +18,7 @@ struct RoverResidualFeatures {
   double change_time = NAN;  // s: where the logged torques start to depart from the simulation's
   double change_x = NAN;     // m: the front wheel's x in the baseline simulation at change_time
   double hold_start = NAN;   // s: first time the wheel encoders stop changing for 1 s or more (NaN: never)
+  bool from_start = false;   // the torques depart within the first 2 s: a change over the whole run
 };
 
 struct RoverCandidateParameter {

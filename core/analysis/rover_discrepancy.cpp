@@ -43,7 +43,8 @@ void set_noise(std::vector<MeasuredChannel>& channels, const Prediction& p) {
       d[k - 1] = (m.values[k] - p[c][k]) - (m.values[k - 1] - p[c][k - 1]);
     const double md = median(d);
     for (double& x : d) x = std::abs(x - md);
-    m.sigma = std::max(1.4826 * median(d) / std::sqrt(2.0), noise_floor(m.unit));
+    m.resolution = noise_floor(m.unit);
+    m.sigma = std::max(1.4826 * median(d) / std::sqrt(2.0), m.resolution);
   }
 }
 
@@ -130,6 +131,7 @@ double hold_start(const std::vector<MeasuredChannel>& ch) {
 RoverResidualFeatures features(const std::vector<MeasuredChannel>& ch, const Prediction& p, const Simulated& base) {
   RoverResidualFeatures f;
   f.change_time = change_time(ch, p);
+  f.from_start = f.change_time < ch.front().time.front() + 2.0;
   if (std::isfinite(f.change_time)) {
     f.change_x = log::interpolate_linear(base.sensors.time, base.front_x, f.change_time);
   }

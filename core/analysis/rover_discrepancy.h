@@ -6,12 +6,15 @@
 // controller's set points (the scenario's desired speed), not by the logged
 // torques: the logged torques are compared with the simulated controller's.
 // Every sensor channel (Table 5.1) and the torque commands are compared with
-// a noise-free simulation, weighted by each channel's noise (estimated from
-// the residuals' sample-to-sample differences, floored at a stated
-// resolution). The run is cut into blocks of equal time that alternate
-// between fitting and testing; each candidate (rover_candidates.def) is
-// fitted with Ceres on the fit blocks and judged by BIC there and by the
-// normalised error on the test blocks. Forward selection adds causes while
+// a noise-free simulation. The likelihood (likelihood.h) gives each channel
+// its own noise scale and lag-1 autocorrelation, profiled out for every
+// model, and compares the wheel encoders' increments rather than their
+// integrated angles; the residuals are first normalised by each channel's
+// per-sample noise (from the baseline residuals' sample-to-sample
+// differences, floored at a stated resolution). The run is cut into blocks
+// of equal time that alternate between fitting and testing; each candidate
+// (rover_candidates.def) is fitted with Ceres on the fit blocks and judged
+// by BIC there and by the likelihood on the test blocks. Forward selection adds causes while
 // one improves BIC by more than 10 and the held-out error falls. The log's
 // truth streams are never read.
 
@@ -60,12 +63,12 @@ struct RoverParameterFit {
 struct RoverCandidateResult {
   std::string name, cause;
   std::vector<RoverParameterFit> parameters;
-  double chi2 = 0, delta_bic = 0;  // on the fit blocks, against the model it was added to
+  double minus_two_log_l = 0, delta_bic = 0;  // on the fit blocks (likelihood.h), against the model it was added to
   double held_out = 0;             // normalised RMS on the test blocks
   bool significant = false;
   int simulations = 0;
   bool screened =
-      false;  // its linearised fit could not be significant: not fitted further (chi2 is the linearised one)
+      false;  // its linearised fit could not be significant: not fitted further (its -2 ln L is the linearised one, no sigma)
 };
 
 struct RoverSelectionStep {
@@ -86,7 +89,8 @@ struct RoverDiscrepancyReport {
   double duration = 0;
   std::size_t fit_residuals = 0, test_residuals = 0;
   std::vector<RoverChannelResiduals> channels;
-  double baseline_bic = 0, baseline_held_out = 0, final_held_out = 0;
+  double baseline_bic = 0;  // -2 ln L of the nominal model on the fit blocks
+  double baseline_held_out = 0, final_held_out = 0;  // RMS normalised residual on the test blocks
   std::vector<RoverRedundancyCheck> checks;
   std::vector<RoverCandidateResult> candidates;  // each alone on the baseline
   std::vector<RoverSelectionStep> selection;     // the named causes, in order

@@ -7,6 +7,7 @@
 
 #include "core/analysis/rover_candidates.h"
 #include "core/analysis/rover_discrepancy.h"
+#include "core/analysis/likelihood.h"
 #include "core/analysis/rover_fit.h"
 #include "core/analysis/rover_prediction.h"
 
@@ -27,7 +28,7 @@ std::vector<RoverParameterFit> fits_of(const std::vector<FitParameter>& p, std::
 
 struct Trial {
   FitOutcome fit;
-  double screened_chi2 = 0;  // the linearised fit's
+  double screened_fit = 0;  // -2 ln L the linearised fit predicts
   double delta_bic = 0;
   bool significant = false;
   bool screened = false;  // judged by its linearised fit alone
@@ -40,14 +41,18 @@ struct Round {
   int best = -1;
 };
 
+// The most candidates a round fits after screening; the best screen is always among them.
+constexpr std::size_t kMaxFitsPerRound = 5;
+
 // One round of forward selection: every unused candidate on top of the
-// chain (held). Each is screened by one Gauss-Newton step; those that could
-// be significant are fitted, best screen first, skipping any whose screen is
-// more than ten times the chi-square the best fit so far reached.
+// chain (held). Each is screened by one Gauss-Newton step; those whose
+// screen could be significant are fitted, best screen first, at most
+// kMaxFitsPerRound of them, so the candidate with the best evidence is
+// always fitted, never screened out.
 Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>>& candidates,
                 const std::vector<bool>& used, const RoverResidualFeatures& f, const std::vector<FitParameter>& chain,
-                double fit, double test, double min_delta_bic) {
-  const double ln_n = std::log(static_cast<double>(pr.count(Part::fit)));
+                const Score& current, double min_delta_bic) {
+  const double ln_n = std::log(static_cast<double>(pr.likelihood(Part::fit).effective_count()));
   Round round;
   round.trials.resize(candidates.size());
   std::vector<std::size_t> order;
@@ -60,29 +65,29 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     for (auto& p : t.fit.parameters) p.free = false;
     for (const auto& sp : specs) t.fit.parameters.push_back({sp, sp.start, 0.0, true});
     const int sims = pr.simulations();
-    t.screened_chi2 = linearised_chi2(pr, t.fit.parameters);
+    t.screened_fit = linearised_fit(pr, t.fit.parameters, current.weights);
     t.simulations = pr.simulations() - sims;
     t.screened = true;
-    t.fit.chi2_fit = t.screened_chi2;
-    t.fit.chi2_test = test;
-    t.delta_bic = t.screened_chi2 - fit + static_cast<double>(specs.size()) * ln_n;
+    t.fit.score = current;
+    t.fit.score.fit = t.screened_fit;
+    for (auto& p : t.fit.parameters) p.sigma = NAN;  // a screen gives no sigma
+    t.delta_bic = t.screened_fit - current.fit + static_cast<double>(specs.size()) * ln_n;
     if (t.delta_bic < -min_delta_bic) order.push_back(i);
   }
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return round.trials[a].screened_chi2 < round.trials[b].screened_chi2;
+    return round.trials[a].screened_fit < round.trials[b].screened_fit;
   });
-  double best_fit = std::numeric_limits<double>::infinity();
+  if (order.size() > kMaxFitsPerRound) order.resize(kMaxFitsPerRound);
   for (std::size_t i : order) {
     Trial& t = round.trials[i];
-    if (t.screened_chi2 > 10 * best_fit + 100) continue;
     const int sims = pr.simulations();
     const auto k = static_cast<double>(t.fit.parameters.size() - chain.size());
-    t.fit = fit_parameters(pr, t.fit.parameters);
+    // The screen's optimum is the fit's start.
+    t.fit = fit_parameters(pr, t.fit.parameters, current.weights);
     t.simulations += pr.simulations() - sims;
     t.screened = false;
-    t.delta_bic = t.fit.chi2_fit - fit + k * ln_n;
-    t.significant = t.delta_bic < -min_delta_bic && t.fit.chi2_test < test;
-    best_fit = std::min(best_fit, t.fit.chi2_fit);
+    t.delta_bic = t.fit.score.fit - current.fit + k * ln_n;
+    t.significant = t.delta_bic < -min_delta_bic && t.fit.score.test < current.test;
     if (t.significant &&
         (round.best < 0 || t.delta_bic < round.trials[static_cast<std::size_t>(round.best)].delta_bic)) {
       round.best = static_cast<int>(i);
@@ -96,27 +101,26 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
 // Forward selection (issue 13 item 4): each round tries every unused
 // candidate on top of the chain (the chain held), takes the one with the
 // lowest BIC when it improves BIC by more than min_delta_bic and the
-// held-out chi-square falls, then refits the whole chain with it.
+// held-out likelihood rises, then refits the whole chain with it. BIC is
+// -2 ln L of the study's likelihood (likelihood.h) + k ln n.
 void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStudyOptions& o, RoverDiscrepancyReport& r,
                    std::vector<FitParameter>& chain) {
   const auto candidates = rover_candidates();
-  const double ln_n = std::log(static_cast<double>(pr.count(Part::fit)));
-  const auto n_test = static_cast<double>(pr.count(Part::test));
-  const simulation::RockerBogieEffects& none = pr.scenario_effects();  // the nominal model
-  double fit = chi2(pr, none, Part::fit), test = chi2(pr, none, Part::test);
-  r.baseline_bic = fit;
-  r.baseline_held_out = std::sqrt(test / n_test);
+  const double ln_n = std::log(static_cast<double>(pr.likelihood(Part::fit).effective_count()));
+  Score current = score(pr, pr.scenario_effects());  // the nominal model
+  r.baseline_bic = current.fit;
+  r.baseline_held_out = current.held_out;
   std::vector<bool> used(candidates.size(), false);
   for (int round = 0; round < o.max_causes; ++round) {
     if (o.progress) o.progress(static_cast<double>(round) / static_cast<double>(o.max_causes + 1));
-    Round rd = run_round(pr, candidates, used, f, chain, fit, test, o.min_delta_bic);
+    Round rd = run_round(pr, candidates, used, f, chain, current, o.min_delta_bic);
     if (round == 0) {
       for (std::size_t i = 0; i < candidates.size(); ++i) {
         const Trial& t = rd.trials[i];
         if (!t.applies) continue;
         r.candidates.push_back({candidates[i]->name(), candidates[i]->cause(), fits_of(t.fit.parameters, chain.size()),
-                                t.fit.chi2_fit, t.delta_bic, std::sqrt(t.fit.chi2_test / n_test), t.significant,
-                                t.simulations, t.screened});
+                                t.fit.score.fit, t.delta_bic, t.fit.score.held_out, t.significant, t.simulations,
+                                t.screened});
       }
     }
     if (rd.best < 0) break;
@@ -128,17 +132,16 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
     if (!chain.empty()) {  // refit the whole chain with the new cause
       std::vector<FitParameter> all = best.fit.parameters;
       for (auto& p : all) p.free = true;
-      FitOutcome refit = fit_parameters(pr, all);
-      if (refit.chi2_fit <= joint.chi2_fit) joint = std::move(refit);
+      FitOutcome refit = fit_parameters(pr, all, best.fit.score.weights);
+      if (refit.score.fit <= joint.score.fit) joint = std::move(refit);
     }
-    const double delta_bic = joint.chi2_fit - fit + static_cast<double>(k) * ln_n;
+    const double delta_bic = joint.score.fit - current.fit + static_cast<double>(k) * ln_n;
     chain = joint.parameters;
-    fit = joint.chi2_fit;
-    test = joint.chi2_test;
-    r.selection.push_back({candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic,
-                           std::sqrt(test / n_test)});
+    current = joint.score;
+    r.selection.push_back(
+        {candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic, current.held_out});
   }
-  r.final_held_out = std::sqrt(test / n_test);
+  r.final_held_out = current.held_out;
 }
 
 void write_verdict(RoverDiscrepancyReport& r) {
@@ -170,12 +173,10 @@ void write_verdict(RoverDiscrepancyReport& r) {
     v += (i > 0 ? "; then " : "") + s.name + " (";
     for (std::size_t j = 0; j < s.parameters.size(); ++j) {
       const auto& p = s.parameters[j];
-      std::snprintf(buf, sizeof buf, "%s%s = %.4g +- %.2g%s%s%s", j > 0 ? ", " : "", p.effect.c_str(), p.value, p.sigma,
-                    p.unit == "1" ? "" : " ", p.unit == "1" ? "" : p.unit.c_str(), p.at_bound ? ", at its bound" : "");
-      v += buf;
+      v += (j > 0 ? ", " : "") + p.effect + " = " + format_estimate(p.value, p.sigma, p.unit) +
+           (p.at_bound ? ", at its bound" : "");
     }
-    std::snprintf(buf, sizeof buf, "; delta BIC %.1f)", s.delta_bic);
-    v += buf;
+    v += "; delta BIC " + format_delta_bic(s.delta_bic) + ")";
   }
   std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% lower).", r.baseline_held_out,
                 r.final_held_out, 100 * (1 - r.final_held_out / r.baseline_held_out));

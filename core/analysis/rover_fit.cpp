@@ -11,23 +11,45 @@ namespace roverlab::analysis::rover {
 
 namespace {
 
-// The fit blocks' residuals as a function of the free parameters; the
-// Jacobian by forward differences (backward at an upper bound).
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The whitened Jacobian (n_eff x m, row-major) of raw columns at a profile.
+RowMajor whitened(const GroupedLikelihood& l, const LikelihoodProfile& at, const std::vector<double>& raw,
+                  std::size_t m) {
+  const std::size_t n = l.effective_count();
+  RowMajor J(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+  std::vector<double> column(n);
+  for (std::size_t j = 0; j < m; ++j) {
+    l.whiten(at, raw.data() + j, column.data(), m);
+    for (std::size_t i = 0; i < n; ++i) J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = column[i];
+  }
+  return J;
+}
+
+// The fit blocks' whitened residuals as a function of the free parameters;
+// the Jacobian by forward differences (backward at an upper bound). The raw
+// (unwhitened) Jacobian of the last evaluation is kept for the covariance.
 class SimulationCost final : public ceres::CostFunction {
  public:
-  SimulationCost(Predictor& predictor, std::vector<FitParameter>& parameters, std::vector<std::size_t> free)
-      : predictor_(predictor), parameters_(parameters), free_(std::move(free)) {
-    set_num_residuals(static_cast<int>(predictor.count(Part::fit)));
+  SimulationCost(Predictor& predictor, std::vector<FitParameter>& parameters, std::vector<std::size_t> free,
+                 const LikelihoodProfile& weights)
+      : predictor_(predictor),
+        likelihood_(predictor.likelihood(Part::fit)),
+        parameters_(parameters),
+        free_(std::move(free)),
+        weights_(weights) {
+    set_num_residuals(static_cast<int>(likelihood_.effective_count()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(free_.size()));
   }
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
     std::vector<FitParameter> p = parameters_;
     for (std::size_t j = 0; j < free_.size(); ++j) p[free_[j]].value = x[0][j];
     const std::vector<double> r = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);
-    std::copy(r.begin(), r.end(), residuals);
+    likelihood_.whiten(weights_, r.data(), residuals);
     if (jacobians == nullptr || jacobians[0] == nullptr) return true;
     const std::size_t n = r.size(), m = free_.size();
     last_x_.assign(x[0], x[0] + m);
+    last_raw_.assign(n * m, 0.0);
     for (std::size_t j = 0; j < m; ++j) {
       FitParameter& q = p[free_[j]];
       const double v = q.value;
@@ -35,64 +57,56 @@ class SimulationCost final : public ceres::CostFunction {
       q.value = v + h;
       const std::vector<double> r2 = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);
       q.value = v;
-      for (std::size_t i = 0; i < n; ++i) jacobians[0][i * m + j] = (r2[i] - r[i]) / h;
+      for (std::size_t i = 0; i < n; ++i) last_raw_[i * m + j] = (r2[i] - r[i]) / h;
     }
-    last_jacobian_.assign(jacobians[0], jacobians[0] + n * m);
+    const RowMajor J = whitened(likelihood_, weights_, last_raw_, m);
+    std::copy(J.data(), J.data() + J.size(), jacobians[0]);
     return true;
   }
-  // The last Jacobian computed, when it was computed at x (saves a simulation per parameter).
-  const std::vector<double>* jacobian_at(const std::vector<double>& x) const {
-    return x == last_x_ ? &last_jacobian_ : nullptr;
+  // The raw Jacobian computed last, when it was computed at x (saves a simulation per parameter).
+  const std::vector<double>* raw_jacobian_at(const std::vector<double>& x) const {
+    return x == last_x_ ? &last_raw_ : nullptr;
   }
 
  private:
   Predictor& predictor_;
+  const GroupedLikelihood& likelihood_;
   std::vector<FitParameter>& parameters_;
   std::vector<std::size_t> free_;
-  mutable std::vector<double> last_x_, last_jacobian_;
+  const LikelihoodProfile& weights_;
+  mutable std::vector<double> last_x_, last_raw_;
 };
 
-// 1-sigma of the free parameters from (J^T J)^-1 at the solution (residuals in noise units).
-void set_sigmas(const SimulationCost& cost, std::vector<FitParameter>& p, const std::vector<std::size_t>& free,
-                const std::vector<double>& x) {
-  const auto n = static_cast<std::size_t>(cost.num_residuals());
+// 1-sigma of the free parameters from (J^T J)^-1 at the solution, J whitened
+// at the solution's profile. A parameter the data do not determine (its
+// column of J near zero, or lost in the others) gets NaN, never 0.
+void set_sigmas(Predictor& pr, const SimulationCost& cost, std::vector<FitParameter>& p,
+                const std::vector<std::size_t>& free, const std::vector<double>& x, const LikelihoodProfile& at) {
   const std::size_t m = free.size();
-  std::vector<double> jac;
-  if (const std::vector<double>* last = cost.jacobian_at(x)) {
-    jac = *last;
+  std::vector<double> raw;
+  if (const std::vector<double>* last = cost.raw_jacobian_at(x)) {
+    raw = *last;
   } else {
-    std::vector<double> r(n);
-    jac.resize(n * m);
+    std::vector<double> r(static_cast<std::size_t>(cost.num_residuals())), jac(r.size() * m);
     const double* xs[] = {x.data()};
     double* js[] = {jac.data()};
     cost.Evaluate(xs, r.data(), js);
+    raw = *cost.raw_jacobian_at(x);
   }
-  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
-      jac.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+  const RowMajor J = whitened(pr.likelihood(Part::fit), at, raw, m);
   const Eigen::MatrixXd info = J.transpose() * J;
-  const Eigen::MatrixXd cov = info.completeOrthogonalDecomposition().pseudoInverse();
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(info);
+  cod.setThreshold(1e-10);
+  const bool full_rank = cod.rank() == static_cast<Eigen::Index>(m);
+  const Eigen::MatrixXd cov = cod.pseudoInverse();
   for (std::size_t j = 0; j < m; ++j) {
-    const double v = cov(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j));
-    p[free[j]].sigma = v > 0 ? std::sqrt(v) : NAN;
+    const auto jj = static_cast<Eigen::Index>(j);
+    const double v = cov(jj, jj);
+    const double span = p[free[j]].spec.upper - p[free[j]].spec.lower;
+    // Undetermined: rank deficient, or a sigma wider than the parameter's whole range.
+    p[free[j]].sigma = full_rank && v > 0 && std::sqrt(v) < span ? std::sqrt(v) : NAN;
   }
 }
-
-}  // namespace
-
-simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& scenario,
-                                          const std::vector<FitParameter>& parameters) {
-  simulation::RockerBogieEffects fx = scenario;
-  for (const auto& p : parameters) simulation::set_effect(fx, p.spec.effect, p.value);
-  return fx;
-}
-
-double chi2(Predictor& predictor, const simulation::RockerBogieEffects& effects, Part part) {
-  double s = 0;
-  for (double r : predictor.residuals(effects, part)) s += r * r;
-  return s;
-}
-
-namespace {
 
 // The indices and values of the parameters a fit moves; a held parameter
 // that is never fitted gets its stated resolution as its sigma.
@@ -107,60 +121,188 @@ void free_parameters(std::vector<FitParameter>& parameters, std::vector<std::siz
   }
 }
 
-}  // namespace
-
-double linearised_chi2(Predictor& predictor, std::vector<FitParameter>& parameters) {
-  std::vector<std::size_t> free;
-  std::vector<double> x;
-  free_parameters(parameters, free, x);
-  const SimulationCost cost(predictor, parameters, free);
-  const auto n = static_cast<std::size_t>(cost.num_residuals());
-  const std::size_t m = free.size();
-  std::vector<double> r(n), jac(n * m);
-  const double* xs[] = {x.data()};
-  double* js[] = {jac.data()};
-  cost.Evaluate(xs, r.data(), m > 0 ? js : nullptr);
-  const Eigen::Map<const Eigen::VectorXd> rv(r.data(), static_cast<Eigen::Index>(n));
-  if (m == 0) return rv.squaredNorm();
-  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
-      jac.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
-  const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-rv);
-  for (std::size_t j = 0; j < m; ++j) {
-    FitParameter& p = parameters[free[j]];
-    p.value = std::clamp(x[j] + step(static_cast<Eigen::Index>(j)), p.spec.lower, p.spec.upper);
-  }
-  return (rv + J * step).squaredNorm();
+// The held-out yardstick: residuals in noise sigmas, encoders as increments
+// (whose noise is sqrt(2) sigmas), no autocorrelation removed.
+LikelihoodProfile yardstick(const GroupedLikelihood& l) {
+  LikelihoodProfile y;
+  for (const auto& g : l.groups()) y.groups.push_back({0.0, g.integrated ? std::sqrt(2.0) : 1.0, 0});
+  return y;
 }
 
-FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters) {
+}  // namespace
+
+simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& scenario,
+                                          const std::vector<FitParameter>& parameters) {
+  simulation::RockerBogieEffects fx = scenario;
+  for (const auto& p : parameters) simulation::set_effect(fx, p.spec.effect, p.value);
+  return fx;
+}
+
+Score score(Predictor& pr, const simulation::RockerBogieEffects& effects) {
+  Score s;
+  const std::vector<double> fit = pr.residuals(effects, Part::fit), test = pr.residuals(effects, Part::test);
+  s.profile = pr.likelihood(Part::fit).profile(fit);
+  s.weights = pr.likelihood(Part::fit).fit_weights(fit);
+  s.fit = s.profile.minus_two_log_l;
+  const GroupedLikelihood& lt = pr.likelihood(Part::test);
+  s.test = lt.minus_two_log_l(test);
+  std::vector<double> w(lt.effective_count());
+  lt.whiten(yardstick(lt), test.data(), w.data());
+  double sq = 0;
+  for (double v : w) sq += v * v;
+  s.held_out = w.empty() ? NAN : std::sqrt(sq / static_cast<double>(w.size()));
+  return s;
+}
+
+double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights) {
   std::vector<std::size_t> free;
   std::vector<double> x;
   free_parameters(parameters, free, x);
-  if (!free.empty()) {
-    ceres::Problem::Options po;
-    po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    ceres::Problem problem(po);
-    SimulationCost cost(predictor, parameters, free);
-    problem.AddResidualBlock(&cost, nullptr, x.data());
-    for (std::size_t j = 0; j < free.size(); ++j) {
-      problem.SetParameterLowerBound(x.data(), static_cast<int>(j), parameters[free[j]].spec.lower);
-      problem.SetParameterUpperBound(x.data(), static_cast<int>(j), parameters[free[j]].spec.upper);
-    }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = 8;
-    so.function_tolerance = 1e-5;  // 1e-5 of a chi-square near the residual count: well under one unit
-    so.num_threads = 1;
-    so.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    for (std::size_t j = 0; j < free.size(); ++j) parameters[free[j]].value = x[j];
-    set_sigmas(cost, parameters, free, x);
+  const GroupedLikelihood& l = predictor.likelihood(Part::fit);
+  const SimulationCost cost(predictor, parameters, free, weights);
+  const std::size_t n = l.effective_count(), m = free.size();
+  std::vector<double> rw(n), jac(n * m);
+  const double* xs[] = {x.data()};
+  double* js[] = {jac.data()};
+  cost.Evaluate(xs, rw.data(), m > 0 ? js : nullptr);
+  const std::vector<double> raw = predictor.residuals(effects_of(predictor.scenario_effects(), parameters), Part::fit);
+  if (m == 0) return l.minus_two_log_l(raw);
+  const Eigen::Map<const Eigen::VectorXd> r(rw.data(), static_cast<Eigen::Index>(n));
+  const Eigen::Map<const RowMajor> J(jac.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+  const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
+  Eigen::VectorXd clamped(static_cast<Eigen::Index>(m));
+  for (std::size_t j = 0; j < m; ++j) {
+    FitParameter& p = parameters[free[j]];
+    const auto jj = static_cast<Eigen::Index>(j);
+    p.value = std::clamp(x[j] + step(jj), p.spec.lower, p.spec.upper);
+    clamped(jj) = p.value - x[j];
   }
+  // The raw residuals the linear model predicts at the clamped step, scored by the full profile.
+  const std::vector<double>& rawj = *cost.raw_jacobian_at(x);
+  std::vector<double> predicted = raw;
+  for (std::size_t i = 0; i < predicted.size(); ++i) {
+    for (std::size_t j = 0; j < m; ++j) predicted[i] += rawj[i * m + j] * clamped(static_cast<Eigen::Index>(j));
+  }
+  return l.minus_two_log_l(predicted);
+}
+
+namespace {
+
+// One Ceres solve of the free parameters at fixed weights, from x (updated);
+// the parameters' GN sigmas set at the solution's profile. Returns its score.
+Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const std::vector<std::size_t>& free,
+            std::vector<double>& x, const LikelihoodProfile& weights) {
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  SimulationCost cost(predictor, parameters, free, weights);
+  problem.AddResidualBlock(&cost, nullptr, x.data());
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    problem.SetParameterLowerBound(x.data(), static_cast<int>(j), parameters[free[j]].spec.lower);
+    problem.SetParameterUpperBound(x.data(), static_cast<int>(j), parameters[free[j]].spec.upper);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = 8;
+  so.function_tolerance = 1e-5;  // 1e-5 of a cost near the residual count: well under one unit
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  for (std::size_t j = 0; j < free.size(); ++j) parameters[free[j]].value = x[j];
+  Score sc = score(predictor, effects_of(predictor.scenario_effects(), parameters));
+  set_sigmas(predictor, cost, parameters, free, x, sc.profile);
+  return sc;
+}
+
+// -2 ln L on the fit blocks with the free parameters moved by dx.
+double profile_at(Predictor& pr, std::vector<FitParameter> p, const std::vector<std::size_t>& free,
+                  const std::vector<double>& dx) {
+  for (std::size_t j = 0; j < free.size(); ++j) p[free[j]].value += dx[j];
+  const std::vector<double> r = pr.residuals(effects_of(pr.scenario_effects(), p), Part::fit);
+  return pr.likelihood(Part::fit).minus_two_log_l(r);
+}
+
+// +-1 sigma from the curvature of the profile likelihood itself (central
+// second differences of -2 ln L, noise scales and autocorrelations
+// re-profiled at every point): cov = 2 H^-1. Steps of three Gauss-Newton
+// sigmas (the parameter's own step where that is not finite), one-sided at a
+// bound. A direction in which -2 ln L does not curve up is not determined:
+// NaN. Costs 2m + 2m(m-1) evaluations.
+void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free,
+                        double f0) {
+  const std::size_t m = free.size();
+  std::vector<double> h(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const FitParameter& q = p[free[j]];
+    h[j] = std::isfinite(q.sigma) && q.sigma > 0 ? std::min(3 * q.sigma, q.spec.step) : q.spec.step;
+    // Inside the bounds on both sides where it can be.
+    if (q.value + h[j] > q.spec.upper) h[j] = -h[j];
+  }
+  auto at = [&](std::size_t a, double sa, std::size_t b, double sb) {
+    std::vector<double> dx(m, 0.0);
+    dx[a] += sa * h[a];
+    if (b < m) dx[b] += sb * h[b];
+    return profile_at(pr, p, free, dx);
+  };
+  Eigen::MatrixXd H(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+  std::vector<double> plus(m), minus(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const FitParameter& q = p[free[j]];
+    const bool two_sided = q.value - std::abs(h[j]) >= q.spec.lower && q.value + std::abs(h[j]) <= q.spec.upper;
+    const auto jj = static_cast<Eigen::Index>(j);
+    plus[j] = at(j, 1, m, 0);
+    if (two_sided) {
+      minus[j] = at(j, -1, m, 0);
+      H(jj, jj) = (plus[j] - 2 * f0 + minus[j]) / (h[j] * h[j]);
+    } else {  // f(x), f(x+h), f(x+2h)
+      H(jj, jj) = (at(j, 2, m, 0) - 2 * plus[j] + f0) / (h[j] * h[j]);
+    }
+  }
+  for (std::size_t j = 0; j < m; ++j) {
+    for (std::size_t k = j + 1; k < m; ++k) {
+      const double v = (at(j, 1, k, 1) - at(j, 1, k, -1) - at(j, -1, k, 1) + at(j, -1, k, -1)) / (4 * h[j] * h[k]);
+      H(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) = v;
+      H(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = v;
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
+  const bool curved = eig.info() == Eigen::Success && eig.eigenvalues().minCoeff() > 0;
+  const Eigen::MatrixXd cov = curved ? Eigen::MatrixXd(2 * H.inverse()) : Eigen::MatrixXd();
+  for (std::size_t j = 0; j < m; ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    const double span = p[free[j]].spec.upper - p[free[j]].spec.lower;
+    const double v = curved ? cov(jj, jj) : NAN;
+    p[free[j]].sigma = v > 0 && std::sqrt(v) < span ? std::sqrt(v) : NAN;
+  }
+}
+
+}  // namespace
+
+// Two passes: at the start model's weights, then at the first solution's own
+// profile (its noise scales and autocorrelations), which moves the solution
+// to the profile likelihood's optimum; the better one is kept, its sigmas
+// from the profile likelihood's curvature.
+FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters,
+                          const LikelihoodProfile& weights) {
+  std::vector<std::size_t> free;
+  std::vector<double> x;
+  free_parameters(parameters, free, x);
   FitOutcome out;
-  const simulation::RockerBogieEffects fx = effects_of(predictor.scenario_effects(), parameters);
-  out.chi2_fit = chi2(predictor, fx, Part::fit);
-  out.chi2_test = chi2(predictor, fx, Part::test);
+  if (free.empty()) {
+    out.score = score(predictor, effects_of(predictor.scenario_effects(), parameters));
+    out.parameters = std::move(parameters);
+    return out;
+  }
+  out.score = solve(predictor, parameters, free, x, weights);
+  std::vector<FitParameter> second = parameters;
+  std::vector<double> x2 = x;
+  const Score s2 = solve(predictor, second, free, x2, out.score.profile);
+  if (s2.fit < out.score.fit) {
+    out.score = s2;
+    parameters = std::move(second);
+  }
+  set_profile_sigmas(predictor, parameters, free, out.score.fit);
   out.parameters = std::move(parameters);
   return out;
 }

@@ -1,8 +1,12 @@
 #pragma once
 // Least-squares fit of effect parameters of the rover simulation to the fit
 // blocks of a log (Ceres, Levenberg-Marquardt, forward differences with each
-// parameter's own step: a physical trial is a new simulation), with the
-// parameters' 1-sigma from the Gauss-Newton covariance.
+// parameter's own step: a physical trial is a new simulation), on residuals
+// whitened by the study's likelihood (likelihood.h) at the profile of the
+// model the parameters are added to, with the parameters' 1-sigma from the
+// Gauss-Newton covariance of the residuals whitened at the solution's
+// profile. Every score is -2 ln L of that likelihood (noise scale and
+// autocorrelation per channel profiled out).
 
 #include <vector>
 
@@ -17,9 +21,17 @@ struct FitParameter {
   bool free = true;  // false: held at value (an earlier cause's, or a discrete start)
 };
 
+// A model's score on the log.
+struct Score {
+  double fit = 0, test = 0;  // -2 ln L on the fit and the test blocks
+  double held_out = 0;       // RMS normalised residual on the test blocks (increments for encoders), in noise sigmas
+  LikelihoodProfile profile;  // on the fit blocks
+  LikelihoodProfile weights;  // on the fit blocks: the weights of a fit started here (fit_weights)
+};
+
 struct FitOutcome {
   std::vector<FitParameter> parameters;
-  double chi2_fit = 0, chi2_test = 0;
+  Score score;
 };
 
 // The scenario's effects with the parameters' values set over them.
@@ -27,14 +39,16 @@ simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& 
                                           const std::vector<FitParameter>& parameters);
 
 // Fits the free parameters (spec.fitted and free); the others are held.
-FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters);
+// `weights`: the profile of the model they are added to.
+FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters,
+                          const LikelihoodProfile& weights);
 
-// Gauss-Newton screen of the free parameters from their values: the
-// chi-square on the fit blocks the linearised model predicts at its optimum,
-// and that optimum (clamped to the bounds) written into `parameters`.
-double linearised_chi2(Predictor& predictor, std::vector<FitParameter>& parameters);
+// Gauss-Newton screen of the free parameters from their values: -2 ln L on
+// the fit blocks that the linearised model predicts at its optimum, and that
+// optimum (clamped to the bounds) written into `parameters`.
+double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights);
 
-// Sum of squares of the normalised residuals on a part.
-double chi2(Predictor& predictor, const simulation::RockerBogieEffects& effects, Part part);
+// A model's score (the channels' sigmas must be set).
+Score score(Predictor& predictor, const simulation::RockerBogieEffects& effects);
 
 }  // namespace roverlab::analysis::rover

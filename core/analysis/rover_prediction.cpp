@@ -59,7 +59,10 @@ Predictor::Predictor(const log::Log& lg, const RoverScenarioModel& model, double
   }
   if (lg.find_stream("commands") == nullptr)
     throw DataError("no commands stream (the wheel torques the rover was given)");
-  for (const auto& c : simulation::sensor_channels()) channels_.push_back(measured(lg, c.stream, c.name, block));
+  for (const auto& c : simulation::sensor_channels()) {
+    channels_.push_back(measured(lg, c.stream, c.name, block));
+    channels_.back().integrated = c.integrated;
+  }
   for (int i = 1; i <= 3; ++i)
     channels_.push_back(measured(lg, "commands", "wheel_torque_" + std::to_string(i), block));
   const std::vector<double>& t = channels_.front().time;
@@ -140,6 +143,27 @@ std::size_t Predictor::count(Part part) const {
     for (char f : m.fit) n += part == Part::all || (f != 0) == (part == Part::fit) ? 1 : 0;
   }
   return n;
+}
+
+const GroupedLikelihood& Predictor::likelihood(Part part) {
+  auto it = likelihoods_.find(part);
+  if (it != likelihoods_.end()) return it->second;
+  std::vector<ResidualGroup> groups;
+  std::vector<char> start;
+  for (const MeasuredChannel& m : channels_) {
+    ResidualGroup g{m.stream + "/" + m.name, 0, m.integrated, m.resolution / m.sigma, true};
+    bool previous_in = false;
+    for (char f : m.fit) {
+      const bool in = part == Part::all || (f != 0) == (part == Part::fit);
+      if (in) {
+        start.push_back(previous_in ? 0 : 1);
+        ++g.size;
+      }
+      previous_in = in;
+    }
+    groups.push_back(std::move(g));
+  }
+  return likelihoods_.emplace(part, GroupedLikelihood(std::move(groups), std::move(start))).first->second;
 }
 
 }  // namespace roverlab::analysis::rover

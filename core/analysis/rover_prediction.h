@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/likelihood.h"
 #include "core/analysis/rover_discrepancy.h"
 #include "core/simulation/sensor_effects.h"
 
@@ -23,7 +24,9 @@ struct MeasuredChannel {
   std::string stream, name, unit;
   std::vector<double> time, values;
   std::vector<char> fit;  // 1: the sample is in a fit block, 0: in a test block
-  double sigma = 1;
+  double sigma = 1;           // noise of one sample, the residuals' unit
+  double resolution = 1e-4;    // the smallest noise trusted (unit)
+  bool integrated = false;     // an angle integrated from a rate: compared as increments
 };
 
 // A noise-free simulation without sensor effects.
@@ -54,6 +57,10 @@ class Predictor {
   // (measured - predicted) / sigma over the chosen part, channel after channel.
   std::vector<double> residuals(const simulation::RockerBogieEffects& effects, Part part);
   std::size_t count(Part part) const;
+  // The likelihood of residuals(effects, part) (part fit or test): a group
+  // per channel, blocks as segments. Built on first use: set the channels'
+  // sigmas first.
+  const GroupedLikelihood& likelihood(Part part);
 
  private:
   const RoverScenarioModel& model_;
@@ -61,6 +68,7 @@ class Predictor {
   double duration_ = 0;
   int simulations_ = 0;
   std::map<std::array<double, 5>, Simulated> cache_;
+  std::map<Part, GroupedLikelihood> likelihoods_;
 };
 
 }  // namespace roverlab::analysis::rover

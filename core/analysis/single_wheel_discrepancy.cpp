@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/analysis/likelihood.h"
 #include "core/analysis/single_wheel_candidates.h"
 #include "core/common/error.h"
 
@@ -47,28 +48,17 @@ Line regress(const std::vector<double>& x, const std::vector<double>& y) {
   return l;
 }
 
-double score_of(const std::vector<PointResidual>& residuals, double* rss_out = nullptr, std::size_t* m_out = nullptr) {
+// RMS residual in the stated measurement sigmas (the fits may weight by others).
+double score_of(const std::vector<PointResidual>& residuals, const MeasurementSigma& sigma) {
   double rss = 0.0;
   std::size_t m = 0;
   for (const auto& r : residuals) {
-    const double z = (r.predicted - r.measured) / r.sigma;
+    const double z = (r.predicted - r.measured) / sigma.of(r.quantity);
     if (!std::isfinite(z)) continue;
     rss += z * z;
     ++m;
   }
-  if (rss_out) *rss_out = rss;
-  if (m_out) *m_out = m;
   return m > 0 ? std::sqrt(rss / static_cast<double>(m)) : NAN;
-}
-
-// BIC with the residual variance estimated (Gaussian): m ln(RSS/m) + k ln m.
-double bic_of(const std::vector<PointResidual>& residuals, std::size_t k) {
-  double rss = 0.0;
-  std::size_t m = 0;
-  score_of(residuals, &rss, &m);
-  if (m == 0) return NAN;
-  const auto md = static_cast<double>(m);
-  return md * std::log(std::max(rss, 1e-300) / md) + static_cast<double>(k) * std::log(md);
 }
 
 std::string fmt(const char* format, double v) {
@@ -94,6 +84,52 @@ std::string words(Quantity q) {
       return "sinkage";
   }
   return "?";
+}
+
+// BIC with each measured quantity's own residual variance profiled out
+// (likelihood.h): sum_q m_q ln(RSS_q / m_q) + k ln m, so that a quantity no
+// candidate explains (drawbar pull) cannot set the scale against which
+// another quantity's cause (sinkage) is judged. The floor is 1e-6 of the
+// quantity's stated measurement sigma (an exact fit is not a -inf).
+// Residuals in the stated sigmas: every model in the same unit.
+double bic_of(const std::vector<PointResidual>& residuals, std::size_t k, const MeasurementSigma& stated) {
+  std::vector<ResidualGroup> groups;
+  std::vector<double> z;
+  for (Quantity q : kQuantities) {
+    ResidualGroup g{words(q), 0, false, 1e-6, false};
+    for (const auto& r : residuals) {
+      if (r.quantity != q) continue;
+      const double v = (r.predicted - r.measured) / stated.of(q);
+      if (!std::isfinite(v)) continue;
+      z.push_back(v);
+      ++g.size;
+    }
+    if (g.size > 0) groups.push_back(g);
+  }
+  if (z.empty()) return NAN;
+  const GroupedLikelihood l(std::move(groups));
+  return l.minus_two_log_l(z) + static_cast<double>(k) * std::log(static_cast<double>(z.size()));
+}
+
+// Each quantity's sigma for a fit that starts from a model: its residuals'
+// RMS there, never below the stated measurement sigma (the profiled noise
+// scale of likelihood.h), so that a quantity the model misses by far does
+// not outweigh the others in the fit.
+MeasurementSigma profiled_sigma(const std::vector<PointResidual>& residuals, const MeasurementSigma& stated) {
+  MeasurementSigma out = stated;
+  for (Quantity q : kQuantities) {
+    double sq = 0;
+    std::size_t m = 0;
+    for (const auto& r : residuals) {
+      if (r.quantity != q || !std::isfinite(r.predicted)) continue;
+      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
+      ++m;
+    }
+    if (m == 0) continue;
+    const double s = std::max(std::sqrt(sq / static_cast<double>(m)), stated.of(q));
+    (q == Quantity::drawbar_pull ? out.drawbar_pull : q == Quantity::torque ? out.torque : out.sinkage) = s;
+  }
+  return out;
 }
 
 double rmse_of(const std::vector<QuantityResiduals>& stats, Quantity q) {
@@ -126,6 +162,9 @@ std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidu
     }
     s.bias /= static_cast<double>(e.size());
     s.rmse = std::sqrt(s.rmse / static_cast<double>(e.size()));
+    const auto m = static_cast<double>(e.size());
+    const double sd = m > 1 ? std::sqrt(std::max(s.rmse * s.rmse - s.bias * s.bias, 0.0) * m / (m - 1)) : 0.0;
+    s.t_bias = sd > 0 ? s.bias / (sd / std::sqrt(m)) : 0.0;
     const Line ls = regress(slip, e), ll = regress(load, e);
     s.slope_vs_slip = ls.slope;
     s.t_slip = ls.t;
@@ -158,13 +197,16 @@ class SingleWheelStudy {
   void write_what_is_wrong();
   void find_partial();
   void write_verdict();
+  void judge_quantities();
   void write_no_significant_verdict();
   void write_chain_verdict();
   std::string cause_sentence(const std::string& lead, const CandidateResult& c, const std::string& end) const;
+  bool held_out_gain(const std::vector<double>& rmse, const std::vector<double>& than) const;
 
   const Soil& soil_;
   const std::vector<WheelTestPoint>& points_;
   const DiscrepancyOptions& o_;
+  MeasurementSigma weights_;  // the fits' per-quantity sigmas: the baseline's profiled scales
   bool any_grousers_ = false;
   std::vector<std::unique_ptr<SingleWheelCandidate>> candidates_;
   DiscrepancyReport report_;
@@ -190,6 +232,7 @@ DiscrepancyReport SingleWheelStudy::run() {
   write_what_is_wrong();
   find_partial();
   write_verdict();
+  judge_quantities();
   return std::move(report_);
 }
 
@@ -226,8 +269,9 @@ void SingleWheelStudy::score_baseline() {
   base.sigma = o_.sigma;
   const IdentificationResult baseline = identify_soil(soil_, points_, base);  // nothing free: predictions
   report_.baseline = residual_statistics(baseline.residuals, points_);
-  report_.baseline_score = score_of(baseline.residuals);
-  report_.baseline_bic = bic_of(baseline.residuals, 0);
+  report_.baseline_score = score_of(baseline.residuals, o_.sigma);
+  report_.baseline_bic = bic_of(baseline.residuals, 0, o_.sigma);
+  weights_ = profiled_sigma(baseline.residuals, o_.sigma);
   report_.measurements = baseline.measurements;
   for (const auto& r : baseline.residuals) report_.unsupported += std::isfinite(r.predicted) ? 0 : 1;
   for (Quantity q : report_.quantities) report_.baseline_held_out_rmse.push_back(rmse_of(report_.baseline, q));
@@ -250,7 +294,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   }
   IdentificationOptions io;
   io.model = o_.baseline;
-  io.sigma = o_.sigma;
+  io.sigma = start_from != nullptr ? profiled_sigma(start_from->fit.residuals, o_.sigma) : weights_;
   Soil start = soil_;
   if (start_from != nullptr) {
     start = start_from->fit.soil;
@@ -271,12 +315,12 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   }
   c.fit = identify_soil(start, points_, io);
   c.in_sample = residual_statistics(c.fit.residuals, points_);
-  c.bic = bic_of(c.fit.residuals, io.free.size());
+  c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
   c.delta_bic = c.bic - report_.baseline_bic;
   const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit) : c.fit.residuals;
   const auto held_stats = residual_statistics(predicted, points_);
   for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
-  c.held_out_score = score_of(predicted);
+  c.held_out_score = score_of(predicted, o_.sigma);
   return c;
 }
 
@@ -288,10 +332,11 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
 void SingleWheelStudy::select_forward() {
   std::vector<std::size_t> chain;
   const CandidateResult* at = nullptr;  // the chain's fit
-  double bic = report_.baseline_bic, held = report_.baseline_score;
-  auto passes = [&](const CandidateResult& c, double than_bic, double than_held) {
+  double bic = report_.baseline_bic;
+  const std::vector<double>* held_rmse = &report_.baseline_held_out_rmse;
+  auto passes = [&](const CandidateResult& c, double than_bic) {
     return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < o_.bic_threshold &&
-           c.held_out_score < (1.0 - o_.min_held_out_gain) * than_held;
+           held_out_gain(c.held_out_rmse, *held_rmse);
   };
   while (chain.size() < candidates_.size()) {
     // Best next step by BIC.
@@ -310,7 +355,7 @@ void SingleWheelStudy::select_forward() {
       }
     }
     if (best < 0) break;
-    if (passes(best_fit, bic, held)) {
+    if (passes(best_fit, bic)) {
       chain.push_back(static_cast<std::size_t>(best));
     } else if (chain.empty()) {
       // Look one step further: the weak first step with its best partner.
@@ -326,17 +371,34 @@ void SingleWheelStudy::select_forward() {
         }
       }
       report_.best_pair = pair_fit;
-      if (partner < 0 || !passes(pair_fit, bic, held)) break;
+      if (partner < 0 || !passes(pair_fit, bic)) break;
       chain = {static_cast<std::size_t>(best), static_cast<std::size_t>(partner)};
       best_fit = std::move(pair_fit);
     } else {
       break;
     }
     bic = best_fit.bic;
-    held = best_fit.held_out_score;
     report_.selection.push_back(std::move(best_fit));
     at = &report_.selection.back();
+    held_rmse = &at->held_out_rmse;
   }
+}
+
+// The held-out test of a step, per quantity (a quantity no candidate
+// explains must not hide another's cause): some quantity's held-out RMSE
+// falls by min_held_out_gain at least, and the held-out likelihood with a
+// noise scale per quantity, sum_q m_q ln(RMSE_q^2), falls.
+bool SingleWheelStudy::held_out_gain(const std::vector<double>& rmse, const std::vector<double>& than) const {
+  bool one_falls = false;
+  double log_ratio = 0;
+  for (std::size_t i = 0; i < report_.quantities.size() && i < rmse.size() && i < than.size(); ++i) {
+    if (!std::isfinite(rmse[i]) || !std::isfinite(than[i]) || !(than[i] > 0) || !(rmse[i] > 0)) continue;
+    one_falls = one_falls || rmse[i] < (1.0 - o_.min_held_out_gain) * than[i];
+    double m = 0;
+    for (const auto& s : report_.baseline) m += s.quantity == report_.quantities[i] ? static_cast<double>(s.count) : 0;
+    log_ratio += m * std::log(rmse[i] * rmse[i] / (than[i] * than[i]));
+  }
+  return one_falls && log_ratio < 0;
 }
 
 // Held out: refit without each fold of points (one point each up to
@@ -391,7 +453,7 @@ void SingleWheelStudy::choose_best() {
   if (report_.best >= 0) {
     const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
     report_.significant =
-        c.delta_bic < o_.bic_threshold && c.held_out_score < (1.0 - o_.min_held_out_gain) * report_.baseline_score;
+        c.delta_bic < o_.bic_threshold && held_out_gain(c.held_out_rmse, report_.baseline_held_out_rmse);
   }
 }
 
@@ -457,7 +519,8 @@ void SingleWheelStudy::write_verdict() {
     report_.verdict = "No candidate could be fitted.";
     return;
   }
-  if (report_.selection.size() >= 2) {
+  if (report_.selection.size() >= 2 || (!report_.selection.empty() && report_.selection.back().name.find(" + ") !=
+                                                                          std::string::npos)) {
     write_chain_verdict();
     return;
   }
@@ -465,7 +528,7 @@ void SingleWheelStudy::write_verdict() {
     write_no_significant_verdict();
     return;
   }
-  report_.verdict = cause_sentence("Cause: ", report_.candidates[static_cast<std::size_t>(report_.best)], ".");
+  report_.verdict = cause_sentence("Cause: ", report_.selection.back(), ".");
 }
 
 // The named cause(s), fitted parameters, held-out gain and BIC change, in words.
@@ -482,7 +545,7 @@ std::string SingleWheelStudy::cause_sentence(const std::string& lead, const Cand
          show(report_.quantities[i], report_.baseline_held_out_rmse[i]) + " -> " +
          show(report_.quantities[i], c.held_out_rmse[i]);
   }
-  return v + "; delta BIC " + fmt("%.1f", c.delta_bic) + end;
+  return v + "; delta BIC " + format_delta_bic(c.delta_bic) + end;
 }
 
 // Several causes: the chain, its parameters and its gain over the baseline.
@@ -490,10 +553,81 @@ void SingleWheelStudy::write_chain_verdict() {
   report_.verdict = cause_sentence("Causes (forward selection): ", report_.selection.back(), " against the baseline.");
 }
 
+// Per quantity: significant when |t| >= 3 for the baseline's bias or either
+// trend it prints; explained by the selection step that cut its held-out
+// RMSE by 30 % or more. Appended to the verdict, which therefore never
+// calls "not significant" a quantity whose printed t says otherwise.
+void SingleWheelStudy::judge_quantities() {
+  std::string all;
+  for (std::size_t qi = 0; qi < report_.quantities.size(); ++qi) {
+    const Quantity q = report_.quantities[qi];
+    QuantityVerdict v;
+    v.quantity = q;
+    v.held_out_before = report_.baseline_held_out_rmse[qi];
+    std::string why;
+    for (const auto& b : report_.baseline) {
+      if (b.quantity != q) continue;
+      const std::pair<const char*, double> ts[] = {{"bias", b.t_bias}, {"slip trend", b.t_slip}, {"load trend", b.t_load}};
+      for (const auto& [name, t] : ts) {
+        if (std::abs(t) < 3.0) continue;
+        v.significant = true;
+        why += std::string(why.empty() ? "" : ", ") + name + " t = " + fmt("%.1f", t);
+      }
+    }
+    double before = v.held_out_before;
+    for (const auto& step : report_.selection) {  // each step's gain on this quantity
+      const double after = step.held_out_rmse[qi];
+      if (after <= 0.7 * before && v.explained_by.empty()) {
+        const auto plus = step.name.rfind(" + ");
+        v.explained_by = plus == std::string::npos ? step.name : step.name.substr(plus + 3);
+        v.held_out_after = after;
+      }
+      before = after;
+    }
+    int best = -1;
+    for (std::size_t i = 0; i < report_.candidates.size(); ++i) {
+      const auto& c = report_.candidates[i];
+      if (c.applicable && std::isfinite(c.held_out_rmse[qi]) &&
+          (best < 0 || c.held_out_rmse[qi] < report_.candidates[static_cast<std::size_t>(best)].held_out_rmse[qi]))
+        best = static_cast<int>(i);
+    }
+    const CandidateResult* bc = best >= 0 ? &report_.candidates[static_cast<std::size_t>(best)] : nullptr;
+    if (bc != nullptr) v.best_candidate = bc->name;
+    if (v.explained_by.empty() && bc != nullptr) v.held_out_after = bc->held_out_rmse[qi];
+    std::string t = words(q) + ": ";
+    if (!v.significant && !v.explained_by.empty()) {
+      t += "no bias or trend with slip or load with |t| >= 3, yet " + v.explained_by + " cuts its held-out RMSE " +
+           show(q, v.held_out_before) + " -> " + show(q, v.held_out_after);
+    } else if (!v.significant) {
+      t += "no significant discrepancy (|t| < 3 for its bias and its trends with slip and load)";
+    } else if (!v.explained_by.empty()) {
+      t += "significant (" + why + "), explained by " + v.explained_by + " (held-out RMSE " +
+           show(q, v.held_out_before) + " -> " + show(q, v.held_out_after) + ")";
+    } else if (bc != nullptr && v.held_out_after <= 0.7 * v.held_out_before) {
+      t += "significant (" + why + "); " + bc->name + " alone cuts its held-out RMSE " + show(q, v.held_out_before) +
+           " -> " + show(q, v.held_out_after) + ", but the evidence over all quantities is not decisive (delta BIC " +
+           format_delta_bic(bc->delta_bic) + ")";
+    } else {
+      t += "significant (" + why + "), and no candidate explains it" +
+           (bc != nullptr ? " (best held out: " + bc->name + ", " + show(q, v.held_out_before) + " -> " +
+                                show(q, v.held_out_after) + ")"
+                          : std::string());
+    }
+    v.sentence = t;
+    all += (all.empty() ? " Per quantity: " : "; ") + t;
+    report_.quantity_verdicts.push_back(std::move(v));
+  }
+  report_.verdict += all + (all.empty() ? "" : ".");
+}
+
 void SingleWheelStudy::write_no_significant_verdict() {
   const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
-  report_.verdict = "No significant discrepancy: the best candidate, " + c.name + ", changes BIC by " +
-                    fmt("%.1f", c.delta_bic) + " (needs < " + fmt("%.0f", o_.bic_threshold) +
+  const bool any = std::any_of(report_.baseline.begin(), report_.baseline.end(), [](const QuantityResiduals& b) {
+    return std::abs(b.t_bias) >= 3.0 || std::abs(b.t_slip) >= 3.0 || std::abs(b.t_load) >= 3.0;
+  });
+  report_.verdict = std::string(any ? "No cause is decisive" : "No significant discrepancy") +
+                    ": the best candidate, " + c.name + ", changes BIC by " +
+                    format_delta_bic(c.delta_bic) + " (needs < " + fmt("%.0f", o_.bic_threshold) +
                     ") and the held-out error from " + fmt("%.2f", report_.baseline_score) + " to " +
                     fmt("%.2f", c.held_out_score) + " sigma";
   for (const auto& [q, index] : report_.partial) {
@@ -505,7 +639,7 @@ void SingleWheelStudy::write_no_significant_verdict() {
   }
   if (report_.best_pair && report_.best_pair->applicable) {
     report_.verdict += "; together, " + report_.best_pair->name + " change BIC by " +
-                       fmt("%.1f", report_.best_pair->delta_bic) + " and the held-out error to " +
+                       format_delta_bic(report_.best_pair->delta_bic) + " and the held-out error to " +
                        fmt("%.2f", report_.best_pair->held_out_score) + " sigma: not significant either";
   }
   report_.verdict += ".";

@@ -5,9 +5,9 @@ namespace roverlab::simulation {
 const std::array<SensorChannel, kSensorChannels>& sensor_channels() {
   static const std::array<SensorChannel, kSensorChannels> channels = {{
       {"joints", "bogie_angle", "rad", "16-bit absolute encoder"},
-      {"joints", "wheel_angle_1", "rad", "motor encoder"},
-      {"joints", "wheel_angle_2", "rad", "motor encoder"},
-      {"joints", "wheel_angle_3", "rad", "motor encoder"},
+      {"joints", "wheel_angle_1", "rad", "motor encoder", true},
+      {"joints", "wheel_angle_2", "rad", "motor encoder", true},
+      {"joints", "wheel_angle_3", "rad", "motor encoder", true},
       {"imu", "pitch_rate", "rad/s", "clockwise positive"},
       {"imu", "specific_force_x", "m/s^2", "rover axes: x forward"},
       {"imu", "specific_force_z", "m/s^2", "rover axes: z up"},

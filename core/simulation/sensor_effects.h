@@ -22,6 +22,7 @@ struct SensorChannel {
   const char* name;
   const char* unit;
   const char* description;
+  bool integrated = false;  // an angle integrated from a rate (wheel encoders): compared as increments
 };
 constexpr std::size_t kSensorChannels = 14;
 const std::array<SensorChannel, kSensorChannels>& sensor_channels();
