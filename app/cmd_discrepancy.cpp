@@ -11,6 +11,7 @@
 #include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
+#include "core/analysis/likelihood.h"
 #include "core/analysis/single_wheel_discrepancy.h"
 #include "core/common/error.h"
 #include "importers/soil_file.h"
@@ -114,7 +115,8 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
   if (r.best_pair) {
     j["best_pair"] = {{"model", r.best_pair->name},
                       {"delta_bic", nullable(r.best_pair->delta_bic)},
-                      {"held_out_score_sigma", nullable(r.best_pair->held_out_score)}};
+                      {"held_out_score_sigma",
+                       r.best_pair->held_out_rmse.empty() ? json(nullptr) : nullable(r.best_pair->held_out_score)}};
   }
   json base = json::object();
   for (std::size_t i = 0; i < r.quantities.size(); ++i) base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
@@ -167,10 +169,11 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
       if (std::isfinite(p.sigma)) {
         std::snprintf(value, sizeof value, "%.4g +- %.2g%s", p.value, p.sigma, p.at_bound ? " (bound)" : "");
       } else {  // the data cannot pin it down: no sigma to show
-        std::snprintf(value, sizeof value, "%.4g (no sigma)%s", p.value, p.at_bound ? " (bound)" : "");
+        std::snprintf(value, sizeof value, "%.4g (undetermined)%s", p.value, p.at_bound ? " (bound)" : "");
       }
       if (i == 0) {
-        std::printf("  %-14s %-24s %22s %10.1f %14.3f\n", c.name.c_str(), to_string(p.parameter), value, c.delta_bic,
+        std::printf("  %-14s %-24s %22s %10s %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
+                    analysis::format_delta_bic(c.delta_bic).c_str(),
                     c.held_out_score);
       } else {
         std::printf("  %-14s %-24s %22s\n", "", to_string(p.parameter), value);
@@ -181,11 +184,15 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     std::printf("\nforward selection (each step refits the chain with one more cause):\n");
     std::printf("  %-36s %12s %14s\n", "model", "delta BIC", "held-out sigma");
     for (const auto& c : r.selection) {
-      std::printf("  %-36s %12.1f %14.3f\n", c.name.c_str(), c.delta_bic, c.held_out_score);
+      std::printf("  %-36s %12s %14.3f\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),
+                  c.held_out_score);
     }
   } else if (r.best_pair && r.best_pair->applicable) {
-    std::printf("\nforward selection: no step passes; the best pair, %s: delta BIC %.1f, held-out %.3f sigma\n",
-                r.best_pair->name.c_str(), r.best_pair->delta_bic, r.best_pair->held_out_score);
+    std::printf("\nforward selection: no step passes; the best pair, %s: delta BIC %s%s\n", r.best_pair->name.c_str(),
+                analysis::format_delta_bic(r.best_pair->delta_bic).c_str(),
+                r.best_pair->held_out_rmse.empty()
+                    ? " (not held out: its BIC does not pass)"
+                    : (", held-out " + std::to_string(r.best_pair->held_out_score) + " sigma").c_str());
   }
   std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
   return kSuccess;

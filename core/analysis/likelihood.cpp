@@ -9,12 +9,14 @@ namespace roverlab::analysis {
 
 namespace {
 
-std::size_t lags_needed(const ResidualGroup& g) {
-  return (g.autocorrelated ? 1U : 0U) + (g.integrated ? 1U : 0U);
-}
+// Residuals a group's first values need before they count: one for an
+// integrated group (an increment needs the value before it).
+std::size_t lags_needed(const ResidualGroup& g) { return g.integrated ? 1U : 0U; }
 
 // Visits each residual of a group that has the lags it needs, with its
-// (differenced) value and its predecessor's: f(x, previous).
+// (differenced) value and its predecessor's: f(x, previous). The first of a
+// segment has the predecessor 0, so that its innovation is its whole value:
+// an autocorrelation near 1 cannot make a level offset within a block free.
 template <typename F>
 void for_each_usable(const ResidualGroup& g, const std::vector<char>& start, std::size_t begin, const double* in,
                      std::size_t stride, F&& f) {
@@ -27,7 +29,7 @@ void for_each_usable(const ResidualGroup& g, const std::vector<char>& start, std
     auto value = [&](std::size_t k) { return in[k * stride]; };
     const double x = g.integrated ? value(at) - value(at - 1) : value(at);
     double prev = 0;
-    if (g.autocorrelated) prev = g.integrated ? value(at - 1) - value(at - 2) : value(at - 1);
+    if (g.autocorrelated && pos > need) prev = g.integrated ? value(at - 1) - value(at - 2) : value(at - 1);
     f(x, prev);
   }
 }

@@ -4,7 +4,8 @@
 // has its own noise scale and its own first-order autocorrelation, and both
 // are profiled out, i.e. estimated anew for every model the study evaluates:
 //   -2 ln L = sum_g n_g ln(s_g^2),  s_g^2 = min_rho mean_k (e_k - rho e_{k-1})^2
-// (Gaussian AR(1) conditional likelihood, constants dropped). A group of an
+// (Gaussian AR(1) likelihood, constants dropped; the first residual of a
+// segment has the predecessor 0, so its innovation is its whole value). A group of an
 // integrated quantity (a wheel encoder's angle) is first differenced: its
 // increments are compared, not its integral. One badly explained group then
 // cannot set another's scale, and autocorrelated residuals count as the

@@ -28,6 +28,8 @@ struct RoverCandidateParameter {
   double step = 0;        // finite-difference step of the fit
   bool fitted = true;     // false: set from the residual features and held (a discrete start time)
   double resolution = 0;  // stated 1-sigma of a held parameter
+  double grid = 0;        // > 0: the fit starts at the best of a grid of this step over the bounds (a
+                          // position whose likelihood is too sharply peaked for a local start)
 };
 
 class RoverCandidate {

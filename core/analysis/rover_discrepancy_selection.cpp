@@ -82,7 +82,8 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     Trial& t = round.trials[i];
     const int sims = pr.simulations();
     const auto k = static_cast<double>(t.fit.parameters.size() - chain.size());
-    // The screen's optimum is the fit's start.
+    // The screen's optimum is the fit's start, or the best of a grid where a parameter has one.
+    grid_start(pr, t.fit.parameters);
     t.fit = fit_parameters(pr, t.fit.parameters, current.weights);
     t.simulations += pr.simulations() - sims;
     t.screened = false;
@@ -140,6 +141,13 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
     current = joint.score;
     r.selection.push_back(
         {candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic, current.held_out});
+  }
+  // Every step's parameters as the final joint refit left them (not as its own round did).
+  std::size_t at = 0;
+  for (auto& step : r.selection) {
+    const std::size_t k = step.parameters.size();
+    step.parameters = fits_of(std::vector<FitParameter>(chain.begin(), chain.begin() + static_cast<std::ptrdiff_t>(at + k)), at);
+    at += k;
   }
   r.final_held_out = current.held_out;
 }

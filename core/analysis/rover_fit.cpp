@@ -121,6 +121,14 @@ void free_parameters(std::vector<FitParameter>& parameters, std::vector<std::siz
   }
 }
 
+// -2 ln L on the fit blocks with the free parameters moved by dx.
+double profile_at(Predictor& pr, std::vector<FitParameter> p, const std::vector<std::size_t>& free,
+                  const std::vector<double>& dx) {
+  for (std::size_t j = 0; j < free.size(); ++j) p[free[j]].value += dx[j];
+  const std::vector<double> r = pr.residuals(effects_of(pr.scenario_effects(), p), Part::fit);
+  return pr.likelihood(Part::fit).minus_two_log_l(r);
+}
+
 // The held-out yardstick: residuals in noise sigmas, encoders as increments
 // (whose noise is sqrt(2) sigmas), no autocorrelation removed.
 LikelihoodProfile yardstick(const GroupedLikelihood& l) {
@@ -152,6 +160,25 @@ Score score(Predictor& pr, const simulation::RockerBogieEffects& effects) {
   for (double v : w) sq += v * v;
   s.held_out = w.empty() ? NAN : std::sqrt(sq / static_cast<double>(w.size()));
   return s;
+}
+
+void grid_start(Predictor& pr, std::vector<FitParameter>& parameters) {
+  for (auto& p : parameters) {
+    if (!(p.spec.grid > 0) || !p.free || !p.spec.fitted) continue;
+    double best = p.value;
+    double best_f = profile_at(pr, parameters, {}, {});
+    for (double v = p.spec.lower; v <= p.spec.upper + 1e-12; v += p.spec.grid) {
+      const double keep = p.value;
+      p.value = v;
+      const double f = profile_at(pr, parameters, {}, {});
+      p.value = keep;
+      if (f < best_f) {
+        best_f = f;
+        best = v;
+      }
+    }
+    p.value = best;
+  }
 }
 
 double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights) {
@@ -215,14 +242,6 @@ Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const s
   return sc;
 }
 
-// -2 ln L on the fit blocks with the free parameters moved by dx.
-double profile_at(Predictor& pr, std::vector<FitParameter> p, const std::vector<std::size_t>& free,
-                  const std::vector<double>& dx) {
-  for (std::size_t j = 0; j < free.size(); ++j) p[free[j]].value += dx[j];
-  const std::vector<double> r = pr.residuals(effects_of(pr.scenario_effects(), p), Part::fit);
-  return pr.likelihood(Part::fit).minus_two_log_l(r);
-}
-
 // +-1 sigma from the curvature of the profile likelihood itself (central
 // second differences of -2 ln L, noise scales and autocorrelations
 // re-profiled at every point): cov = 2 H^-1. Steps of three Gauss-Newton
@@ -235,7 +254,7 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
   std::vector<double> h(m);
   for (std::size_t j = 0; j < m; ++j) {
     const FitParameter& q = p[free[j]];
-    h[j] = std::isfinite(q.sigma) && q.sigma > 0 ? std::min(3 * q.sigma, q.spec.step) : q.spec.step;
+    h[j] = std::isfinite(q.sigma) && q.sigma > 0 ? std::clamp(3 * q.sigma, q.spec.step / 4, q.spec.step) : q.spec.step;
     // Inside the bounds on both sides where it can be.
     if (q.value + h[j] > q.spec.upper) h[j] = -h[j];
   }

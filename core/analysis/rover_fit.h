@@ -48,6 +48,10 @@ FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parame
 // optimum (clamped to the bounds) written into `parameters`.
 double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights);
 
+// Moves each free parameter with a grid step to the best point of its grid
+// (-2 ln L on the fit blocks, the others held at their values).
+void grid_start(Predictor& predictor, std::vector<FitParameter>& parameters);
+
 // A model's score (the channels' sigmas must be set).
 Score score(Predictor& predictor, const simulation::RockerBogieEffects& effects);
 

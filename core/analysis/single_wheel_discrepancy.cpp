@@ -189,7 +189,7 @@ class SingleWheelStudy {
   void find_quantities();
   void score_baseline();
   CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set,
-                          const CandidateResult* start_from = nullptr) const;
+                          const CandidateResult* start_from = nullptr, bool with_held_out = true) const;
   void select_forward();
   void check_points_can_tell_candidates_apart() const;
   std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit) const;
@@ -281,7 +281,7 @@ void SingleWheelStudy::score_baseline() {
 // `start`, a previous fit's soil and extensions, when given), then scores the
 // extended model on held-out points.
 CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCandidate*>& set,
-                                          const CandidateResult* start_from) const {
+                                          const CandidateResult* start_from, bool with_held_out) const {
   CandidateResult c;
   for (const auto* candidate : set) {
     c.name += (c.name.empty() ? "" : " + ") + std::string(candidate->name());
@@ -317,6 +317,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   c.in_sample = residual_statistics(c.fit.residuals, points_);
   c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
   c.delta_bic = c.bic - report_.baseline_bic;
+  if (!with_held_out) return c;  // held_out_rmse empty: no held-out test passes
   const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit) : c.fit.residuals;
   const auto held_stats = residual_statistics(predicted, points_);
   for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
@@ -338,23 +339,33 @@ void SingleWheelStudy::select_forward() {
     return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < o_.bic_threshold &&
            held_out_gain(c.held_out_rmse, *held_rmse);
   };
+  // Steps are fitted without their held-out scores (ten refits each), which
+  // are computed only for the step whose BIC passes.
+  const auto with_held_out = [&](CandidateResult& fit, const std::vector<const SingleWheelCandidate*>& set,
+                                 const CandidateResult* from) {
+    if (fit.held_out_rmse.empty() && fit.applicable && std::isfinite(fit.bic) && fit.bic - bic < o_.bic_threshold)
+      fit = fit_set(set, from, true);
+  };
   while (chain.size() < candidates_.size()) {
     // Best next step by BIC.
     int best = -1;
     CandidateResult best_fit;
+    std::vector<const SingleWheelCandidate*> best_set;
     for (std::size_t i = 0; i < candidates_.size(); ++i) {
       if (std::find(chain.begin(), chain.end(), i) != chain.end() || !report_.candidates[i].applicable) continue;
       std::vector<const SingleWheelCandidate*> set;
       set.reserve(chain.size() + 1);
       for (std::size_t j : chain) set.push_back(candidates_[j].get());
       set.push_back(candidates_[i].get());
-      CandidateResult fit = chain.empty() ? report_.candidates[i] : fit_set(set, at);
+      CandidateResult fit = chain.empty() ? report_.candidates[i] : fit_set(set, at, false);
       if (best < 0 || fit.bic < best_fit.bic) {
         best = static_cast<int>(i);
         best_fit = std::move(fit);
+        best_set = set;
       }
     }
     if (best < 0) break;
+    with_held_out(best_fit, best_set, at);
     if (passes(best_fit, bic)) {
       chain.push_back(static_cast<std::size_t>(best));
     } else if (chain.empty()) {
@@ -364,11 +375,17 @@ void SingleWheelStudy::select_forward() {
       for (std::size_t i = 0; i < candidates_.size(); ++i) {
         if (static_cast<int>(i) == best || !report_.candidates[i].applicable) continue;
         CandidateResult fit = fit_set({candidates_[static_cast<std::size_t>(best)].get(), candidates_[i].get()},
-                                      &report_.candidates[static_cast<std::size_t>(best)]);
+                                      &report_.candidates[static_cast<std::size_t>(best)], false);
         if (partner < 0 || fit.bic < pair_fit.bic) {
           partner = static_cast<int>(i);
           pair_fit = std::move(fit);
         }
+      }
+      if (partner >= 0) {
+        with_held_out(pair_fit,
+                      {candidates_[static_cast<std::size_t>(best)].get(),
+                       candidates_[static_cast<std::size_t>(partner)].get()},
+                      &report_.candidates[static_cast<std::size_t>(best)]);
       }
       report_.best_pair = pair_fit;
       if (partner < 0 || !passes(pair_fit, bic)) break;
@@ -412,6 +429,9 @@ std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOption
   refit.model.extensions = fit.extensions;
   refit.covariance = false;
   refit.tolerance = 1e-6;  // started at the fit on all points: a few steps away
+  // ... or a long way along a valley the data hardly determine, where further
+  // steps barely change the held-out predictions: at most 5 steps.
+  refit.max_iterations = 5;
   for (std::size_t fold = 0; fold < folds; ++fold) {
     std::vector<WheelTestPoint> train, test;
     std::vector<std::size_t> test_index;
@@ -639,8 +659,11 @@ void SingleWheelStudy::write_no_significant_verdict() {
   }
   if (report_.best_pair && report_.best_pair->applicable) {
     report_.verdict += "; together, " + report_.best_pair->name + " change BIC by " +
-                       format_delta_bic(report_.best_pair->delta_bic) + " and the held-out error to " +
-                       fmt("%.2f", report_.best_pair->held_out_score) + " sigma: not significant either";
+                       format_delta_bic(report_.best_pair->delta_bic) +
+                       (report_.best_pair->held_out_rmse.empty()
+                            ? std::string()
+                            : " and the held-out error to " + fmt("%.2f", report_.best_pair->held_out_score) + " sigma") +
+                       ": not significant either";
   }
   report_.verdict += ".";
 }

@@ -140,8 +140,21 @@ void Dynamics::hold(const Eigen::Vector3d& torque, const Eigen::Vector3d& normal
   normal_ = normal;
 }
 
-const TractionModel& Dynamics::model_at(double x) const {
-  return x >= run_.effects.effect_start_x ? changed_ : nominal_;
+// The share of the changed model at a wheel centre x: the effects begin at
+// effect_start_x over a transition of kEffectTransition (a soil boundary is
+// not a step, and a step would make the simulation's response to the
+// effects' sizes and start jump with the integrator's steps).
+constexpr double kEffectTransition = 0.01;  // m
+double Dynamics::changed_share(double x) const {
+  return std::clamp((x - run_.effects.effect_start_x) / kEffectTransition + 0.5, 0.0, 1.0);
+}
+
+WheelTraction Dynamics::traction_at(double w, double W, double s, bool with_sinkage) {
+  if (w <= 0.0 || w >= 1.0) return (w >= 1.0 ? changed_ : nominal_).evaluate(W, s, with_sinkage, unsupported_);
+  const WheelTraction a = nominal_.evaluate(W, s, with_sinkage, unsupported_);
+  const WheelTraction b = changed_.evaluate(W, s, with_sinkage, unsupported_);
+  return {(1 - w) * a.drawbar_pull + w * b.drawbar_pull, (1 - w) * a.resistive_torque + w * b.resistive_torque,
+          (1 - w) * a.sinkage + w * b.sinkage};
 }
 
 // Eq. 4.49-4.50: [H Psi_q^T; Psi_q 0] [qdd; -lambda] = [tau_a - Hdot qd; Baumgarte right-hand side].
@@ -195,15 +208,16 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
   // centre speed (tanh), so that a wheel at rest is not turned backwards
   // by its own resistive torque and the forces stay smooth through
   // standstill; a rover sliding back with its wheels still sees full slip.
-  const TractionModel& model = model_at(c.x());
-  const double roll_signed = omega * model.radius();
+  const double share = changed_share(c.x());
+  const double radius = (1 - share) * nominal_.radius() + share * changed_.radius();
+  const double roll_signed = omega * radius;
   const double dir = roll_signed < 0.0 ? -1.0 : 1.0;
   const double fade = std::tanh(std::max(std::abs(roll_signed), std::abs(v_t)) / 0.004);
   const double roll = dir * roll_signed, vt = dir * v_t;
   const double den = std::max({std::abs(roll), std::abs(vt), 1e-6});
   const double s = std::clamp((roll - vt) / den, -1.0, 1.0);
   const double W = normal_(i) > 0 ? normal_(i) / std::cos(gamma) : 0.0;  // Eq. 4.38, held over the step
-  const WheelTraction traction = model.evaluate(W, s, report != nullptr, unsupported_);
+  const WheelTraction traction = traction_at(share, W, s, report != nullptr);
   const double dp = traction.drawbar_pull * (dir * fade);
   const double tr = traction.resistive_torque * (dir * fade);
   tau_a += k.J_wheel[i].transpose() * (dp * t);               // Eq. 4.43

@@ -92,7 +92,8 @@ class Dynamics {
   };
   void wheel(int i, const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h, const Vec& qd,
              Vec& tau_a, Constraints& c, DynamicsReport* report);
-  const TractionModel& model_at(double x) const;
+  double changed_share(double x) const;  // 0: nominal model, 1: with the effects
+  WheelTraction traction_at(double share, double W, double s, bool with_sinkage);
 
   const PlanarRockerBogieGeometry& g_;
   const RockerBogieParameters& p_;

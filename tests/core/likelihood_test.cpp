@@ -30,10 +30,10 @@ TEST(Likelihood, ProfilesEachGroupsScaleAndAutocorrelation) {
   EXPECT_NEAR(p.groups[1].rho, 0.0, 0.02);
   EXPECT_NEAR(p.groups[1].scale, 0.01, 2e-4);
   // -2 ln L = sum n_g ln s_g^2 over the residuals with a lag.
-  const double expected = 19999 * std::log(p.groups[0].scale * p.groups[0].scale) +
-                          19999 * std::log(p.groups[1].scale * p.groups[1].scale);
+  const double expected = 20000 * std::log(p.groups[0].scale * p.groups[0].scale) +
+                          20000 * std::log(p.groups[1].scale * p.groups[1].scale);
   EXPECT_NEAR(p.minus_two_log_l, expected, 1e-6 * std::abs(expected));
-  EXPECT_EQ(l.effective_count(), 2 * 19999U);
+  EXPECT_EQ(l.effective_count(), 2 * 20000U);
 }
 
 TEST(Likelihood, AnIntegratedGroupIsComparedByItsIncrements) {
@@ -43,7 +43,7 @@ TEST(Likelihood, AnIntegratedGroupIsComparedByItsIncrements) {
   const LikelihoodProfile p = integrated.profile(w);
   EXPECT_NEAR(p.groups[0].rho, 0.0, 0.03);
   EXPECT_NEAR(p.groups[0].scale, 0.5, 0.01);
-  EXPECT_EQ(integrated.effective_count(), 9998U);
+  EXPECT_EQ(integrated.effective_count(), 9999U);
 }
 
 TEST(Likelihood, OneBadlyExplainedGroupDoesNotSetAnothersScale) {
@@ -59,10 +59,22 @@ TEST(Likelihood, OneBadlyExplainedGroupDoesNotSetAnothersScale) {
 TEST(Likelihood, SegmentsStartWithoutAPredecessorAndTheFloorHolds) {
   const std::vector<double> r(10, 0.0);
   const GroupedLikelihood l({{"z", 10, false, 0.1, true}}, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0});
-  EXPECT_EQ(l.effective_count(), 8U);
+  EXPECT_EQ(l.effective_count(), 10U);
   const LikelihoodProfile p = l.profile(r);
   EXPECT_DOUBLE_EQ(p.groups[0].scale, 0.1);  // exact zeros: the floor, not ln 0
   EXPECT_TRUE(std::isfinite(p.minus_two_log_l));
+}
+
+TEST(Likelihood, ALevelOffsetInABlockIsNotFreeWhateverTheAutocorrelation) {
+  // Noise 0.01 in ten blocks of 50; one block offset by 1. The offset block's
+  // first innovation carries the offset, so -2 ln L rises by far more than
+  // a noise-only change would, although rho goes to about 1.
+  std::vector<double> r = ar1(500, 0, 0.01, 7), shifted = r;
+  std::vector<char> start(500, 0);
+  for (std::size_t b = 0; b < 10; ++b) start[b * 50] = 1;
+  for (std::size_t k = 200; k < 250; ++k) shifted[k] += 1.0;
+  const GroupedLikelihood l({{"r", 500, false, 1e-9, true}}, start);
+  EXPECT_GT(l.minus_two_log_l(shifted) - l.minus_two_log_l(r), 1000.0);
 }
 
 TEST(Likelihood, WhitenedResidualsAtTheirOwnProfileHaveUnitMeanSquare) {
