@@ -202,6 +202,10 @@ class SingleWheelStudy {
   void write_chain_verdict();
   std::string cause_sentence(const std::string& lead, const CandidateResult& c, const std::string& end) const;
   bool held_out_gain(const std::vector<double>& rmse, const std::vector<double>& than) const;
+  std::size_t fold_count() const {
+    const std::size_t n = points_.size();
+    return n <= o_.max_leave_one_out_points ? n : n <= o_.large_points ? o_.folds : std::min(o_.folds, o_.large_folds);
+  }
 
   const Soil& soil_;
   const std::vector<WheelTestPoint>& points_;
@@ -218,7 +222,7 @@ DiscrepancyReport SingleWheelStudy::run() {
   check_points_can_tell_candidates_apart();
   report_.held_out_method = !o_.leave_one_out                               ? "in-sample"
                             : points_.size() <= o_.max_leave_one_out_points ? "leave-one-out"
-                                                                            : std::to_string(o_.folds) + "-fold";
+                                                                            : std::to_string(fold_count()) + "-fold";
   find_quantities();
   score_baseline();
   any_grousers_ = std::any_of(points_.begin(), points_.end(),
@@ -313,7 +317,20 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
       if (value >= 0.0 && !fitted_before) set_parameter(start, io.model.extensions, parameter, value);
     }
   }
+  // A step of forward selection is first judged by its BIC alone: at most
+  // 10 steps, no covariance; the step that passes is fitted again in full.
+  if (!with_held_out) {
+    io.max_iterations = 10;
+    io.covariance = false;
+  }
   c.fit = identify_soil(start, points_, io);
+  if (with_held_out) {
+    // Second pass at the solution's own per-quantity scales (the profile
+    // likelihood's weights there): its sigmas are in the right units.
+    io.sigma = profiled_sigma(c.fit.residuals, o_.sigma);
+    io.model.extensions = c.fit.extensions;
+    c.fit = identify_soil(c.fit.soil, points_, io);
+  }
   c.in_sample = residual_statistics(c.fit.residuals, points_);
   c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
   c.delta_bic = c.bic - report_.baseline_bic;
@@ -423,7 +440,7 @@ bool SingleWheelStudy::held_out_gain(const std::vector<double>& rmse, const std:
 std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOptions& io,
                                                       const IdentificationResult& fit) const {
   const std::size_t n = points_.size();
-  const std::size_t folds = n <= o_.max_leave_one_out_points ? n : o_.folds;
+  const std::size_t folds = fold_count();
   std::vector<PointResidual> out;
   IdentificationOptions refit = io;
   refit.model.extensions = fit.extensions;

@@ -63,6 +63,10 @@ struct DiscrepancyOptions {
   // (point i in fold i mod folds), so the cost stays linear in the points.
   std::size_t max_leave_one_out_points = 100;
   std::size_t folds = 10;
+  // Above this many points, `large_folds` folds (each fold still holds
+  // hundreds of points; the refits dominate the study's cost).
+  std::size_t large_points = 2000;
+  std::size_t large_folds = 5;
 };
 
 struct DiscrepancyReport {

@@ -218,7 +218,12 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
   const double s = std::clamp((roll - vt) / den, -1.0, 1.0);
   const double W = normal_(i) > 0 ? normal_(i) / std::cos(gamma) : 0.0;  // Eq. 4.38, held over the step
   const WheelTraction traction = traction_at(share, W, s, report != nullptr);
-  const double dp = traction.drawbar_pull * (dir * fade);
+  // A net resistance (DP < 0: compaction outweighs the shear thrust) opposes
+  // the centre's motion along the path and vanishes with it: it can hold a
+  // spinning wheel in place but never push the rover backwards (issue 34,
+  // N10: a weak soil drove the rover back at -96 m/s).
+  const double dp = traction.drawbar_pull >= 0.0 ? traction.drawbar_pull * (dir * fade)
+                                                 : traction.drawbar_pull * std::tanh(v_t / 0.004);
   const double tr = traction.resistive_torque * (dir * fade);
   tau_a += k.J_wheel[i].transpose() * (dp * t);               // Eq. 4.43
   tau_a -= k.W_wheel[i].transpose() * tr;                     // Eq. 4.42: resists the wheel's rotation

@@ -263,7 +263,6 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     result.converged = summary.termination_type == ceres::CONVERGENCE;
-    if (getenv("RL_TRACE")) fprintf(stderr, "identify n=%zu k=%zu iters=%d evals=%d jac=%d\n", points.size(), k, summary.iterations.size(), summary.num_residual_evaluations, summary.num_jacobian_evaluations);
     result.message = summary.message;
 
     std::vector<double> cov(k * k, NAN);

@@ -2,6 +2,7 @@
 // planar rocker-bogie log, found again without reading its truth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/analysis/rover_candidates.h"
@@ -196,4 +197,38 @@ TEST(RandomEffects, TheSeedDrawsNoneOneOrTwoEffectsNeverTwoPhysicalOnes) {
     EXPECT_EQ(simulation::random_effects(seed, 60, 0.8).effects, r.effects);  // the seed decides
   }
   for (int c : counts) EXPECT_GT(c, 25);
+}
+
+// Issue 29: a soil stronger over the whole run (outside the random pool,
+// which draws weaker soils from a position) is named as the soil, its
+// strength within 2 sigma; no delta BIC beyond 1e6 and no sigma of 0.
+TEST(RoverDiscrepancy, AStrongerSoilOverTheWholeRunIsNamedAsTheSoil) {
+  const auto m = flat_model(60);
+  const auto r = analysis::study_rover(measured(m, {{"soil-strength", 1.2}}, 7004), m);
+  ASSERT_EQ(causes(r), std::vector<std::string>{"soil-strength"}) << r.verdict;
+  const auto& p = fitted(r, "soil-strength");
+  ASSERT_TRUE(std::isfinite(p.sigma) && p.sigma > 0) << r.verdict;
+  EXPECT_LT(std::abs(p.value - 1.2), 2 * p.sigma) << p.value << " +- " << p.sigma;
+  for (const auto& c : r.candidates) {
+    EXPECT_LT(std::abs(c.delta_bic), 1e6) << c.name;
+    for (const auto& q : c.parameters) EXPECT_FALSE(q.sigma == 0) << c.name << " " << q.effect;
+  }
+  EXPECT_EQ(r.verdict.find("+- 0 "), std::string::npos) << r.verdict;
+}
+
+// Issue 29: the statistics stay readable on a random-effect run (the report
+// of seed 5 printed delta BIC -1.9e11 and sigmas of 0).
+TEST(RoverDiscrepancy, ARandomEffectRunsStatisticsMeanWhatTheySay) {
+  auto m = flat_model(60);
+  log::Log lg = measured(m, {{"accel-bias", -0.014314054027044783}, {"wheel-radius-scale", 1.0313037188990837}}, 5);
+  const auto r = analysis::study_rover(lg, m);
+  auto c = causes(r);
+  std::sort(c.begin(), c.end());
+  EXPECT_EQ(c, (std::vector<std::string>{"accel-bias", "wheel-radius-scale"})) << r.verdict;
+  for (const auto& k : r.candidates) {
+    EXPECT_LT(std::abs(k.delta_bic), 1e6) << k.name;
+    for (const auto& q : k.parameters) EXPECT_FALSE(q.sigma == 0) << k.name << " " << q.effect;
+  }
+  const auto& radius = fitted(r, "wheel-radius-scale");
+  EXPECT_LT(std::abs(radius.value - 1.0313037188990837), 3 * radius.sigma) << radius.value << " +- " << radius.sigma;
 }

@@ -4,10 +4,14 @@
 
 #include <cmath>
 #include <random>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
 
 #include "core/analysis/single_wheel_candidates.h"
 #include "core/analysis/single_wheel_discrepancy.h"
 #include "core/common/error.h"
+#include "importers/wheel_test_csv.h"
 #include "terramechanics_soils.h"
 
 using namespace roverlab;
@@ -242,4 +246,122 @@ TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
   }
   EXPECT_TRUE(e.grousers);
   EXPECT_TRUE(e.bulldozing);
+}
+
+namespace {
+
+// The bundled Ding 2011 rows repeated to `rows` at loads 60..100 N, with 3 %
+// noise on every measurement (issue 29's 5,000-row example).
+std::vector<WheelTestPoint> ding_resampled(std::size_t rows) {
+  const auto ding = io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
+  std::mt19937 random(1);
+  std::uniform_real_distribution<double> load(60.0, 100.0);
+  std::normal_distribution<double> noise(1.0, 0.03);
+  std::vector<WheelTestPoint> out;
+  for (std::size_t i = 0; i < rows; ++i) {
+    WheelTestPoint p = ding[i % ding.size()];
+    p.load = load(random);
+    for (auto* m : {&p.drawbar_pull, &p.torque, &p.sinkage}) {
+      if (*m) **m *= noise(random);
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+bool named_in_chain(const analysis::DiscrepancyReport& r, const std::string& name) {
+  return !r.selection.empty() && r.selection.back().name.find(name) != std::string::npos;
+}
+
+const analysis::QuantityVerdict& verdict_of(const analysis::DiscrepancyReport& r, Quantity q) {
+  for (const auto& v : r.quantity_verdicts) {
+    if (v.quantity == q) return v;
+  }
+  throw std::runtime_error("no verdict for a quantity");
+}
+
+}  // namespace
+
+// Issue 29: two causes in the data, both named; the drawbar-pull misfit that
+// no candidate explains no longer hides slip-sinkage's gain on sinkage.
+TEST(TwoCausesInResampledDingData, GrousersAndSlipSinkageAreBothNamed) {
+  const auto points = ding_resampled(1500);
+  const auto r = analysis::study_single_wheel(test::ding_tyii(), points);
+  EXPECT_TRUE(named_in_chain(r, "slip-sinkage")) << r.verdict;
+  EXPECT_TRUE(named_in_chain(r, "grousers")) << r.verdict;
+  const auto& s = verdict_of(r, Quantity::sinkage);
+  EXPECT_TRUE(s.significant);
+  EXPECT_EQ(s.explained_by, "slip-sinkage") << s.sentence;
+  EXPECT_LT(s.held_out_after, 0.6 * s.held_out_before) << s.sentence;
+}
+
+// Issue 29: on the 34 real measurements the verdict per quantity agrees with
+// the trend statistics the study prints (sinkage's slip trend t = -15).
+TEST(RealDingData, TheVerdictPerQuantityAgreesWithItsTrendStatistics) {
+  const auto points = io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
+  const auto r = analysis::study_single_wheel(test::ding_tyii(), points);
+  ASSERT_EQ(r.quantity_verdicts.size(), r.baseline.size());
+  for (const auto& b : r.baseline) {
+    const auto& v = verdict_of(r, b.quantity);
+    const bool strong = std::abs(b.t_slip) >= 3 || std::abs(b.t_load) >= 3 || std::abs(b.t_bias) >= 3;
+    EXPECT_EQ(v.significant, strong) << v.sentence;
+  }
+  EXPECT_TRUE(verdict_of(r, Quantity::sinkage).significant);
+  EXPECT_EQ(r.verdict.find("No significant discrepancy"), std::string::npos) << r.verdict;
+  EXPECT_NE(r.verdict.find("sinkage: significant"), std::string::npos) << r.verdict;
+}
+
+namespace {
+
+// Seeds for the calibration tests: ROVERLAB_CALIBRATION_SEEDS (the full
+// study in docs/validation/discrepancy.md uses 100) or `ci` of them.
+unsigned calibration_seeds(unsigned ci) {
+  const char* n = std::getenv("ROVERLAB_CALIBRATION_SEEDS");
+  return n != nullptr ? static_cast<unsigned>(std::strtoul(n, nullptr, 10)) : ci;
+}
+
+}  // namespace
+
+// Issue 29: how often the study claims a cause on data without one, at its
+// threshold (target at most 5 %), on seeds the other tests do not use.
+TEST(Calibration, FalseClaimsOnDataWithoutAnEffectAreRare) {
+  const unsigned n = calibration_seeds(20);
+  unsigned claims = 0, bic_alone = 0;
+  for (unsigned seed = 1000; seed < 1000 + n; ++seed) {
+    const auto points = testbed(pick_effect(seed, true), seed, analysis::DiscrepancyOptions{}.sigma);
+    const auto r = analysis::study_single_wheel(test::ding_tyii(), points);
+    claims += r.significant ? 1 : 0;
+    bool any = false;
+    for (const auto& c : r.candidates) any = any || (c.applicable && c.delta_bic < -10.0);
+    bic_alone += any ? 1 : 0;
+  }
+  std::printf("no-effect runs: %u, claims: %u, BIC alone below -10: %u\n", n, claims, bic_alone);
+  EXPECT_LE(claims, n / 20);
+}
+
+// Issue 29: the +-1 and +-2 sigma intervals of the named cause's parameter
+// cover the hidden value about as often as they say (targets 60-75 % and
+// 90-98 %; with 40 runs the test allows the binomial spread).
+TEST(Calibration, TheParametersIntervalsCoverTheHiddenValue) {
+  const unsigned n = calibration_seeds(40);
+  unsigned within1 = 0, within2 = 0, count = 0;
+  for (unsigned seed = 2000; seed < 2000 + n; ++seed) {
+    const Hidden h = pick_effect(seed, false);
+    const auto points = testbed(h, seed, analysis::DiscrepancyOptions{}.sigma);
+    const auto r = analysis::study_single_wheel(test::ding_tyii(), points);
+    if (r.selection.empty()) continue;
+    for (const auto& p : r.selection.back().fit.parameters) {
+      if (p.parameter != h.parameter || !std::isfinite(p.sigma)) continue;
+      const double z = std::abs(p.value - h.value) / p.sigma;
+      ++count;
+      within1 += z <= 1 ? 1 : 0;
+      within2 += z <= 2 ? 1 : 0;
+    }
+  }
+  std::printf("hidden-effect runs: %u, parameters: %u, within 1 sigma: %u, within 2 sigma: %u\n", n, count, within1,
+              within2);
+  ASSERT_GE(count, n * 3 / 4);
+  EXPECT_GE(within1, count * 50 / 100);
+  EXPECT_LE(within1, count * 85 / 100);
+  EXPECT_GE(within2, count * 85 / 100);
 }
