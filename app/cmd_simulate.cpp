@@ -12,6 +12,7 @@
 #include "app/resources.h"
 #include "app/rover_scenario.h"
 #include "core/common/error.h"
+#include "core/simulation/effects.h"
 #include "core/simulation/random_effects.h"
 #include "core/simulation/rocker_bogie.h"
 #include "importers/hdf5_log.h"
@@ -85,9 +86,8 @@ Commands make_simulate_commands() {
         cmd.add_option("--seed", o.seed, "Sensor-noise seed")->capture_default_str();
         cmd.add_option(
             "--effect", o.effects,
-            "Effect NAME=VALUE: soil-strength, slip-sinkage, grousers, wheel-radius-scale, effect-start-x, "
-            "gyro-bias, accel-bias, force-offset, force-scale, encoder-dropout, imu-time-offset; or random (none, one "
-            "or two hidden effects drawn from --seed, recorded only in truth/ metadata)");
+            "Effect NAME=VALUE: " + simulation::effect_names() +
+                "; or random (none, one or two hidden effects drawn from --seed, recorded only in truth/ metadata)");
         cmd.add_option("--traction", o.traction, "polynomial | wong-reece (default: the scenario's)");
         cmd.add_option("--duration", o.duration, "s (default: the scenario's)");
         cmd.add_option("--output,-o", o.output, "OUT.h5")->required();

@@ -1,44 +1,44 @@
 #include "core/simulation/random_effects.h"
 
-#include <array>
+#include <cmath>
 #include <random>
 #include <string>
+
+#include "core/simulation/effects.h"
 
 namespace roverlab::simulation {
 
 namespace {
 
-// A cause and its size: value = base + sign * (low + span * a), a uniform in
-// [0, 1), sign +-1 at random when `signed_size` (else +1); the dropout's
-// start is that value times the run's duration.
-struct Pool {
-  const char* cause;
-  bool physical, signed_size;
-  double base, low, span;
-};
+// The effects the pool draws from (pool_high > 0 in the table).
+std::vector<const EffectSpec*> pool() {
+  std::vector<const EffectSpec*> out;
+  for (const auto& e : effect_table()) {
+    if (e.pool_high > 0) out.push_back(&e);
+  }
+  return out;
+}
 
-// The IMU time offset is not drawn: on a 2 cm/s drive it shows only in the
-// start transient (docs/validation/discrepancy.md).
-constexpr std::array<Pool, 9> kPool = {{{"soil-strength", true, false, 0.85, 0.0, -0.15},
-                                        {"slip-sinkage", true, false, 0.0, 0.2, 0.2},
-                                        {"grousers", true, false, 0.0, 0.004, 0.004},
-                                        {"wheel-radius-scale", true, true, 1.0, 0.02, 0.02},
-                                        {"gyro-bias", false, true, 0.0, 0.0015, 0.0015},
-                                        {"accel-bias", false, true, 0.0, 0.01, 0.01},
-                                        {"force-offset", false, true, 0.0, 0.2, 0.3},
-                                        {"force-scale", false, true, 1.0, 0.02, 0.02},
-                                        {"encoder-dropout", false, false, 0.0, 0.2, 0.6}}};
-
-void add(RandomEffects& out, const Pool& p, std::mt19937& rng, double duration, double distance) {
+// A size log-uniform in [pool_low, pool_high], a sign when the effect has
+// one; a factor (neutral 1, unit "1") is multiplied by (1 + d)^+-1, so that a
+// stronger and a weaker soil of the same size are equally likely and the
+// factor stays positive; the dropout's size is its start as a share of the run.
+void add(RandomEffects& out, const EffectSpec& e, std::mt19937& rng, double duration, double distance) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const double sign = u(rng) < 0.5 ? -1.0 : 1.0;
-  const double a = u(rng);
-  out.causes.emplace_back(p.cause);
-  double value = p.base + (p.signed_size ? sign : 1.0) * (p.low + p.span * a);
-  if (std::string(p.cause) == "encoder-dropout") value *= duration;
-  out.effects.emplace_back(p.cause, value);
-  // A soil change starts 25-65 % along the expected path.
-  if (std::string(p.cause) == "soil-strength")
+  const double sign = e.signed_size && u(rng) < 0.5 ? -1.0 : 1.0;
+  const double d = e.pool_low * std::pow(e.pool_high / e.pool_low, u(rng));
+  double value = 0;
+  if (std::string(e.name) == "encoder-dropout") {
+    value = (e.pool_low + (e.pool_high - e.pool_low) * u(rng)) * duration;
+  } else if (e.neutral == 1.0 && std::string(e.unit) == "1") {
+    value = sign > 0 ? 1.0 + d : 1.0 / (1.0 + d);
+  } else {
+    value = e.neutral + sign * d;
+  }
+  out.causes.emplace_back(e.name);
+  out.effects.emplace_back(e.name, value);
+  // A soil change over the whole run (1 in 3) or from 25-65 % along the expected path.
+  if (std::string(e.name) == "soil-strength" && u(rng) >= 1.0 / 3.0)
     out.effects.emplace_back("effect-start-x", distance * (0.25 + 0.4 * u(rng)));
 }
 
@@ -50,13 +50,14 @@ RandomEffects random_effects(unsigned seed, double duration, double distance) {
   const int c = count(rng);
   RandomEffects out;
   if (c == 0) return out;
-  std::uniform_int_distribution<std::size_t> pick(0, kPool.size() - 1);
+  const std::vector<const EffectSpec*> p = pool();
+  std::uniform_int_distribution<std::size_t> pick(0, p.size() - 1);
   const std::size_t first = pick(rng);
-  add(out, kPool[first], rng, duration, distance);
+  add(out, *p[first], rng, duration, distance);
   if (c <= 2) return out;
   std::size_t second = pick(rng);
-  while (second == first || (kPool[first].physical && kPool[second].physical)) second = pick(rng);
-  add(out, kPool[second], rng, duration, distance);
+  while (second == first || (p[first]->physical && p[second]->physical)) second = pick(rng);
+  add(out, *p[second], rng, duration, distance);
   return out;
 }
 

@@ -1,14 +1,12 @@
 #pragma once
 // Hidden effects on demand (`roverlab simulate SCENARIO --effect random
 // --seed N`): none, one or two effects of the planar rocker-bogie run and
-// their sizes, drawn from the seed. Sizes are what an engineer would care
-// about and no larger (docs/validation/discrepancy.md): a soil 15-30 %
-// weaker from a position on, slip-sinkage n1 0.2-0.4, grousers 4-8 mm, a
-// wheel radius 2-4 % off, a gyro bias 1.5-3 mrad/s, an accelerometer bias
-// 0.01-0.02 m/s^2, a force offset 0.2-0.5 N, a force scale 2-4 % off, a 2 s
-// encoder dropout. The IMU time offset is not drawn (it shows only in the
-// start transient of a 2 cm/s drive). Two effects are never both physical
-// (they would share the simulator's one start position).
+// their sizes, drawn from the seed out of the effect table
+// (core/simulation/effects.h; sizes from half to three times what an
+// engineer would care about, both signs where an effect has one, a soil
+// change over the whole run or from a position on; docs/validation/
+// discrepancy.md). Two effects are never both physical (they would share
+// the simulator's one start position).
 
 #include <string>
 #include <utility>

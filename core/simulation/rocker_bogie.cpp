@@ -1,53 +1,25 @@
 #include "core/simulation/rocker_bogie.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/common/error.h"
+#include "core/simulation/effects.h"
 #include "core/simulation/rocker_bogie_simulator.h"
 
 namespace roverlab::simulation {
 
 void set_effect(RockerBogieEffects& e, const std::string& name, double v) {
+  const EffectSpec* spec = find_effect(name);
+  if (spec == nullptr) throw DataError("unknown effect '" + name + "' (" + effect_names() + ")");
   if (!std::isfinite(v)) throw DataError("effect " + name + ": not a number");
-  if (name == "soil-strength") {
-    if (!(v > 0.1 && v < 10)) throw DataError("effect soil-strength must be 0.1..10");
-    e.soil_strength = v;
-  } else if (name == "slip-sinkage") {
-    if (!(v >= 0 && v <= 2)) throw DataError("effect slip-sinkage must be 0..2");
-    e.slip_sinkage_n1 = v;
-  } else if (name == "grousers") {
-    if (!(v >= 0 && v <= 0.05)) throw DataError("effect grousers (height, m) must be 0..0.05");
-    e.grouser_height = v;
-  } else if (name == "wheel-radius-scale") {
-    if (!(v > 0.5 && v < 2)) throw DataError("effect wheel-radius-scale must be 0.5..2");
-    e.wheel_radius_scale = v;
-  } else if (name == "effect-start-x") {
-    if (!(std::abs(v) <= 1000)) throw DataError("effect effect-start-x (m) must be -1000..1000");
-    e.effect_start_x = v;
-  } else if (name == "gyro-bias") {
-    if (!(std::abs(v) <= 1)) throw DataError("effect gyro-bias (rad/s) must be -1..1");
-    e.gyro_bias = v;
-  } else if (name == "accel-bias") {
-    if (!(std::abs(v) <= 10)) throw DataError("effect accel-bias (m/s^2) must be -10..10");
-    e.accel_bias = v;
-  } else if (name == "force-offset") {
-    if (!(std::abs(v) <= 1000)) throw DataError("effect force-offset (N) must be -1000..1000");
-    e.force_offset = v;
-  } else if (name == "force-scale") {
-    if (!(v > 0.1 && v < 10)) throw DataError("effect force-scale must be 0.1..10");
-    e.force_scale = v;
-  } else if (name == "encoder-dropout") {
-    if (!(v >= 0 && v <= 100000)) throw DataError("effect encoder-dropout (start time, s) must be 0..100000");
-    e.encoder_dropout_start = v;
-  } else if (name == "imu-time-offset") {
-    if (!(std::abs(v) <= 1)) throw DataError("effect imu-time-offset (s) must be -1..1");
-    e.imu_time_offset = v;
-  } else {
-    throw DataError(
-        "unknown effect '" + name +
-        "' (soil-strength, slip-sinkage, grousers, wheel-radius-scale, "
-        "effect-start-x, gyro-bias, accel-bias, force-offset, force-scale, encoder-dropout, imu-time-offset)");
+  if (!(v >= spec->lower && v <= spec->upper)) {
+    char range[64];
+    std::snprintf(range, sizeof range, "%g..%g", spec->lower, spec->upper);
+    throw DataError("effect " + name + " (" + spec->what + (std::string(spec->unit) == "1" ? "" : ", " + std::string(spec->unit)) +
+                    ") must be " + range);
   }
+  e.*(spec->member) = v;
 }
 
 WheelCentrePath rolling_path() {

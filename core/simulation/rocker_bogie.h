@@ -75,9 +75,8 @@ struct RockerBogieEffects {
   double encoder_dropout_start = -1;  // s: the wheel encoders hold their value for 2 s from here (< 0: none)
   double imu_time_offset = 0.0;       // s added to the imu stream's time stamps
 };
-// Sets an effect by name (soil-strength, slip-sinkage, grousers,
-// wheel-radius-scale, effect-start-x, gyro-bias, accel-bias, force-offset,
-// force-scale, encoder-dropout, imu-time-offset). Throws DataError.
+// Sets an effect by name (the table of core/simulation/effects.h: its name,
+// range and member). Throws DataError naming the effect and its range.
 void set_effect(RockerBogieEffects& effects, const std::string& name, double value);
 
 struct RockerBogieRun {

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "core/common/error.h"
+#include "core/simulation/effects.h"
 
 namespace roverlab::simulation {
 
@@ -194,28 +195,12 @@ void RockerBogieSimulator::write_metadata() {
   log::Log& lg = result_.log;
   const RockerBogieEffects& fx = run_.effects;
   lg.metadata.rover_id = "kapvik_planar";
-  const RockerBogieEffects none;
-  const struct {
-    const char* name;
-    double value, neutral;
-  } effects[] = {
-      {"soil-strength", fx.soil_strength, none.soil_strength},
-      {"slip-sinkage", fx.slip_sinkage_n1, none.slip_sinkage_n1},
-      {"grousers", fx.grouser_height, none.grouser_height},
-      {"wheel-radius-scale", fx.wheel_radius_scale, none.wheel_radius_scale},
-      {"effect-start-x", fx.effect_start_x, none.effect_start_x},
-      {"gyro-bias", fx.gyro_bias, none.gyro_bias},
-      {"accel-bias", fx.accel_bias, none.accel_bias},
-      {"force-offset", fx.force_offset, none.force_offset},
-      {"force-scale", fx.force_scale, none.force_scale},
-      {"encoder-dropout", fx.encoder_dropout_start, none.encoder_dropout_start},
-      {"imu-time-offset", fx.imu_time_offset, none.imu_time_offset},
-  };
-  for (const auto& e : effects) {
-    if (e.value == e.neutral) continue;
-    char value[32];
-    std::snprintf(value, sizeof value, "%.17g", e.value);  // all digits: a study's fit is judged against it
-    lg.metadata.extra[std::string("truth/effect/") + e.name] = value;
+  for (const auto& e : effect_table()) {
+    const double value = fx.*(e.member);
+    if (value == e.neutral) continue;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);  // all digits: a study's fit is judged against it
+    lg.metadata.extra[std::string("truth/effect/") + e.name] = text;
   }
   lg.metadata.extra["truth/seed"] = std::to_string(run_.seed);
   lg.metadata.description = "planar rocker-bogie simulation (seed 003 chapter 4) on path: " + run_.path.name;

@@ -1,0 +1,49 @@
+#include "core/simulation/effects.h"
+
+namespace roverlab::simulation {
+
+// The pool's sizes run from half the smallest to three times the largest
+// size an engineer would care about (docs/validation/discrepancy.md): soil
+// 15-30 % weaker became 7.5-60 % weaker or 7.5-90 % stronger, and so on.
+// The dropout's "size" is its start as a share of the run (20-80 %); the IMU
+// time offset is not drawn (on a 2 cm/s drive it shows only in the start
+// transient).
+const std::vector<EffectSpec>& effect_table() {
+  using E = RockerBogieEffects;
+  static const std::vector<EffectSpec> table = {
+      {"soil-strength", "1", "factor on the soil's c, tan(phi), kc, kphi", 0.1, 10, true, &E::soil_strength, 1.0,
+       0.075, 0.9, true},
+      {"slip-sinkage", "1", "n1 of n = n0 + n1 |s|", 0, 2, true, &E::slip_sinkage_n1, 0.0, 0.1, 1.2, false},
+      {"grousers", "m", "grouser height (24 grousers)", 0, 0.05, true, &E::grouser_height, 0.0, 0.002, 0.024, false},
+      {"wheel-radius-scale", "1", "true wheel radius over the nominal one", 0.5, 2, true, &E::wheel_radius_scale, 1.0,
+       0.01, 0.12, true},
+      {"effect-start-x", "m", "where the physical effects begin (wheel centre x)", -1000, 1000, true,
+       &E::effect_start_x, -1e9, 0, 0, false},
+      {"gyro-bias", "rad/s", "bias on the pitch rate", -1, 1, false, &E::gyro_bias, 0.0, 0.00075, 0.009, true},
+      {"accel-bias", "m/s^2", "bias on both accelerometer axes", -10, 10, false, &E::accel_bias, 0.0, 0.005, 0.06,
+       true},
+      {"force-offset", "N", "offset on every force-sensor axis", -1000, 1000, false, &E::force_offset, 0.0, 0.1, 1.5,
+       true},
+      {"force-scale", "1", "force-sensor scale factor", 0.1, 10, false, &E::force_scale, 1.0, 0.01, 0.12, true},
+      {"encoder-dropout", "s", "start of 2 s in which the wheel encoders hold their value", 0, 100000, false,
+       &E::encoder_dropout_start, -1.0, 0.2, 0.8, false},
+      {"imu-time-offset", "s", "added to the imu stream's time stamps", -1, 1, false, &E::imu_time_offset, 0.0, 0, 0,
+       true},
+  };
+  return table;
+}
+
+const EffectSpec* find_effect(const std::string& name) {
+  for (const auto& e : effect_table()) {
+    if (name == e.name) return &e;
+  }
+  return nullptr;
+}
+
+std::string effect_names() {
+  std::string s;
+  for (const auto& e : effect_table()) s += (s.empty() ? "" : ", ") + std::string(e.name);
+  return s;
+}
+
+}  // namespace roverlab::simulation
