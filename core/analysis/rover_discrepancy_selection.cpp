@@ -42,16 +42,17 @@ struct Round {
 };
 
 // The most candidates a round fits after screening; the best screen is always among them.
-constexpr std::size_t kMaxFitsPerRound = 5;
+constexpr std::size_t kMaxFitsPerRound = 3;
 
 // One round of forward selection: every unused candidate on top of the
 // chain (held). Each is screened by one Gauss-Newton step; those whose
 // screen could be significant are fitted, best screen first, at most
-// kMaxFitsPerRound of them, so the candidate with the best evidence is
-// always fitted, never screened out.
+// kMaxFitsPerRound of them, skipping a screen that promises under a tenth
+// of the best fit's gain; the candidate with the best evidence is always
+// fitted, never screened out.
 Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>>& candidates,
                 const std::vector<bool>& used, const RoverResidualFeatures& f, const std::vector<FitParameter>& chain,
-                const Score& current, double min_delta_bic) {
+                const Score& current, double min_delta_bic, bool with_sigmas) {
   const double ln_n = std::log(static_cast<double>(pr.likelihood(Part::fit).effective_count()));
   Round round;
   round.trials.resize(candidates.size());
@@ -78,17 +79,22 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     return round.trials[a].screened_fit < round.trials[b].screened_fit;
   });
   if (order.size() > kMaxFitsPerRound) order.resize(kMaxFitsPerRound);
+  double best_gain = 0;  // the largest fall of -2 ln L a fit of this round reached
   for (std::size_t i : order) {
     Trial& t = round.trials[i];
+    // A screen that promises under a tenth of what the best fit so far gained
+    // is not fitted (the best screen always is: it comes first).
+    if (current.fit - t.screened_fit < 0.1 * best_gain) continue;
     const int sims = pr.simulations();
     const auto k = static_cast<double>(t.fit.parameters.size() - chain.size());
     // The screen's optimum is the fit's start, or the best of a grid where a parameter has one.
     grid_start(pr, t.fit.parameters);
-    t.fit = fit_parameters(pr, t.fit.parameters, current.weights);
+    t.fit = fit_parameters(pr, t.fit.parameters, current.weights, with_sigmas);
     t.simulations += pr.simulations() - sims;
     t.screened = false;
     t.delta_bic = t.fit.score.fit - current.fit + k * ln_n;
     t.significant = t.delta_bic < -min_delta_bic && t.fit.score.test < current.test;
+    best_gain = std::max(best_gain, current.fit - t.fit.score.fit);
     if (t.significant &&
         (round.best < 0 || t.delta_bic < round.trials[static_cast<std::size_t>(round.best)].delta_bic)) {
       round.best = static_cast<int>(i);
@@ -114,7 +120,8 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
   std::vector<bool> used(candidates.size(), false);
   for (int round = 0; round < o.max_causes; ++round) {
     if (o.progress) o.progress(static_cast<double>(round) / static_cast<double>(o.max_causes + 1));
-    Round rd = run_round(pr, candidates, used, f, chain, current, o.min_delta_bic);
+    // Sigmas for the first round's table; the chain's once, at its end.
+    Round rd = run_round(pr, candidates, used, f, chain, current, o.min_delta_bic, round == 0);
     if (round == 0) {
       for (std::size_t i = 0; i < candidates.size(); ++i) {
         const Trial& t = rd.trials[i];
@@ -133,7 +140,7 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
     if (!chain.empty()) {  // refit the whole chain with the new cause
       std::vector<FitParameter> all = best.fit.parameters;
       for (auto& p : all) p.free = true;
-      FitOutcome refit = fit_parameters(pr, all, best.fit.score.weights);
+      FitOutcome refit = fit_parameters(pr, all, best.fit.score.weights, false);
       if (refit.score.fit <= joint.score.fit) joint = std::move(refit);
     }
     const double delta_bic = joint.score.fit - current.fit + static_cast<double>(k) * ln_n;
@@ -142,6 +149,7 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
     r.selection.push_back(
         {candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic, current.held_out});
   }
+  if (r.selection.size() > 1) set_sigmas(pr, chain, current.fit);
   // Every step's parameters as the final joint refit left them (not as its own round did).
   std::size_t at = 0;
   for (auto& step : r.selection) {

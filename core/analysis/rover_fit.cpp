@@ -218,7 +218,7 @@ namespace {
 // One Ceres solve of the free parameters at fixed weights, from x (updated);
 // the parameters' GN sigmas set at the solution's profile. Returns its score.
 Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const std::vector<std::size_t>& free,
-            std::vector<double>& x, const LikelihoodProfile& weights) {
+            std::vector<double>& x, const LikelihoodProfile& weights, int iterations) {
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
@@ -230,7 +230,7 @@ Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const s
   }
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = 8;
+  so.max_num_iterations = iterations;
   so.function_tolerance = 1e-5;  // 1e-5 of a cost near the residual count: well under one unit
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
@@ -245,8 +245,8 @@ Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const s
 // +-1 sigma from the curvature of the profile likelihood itself (central
 // second differences of -2 ln L, noise scales and autocorrelations
 // re-profiled at every point): cov = 2 H^-1. Steps of three Gauss-Newton
-// sigmas (the parameter's own step where that is not finite), one-sided at a
-// bound. A direction in which -2 ln L does not curve up is not determined:
+// sigmas (the parameter's own step where that is not finite), shrunk where
+// they leave the quadratic region, one-sided at a bound. A direction in which -2 ln L does not curve up is not determined:
 // NaN. Costs 2m + 2m(m-1) evaluations.
 void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free,
                         double f0) {
@@ -273,6 +273,15 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
     plus[j] = at(j, 1, m, 0);
     if (two_sided) {
       minus[j] = at(j, -1, m, 0);
+      // A step far outside the quadratic region (a rise of more than 50 where
+      // one sigma is a rise of 1) is shrunk towards a rise of 9, up to 3 times.
+      for (int shrink = 0; shrink < 3; ++shrink) {
+        const double rise = 0.5 * (plus[j] + minus[j]) - f0;
+        if (!(rise > 50) || std::abs(h[j]) < q.spec.step / 1000) break;
+        h[j] *= std::sqrt(9 / rise);
+        plus[j] = at(j, 1, m, 0);
+        minus[j] = at(j, -1, m, 0);
+      }
       H(jj, jj) = (plus[j] - 2 * f0 + minus[j]) / (h[j] * h[j]);
     } else {  // f(x), f(x+h), f(x+2h)
       H(jj, jj) = (at(j, 2, m, 0) - 2 * plus[j] + f0) / (h[j] * h[j]);
@@ -298,12 +307,13 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
 
 }  // namespace
 
-// Two passes: at the start model's weights, then at the first solution's own
-// profile (its noise scales and autocorrelations), which moves the solution
-// to the profile likelihood's optimum; the better one is kept, its sigmas
-// from the profile likelihood's curvature.
+// Two passes: at the start model's weights (8 iterations), then at the
+// first solution's own profile (its noise scales and autocorrelations, 3
+// iterations from there), which moves the solution to the profile
+// likelihood's optimum; the better one is kept, with its sigmas from the
+// profile likelihood's curvature when asked for.
 FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters,
-                          const LikelihoodProfile& weights) {
+                          const LikelihoodProfile& weights, bool with_sigmas) {
   std::vector<std::size_t> free;
   std::vector<double> x;
   free_parameters(parameters, free, x);
@@ -313,17 +323,25 @@ FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parame
     out.parameters = std::move(parameters);
     return out;
   }
-  out.score = solve(predictor, parameters, free, x, weights);
+  out.score = solve(predictor, parameters, free, x, weights, 8);
   std::vector<FitParameter> second = parameters;
   std::vector<double> x2 = x;
-  const Score s2 = solve(predictor, second, free, x2, out.score.profile);
+  const Score s2 = solve(predictor, second, free, x2, out.score.profile, 3);
   if (s2.fit < out.score.fit) {
     out.score = s2;
     parameters = std::move(second);
   }
-  set_profile_sigmas(predictor, parameters, free, out.score.fit);
+  if (with_sigmas) set_profile_sigmas(predictor, parameters, free, out.score.fit);
   out.parameters = std::move(parameters);
   return out;
+}
+
+void set_sigmas(Predictor& predictor, std::vector<FitParameter>& parameters, double minus_two_log_l) {
+  std::vector<std::size_t> free;
+  std::vector<double> x;
+  for (auto& p : parameters) p.free = true;
+  free_parameters(parameters, free, x);
+  if (!free.empty()) set_profile_sigmas(predictor, parameters, free, minus_two_log_l);
 }
 
 }  // namespace roverlab::analysis::rover

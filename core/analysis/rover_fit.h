@@ -41,7 +41,11 @@ simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& 
 // Fits the free parameters (spec.fitted and free); the others are held.
 // `weights`: the profile of the model they are added to.
 FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters,
-                          const LikelihoodProfile& weights);
+                          const LikelihoodProfile& weights, bool with_sigmas = true);
+
+// The fitted parameters' +-1 sigma from the profile likelihood's curvature
+// at their values, where -2 ln L on the fit blocks is minus_two_log_l.
+void set_sigmas(Predictor& predictor, std::vector<FitParameter>& parameters, double minus_two_log_l);
 
 // Gauss-Newton screen of the free parameters from their values: -2 ln L on
 // the fit blocks that the linearised model predicts at its optimum, and that
