@@ -36,10 +36,15 @@ json nullable(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
   json j = json::object();
   for (const auto& s : stats) {
-    j[to_string(s.quantity)] = {{"count", s.count},   {"rmse", s.rmse},
-                                {"bias", s.bias},     {"slope_vs_slip", s.slope_vs_slip},
-                                {"t_slip", s.t_slip}, {"t_bias", s.t_bias}, {"slope_vs_load", s.slope_vs_load},
-                                {"t_load", s.t_load}, {"unit", unit_of(s.quantity)}};
+    j[to_string(s.quantity)] = {{"count", s.count},
+                                {"rmse", s.rmse},
+                                {"bias", s.bias},
+                                {"slope_vs_slip", s.slope_vs_slip},
+                                {"t_slip", s.t_slip},
+                                {"t_bias", s.t_bias},
+                                {"slope_vs_load", s.slope_vs_load},
+                                {"t_load", s.t_load},
+                                {"unit", unit_of(s.quantity)}};
   }
   return j;
 }
@@ -173,8 +178,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
       }
       if (i == 0) {
         std::printf("  %-14s %-24s %22s %10s %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
-                    analysis::format_delta_bic(c.delta_bic).c_str(),
-                    c.held_out_score);
+                    analysis::format_delta_bic(c.delta_bic).c_str(), c.held_out_score);
       } else {
         std::printf("  %-14s %-24s %22s\n", "", to_string(p.parameter), value);
       }

@@ -37,7 +37,7 @@ std::string parameters_text(const json& ps) {
     const json& sigma = p.at("sigma");
     t += (t.empty() ? "" : ", ") + p.at("effect").get<std::string>() + " " +
          roverlab::analysis::format_estimate(p.at("value").get<double>(), sigma.is_number() ? sigma.get<double>() : NAN,
-                                   p.at("unit").get<std::string>());
+                                             p.at("unit").get<std::string>());
   }
   return t;
 }
@@ -258,7 +258,8 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
     std::string p = parameters_text(c.at("parameters"));
     if (p.size() > 44) p = p.substr(0, 43) + "~";
     std::fprintf(out, "  %-22s %-44s %10s %9.3g%s\n", c.at("name").get<std::string>().c_str(), p.c_str(),
-                 roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()).c_str(), c.at("held_out").get<double>(),
+                 roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()).c_str(),
+                 c.at("held_out").get<double>(),
                  c.at("significant").get<bool>() ? ""
                  : c.at("screened").get<bool>()  ? "  (screened out)"
                                                  : "  (not significant)");
@@ -301,8 +302,8 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
     s.html << "<tr" << (c.at("significant").get<bool>() ? " style=\"font-weight:bold\"" : "")
            << "><td style=\"text-align:left\">" << ReportSection::escape(c.at("name").get<std::string>())
            << "</td><td style=\"text-align:left\">" << ReportSection::escape(parameters_text(c.at("parameters")))
-           << "</td><td>" << roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()) << "</td><td>" << n(c.at("held_out"), "%.3g")
-           << "</td></tr>\n";
+           << "</td><td>" << roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()) << "</td><td>"
+           << n(c.at("held_out"), "%.3g") << "</td></tr>\n";
   }
   s.html << "</table>\n<ul>\n";
   for (const auto& c : j.at("checks")) {

@@ -74,7 +74,8 @@ LikelihoodProfile GroupedLikelihood::profile(const std::vector<double>& r) const
     gp.used = n;
     if (g.autocorrelated && spp > 0) gp.rho = std::clamp(sxp / spp, 0.0, 1.0);
     // Mean squared innovation: (sxx - 2 rho sxp + rho^2 spp) / n.
-    const double ms = n > 0 ? std::max(sxx - 2 * gp.rho * sxp + gp.rho * gp.rho * spp, 0.0) / static_cast<double>(n) : 0;
+    const double ms =
+        n > 0 ? std::max(sxx - 2 * gp.rho * sxp + gp.rho * gp.rho * spp, 0.0) / static_cast<double>(n) : 0;
     gp.scale = std::max(std::sqrt(ms), g.floor);
     if (n > 0) p.minus_two_log_l += static_cast<double>(n) * std::log(gp.scale * gp.scale);
     p.groups.push_back(gp);

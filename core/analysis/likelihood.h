@@ -22,15 +22,15 @@ namespace roverlab::analysis {
 
 struct ResidualGroup {
   std::string name;
-  std::size_t size = 0;     // consecutive residuals in the vector, groups in order
-  bool integrated = false;  // compare increments: difference before the AR(1) whitening
-  double floor = 0;         // smallest noise scale trusted, in the residuals' units (> 0)
+  std::size_t size = 0;        // consecutive residuals in the vector, groups in order
+  bool integrated = false;     // compare increments: difference before the AR(1) whitening
+  double floor = 0;            // smallest noise scale trusted, in the residuals' units (> 0)
   bool autocorrelated = true;  // false: rho held at 0 (independent points, as in a wheel test)
 };
 
 struct GroupProfile {
-  double rho = 0;    // lag-1 autocorrelation of the (differenced) residuals, in [0, 1]
-  double scale = 1;  // innovation standard deviation, >= the group's floor
+  double rho = 0;        // lag-1 autocorrelation of the (differenced) residuals, in [0, 1]
+  double scale = 1;      // innovation standard deviation, >= the group's floor
   std::size_t used = 0;  // residuals with the lags they need
 };
 

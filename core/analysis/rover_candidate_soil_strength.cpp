@@ -17,7 +17,8 @@ class Candidate final : public RoverCandidate {
     // soil of another strength over the whole run.
     if (!std::isfinite(features.change_x) || features.from_start) return {{"soil-strength", "1", 1.0, 0.2, 5.0, 0.01}};
     const double x0 = features.change_x;
-    return {{"soil-strength", "1", 1.0, 0.2, 5.0, 0.01}, {"effect-start-x", "m", x0, x0 - 0.3, x0 + 0.3, 0.002, true, 0, 0.05}};
+    return {{"soil-strength", "1", 1.0, 0.2, 5.0, 0.01},
+            {"effect-start-x", "m", x0, x0 - 0.3, x0 + 0.3, 0.002, true, 0, 0.05}};
   }
 };
 

@@ -64,11 +64,11 @@ struct RoverCandidateResult {
   std::string name, cause;
   std::vector<RoverParameterFit> parameters;
   double minus_two_log_l = 0, delta_bic = 0;  // on the fit blocks (likelihood.h), against the model it was added to
-  double held_out = 0;             // normalised RMS on the test blocks
+  double held_out = 0;                        // normalised RMS on the test blocks
   bool significant = false;
   int simulations = 0;
-  bool screened =
-      false;  // its linearised fit could not be significant: not fitted further (its -2 ln L is the linearised one, no sigma)
+  bool screened = false;  // its linearised fit could not be significant: not fitted further (its -2 ln L is the
+                          // linearised one, no sigma)
 };
 
 struct RoverSelectionStep {
@@ -89,7 +89,7 @@ struct RoverDiscrepancyReport {
   double duration = 0;
   std::size_t fit_residuals = 0, test_residuals = 0;
   std::vector<RoverChannelResiduals> channels;
-  double baseline_bic = 0;  // -2 ln L of the nominal model on the fit blocks
+  double baseline_bic = 0;                           // -2 ln L of the nominal model on the fit blocks
   double baseline_held_out = 0, final_held_out = 0;  // RMS normalised residual on the test blocks
   std::vector<RoverRedundancyCheck> checks;
   std::vector<RoverCandidateResult> candidates;  // each alone on the baseline

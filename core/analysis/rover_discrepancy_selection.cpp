@@ -5,9 +5,9 @@
 #include <limits>
 #include <memory>
 
+#include "core/analysis/likelihood.h"
 #include "core/analysis/rover_candidates.h"
 #include "core/analysis/rover_discrepancy.h"
-#include "core/analysis/likelihood.h"
 #include "core/analysis/rover_fit.h"
 #include "core/analysis/rover_prediction.h"
 
@@ -75,9 +75,8 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     t.delta_bic = t.screened_fit - current.fit + static_cast<double>(specs.size()) * ln_n;
     if (t.delta_bic < -min_delta_bic) order.push_back(i);
   }
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return round.trials[a].screened_fit < round.trials[b].screened_fit;
-  });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return round.trials[a].screened_fit < round.trials[b].screened_fit; });
   if (order.size() > kMaxFitsPerRound) order.resize(kMaxFitsPerRound);
   double best_gain = 0;  // the largest fall of -2 ln L a fit of this round reached
   for (std::size_t i : order) {
@@ -154,7 +153,8 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
   std::size_t at = 0;
   for (auto& step : r.selection) {
     const std::size_t k = step.parameters.size();
-    step.parameters = fits_of(std::vector<FitParameter>(chain.begin(), chain.begin() + static_cast<std::ptrdiff_t>(at + k)), at);
+    step.parameters =
+        fits_of(std::vector<FitParameter>(chain.begin(), chain.begin() + static_cast<std::ptrdiff_t>(at + k)), at);
     at += k;
   }
   r.final_held_out = current.held_out;

@@ -246,10 +246,9 @@ Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const s
 // second differences of -2 ln L, noise scales and autocorrelations
 // re-profiled at every point): cov = 2 H^-1. Steps of three Gauss-Newton
 // sigmas (the parameter's own step where that is not finite), shrunk where
-// they leave the quadratic region, one-sided at a bound. A direction in which -2 ln L does not curve up is not determined:
-// NaN. Costs 2m + 2m(m-1) evaluations.
-void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free,
-                        double f0) {
+// they leave the quadratic region, one-sided at a bound. A direction in which -2 ln L does not curve up is not
+// determined: NaN. Costs 2m + 2m(m-1) evaluations.
+void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free, double f0) {
   const std::size_t m = free.size();
   std::vector<double> h(m);
   for (std::size_t j = 0; j < m; ++j) {
@@ -312,8 +311,8 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
 // iterations from there), which moves the solution to the profile
 // likelihood's optimum; the better one is kept, with its sigmas from the
 // profile likelihood's curvature when asked for.
-FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters,
-                          const LikelihoodProfile& weights, bool with_sigmas) {
+FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters, const LikelihoodProfile& weights,
+                          bool with_sigmas) {
   std::vector<std::size_t> free;
   std::vector<double> x;
   free_parameters(parameters, free, x);

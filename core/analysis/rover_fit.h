@@ -23,8 +23,8 @@ struct FitParameter {
 
 // A model's score on the log.
 struct Score {
-  double fit = 0, test = 0;  // -2 ln L on the fit and the test blocks
-  double held_out = 0;       // RMS normalised residual on the test blocks (increments for encoders), in noise sigmas
+  double fit = 0, test = 0;   // -2 ln L on the fit and the test blocks
+  double held_out = 0;        // RMS normalised residual on the test blocks (increments for encoders), in noise sigmas
   LikelihoodProfile profile;  // on the fit blocks
   LikelihoodProfile weights;  // on the fit blocks: the weights of a fit started here (fit_weights)
 };
@@ -40,8 +40,8 @@ simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& 
 
 // Fits the free parameters (spec.fitted and free); the others are held.
 // `weights`: the profile of the model they are added to.
-FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters,
-                          const LikelihoodProfile& weights, bool with_sigmas = true);
+FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters, const LikelihoodProfile& weights,
+                          bool with_sigmas = true);
 
 // The fitted parameters' +-1 sigma from the profile likelihood's curvature
 // at their values, where -2 ln L on the fit blocks is minus_two_log_l.

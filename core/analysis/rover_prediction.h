@@ -23,10 +23,10 @@ constexpr std::size_t kChannels = simulation::kSensorChannels + 3;  // the senso
 struct MeasuredChannel {
   std::string stream, name, unit;
   std::vector<double> time, values;
-  std::vector<char> fit;  // 1: the sample is in a fit block, 0: in a test block
-  double sigma = 1;           // noise of one sample, the residuals' unit
-  double resolution = 1e-4;    // the smallest noise trusted (unit)
-  bool integrated = false;     // an angle integrated from a rate: compared as increments
+  std::vector<char> fit;     // 1: the sample is in a fit block, 0: in a test block
+  double sigma = 1;          // noise of one sample, the residuals' unit
+  double resolution = 1e-4;  // the smallest noise trusted (unit)
+  bool integrated = false;   // an angle integrated from a rate: compared as increments
 };
 
 // A noise-free simulation without sensor effects.

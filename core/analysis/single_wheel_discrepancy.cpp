@@ -399,10 +399,10 @@ void SingleWheelStudy::select_forward() {
         }
       }
       if (partner >= 0) {
-        with_held_out(pair_fit,
-                      {candidates_[static_cast<std::size_t>(best)].get(),
-                       candidates_[static_cast<std::size_t>(partner)].get()},
-                      &report_.candidates[static_cast<std::size_t>(best)]);
+        with_held_out(
+            pair_fit,
+            {candidates_[static_cast<std::size_t>(best)].get(), candidates_[static_cast<std::size_t>(partner)].get()},
+            &report_.candidates[static_cast<std::size_t>(best)]);
       }
       report_.best_pair = pair_fit;
       if (partner < 0 || !passes(pair_fit, bic)) break;
@@ -556,8 +556,8 @@ void SingleWheelStudy::write_verdict() {
     report_.verdict = "No candidate could be fitted.";
     return;
   }
-  if (report_.selection.size() >= 2 || (!report_.selection.empty() && report_.selection.back().name.find(" + ") !=
-                                                                          std::string::npos)) {
+  if (report_.selection.size() >= 2 ||
+      (!report_.selection.empty() && report_.selection.back().name.find(" + ") != std::string::npos)) {
     write_chain_verdict();
     return;
   }
@@ -604,7 +604,8 @@ void SingleWheelStudy::judge_quantities() {
     std::string why;
     for (const auto& b : report_.baseline) {
       if (b.quantity != q) continue;
-      const std::pair<const char*, double> ts[] = {{"bias", b.t_bias}, {"slip trend", b.t_slip}, {"load trend", b.t_load}};
+      const std::pair<const char*, double> ts[] = {
+          {"bias", b.t_bias}, {"slip trend", b.t_slip}, {"load trend", b.t_load}};
       for (const auto& [name, t] : ts) {
         if (std::abs(t) < 3.0) continue;
         v.significant = true;
@@ -663,10 +664,9 @@ void SingleWheelStudy::write_no_significant_verdict() {
     return std::abs(b.t_bias) >= 3.0 || std::abs(b.t_slip) >= 3.0 || std::abs(b.t_load) >= 3.0;
   });
   report_.verdict = std::string(any ? "No cause is decisive" : "No significant discrepancy") +
-                    ": the best candidate, " + c.name + ", changes BIC by " +
-                    format_delta_bic(c.delta_bic) + " (needs < " + fmt("%.0f", o_.bic_threshold) +
-                    ") and the held-out error from " + fmt("%.2f", report_.baseline_score) + " to " +
-                    fmt("%.2f", c.held_out_score) + " sigma";
+                    ": the best candidate, " + c.name + ", changes BIC by " + format_delta_bic(c.delta_bic) +
+                    " (needs < " + fmt("%.0f", o_.bic_threshold) + ") and the held-out error from " +
+                    fmt("%.2f", report_.baseline_score) + " to " + fmt("%.2f", c.held_out_score) + " sigma";
   for (const auto& [q, index] : report_.partial) {
     const std::size_t qi = static_cast<std::size_t>(std::find(report_.quantities.begin(), report_.quantities.end(), q) -
                                                     report_.quantities.begin());
@@ -675,12 +675,12 @@ void SingleWheelStudy::write_no_significant_verdict() {
                        show(q, report_.baseline_held_out_rmse[qi]) + " to " + show(q, pc.held_out_rmse[qi]);
   }
   if (report_.best_pair && report_.best_pair->applicable) {
-    report_.verdict += "; together, " + report_.best_pair->name + " change BIC by " +
-                       format_delta_bic(report_.best_pair->delta_bic) +
-                       (report_.best_pair->held_out_rmse.empty()
-                            ? std::string()
-                            : " and the held-out error to " + fmt("%.2f", report_.best_pair->held_out_score) + " sigma") +
-                       ": not significant either";
+    report_.verdict +=
+        "; together, " + report_.best_pair->name + " change BIC by " + format_delta_bic(report_.best_pair->delta_bic) +
+        (report_.best_pair->held_out_rmse.empty()
+             ? std::string()
+             : " and the held-out error to " + fmt("%.2f", report_.best_pair->held_out_score) + " sigma") +
+        ": not significant either";
   }
   report_.verdict += ".";
 }

@@ -22,17 +22,18 @@ struct QuantityResiduals {
   double t_slip = 0.0;         // t statistic of that slope
   double slope_vs_load = 0.0;  // per N
   double t_load = 0.0;
-  double t_bias = 0.0;         // bias over its standard error
+  double t_bias = 0.0;  // bias over its standard error
 };
 
 // Per measured quantity (issue 29): whether the baseline's error in it is
 // more than noise, and which cause, if any, fixes it on held-out points.
 struct QuantityVerdict {
   Quantity quantity;
-  bool significant = false;  // |t| >= 3 for its bias, its slip trend or its load trend
-  std::string explained_by;  // the named cause whose step cut its held-out RMSE >= 30 %; empty: none
+  bool significant = false;    // |t| >= 3 for its bias, its slip trend or its load trend
+  std::string explained_by;    // the named cause whose step cut its held-out RMSE >= 30 %; empty: none
   std::string best_candidate;  // the candidate (alone) that predicts it best on held-out points
-  double held_out_before = NAN, held_out_after = NAN;  // RMSE: baseline, and with explained_by's chain (else best_candidate)
+  double held_out_before = NAN,
+         held_out_after = NAN;  // RMSE: baseline, and with explained_by's chain (else best_candidate)
   std::string sentence;
 };
 
@@ -90,8 +91,8 @@ struct DiscrepancyReport {
   // When the first step alone does not pass: the best pair with it, as tried.
   std::optional<CandidateResult> best_pair;
   std::vector<QuantityVerdict> quantity_verdicts;  // one per measured quantity
-  std::string what_is_wrong;  // one sentence on the baseline's residuals
-  std::string verdict;        // one sentence: the cause and the gain, or "no significant discrepancy"
+  std::string what_is_wrong;                       // one sentence on the baseline's residuals
+  std::string verdict;  // one sentence: the cause and the gain, or "no significant discrepancy"
 };
 
 DiscrepancyReport study_single_wheel(const terramechanics::Soil& soil,

@@ -13,9 +13,9 @@
 namespace roverlab::simulation {
 
 struct EffectSpec {
-  const char* name;  // as in `simulate --effect NAME=VALUE`
-  const char* unit;  // "1" for a factor
-  const char* what;  // plain words
+  const char* name;     // as in `simulate --effect NAME=VALUE`
+  const char* unit;     // "1" for a factor
+  const char* what;     // plain words
   double lower, upper;  // allowed values (inclusive)
   bool physical;        // true: changes the run (a new simulation); false: applied to the sensor series
   double RockerBogieEffects::*member;

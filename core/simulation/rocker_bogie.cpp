@@ -16,8 +16,8 @@ void set_effect(RockerBogieEffects& e, const std::string& name, double v) {
   if (!(v >= spec->lower && v <= spec->upper)) {
     char range[64];
     std::snprintf(range, sizeof range, "%g..%g", spec->lower, spec->upper);
-    throw DataError("effect " + name + " (" + spec->what + (std::string(spec->unit) == "1" ? "" : ", " + std::string(spec->unit)) +
-                    ") must be " + range);
+    throw DataError("effect " + name + " (" + spec->what +
+                    (std::string(spec->unit) == "1" ? "" : ", " + std::string(spec->unit)) + ") must be " + range);
   }
   e.*(spec->member) = v;
 }

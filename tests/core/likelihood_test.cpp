@@ -30,8 +30,8 @@ TEST(Likelihood, ProfilesEachGroupsScaleAndAutocorrelation) {
   EXPECT_NEAR(p.groups[1].rho, 0.0, 0.02);
   EXPECT_NEAR(p.groups[1].scale, 0.01, 2e-4);
   // -2 ln L = sum n_g ln s_g^2 over the residuals with a lag.
-  const double expected = 20000 * std::log(p.groups[0].scale * p.groups[0].scale) +
-                          20000 * std::log(p.groups[1].scale * p.groups[1].scale);
+  const double expected =
+      20000 * std::log(p.groups[0].scale * p.groups[0].scale) + 20000 * std::log(p.groups[1].scale * p.groups[1].scale);
   EXPECT_NEAR(p.minus_two_log_l, expected, 1e-6 * std::abs(expected));
   EXPECT_EQ(l.effective_count(), 2 * 20000U);
 }
