@@ -31,13 +31,23 @@ json parameters_json(const std::vector<analysis::RoverParameterFit>& ps) {
   return a;
 }
 
-std::string parameters_text(const json& ps) {
+// "effect value +- sigma" for each parameter; a screened candidate's values
+// are its one Gauss-Newton step's, with no sigma: "~value".
+std::string parameters_text(const json& ps, bool screened = false) {
   std::string t;
   for (const auto& p : ps) {
     const json& sigma = p.at("sigma");
-    t += (t.empty() ? "" : ", ") + p.at("effect").get<std::string>() + " " +
-         roverlab::analysis::format_estimate(p.at("value").get<double>(), sigma.is_number() ? sigma.get<double>() : NAN,
-                                             p.at("unit").get<std::string>());
+    const double value = p.at("value").get<double>();
+    std::string v;
+    if (screened) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "~%.4g", value);
+      v = buf + std::string(p.at("unit").get<std::string>() == "1" ? "" : " " + p.at("unit").get<std::string>());
+    } else {
+      v = roverlab::analysis::format_estimate(value, sigma.is_number() ? sigma.get<double>() : NAN,
+                                              p.at("unit").get<std::string>());
+    }
+    t += (t.empty() ? "" : ", ") + p.at("effect").get<std::string>() + " " + v;
   }
   return t;
 }
@@ -255,7 +265,7 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
                "fitted", "delta BIC", "held-out");
   std::fprintf(out, "  %-22s %-44s %10s %9.3g\n", "(nominal)", "", "0", j.at("baseline").at("held_out").get<double>());
   for (const auto& c : j.at("candidates")) {
-    std::string p = parameters_text(c.at("parameters"));
+    std::string p = parameters_text(c.at("parameters"), c.at("screened").get<bool>());
     if (p.size() > 44) p = p.substr(0, 43) + "~";
     std::fprintf(out, "  %-22s %-44s %10s %9.3g%s\n", c.at("name").get<std::string>().c_str(), p.c_str(),
                  roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()).c_str(),
@@ -301,7 +311,7 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
   for (const auto& c : j.at("candidates")) {
     s.html << "<tr" << (c.at("significant").get<bool>() ? " style=\"font-weight:bold\"" : "")
            << "><td style=\"text-align:left\">" << ReportSection::escape(c.at("name").get<std::string>())
-           << "</td><td style=\"text-align:left\">" << ReportSection::escape(parameters_text(c.at("parameters")))
+           << "</td><td style=\"text-align:left\">" << ReportSection::escape(parameters_text(c.at("parameters"), c.at("screened").get<bool>()))
            << "</td><td>" << roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()) << "</td><td>"
            << n(c.at("held_out"), "%.3g") << "</td></tr>\n";
   }
