@@ -72,7 +72,7 @@ LikelihoodProfile GroupedLikelihood::profile(const std::vector<double>& r) const
     });
     GroupProfile gp;
     gp.used = n;
-    if (g.autocorrelated && spp > 0) gp.rho = std::clamp(sxp / spp, 0.0, 1.0);
+    if (g.autocorrelated && spp > 0) gp.rho = std::clamp(sxp / spp, g.min_rho, 1.0);
     // Mean squared innovation: (sxx - 2 rho sxp + rho^2 spp) / n.
     const double ms =
         n > 0 ? std::max(sxx - 2 * gp.rho * sxp + gp.rho * gp.rho * spp, 0.0) / static_cast<double>(n) : 0;

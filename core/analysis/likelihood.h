@@ -26,6 +26,7 @@ struct ResidualGroup {
   bool integrated = false;     // compare increments: difference before the AR(1) whitening
   double floor = 0;            // smallest noise scale trusted, in the residuals' units (> 0)
   bool autocorrelated = true;  // false: rho held at 0 (independent points, as in a wheel test)
+  double min_rho = 0;          // the lowest autocorrelation allowed (< 0: increments of white noise, -0.5)
 };
 
 struct GroupProfile {

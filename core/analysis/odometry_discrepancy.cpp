@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <memory>
 
+#include <Eigen/Dense>
+
+#include "core/analysis/likelihood.h"
 #include "core/analysis/odometry_candidates.h"
 #include "core/common/error.h"
 #include "core/estimation/reference_track.h"
@@ -73,12 +76,32 @@ double final_of(const std::vector<double>& r) {
   return r.size() < 2 ? 0.0 : std::hypot(r[r.size() - 2], r[r.size() - 1]);
 }
 
-// BIC of Gaussian residuals with k free parameters.
+// The track errors' likelihood (likelihood.h): east and north each a group
+// of increments (a dead-reckoning error is an integral) with its own noise
+// scale and lag-1 autocorrelation, which may be negative: the GPS fixes'
+// noise is white in position, so its increments have -0.5. 1 mm is the
+// smallest scale trusted.
+GroupedLikelihood track_likelihood(std::size_t points) {
+  return GroupedLikelihood({{"east", points, true, 1e-3, true, -0.9}, {"north", points, true, 1e-3, true, -0.9}});
+}
+
+// Interleaved (east, north) errors as east ones then north ones; `stride`
+// reads every stride-th value (a column of a row-major matrix).
+std::vector<double> by_axis(const double* r, std::size_t values, std::size_t stride = 1) {
+  std::vector<double> out(values);
+  const std::size_t points = values / 2;
+  for (std::size_t j = 0; j < points; ++j) {
+    out[j] = r[2 * j * stride];
+    out[points + j] = r[(2 * j + 1) * stride];
+  }
+  return out;
+}
+
+// BIC with k free parameters: -2 ln L of that likelihood + k ln n.
 double bic(const std::vector<double>& r, int k) {
-  double s = 0.0;
-  for (double x : r) s += x * x;
-  const auto n = static_cast<double>(r.size());
-  return n * std::log(std::max(s / n, 1e-300)) + k * std::log(n);
+  const GroupedLikelihood l = track_likelihood(r.size() / 2);
+  return l.minus_two_log_l(by_axis(r.data(), r.size())) +
+         k * std::log(static_cast<double>(std::max<std::size_t>(l.effective_count(), 1)));
 }
 
 // The fit part's track errors as a Ceres cost of a candidate's parameters.
@@ -346,26 +369,39 @@ OdometryCandidate OdometryStudy::fit_candidate(const OdometryCandidateModel& mod
   return cand;
 }
 
-// Parameter sigmas from the covariance, scaled by the residual variance
-// (optimistic: track errors are correlated in time); NaN beyond 3 parameters.
+// Parameter sigmas from the Gauss-Newton covariance of the track errors
+// whitened by their likelihood at the solution (increments, a noise scale
+// and autocorrelation per axis); NaN beyond 3 parameters or where the data
+// do not determine a parameter.
 std::vector<double> OdometryStudy::parameter_sigmas(ceres::Problem& problem, std::vector<double>& x,
                                                     const std::vector<double>& r_fit) const {
   const int k = static_cast<int>(x.size());
   std::vector<double> sigma(static_cast<std::size_t>(k), NAN);
-  if (k > 3) return sigma;
-  ceres::Covariance::Options co;
-  co.algorithm_type = ceres::DENSE_SVD;
-  co.null_space_rank = -1;
-  ceres::Covariance cov(co);
-  std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
-  std::vector<double> c(static_cast<std::size_t>(k * k), NAN);
-  if (cov.Compute(blocks, &problem) && cov.GetCovarianceBlock(x.data(), x.data(), c.data())) {
-    double s2 = 0.0;
-    for (double v : r_fit) s2 += v * v;
-    s2 /= std::max<double>(1.0, static_cast<double>(r_fit.size()) - k);
-    for (int i = 0; i < k; ++i)
-      sigma[static_cast<std::size_t>(i)] = std::sqrt(std::max(0.0, c[static_cast<std::size_t>(i * k + i)] * s2));
+  if (k > 3 || r_fit.size() < 4) return sigma;
+  ceres::CRSMatrix crs;
+  if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs)) return sigma;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row) {
+    for (int i = crs.rows[static_cast<std::size_t>(row)]; i < crs.rows[static_cast<std::size_t>(row) + 1]; ++i)
+      J(row, crs.cols[static_cast<std::size_t>(i)]) = crs.values[static_cast<std::size_t>(i)];
   }
+  if (J.rows() != static_cast<Eigen::Index>(r_fit.size()) || J.cols() != k) return sigma;
+  const GroupedLikelihood l = track_likelihood(r_fit.size() / 2);
+  const LikelihoodProfile at = l.profile(by_axis(r_fit.data(), r_fit.size()));
+  Eigen::MatrixXd Jw(static_cast<Eigen::Index>(l.effective_count()), k);
+  for (int c = 0; c < k; ++c) {
+    const Eigen::VectorXd column = J.col(c);
+    const std::vector<double> ordered = by_axis(column.data(), r_fit.size());
+    std::vector<double> w(l.effective_count());
+    l.whiten(at, ordered.data(), w.data());
+    for (std::size_t i = 0; i < w.size(); ++i) Jw(static_cast<Eigen::Index>(i), c) = w[i];
+  }
+  const Eigen::MatrixXd info = Jw.transpose() * Jw;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(info);
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues().minCoeff() > 1e-12 * eig.eigenvalues().maxCoeff()))
+    return sigma;
+  const Eigen::MatrixXd cov = info.inverse();
+  for (int i = 0; i < k; ++i) sigma[static_cast<std::size_t>(i)] = std::sqrt(std::max(0.0, cov(i, i)));
   return sigma;
 }
 
