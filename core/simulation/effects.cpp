@@ -3,8 +3,11 @@
 namespace roverlab::simulation {
 
 // The pool's sizes run from half the smallest to three times the largest
-// size an engineer would care about (docs/validation/discrepancy.md): soil
-// 15-30 % weaker became 7.5-60 % weaker or 7.5-90 % stronger, and so on.
+// size an engineer would care about (docs/validation/discrepancy.md), except
+// where the simulated rover would not move at all: a soil 7.5-90 % stronger
+// or up to 1.3 times weaker (a soil 1.9 times weaker holds the flat_60s rover
+// in place from the start), slip-sinkage n1 0.1-0.45 (at n1 = 0.65 the rover
+// does not move in 60 s).
 // The dropout's "size" is its start as a share of the run (20-80 %); the IMU
 // time offset is not drawn (on a 2 cm/s drive it shows only in the start
 // transient).
@@ -12,8 +15,8 @@ const std::vector<EffectSpec>& effect_table() {
   using E = RockerBogieEffects;
   static const std::vector<EffectSpec> table = {
       {"soil-strength", "1", "factor on the soil's c, tan(phi), kc, kphi", 0.1, 10, true, &E::soil_strength, 1.0, 0.075,
-       0.9, true},
-      {"slip-sinkage", "1", "n1 of n = n0 + n1 |s|", 0, 2, true, &E::slip_sinkage_n1, 0.0, 0.1, 1.2, false},
+       0.9, true, 0.3},
+      {"slip-sinkage", "1", "n1 of n = n0 + n1 |s|", 0, 2, true, &E::slip_sinkage_n1, 0.0, 0.1, 0.45, false},
       {"grousers", "m", "grouser height (24 grousers)", 0, 0.05, true, &E::grouser_height, 0.0, 0.002, 0.024, false},
       {"wheel-radius-scale", "1", "true wheel radius over the nominal one", 0.5, 2, true, &E::wheel_radius_scale, 1.0,
        0.01, 0.12, true},

@@ -25,6 +25,7 @@ struct EffectSpec {
   // signed_size (else +). pool_high = 0: not drawn.
   double pool_low, pool_high;
   bool signed_size;
+  double pool_high_below = 0;  // > 0: the largest deviation drawn below neutral, when smaller than pool_high
 };
 
 const std::vector<EffectSpec>& effect_table();

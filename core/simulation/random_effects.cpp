@@ -26,7 +26,8 @@ std::vector<const EffectSpec*> pool() {
 void add(RandomEffects& out, const EffectSpec& e, std::mt19937& rng, double duration, double distance) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const double sign = e.signed_size && u(rng) < 0.5 ? -1.0 : 1.0;
-  const double d = e.pool_low * std::pow(e.pool_high / e.pool_low, u(rng));
+  const double high = sign < 0 && e.pool_high_below > 0 ? e.pool_high_below : e.pool_high;
+  const double d = e.pool_low * std::pow(high / e.pool_low, u(rng));
   double value = 0;
   if (std::string(e.name) == "encoder-dropout") {
     value = (e.pool_low + (e.pool_high - e.pool_low) * u(rng)) * duration;
