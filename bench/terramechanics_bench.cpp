@@ -13,6 +13,7 @@
 #include "core/terramechanics/traction_surface.h"
 #include "importers/soil_file.h"
 #include "importers/wheel_test_csv.h"
+#include "tests/support/resampled_wheel_test.h"
 
 namespace {
 
@@ -80,23 +81,10 @@ void BM_PolynomialSurfaceEvaluation(benchmark::State& state) {
 }
 BENCHMARK(BM_PolynomialSurfaceEvaluation)->Unit(benchmark::kNanosecond);
 
-// The bundled Ding 2011 rows repeated to `rows`, at loads 60..100 N and with
-// 3 % noise on every measurement: a long testbed file.
+// The bundled Ding 2011 rows repeated to `rows` (loads 60..100 N, 3 % noise).
 std::vector<WheelTestPoint> testbed_rows(std::size_t rows) {
-  const auto ding = roverlab::io::read_wheel_test_csv(ROVERLAB_SOURCE_DIR "/tests/data/single_wheel/ding2011_tyii.csv");
-  std::mt19937 random(1);
-  std::uniform_real_distribution<double> load(60.0, 100.0);
-  std::normal_distribution<double> noise(1.0, 0.03);
-  std::vector<WheelTestPoint> out;
-  for (std::size_t i = 0; i < rows; ++i) {
-    WheelTestPoint p = ding[i % ding.size()];
-    p.load = load(random);
-    for (auto* m : {&p.drawbar_pull, &p.torque, &p.sinkage}) {
-      if (*m) **m *= noise(random);
-    }
-    out.push_back(p);
-  }
-  return out;
+  return roverlab::test::resampled_wheel_test(
+      roverlab::io::read_wheel_test_csv(ROVERLAB_SOURCE_DIR "/tests/data/single_wheel/ding2011_tyii.csv"), rows);
 }
 
 void BM_SingleWheelStudy(benchmark::State& state) {

@@ -11,6 +11,7 @@
 #include "core/analysis/odometry_discrepancy.h"
 #include "core/common/error.h"
 #include "core/simulation/skid_steer_scenario.h"
+#include "tests/support/calibration_seeds.h"
 
 using namespace roverlab;
 
@@ -141,20 +142,11 @@ TEST(OdometryDiscrepancy, ForwardSelectionKeepsTurningTrackAndPerSideScaleOnLoop
   }
 }
 
-namespace {
-
-unsigned calibration_seeds(unsigned ci) {
-  const char* n = std::getenv("ROVERLAB_CALIBRATION_SEEDS");
-  return n != nullptr ? static_cast<unsigned>(std::strtoul(n, nullptr, 10)) : ci;
-}
-
-}  // namespace
-
 // Issue 29: how often the study names a cause on drives without one (target
 // at most 5 %), and how often its +-1 / +-2 sigma intervals cover a hidden
 // value (targets 60-75 % and 90-98 %), on seeds the other tests do not use.
 TEST(OdometryCalibration, FalseClaimsAreRareAndIntervalsCoverTheHiddenValue) {
-  const unsigned n = calibration_seeds(12);
+  const unsigned n = test::calibration_seeds(12);
   unsigned claims = 0, bic_alone = 0;
   for (unsigned seed = 300; seed < 300 + n; ++seed) {
     const auto r = study("", 0.0, seed);
@@ -168,7 +160,6 @@ TEST(OdometryCalibration, FalseClaimsAreRareAndIntervalsCoverTheHiddenValue) {
     const char* candidate;
     const char* parameter;
     double lo, hi;
-    double truth(double v) const { return v; }
   };
   const Hidden kinds[] = {{"radius-scale", "radius scale", "radius_scale", 1.02, 1.08},
                           {"turning-track-factor", "turning track", "track_factor", 1.3, 2.2},

@@ -13,6 +13,8 @@
 #include "core/common/error.h"
 #include "importers/wheel_test_csv.h"
 #include "terramechanics_soils.h"
+#include "tests/support/calibration_seeds.h"
+#include "tests/support/resampled_wheel_test.h"
 
 using namespace roverlab;
 using namespace roverlab::terramechanics;
@@ -250,23 +252,10 @@ TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
 
 namespace {
 
-// The bundled Ding 2011 rows repeated to `rows` at loads 60..100 N, with 3 %
-// noise on every measurement (issue 29's 5,000-row example).
+// The bundled Ding 2011 rows repeated to `rows` (issue 29's 5,000-row example).
 std::vector<WheelTestPoint> ding_resampled(std::size_t rows) {
-  const auto ding = io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
-  std::mt19937 random(1);
-  std::uniform_real_distribution<double> load(60.0, 100.0);
-  std::normal_distribution<double> noise(1.0, 0.03);
-  std::vector<WheelTestPoint> out;
-  for (std::size_t i = 0; i < rows; ++i) {
-    WheelTestPoint p = ding[i % ding.size()];
-    p.load = load(random);
-    for (auto* m : {&p.drawbar_pull, &p.torque, &p.sinkage}) {
-      if (*m) **m *= noise(random);
-    }
-    out.push_back(p);
-  }
-  return out;
+  return test::resampled_wheel_test(
+      io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv"), rows);
 }
 
 bool named_in_chain(const analysis::DiscrepancyReport& r, const std::string& name) {
@@ -311,21 +300,10 @@ TEST(RealDingData, TheVerdictPerQuantityAgreesWithItsTrendStatistics) {
   EXPECT_NE(r.verdict.find("sinkage: significant"), std::string::npos) << r.verdict;
 }
 
-namespace {
-
-// Seeds for the calibration tests: ROVERLAB_CALIBRATION_SEEDS (the full
-// study in docs/validation/discrepancy.md uses 100) or `ci` of them.
-unsigned calibration_seeds(unsigned ci) {
-  const char* n = std::getenv("ROVERLAB_CALIBRATION_SEEDS");
-  return n != nullptr ? static_cast<unsigned>(std::strtoul(n, nullptr, 10)) : ci;
-}
-
-}  // namespace
-
 // Issue 29: how often the study claims a cause on data without one, at its
 // threshold (target at most 5 %), on seeds the other tests do not use.
 TEST(Calibration, FalseClaimsOnDataWithoutAnEffectAreRare) {
-  const unsigned n = calibration_seeds(20);
+  const unsigned n = test::calibration_seeds(20);
   unsigned claims = 0, bic_alone = 0;
   for (unsigned seed = 1000; seed < 1000 + n; ++seed) {
     const auto points = testbed(pick_effect(seed, true), seed, analysis::DiscrepancyOptions{}.sigma);
@@ -343,7 +321,7 @@ TEST(Calibration, FalseClaimsOnDataWithoutAnEffectAreRare) {
 // cover the hidden value about as often as they say (targets 60-75 % and
 // 90-98 %; with 40 runs the test allows the binomial spread).
 TEST(Calibration, TheParametersIntervalsCoverTheHiddenValue) {
-  const unsigned n = calibration_seeds(40);
+  const unsigned n = test::calibration_seeds(40);
   unsigned within1 = 0, within2 = 0, count = 0;
   for (unsigned seed = 2000; seed < 2000 + n; ++seed) {
     const Hidden h = pick_effect(seed, false);
