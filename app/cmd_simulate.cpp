@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "app/command.h"
 #include "app/command_support.h"
@@ -76,8 +77,42 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
   return kSuccess;
 }
 
+struct EffectsOptions {
+  bool json = false;
+};
+
+// The effect table (core/simulation/effects.h), for people and for scripts
+// (scripts/discrepancy-suite reads the names from `effects --json`).
+int run_effects(const EffectsOptions& o) {
+  if (o.json) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const auto& e : simulation::effect_table()) {
+      a.push_back({{"name", e.name},
+                   {"unit", e.unit},
+                   {"what", e.what},
+                   {"lower", e.lower},
+                   {"upper", e.upper},
+                   {"physical", e.physical},
+                   {"pooled", e.pool_high > 0}});
+    }
+    std::printf("%s\n", a.dump(1).c_str());
+    return kSuccess;
+  }
+  std::printf("%-20s %-6s %-9s %-22s %s\n", "effect", "unit", "kind", "range", "what");
+  for (const auto& e : simulation::effect_table()) {
+    char range[48];
+    std::snprintf(range, sizeof range, "%g..%g", e.lower, e.upper);
+    std::printf("%-20s %-6s %-9s %-22s %s%s\n", e.name, e.unit, e.physical ? "physical" : "sensor", range, e.what,
+                e.pool_high > 0 ? "" : " (not drawn by --effect random)");
+  }
+  return kSuccess;
+}
+
 Commands make_simulate_commands() {
   Commands commands;
+  commands.push_back(make_command<EffectsOptions>(
+      "effects", "The effects `simulate --effect` can hide in a run: name, unit, range, physical or sensor",
+      [](CLI::App& cmd, EffectsOptions& o) { cmd.add_flag("--json", o.json, "Print JSON"); }, run_effects));
   commands.push_back(make_command<SimulateOptions>(
       "simulate",
       "Planar rocker-bogie dynamics with terramechanics (seed 003 chapter 4): a scenario to a log with truth",
