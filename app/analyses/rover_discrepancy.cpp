@@ -311,8 +311,9 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
   for (const auto& c : j.at("candidates")) {
     s.html << "<tr" << (c.at("significant").get<bool>() ? " style=\"font-weight:bold\"" : "")
            << "><td style=\"text-align:left\">" << ReportSection::escape(c.at("name").get<std::string>())
-           << "</td><td style=\"text-align:left\">" << ReportSection::escape(parameters_text(c.at("parameters"), c.at("screened").get<bool>()))
-           << "</td><td>" << roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()) << "</td><td>"
+           << "</td><td style=\"text-align:left\">"
+           << ReportSection::escape(parameters_text(c.at("parameters"), c.at("screened").get<bool>())) << "</td><td>"
+           << roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()) << "</td><td>"
            << n(c.at("held_out"), "%.3g") << "</td></tr>\n";
   }
   s.html << "</table>\n<ul>\n";
