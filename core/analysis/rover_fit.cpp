@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 
+#include "core/common/error.h"
+
 namespace roverlab::analysis::rover {
 
 namespace {
@@ -248,7 +250,7 @@ Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const s
 // sigmas (the parameter's own step where that is not finite), shrunk where
 // they leave the quadratic region, one-sided at a bound. A direction in which -2 ln L does not curve up is not
 // determined: NaN. Costs 2m + 2m(m-1) evaluations.
-void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free, double f0) {
+void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free, double f0) {
   const std::size_t m = free.size();
   std::vector<double> h(m);
   for (std::size_t j = 0; j < m; ++j) {
@@ -265,12 +267,13 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
   };
   Eigen::MatrixXd H(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
   std::vector<double> plus(m), minus(m);
+  std::vector<char> two_sided(m, 0);
   for (std::size_t j = 0; j < m; ++j) {
     const FitParameter& q = p[free[j]];
-    const bool two_sided = q.value - std::abs(h[j]) >= q.spec.lower && q.value + std::abs(h[j]) <= q.spec.upper;
+    two_sided[j] = q.value - std::abs(h[j]) >= q.spec.lower && q.value + std::abs(h[j]) <= q.spec.upper;
     const auto jj = static_cast<Eigen::Index>(j);
     plus[j] = at(j, 1, m, 0);
-    if (two_sided) {
+    if (two_sided[j]) {
       minus[j] = at(j, -1, m, 0);
       // A step far outside the quadratic region (a rise of more than 50 where
       // one sigma is a rise of 1) is shrunk towards a rise of 9, up to 3 times.
@@ -288,7 +291,10 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
   }
   for (std::size_t j = 0; j < m; ++j) {
     for (std::size_t k = j + 1; k < m; ++k) {
-      const double v = (at(j, 1, k, 1) - at(j, 1, k, -1) - at(j, -1, k, 1) + at(j, -1, k, -1)) / (4 * h[j] * h[k]);
+      // Central where both can step both ways, else forward (h points into the bounds).
+      const double v = two_sided[j] && two_sided[k]
+                           ? (at(j, 1, k, 1) - at(j, 1, k, -1) - at(j, -1, k, 1) + at(j, -1, k, -1)) / (4 * h[j] * h[k])
+                           : (at(j, 1, k, 1) - plus[j] - plus[k] + f0) / (h[j] * h[k]);
       H(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) = v;
       H(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = v;
     }
@@ -301,6 +307,16 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
     const double span = p[free[j]].spec.upper - p[free[j]].spec.lower;
     const double v = curved ? cov(jj, jj) : NAN;
     p[free[j]].sigma = v > 0 && std::sqrt(v) < span ? std::sqrt(v) : NAN;
+  }
+}
+
+// The curvature's sigmas; a trial the simulator refuses (a step past an
+// effect's range) leaves them not determined rather than ending the study.
+void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free, double f0) {
+  try {
+    profile_sigmas(pr, p, free, f0);
+  } catch (const DataError&) {
+    for (std::size_t j : free) p[j].sigma = NAN;
   }
 }
 
