@@ -270,7 +270,7 @@ void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vect
   std::vector<char> two_sided(m, 0);
   for (std::size_t j = 0; j < m; ++j) {
     const FitParameter& q = p[free[j]];
-    two_sided[j] = q.value - std::abs(h[j]) >= q.spec.lower && q.value + std::abs(h[j]) <= q.spec.upper;
+    two_sided[j] = q.value - std::abs(h[j]) >= q.spec.lower && q.value + std::abs(h[j]) <= q.spec.upper ? 1 : 0;
     const auto jj = static_cast<Eigen::Index>(j);
     plus[j] = at(j, 1, m, 0);
     if (two_sided[j]) {
