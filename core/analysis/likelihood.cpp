@@ -101,29 +101,6 @@ LikelihoodProfile GroupedLikelihood::fit_weights(const std::vector<double>& r) c
   return p;
 }
 
-double GroupedLikelihood::minus_two_log_l_at(const LikelihoodProfile& held, const std::vector<double>& r) const {
-  if (r.size() != size_) throw std::invalid_argument("likelihood: residual count differs from the groups'");
-  double total = 0;
-  std::size_t begin = 0;
-  for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
-    const ResidualGroup& g = groups_[gi];
-    const double rho = held.groups[gi].rho;
-    double s = 0;
-    std::size_t n = 0;
-    for_each_usable(g, start_, begin, r.data(), 1, [&](double x, double prev) {
-      const double u = x - rho * prev;
-      s += u * u;
-      ++n;
-    });
-    if (n > 0) {
-      const double scale = std::max(std::sqrt(s / static_cast<double>(n)), g.floor);
-      total += static_cast<double>(n) * std::log(scale * scale);
-    }
-    begin += g.size;
-  }
-  return total;
-}
-
 void GroupedLikelihood::whiten(const LikelihoodProfile& at, const double* in, double* out, std::size_t stride) const {
   std::size_t begin = 0, j = 0;
   for (std::size_t gi = 0; gi < groups_.size(); ++gi) {

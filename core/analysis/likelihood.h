@@ -59,9 +59,6 @@ class GroupedLikelihood {
   // A fit whitened by the start's autocorrelation would be blind to what
   // makes the start autocorrelated: a level shift is differenced away.
   LikelihoodProfile fit_weights(const std::vector<double>& residuals) const;
-  // -2 ln L of residuals predicted by a linear model at a held profile:
-  // sum_g n_g ln(mean squared innovation), the scale re-estimated, rho held.
-  double minus_two_log_l_at(const LikelihoodProfile& held, const std::vector<double>& residuals) const;
 
   // Innovations divided by the profile's scales: e.g. residuals or a
   // Jacobian column (linear in its input); out has effective_count() entries.

@@ -85,14 +85,13 @@ GroupedLikelihood track_likelihood(std::size_t points) {
   return GroupedLikelihood({{"east", points, true, 1e-3, true, -0.9}, {"north", points, true, 1e-3, true, -0.9}});
 }
 
-// Interleaved (east, north) errors as east ones then north ones; `stride`
-// reads every stride-th value (a column of a row-major matrix).
-std::vector<double> by_axis(const double* r, std::size_t values, std::size_t stride = 1) {
+// Interleaved (east, north) errors as east ones then north ones.
+std::vector<double> by_axis(const double* r, std::size_t values) {
   std::vector<double> out(values);
   const std::size_t points = values / 2;
   for (std::size_t j = 0; j < points; ++j) {
-    out[j] = r[2 * j * stride];
-    out[points + j] = r[(2 * j + 1) * stride];
+    out[j] = r[2 * j];
+    out[points + j] = r[2 * j + 1];
   }
   return out;
 }
