@@ -28,6 +28,7 @@ OdometryTrack dead_reckon(const WheelSamples& w, const SkidSteerGeometry& g, con
   double e = east0, nn = north0, psi = heading0;
   const double r = g.wheel_radius * c.radius_scale;
   const double track = g.track * c.track_factor;
+  double v_prev = 0, yaw_prev = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double keep = c.slip.empty() ? 1.0 : 1.0 - c.slip[i];
     const double vl = r * c.left_scale * w.left_rate[i] * keep;
@@ -35,12 +36,19 @@ OdometryTrack dead_reckon(const WheelSamples& w, const SkidSteerGeometry& g, con
     const double v = 0.5 * (vl + vr);
     const double yaw_rate = (vl - vr) / track;  // left faster: turning right (clockwise)
     if (i > 0) {
+      // Trapezoid over [t_{i-1}, t_i]: the rates are centred on their
+      // samples, so the rate at t_i alone would run the track half a wheel
+      // sample early (50 ms at 10 Hz, which the odometry study then names
+      // as a time offset on drives without one).
       const double dt = w.time[i] - w.time[i - 1];
-      const double mid = psi + 0.5 * yaw_rate * dt;
-      e += v * std::sin(mid) * dt;
-      nn += v * std::cos(mid) * dt;
-      psi += yaw_rate * dt;
+      const double v_mid = 0.5 * (v + v_prev), yaw_mid = 0.5 * (yaw_rate + yaw_prev);
+      const double mid = psi + 0.5 * yaw_mid * dt;
+      e += v_mid * std::sin(mid) * dt;
+      nn += v_mid * std::cos(mid) * dt;
+      psi += yaw_mid * dt;
     }
+    v_prev = v;
+    yaw_prev = yaw_rate;
     tr.time.push_back(w.time[i] + c.time_offset);
     tr.east.push_back(e);
     tr.north.push_back(nn);
