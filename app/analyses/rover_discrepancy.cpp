@@ -264,8 +264,14 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "\n%s\n\n  %-22s %-44s %10s %9s\n", j.at("what_is_wrong").get<std::string>().c_str(), "candidate",
                "fitted", "delta BIC", "held-out");
   std::fprintf(out, "  %-22s %-44s %10s %9.3g\n", "(nominal)", "", "0", j.at("baseline").at("held_out").get<double>());
+  bool undetermined = false;
   for (const auto& c : j.at("candidates")) {
     std::string p = parameters_text(c.at("parameters"), c.at("screened").get<bool>());
+    // The column is narrow: "(not determined by the data)" as "(undetermined)", said below the table.
+    for (std::size_t at; p.size() > 44 && (at = p.find(" (not determined by the data)")) != std::string::npos;) {
+      p.replace(at, 29, " (undetermined)");
+      undetermined = true;
+    }
     if (p.size() > 44) p = p.substr(0, 43) + "~";
     std::fprintf(out, "  %-22s %-44s %10s %9.3g%s\n", c.at("name").get<std::string>().c_str(), p.c_str(),
                  roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()).c_str(),
@@ -273,6 +279,11 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
                  c.at("significant").get<bool>() ? ""
                  : c.at("screened").get<bool>()  ? "  (screened out)"
                                                  : "  (not significant)");
+  }
+  if (undetermined) {
+    std::fprintf(out,
+                 "  (undetermined: the likelihood is flat or not at a minimum along that parameter, so the data do "
+                 "not give it a +-1 sigma)\n");
   }
   std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
 }

@@ -94,6 +94,7 @@ struct RoverDiscrepancyReport {
   std::vector<RoverRedundancyCheck> checks;
   std::vector<RoverCandidateResult> candidates;  // each alone on the baseline
   std::vector<RoverSelectionStep> selection;     // the named causes, in order
+  std::vector<std::string> dropped;              // steps the later causes absorbed (backward check)
   int simulations = 0;
   std::string what_is_wrong, verdict;
   // For plots: the measured time of the velocimeter and forces streams and the

@@ -102,6 +102,33 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
   return round;
 }
 
+// The backward half of stepwise selection: a step whose effect, taken out of
+// the final chain (set back to neutral, nothing refitted), raises -2 ln L by
+// less than its BIC penalty plus min_delta_bic was absorbed by the steps
+// after it (e.g. a slip-sinkage refitted to 0.0004 beside grousers): it is
+// dropped and said so in the verdict. One simulation a step.
+void drop_absorbed_steps(Predictor& pr, const RoverStudyOptions& o, double ln_n, RoverDiscrepancyReport& r,
+                         std::vector<FitParameter>& chain, Score& current) {
+  if (r.selection.size() < 2) return;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < r.selection.size();) {
+    const std::size_t k = r.selection[i].parameters.size();
+    std::vector<FitParameter> without = chain;
+    without.erase(without.begin() + static_cast<std::ptrdiff_t>(at),
+                  without.begin() + static_cast<std::ptrdiff_t>(at + k));
+    const Score s = score(pr, effects_of(pr.scenario_effects(), without));
+    if (s.fit - current.fit - static_cast<double>(k) * ln_n > o.min_delta_bic || r.selection.size() < 2) {
+      at += k;
+      ++i;
+      continue;
+    }
+    r.dropped.push_back(r.selection[i].name);
+    r.selection.erase(r.selection.begin() + static_cast<std::ptrdiff_t>(i));
+    chain = std::move(without);
+    current = s;
+  }
+}
+
 }  // namespace
 
 // Forward selection (issue 13 item 4): each round tries every unused
@@ -148,7 +175,9 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
     r.selection.push_back(
         {candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic, current.held_out});
   }
-  if (r.selection.size() > 1) set_sigmas(pr, chain, current.fit);
+  const bool refitted = r.selection.size() > 1;
+  drop_absorbed_steps(pr, o, ln_n, r, chain, current);
+  if (refitted) set_sigmas(pr, chain, current.fit);
   // Every step's parameters as the final joint refit left them (not as its own round did).
   std::size_t at = 0;
   for (auto& step : r.selection) {
@@ -197,6 +226,7 @@ void write_verdict(RoverDiscrepancyReport& r) {
   std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% lower).", r.baseline_held_out,
                 r.final_held_out, 100 * (1 - r.final_held_out / r.baseline_held_out));
   v += buf;
+  for (const auto& d : r.dropped) v += " Dropped " + d + ": the causes named after it explain what it did.";
   // A cause that explains the log leaves noise: a residual of a few sigmas means the model is still wrong.
   if (r.final_held_out > 3) {
     std::snprintf(buf, sizeof buf,
