@@ -223,8 +223,9 @@ void write_verdict(RoverDiscrepancyReport& r) {
     }
     v += "; delta BIC " + format_delta_bic(s.delta_bic) + ")";
   }
-  std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% lower).", r.baseline_held_out,
-                r.final_held_out, 100 * (1 - r.final_held_out / r.baseline_held_out));
+  const double change = 100 * (1 - r.final_held_out / r.baseline_held_out);
+  std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% %s).", r.baseline_held_out,
+                r.final_held_out, std::abs(change), change >= 0 ? "lower" : "higher");
   v += buf;
   for (const auto& d : r.dropped) v += " Dropped " + d + ": the causes named after it explain what it did.";
   // A cause that explains the log leaves noise: a residual of a few sigmas means the model is still wrong.
