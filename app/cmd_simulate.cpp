@@ -74,6 +74,8 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
       pose.channel("x").values.back() - pose.channel("x").values.front(), r.max_constraint_error, wall);
   if (r.unsupported > 0)
     std::printf("note: %zu traction evaluations beyond what the soil carries (set to 0)\n", r.unsupported);
+  const std::string stuck = simulation::stuck_note(r.log, params.desired_speed, duration);
+  if (!stuck.empty()) std::printf("note: %s\n", stuck.c_str());
   return kSuccess;
 }
 

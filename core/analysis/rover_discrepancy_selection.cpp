@@ -197,6 +197,14 @@ void write_verdict(RoverDiscrepancyReport& r) {
   char buf[600];
   if (worst == nullptr || worst->rmse / worst->sigma < 1.5) {
     r.what_is_wrong = "The simulation agrees with every measured channel within its noise.";
+    // ... which its own checks may still contradict (a stuck rover's traction).
+    std::string failed;
+    for (const auto& c : r.checks) failed += c.consistent ? "" : (failed.empty() ? "" : "; ") + c.name;
+    if (!failed.empty())
+      r.what_is_wrong =
+          "The simulation agrees with every measured channel within its noise, but not every check "
+          "below holds: " +
+          failed + ".";
   } else {
     std::snprintf(
         buf, sizeof buf,

@@ -68,3 +68,32 @@ RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& g, cons
 }
 
 }  // namespace roverlab::simulation
+
+namespace roverlab::simulation {
+
+std::string stuck_note(const log::Log& simulated, double desired_speed, double duration) {
+  const log::Stream* pose = simulated.find_stream("truth/pose");
+  const log::Stream* wheels = simulated.find_stream("truth/wheels");
+  const double asked = desired_speed * duration;
+  if (pose == nullptr || pose->size() < 2 || !(asked > 0)) return {};
+  const auto& x = pose->channel("x").values;
+  const double driven = x.back() - x.front();
+  if (driven >= 0.25 * asked) return {};
+  double slip = 0;
+  std::size_t n = 0;
+  for (int k = 1; wheels != nullptr && k <= 3; ++k) {
+    const log::Channel* c = wheels->find_channel("slip_" + std::to_string(k));
+    if (c == nullptr) continue;
+    for (double v : c->values) {
+      if (std::isfinite(v)) slip += v, ++n;
+    }
+  }
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "the rover drove %.2f m of the %.2f m its %.3g m/s speed command asks for (mean wheel slip %.2f): "
+                "the soil does not carry it over this path, and the log describes a stuck rover",
+                driven, asked, desired_speed, n > 0 ? slip / static_cast<double>(n) : NAN);
+  return buf;
+}
+
+}  // namespace roverlab::simulation

@@ -102,6 +102,12 @@ struct RockerBogieResult {
   std::size_t unsupported = 0;      // traction evaluations where the soil could not carry the load
 };
 
+// Empty when the run drove at least a quarter of what its speed command asks
+// for; otherwise a sentence saying it did not, with the wheels' mean slip
+// (a scenario whose soil cannot carry the rover up its path is a stuck rover,
+// and every check and study of its log describes one).
+std::string stuck_note(const log::Log& simulated, double desired_speed, double duration);
+
 // Throws DataError when the rover cannot be placed on the path.
 RockerBogieResult simulate_rocker_bogie(const PlanarRockerBogieGeometry& geometry,
                                         const RockerBogieParameters& parameters, const RockerBogieRun& run);

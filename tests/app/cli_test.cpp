@@ -580,6 +580,12 @@ TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
   const std::string out = dir.file("rb.h5");
   const CommandResult r = run_roverlab("simulate flat_60s --duration 10 -o " + quote(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("stuck rover"), std::string::npos) << r.out;
+  // Issue 30: the rolling scenario's first slope stops Kapvik on TYII; the run says so.
+  const CommandResult stuck = run_roverlab("simulate rolling_200s --duration 30 -o " + quote(dir.file("roll.h5")));
+  ASSERT_EQ(stuck.exit_code, 0) << stuck.err;
+  EXPECT_NE(stuck.out.find("note: the rover drove"), std::string::npos) << stuck.out;
+  EXPECT_NE(stuck.out.find("stuck rover"), std::string::npos) << stuck.out;
   const log::Log lg = io::read_hdf5_log(out);
   const auto& pose = lg.stream("truth/pose");
   EXPECT_EQ(pose.size(), 501u);  // 50 Hz
