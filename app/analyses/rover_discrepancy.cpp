@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "app/analysis.h"
 #include "app/command_support.h"
@@ -106,7 +107,7 @@ class RoverDiscrepancyAnalysis : public Analysis {
     for (const char* s : {"joints", "imu", "velocimeter", "forces", "commands"}) {
       if (lg.find_stream(s) == nullptr) return std::string("no ") + s + " stream";
     }
-    if (scenario_.empty() && lg.metadata.extra.count("scenario") == 0) {
+    if (!scenario_ && lg.metadata.extra.count("scenario") == 0 && lg.metadata.extra.count("scenario_json") == 0) {
       return "the log names no scenario: give --scenario";
     }
     return "";
@@ -117,6 +118,9 @@ class RoverDiscrepancyAnalysis : public Analysis {
     cmd.add_option("--block", block_, "s, length of the alternating fit/test blocks")
         ->capture_default_str()
         ->check(finite_in(0.2, 1000.0));
+  }
+  void check_options() const override {
+    if (scenario_ && scenario_->empty()) throw UsageError("--scenario: the scenario's name is empty");
   }
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;
@@ -129,18 +133,14 @@ class RoverDiscrepancyAnalysis : public Analysis {
 
  private:
   static json document(const std::string& file, const analysis::RoverDiscrepancyReport& r);
-  std::string scenario_;
+  std::optional<std::string> scenario_;
   double block_ = 1.0;
 };
 
 AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
-  std::string scenario = scenario_;
-  if (scenario.empty()) {
-    const auto it = in.log.metadata.extra.find("scenario");
-    if (it == in.log.metadata.extra.end()) throw UsageError(in.file + ": the log names no scenario; give --scenario");
-    scenario = it->second;
-  }
-  const analysis::RoverScenarioModel model = load_rover_scenario(scenario);
+  // The scenario the user gives, else the one recorded in (or named by) the log: data, never a path.
+  const analysis::RoverScenarioModel model =
+      scenario_ ? load_rover_scenario(*scenario_) : load_logs_rover_scenario(in.log.metadata.extra, in.file);
   analysis::RoverStudyOptions options;
   options.block = block_;
   options.progress = in.progress;
