@@ -1,8 +1,10 @@
 #include "importers/campaign_file.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 
 #include "core/common/error.h"
 #include "importers/json_resource.h"
@@ -26,6 +28,18 @@ bool names_a_file(const std::string& s) {
   return s.find('/') != std::string::npos || (s.size() > 5 && s.compare(s.size() - 5, 5, ".json") == 0);
 }
 
+// A field the reader does not know is a misspelling ("seed" for "seeds"), never ignored.
+void require_known_fields(const JsonNode& node, std::initializer_list<const char*> known) {
+  for (const auto& item : node.value().items()) {
+    if (std::any_of(known.begin(), known.end(), [&](const char* k) { return item.key() == k; })) continue;
+    std::string list;
+    for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+    std::string key;  // as a message shows it: no control characters, at most 40 of them
+    for (const char c : item.key().substr(0, 40)) key += std::isprint(static_cast<unsigned char>(c)) != 0 ? c : '?';
+    node.fail(key, "unknown field (" + list + ")");
+  }
+}
+
 unsigned seed_of(const JsonNode& node) {
   const double v = as_number(node);
   if (!(v >= 0 && v <= kMaxSeed) || std::floor(v) != v) node.fail("a seed is a whole number in 0..2147483647");
@@ -40,6 +54,7 @@ std::vector<unsigned> read_seeds(const JsonNode& entry) {
     for (const auto& s : required_array(entry, "seeds")) out.push_back(seed_of(s));
     if (out.empty()) seeds.fail("lists no seed");
   } else if (seeds.value().is_object()) {
+    require_known_fields(seeds, {"first", "count"});
     const double first = required_number_in(seeds, "first", 0, kMaxSeed);
     const double count = required_number_in(seeds, "count", 1, static_cast<double>(kMaxRuns));
     if (std::floor(first) != first) seeds.fail("first", "must be a whole number");
@@ -67,6 +82,7 @@ std::vector<std::map<std::string, double>> read_effects(const JsonNode& entry) {
 
 CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
   if (!entry.value().is_object()) entry.fail("expected an object with \"file\" or \"folder\"");
+  require_known_fields(entry, {"file", "folder", "mapping"});
   CampaignLogs logs;
   logs.where = entry.where();
   const bool file = entry.has("file"), folder = entry.has("folder");
@@ -74,9 +90,16 @@ CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
   std::error_code ec;
   if (file) {
     logs.file = absolute_from(base, required_string(entry, "file"));
+    if (fs::is_directory(logs.file, ec)) entry.fail("file", logs.file + " is a folder: give it as \"folder\"");
+    if (fs::exists(logs.file, ec) && !fs::is_regular_file(logs.file, ec)) {
+      entry.fail("file", logs.file + " is not a regular file (a device, pipe or socket)");
+    }
     if (!fs::is_regular_file(logs.file, ec)) entry.fail("file", "no such file: " + logs.file);
   } else {
     logs.folder = absolute_from(base, required_string(entry, "folder"));
+    if (fs::exists(logs.folder, ec) && !fs::is_directory(logs.folder, ec)) {
+      entry.fail("folder", logs.folder + " is not a folder: give a file as \"file\"");
+    }
     if (!fs::is_directory(logs.folder, ec)) entry.fail("folder", "no such folder: " + logs.folder);
   }
   if (entry.has("mapping")) {
@@ -90,6 +113,7 @@ CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
 
 CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base) {
   if (!entry.value().is_object()) entry.fail("expected an object with \"scenario\" or \"simulate\"");
+  require_known_fields(entry, {"scenario", "simulate", "seeds", "effects", "rate", "duration"});
   CampaignSimulations s;
   s.where = entry.where();
   const bool scenario = entry.has("scenario"), simulate = entry.has("simulate");
