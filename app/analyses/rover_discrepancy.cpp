@@ -137,10 +137,28 @@ class RoverDiscrepancyAnalysis : public Analysis {
   double block_ = 1.0;
 };
 
+// A scenario on another path (flat, rolling, slope, bump) than the one the
+// log records cannot be this run's model: refused before minutes of fitting.
+void refuse_another_path(const AnalysisInput& in, const analysis::RoverScenarioModel& model) {
+  const auto& meta = in.log.metadata.extra;
+  if (meta.count("scenario_json") == 0 && meta.count("scenario") == 0) return;
+  analysis::RoverScenarioModel recorded;
+  try {
+    recorded = load_logs_rover_scenario(meta, in.file);
+  } catch (const std::exception&) {
+    return;  // the log's own record is not usable; the scenario given is the model
+  }
+  if (recorded.run.path.name == model.run.path.name) return;
+  throw InputError(in.file, "the log was simulated on the " + recorded.run.path.name + " path (scenario " +
+                                recorded.name + "); scenario " + model.name + " drives the " + model.run.path.name +
+                                " path and cannot be this run's model");
+}
+
 AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
   // The scenario the user gives, else the one recorded in (or named by) the log: data, never a path.
   const analysis::RoverScenarioModel model =
       scenario_ ? load_rover_scenario(*scenario_) : load_logs_rover_scenario(in.log.metadata.extra, in.file);
+  if (scenario_) refuse_another_path(in, model);
   analysis::RoverStudyOptions options;
   options.block = block_;
   options.progress = in.progress;
