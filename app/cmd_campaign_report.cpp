@@ -388,12 +388,20 @@ void check_campaign_report_folder(const std::string& output) {
   std::error_code ec;
   if (!fs::exists(dir, ec)) return;
   if (!fs::is_directory(dir, ec)) throw InputError(output, "exists and is not a folder");
-  if (fs::is_empty(dir, ec)) return;
+  // Only a campaign report's own files may be there (Snakemake removes the
+  // index, the CSV and the JSON before it writes them again; the histograms stay).
+  bool ours = true;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool histogram = name.rfind("hist_", 0) == 0 && entry.path().extension() == ".svg";
+    ours = ours && entry.is_regular_file() &&
+           (name == "index.html" || name == "campaign.csv" || name == "campaign.json" || histogram);
+  }
   std::ifstream index(dir / "index.html");
   const std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
-  if (text.find("<h1>RoverLab campaign report</h1>") != std::string::npos) return;
+  if (ours && (!index.is_open() || text.find("<h1>RoverLab campaign report</h1>") != std::string::npos)) return;
   throw UsageError("--output " + output +
-                   ": the folder holds other files and no RoverLab campaign report; choose a new or empty folder");
+                   ": the folder holds other files than a RoverLab campaign report; choose a new or empty folder");
 }
 
 int run_campaign_report(const CampaignReportOptions& o) {

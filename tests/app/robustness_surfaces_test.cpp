@@ -385,10 +385,10 @@ TEST(NewSurfaces, ACampaignReportNeverOverwritesWhatItDidNotWrite) {
   fs::create_directories(mine);
   test::write_text(mine + "/index.html", "<html>mine</html>");
   expect_one_line(run_roverlab("campaign report " + quote(run) + " -o " + quote(mine)), 2, mine,
-                  "no RoverLab campaign report");
+                  "other files than a RoverLab campaign report");
   EXPECT_EQ(test::read_text(mine + "/index.html"), "<html>mine</html>");
   expect_one_line(run_roverlab("campaign report " + quote(run) + " -o " + quote(run + "/report")), 2, "report",
-                  "no RoverLab campaign report");
+                  "other files than a RoverLab campaign report");
   // Over its own previous report it goes.
   const std::string out = dir.file("out");
   ASSERT_EQ(run_roverlab("campaign report " + quote(run) + " -o " + quote(out)).exit_code, 0);
