@@ -75,8 +75,9 @@ std::string printable(const std::string& text, std::size_t max) {
 
 void require_log_output(const std::string& output, const std::string& option) {
   const std::filesystem::path path(output);
-  const std::string ext = path.extension().string(), stem = path.stem().string();
-  if ((ext != ".h5" && ext != ".hdf5") || stem.empty()) {
+  const std::string ext = path.extension().string(), name = path.filename().string();
+  if (name == ".h5" || name == ".hdf5") return;  // the writer says: "no name before its extension"
+  if (ext != ".h5" && ext != ".hdf5") {
     throw UsageError(option + " " + output + ": a log is written as OUT.h5 or OUT.hdf5 (RoverLab HDF5)");
   }
 }
