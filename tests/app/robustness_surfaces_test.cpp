@@ -6,6 +6,7 @@
 #include <hdf5.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -657,6 +658,32 @@ TEST(NewSurfaces, AReportReplacesTheReportBeforeIt) {
   EXPECT_FALSE(fs::exists(out + "/surface_torque.csv"));
   EXPECT_TRUE(fs::exists(out + "/contact_angles.png"));
   EXPECT_TRUE(fs::exists(out + "/notes.txt")) << "only what the old report wrote is removed";
+}
+
+// N7: a campaign killed by SIGKILL left Snakemake running, holding the
+// folder's lock (the rerun failed with "Directory cannot be locked").
+TEST(NewSurfaces, SnakemakeDiesWithTheCampaign) {
+  if (test::run_command("command -v snakemake").exit_code != 0) GTEST_SKIP() << "no snakemake";
+  TempDir dir;
+  test::write_text(dir.file("c.json"), R"({"format": "roverlab-campaign", "version": 1,
+      "simulations": [{"simulate": "flat_60s", "seeds": [1, 2, 3, 4], "duration": 30}]})");
+  const std::string out = dir.file("out");
+  // RoverLab killed 3 s in (Snakemake is running its first steps), then 12 s for its child to go;
+  // an orphan is a snakemake of this folder whose parent is now init.
+  test::write_text(dir.file("kill.sh"), "cd " + quote(dir.path().string()) + "\nenv -u DISPLAY " + quote(kExe) +
+                                            " campaign c.json -o " + quote(out) +
+                                            " > log.txt 2>&1 &\npid=$!\nsleep 3\nkill -KILL $pid\nwait $pid\n"
+                                            "sleep 12\nps -eo pid=,ppid=,args= | awk -v d=" +
+                                            quote("--directory " + out + " ") +
+                                            " 'index($0, d) && $2 == 1 {print $1}'\n");
+  const CommandResult killed = test::run_command("sh " + quote(dir.file("kill.sh")));
+  EXPECT_TRUE(contains(test::read_text(dir.file("log.txt")), "campaign: 4 runs"))
+      << test::read_text(dir.file("log.txt"));
+  std::string left = killed.out;
+  std::replace(left.begin(), left.end(), '\n', ' ');
+  while (!left.empty() && left.back() == ' ') left.pop_back();
+  if (!left.empty()) test::run_command("kill -KILL " + left + " 2>/dev/null");  // the orphans' ids, not by name
+  EXPECT_TRUE(left.empty()) << "snakemake still running: " << left;
 }
 
 }  // namespace
