@@ -42,6 +42,9 @@ class ReportSection {
   explicit ReportSection(std::filesystem::path folder) : folder_(std::move(folder)) {}
   std::ostringstream html;
   void write_csv(const std::string& name, const std::string& text) const;  // atomically, into the folder
+  // The files written into the folder so far (write_csv's and those noted by wrote()).
+  void wrote(const std::string& name) const { written_.push_back(name); }
+  const std::vector<std::string>& written() const { return written_; }
   static std::string escape(const std::string& text);
   // printf-formatted number; an en dash for NaN, infinity and JSON null.
   static std::string number(double value, const char* format = "%.3g");
@@ -49,6 +52,7 @@ class ReportSection {
 
  private:
   std::filesystem::path folder_;
+  mutable std::vector<std::string> written_;
 };
 
 // A column of the campaign table (`roverlab campaign report`): a number

@@ -35,7 +35,10 @@ class AnalysisCommand : public Command {
 
   int run() override {
     analysis_->check_options();
-    if (output_) refuse_overwriting_input(file_, *output_, "--output");
+    if (output_) {
+      require_log_output(*output_, "--output");
+      refuse_overwriting_input(file_, *output_, "--output");
+    }
     const log::Log lg = load_input(file_, mapping_).log;
     AnalysisResult r;
     {

@@ -4,6 +4,7 @@
 // writes the runs it stands for to DIR/items.json and runs snakemake there;
 // snakemake decides what is missing or out of date, so a second run does
 // nothing and an interrupted one resumes. docs/campaigns.md.
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,15 +50,18 @@ struct CampaignOptions {
   std::string output;
   int cores = 0;  // 0: the machine's
   bool dry_run = false;
+  bool unlock = false;
   std::optional<std::string> profile;
 };
 
-// Letters, digits and . _ + - only: an item's name is a folder and a Snakemake wildcard.
+// Letters, digits and . _ + - only, never starting with '.': an item's name
+// is a folder (runs/NAME; "." and ".." would be the folder's parent) and a
+// Snakemake wildcard.
 std::string safe_name(const std::string& text) {
   std::string out;
   for (const char c : text) {
     const bool keep = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '_' || c == '+' || c == '-';
-    out += keep ? c : '_';
+    out += keep && !(c == '.' && out.empty()) ? c : '_';
   }
   return out.empty() ? "run" : out;
 }
@@ -94,6 +98,10 @@ class ItemList {
       }
     }
     for (const auto& f : files) {
+      // Snakemake reads braces in a path as a pattern ({item}): refused before it starts.
+      if (f.string().find_first_of("{}") != std::string::npos) {
+        throw InputError(f.string(), "a log path with braces ({ or }) cannot run in a campaign; rename the file");
+      }
       json args = {"convert", f.string(), "{output}"};
       json inputs = {f.string()};
       if (mapping) {
@@ -117,6 +125,10 @@ class ItemList {
       scenario_file = about_field(e.where + ".simulate",
                                   [&] { return io::find_scenario(e.scenario, resource_subfolders("scenarios")).file; });
       label = fs::path(e.scenario).stem().string();
+      if (scenario_file.find_first_of("{}") != std::string::npos) {
+        throw InputError(scenario_file,
+                         "a scenario path with braces ({ or }) cannot run in a campaign; rename the file");
+      }
     }
     for (std::size_t k = 0; k < e.effects.size(); ++k) check_effects(e, k);
     for (const unsigned seed : e.seeds) {
@@ -275,7 +287,11 @@ class SnakemakeOutput {
   SnakemakeOutput(const SnakemakeOutput&) = delete;
   SnakemakeOutput& operator=(const SnakemakeOutput&) = delete;
 
+  // Snakemake said another run holds the folder's lock.
+  bool locked() const { return locked_; }
+
   void line(const std::string& text) {
+    if (text.find("Directory cannot be locked") != std::string::npos) locked_ = true;
     if (everything_) {
       std::fprintf(stderr, "%s\n", text.c_str());
       return;
@@ -317,10 +333,12 @@ class SnakemakeOutput {
   }
 
   bool everything_, terminal_;
-  bool in_error_ = false, in_block_ = false, progress_shown_ = false;
+  bool in_error_ = false, in_block_ = false, progress_shown_ = false, locked_ = false;
 };
 
-int run_snakemake(const std::vector<std::string>& argv, bool everything) {
+// Runs snakemake with `argv`, its output shortened; its exit status. `locked`
+// is set when it refused because the folder is locked.
+int run_snakemake(const std::vector<std::string>& argv, bool everything, bool* locked) {
   std::vector<char*> args;
   args.reserve(argv.size() + 1);
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));  // NOLINT: execv takes char* const*
@@ -328,9 +346,13 @@ int run_snakemake(const std::vector<std::string>& argv, bool everything) {
   int fds[2];
   if (pipe(fds) != 0) throw std::runtime_error("cannot start snakemake (pipe failed)");
   std::fflush(nullptr);
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("cannot start snakemake (fork failed)");
   if (pid == 0) {
+    // Snakemake dies with RoverLab (killed, even by SIGKILL): an orphan would hold the folder's lock for good.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(1);
     close(fds[0]);
     dup2(fds[1], STDOUT_FILENO);
     dup2(fds[1], STDERR_FILENO);
@@ -361,6 +383,7 @@ int run_snakemake(const std::vector<std::string>& argv, bool everything) {
       }
     }
     if (!pending.empty()) out.line(pending);
+    if (locked != nullptr) *locked = out.locked();
   }
   close(fds[0]);
   int status = 0;
@@ -385,7 +408,9 @@ int run_campaign(const CampaignOptions& o) {
   }
   const fs::path workflows = find_workflows();
   fs::create_directories(o.output, ec);
-  if (ec || !fs::is_directory(o.output)) throw InputError(o.output, "cannot create the campaign folder");
+  if (ec || !fs::is_directory(o.output)) {
+    throw InputError(o.output, "cannot create the campaign folder" + (ec ? ": " + ec.message() : std::string()));
+  }
   const json config = {{"format", "roverlab-campaign-items"},
                        {"campaign", fs::absolute(o.input).lexically_normal().string()},
                        {"roverlab", own_executable().string()},
@@ -400,15 +425,38 @@ int run_campaign(const CampaignOptions& o) {
                                    "--rerun-incomplete", "--keep-going"};
   if (o.profile) {
     const fs::path named = workflows / "profiles" / *o.profile;
+    if (!fs::is_directory(named, ec) && !fs::is_directory(*o.profile, ec)) {
+      std::string known;
+      for (const auto& entry : fs::directory_iterator(workflows / "profiles", ec)) {
+        if (entry.is_directory()) known += (known.empty() ? "" : ", ") + entry.path().filename().string();
+      }
+      throw UsageError("--profile " + *o.profile + ": no such profile (known: " + known +
+                       "; or a folder holding config.yaml)");
+    }
     argv.insert(argv.end(), {"--profile", fs::is_directory(named, ec) ? named.string() : *o.profile});
   }
   if (o.dry_run) argv.emplace_back("--dry-run");
   // One private Xvfb (when DISPLAY is unset) for every report the steps
   // render, not one each; cluster jobs start their own on their node.
+  if (o.unlock) {
+    argv.emplace_back("--unlock");
+    const int status = run_snakemake(argv, true, nullptr);
+    if (status != 0) return kInternalFailure;
+    std::printf("campaign: %s unlocked\n", o.output.c_str());
+    return kSuccess;
+  }
   if (!o.profile && !o.dry_run) views::ensure_display();
   std::printf("campaign: %zu runs in %s, %d cores%s\n", items.size(), o.output.c_str(), cores,
               o.dry_run ? " (dry run: what would run)" : "");
-  const int status = run_snakemake(argv, o.dry_run);
+  bool locked = false;
+  const int status = run_snakemake(argv, o.dry_run, &locked);
+  if (status != 0 && locked) {
+    std::fprintf(stderr,
+                 "roverlab: %s is locked by another campaign run, or by one killed before it could unlock it; if "
+                 "none is running, run `roverlab campaign %s -o %s --unlock`, then again without --unlock\n",
+                 o.output.c_str(), o.input.c_str(), o.output.c_str());
+    return kInternalFailure;
+  }
   if (status != 0) {
     std::fprintf(stderr,
                  "roverlab: the campaign stopped (snakemake exit %d): see the failed steps above and their logs in "
@@ -435,6 +483,8 @@ Commands make_campaign_commands() {
         cmd.add_option("--cores,-j", o.cores, "Steps at once (default: the machine's cores)")
             ->check(CLI::Range(1, 1024));
         cmd.add_flag("--dry-run,-n", o.dry_run, "List what would run, run nothing");
+        cmd.add_flag("--unlock", o.unlock,
+                     "Remove the lock a killed campaign run left on the folder (run nothing); then run again");
         cmd.add_option("--profile", o.profile,
                        "Snakemake profile: slurm (workflows/profiles/slurm) or a profile folder");
       },

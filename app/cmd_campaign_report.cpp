@@ -7,9 +7,11 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -117,44 +119,77 @@ std::string csv_cell(const json& v) {
   if (v.is_null()) return "";
   if (v.is_number()) return ReportSection::number(v.get<double>(), "%.10g");
   std::string s = v.is_string() ? v.get<std::string>() : v.dump();
+  // A text cell a spreadsheet would run as a formula is kept as text.
+  if (!s.empty() && std::string("=+-@\t\r").find(s.front()) != std::string::npos) s.insert(0, "'");
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string q = "\"";
   for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
 }
 
+// The field `key` of a run document, checked to be of the type the report
+// reads it as (`fallback` when absent); a wrong type names the file and field.
+json run_field(const json& doc, const fs::path& file, const char* key, const json& fallback,
+               bool (*is_type)(const json&), const char* type) {
+  if (!doc.contains(key) || (doc.at(key).is_null() && fallback.is_null())) return fallback;
+  const json& v = doc.at(key);
+  if (!is_type(v)) throw InputError(file.string(), std::string("field '") + key + "' must be " + type);
+  return v;
+}
+
+bool is_text(const json& v) { return v.is_string(); }
+bool is_object(const json& v) { return v.is_object(); }
+// A seed as campaigns write it: a whole number from 0 to 2^53.
+bool is_seed(const json& v) {
+  if (v.is_number_unsigned()) return v.get<std::uint64_t>() <= (std::uint64_t{1} << 53U);
+  if (v.is_number_integer()) return v.get<std::int64_t>() >= 0;
+  return false;
+}
+bool is_effects(const json& v) {
+  if (!v.is_object()) return false;
+  return std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number() && std::isfinite(e.get<double>()); });
+}
+
 // One run: its provenance and key metrics.
 json read_run(const fs::path& dir, const fs::path& out) {
-  const json run = read_json(dir / "run.json");
-  if (run.value("format", "") != "roverlab-campaign-run") {
-    throw InputError((dir / "run.json").string(),
-                     "not a RoverLab campaign run ('format' must be roverlab-campaign-run)");
+  const fs::path run_file = dir / "run.json", metrics_file = dir / "report" / "metrics.json";
+  const json run = read_json(run_file);
+  if (!run.is_object() || run.value("format", json()) != "roverlab-campaign-run") {
+    throw InputError(run_file.string(), "not a RoverLab campaign run ('format' must be roverlab-campaign-run)");
   }
-  const json metrics = read_json(dir / "report" / "metrics.json");
-  const json analyses = metrics.value("analyses", json::object());
-  json row = {{"name", run.value("name", dir.filename().string())},
-              {"kind", run.value("kind", "")},
-              {"scenario", run.value("scenario", json(nullptr))},
-              {"seed", run.value("seed", json(nullptr))},
-              {"effects", run.value("effects", json::object())},
-              {"roverlab_version", run.value("roverlab_version", "")},
-              {"analyses", json::array()},
-              {"report", fs::proximate(dir / "report" / "index.html", out).generic_string()},
-              {"metrics", json::object()}};
+  const json metrics = read_json(metrics_file);
+  if (!metrics.is_object()) throw InputError(metrics_file.string(), "not a RoverLab report's metrics (not an object)");
+  const json analyses = run_field(metrics, metrics_file, "analyses", json::object(), is_object, "an object");
+  for (const auto& [name, doc] : analyses.items()) {
+    if (!doc.is_object()) throw InputError(metrics_file.string(), "analysis '" + name + "' must be an object");
+  }
+  json row = {
+      {"name", run_field(run, run_file, "name", dir.filename().string(), is_text, "a string")},
+      {"kind", run_field(run, run_file, "kind", "", is_text, "a string")},
+      {"scenario", run_field(run, run_file, "scenario", nullptr, is_text, "a string")},
+      {"seed", run_field(run, run_file, "seed", nullptr, is_seed, "a whole number from 0 to 2^53")},
+      {"effects", run_field(run, run_file, "effects", json::object(), is_effects, "an object of finite numbers")},
+      {"roverlab_version", run_field(run, run_file, "roverlab_version", "", is_text, "a string")},
+      {"analyses", json::array()},
+      {"report", fs::proximate(dir / "report" / "index.html", out).generic_string()},
+      {"metrics", json::object()}};
   for (const auto& [name, doc] : analyses.items()) row["analyses"].push_back(name);
   for (const auto& m : key_columns()) row["metrics"][m.key] = metric_value(analyses, m);
   return row;
 }
 
 // A histogram of one metric over the runs, as an SVG file.
+// The values are finite; their range may not be (1.7e308 - -1.7e308), so
+// the bins are found from half the values.
 std::string histogram_svg(const std::string& title, const std::vector<double>& values) {
   const double lo = *std::min_element(values.begin(), values.end());
   const double hi = *std::max_element(values.begin(), values.end());
   constexpr int kBins = 12;
-  const double width = hi > lo ? (hi - lo) / kBins : 1.0;
+  const double half_range = 0.5 * hi - 0.5 * lo;
   std::vector<int> counts(kBins, 0);
   for (const double v : values) {
-    const int b = hi > lo ? std::min(kBins - 1, static_cast<int>((v - lo) / width)) : kBins / 2;
+    const double at = half_range > 0.0 ? (0.5 * v - 0.5 * lo) / half_range : 0.5;  // 0..1
+    const int b = std::clamp(static_cast<int>(std::clamp(at, 0.0, 1.0) * kBins), 0, kBins - 1);
     ++counts[static_cast<std::size_t>(b)];
   }
   const int most = *std::max_element(counts.begin(), counts.end());
@@ -261,7 +296,7 @@ class CampaignReportWriter {
       html_ << "<tr id=\"run-" << esc(name) << "\"><td class=\"t\"><a href=\"" << esc(r.at("report").get<std::string>())
             << "\">" << esc(name) << "</a></td><td class=\"t\">" << esc(r.at("kind").get<std::string>())
             << "</td><td class=\"t\">" << (r.at("scenario").is_string() ? esc(r.at("scenario").get<std::string>()) : "")
-            << "</td><td>" << (r.at("seed").is_number() ? std::to_string(r.at("seed").get<long>()) : "")
+            << "</td><td>" << (r.at("seed").is_number() ? std::to_string(r.at("seed").get<std::uint64_t>()) : "")
             << "</td><td class=\"t\">" << esc(effects_text(r.at("effects"))) << "</td>";
       for (const auto& m : key_columns()) html_ << cell(r.at("metrics").at(m.key));
       html_ << "</tr>\n";
@@ -345,12 +380,34 @@ class CampaignReportWriter {
   std::ostringstream html_;
 };
 
-int run_campaign_report(const CampaignReportOptions& o) {
-  if (o.output.empty()) throw UsageError("--output: the report folder's name is empty");
-  const fs::path out(o.output);
+// A campaign report goes into a new or empty folder, or over a previous
+// campaign report; never over the user's files or a run's own report.
+void check_campaign_report_folder(const std::string& output) {
+  if (output.empty()) throw UsageError("--output: the report folder's name is empty");
+  const fs::path dir(output);
   std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec || !fs::is_directory(out)) throw InputError(o.output, "cannot create the report folder");
+  if (!fs::exists(dir, ec)) return;
+  if (!fs::is_directory(dir, ec)) throw InputError(output, "exists and is not a folder");
+  // Only a campaign report's own files may be there (Snakemake removes the
+  // index, the CSV and the JSON before it writes them again; the histograms stay).
+  bool ours = true;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool histogram = name.rfind("hist_", 0) == 0 && entry.path().extension() == ".svg";
+    ours = ours && entry.is_regular_file() &&
+           (name == "index.html" || name == "campaign.csv" || name == "campaign.json" || histogram);
+  }
+  std::ifstream index(dir / "index.html");
+  const std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
+  if (ours && (!index.is_open() || text.find("<h1>RoverLab campaign report</h1>") != std::string::npos)) return;
+  throw UsageError("--output " + output +
+                   ": the folder holds other files than a RoverLab campaign report; choose a new or empty folder");
+}
+
+int run_campaign_report(const CampaignReportOptions& o) {
+  check_campaign_report_folder(o.output);
+  const fs::path out(o.output);
+  // Every run is read before the folder is made: a bad run leaves nothing behind.
   json runs = json::array();
   std::set<std::string> names;
   for (const auto& dir : o.runs) {
@@ -359,6 +416,11 @@ int run_campaign_report(const CampaignReportOptions& o) {
       throw UsageError("run " + row.at("name").get<std::string>() + " is given twice");
     }
     runs.push_back(std::move(row));
+  }
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out)) {
+    throw InputError(o.output, "cannot create the report folder" + (ec ? ": " + ec.message() : std::string()));
   }
   CampaignReportWriter(out, std::move(runs)).write();
   std::printf("wrote %s: %zu runs\n", (out / "index.html").c_str(), o.runs.size());

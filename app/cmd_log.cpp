@@ -104,11 +104,16 @@ int run_info(const InfoOptions& options) {
             << "format   " << loaded.format;
   if (meta.extra.count("mapping") != 0) std::cout << " (mapping " << meta.extra.at("mapping") << ")";
   std::cout << "\n";
-  if (!meta.rover_id.empty()) std::cout << "rover    " << meta.rover_id << "\n";
-  if (!meta.source_file.empty()) std::cout << "source   " << meta.source_file << "\n";
-  if (!meta.description.empty()) std::cout << "about    " << meta.description << "\n";
+  // Text from the file never reaches the terminal as control characters.
+  if (!meta.rover_id.empty()) std::cout << "rover    " << printable(meta.rover_id) << "\n";
+  if (!meta.source_file.empty()) std::cout << "source   " << printable(meta.source_file, 1000) << "\n";
+  if (!meta.description.empty()) std::cout << "about    " << printable(meta.description, 1000) << "\n";
   for (const auto& [key, value] : meta.extra) {
-    if (key != "mapping") std::cout << key << " = " << value << "\n";
+    if (key == "scenario_json") {
+      std::cout << key << " = (the scenario the log was simulated from, " << value.size() << " characters)\n";
+    } else if (key != "mapping") {
+      std::cout << printable(key) << " = " << printable(value, 1000) << "\n";
+    }
   }
   std::cout << "streams  " << lg.streams().size() << "\n";
   for (const auto& s : lg.streams()) {

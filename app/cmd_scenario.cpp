@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/command.h"
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
@@ -25,6 +26,7 @@ struct SkidSteerScenarioOptions {
 };
 
 int run_scenario_skid_steer(const SkidSteerScenarioOptions& o) {
+  require_log_output(o.output, "--output");
   simulation::SkidSteerScenario scenario =
       o.drive == "loops" ? simulation::loop_slip_scenario(o.seed) : simulation::default_slip_scenario(o.seed);
   apply_effect_options(o.effects,
@@ -45,6 +47,7 @@ struct FlyingRoverOptions {
 };
 
 int run_scenario_flying_rover(const FlyingRoverOptions& o) {
+  require_log_output(o.output, "--output");
   const io::RoverDescription d = io::find_rover(o.rover, resource_subfolders("rovers"));
   if (!d.dh) throw InputError(d.file, "rover '" + d.name + "' is not described by a DH table (kind " + d.kind + ")");
   const kinematics::RoverModel& rover = *d.dh;

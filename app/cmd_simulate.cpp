@@ -33,10 +33,13 @@ struct SimulateOptions {
 };
 
 int run_simulate_rocker_bogie(const SimulateOptions& o) {
-  analysis::RoverScenarioModel model = load_rover_scenario(o.scenario, o.traction);
+  require_log_output(o.output, "--output");
+  const io::ScenarioFile scenario = io::find_scenario(o.scenario, resource_subfolders("scenarios"));
+  refuse_overwriting_input(scenario.file, o.output, "--output");
+  analysis::RoverScenarioModel model = load_rover_scenario(scenario, o.traction);
   simulation::RockerBogieRun& run = model.run;
   const double duration = o.duration.value_or(run.duration);
-  if (!(duration > 0 && duration <= 100000)) throw UsageError("--duration must be in (0, 100000] s");
+  if (!(duration >= 0.1 && duration <= 100000)) throw UsageError("--duration must be in [0.1, 100000] s");
   run.duration = duration;
   run.seed = o.seed;
   std::vector<std::string> effects;
@@ -63,6 +66,9 @@ int run_simulate_rocker_bogie(const SimulateOptions& o) {
     run.progress = progress.callback();
     r = about_file(model.file, [&] { return simulation::simulate_rocker_bogie(g, params, run); });
     r.log.metadata.extra["scenario"] = model.name;
+    // The scenario itself: a study of this log models it, not a file that may have changed or a
+    // bundled scenario of the same name.
+    r.log.metadata.extra["scenario_json"] = scenario.document;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   io::write_hdf5_log(r.log, o.output);

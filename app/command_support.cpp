@@ -57,6 +57,31 @@ void refuse_overwriting_input(const std::string& input, const std::string& outpu
   }
 }
 
+std::string printable(const std::string& text, std::size_t max) {
+  std::string out;
+  for (const char c : text) {
+    if (out.size() >= max) return out + "...";
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", u);
+      out += b;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+void require_log_output(const std::string& output, const std::string& option) {
+  const std::filesystem::path path(output);
+  const std::string ext = path.extension().string(), name = path.filename().string();
+  if (name == ".h5" || name == ".hdf5") return;  // the writer says: "no name before its extension"
+  if (ext != ".h5" && ext != ".hdf5") {
+    throw UsageError(option + " " + output + ": a log is written as OUT.h5 or OUT.hdf5 (RoverLab HDF5)");
+  }
+}
+
 void write_log_with(const log::Log& base, const log::Log& added, const std::string& path) {
   io::write_hdf5_log(base, added, path);  // no copy of the (possibly large) input log
 }

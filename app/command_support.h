@@ -50,6 +50,14 @@ auto about_file(const std::string& file, Work&& work) -> decltype(work()) {
 // path or link): writing would replace the very data being read.
 void refuse_overwriting_input(const std::string& input, const std::string& output, const std::string& option);
 
+// `text` from a file as a terminal shows it safely: control characters
+// (escape sequences, newlines) as \xHH, cut to `max` characters.
+std::string printable(const std::string& text, std::size_t max = 200);
+
+// A UsageError unless `output` names an HDF5 log (OUT.h5 or OUT.hdf5): an
+// HDF5 file is never written under a .csv or .txt name.
+void require_log_output(const std::string& output, const std::string& option);
+
 // Writes `base` with the streams of `added` (and its metadata.extra entries)
 // to `path` as a RoverLab HDF5 log, atomically.
 void write_log_with(const log::Log& base, const log::Log& added, const std::string& path);

@@ -1,6 +1,7 @@
 #include "app/rover_scenario.h"
 
 #include <cmath>
+#include <utility>
 
 #include "app/command_support.h"
 #include "app/commands.h"
@@ -12,10 +13,42 @@
 
 namespace roverlab::app {
 
+namespace {
+
+// Runs `find`; a resource that cannot be found becomes the scenario's error, its field named.
+template <class Find>
+auto in_scenario(const std::string& scenario_file, const char* field, Find&& find) -> decltype(find()) {
+  try {
+    return std::forward<Find>(find)();
+  } catch (const InputError& e) {
+    if (e.file() == scenario_file) throw;
+    throw InputError(scenario_file, std::string("field '") + field + "': " + e.what());
+  }
+}
+
+}  // namespace
+
 analysis::RoverScenarioModel load_rover_scenario(const std::string& name_or_file,
                                                  const std::optional<std::string>& traction_option) {
+  return load_rover_scenario(io::find_scenario(name_or_file, resource_subfolders("scenarios")), traction_option);
+}
+
+analysis::RoverScenarioModel load_logs_rover_scenario(const std::map<std::string, std::string>& metadata,
+                                                      const std::string& file) {
+  const auto recorded = metadata.find("scenario_json");
+  if (recorded != metadata.end()) {
+    return load_rover_scenario(io::parse_scenario(file + " (metadata scenario_json)", recorded->second));
+  }
+  const auto named = metadata.find("scenario");
+  if (named == metadata.end() || named->second.empty()) {
+    throw UsageError(file + ": the log names no scenario; give --scenario");
+  }
+  return load_rover_scenario(io::find_scenario_named(named->second, resource_subfolders("scenarios"), file));
+}
+
+analysis::RoverScenarioModel load_rover_scenario(const io::ScenarioFile& sc,
+                                                 const std::optional<std::string>& traction_option) {
   analysis::RoverScenarioModel model;
-  const io::ScenarioFile sc = io::find_scenario(name_or_file, resource_subfolders("scenarios"));
   simulation::RockerBogieRun& run = model.run;
   const std::string path = sc.path;
   if (path == "rolling") {
@@ -38,7 +71,7 @@ analysis::RoverScenarioModel load_rover_scenario(const std::string& name_or_file
   } else if (traction == "wong-reece") {
     run.traction = simulation::TractionSource::wong_reece;
   } else {
-    throw UsageError("traction " + traction + ": expected polynomial or wong-reece");
+    throw UsageError("--traction " + traction + ": expected polynomial or wong-reece");
   }
   run.duration = sc.duration;
   run.start_x = sc.start_x;
@@ -46,8 +79,10 @@ analysis::RoverScenarioModel load_rover_scenario(const std::string& name_or_file
     for (const auto& [k, v] : sc.effects) simulation::set_effect(run.effects, k, v);
   });
   model.parameters.desired_speed = sc.desired_speed;
-  run.soil = io::find_soil(sc.soil, resource_subfolders("soils"));
-  const io::RoverDescription d = io::find_rover(sc.rover, resource_subfolders("rovers"));
+  // The soil and rover a scenario names are found, or the scenario is named with the problem.
+  run.soil = in_scenario(sc.file, "soil", [&] { return io::find_soil(sc.soil, resource_subfolders("soils")); });
+  const io::RoverDescription d =
+      in_scenario(sc.file, "rover", [&] { return io::find_rover(sc.rover, resource_subfolders("rovers")); });
   if (!d.planar) throw InputError(d.file, "rover '" + d.name + "' is not a planar rocker-bogie description");
   simulation::PlanarRockerBogieGeometry& g = model.geometry;
   g.wheel_radius = d.planar->wheel_radius;

@@ -90,6 +90,13 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   d.quantity = dp ? "drawbar pull" : "resistive torque";
   d.unit = dp ? "N" : "N m";
   if (!in.is_wheel_test() && !soil_name && net_traction_surface(in, dp, d, fit_out)) return d;
+  if (!in.is_wheel_test() && !soil_name && in.log.find_stream("estimate/net_traction/wheels") != nullptr &&
+      in.result("net-traction") == nullptr) {
+    // The estimator is not run again over a log that holds its streams, and the surfaces are fitted in its run.
+    throw InputError(in.file,
+                     "the log already holds net-traction estimates (estimate/net_traction/wheels), which are not "
+                     "estimated again: draw the surfaces from the log the estimator ran on, or give --soil NAME");
+  }
   if (!in.is_wheel_test() && !soil_name) {
     throw InputError(in.file,
                      "no traction data: give a single-wheel CSV (load_N, slip, drawbar_pull_N / torque_Nm), "

@@ -122,7 +122,8 @@ void write_atomically(const std::string& path, const std::function<void(const st
   const TemporaryRegistration registration(temporary.string());
   // Tried first, so that a folder the system will not let us write in (read-only
   // mount, immutable, /proc) is named as such and not by a library's words.
-  const int probe = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  // 0666 less the umask, as any new file (a replaced file keeps its own mode, below).
+  const int probe = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (probe < 0) {
     throw InputError(path, "cannot write in folder '" + folder.string() + "': " + std::strerror(errno));
   }

@@ -1,8 +1,10 @@
 #include "importers/campaign_file.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 
 #include "core/common/error.h"
 #include "importers/json_resource.h"
@@ -14,7 +16,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kMaxSeed = 2147483647.0;
-constexpr std::size_t kMaxRuns = 100000;
+// Snakemake plans 10,000 runs in about 40 s and 650 MB before the first one
+// starts; 100,000 took minutes with no output (issue 34, N9).
+constexpr std::size_t kMaxRuns = 10000;
 
 std::string absolute_from(const fs::path& base, const std::string& path) {
   const fs::path p(path);
@@ -24,6 +28,18 @@ std::string absolute_from(const fs::path& base, const std::string& path) {
 // A FILE (relative to the campaign file) rather than a resource NAME.
 bool names_a_file(const std::string& s) {
   return s.find('/') != std::string::npos || (s.size() > 5 && s.compare(s.size() - 5, 5, ".json") == 0);
+}
+
+// A field the reader does not know is a misspelling ("seed" for "seeds"), never ignored.
+void require_known_fields(const JsonNode& node, std::initializer_list<const char*> known) {
+  for (const auto& item : node.value().items()) {
+    if (std::any_of(known.begin(), known.end(), [&](const char* k) { return item.key() == k; })) continue;
+    std::string list;
+    for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+    std::string key;  // as a message shows it: no control characters, at most 40 of them
+    for (const char c : item.key().substr(0, 40)) key += std::isprint(static_cast<unsigned char>(c)) != 0 ? c : '?';
+    node.fail(key, "unknown field (" + list + ")");
+  }
 }
 
 unsigned seed_of(const JsonNode& node) {
@@ -40,6 +56,7 @@ std::vector<unsigned> read_seeds(const JsonNode& entry) {
     for (const auto& s : required_array(entry, "seeds")) out.push_back(seed_of(s));
     if (out.empty()) seeds.fail("lists no seed");
   } else if (seeds.value().is_object()) {
+    require_known_fields(seeds, {"first", "count"});
     const double first = required_number_in(seeds, "first", 0, kMaxSeed);
     const double count = required_number_in(seeds, "count", 1, static_cast<double>(kMaxRuns));
     if (std::floor(first) != first) seeds.fail("first", "must be a whole number");
@@ -67,6 +84,7 @@ std::vector<std::map<std::string, double>> read_effects(const JsonNode& entry) {
 
 CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
   if (!entry.value().is_object()) entry.fail("expected an object with \"file\" or \"folder\"");
+  require_known_fields(entry, {"file", "folder", "mapping"});
   CampaignLogs logs;
   logs.where = entry.where();
   const bool file = entry.has("file"), folder = entry.has("folder");
@@ -74,9 +92,16 @@ CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
   std::error_code ec;
   if (file) {
     logs.file = absolute_from(base, required_string(entry, "file"));
+    if (fs::is_directory(logs.file, ec)) entry.fail("file", logs.file + " is a folder: give it as \"folder\"");
+    if (fs::exists(logs.file, ec) && !fs::is_regular_file(logs.file, ec)) {
+      entry.fail("file", logs.file + " is not a regular file (a device, pipe or socket)");
+    }
     if (!fs::is_regular_file(logs.file, ec)) entry.fail("file", "no such file: " + logs.file);
   } else {
     logs.folder = absolute_from(base, required_string(entry, "folder"));
+    if (fs::exists(logs.folder, ec) && !fs::is_directory(logs.folder, ec)) {
+      entry.fail("folder", logs.folder + " is not a folder: give a file as \"file\"");
+    }
     if (!fs::is_directory(logs.folder, ec)) entry.fail("folder", "no such folder: " + logs.folder);
   }
   if (entry.has("mapping")) {
@@ -90,6 +115,7 @@ CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
 
 CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base) {
   if (!entry.value().is_object()) entry.fail("expected an object with \"scenario\" or \"simulate\"");
+  require_known_fields(entry, {"scenario", "simulate", "seeds", "effects", "rate", "duration"});
   CampaignSimulations s;
   s.where = entry.where();
   const bool scenario = entry.has("scenario"), simulate = entry.has("simulate");
@@ -157,7 +183,7 @@ CampaignFile read_campaign_file(const std::string& path) {
     for (const auto& e : required_array(j, "simulations")) {
       c.simulations.push_back(read_simulations(e, base));
       runs += c.simulations.back().seeds.size() * c.simulations.back().effects.size();
-      if (runs > kMaxRuns) e.fail("the campaign would pass 100000 simulated runs");
+      if (runs > kMaxRuns) e.fail("the campaign would pass 10000 simulated runs");
     }
   }
   if (c.logs.empty() && c.simulations.empty()) j.fail("names no \"logs\" and no \"simulations\"");

@@ -41,7 +41,7 @@ struct CampaignFile {
 const std::vector<std::string>& campaign_scenario_names();
 
 // Reads and checks a campaign file: format and version, field types, numeric
-// ranges (seeds 0..2^31-1, at most 100000 runs), scenario names. Effect names
+// ranges (seeds 0..2^31-1, at most 10000 runs), scenario names. Effect names
 // and values are checked by the caller, which knows the simulators. Throws
 // InputError naming the file and the field.
 CampaignFile read_campaign_file(const std::string& path);

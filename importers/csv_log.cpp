@@ -1,5 +1,6 @@
 #include "importers/csv_log.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -62,6 +63,15 @@ log::Log read_csv_log(const std::string& path, const CsvOptions& options) {
           time_column = k;
           break;
         }
+      }
+      // No time column, but a single-wheel test's columns: named for what it is.
+      const auto has = [&](const char* n) {
+        return std::any_of(columns.begin(), columns.end(), [&](const Column& c) { return c.name == n; });
+      };
+      if (columns[time_column].name != "time" && columns[time_column].name != "t" && has("load_N") && has("slip")) {
+        throw InputError(path,
+                         "a single-wheel test table (load_N, slip, ...), not a log with a time column: "
+                         "`roverlab discrepancy single-wheel` and `terramechanics fit` read it");
       }
       if (columns[time_column].si.si_unit == "1" && cells[time_column].find('[') == std::string_view::npos) {
         throw InputError(path, where + ": time column '" + columns[time_column].name +

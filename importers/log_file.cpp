@@ -1,5 +1,8 @@
 #include "importers/log_file.h"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "core/common/error.h"
@@ -52,6 +55,12 @@ LoadedLog load_log(const std::string& path, const LoadOptions& options) {
   if (fs::is_directory(path, ec)) throw InputError(path, "is a folder, not a log file");
   // A pipe or a device never ends (and opening a pipe blocks): not a log.
   if (!fs::is_regular_file(path, ec)) throw InputError(path, "not a regular file (a pipe or a device?)");
+  // A file we may not read is named so, not as "not an HDF5 file".
+  if (std::FILE* probe = std::fopen(path.c_str(), "rb")) {
+    std::fclose(probe);
+  } else {
+    throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  }
   // Recognising the file opens it with the HDF5 library too.
   const auto find = [&] {
     const LogReader* reader = find_log_reader(path, options);

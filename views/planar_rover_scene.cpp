@@ -36,6 +36,19 @@ bool is_planar_rocker_bogie_log(const log::Log& lg) {
          w->find_channel("centre_z_3") && p->size() >= 2;
 }
 
+std::string planar_rover_needs(const log::Log& lg) {
+  const log::Stream* p = lg.find_stream("truth/pose");
+  if (p == nullptr) return "no truth/pose stream";
+  for (const char* c : {"x", "z", "pitch"}) {
+    const log::Channel* ch = p->find_channel(c);
+    if (ch == nullptr) continue;
+    if (std::none_of(ch->values.begin(), ch->values.end(), [](double v) { return std::isfinite(v); })) {
+      return std::string("truth/pose channel '") + c + "' has no finite value: no rover to draw";
+    }
+  }
+  return "";
+}
+
 // Side s (0: left, +y; 1: right, mirrored) of the 3D rover.
 struct PlanarRoverScene::Parts {
   vtkSmartPointer<vtkRenderer> renderer;

@@ -27,6 +27,9 @@ namespace roverlab::views {
 // True when the log has what the planar view draws (truth/pose with the
 // bogie pivot and truth/wheels with the wheel centres).
 bool is_planar_rocker_bogie_log(const log::Log& log);
+// What keeps a planar rocker-bogie log's rover from being drawn (its pose
+// has no finite value); empty when it can be.
+std::string planar_rover_needs(const log::Log& log);
 
 class PlanarRoverScene : public Scene {
  public:

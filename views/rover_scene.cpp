@@ -449,7 +449,8 @@ class RoverView : public View {
   std::string name() const override { return "rover"; }
   std::string title() const override { return "Rover"; }
   std::string needs(const SceneInput& in) const override {
-    return is_planar_rocker_bogie_log(*in.log) || articulated(in) ? std::string() : pose_track_needs(*in.log);
+    if (is_planar_rocker_bogie_log(*in.log)) return planar_rover_needs(*in.log);
+    return articulated(in) ? std::string() : pose_track_needs(*in.log);
   }
   bool trackball_camera() const override { return true; }
   bool draws_estimates() const override { return true; }

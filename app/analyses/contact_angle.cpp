@@ -155,11 +155,14 @@ void ContactAngleAnalysis::declare(CLI::App& cmd) {
   cmd.add_option("--angle-model", angle_model_, "random-walk | damped")->capture_default_str();
   cmd.add_flag("--reset-cross-covariance", reset_cross_covariance_,
                "Zero P's off-diagonal elements every step (the seed's workaround)");
-  cmd.add_flag("--smoother", smoother_, "Offline smoother over the filter's pass (--smoother-method); errors of both");
+  CLI::Option* smoother = cmd.add_flag("--smoother", smoother_,
+                                       "Offline smoother over the filter's pass (--smoother-method); errors of both");
+  // A method without the smoother would be ignored: it is a usage error.
   cmd.add_option("--smoother-method", smoother_method_,
                  "two-filter: the filter forward and over the log reversed in time, fused by their variances (any "
                  "filter) | rts: Rauch-Tung-Striebel (the EKF with --reset-cross-covariance only)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(smoother);
   cmd.add_option(
          "--process-noise", process_noise_,
          "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
@@ -282,6 +285,7 @@ json ContactAngleAnalysis::document(const std::string& file, const kinematics::R
             {"max_cross_correlation", r.max_cross_correlation},
             {"wheels", names},
             {"has_truth", r.has_truth},
+            {"warnings", r.warnings},
             {"health", health_json(r.health)}};
   j["smoother"] = r.smoothed;
   if (r.smoothed) j["smoother_method"] = smoother_method_;
@@ -298,6 +302,8 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
                str("rover").c_str(), str("model").c_str(), str("filter").c_str(), str("angle_model").c_str(),
                j.at("reset_cross_covariance").get<bool>() ? ", cross-covariances reset" : "",
                j.at("seconds").get<double>(), j.at("wall_seconds").get<double>());
+  for (const auto& w : j.value("warnings", json::array()))
+    std::fprintf(out, "warning: %s\n", w.get<std::string>().c_str());
   if (j.contains("model_selection")) print_selection(j.at("model_selection"), out);
   if (j.contains("model_evidence") && !j.at("model_evidence").at("consistent").get<bool>()) {
     const json& e = j.at("model_evidence");

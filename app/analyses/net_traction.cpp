@@ -358,6 +358,7 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
                     {"average_s", analysis::SteadyStateOptions{}.average_seconds},
                     {"settle_s", analysis::SteadyStateOptions{}.settle_seconds}}},
                   {"has_truth", in.log.find_stream("truth/wheels") != nullptr},
+                  {"warnings", r.warnings},
                   {"estimators", fits(in.log, r, g.wheel_radius)}};
   json& single = out.document.at("estimators")["single-axis"];
   if (!single.is_null()) {
@@ -459,6 +460,8 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
                j.at("file").get<std::string>().c_str(), j.at("rover").get<std::string>().c_str(),
                j.at("force_sensors").get<std::string>().c_str(), j.at("seconds").get<double>(),
                j.at("filter_seconds").get<double>());
+  for (const auto& w : j.value("warnings", json::array()))
+    std::fprintf(out, "warning: %s\n", w.get<std::string>().c_str());
   const auto standstill = j.at("standstill_samples").get<std::size_t>();
   if (standstill > 0) std::fprintf(out, "standstill: %zu samples without a slip measurement\n", standstill);
   const json& gated = j.at("rejected_updates");

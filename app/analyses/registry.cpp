@@ -41,6 +41,7 @@ std::string printed(const Analysis& analysis, const nlohmann::json& document) {
 
 void ReportSection::write_csv(const std::string& name, const std::string& text) const {
   io::write_text_atomically((folder_ / name).string(), text);
+  wrote(name);
 }
 
 std::string ReportSection::escape(const std::string& s) {

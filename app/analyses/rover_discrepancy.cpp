@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "app/analysis.h"
 #include "app/command_support.h"
@@ -106,7 +107,7 @@ class RoverDiscrepancyAnalysis : public Analysis {
     for (const char* s : {"joints", "imu", "velocimeter", "forces", "commands"}) {
       if (lg.find_stream(s) == nullptr) return std::string("no ") + s + " stream";
     }
-    if (scenario_.empty() && lg.metadata.extra.count("scenario") == 0) {
+    if (!scenario_ && lg.metadata.extra.count("scenario") == 0 && lg.metadata.extra.count("scenario_json") == 0) {
       return "the log names no scenario: give --scenario";
     }
     return "";
@@ -117,6 +118,9 @@ class RoverDiscrepancyAnalysis : public Analysis {
     cmd.add_option("--block", block_, "s, length of the alternating fit/test blocks")
         ->capture_default_str()
         ->check(finite_in(0.2, 1000.0));
+  }
+  void check_options() const override {
+    if (scenario_ && scenario_->empty()) throw UsageError("--scenario: the scenario's name is empty");
   }
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;
@@ -129,18 +133,32 @@ class RoverDiscrepancyAnalysis : public Analysis {
 
  private:
   static json document(const std::string& file, const analysis::RoverDiscrepancyReport& r);
-  std::string scenario_;
+  std::optional<std::string> scenario_;
   double block_ = 1.0;
 };
 
-AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
-  std::string scenario = scenario_;
-  if (scenario.empty()) {
-    const auto it = in.log.metadata.extra.find("scenario");
-    if (it == in.log.metadata.extra.end()) throw UsageError(in.file + ": the log names no scenario; give --scenario");
-    scenario = it->second;
+// A scenario on another path (flat, rolling, slope, bump) than the one the
+// log records cannot be this run's model: refused before minutes of fitting.
+void refuse_another_path(const AnalysisInput& in, const analysis::RoverScenarioModel& model) {
+  const auto& meta = in.log.metadata.extra;
+  if (meta.count("scenario_json") == 0 && meta.count("scenario") == 0) return;
+  analysis::RoverScenarioModel recorded;
+  try {
+    recorded = load_logs_rover_scenario(meta, in.file);
+  } catch (const std::exception&) {
+    return;  // the log's own record is not usable; the scenario given is the model
   }
-  const analysis::RoverScenarioModel model = load_rover_scenario(scenario);
+  if (recorded.run.path.name == model.run.path.name) return;
+  throw InputError(in.file, "the log was simulated on the " + recorded.run.path.name + " path (scenario " +
+                                recorded.name + "); scenario " + model.name + " drives the " + model.run.path.name +
+                                " path and cannot be this run's model");
+}
+
+AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
+  // The scenario the user gives, else the one recorded in (or named by) the log: data, never a path.
+  const analysis::RoverScenarioModel model =
+      scenario_ ? load_rover_scenario(*scenario_) : load_logs_rover_scenario(in.log.metadata.extra, in.file);
+  if (scenario_) refuse_another_path(in, model);
   analysis::RoverStudyOptions options;
   options.block = block_;
   options.progress = in.progress;

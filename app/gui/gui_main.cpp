@@ -8,6 +8,7 @@
 #include <QPixmap>
 #include <QSurfaceFormat>
 #include <QTimer>
+#include <QtGlobal>
 
 #include <cstdio>
 #include <cstdlib>
@@ -15,8 +16,10 @@
 #include <CLI/CLI.hpp>
 
 #include "app/command.h"
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/gui/main_window.h"
+#include "core/common/library_messages.h"
 #include "importers/atomic_file.h"
 #include "views/x_display.h"
 
@@ -31,7 +34,20 @@ struct GuiOptions {
   int width = 1400, height = 900;
 };
 
+namespace {
+
+// Qt's own messages (a missing XDG_RUNTIME_DIR, xcb warnings) only with --verbose:
+// RoverLab's one-line errors come first and alone.
+void quiet_qt_message(QtMsgType type, const QMessageLogContext& context, const QString& message) {
+  if (!library_messages_verbose() && type != QtFatalMsg) return;
+  (void)context;
+  std::fprintf(stderr, "%s\n", message.toLocal8Bit().constData());
+}
+
+}  // namespace
+
 int run_gui(const GuiOptions& o) {
+  qInstallMessageHandler(quiet_qt_message);
   if (o.screenshot) {
     views::ensure_display();
   } else {
@@ -50,6 +66,9 @@ int run_gui(const GuiOptions& o) {
   QApplication::setOrganizationName("RoverLab");
   QApplication::setApplicationName("RoverLab");
   gui::MainWindow window;
+  if (o.tab && !window.tab_names().contains(QString::fromStdString(*o.tab))) {
+    throw UsageError("--tab " + *o.tab + ": expected one of " + window.tab_names().join(", ").toStdString());
+  }
   int code = kSuccess;
   if (o.screenshot) {
     window.set_quiet(true);
@@ -76,6 +95,13 @@ int run_gui(const GuiOptions& o) {
       if (!ready && waited < 120000) return;
       poll->stop();
       if (o.tab) window.select_tab(QString::fromStdString(*o.tab));
+      if (o.time && o.file && !(*o.time >= window.start_time() && *o.time <= window.end_time())) {
+        std::fprintf(stderr, "roverlab: --time %g s is outside the log, which spans %.2f .. %.2f s\n", *o.time,
+                     window.start_time(), window.end_time());
+        code = kUsageError;
+        app.quit();
+        return;
+      }
       window.set_time(o.time ? *o.time : 0.5 * (window.start_time() + window.end_time()));
       QTimer::singleShot(500, &window, [&] {
         window.set_time(window.current_time());
@@ -104,10 +130,15 @@ Commands make_gui_commands() {
                        "Mapping NAME or FILE for .mat/HDF5 input (default: try the known ones)");
         cmd.add_option("--screenshot", o.screenshot,
                        "Save the window as PNG once FILE is loaded and analysed, then exit");
-        cmd.add_option("--time,-t", o.time, "With --screenshot: the timeline's time, s");
+        cmd.add_option("--time,-t", o.time, "With --screenshot: the timeline's time, s")->check(finite_in(-1e12, 1e12));
         cmd.add_option("--tab", o.tab, "With --screenshot: Rover | Plots | Traction surface | Analysis");
-        cmd.add_option("--width", o.width, "Window width")->capture_default_str();
-        cmd.add_option("--height", o.height, "Window height")->capture_default_str();
+        // As render --size: a window larger than 8192 pixels cannot be grabbed.
+        cmd.add_option("--width", o.width, "Window width, 16..8192")
+            ->capture_default_str()
+            ->check(CLI::Range(16, 8192));
+        cmd.add_option("--height", o.height, "Window height, 16..8192")
+            ->capture_default_str()
+            ->check(CLI::Range(16, 8192));
       },
       run_gui));
   return commands;

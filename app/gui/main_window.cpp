@@ -693,10 +693,20 @@ void MainWindow::render_now() {
   }
 }
 
-void MainWindow::select_tab(const QString& name) {
+bool MainWindow::select_tab(const QString& name) {
   for (int i = 0; i < tabs_->count(); ++i) {
-    if (tabs_->tabText(i) == name) tabs_->setCurrentIndex(i);
+    if (tabs_->tabText(i) == name) {
+      tabs_->setCurrentIndex(i);
+      return true;
+    }
   }
+  return false;
+}
+
+QStringList MainWindow::tab_names() const {
+  QStringList names;
+  for (int i = 0; i < tabs_->count(); ++i) names << tabs_->tabText(i);
+  return names;
 }
 
 void MainWindow::on_tick() {

@@ -70,7 +70,9 @@ class MainWindow : public QMainWindow {
   QString last_error() const { return last_error_; }
   // Errors go to a modal dialog unless quiet (tests, screenshots): then only to last_error.
   void set_quiet(bool quiet) { quiet_ = quiet; }
-  void select_tab(const QString& name);
+  // Shows the tab titled `name`; false when there is none.
+  bool select_tab(const QString& name);
+  QStringList tab_names() const;
   void add_plot_channel(const QString& stream, const QString& channel);
 
  signals:

@@ -45,14 +45,38 @@ double rms_error(const log::Stream& estimate, std::string_view estimate_channel,
   return std::sqrt(sum / static_cast<double>(std::max<std::size_t>(samples, 1)));
 }
 
+namespace {
+
+// Whether t lies within the truth stream's span, widened by one mean sample
+// interval at each end.
+bool within_span(const log::Stream& truth, double t) {
+  const double margin = truth.size() > 1 ? truth.duration() / static_cast<double>(truth.size() - 1) : 0.0;
+  return t >= truth.start_time() - margin && t <= truth.end_time() + margin;
+}
+
+}  // namespace
+
 std::optional<estimation::StateErrors> contact_angle_errors(const log::Log& lg, const log::Log& estimates) {
   const log::Stream* tb = lg.find_stream("truth/body");
   const log::Stream* tw = lg.find_stream("truth/wheels");
   if (tb == nullptr || tw == nullptr) return std::nullopt;
   const log::Stream& body = estimates.stream("estimate/contact/body");
   const log::Stream& wheels = estimates.stream("estimate/contact/wheels");
+  // Scored only where truth exists: an empty truth stream, or one recorded
+  // at other times than the estimate, scores nothing.
+  if (tb->empty() || tw->empty()) return std::nullopt;
   const AlignedTruth tbody = align_truth(*tb, body.time()), twheels = align_truth(*tw, wheels.time());
-  const std::vector<char> mask = moving_samples(wheels, "valid", tbody, "velocity_x", "velocity_y", 1e-3);
+  std::vector<char> mask = moving_samples(wheels, "valid", tbody, "velocity_x", "velocity_y", 1e-3);
+  const std::vector<double>& t = wheels.time();
+  std::size_t with_truth = 0;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    if (within_span(*tb, t[i]) && within_span(*tw, t[i])) {
+      ++with_truth;
+    } else {
+      mask[i] = 0;
+    }
+  }
+  if (with_truth == 0) return std::nullopt;
   estimation::StateErrors e;
   e.samples = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
   for (const char* c : {"velocity_x", "velocity_y", "velocity_z"})

@@ -4,10 +4,19 @@
 #include <cstdio>
 
 #include "core/common/error.h"
+#include "core/log/time_checks.h"
 
 namespace roverlab::analysis::rover {
 
 namespace {
+
+// Every stream the study uses must share the joints' time base: each covers
+// at least this share of the other's span, with no gap longer than kMaxGap.
+constexpr double kMinOverlap = 0.5;
+constexpr double kMaxGap = 1.0;  // s
+// No sensor of the rover reads beyond this (SI units: N, N m, rad, m/s, m/s^2).
+constexpr double kMaxReading = 1e9;
+constexpr std::size_t kMinSamples = 10;
 
 // Clamped linear interpolation of (t, v) at ascending times.
 std::vector<double> interpolate_at(const std::vector<double>& t, const std::vector<double>& v,
@@ -38,10 +47,11 @@ MeasuredChannel measured(const log::Log& lg, const std::string& stream, const st
                     " stream (a planar rocker-bogie log has joints, imu, velocimeter, forces and commands)");
   const log::Channel* c = st->find_channel(name);
   if (c == nullptr) throw DataError("stream " + stream + " has no channel " + name);
+  log::require_samples(*st, kMinSamples);
+  log::require_no_gap(*st, kMaxGap);
+  if (const log::Stream* joints = lg.find_stream("joints")) log::require_shared_time_base(*joints, *st, kMinOverlap);
+  log::require_finite_within(*st, name, kMaxReading);
   MeasuredChannel m{stream, name, c->unit, st->time(), c->values, {}, 1.0};
-  for (double v : m.values) {
-    if (!std::isfinite(v)) throw DataError(stream + "/" + name + " has missing or non-finite samples");
-  }
   m.fit.resize(m.time.size());
   const double t0 = m.time.front();
   for (std::size_t k = 0; k < m.time.size(); ++k) {

@@ -4,7 +4,14 @@
 
 namespace roverlab {
 
+namespace {
+bool g_verbose = false;
+}  // namespace
+
+bool library_messages_verbose() { return g_verbose; }
+
 void route_library_messages(bool verbose) {
+  g_verbose = verbose;
   static const bool initialised = [] {
     google::InitGoogleLogging("roverlab");
     return true;

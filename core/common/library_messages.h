@@ -6,5 +6,8 @@
 namespace roverlab {
 
 void route_library_messages(bool verbose);
+// The choice made by route_library_messages (false before it is called), for
+// the libraries routed elsewhere (Qt's messages, in the GUI).
+bool library_messages_verbose();
 
 }  // namespace roverlab

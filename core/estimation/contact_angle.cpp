@@ -39,6 +39,12 @@ ContactAngleResult run_contact_angle(const log::Log& lg, const kinematics::Rover
   ContactAngleResult result = o.smoother && o.smoother_method == SmootherMethod::two_filter
                                   ? run_contact_angle_two_filter(lg, m, o)
                                   : ContactAngleEstimator(lg, m, o).run();
+  // Without one wheel update the estimate is the IMU's prediction alone: no contact angle was measured.
+  if (result.innovations.updates == 0) {
+    throw DataError(
+        "no wheel measurement update in the whole log: the wheels never turn (every wheel rate 0) or the joint "
+        "angles are missing (NaN); nothing was estimated");
+  }
   score_contact_angle(lg, result);
   return result;
 }

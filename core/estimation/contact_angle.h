@@ -125,6 +125,7 @@ struct ContactAngleResult {
   HealthReport health;         // outliers, gaps, gated updates, divergences (both passes of the two-filter smoother)
   HealthReport filter_health;  // with the smoother: the forward filter's alone (its model's evidence)
   InnovationStats innovations;
+  std::vector<std::string> warnings;  // flat-lined sensor channels, one sentence each
   // With ContactAngleOptions::record_variance: per state (yaw, pitch, roll,
   // velocity x y z, slips, contact angles, side-slip angles), per IMU
   // sample, the diagonal of the filter's P after the step.

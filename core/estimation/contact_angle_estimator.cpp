@@ -48,6 +48,9 @@ namespace {
 constexpr double kMaxImuGap = 1.0;
 // Joints and wheels must cover at least this share of the IMU's time span.
 constexpr double kMinOverlap = 0.5;
+// A sensor channel holding one exact value this long and over this share of the log is flat-lined.
+constexpr double kFlatSeconds = 5.0;
+constexpr double kFlatFraction = 0.25;
 }  // namespace
 
 void ContactAngleEstimator::read_channels() {
@@ -56,12 +59,17 @@ void ContactAngleEstimator::read_channels() {
   wheels_ = &log_.stream("wheels");
   if (imu_->size() < 10) throw DataError("stream 'imu' has fewer than 10 samples");
   log::require_no_gap(*imu_, kMaxImuGap);
-  log::require_overlap(*imu_, *joints_, kMinOverlap);
-  log::require_overlap(*imu_, *wheels_, kMinOverlap);
+  log::require_shared_time_base(*imu_, *joints_, kMinOverlap);
+  log::require_shared_time_base(*imu_, *wheels_, kMinOverlap);
   const char* imu_names[6] = {"angular_rate_x",   "angular_rate_y",   "angular_rate_z",
                               "specific_force_x", "specific_force_y", "specific_force_z"};
   std::array<const std::vector<double>*, 6> raw{};
   for (int c = 0; c < 6; ++c) raw[static_cast<std::size_t>(c)] = &imu_->channel(imu_names[c]).values;
+  // An IMU channel holding one exact value (all zero: a disconnected IMU) is warned about.
+  for (const char* c : imu_names) {
+    const std::string flat = log::flat_lined(*imu_, c, kFlatFraction, kFlatSeconds);
+    if (!flat.empty()) warnings_.push_back(flat);
+  }
   // The IMU drives the prediction: outliers and missing samples never enter it.
   imu_screened_ = screen_imu("imu", imu_->time(), raw, o_.imu_screen);
   for (const auto& v : imu_screened_.values) imu_ch_.push_back(&v);
@@ -333,6 +341,7 @@ ContactAngleResult ContactAngleEstimator::run() {
       static_cast<double>(std::count(diverged_.begin(), diverged_.end(), 1.0)) / static_cast<double>(n);
   result.max_cross_correlation = max_cross_correlation();
   result.innovations = innovations_;
+  result.warnings = warnings_;
   if (smooth_) {
     write_streams(result.filter_estimates);
     smooth(steps);

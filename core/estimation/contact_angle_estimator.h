@@ -95,7 +95,8 @@ class ContactAngleEstimator {
   const log::Stream* joints_ = nullptr;
   const log::Stream* wheels_ = nullptr;
   std::vector<const std::vector<double>*> imu_ch_, q_ch_, qd_ch_, w_ch_;
-  ScreenedImu imu_screened_;  // the IMU channels the filter reads
+  std::vector<std::string> warnings_;  // flat-lined sensor channels
+  ScreenedImu imu_screened_;           // the IMU channels the filter reads
   FilterHealthMonitor health_;
   Eigen::VectorXd lower_, upper_;  // physical bounds of the states (NaN: none)
   std::vector<std::string> state_names_;

@@ -44,8 +44,10 @@ ModelEvidence model_evidence(ContactModel model, const ContactAngleResult& r, co
   // AIC with the effective degrees of freedom sum tr(H K), on the prediction-error likelihood.
   e.aic = in.updates > 0 && in.effective_dof > 0 ? -2.0 * in.log_likelihood + 2.0 * in.effective_dof
                                                  : std::numeric_limits<double>::infinity();
+  // Consistency is the innovations' alone: a run without the effective degrees of freedom (--model set by
+  // hand) has no AIC but is judged as the selection judges the same numbers.
   e.consistent =
-      std::isfinite(e.aic) && e.mean_nis <= s.max_mean_nis && e.nis_out_of_band <= s.max_out_of_band && !e.diverged;
+      in.updates > 0 && e.mean_nis <= s.max_mean_nis && e.nis_out_of_band <= s.max_out_of_band && !e.diverged;
   return e;
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/common/error.h"
 #include "core/estimation/filter_health.h"
+#include "core/log/time_checks.h"
 
 namespace roverlab::estimation {
 
@@ -27,6 +28,16 @@ constexpr double kUnavailable = 1e8;
 // rejections in a row (0.5 s).
 constexpr std::size_t kGateSettle = 250;
 constexpr std::size_t kMaxRejected = 25;
+// The streams must share the joints' time base: each covers at least this
+// share of the other's span, with no gap longer than kMaxGap.
+constexpr double kMinOverlap = 0.5;
+constexpr double kMaxGap = 1.0;  // s
+// No sensor of the rover reads beyond this (SI units: N, N m, rad, m/s, m/s^2).
+constexpr double kMaxReading = 1e9;
+// A sensor channel holding one exact value this long (and over this share of
+// the log) is flat-lined: warned about.
+constexpr double kFlatSeconds = 5.0;
+constexpr double kFlatFraction = 0.25;
 
 const char* const kStreams[] = {"joints", "imu", "velocimeter", "forces", "commands"};
 
@@ -100,11 +111,19 @@ NetTractionEstimator::NetTractionEstimator(const log::Log& log, const nt::RoverC
 void NetTractionEstimator::read_sensors() {
   const log::Stream& joints = log_.stream("joints");
   const std::vector<double>& t = joints.time();
-  if (t.size() < 10) throw DataError("stream 'joints' has fewer than 10 samples");
+  for (const char* name : kStreams) {
+    const log::Stream& st = log_.stream(name);
+    log::require_samples(st, 10);
+    log::require_no_gap(st, kMaxGap);
+    log::require_shared_time_base(joints, st, kMinOverlap);
+  }
   step_ = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
   if (!(step_ > 0.0) || step_ > 0.5) throw DataError("stream 'joints' is not sampled at 2 Hz or faster");
   const auto at = [&](const char* stream, const std::string& channel) {
     const log::Stream& st = log_.stream(stream);
+    log::require_finite_within(st, channel, kMaxReading);
+    const std::string flat = log::flat_lined(st, channel, kFlatFraction, kFlatSeconds);
+    if (!flat.empty()) result_.warnings.push_back(flat);
     if (&st == &joints) return st.channel(channel).values;
     std::vector<double> v = st.interpolate(channel, t);
     for (std::size_t k = 0; k < v.size(); ++k) {  // hold the ends where the streams' spans differ

@@ -62,6 +62,7 @@ struct NetTractionResult {  // NOLINT(bugprone-exception-escape): std::map's mov
   std::size_t standstill_samples = 0;                   // samples with no slip measured (the rover stood)
   std::array<std::size_t, 3> rejected_updates{};        // by the NIS gate, Estimators 1, 2, 3
   double filter_seconds = 0;                            // wall time of the filter pass
+  std::vector<std::string> warnings;                    // flat-lined sensor channels, one sentence each
   // estimate/net_traction/wheels and estimate/net_traction/body.
   log::Log estimates;
   const FilterTrack& wheel_forces() const { return force_sensors == ForceSensors::two_axis ? two_axis : single_axis; }

@@ -1,5 +1,6 @@
 #include "core/simulation/random_effects.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -39,8 +40,15 @@ void add(RandomEffects& out, const EffectSpec& e, std::mt19937& rng, double dura
   out.causes.emplace_back(e.name);
   out.effects.emplace_back(e.name, value);
   // A soil change over the whole run (1 in 3) or from 25-65 % along the expected path.
-  if (std::string(e.name) == "soil-strength" && u(rng) >= 1.0 / 3.0)
-    out.effects.emplace_back("effect-start-x", distance * (0.25 + 0.4 * u(rng)));
+  // Within the start's own range (a long fast run's 25-65 % can pass it): a draw is always a valid effect.
+  if (std::string(e.name) == "soil-strength" && u(rng) >= 1.0 / 3.0) {
+    const double start = distance * (0.25 + 0.4 * u(rng));
+    for (const auto& spec : effect_table()) {
+      if (std::string(spec.name) == "effect-start-x") {
+        out.effects.emplace_back("effect-start-x", std::clamp(start, spec.lower, spec.upper));
+      }
+    }
+  }
 }
 
 }  // namespace

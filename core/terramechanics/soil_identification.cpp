@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -226,6 +227,23 @@ void set_parameter(Soil& s, Extensions& e, Parameter p, double v) {
   }
 }
 
+namespace {
+
+// Whether the residuals and their Jacobian at the solution are finite: Ceres's
+// covariance (its dense SVD) is undefined on a NaN or infinite Jacobian and has
+// crashed on one (a constant negative load, a load of 1e300 N).
+bool finite_jacobian(ceres::Problem& problem) {
+  double cost = 0;
+  std::vector<double> residuals;
+  ceres::CRSMatrix jacobian;
+  if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, &residuals, nullptr, &jacobian)) return false;
+  const auto finite = [](double v) { return std::isfinite(v); };
+  return std::isfinite(cost) && std::all_of(residuals.begin(), residuals.end(), finite) &&
+         std::all_of(jacobian.values.begin(), jacobian.values.end(), finite);
+}
+
+}  // namespace
+
 IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTestPoint>& points,
                                    const IdentificationOptions& options) {
   IdentificationResult result;
@@ -266,7 +284,7 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
     result.message = summary.message;
 
     std::vector<double> cov(k * k, NAN);
-    if (options.covariance) {
+    if (options.covariance && finite_jacobian(problem)) {
       ceres::Covariance::Options co;
       co.algorithm_type = ceres::DENSE_SVD;
       co.null_space_rank = 0;
