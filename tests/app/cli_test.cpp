@@ -327,8 +327,8 @@ TEST(CliTerramechanics, SlipAngleAddsTheLateralForce) {
   EXPECT_NEAR(plain_doc.at("rows")[0].at("drawbar_pull_N").get<double>(),
               doc.at("rows")[0].at("drawbar_pull_N").get<double>(), 1e-6);
   // Bad values: one line naming the option, exit 2.
-  for (const std::string bad : {"nan", "95", "-90.5", "abc"}) {
-    const CommandResult e = run_roverlab(wheel + " --slip-angle " + bad);
+  for (const char* bad : {"nan", "95", "-90.5", "abc"}) {
+    const CommandResult e = run_roverlab(wheel + " --slip-angle " + std::string(bad));
     EXPECT_EQ(e.exit_code, 2) << bad;
     EXPECT_EQ(count_lines(e.err), 1u) << e.err;
     EXPECT_NE(e.err.find("--slip-angle"), std::string::npos) << e.err;
