@@ -40,6 +40,7 @@ TEST(SlipAngleModel, AtZeroSlipAngleItIsTheWongReeceModel) {
   Wheel wheel = kapvik_wheel();
   wheel.grouser_count = 24;
   wheel.grouser_height = 0.005;
+  int compared = 0, unsupported = 0;
   for (const Extensions& e : variants) {
     for (Integration integration : {Integration::simpson, Integration::riemann}) {
       for (LateralShear shear : {LateralShear::shared, LateralShear::independent}) {
@@ -52,8 +53,12 @@ TEST(SlipAngleModel, AtZeroSlipAngleItIsTheWongReeceModel) {
             const Traction w = evaluate(ding_tyii(), wheel, load, slip, o);
             o.kind = ModelKind::ishigami;
             const SlipAngleTraction t = evaluate_slip_angle(ding_tyii(), wheel, load, slip, 0.0, o, {shear, 1.0});
-            ASSERT_TRUE(w.ok());
-            ASSERT_TRUE(t.ok());
+            ++compared;
+            EXPECT_EQ(t.status, w.status);  // both carry the load or neither (a weakened soil at 150 N may not)
+            if (!w.ok() || !t.ok()) {
+              ++unsupported;
+              continue;
+            }
             EXPECT_NEAR(t.drawbar_pull, w.drawbar_pull, 1e-7 * (1.0 + std::abs(w.drawbar_pull)));
             EXPECT_NEAR(t.resistive_torque, w.resistive_torque, 1e-8 * (1.0 + std::abs(w.resistive_torque)));
             EXPECT_NEAR(t.sinkage, w.sinkage, 1e-10);
@@ -65,6 +70,7 @@ TEST(SlipAngleModel, AtZeroSlipAngleItIsTheWongReeceModel) {
       }
     }
   }
+  EXPECT_LT(unsupported * 10, compared) << unsupported << " of " << compared << " unsupported";
   // evaluate() with the kind ishigami gives the same (beta = 0) values.
   ModelOptions o;
   o.kind = ModelKind::ishigami;
