@@ -124,22 +124,37 @@ struct Solved {
   Integrals in;
 };
 
-// Entry angle from the vertical balance F_z = W (Eq. 11) by bisection on
-// (0, pi/2]: the normal force rises with theta0 from 0.
+// Entry angle from the vertical balance F_z = W (Eq. 11) on (0, pi/2], the
+// normal force rising from 0: secant steps on log F_z against log theta0
+// (nearly linear, as in the Wong-Reece solver), kept inside the bracket,
+// bisection when a step leaves it.
 Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const LateralOptions& lat, double s, double beta,
              double load) {
   const Setup u = setup(soil, w, o.extensions, s);
   auto at = [&](double th) { return integrate(u, o, lat, s, beta, th, soil.c1, soil.c2); };
   Solved out;
   double lo = 0.0, hi = kPi / 2.0;
-  if (!(at(hi).normal >= load)) return out;
-  while (hi - lo > 1e-14) {
-    const double mid = 0.5 * (lo + hi);
-    (at(mid).normal < load ? lo : hi) = mid;
+  const double n_hi = at(hi).normal;
+  if (!(n_hi >= load)) return out;
+  double th = hi * std::pow(load / n_hi, 1.0 / (2.0 * u.n + 1.0));  // small-angle power law
+  double prev_th = hi, prev_n = n_hi, root = th;
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+    if (!(th > lo && th < hi)) th = 0.5 * (lo + hi);
+    const double nv = at(th).normal;
+    root = th;
+    if (std::abs(nv - load) <= 1e-13 * load) break;
+    (nv < load ? lo : hi) = th;
+    double next = 0.5 * (lo + hi);
+    if (nv > 0.0 && prev_n > 0.0 && nv != prev_n && th != prev_th) {
+      next = th * std::exp(std::log(load / nv) * std::log(th / prev_th) / std::log(nv / prev_n));
+    }
+    prev_th = th;
+    prev_n = nv;
+    th = next;
   }
   out.status = TractionStatus::ok;
-  out.theta0 = 0.5 * (lo + hi);
-  out.in = at(out.theta0);
+  out.theta0 = root;  // the last angle evaluated: within the tolerance or the bracket's width
+  out.in = at(root);
   return out;
 }
 
