@@ -132,7 +132,9 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
 }  // namespace
 
 int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
-  const auto points = io::read_wheel_test_csv(o.file);
+  const io::WheelTestFile file = io::read_wheel_test_file(o.file);
+  for (const auto& warning : file.warnings) std::fprintf(stderr, "warning: %s: %s\n", o.file.c_str(), warning.c_str());
+  const auto& points = file.points;
   const Soil soil = io::find_soil(o.soil, resource_subfolders("soils"));
   analysis::DiscrepancyOptions options;
   try {

@@ -17,6 +17,7 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
+#include "core/terramechanics/slip_angle_model.h"
 #include "core/terramechanics/traction_surface.h"
 #include "importers/soil_file.h"
 #include "importers/table_csv.h"
@@ -29,6 +30,9 @@ struct TerramechanicsOptions {
   int grousers = 0;
   double grouser_height = 0.0;
   std::vector<double> loads, slips;
+  std::vector<double> slip_angles_deg;  // with these (or --model ishigami): the slip-angle model
+  std::string lateral_shear = "shared";
+  double sidewall_scale = 1.0;
   std::string model = "wong";
   std::string integration = "simpson";
   int riemann_points = 500;
@@ -153,6 +157,78 @@ SurfaceFit fit_with(const std::vector<SurfaceSample>& samples, const std::string
 
 }  // namespace
 
+namespace {
+
+const char* status_word(TractionStatus status) {
+  return status == TractionStatus::ok                 ? "ok"
+         : status == TractionStatus::unsupported_load ? "unsupported_load"
+                                                      : "invalid_input";
+}
+
+LateralOptions lateral_options(const TerramechanicsOptions& o) {
+  LateralOptions l;
+  if (o.lateral_shear == "shared") {
+    l.shear = LateralShear::shared;
+  } else if (o.lateral_shear == "independent") {
+    l.shear = LateralShear::independent;
+  } else {
+    throw UsageError("--lateral-shear must be shared or independent");
+  }
+  l.sidewall_scale = o.sidewall_scale;
+  return l;
+}
+
+// One row per load, slip and slip angle of the slip-angle model (Ishigami 2007).
+void print_slip_angle_rows(const TerramechanicsOptions& o, const Soil& soil, const Wheel& wheel, ModelOptions m) {
+  if (m.kind == ModelKind::bekker) throw UsageError("--slip-angle needs --model wong or ishigami (not bekker)");
+  m.kind = ModelKind::ishigami;
+  const LateralOptions lateral = lateral_options(o);
+  const std::vector<double> angles = o.slip_angles_deg.empty() ? std::vector<double>{0.0} : o.slip_angles_deg;
+  json rows = json::array();
+  if (o.format == "csv") {
+    std::cout << "load_N,slip,slip_angle_deg,drawbar_pull_N,lateral_force_N,resistive_torque_Nm,sinkage_m,"
+                 "entry_angle_rad,sidewall_force_N,status\n";
+  }
+  for (double load : o.loads) {
+    for (double slip : o.slips) {
+      for (double deg : angles) {
+        const SlipAngleTraction t = evaluate_slip_angle(soil, wheel, load, slip, deg * M_PI / 180.0, m, lateral);
+        if (o.format == "csv") {
+          std::cout << num(load) << "," << num(slip) << "," << num(deg) << ","
+                    << (t.ok() ? num(t.drawbar_pull) + "," + num(t.lateral_force) + "," + num(t.resistive_torque) +
+                                     "," + num(t.sinkage) + "," + num(t.entry_angle) + "," + num(t.sidewall)
+                               : std::string(",,,,,"))
+                    << "," << status_word(t.status) << "\n";
+        } else {
+          json r = {{"load_N", load}, {"slip", slip}, {"slip_angle_deg", deg}, {"status", to_string(t.status)}};
+          if (t.ok()) {
+            r["drawbar_pull_N"] = t.drawbar_pull;
+            r["lateral_force_N"] = t.lateral_force;
+            r["resistive_torque_Nm"] = t.resistive_torque;
+            r["sinkage_m"] = t.sinkage;
+            r["entry_angle_rad"] = t.entry_angle;
+            r["sidewall_force_N"] = t.sidewall;
+          }
+          rows.push_back(r);
+        }
+      }
+    }
+  }
+  if (o.format == "json") {
+    std::cout << json{{"soil", soil.name},
+                      {"model", o.model},
+                      {"integration", o.integration},
+                      {"lateral_shear", o.lateral_shear},
+                      {"sidewall_scale", o.sidewall_scale},
+                      {"lateral_shear_modulus_m", lateral_shear_modulus(soil)},
+                      {"rows", rows}}
+                     .dump(2)
+              << "\n";
+  }
+}
+
+}  // namespace
+
 int run_terramechanics(const TerramechanicsOptions& o) {
   if (o.soil.empty()) throw UsageError("terramechanics: --soil is required (or use the surface / fit subcommands)");
   const Soil soil = io::find_soil(o.soil, resource_subfolders("soils"));
@@ -160,6 +236,10 @@ int run_terramechanics(const TerramechanicsOptions& o) {
   const ModelOptions m = model_options(o);
   if (o.format != "csv" && o.format != "json") throw UsageError("--format must be csv or json");
   if (o.loads.empty() || o.slips.empty()) throw UsageError("give at least one --load and one --slip");
+  if (!o.slip_angles_deg.empty() || m.kind == ModelKind::ishigami) {
+    print_slip_angle_rows(o, soil, wheel, m);
+    return kSuccess;
+  }
   json rows = json::array();
   if (o.format == "csv") {
     std::cout << "load_N,slip,drawbar_pull_N,resistive_torque_Nm,sinkage_m,entry_angle_rad,status\n";
@@ -172,11 +252,7 @@ int run_terramechanics(const TerramechanicsOptions& o) {
                   << (t.ok() ? num(t.drawbar_pull) + "," + num(t.resistive_torque) + "," + num(t.sinkage) + "," +
                                    num(t.entry_angle)
                              : std::string(",,,"))
-                  << ","
-                  << (t.ok()                                         ? "ok"
-                      : t.status == TractionStatus::unsupported_load ? "unsupported_load"
-                                                                     : "invalid_input")
-                  << "\n";
+                  << "," << status_word(t.status) << "\n";
       } else {
         json r = {{"load_N", load}, {"slip", slip}, {"status", to_string(t.status)}};
         if (t.ok()) {
@@ -361,9 +437,19 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
         ->delimiter(',')
         ->check(finite_in(-1.0, 1.0));
     cmd.add_option("--format", o.format, "csv or json")->capture_default_str();
+    cmd.add_option("--slip-angle", o.slip_angles_deg,
+                   "Slip angles beta, deg in [-90, 90] (comma separated; adds the lateral force, Ishigami 2007)")
+        ->delimiter(',')
+        ->check(finite_in(-90.0, 90.0));
+    cmd.add_option("--lateral-shear", o.lateral_shear,
+                   "shared (one Mohr-Coulomb strength for tau_x and tau_y) | independent (Ishigami 2007 as printed)")
+        ->capture_default_str();
+    cmd.add_option("--sidewall-scale", o.sidewall_scale, "scale of the sidewall bulldozing term (0: off)")
+        ->capture_default_str()
+        ->check(finite_in(0.0, 100.0));
   }
   cmd.add_option("--model", o.model,
-                 "bekker | wong, with +slip-sinkage, +grousers, +bulldozing (e.g. wong+slip-sinkage)")
+                 "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing (e.g. wong+slip-sinkage)")
       ->capture_default_str();
   cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
   cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "app/command_support.h"
 #include "app/log_input.h"
@@ -70,8 +71,10 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
   ViewInput in;
   in.file = file;
   if (looks_like_wheel_test_csv(file)) {
-    in.wheel_points = io::read_wheel_test_csv(file);
+    io::WheelTestFile read = io::read_wheel_test_file(file);
+    in.wheel_points = std::move(read.points);
     in.notes.push_back("single-wheel test points: " + std::to_string(in.wheel_points.size()));
+    for (const auto& warning : read.warnings) in.notes.push_back(warning);
     return in;
   }
   in.log = load_input(file, mapping).log;

@@ -27,6 +27,9 @@ terramechanics::Soil load_soil(const std::string& path) {
   s.cohesion = required_number_in(j, "cohesion_Pa", 0.0, 1e6);
   s.friction_angle = required_number_in(j, "friction_angle_deg", 0.1, 60.0) * M_PI / 180.0;
   s.shear_modulus = required_number_in(j, "shear_modulus_m", 1e-5, 1.0);
+  // k_y of the slip-angle model (Ishigami 2007); K_s when not given.
+  s.lateral_shear_modulus =
+      j.has("lateral_shear_modulus_m") ? required_number_in(j, "lateral_shear_modulus_m", 1e-5, 1.0) : 0.0;
   s.kc = required_number_in(j, "kc", -1e9, 1e9);
   s.kphi = required_number_in(j, "kphi", 0.0, 1e10);
   s.c1 = required_number_in(j, "c1", 0.0, 1.0);

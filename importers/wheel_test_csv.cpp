@@ -14,10 +14,11 @@ namespace roverlab::io {
 namespace fs = std::filesystem;
 using terramechanics::WheelTestPoint;
 
-std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) {
+WheelTestFile read_wheel_test_file(const std::string& path) {
   std::ifstream in = csv::open_text_file(path);
   std::map<std::string, std::size_t> column;
-  std::vector<WheelTestPoint> points;
+  WheelTestFile file;
+  auto& points = file.points;
   std::string line;
   int line_number = 0;
   std::size_t columns = 0;
@@ -33,8 +34,10 @@ std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) {
                                      "' (a single-wheel file needs radius_m, width_m, load_N, slip)");
         }
       }
-      if (column.count("drawbar_pull_N") + column.count("torque_Nm") + column.count("sinkage_m") == 0) {
-        throw InputError(path, "no measured column (drawbar_pull_N, torque_Nm or sinkage_m)");
+      if (column.count("drawbar_pull_N") + column.count("torque_Nm") + column.count("sinkage_m") +
+              column.count("lateral_force_N") ==
+          0) {
+        throw InputError(path, "no measured column (drawbar_pull_N, torque_Nm, sinkage_m or lateral_force_N)");
       }
       continue;
     }
@@ -83,13 +86,32 @@ std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) {
     p.drawbar_pull = number("drawbar_pull_N");
     p.torque = number("torque_Nm");
     p.sinkage = number("sinkage_m");
-    if (p.sinkage && (*p.sinkage < 0.0 || *p.sinkage > p.wheel.radius)) {
-      throw InputError(path, where + ": sinkage_m must be in metres, between 0 and the wheel radius");
+    p.lateral_force = number("lateral_force_N");
+    const auto slip_angle_deg = number("slip_angle_deg");
+    // Physically impossible in this row: the row is left out, with a warning.
+    // Sinkage may exceed the radius (a wheel at a large slip angle digs in),
+    // never the diameter.
+    std::string impossible;
+    if (p.sinkage && (*p.sinkage < 0.0 || *p.sinkage > 2.0 * p.wheel.radius)) {
+      impossible = "sinkage_m " + csv::trim(cells[column.at("sinkage_m")]) +
+                   " (sinkage_m must be in metres, between 0 and the wheel's diameter)";
+    } else if (slip_angle_deg && std::abs(*slip_angle_deg) > 90.0) {
+      impossible = "slip_angle_deg " + csv::trim(cells[column.at("slip_angle_deg")]) + " (must be in [-90, 90])";
     }
+    if (!impossible.empty()) {
+      file.warnings.push_back(where + " left out: " + impossible);
+      continue;
+    }
+    p.slip_angle = slip_angle_deg.value_or(0.0) * M_PI / 180.0;
     points.push_back(p);
   }
-  if (points.empty()) throw InputError(path, "no data rows");
-  return points;
+  if (points.empty()) {
+    throw InputError(path, file.warnings.empty() ? std::string("no data rows")
+                                                 : "no usable rows; first left out: " + file.warnings.front());
+  }
+  return file;
 }
+
+std::vector<WheelTestPoint> read_wheel_test_csv(const std::string& path) { return read_wheel_test_file(path).points; }
 
 }  // namespace roverlab::io

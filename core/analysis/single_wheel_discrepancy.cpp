@@ -250,6 +250,15 @@ void SingleWheelStudy::check_points_can_tell_candidates_apart() const {
                     " points, to fit a candidate and hold points out (the file has " + std::to_string(points_.size()) +
                     ")");
   }
+  // The study's baseline and candidates are the straight-driving model: a
+  // point at a slip angle would be predicted as if beta were 0. Refused until
+  // the study predicts the lateral force (issue 33, item 3).
+  const auto steered = std::count_if(points_.begin(), points_.end(), [](const auto& p) { return p.slip_angle != 0.0; });
+  if (steered > 0) {
+    throw DataError(std::to_string(steered) +
+                    " points at a nonzero slip_angle_deg: the single-wheel study models straight driving only "
+                    "(the slip-angle model is `roverlab terramechanics --slip-angle`)");
+  }
   const auto [lo, hi] =
       std::minmax_element(points_.begin(), points_.end(), [](const auto& a, const auto& b) { return a.slip < b.slip; });
   if (hi->slip - lo->slip < 0.01) {

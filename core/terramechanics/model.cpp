@@ -19,7 +19,7 @@ Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip
   t.status = s.status;
   if (s.status != TractionStatus::ok) return t;
   t.entry_angle = s.theta0;
-  t.max_stress_angle = options.kind == ModelKind::wong_reece ? s.theta_m : 0.0;
+  t.max_stress_angle = options.kind != ModelKind::bekker ? s.theta_m : 0.0;
   t.drawbar_pull = s.drawbar;
   t.resistive_torque = s.torque;
   t.sinkage = s.sinkage;
@@ -57,7 +57,8 @@ const char* to_string(TractionStatus status) {
 ModelKind parse_model_kind(const std::string& text) {
   if (text == "bekker") return ModelKind::bekker;
   if (text == "wong" || text == "wong-reece") return ModelKind::wong_reece;
-  throw DataError("unknown model '" + text + "' (bekker, wong)");
+  if (text == "ishigami") return ModelKind::ishigami;
+  throw DataError("unknown model '" + text + "' (bekker, wong, ishigami)");
 }
 
 Integration parse_integration(const std::string& text) {

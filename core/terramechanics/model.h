@@ -9,7 +9,9 @@
 
 namespace roverlab::terramechanics {
 
-enum class ModelKind { bekker, wong_reece };
+// ishigami: Wong-Reece with a slip angle and the lateral force
+// (slip_angle_model.h); evaluate() gives its values at slip angle 0.
+enum class ModelKind { bekker, wong_reece, ishigami };
 enum class Integration { simpson, riemann };
 
 // Extensions of the baseline model. Each is off at its neutral value.

@@ -13,10 +13,12 @@ struct Soil {
   double n = 1.0;               // sinkage exponent n_s
   double cohesion = 0.0;        // c, Pa
   double friction_angle = 0.0;  // phi_s, rad
-  double shear_modulus = 0.01;  // K_s, shear deformation parameter, m
-  double kc = 0.0;              // modulus of cohesion, Pa / m^(n-1)
-  double kphi = 0.0;            // modulus of friction, Pa / m^n
-  double c1 = 0.18;             // maximum-stress angle coefficients (Eq. 2.10)
+  double shear_modulus = 0.01;  // K_s, shear deformation parameter, m (k_x of Ishigami 2007)
+  // k_y, lateral shear deformation modulus (slip-angle model), m; 0: K_s.
+  double lateral_shear_modulus = 0.0;
+  double kc = 0.0;    // modulus of cohesion, Pa / m^(n-1)
+  double kphi = 0.0;  // modulus of friction, Pa / m^n
+  double c1 = 0.18;   // maximum-stress angle coefficients (Eq. 2.10)
   double c2 = 0.32;
   double density = 1500.0;  // bulk density, kg/m^3 (bulldozing only)
 };

@@ -19,9 +19,15 @@ struct WheelTestPoint {
   std::string wheel_label;  // e.g. "smooth", "grousered"
   double load = 0.0;        // N
   double slip = 0.0;
+  // beta, rad: positive when the wheel's velocity has a component along +y
+  // (the axle direction); 0 when the file has no slip_angle_deg column.
+  double slip_angle = 0.0;
   std::optional<double> drawbar_pull;  // N
-  std::optional<double> torque;        // N m (driving torque = resistive torque in steady state)
-  std::optional<double> sinkage;       // m
+  // F_y, the soil's force on the wheel along +y, N (negative when it resists
+  // a positive slip angle). Not yet one of the study's quantities.
+  std::optional<double> lateral_force;
+  std::optional<double> torque;   // N m (driving torque = resistive torque in steady state)
+  std::optional<double> sinkage;  // m
   int source_line = 0;
 
   std::optional<double> measured(Quantity q) const {

@@ -306,6 +306,39 @@ TEST(CliTerramechanics, UsageAndInputErrors) {
   EXPECT_EQ(run_roverlab("discrepancy single-wheel --help").exit_code, 0);
 }
 
+TEST(CliTerramechanics, SlipAngleAddsTheLateralForce) {
+  const std::string wheel = "terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 50 --slip 0.2";
+  const CommandResult r = run_roverlab(wheel + " --slip-angle -20,0,20");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("load_N,slip,slip_angle_deg,drawbar_pull_N,lateral_force_N,resistive_torque_Nm,sinkage_m", 0),
+            0u)
+      << r.out;
+  EXPECT_EQ(count_lines(r.out), 4u);
+  const CommandResult j = run_roverlab(wheel + " --slip-angle 0,30 --format json");
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const auto doc = nlohmann::json::parse(j.out);
+  ASSERT_EQ(doc.at("rows").size(), 2u);
+  EXPECT_EQ(doc.at("rows")[0].at("lateral_force_N").get<double>(), 0.0);
+  EXPECT_LT(doc.at("rows")[1].at("lateral_force_N").get<double>(), -5.0);  // resists +y motion
+  EXPECT_LT(doc.at("rows")[1].at("drawbar_pull_N").get<double>(), doc.at("rows")[0].at("drawbar_pull_N").get<double>());
+  // Beta = 0 is the Wong-Reece row.
+  const CommandResult plain = run_roverlab(wheel + " --format json");
+  const auto plain_doc = nlohmann::json::parse(plain.out);
+  EXPECT_NEAR(plain_doc.at("rows")[0].at("drawbar_pull_N").get<double>(),
+              doc.at("rows")[0].at("drawbar_pull_N").get<double>(), 1e-6);
+  // Bad values: one line naming the option, exit 2.
+  for (const char* bad : {"nan", "95", "-90.5", "abc"}) {
+    const CommandResult e = run_roverlab(wheel + " --slip-angle " + std::string(bad));
+    EXPECT_EQ(e.exit_code, 2) << bad;
+    // One error line naming the option (CLI11 adds its "Run with --help" hint).
+    EXPECT_EQ(e.err.rfind("roverlab: --slip-angle: '" + std::string(bad) + "'", 0), 0u) << e.err;
+  }
+  const CommandResult bekker = run_roverlab(wheel + " --slip-angle 10 --model bekker");
+  EXPECT_EQ(bekker.exit_code, 2);
+  EXPECT_NE(bekker.err.find("--slip-angle"), std::string::npos) << bekker.err;
+  EXPECT_EQ(run_roverlab(wheel + " --slip-angle 10 --lateral-shear sideways").exit_code, 2);
+}
+
 TEST(CliTerramechanics, FitRecoversTheSurfaceOfItsOwnGrid) {
   TempDir dir;
   const std::string points = dir.file("grid.csv");
@@ -342,8 +375,24 @@ TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   const CommandResult text = run_roverlab("discrepancy single-wheel " + quote(file) + " --soil ding_tyii");
   EXPECT_EQ(text.exit_code, 0);
   EXPECT_NE(text.out.find("baseline residuals"), std::string::npos);
-  // Bad input: a file without the measured columns.
+  // A physically impossible row is left out with a warning naming its line.
   TempDir dir;
+  const std::string steer = dir.file("steer.csv");
+  std::string rows = "radius_m,width_m,load_N,slip,slip_angle_deg,drawbar_pull_N,lateral_force_N,sinkage_m\n";
+  for (int k = 0; k < 8; ++k) rows += "0.15735,0.165,80," + std::to_string(0.1 * k) + ",0,5,,0.02\n";
+  rows += "0.15735,0.165,80,0.3,0,5,,0.5\n";  // line 10: sinkage beyond the diameter
+  write_text(steer, rows);
+  const CommandResult w = run_roverlab("discrepancy single-wheel " + quote(steer) + " --soil ding_tyii --json");
+  EXPECT_EQ(w.exit_code, 0) << w.err;
+  EXPECT_NE(w.err.find("line 10"), std::string::npos) << w.err;
+  EXPECT_EQ(nlohmann::json::parse(w.out).at("points"), 8);
+  // Points at a slip angle are refused in one line until the study models them.
+  write_text(steer, rows + "0.15735,0.165,80,0.3,20,5,-12,0.03\n");
+  const CommandResult steered = run_roverlab("discrepancy single-wheel " + quote(steer) + " --soil ding_tyii");
+  EXPECT_EQ(steered.exit_code, 3) << steered.err;
+  EXPECT_EQ(count_lines(steered.err), 2u) << steered.err;  // the warning and the error
+  EXPECT_NE(steered.err.find("slip_angle_deg"), std::string::npos) << steered.err;
+  // Bad input: a file without the measured columns.
   write_text(dir.file("bad.csv"), "radius_m,width_m,load_N,slip\n0.1,0.1,80,0.2\n");
   const CommandResult bad =
       run_roverlab("discrepancy single-wheel " + quote(dir.file("bad.csv")) + " --soil ding_tyii");

@@ -369,6 +369,9 @@ TEST(Robustness, AbsurdOptionValuesAreUsageErrorsNamingTheOption) {
       {tm + " --slip-sinkage-n1 -100", "--slip-sinkage-n1"},  // F22: NaN fields
       {tm + " --radius 1e300", "--radius"},                   // F22
       {tm + " --slip 0.2,2", "--slip"},
+      {tm + " --slip-angle nan", "--slip-angle"},  // issue 33
+      {tm + " --slip-angle 10,120", "--slip-angle"},
+      {tm + " --slip-angle 10 --sidewall-scale -1", "--sidewall-scale"},
       {tm + " --riemann-points 2000000000", "--riemann-points"},                                        // F23: minutes
       {"terramechanics surface --soil ding_tyii --radius 0.075 --width 0.07 --grid 100000", "--grid"},  // F24
       {"terramechanics fit points.csv --grid 1000000000", "--grid"},                                    // F17

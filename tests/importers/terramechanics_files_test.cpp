@@ -36,6 +36,18 @@ TEST(SoilFile, ShippedSoilsLoadWithSources) {
   EXPECT_DOUBLE_EQ(tyii.kphi, 2407400.0);
 }
 
+TEST(SoilFile, LateralShearModulusIsOptional) {
+  TempDir dir;
+  const std::string body = R"("format": "roverlab-soil", "n": 1.1, "cohesion_Pa": 250, "friction_angle_deg": 31.9,
+      "shear_modulus_m": 0.0114, "kc": 15600, "kphi": 2407400, "c1": 0.18, "c2": 0.32)";
+  write_text(dir.file("a.json"), "{" + body + "}");
+  EXPECT_EQ(io::load_soil(dir.file("a.json")).lateral_shear_modulus, 0.0);  // k_y = K_s (slip_angle_model.h)
+  write_text(dir.file("b.json"), "{" + body + R"(, "lateral_shear_modulus_m": 0.02})");
+  EXPECT_DOUBLE_EQ(io::load_soil(dir.file("b.json")).lateral_shear_modulus, 0.02);
+  write_text(dir.file("c.json"), "{" + body + R"(, "lateral_shear_modulus_m": 20})");  // mm, not m
+  EXPECT_THROW(io::load_soil(dir.file("c.json")), InputError);
+}
+
 TEST(SoilFile, BadSoilFilesNameTheFileAndTheProblem) {
   TempDir dir;
   write_text(dir.file("a.json"), R"({"format": "roverlab-soil", "n": 1.1})");
@@ -66,6 +78,42 @@ TEST(WheelTestCsv, ReadsTheDing2011File) {
   EXPECT_DOUBLE_EQ(*points[11].drawbar_pull, 24.5);
 }
 
+TEST(WheelTestCsv, SlipAngleColumnsAndImpossibleRowsLeftOutWithAWarning) {
+  TempDir dir;
+  const std::string path = dir.file("steer.csv");
+  write_text(path,
+             "radius_m,width_m,load_N,slip,slip_angle_deg,sinkage_m,lateral_force_N\n"
+             "0.1,0.1,80,0.2,30,0.15,-21.5\n"   // sinkage beyond the radius, within the diameter: kept
+             "0.1,0.1,80,0.2,-10,0.01,\n"       // lateral force unmeasured
+             "0.1,0.1,80,0.2,45,0.25,-30\n"     // sinkage beyond the diameter: left out
+             "0.1,0.1,80,0.2,120,0.02,-30\n"    // slip angle beyond 90 deg: left out
+             "0.1,0.1,80,0.2,60,-0.01,-30\n");  // negative sinkage: left out
+  const io::WheelTestFile file = io::read_wheel_test_file(path);
+  ASSERT_EQ(file.points.size(), 2u);
+  EXPECT_NEAR(file.points[0].slip_angle, 30.0 * M_PI / 180.0, 1e-15);
+  EXPECT_DOUBLE_EQ(*file.points[0].lateral_force, -21.5);
+  EXPECT_DOUBLE_EQ(*file.points[0].sinkage, 0.15);
+  EXPECT_NEAR(file.points[1].slip_angle, -10.0 * M_PI / 180.0, 1e-15);
+  EXPECT_FALSE(file.points[1].lateral_force.has_value());
+  ASSERT_EQ(file.warnings.size(), 3u);
+  EXPECT_NE(file.warnings[0].find("line 4"), std::string::npos) << file.warnings[0];
+  EXPECT_NE(file.warnings[0].find("sinkage_m 0.25"), std::string::npos) << file.warnings[0];
+  EXPECT_NE(file.warnings[1].find("line 5"), std::string::npos) << file.warnings[1];
+  EXPECT_NE(file.warnings[1].find("slip_angle_deg 120"), std::string::npos) << file.warnings[1];
+  EXPECT_NE(file.warnings[2].find("line 6"), std::string::npos) << file.warnings[2];
+  EXPECT_EQ(io::read_wheel_test_csv(path).size(), 2u);
+  // Without the columns the slip angle is 0 and no lateral force is measured.
+  const auto ding = io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
+  for (const auto& p : ding) {
+    EXPECT_EQ(p.slip_angle, 0.0);
+    EXPECT_FALSE(p.lateral_force.has_value());
+  }
+  // A file of lateral forces alone is a measured file.
+  write_text(dir.file("lateral.csv"),
+             "radius_m,width_m,load_N,slip,slip_angle_deg,lateral_force_N\n0.1,0.1,80,0.2,20,-9\n");
+  EXPECT_EQ(io::read_wheel_test_csv(dir.file("lateral.csv")).size(), 1u);
+}
+
 TEST(WheelTestCsv, BadFilesNameLineAndProblem) {
   TempDir dir;
   const std::string head = "radius_m,width_m,load_N,slip,sinkage_m\n";
@@ -76,7 +124,8 @@ TEST(WheelTestCsv, BadFilesNameLineAndProblem) {
       {head + "0.1,0.1,80,0.1\n", "ragged row"},
       {head + "157,0.1,80,0.1,0.01\n", "in metres"},
       {head + "0.1,0.1,80,30,0.01\n", "slip must be a ratio"},
-      {head + "0.1,0.1,80,0.1,5\n", "sinkage_m must be in metres"},
+      {head + "0.1,0.1,80,0.1,5\n", "sinkage_m must be in metres"},  // the only row, left out: no usable rows
+      {"radius_m,width_m,load_N,slip,slip_angle_deg,lateral_force_N\n0.1,0.1,80,0.1,1e3,-2\n", "line 2 left out"},
       {head + "0.1,0.1,nan,0.1,0.01\n", "finite number"},
       {head, "no data rows"},
       // Found by fuzzing (tests/fuzz/corpus/wheel_test_csv/grouser_count_2e51.csv): cast to int unchecked.
