@@ -101,7 +101,8 @@ TEST(LogReaders, FilesNoReaderTakesKeepTheirErrors) {
   TempDir dir;
   write_text(dir.file("notes.doc"), "time [s],x [m]\n0,1\n");
   EXPECT_EQ(reader_name(dir.file("notes.doc")), "none");
-  EXPECT_EQ(load_error(dir.file("notes.doc")), "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
+  EXPECT_EQ(load_error(dir.file("notes.doc")),
+            "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat, .csv, ROS 1 .bag or .mcap)");
   EXPECT_EQ(load_error(dir.file("missing.h5")), "no such file");
   EXPECT_EQ(load_error(dir.path().string()), "is a folder, not a log file");
   write_text(dir.file("fake.h5"), "plain text");

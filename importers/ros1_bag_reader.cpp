@@ -1,0 +1,107 @@
+// ROS 1 bags (format 2.0) as a LogReader: the rosbag library reads the file
+// (chunks uncompressed, bz2 or lz4); each connection's message definition
+// drives a generic decoder (importers/ros_message_log.h).
+#include <cstdio>
+#include <cstring>
+#include <new>
+#include <unordered_map>
+
+#include <console_bridge/console.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
+#include "core/common/error.h"
+#include "importers/log_reader.h"
+#include "importers/ros_message_log.h"
+
+namespace roverlab::io {
+
+namespace {
+
+constexpr char kMagic[] = "#ROSBAG V";
+
+// The version line ("2.0"), or empty when the file does not start as a bag.
+std::string bag_version(const std::string& path) {
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (in == nullptr) return {};
+  char head[16] = {};
+  const std::size_t got = std::fread(head, 1, sizeof head - 1, in);
+  std::fclose(in);
+  const std::size_t magic = sizeof kMagic - 1;
+  if (got < magic || std::memcmp(head, kMagic, magic) != 0) return {};
+  std::string version(head + magic, got - magic);
+  const std::size_t end = version.find('\n');
+  return end == std::string::npos ? "?" : version.substr(0, end);
+}
+
+class Ros1BagReader final : public LogReader {
+ public:
+  std::string name() const override { return "ROS 1 bag"; }
+
+  Confidence can_read(const std::string& path, const LoadOptions&) const override {
+    if (!bag_version(path).empty()) return Confidence::format;
+    return has_extension(path, {".bag"}) ? Confidence::extension : Confidence::none;
+  }
+
+  std::pair<std::string, std::string> crash_guard_names() const override { return {"ROS bag", "rosbag library"}; }
+
+  log::Log read(const std::string& path, const LoadOptions& options) const override {
+    ros::MessageLogOptions message_options;
+    message_options.time = options.header_time ? ros::TimeSource::header : ros::TimeSource::record;
+    message_options.limits.max_array = options.max_array;
+    ros::MessageLog messages(path, message_options);
+    std::unordered_map<const void*, std::size_t> topic_of;  // by connection
+    each_message(path, [&](const rosbag::MessageInstance& m, const std::vector<std::uint8_t>& bytes) {
+      const void* connection = m.getConnectionHeader().get();
+      auto it = topic_of.find(connection);
+      if (it == topic_of.end()) {
+        const std::size_t topic = messages.add_topic(m.getTopic(), m.getDataType(), m.getMessageDefinition(),
+                                                     ros::Dialect::ros1, ros::Encoding::ros1);
+        it = topic_of.emplace(connection, topic).first;
+      }
+      messages.add_message(it->second, static_cast<std::int64_t>(m.getTime().toNSec()), bytes.data(), bytes.size());
+    });
+    return messages.build(options.mapping);
+  }
+
+  // The crash guard's trial: the library's calls on every message, no decoding.
+  void trial_read(const std::string& path, const LoadOptions&) const override {
+    each_message(path, [](const rosbag::MessageInstance&, const std::vector<std::uint8_t>&) {});
+  }
+
+ private:
+  // Calls visit(message, its bytes) for every message of the bag, in time order.
+  template <class Visit>
+  static void each_message(const std::string& path, Visit&& visit) {
+    const std::string version = bag_version(path);
+    if (version.empty()) throw InputError(path, "not a ROS bag (no '#ROSBAG V2.0' line at the start)");
+    if (version != "2.0") throw InputError(path, "ROS bag version " + version + "; RoverLab reads version 2.0");
+    // The library's own log lines are not RoverLab's one line.
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+    try {
+      rosbag::Bag bag;
+      bag.open(path, rosbag::bagmode::Read);
+      rosbag::View view(bag);
+      std::vector<std::uint8_t> buffer;
+      for (const rosbag::MessageInstance& m : view) {
+        const std::uint32_t size = m.size();
+        buffer.resize(size);
+        ::ros::serialization::OStream stream(buffer.data(), size);
+        m.write(stream);
+        visit(m, buffer);
+      }
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::bad_alloc&) {
+      throw InputError(path, "corrupt ROS bag: a length in the file asks for more memory than there is");
+    } catch (const std::exception& e) {
+      throw InputError(path, std::string("corrupt or unreadable ROS bag: ") + e.what());
+    }
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<LogReader> make_ros1_bag_log_reader() { return std::make_unique<Ros1BagReader>(); }
+
+}  // namespace roverlab::io
