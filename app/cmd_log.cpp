@@ -189,7 +189,8 @@ Commands make_log_commands() {
   commands.push_back(make_command<InfoOptions>(
       "info", "List a log's streams and channels with units, sample counts, rates and durations",
       [](CLI::App& cmd, InfoOptions& o) {
-        cmd.add_option("FILE", o.file, "Log file: RoverLab HDF5, MATLAB v7.3 (.mat), CSV, ROS 1 bag or MCAP")->required();
+        cmd.add_option("FILE", o.file, "Log file: RoverLab HDF5, MATLAB v7.3 (.mat), CSV, ROS 1 bag or MCAP")
+            ->required();
         cmd.add_option("--mapping,-m", o.mapping,
                        "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5, bag or MCAP input");
         cmd.add_flag("--json", o.json, "Print JSON instead of text");
