@@ -51,28 +51,40 @@ class Ros1BagReader final : public LogReader {
     message_options.limits.max_array = options.max_array;
     ros::MessageLog messages(path, message_options);
     std::unordered_map<const void*, std::size_t> topic_of;  // by connection
-    each_message(path, [&](const rosbag::MessageInstance& m, const std::vector<std::uint8_t>& bytes) {
-      const void* connection = m.getConnectionHeader().get();
-      auto it = topic_of.find(connection);
-      if (it == topic_of.end()) {
-        const std::size_t topic = messages.add_topic(m.getTopic(), m.getDataType(), m.getMessageDefinition(),
-                                                     ros::Dialect::ros1, ros::Encoding::ros1);
-        it = topic_of.emplace(connection, topic).first;
-      }
-      messages.add_message(it->second, static_cast<std::int64_t>(m.getTime().toNSec()), bytes.data(), bytes.size());
-    });
+    std::unordered_map<std::string, std::size_t> counts;    // messages per topic, from the bag's index
+    each_message(
+        path,
+        [&](rosbag::Bag& bag) {
+          rosbag::View all(bag);
+          for (const rosbag::ConnectionInfo* c : all.getConnections()) {
+            if (counts.count(c->topic) == 0) counts[c->topic] = rosbag::View(bag, rosbag::TopicQuery(c->topic)).size();
+          }
+        },
+        [&](const rosbag::MessageInstance& m, const std::vector<std::uint8_t>& bytes) {
+          const void* connection = m.getConnectionHeader().get();
+          auto it = topic_of.find(connection);
+          if (it == topic_of.end()) {
+            const std::size_t topic = messages.add_topic(m.getTopic(), m.getDataType(), m.getMessageDefinition(),
+                                                         ros::Dialect::ros1, ros::Encoding::ros1);
+            messages.expect_messages(topic, counts[m.getTopic()]);
+            it = topic_of.emplace(connection, topic).first;
+          }
+          messages.add_message(it->second, static_cast<std::int64_t>(m.getTime().toNSec()), bytes.data(), bytes.size());
+        });
     return messages.build(options.mapping);
   }
 
   // The crash guard's trial: the library's calls on every message, no decoding.
   void trial_read(const std::string& path, const LoadOptions&) const override {
-    each_message(path, [](const rosbag::MessageInstance&, const std::vector<std::uint8_t>&) {});
+    each_message(
+        path, [](rosbag::Bag&) {}, [](const rosbag::MessageInstance&, const std::vector<std::uint8_t>&) {});
   }
 
  private:
-  // Calls visit(message, its bytes) for every message of the bag, in time order.
-  template <class Visit>
-  static void each_message(const std::string& path, Visit&& visit) {
+  // Calls opened(the bag), then visit(message, its bytes) for every message
+  // of the bag, in time order.
+  template <class Opened, class Visit>
+  static void each_message(const std::string& path, Opened&& opened, Visit&& visit) {
     const std::string version = bag_version(path);
     if (version.empty()) throw InputError(path, "not a ROS bag (no '#ROSBAG V2.0' line at the start)");
     if (version != "2.0") throw InputError(path, "ROS bag version " + version + "; RoverLab reads version 2.0");
@@ -81,6 +93,7 @@ class Ros1BagReader final : public LogReader {
     try {
       rosbag::Bag bag;
       bag.open(path, rosbag::bagmode::Read);
+      opened(bag);
       rosbag::View view(bag);
       std::vector<std::uint8_t> buffer;
       for (const rosbag::MessageInstance& m : view) {

@@ -63,6 +63,7 @@ struct MessageLog::Topic {
   std::vector<std::string> layout_labels;  // JSON: the value names themselves
   std::vector<std::size_t> layout;
   DecodedMessage scratch;
+  std::size_t expected = 0;  // messages the file's index announces (0: unknown)
 
   void relayout(const std::vector<std::string>& names) {
     layout.clear();
@@ -76,6 +77,7 @@ struct MessageLog::Topic {
         it = index.emplace(name, columns.size()).first;
         channel_names.push_back(name);
         columns.emplace_back(time_ns.size(), std::nan(""));  // earlier messages lacked it
+        if (expected > time_ns.size()) columns.back().reserve(expected);
       }
       layout.push_back(it->second);
     }
@@ -174,6 +176,13 @@ void flatten(const nlohmann::json& j, const std::string& name, std::size_t max_a
 
 }  // namespace
 
+void MessageLog::expect_messages(std::size_t topic, std::size_t count) {
+  Topic& t = *topics_.at(topic);
+  // An index may lie: never more than 2^28 samples reserved on its word.
+  t.expected = std::min(count, std::size_t{1} << 28);
+  if (t.expected > t.time_ns.size()) t.time_ns.reserve(t.expected);
+}
+
 void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const std::uint8_t* data, std::size_t size) {
   Topic& t = *topics_.at(topic);
   const auto where = [&] {
@@ -198,14 +207,14 @@ void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const st
   t.append(stamped ? t.scratch.header_stamp_ns : record_ns);
 }
 
-log::Log MessageLog::build(const std::optional<Mapping>& mapping) const {
+log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
   log::Log out;
   out.metadata.source_file = std::filesystem::path(path_).filename().string();
   out.metadata.extra["time"] = options_.time == TimeSource::record ? "record" : "header";
   for (const auto& t : topics_) {
     out.metadata.extra["topic " + t->name] = t->type + ", " + std::to_string(t->time_ns.size()) + " messages";
   }
-  const auto find_topic = [&](const std::string& name) -> const Topic* {
+  const auto find_topic = [&](const std::string& name) -> Topic* {
     for (const auto& t : topics_) {
       if (stream_name(t->name) == stream_name(name)) return t.get();
     }
@@ -213,11 +222,11 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) const {
   };
 
   // The topics to read and the common time origin.
-  std::vector<const Topic*> chosen;
+  std::vector<Topic*> chosen;
   if (mapping) {
     const std::string label = mapping->name.empty() ? mapping->source : mapping->name;
     for (const auto& sm : mapping->streams) {
-      const Topic* t = find_topic(sm.time_variable);
+      Topic* t = find_topic(sm.time_variable);
       if (t == nullptr) throw InputError(path_, "mapping " + label + ": no topic " + sm.time_variable + " in the file");
       if (sm.time_unit != "s") {
         throw InputError(path_,
@@ -229,7 +238,7 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) const {
     for (const auto& t : topics_) chosen.push_back(t.get());
   }
   std::int64_t origin = std::numeric_limits<std::int64_t>::max();
-  for (const Topic* t : chosen) {
+  for (Topic* t : chosen) {
     if (!t->time_ns.empty()) origin = std::min(origin, *std::min_element(t->time_ns.begin(), t->time_ns.end()));
   }
   if (origin == std::numeric_limits<std::int64_t>::max() || (mapping && mapping->time_origin != "first_sample")) {
@@ -250,12 +259,15 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) const {
 
   try {
     if (!mapping) {
-      for (const Topic* t : chosen) {
+      for (Topic* t : chosen) {
         const std::vector<std::size_t> rows = t->rows();
         log::Stream stream(stream_name(t->name), time_of(*t, rows));
         for (std::size_t c = 0; c < t->columns.size(); ++c) {
           const bool seconds = t->channel_names[c] == "header.stamp";
-          stream.add_channel(t->channel_names[c], seconds ? "s" : "1", column(t->columns[c], rows));
+          // In time order with no repeated time already (the common case): moved, not copied.
+          std::vector<double> values =
+              rows.size() == t->time_ns.size() ? std::move(t->columns[c]) : column(t->columns[c], rows);
+          stream.add_channel(t->channel_names[c], seconds ? "s" : "1", std::move(values));
         }
         out.add_stream(std::move(stream));
       }

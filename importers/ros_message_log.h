@@ -45,12 +45,17 @@ class MessageLog {
   std::size_t add_topic(const std::string& topic, const std::string& type, const std::string& definition,
                         Dialect dialect, Encoding encoding);
 
+  // The number of messages a topic will get, when the file says (its index):
+  // its columns are then allocated once, at their size.
+  void expect_messages(std::size_t topic, std::size_t count);
+
   // Decodes one message. Throws InputError naming the file, topic and
   // message when it does not match its definition.
   void add_message(std::size_t topic, std::int64_t record_ns, const std::uint8_t* data, std::size_t size);
 
-  // The log: every topic, or what `mapping` names. Throws InputError.
-  log::Log build(const std::optional<Mapping>& mapping) const;
+  // The log: every topic, or what `mapping` names. Throws InputError. The
+  // decoded columns move into the log: call it once, last.
+  log::Log build(const std::optional<Mapping>& mapping);
 
  private:
   struct Topic;
