@@ -319,6 +319,16 @@ TEST(Ros1BagBadInput, TruncatedBagsAndWrongMagic) {
   EXPECT_EQ(load_error(old), old + ": ROS bag version 1.2; RoverLab reads version 2.0");
 }
 
+// A single-byte mutant of a small LZ4 bag (written by rosbag::Bag) on which
+// the rosbag library itself dies of SIGSEGV: the crash guard's child takes it.
+TEST(Ros1BagBadInput, ACrashInsideTheRosbagLibraryIsContained) {
+  const std::string path = std::string(ROVERLAB_TEST_DATA) + "/ros/rosbag_segv.bag";
+  const std::string error = load_error(path);
+  // Under AddressSanitizer the child ends by ASan's report instead of the signal.
+  EXPECT_EQ(error.rfind(path + ": corrupt ROS bag: ", 0), 0U) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos);
+}
+
 std::vector<std::uint8_t> le32(std::uint32_t v) {
   return {static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v >> 16),
           static_cast<std::uint8_t>(v >> 24)};
