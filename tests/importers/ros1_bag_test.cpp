@@ -20,6 +20,8 @@
 #include <sensor_msgs/NavSatFix.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <nlohmann/json.hpp>
+
 #include "core/common/error.h"
 #include "importers/log_file.h"
 #include "importers/ros_msg_decoder.h"
@@ -187,48 +189,59 @@ TEST(Ros1Bag, JointStateArraysSplitByNamesAndEmptyArraysGiveNoChannels) {
   for (const auto& c : s.channels()) EXPECT_EQ(c.name.rfind("effort", 0), std::string::npos) << c.name;
 }
 
+// Every mapped message type (and a JointState and an IMU): the rover's bag.
+void write_rover_bag(const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  bag.setCompression(rosbag::compression::LZ4);
+  for (int i = 0; i < 10; ++i) {
+    sensor_msgs::NavSatFix fix;
+    fix.header.stamp = at(0.1 * i);
+    fix.latitude = 39.6 + value(i, 0) * 1e-5;
+    fix.longitude = -79.9 + value(i, 1) * 1e-5;
+    fix.altitude = value(i, 2);
+    fix.status.status = 2;
+    fix.position_covariance_type = 1;
+    bag.write("/navsat/fix", at(0.1 * i), fix);
+    geometry_msgs::WrenchStamped w;
+    w.wrench.force.x = value(i, 3);
+    w.wrench.torque.z = value(i, 4);
+    bag.write("/wheel_fl/wrench", at(0.1 * i), w);
+    geometry_msgs::TwistStamped tw;
+    tw.twist.linear.x = value(i, 5);
+    tw.twist.angular.z = value(i, 6);
+    bag.write("/cmd_vel", at(0.1 * i), tw);
+    nav_msgs::Odometry odom;
+    odom.pose.pose.position.x = value(i, 7);
+    odom.pose.pose.orientation.w = 1.0;
+    odom.pose.covariance[35] = value(i, 8);
+    odom.twist.twist.linear.x = value(i, 9);
+    odom.child_frame_id = "base_link";
+    bag.write("/odom", at(0.1 * i), odom);
+    tf2_msgs::TFMessage tf;
+    for (int k = 0; k < 2; ++k) {
+      geometry_msgs::TransformStamped t;
+      t.header.stamp = at(0.1 * i);
+      t.child_frame_id = k == 0 ? "base_link" : "mast";
+      t.transform.translation.x = value(i, 20 + k);
+      t.transform.rotation.w = 1.0;
+      tf.transforms.push_back(t);
+    }
+    bag.write("/tf", at(0.1 * i), tf);
+    bag.write("/imu/data", at(0.1 * i), imu_message(i));
+    sensor_msgs::JointState joints;
+    joints.header.stamp = at(0.1 * i);
+    joints.name = {"front_left_wheel", "steer/front"};
+    joints.position = {value(i, 30), value(i, 31)};
+    joints.effort = {value(i, 32), value(i, 33)};
+    bag.write("/joint_states", at(0.1 * i), joints);
+  }
+  bag.close();
+}
+
 TEST(Ros1Bag, EveryMappedMessageTypeDecodes) {
   TempDir dir;
   const std::string path = dir.file("rover.bag");
-  {
-    rosbag::Bag bag(path, rosbag::bagmode::Write);
-    bag.setCompression(rosbag::compression::LZ4);
-    for (int i = 0; i < 10; ++i) {
-      sensor_msgs::NavSatFix fix;
-      fix.header.stamp = at(0.1 * i);
-      fix.latitude = 39.6 + value(i, 0) * 1e-5;
-      fix.longitude = -79.9 + value(i, 1) * 1e-5;
-      fix.altitude = value(i, 2);
-      fix.status.status = 2;
-      fix.position_covariance_type = 1;
-      bag.write("/navsat/fix", at(0.1 * i), fix);
-      geometry_msgs::WrenchStamped w;
-      w.wrench.force.x = value(i, 3);
-      w.wrench.torque.z = value(i, 4);
-      bag.write("/wheel_fl/wrench", at(0.1 * i), w);
-      geometry_msgs::TwistStamped tw;
-      tw.twist.linear.x = value(i, 5);
-      tw.twist.angular.z = value(i, 6);
-      bag.write("/cmd_vel", at(0.1 * i), tw);
-      nav_msgs::Odometry odom;
-      odom.pose.pose.position.x = value(i, 7);
-      odom.pose.pose.orientation.w = 1.0;
-      odom.pose.covariance[35] = value(i, 8);
-      odom.twist.twist.linear.x = value(i, 9);
-      odom.child_frame_id = "base_link";
-      bag.write("/odom", at(0.1 * i), odom);
-      tf2_msgs::TFMessage tf;
-      for (int k = 0; k < 2; ++k) {
-        geometry_msgs::TransformStamped t;
-        t.header.stamp = at(0.1 * i);
-        t.child_frame_id = k == 0 ? "base_link" : "mast";
-        t.transform.translation.x = value(i, 20 + k);
-        t.transform.rotation.w = 1.0;
-        tf.transforms.push_back(t);
-      }
-      bag.write("/tf", at(0.1 * i), tf);
-    }
-  }
+  write_rover_bag(path);
   const log::Log lg = io::load_log(path).log;
   for (int i = 0; i < 10; ++i) {
     EXPECT_EQ(lg.stream("navsat/fix").channel("latitude").values[i], 39.6 + value(i, 0) * 1e-5);
@@ -291,6 +304,46 @@ TEST(Ros1Bag, AMappingNamesTopicsAsRoverStreamsWithUnits) {
     "streams": [{"name": "imu", "time": {"variable": "/imu", "unit": "s"}, "channels": []}]})");
   o.mapping = io::load_mapping(mapping);
   EXPECT_EQ(load_error(bag_path, o), bag_path + ": mapping ros_test: no topic /imu in the file");
+}
+
+// Debian's python3-rosbag decodes the same bag with classes genpy generates
+// from the bag's own definitions (tests/importers/rosbag_numeric_fields.py):
+// every numeric field it finds is a channel, value for value, and every
+// channel is such a field (or a quaternion's roll, pitch, yaw).
+TEST(Ros1Bag, ChannelsEqualWhatPythonRosbagDecodes) {
+  if (test::run_command("/usr/bin/python3 -c 'import rosbag, genpy'").exit_code != 0) {
+    GTEST_SKIP() << "Debian's python3-rosbag is not installed (scripts/install-deps installs it)";
+  }
+  TempDir dir;
+  const std::string path = dir.file("rover.bag");
+  write_rover_bag(path);
+  const std::string script = std::string(ROVERLAB_TEST_SOURCE_DIR) + "/importers/rosbag_numeric_fields.py";
+  const test::CommandResult py = test::run_command("/usr/bin/python3 " + test::quote(script) + " " + test::quote(path));
+  ASSERT_EQ(py.exit_code, 0) << py.err;
+  const nlohmann::json fields = nlohmann::json::parse(py.out);
+  const log::Log lg = io::load_log(path).log;
+  std::size_t compared = 0;
+  for (const auto& [topic, columns] : fields.items()) {
+    const log::Stream& s = lg.stream(topic.substr(1));
+    for (const auto& [name, values] : columns.items()) {
+      const log::Channel* c = s.find_channel(name);
+      ASSERT_NE(c, nullptr) << topic << " " << name;
+      ASSERT_EQ(c->values.size(), values.size()) << topic << " " << name;
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        EXPECT_EQ(c->values[i], values[i].get<double>()) << topic << " " << name << " [" << i << "]";
+        ++compared;
+      }
+    }
+    for (const auto& c : s.channels()) {
+      const auto ends_with = [&](const std::string& tail) {
+        return c.name.size() > tail.size() && c.name.compare(c.name.size() - tail.size(), tail.size(), tail) == 0;
+      };
+      const bool derived = ends_with(".roll") || ends_with(".pitch") || ends_with(".yaw");
+      EXPECT_TRUE(derived || columns.contains(c.name)) << topic << ": " << c.name << " is no field python3-rosbag sees";
+    }
+  }
+  EXPECT_EQ(fields.size(), 7U);
+  EXPECT_GT(compared, 1000U);
 }
 
 // Bad files: one line naming the file and the problem, never a crash.
