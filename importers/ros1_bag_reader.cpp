@@ -15,6 +15,44 @@
 #include "importers/ros_message_log.h"
 
 namespace roverlab::io {
+namespace {
+// A message's serialized bytes where the library holds them (its chunk
+// buffer), valid until the next message is read: "instantiated" through the
+// library's own path, which parses the record header once (size() and
+// write() parse it twice) and copies nothing.
+struct BagBytes {
+  const std::uint8_t* data = nullptr;
+  std::uint32_t size = 0;
+};
+}  // namespace
+}  // namespace roverlab::io
+
+namespace ros {
+namespace message_traits {
+template <>
+struct MD5Sum<roverlab::io::BagBytes> {
+  static const char* value() { return "*"; }  // any type
+  static const char* value(const roverlab::io::BagBytes&) { return value(); }
+};
+template <>
+struct DataType<roverlab::io::BagBytes> {
+  static const char* value() { return "*"; }
+  static const char* value(const roverlab::io::BagBytes&) { return value(); }
+};
+}  // namespace message_traits
+namespace serialization {
+template <>
+struct Serializer<roverlab::io::BagBytes> {
+  template <typename Stream>
+  static void read(Stream& stream, roverlab::io::BagBytes& m) {
+    m.data = stream.getData();
+    m.size = stream.getLength();
+  }
+};
+}  // namespace serialization
+}  // namespace ros
+
+namespace roverlab::io {
 
 namespace {
 
@@ -60,7 +98,7 @@ class Ros1BagReader final : public LogReader {
             if (counts.count(c->topic) == 0) counts[c->topic] = rosbag::View(bag, rosbag::TopicQuery(c->topic)).size();
           }
         },
-        [&](const rosbag::MessageInstance& m, const std::vector<std::uint8_t>& bytes) {
+        [&](const rosbag::MessageInstance& m, const BagBytes& bytes) {
           const void* connection = m.getConnectionHeader().get();
           auto it = topic_of.find(connection);
           if (it == topic_of.end()) {
@@ -69,7 +107,7 @@ class Ros1BagReader final : public LogReader {
             messages.expect_messages(topic, counts[m.getTopic()]);
             it = topic_of.emplace(connection, topic).first;
           }
-          messages.add_message(it->second, static_cast<std::int64_t>(m.getTime().toNSec()), bytes.data(), bytes.size());
+          messages.add_message(it->second, static_cast<std::int64_t>(m.getTime().toNSec()), bytes.data, bytes.size);
         });
     return messages.build(options.mapping);
   }
@@ -77,7 +115,7 @@ class Ros1BagReader final : public LogReader {
   // The crash guard's trial: the library's calls on every message, no decoding.
   void trial_read(const std::string& path, const LoadOptions&) const override {
     each_message(
-        path, [](rosbag::Bag&) {}, [](const rosbag::MessageInstance&, const std::vector<std::uint8_t>&) {});
+        path, [](rosbag::Bag&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
   }
 
  private:
@@ -95,13 +133,10 @@ class Ros1BagReader final : public LogReader {
       bag.open(path, rosbag::bagmode::Read);
       opened(bag);
       rosbag::View view(bag);
-      std::vector<std::uint8_t> buffer;
       for (const rosbag::MessageInstance& m : view) {
-        const std::uint32_t size = m.size();
-        buffer.resize(size);
-        ::ros::serialization::OStream stream(buffer.data(), size);
-        m.write(stream);
-        visit(m, buffer);
+        const boost::shared_ptr<BagBytes> bytes = m.instantiate<BagBytes>();
+        if (!bytes) throw InputError(path, "corrupt ROS bag: a message could not be read");
+        visit(m, *bytes);
       }
     } catch (const InputError&) {
       throw;
