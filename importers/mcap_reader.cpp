@@ -33,6 +33,7 @@ enum Opcode : std::uint8_t {
   kMessage = 0x05,
   kChunk = 0x06,
   kChunkIndex = 0x08,
+  kStatistics = 0x0B,
   kDataEnd = 0x0F,
 };
 
@@ -275,10 +276,27 @@ class McapReader {
     for_each_record(summary.data(), summary.size(), summary_start,
                     [&](std::uint8_t op, const std::uint8_t* data, std::size_t size, std::uint64_t) {
                       if (op == kChunkIndex) chunks.push_back(chunk_index(data, size));
+                      if (op == kStatistics) statistics(data, size);
                       if (op == kSchema || op == kChannel) definition_record(op, data, size);
                       return true;
                     });
     return true;
+  }
+
+  // Messages per channel: a whole-file read allocates each column once.
+  void statistics(const std::uint8_t* data, std::size_t size) {
+    Cursor c(data, size, "Statistics");
+    (void)c.number<std::uint64_t>();                              // message count
+    (void)c.number<std::uint16_t>();                              // schema count
+    for (int k = 0; k < 4; ++k) (void)c.number<std::uint32_t>();  // channel, attachment, metadata, chunk counts
+    (void)c.number<std::uint64_t>();                              // message start time
+    (void)c.number<std::uint64_t>();                              // message end time
+    const auto [map, map_size] = c.bytes<std::uint32_t>();
+    Cursor m(map, map_size, "Statistics");
+    for (std::size_t k = 0; k < map_size / 10; ++k) {
+      const auto id = m.number<std::uint16_t>();
+      message_counts_[id] = m.number<std::uint64_t>();
+    }
   }
 
   ChunkIndexRecord chunk_index(const std::uint8_t* data, std::size_t size) const {
@@ -452,6 +470,14 @@ class McapReader {
                       "' is not supported (RoverLab reads ros1 with ros1msg, cdr with ros2msg, json)"};
     }
     ch.topic_index = messages_.add_topic(ch.topic, type, definition, dialect, encoding);
+    const auto count = message_counts_.find(id);
+    const bool whole = !selection_.start_ns && !selection_.end_ns && selection_.topics.empty();
+    // A count no file of this size could hold (a message record takes at least 31 bytes, before any
+    // compression) is not believed beyond that.
+    if (whole && count != message_counts_.end()) {
+      messages_.expect_messages(*ch.topic_index,
+                                static_cast<std::size_t>(std::min<std::uint64_t>(count->second, file_.size() / 31)));
+    }
     return *ch.topic_index;
   }
 
@@ -481,6 +507,7 @@ class McapReader {
   std::set<std::string> wanted_;
   std::map<std::uint16_t, SchemaRecord> schemas_;
   std::map<std::uint16_t, ChannelRecord> channels_;
+  std::map<std::uint16_t, std::uint64_t> message_counts_;  // the summary's statistics
   ros::MessageLog messages_;
 };
 
