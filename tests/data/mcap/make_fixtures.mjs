@@ -5,8 +5,10 @@
 //
 // Regenerate (Node 18+, from the repository root):
 //   cd tests/data/mcap && npm install --no-save @mcap/core@2.2.2 @foxglove/rosmsg@5.0.5 \
-//     @foxglove/rosmsg-serialization@2.0.4 @foxglove/rosmsg2-serialization @foxglove/wasm-zstd lz4js \
+//     @foxglove/rosmsg-serialization@2.0.4 @foxglove/rosmsg2-serialization@3.1.0 \
+//     @foxglove/wasm-zstd@1.0.1 lz4js@0.2.0 \
 //     && node make_fixtures.mjs && rm -rf node_modules package-lock.json
+// (the versions the committed files were made with, on Node 20).
 //
 // Every value is value(i, k) = 0.1 * i + 1e-7 * k - 3.3, which the C++ test
 // computes the same way (IEEE doubles, the same operations in the same order).
