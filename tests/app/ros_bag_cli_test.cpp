@@ -1,7 +1,8 @@
 // A ROS 1 bag made from the bundled WVU Pathfinder log (the ROS library's own
-// writer, the message headers ROS generates) runs through the command line as
-// the MATLAB file does: `info` lists its topics, `estimate ins-slip` and
-// `discrepancy odometry` give the same answers, bad bags exit 3 with one line.
+// writer, the message headers ROS generates), and the same log as an MCAP file
+// of the MCAP project's writer, run through the command line as the MATLAB
+// file does: `info` lists their topics, `estimate ins-slip` and `discrepancy
+// odometry` give the same answers, bad bags exit 3 with one line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -202,6 +203,24 @@ TEST_F(PathfinderBag, ConvertWritesTheMappedStreamsToHdf5) {
     const log::Stream& t = h5.stream(s.name());
     EXPECT_EQ(t.time(), s.time());
     for (const auto& c : s.channels()) EXPECT_EQ(t.channel(c.name).values.size(), c.values.size());
+  }
+}
+
+// The same log as an MCAP file written by the MCAP project's writer
+// (tests/data/mcap/make_wvu_mcap.mjs: the topics above, ROS 1 encoding, zstd
+// chunks, the times to the nanosecond).
+TEST(WvuMcap, InsSlipAndOdometryDiscrepancyGiveTheMatlabFilesAnswers) {
+  const std::string mcap = std::string(ROVERLAB_TEST_DATA) + "/mcap/wvu_pathfinder_ros1.mcap";
+  const CommandResult info = run_roverlab("info " + quote(mcap) + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(json::parse(info.out).at("metadata").at("extra").at("topic /imu/data"), "sensor_msgs/Imu, 17611 messages");
+  for (const std::string command : {"estimate ins-slip", "discrepancy odometry"}) {
+    SCOPED_TRACE(command);
+    const CommandResult mat = run_roverlab(command + " " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+    ASSERT_EQ(mat.exit_code, 0) << mat.err;
+    const CommandResult r = run_roverlab(command + " " + quote(mcap) + " -m ros_pathfinder --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_same(json::parse(mat.out), json::parse(r.out), 1e-6);
   }
 }
 
