@@ -87,14 +87,15 @@ class ItemList {
       for (const auto& entry : fs::directory_iterator(e.folder)) {
         std::string ext = entry.path().extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (entry.is_regular_file() && (ext == ".h5" || ext == ".hdf5" || ext == ".mat" || ext == ".csv")) {
+        if (entry.is_regular_file() &&
+            (ext == ".h5" || ext == ".hdf5" || ext == ".mat" || ext == ".csv" || ext == ".bag" || ext == ".mcap")) {
           files.push_back(entry.path());
         }
       }
       std::sort(files.begin(), files.end());
       if (files.empty()) {
         const std::string field = e.where.rfind("--", 0) == 0 ? "" : "field '" + e.where + ".folder': ";
-        throw InputError(file_, field + "no .h5, .hdf5, .mat or .csv log in " + e.folder);
+        throw InputError(file_, field + "no .h5, .hdf5, .mat, .csv, .bag or .mcap log in " + e.folder);
       }
     }
     for (const auto& f : files) {

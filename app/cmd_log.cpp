@@ -194,19 +194,20 @@ Commands make_log_commands() {
   commands.push_back(make_command<InfoOptions>(
       "info", "List a log's streams and channels with units, sample counts, rates and durations",
       [](CLI::App& cmd, InfoOptions& o) {
-        cmd.add_option("FILE", o.file, "Log file: RoverLab HDF5, MATLAB v7.3 (.mat) or CSV")->required();
+        cmd.add_option("FILE", o.file, "Log file: RoverLab HDF5, MATLAB v7.3 (.mat), CSV, ROS 1 bag or MCAP")
+            ->required();
         cmd.add_option("--mapping,-m", o.mapping,
-                       "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5 input");
+                       "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5, bag or MCAP input");
         cmd.add_flag("--json", o.json, "Print JSON instead of text");
       },
       run_info));
   commands.push_back(make_command<ConvertOptions>(
       "convert", "Convert a log to a RoverLab HDF5 log (or a one-stream CSV)",
       [](CLI::App& cmd, ConvertOptions& o) {
-        cmd.add_option("IN", o.input, "Input log: HDF5, MATLAB v7.3 (.mat) or CSV")->required();
+        cmd.add_option("IN", o.input, "Input log: HDF5, MATLAB v7.3 (.mat), CSV, ROS 1 bag or MCAP")->required();
         cmd.add_option("OUT", o.output, "Output file: .h5 / .hdf5, or .csv")->required();
         cmd.add_option("--mapping,-m", o.mapping,
-                       "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5 input");
+                       "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5, bag or MCAP input");
         cmd.add_option("--stream,-s", o.stream, "For .csv output: the stream to write");
       },
       run_convert));

@@ -6,6 +6,7 @@
 
 #include "app/command.h"
 #include "app/commands.h"
+#include "app/log_input.h"
 #include "core/common/error.h"
 #include "core/common/library_messages.h"
 #include "views/offscreen.h"
@@ -85,7 +86,18 @@ int parse_and_run(int argc, char** argv) {
   });
   bool verbose = false;
   p.cli.add_flag("--verbose", verbose, "Also show the messages of the libraries RoverLab uses (Ceres, VTK)");
-  p.cli.fallthrough();  // --verbose also after the subcommand's name
+  RosInputOptions& ros = ros_input_options();
+  p.cli
+      .add_option("--ros-time", ros.time,
+                  "ROS bags and MCAP files: a message's time is its record time (record, the default) or its "
+                  "header.stamp where its type has a std_msgs/Header (header)")
+      ->check(CLI::IsMember({"record", "header"}));
+  p.cli
+      .add_option("--ros-max-array", ros.max_array,
+                  "ROS bags and MCAP files: arrays of up to N elements become channels, longer ones are "
+                  "skipped (default 64)")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1} << 20));
+  p.cli.fallthrough();  // --verbose (and --ros-*) also after the subcommand's name
   Commands commands = all_commands();
   for (auto& c : commands) p.add(*c);
   try {

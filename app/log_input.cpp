@@ -7,8 +7,15 @@
 
 namespace roverlab::app {
 
+RosInputOptions& ros_input_options() {
+  static RosInputOptions options;
+  return options;
+}
+
 io::LoadedLog load_input(const std::string& file, const std::optional<std::string>& mapping) {
   io::LoadOptions options;
+  options.header_time = ros_input_options().time == "header";
+  options.max_array = ros_input_options().max_array;
   if (mapping) {
     options.mapping = io::load_mapping(io::find_mapping(*mapping, resource_subfolders("mappings")));
   }

@@ -2,6 +2,7 @@
 // Loading a log named on the command line, with an optional mapping NAME or
 // FILE (resolved against the resource folders).
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -10,5 +11,13 @@
 namespace roverlab::app {
 
 io::LoadedLog load_input(const std::string& file, const std::optional<std::string>& mapping);
+
+// How load_input reads ROS bags and MCAP files: set once from the command
+// line's --ros-time and --ros-max-array (app/command_line.cpp).
+struct RosInputOptions {
+  std::string time = "record";  // "record" or "header"
+  std::size_t max_array = 64;
+};
+RosInputOptions& ros_input_options();
 
 }  // namespace roverlab::app

@@ -33,7 +33,8 @@ bool has_hdf5_signature(const std::string& path) {
   return found;
 }
 
-void survive_crash(const std::string& path, const std::function<void()>& trial) {
+void survive_crash(const std::string& path, const std::function<void()>& trial, const std::string& format,
+                   const std::string& library) {
   std::fflush(nullptr);  // nothing buffered is written twice
   const pid_t child = fork();
   if (child < 0) return;
@@ -66,20 +67,19 @@ void survive_crash(const std::string& path, const std::function<void()>& trial) 
       kill(child, SIGKILL);
       while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
       }
-      throw InputError(path,
-                       "corrupt HDF5 file: reading it did not finish in time (the HDF5 library loops on it); "
-                       "the file is damaged");
+      throw InputError(path, "corrupt " + format + ": reading it did not finish in time (the " + library +
+                                 " loops on it); the file is damaged");
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   if (WIFSIGNALED(status)) {
-    throw InputError(path, std::string("corrupt HDF5 file: the HDF5 library crashed reading it (") +
+    throw InputError(path, "corrupt " + format + ": the " + library + " crashed reading it (" +
                                strsignal(WTERMSIG(status)) + "); the file is damaged");
   }
   // The child ends only by _exit(0) above: any other status is a library (or
   // an allocator's out-of-memory handler) ending the process from inside.
   if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
-    throw InputError(path, "corrupt HDF5 file: reading it ended the process (exit status " +
+    throw InputError(path, "corrupt " + format + ": reading it ended the process (exit status " +
                                std::to_string(WEXITSTATUS(status)) + "); the file is damaged");
   }
 }

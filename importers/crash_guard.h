@@ -20,6 +20,9 @@ bool has_hdf5_signature(const std::string& path);
 // a status other than 0 (something in the read ended the process); returns
 // otherwise, whatever the trial threw (the real read here then gives the same,
 // clean error). Without a child to spare it returns at once.
-void survive_crash(const std::string& path, const std::function<void()>& trial);
+// `format` and `library` name what the message says ("ROS bag", "rosbag
+// library").
+void survive_crash(const std::string& path, const std::function<void()>& trial, const std::string& format = "HDF5 file",
+                   const std::string& library = "HDF5 library");
 
 }  // namespace roverlab::io

@@ -64,12 +64,21 @@ LoadedLog load_log(const std::string& path, const LoadOptions& options) {
   // Recognising the file opens it with the HDF5 library too.
   const auto find = [&] {
     const LogReader* reader = find_log_reader(path, options);
-    if (!reader) throw InputError(path, "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
+    if (!reader)
+      throw InputError(path,
+                       "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat, .csv, ROS 1 .bag or .mcap)");
     return reader;
   };
   // The HDF5 library may crash on a damaged file: a child tries it first
   // (the reader's trial read: the same library calls, the samples dropped).
-  if (has_hdf5_signature(path)) survive_crash(path, [&] { find()->trial_read(path, options); });
+  if (has_hdf5_signature(path)) {
+    survive_crash(path, [&] { find()->trial_read(path, options); });
+  } else if (const LogReader* guarded = find_log_reader(path, options)) {
+    const auto [format, library] = guarded->crash_guard_names();
+    if (!format.empty())
+      survive_crash(
+          path, [&] { guarded->trial_read(path, options); }, format, library);
+  }
   const LogReader* reader = find();
   return {reader->read(path, options), reader->name()};
 }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/log/log.h"
@@ -16,6 +17,11 @@ namespace roverlab::io {
 
 struct LoadOptions {
   std::optional<Mapping> mapping;  // needed for MATLAB and foreign HDF5 files
+  // ROS bags and MCAP files (importers/ros_message_log.h): a message's time is
+  // its header.stamp (true) or its record time (false, the default), and
+  // arrays longer than max_array elements are skipped.
+  bool header_time = false;
+  std::size_t max_array = 64;
 };
 
 // How sure a reader is that a file is its own: by content first (a format
@@ -41,6 +47,11 @@ class LogReader {
   // (importers/crash_guard.h): the library calls read() makes on the file;
   // the samples need not be kept. read() itself unless a reader does better.
   virtual void trial_read(const std::string& path, const LoadOptions& options) const { (void)read(path, options); }
+  // A reader whose library may crash or hang on a damaged file names the
+  // file kind and the library ("ROS bag", "rosbag library"): load_log then
+  // runs trial_read under the crash guard. Empty strings: no guard (HDF5
+  // files get it by their signature whatever the reader).
+  virtual std::pair<std::string, std::string> crash_guard_names() const { return {}; }
 };
 
 // True when the file name ends in one of `extensions` (".h5"; case counts).

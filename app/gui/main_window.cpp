@@ -136,7 +136,7 @@ void MainWindow::build_menus() {
     QSettings settings;
     const QString path =
         QFileDialog::getOpenFileName(this, "Open a rover log", settings.value("files/last_dir").toString(),
-                                     "Rover logs (*.h5 *.hdf5 *.mat *.csv);;All files (*)");
+                                     "Rover logs (*.h5 *.hdf5 *.mat *.csv *.bag *.mcap);;All files (*)");
     if (!path.isEmpty()) open_file(path);
   });
   recent_menu_ = file->addMenu("Open &recent");

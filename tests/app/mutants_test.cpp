@@ -1,4 +1,5 @@
-// Single-byte mutants of real and simulated RoverLab logs, each read whole by
+// Single-byte mutants of real and simulated RoverLab logs, ROS 1 bags and MCAP
+// files, each read whole by
 // `roverlab convert` as a user would: every one is read (exit 0) or refused in
 // one line (exit 3); none crashes, hangs or is an internal error (issue 17).
 // ROVERLAB_MUTANTS sets how many per log (default 40, the CI subset);
@@ -8,6 +9,10 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+
+#include <rosbag/bag.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/JointState.h>
 
 #include "test_support.h"
 
@@ -33,12 +38,12 @@ int mutants_per_log() {
 // Mutates one byte at a time: half of them in the first 4 KiB, where HDF5's
 // superblock and root object headers live (the crashes of F31/F32 were there),
 // half anywhere. Returns the mutants that failed, as "offset=value: reason".
-std::vector<std::string> mutate_and_read(const std::string& log, unsigned seed) {
+std::vector<std::string> mutate_and_read(const std::string& log, unsigned seed, const std::string& extension = ".h5") {
   const std::string original = test::read_text(log);
   std::mt19937 random(seed);
   std::uniform_int_distribution<int> byte(0, 255);
   TempDir dir;
-  const std::string mutant = dir.file("mutant.h5"), out = dir.file("out.h5");
+  const std::string mutant = dir.file("mutant" + extension), out = dir.file("out.h5");
   std::vector<std::string> failures;
   const int n = mutants_per_log();
   for (int i = 0; i < n; ++i) {
@@ -77,6 +82,44 @@ TEST(Mutants, OfASimulatedRockerBogieLogAreReadOrRefusedInOneLine) {
   ASSERT_EQ(run_roverlab("simulate flat_60s --duration 5 -o " + quote(log)).exit_code, 0);
   const auto failures = mutate_and_read(log, 5);
   EXPECT_TRUE(failures.empty()) << failures.size() << " of " << mutants_per_log() << ", first: " << failures.front();
+}
+
+// Bags written by the ROS library's own writer: LZ4 and BZ2 chunks.
+TEST(Mutants, OfRosBagsAreReadOrRefusedInOneLine) {
+  TempDir dir;
+  for (const auto compression : {rosbag::compression::LZ4, rosbag::compression::BZ2}) {
+    const std::string log = dir.file("rover.bag");
+    {
+      rosbag::Bag bag(log, rosbag::bagmode::Write);
+      bag.setCompression(compression);
+      bag.setChunkThreshold(2048);
+      for (int i = 0; i < 60; ++i) {
+        const ros::Time t(1'700'000'000 + i / 10, (i % 10) * 100'000'000);
+        sensor_msgs::Imu imu;
+        imu.header.stamp = t;
+        imu.angular_velocity.x = 0.1 * i;
+        imu.orientation.w = 1.0;
+        bag.write("/imu/data", t, imu);
+        sensor_msgs::JointState joints;
+        joints.header.stamp = t;
+        joints.name = {"FL", "FR"};
+        joints.position = {0.01 * i, -0.01 * i};
+        bag.write("/joint_states", t, joints);
+      }
+    }
+    const auto failures = mutate_and_read(log, compression == rosbag::compression::LZ4 ? 31 : 32, ".bag");
+    EXPECT_TRUE(failures.empty()) << failures.size() << " of " << mutants_per_log() << ", first: " << failures.front();
+  }
+}
+
+// MCAP files of the MCAP project's writer (tests/data/mcap): indexed (lz4,
+// ROS 2 CDR and JSON) and unindexed (zstd, ROS 1).
+TEST(Mutants, OfMcapFilesAreReadOrRefusedInOneLine) {
+  for (const char* name : {"rover_cdr_json_lz4.mcap", "imu_ros1_zstd_no_summary.mcap"}) {
+    const auto failures = mutate_and_read(kData + "/mcap/" + name, 33, ".mcap");
+    EXPECT_TRUE(failures.empty()) << name << ": " << failures.size() << " of " << mutants_per_log()
+                                  << ", first: " << failures.front();
+  }
 }
 
 }  // namespace

@@ -51,8 +51,8 @@ std::string load_error(const std::string& path, const io::LoadOptions& options =
 TEST(LogReaders, TheDefListHoldsEachFormatOnce) {
   std::set<std::string> names;
   for (const auto& reader : io::log_readers()) names.insert(reader->name());
-  EXPECT_EQ(names, (std::set<std::string>{kRoverLab, kMapped, kCsv}));
-  EXPECT_EQ(io::log_readers().size(), 3u);
+  EXPECT_EQ(names, (std::set<std::string>{kRoverLab, kMapped, kCsv, "ROS 1 bag", "MCAP"}));
+  EXPECT_EQ(io::log_readers().size(), 5u);
 }
 
 TEST(LogReaders, EachReaderPicksItsFiles) {
@@ -95,13 +95,24 @@ TEST(LogReaders, ConfidenceOrdersContentBeforeExtension) {
   write_text(dir.file("fake.mat"), "plain text");
   EXPECT_EQ(reader_name(dir.file("fake.h5")), kRoverLab);  // by its extension only
   EXPECT_EQ(reader_name(dir.file("fake.mat")), kMapped);
+  // ROS bags and MCAP files: by their magic first, else by the extension.
+  write_text(dir.file("fake.bag"), "plain text");
+  write_text(dir.file("fake.mcap"), "plain text");
+  write_text(dir.file("bag.dat"), "#ROSBAG V2.0\nrest");
+  write_text(dir.file("mcap.dat"), "\x89MCAP0\r\nrest");
+  EXPECT_EQ(reader_name(dir.file("fake.bag")), "ROS 1 bag");
+  EXPECT_EQ(reader_name(dir.file("fake.mcap")), "MCAP");
+  EXPECT_EQ(reader_name(dir.file("bag.dat")), "ROS 1 bag");
+  EXPECT_EQ(reader_name(dir.file("mcap.dat")), "MCAP");
+  EXPECT_EQ(load_error(dir.file("fake.mcap")), "not an MCAP file (no MCAP magic bytes)");
 }
 
 TEST(LogReaders, FilesNoReaderTakesKeepTheirErrors) {
   TempDir dir;
   write_text(dir.file("notes.doc"), "time [s],x [m]\n0,1\n");
   EXPECT_EQ(reader_name(dir.file("notes.doc")), "none");
-  EXPECT_EQ(load_error(dir.file("notes.doc")), "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat or .csv)");
+  EXPECT_EQ(load_error(dir.file("notes.doc")),
+            "unrecognised log format (expected HDF5 .h5, MATLAB v7.3 .mat, .csv, ROS 1 .bag or .mcap)");
   EXPECT_EQ(load_error(dir.file("missing.h5")), "no such file");
   EXPECT_EQ(load_error(dir.path().string()), "is a folder, not a log file");
   write_text(dir.file("fake.h5"), "plain text");

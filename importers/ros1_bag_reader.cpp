@@ -1,0 +1,155 @@
+// ROS 1 bags (format 2.0) as a LogReader: the rosbag library reads the file
+// (chunks uncompressed, bz2 or lz4); each connection's message definition
+// drives a generic decoder (importers/ros_message_log.h).
+#include <cstdio>
+#include <cstring>
+#include <new>
+#include <unordered_map>
+
+#include <console_bridge/console.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
+#include "core/common/error.h"
+#include "importers/log_reader.h"
+#include "importers/ros_message_log.h"
+
+namespace roverlab::io {
+namespace {
+// A message's serialized bytes where the library holds them (its chunk
+// buffer), valid until the next message is read: "instantiated" through the
+// library's own path, which parses the record header once (size() and
+// write() parse it twice) and copies nothing.
+struct BagBytes {
+  const std::uint8_t* data = nullptr;
+  std::uint32_t size = 0;
+};
+}  // namespace
+}  // namespace roverlab::io
+
+namespace ros {
+namespace message_traits {
+template <>
+struct MD5Sum<roverlab::io::BagBytes> {
+  static const char* value() { return "*"; }  // any type
+  static const char* value(const roverlab::io::BagBytes&) { return value(); }
+};
+template <>
+struct DataType<roverlab::io::BagBytes> {
+  static const char* value() { return "*"; }
+  static const char* value(const roverlab::io::BagBytes&) { return value(); }
+};
+}  // namespace message_traits
+namespace serialization {
+template <>
+struct Serializer<roverlab::io::BagBytes> {
+  template <typename Stream>
+  static void read(Stream& stream, roverlab::io::BagBytes& m) {
+    m.data = stream.getData();
+    m.size = stream.getLength();
+  }
+};
+}  // namespace serialization
+}  // namespace ros
+
+namespace roverlab::io {
+
+namespace {
+
+constexpr char kMagic[] = "#ROSBAG V";
+
+// The version line ("2.0"), or empty when the file does not start as a bag.
+std::string bag_version(const std::string& path) {
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (in == nullptr) return {};
+  char head[16] = {};
+  const std::size_t got = std::fread(head, 1, sizeof head - 1, in);
+  std::fclose(in);
+  const std::size_t magic = sizeof kMagic - 1;
+  if (got < magic || std::memcmp(head, kMagic, magic) != 0) return {};
+  std::string version(head + magic, got - magic);
+  const std::size_t end = version.find('\n');
+  return end == std::string::npos ? "?" : version.substr(0, end);
+}
+
+class Ros1BagReader final : public LogReader {
+ public:
+  std::string name() const override { return "ROS 1 bag"; }
+
+  Confidence can_read(const std::string& path, const LoadOptions&) const override {
+    if (!bag_version(path).empty()) return Confidence::format;
+    return has_extension(path, {".bag"}) ? Confidence::extension : Confidence::none;
+  }
+
+  std::pair<std::string, std::string> crash_guard_names() const override { return {"ROS bag", "rosbag library"}; }
+
+  log::Log read(const std::string& path, const LoadOptions& options) const override {
+    ros::MessageLogOptions message_options;
+    message_options.time = options.header_time ? ros::TimeSource::header : ros::TimeSource::record;
+    message_options.limits.max_array = options.max_array;
+    ros::MessageLog messages(path, message_options);
+    std::unordered_map<const void*, std::size_t> topic_of;  // by connection
+    std::unordered_map<std::string, std::size_t> counts;    // messages per topic, from the bag's index
+    each_message(
+        path,
+        [&](rosbag::Bag& bag) {
+          rosbag::View all(bag);
+          for (const rosbag::ConnectionInfo* c : all.getConnections()) {
+            if (counts.count(c->topic) == 0) counts[c->topic] = rosbag::View(bag, rosbag::TopicQuery(c->topic)).size();
+          }
+        },
+        [&](const rosbag::MessageInstance& m, const BagBytes& bytes) {
+          const void* connection = m.getConnectionHeader().get();
+          auto it = topic_of.find(connection);
+          if (it == topic_of.end()) {
+            const std::size_t topic = messages.add_topic(m.getTopic(), m.getDataType(), m.getMessageDefinition(),
+                                                         ros::Dialect::ros1, ros::Encoding::ros1);
+            messages.expect_messages(topic, counts[m.getTopic()]);
+            it = topic_of.emplace(connection, topic).first;
+          }
+          messages.add_message(it->second, static_cast<std::int64_t>(m.getTime().toNSec()), bytes.data, bytes.size);
+        });
+    return messages.build(options.mapping);
+  }
+
+  // The crash guard's trial: the library's calls on every message, no decoding.
+  void trial_read(const std::string& path, const LoadOptions&) const override {
+    each_message(
+        path, [](rosbag::Bag&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
+  }
+
+ private:
+  // Calls opened(the bag), then visit(message, its bytes) for every message
+  // of the bag, in time order.
+  template <class Opened, class Visit>
+  static void each_message(const std::string& path, Opened&& opened, Visit&& visit) {
+    const std::string version = bag_version(path);
+    if (version.empty()) throw InputError(path, "not a ROS bag (no '#ROSBAG V2.0' line at the start)");
+    if (version != "2.0") throw InputError(path, "ROS bag version " + version + "; RoverLab reads version 2.0");
+    // The library's own log lines are not RoverLab's one line.
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+    try {
+      rosbag::Bag bag;
+      bag.open(path, rosbag::bagmode::Read);
+      opened(bag);
+      rosbag::View view(bag);
+      for (const rosbag::MessageInstance& m : view) {
+        const boost::shared_ptr<BagBytes> bytes = m.instantiate<BagBytes>();
+        if (!bytes) throw InputError(path, "corrupt ROS bag: a message could not be read");
+        visit(m, *bytes);
+      }
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::bad_alloc&) {
+      throw InputError(path, "corrupt ROS bag: a length in the file asks for more memory than there is");
+    } catch (const std::exception& e) {
+      throw InputError(path, std::string("corrupt or unreadable ROS bag: ") + e.what());
+    }
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<LogReader> make_ros1_bag_log_reader() { return std::make_unique<Ros1BagReader>(); }
+
+}  // namespace roverlab::io

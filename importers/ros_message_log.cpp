@@ -1,0 +1,328 @@
+#include "importers/ros_message_log.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+
+#include <nlohmann/json.hpp>
+
+#include "core/common/error.h"
+#include "core/log/units.h"
+
+namespace roverlab::io::ros {
+
+namespace {
+
+// "/imu/data" -> "imu/data" (and "a//b" -> "a/b"): a RoverLab stream name.
+std::string stream_name(const std::string& topic) {
+  std::string out;
+  for (char c : topic) {
+    if (c == '/' && (out.empty() || out.back() == '/')) continue;
+    out += c;
+  }
+  while (!out.empty() && out.back() == '/') out.pop_back();
+  return out;
+}
+
+// Unix nanoseconds as seconds with nine decimals, exactly.
+std::string seconds_text(std::int64_t ns) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%s%lld.%09lld", ns < 0 ? "-" : "",
+                static_cast<long long>(std::llabs(ns / 1'000'000'000)),
+                static_cast<long long>(std::llabs(ns % 1'000'000'000)));
+  return text;
+}
+
+}  // namespace
+
+TimeSource parse_time_source(const std::string& text) {
+  if (text == "record") return TimeSource::record;
+  if (text == "header") return TimeSource::header;
+  throw DataError("time source must be 'record' or 'header', not '" + text + "'");
+}
+
+struct MessageLog::Topic {
+  Topic(std::string topic, std::string type_name, std::unique_ptr<Decoder> d)
+      : name(std::move(topic)), type(std::move(type_name)), decoder(std::move(d)) {}
+
+  std::string name;
+  std::string type;
+  std::unique_ptr<Decoder> decoder;  // null for JSON messages
+  std::vector<std::int64_t> time_ns;
+  std::vector<std::string> channel_names;
+  std::vector<std::vector<double>> columns;
+  std::unordered_map<std::string, std::size_t> index;
+  // The previous message's shape and where its values go.
+  bool has_layout = false;
+  std::vector<std::uint32_t> layout_lengths;
+  std::vector<std::string> layout_labels;  // JSON: the value names themselves
+  std::vector<std::size_t> layout;
+  DecodedMessage scratch;
+  std::size_t expected = 0;  // messages the file's index announces (0: unknown)
+
+  void relayout(const std::vector<std::string>& names) {
+    layout.clear();
+    std::unordered_map<std::string, int> seen;
+    for (std::string name : names) {
+      // Two equal labels (a JointState naming a joint twice) stay apart.
+      const int copies = ++seen[name];
+      if (copies > 1) name += "~" + std::to_string(copies);
+      auto it = index.find(name);
+      if (it == index.end()) {
+        it = index.emplace(name, columns.size()).first;
+        channel_names.push_back(name);
+        columns.emplace_back(time_ns.size(), std::nan(""));  // earlier messages lacked it
+        if (expected > time_ns.size()) columns.back().reserve(expected);
+      }
+      layout.push_back(it->second);
+    }
+    layout_lengths = scratch.lengths;
+    layout_labels = scratch.labels;
+    has_layout = true;
+  }
+
+  // Appends scratch: values named by the decoder, or by scratch.labels (JSON).
+  void append(std::int64_t t) {
+    if (!has_layout || scratch.lengths != layout_lengths || scratch.labels != layout_labels ||
+        scratch.values.size() != layout.size()) {
+      relayout(decoder ? decoder->value_names(scratch) : scratch.labels);
+    }
+    time_ns.push_back(t);
+    if (layout.size() == columns.size()) {  // every channel present: the common case
+      for (std::size_t i = 0; i < layout.size(); ++i) columns[layout[i]].push_back(scratch.values[i]);
+      return;
+    }
+    for (auto& c : columns) c.push_back(std::nan(""));
+    for (std::size_t i = 0; i < layout.size(); ++i) columns[layout[i]].back() = scratch.values[i];
+  }
+
+  // Rows in time order, one per distinct time (the first message of a time).
+  std::vector<std::size_t> rows() const {
+    std::vector<std::size_t> order(time_ns.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    if (!std::is_sorted(time_ns.begin(), time_ns.end())) {
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t a, std::size_t b) { return time_ns[a] < time_ns[b]; });
+    }
+    std::vector<std::size_t> out;
+    out.reserve(order.size());
+    for (std::size_t r : order) {
+      if (out.empty() || time_ns[r] != time_ns[out.back()]) out.push_back(r);
+    }
+    return out;
+  }
+};
+
+MessageLog::MessageLog(std::string path, MessageLogOptions options) : path_(std::move(path)), options_(options) {}
+
+MessageLog::~MessageLog() = default;
+
+std::size_t MessageLog::add_topic(const std::string& topic, const std::string& type, const std::string& definition,
+                                  Dialect dialect, Encoding encoding) {
+  for (std::size_t i = 0; i < topics_.size(); ++i) {
+    if (topics_[i]->name != topic) continue;
+    if (topics_[i]->type != type) {
+      throw InputError(path_, "topic " + topic + " carries two message types, " + topics_[i]->type + " and " + type);
+    }
+    return i;
+  }
+  if (stream_name(topic).empty() || !log::is_valid_stream_name(stream_name(topic))) {
+    throw InputError(path_, "topic name '" + topic + "' cannot name a stream");
+  }
+  std::unique_ptr<Decoder> decoder;
+  if (encoding != Encoding::json) {
+    try {
+      decoder = std::make_unique<Decoder>(parse_definition(type, definition, dialect), encoding, options_.limits);
+    } catch (const DefinitionError& e) {
+      throw InputError(path_, "topic " + topic + ": the definition of " + type + ": " + e.what());
+    }
+  }
+  topics_.push_back(std::make_unique<Topic>(topic, type, std::move(decoder)));
+  return topics_.size() - 1;
+}
+
+namespace {
+
+// The numbers and booleans of a JSON message, named as decoded fields are.
+void flatten(const nlohmann::json& j, const std::string& name, std::size_t max_array, DecodedMessage& out,
+             int depth = 0) {
+  if (depth > 64) return;  // deeper values are not channels (and the stack stays bounded)
+  if (j.is_number()) {
+    out.values.push_back(j.get<double>());
+    out.labels.push_back(name);
+  } else if (j.is_boolean()) {
+    out.values.push_back(j.get<bool>() ? 1.0 : 0.0);
+    out.labels.push_back(name);
+  } else if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      std::string key = it.key();
+      for (char& c : key) {
+        if (c == '/' || c == '\0' || c == '\n' || c == '\r') c = '_';
+      }
+      if (key.empty()) key = "_";
+      flatten(it.value(), name.empty() ? key : name + "." + key, max_array, out, depth + 1);
+    }
+  } else if (j.is_array() && j.size() <= max_array) {
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      flatten(j[i], name.empty() ? std::to_string(i) : name + "." + std::to_string(i), max_array, out, depth + 1);
+    }
+  }
+}
+
+}  // namespace
+
+void MessageLog::expect_messages(std::size_t topic, std::size_t count) {
+  Topic& t = *topics_.at(topic);
+  // An index may lie: never more than 2^28 samples reserved on its word.
+  t.expected = std::min(count, std::size_t{1} << 28);
+  if (t.expected > t.time_ns.size()) t.time_ns.reserve(t.expected);
+}
+
+void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const std::uint8_t* data, std::size_t size) {
+  Topic& t = *topics_.at(topic);
+  const auto where = [&] {
+    return "topic " + t.name + ", message " + std::to_string(t.time_ns.size() + 1) + " (" + t.type + "): ";
+  };
+  if (!t.decoder) {
+    t.scratch.values.clear();
+    t.scratch.labels.clear();
+    t.scratch.header_stamp_ns = -1;
+    const nlohmann::json j = nlohmann::json::parse(data, data + size, nullptr, false);
+    if (j.is_discarded()) throw InputError(path_, where() + "not valid JSON");
+    flatten(j, "", options_.limits.max_array, t.scratch);
+    t.append(record_ns);
+    return;
+  }
+  try {
+    t.decoder->decode(data, size, t.scratch);
+  } catch (const DecodeError& e) {
+    throw InputError(path_, where() + e.what());
+  }
+  const bool stamped = options_.time == TimeSource::header && t.scratch.header_stamp_ns > 0;
+  t.append(stamped ? t.scratch.header_stamp_ns : record_ns);
+}
+
+log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
+  log::Log out;
+  out.metadata.source_file = std::filesystem::path(path_).filename().string();
+  out.metadata.extra["time"] = options_.time == TimeSource::record ? "record" : "header";
+  for (const auto& t : topics_) {
+    out.metadata.extra["topic " + t->name] = t->type + ", " + std::to_string(t->time_ns.size()) + " messages";
+  }
+  const auto find_topic = [&](const std::string& name) -> Topic* {
+    for (const auto& t : topics_) {
+      if (stream_name(t->name) == stream_name(name)) return t.get();
+    }
+    return nullptr;
+  };
+
+  // The topics to read and the common time origin.
+  std::vector<Topic*> chosen;
+  if (mapping) {
+    const std::string label = mapping->name.empty() ? mapping->source : mapping->name;
+    for (const auto& sm : mapping->streams) {
+      Topic* t = find_topic(sm.time_variable);
+      if (t == nullptr) throw InputError(path_, "mapping " + label + ": no topic " + sm.time_variable + " in the file");
+      if (sm.time_unit != "s") {
+        throw InputError(path_,
+                         "mapping " + label + ": stream " + sm.name + ": a topic's time is in s, not " + sm.time_unit);
+      }
+      chosen.push_back(t);
+    }
+  } else {
+    for (const auto& t : topics_) chosen.push_back(t.get());
+  }
+  std::int64_t origin = std::numeric_limits<std::int64_t>::max();
+  for (Topic* t : chosen) {
+    if (!t->time_ns.empty()) origin = std::min(origin, *std::min_element(t->time_ns.begin(), t->time_ns.end()));
+  }
+  if (origin == std::numeric_limits<std::int64_t>::max() || (mapping && mapping->time_origin != "first_sample")) {
+    origin = 0;
+  }
+  if (origin != 0) out.metadata.extra["time_origin"] = seconds_text(origin);
+
+  const auto time_of = [&](const Topic& t, const std::vector<std::size_t>& rows) {
+    std::vector<double> seconds(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) seconds[i] = static_cast<double>(t.time_ns[rows[i]] - origin) * 1e-9;
+    return seconds;
+  };
+  const auto column = [](const std::vector<double>& values, const std::vector<std::size_t>& rows) {
+    std::vector<double> picked(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) picked[i] = values[rows[i]];
+    return picked;
+  };
+
+  try {
+    if (!mapping) {
+      for (Topic* t : chosen) {
+        const std::vector<std::size_t> rows = t->rows();
+        log::Stream stream(stream_name(t->name), time_of(*t, rows));
+        for (std::size_t c = 0; c < t->columns.size(); ++c) {
+          const bool seconds = t->channel_names[c] == "header.stamp";
+          // In time order with no repeated time already (the common case): moved, not copied.
+          std::vector<double> values =
+              rows.size() == t->time_ns.size() ? std::move(t->columns[c]) : column(t->columns[c], rows);
+          stream.add_channel(t->channel_names[c], seconds ? "s" : "1", std::move(values));
+        }
+        out.add_stream(std::move(stream));
+      }
+      return out;
+    }
+    const std::string label = mapping->name.empty() ? mapping->source : mapping->name;
+    out.metadata.rover_id = mapping->rover_id;
+    out.metadata.description = mapping->description;
+    out.metadata.extra["mapping"] = mapping->name;
+    for (std::size_t k = 0; k < mapping->streams.size(); ++k) {
+      const StreamMapping& sm = mapping->streams[k];
+      const Topic& t = *chosen[k];
+      const std::vector<std::size_t> rows = t.rows();
+      log::Stream stream(sm.name, time_of(t, rows));
+      for (const auto& cm : sm.channels) {
+        const std::string where = "mapping " + label + ": channel " + sm.name + "/" + cm.name + ": ";
+        if (cm.component) throw InputError(path_, where + "'component' is for HDF5 variables, not topics");
+        // The variable is a topic and a field: the longest topic that starts it.
+        const std::string variable = stream_name(cm.variable);
+        const Topic* source = nullptr;
+        for (const auto& candidate : topics_) {
+          const std::string topic = stream_name(candidate->name);
+          if (variable.size() > topic.size() + 1 && variable.compare(0, topic.size(), topic) == 0 &&
+              variable[topic.size()] == '/' && (source == nullptr || topic.size() > stream_name(source->name).size())) {
+            source = candidate.get();
+          }
+        }
+        if (source == nullptr) throw InputError(path_, where + "no topic in the file starts " + cm.variable);
+        const std::string field = variable.substr(stream_name(source->name).size() + 1);
+        const auto it = source->index.find(field);
+        if (it == source->index.end()) {
+          throw InputError(path_,
+                           where + "topic " + source->name + " (" + source->type + ") has no numeric field " + field);
+        }
+        // Another topic's field joins the stream when its messages come at the same times.
+        const std::vector<std::size_t> source_rows = source == &t ? rows : source->rows();
+        bool same_times = source_rows.size() == rows.size();
+        for (std::size_t i = 0; same_times && i < rows.size(); ++i) {
+          same_times = source->time_ns[source_rows[i]] == t.time_ns[rows[i]];
+        }
+        if (!same_times) {
+          throw InputError(
+              path_, where + "topic " + source->name + " is not stamped at the times of the stream's topic " + t.name);
+        }
+        std::vector<double> values = column(source->columns[it->second], source_rows);
+        const log::UnitConversion si = log::unit_to_si(cm.unit);
+        for (double& v : values) v = (v * si.factor + si.offset) * cm.scale + 0.0;  // + 0.0: no -0 from flips
+        stream.add_channel(cm.name, si.si_unit, std::move(values), cm.description);
+      }
+      out.add_stream(std::move(stream));
+    }
+  } catch (const DataError& e) {
+    throw InputError(path_, e.what());
+  }
+  return out;
+}
+
+}  // namespace roverlab::io::ros

@@ -1,0 +1,237 @@
+// A ROS 1 bag made from the bundled WVU Pathfinder log (the ROS library's own
+// writer, the message headers ROS generates), and the same log as an MCAP file
+// of the MCAP project's writer, run through the command line as the MATLAB
+// file does: `info` lists their topics, `estimate ins-slip` and `discrepancy
+// odometry` give the same answers, bad bags exit 3 with one line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/JointState.h>
+#include <sensor_msgs/NavSatFix.h>
+
+#include "importers/log_file.h"
+#include "test_support.h"
+
+using namespace roverlab;
+using nlohmann::json;
+using roverlab::test::CommandResult;
+using roverlab::test::quote;
+using roverlab::test::run_command;
+using roverlab::test::TempDir;
+
+namespace {
+
+const std::string kExe = ROVERLAB_EXE;
+const std::string kPathfinder = std::string(ROVERLAB_TEST_DATA) + "/test17run.mat";
+
+CommandResult run_roverlab(const std::string& args) { return run_command(quote(kExe) + " " + args); }
+
+// A recorder's clock: some Unix time plus the log's seconds, to the nanosecond.
+ros::Time stamp(double t) {
+  const auto ns = static_cast<std::int64_t>(std::llround(t * 1e9)) + 1'650'000'000'000'000'000LL;
+  ros::Time out;
+  out.fromNSec(static_cast<std::uint64_t>(ns));
+  return out;
+}
+
+// The Pathfinder log as a rover running ROS would have recorded it, laid out
+// as resources/mappings/ros_pathfinder.json says.
+void write_pathfinder_bag(const log::Log& lg, const std::string& path,
+                          rosbag::compression::CompressionType compression) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  bag.setCompression(compression);
+  const log::Stream& imu = lg.stream("imu");
+  const log::Stream& wheels = lg.stream("wheels");
+  const log::Stream& gps = lg.stream("gps");
+  const log::Stream& odometry = lg.stream("odometry");
+  // Messages go in in time order, as a recorder writes them.
+  std::size_t i = 0;
+  std::size_t w = 0;
+  while (i < imu.size() || w < wheels.size()) {
+    if (i < imu.size() && (w >= wheels.size() || imu.time()[i] <= wheels.time()[w])) {
+      sensor_msgs::Imu m;
+      m.header.stamp = stamp(imu.time()[i]);
+      m.header.seq = static_cast<std::uint32_t>(i);
+      m.orientation_covariance[0] = -1;  // no orientation
+      m.linear_acceleration.x = imu.channel("specific_force_x").values[i];
+      m.linear_acceleration.y = imu.channel("specific_force_y").values[i];
+      m.linear_acceleration.z = imu.channel("specific_force_z").values[i];
+      m.angular_velocity.x = imu.channel("angular_rate_x").values[i];
+      m.angular_velocity.y = imu.channel("angular_rate_y").values[i];
+      m.angular_velocity.z = imu.channel("angular_rate_z").values[i];
+      bag.write("/imu/data", m.header.stamp, m);
+      ++i;
+      continue;
+    }
+    const ros::Time t = stamp(wheels.time()[w]);
+    sensor_msgs::JointState joints;
+    joints.header.stamp = t;
+    joints.name = {"front_left_wheel", "front_right_wheel", "rear_left_wheel", "rear_right_wheel"};
+    for (const char* wheel : {"FL", "FR", "RL", "RR"}) {
+      joints.position.push_back(wheels.channel(std::string("angle_") + wheel).values[w]);
+    }
+    bag.write("/joint_states", t, joints);
+    // GPS and odometry share the wheels' time base in this log.
+    sensor_msgs::NavSatFix fix;
+    fix.header.stamp = t;
+    fix.latitude = gps.channel("latitude").values[w] * 180.0 / M_PI;
+    fix.longitude = gps.channel("longitude").values[w] * 180.0 / M_PI;
+    fix.altitude = gps.channel("height").values[w];
+    bag.write("/navsat/fix", t, fix);
+    nav_msgs::Odometry local;
+    local.header.stamp = t;
+    local.pose.pose.position.x = gps.channel("east").values[w];
+    local.pose.pose.position.y = gps.channel("north").values[w];
+    local.pose.pose.position.z = gps.channel("up").values[w];
+    local.pose.pose.orientation.w = 1.0;
+    bag.write("/odometry/gps", t, local);
+    nav_msgs::Odometry odom;
+    odom.header.stamp = t;
+    odom.pose.pose.position.x = odometry.channel("x").values[w];
+    odom.pose.pose.position.y = odometry.channel("y").values[w];
+    odom.pose.pose.orientation.w = 1.0;
+    odom.twist.twist.linear.x = odometry.channel("forward_speed").values[w];
+    odom.twist.twist.angular.z = odometry.channel("yaw_rate").values[w];
+    bag.write("/odom", t, odom);
+    ++w;
+  }
+  bag.close();
+}
+
+// Numbers equal within `tolerance` (relative, and absolute near zero),
+// everything else exactly; "file" entries name different files. The bag's
+// times are whole nanoseconds and its latitudes went through degrees, so
+// inputs differ from the MATLAB file's in the last bits: estimates agree to
+// 1e-6, but a fitted parameter's sigma (the curvature of a likelihood
+// profile, taken by finite differences) moves more, up to 1e-3.
+void expect_same(const json& a, const json& b, double tolerance, const std::string& where = "") {
+  if (a.is_number() && b.is_number()) {
+    const double x = a.get<double>();
+    const double y = b.get<double>();
+    const double allowed = where.find("sigma") != std::string::npos ? std::max(tolerance, 1e-3) : tolerance;
+    EXPECT_LE(std::abs(x - y), allowed * std::max({1.0, std::abs(x), std::abs(y)}))
+        << where << ": " << x << " vs " << y;
+    return;
+  }
+  ASSERT_EQ(a.type(), b.type()) << where;
+  if (a.is_object()) {
+    ASSERT_EQ(a.size(), b.size()) << where;
+    for (auto it = a.begin(); it != a.end(); ++it) {
+      if (it.key() == "file" || it.key() == "log" || it.key() == "source_file") continue;
+      ASSERT_TRUE(b.contains(it.key())) << where << "/" << it.key();
+      expect_same(it.value(), b.at(it.key()), tolerance, where + "/" + it.key());
+    }
+  } else if (a.is_array()) {
+    ASSERT_EQ(a.size(), b.size()) << where;
+    for (std::size_t k = 0; k < a.size(); ++k) expect_same(a[k], b[k], tolerance, where + "/" + std::to_string(k));
+  } else {
+    EXPECT_EQ(a, b) << where;
+  }
+}
+
+class PathfinderBag : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir;
+    io::LoadOptions options;
+    options.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/wvu_pathfinder.json");
+    const log::Log lg = io::load_log(kPathfinder, options).log;
+    bag_ = dir_->file("pathfinder.bag");
+    write_pathfinder_bag(lg, bag_, rosbag::compression::LZ4);
+  }
+  static void TearDownTestSuite() { delete dir_; }
+  static TempDir* dir_;
+  static std::string bag_;
+};
+TempDir* PathfinderBag::dir_ = nullptr;
+std::string PathfinderBag::bag_;
+
+TEST_F(PathfinderBag, InfoListsTopicsTypesCountsAndRates) {
+  const CommandResult r = run_roverlab("info " + quote(bag_) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j.at("format"), "ROS 1 bag");
+  EXPECT_EQ(j.at("metadata").at("extra").at("topic /imu/data"), "sensor_msgs/Imu, 17611 messages");
+  EXPECT_EQ(j.at("metadata").at("extra").at("topic /joint_states"), "sensor_msgs/JointState, 705 messages");
+  EXPECT_EQ(j.at("metadata").at("extra").at("topic /navsat/fix"), "sensor_msgs/NavSatFix, 705 messages");
+  bool found = false;
+  for (const auto& s : j.at("streams")) {
+    if (s.at("name") != "imu/data") continue;
+    found = true;
+    EXPECT_EQ(s.at("samples"), 17611);
+    EXPECT_NEAR(s.at("rate_hz").get<double>(), 250.0, 1.0);
+    EXPECT_NEAR(s.at("duration_s").get<double>(), 70.44, 0.01);
+  }
+  EXPECT_TRUE(found) << r.out;
+}
+
+TEST_F(PathfinderBag, InsSlipAndOdometryDiscrepancyGiveTheMatlabFilesAnswers) {
+  for (const std::string command : {"estimate ins-slip", "discrepancy odometry"}) {
+    SCOPED_TRACE(command);
+    const CommandResult mat = run_roverlab(command + " " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+    ASSERT_EQ(mat.exit_code, 0) << mat.err;
+    const CommandResult bag = run_roverlab(command + " " + quote(bag_) + " -m ros_pathfinder --json");
+    ASSERT_EQ(bag.exit_code, 0) << bag.err;
+    expect_same(json::parse(mat.out), json::parse(bag.out), 1e-6);
+  }
+}
+
+TEST_F(PathfinderBag, ConvertWritesTheMappedStreamsToHdf5) {
+  const std::string out = dir_->file("from_bag.h5");
+  const CommandResult r = run_roverlab("convert " + quote(bag_) + " " + quote(out) + " -m ros_pathfinder");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const log::Log h5 = io::load_log(out).log;
+  const log::Log bag = io::load_log(bag_,
+                                    [] {
+                                      io::LoadOptions o;
+                                      o.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) +
+                                                                   "/mappings/ros_pathfinder.json");
+                                      return o;
+                                    }())
+                           .log;
+  ASSERT_EQ(h5.streams().size(), 4U);
+  for (const auto& s : bag.streams()) {
+    const log::Stream& t = h5.stream(s.name());
+    EXPECT_EQ(t.time(), s.time());
+    for (const auto& c : s.channels()) EXPECT_EQ(t.channel(c.name).values.size(), c.values.size());
+  }
+}
+
+// The same log as an MCAP file written by the MCAP project's writer
+// (tests/data/mcap/make_wvu_mcap.mjs: the topics above, ROS 1 encoding, zstd
+// chunks, the times to the nanosecond).
+TEST(WvuMcap, InsSlipAndOdometryDiscrepancyGiveTheMatlabFilesAnswers) {
+  const std::string mcap = std::string(ROVERLAB_TEST_DATA) + "/mcap/wvu_pathfinder_ros1.mcap";
+  const CommandResult info = run_roverlab("info " + quote(mcap) + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(json::parse(info.out).at("metadata").at("extra").at("topic /imu/data"), "sensor_msgs/Imu, 17611 messages");
+  for (const std::string command : {"estimate ins-slip", "discrepancy odometry"}) {
+    SCOPED_TRACE(command);
+    const CommandResult mat = run_roverlab(command + " " + quote(kPathfinder) + " -m wvu_pathfinder --json");
+    ASSERT_EQ(mat.exit_code, 0) << mat.err;
+    const CommandResult r = run_roverlab(command + " " + quote(mcap) + " -m ros_pathfinder --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_same(json::parse(mat.out), json::parse(r.out), 1e-6);
+  }
+}
+
+TEST(RosBagCli, BadBagsExitThreeWithOneLine) {
+  TempDir dir;
+  const std::string fake = dir.file("fake.bag");
+  roverlab::test::write_text(fake, "#ROSBAG V2.0\n\x01\x02garbage");
+  const CommandResult r = run_roverlab("info " + quote(fake));
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_EQ(r.err.rfind("roverlab: " + fake + ": ", 0), 0U) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+}  // namespace
