@@ -94,6 +94,9 @@ class Analysis {
   virtual void report(const nlohmann::json& document, ReportSection& section) const = 0;
   // Its columns in a campaign's table of runs.
   virtual std::vector<KeyMetric> key_metrics() const { return {}; }
+  // Its answer in a sentence or two, for the top of the report: by default
+  // its key metrics ("INS final error (m) 0.42; ..."); a study gives its verdict.
+  virtual std::string summary(const nlohmann::json& document) const;
 };
 
 using Analyses = std::vector<std::unique_ptr<Analysis>>;

@@ -45,6 +45,7 @@ class OdometryAnalysis : public Analysis {
     return out;
   }
   void print(const json& j, std::FILE* out) const override;
+  std::string summary(const json& j) const override { return j.at("verdict").get<std::string>(); }
   std::vector<KeyMetric> key_metrics() const override {
     return {{"odometry_held_out_rmse_m", "odometry held-out RMSE (m)", "/baseline/held_out_rmse_m"},
             {"odometry_cause", "named cause (odometry)", "/cause", true}};

@@ -39,6 +39,33 @@ std::string printed(const Analysis& analysis, const nlohmann::json& document) {
   return text;
 }
 
+std::string Analysis::summary(const nlohmann::json& document) const {
+  std::string out;
+  for (const KeyMetric& m : key_metrics()) {
+    const nlohmann::json::json_pointer at(m.pointer);
+    if (!document.contains(at)) continue;
+    const nlohmann::json& v = document.at(at);
+    std::string text;
+    if (v.is_string()) {
+      text = v.get<std::string>();
+    } else if (v.is_number()) {
+      text = ReportSection::number(v.get<double>(), "%.4g");
+    } else if (v.is_array() && !v.empty()) {  // per wheel: the mean, as in the campaign table
+      double sum = 0;
+      std::size_t n = 0;
+      for (const auto& e : v) {
+        if (e.is_number()) sum += e.get<double>(), ++n;
+      }
+      if (n == 0) continue;
+      text = ReportSection::number(sum / static_cast<double>(n), "%.4g");
+    } else {
+      continue;
+    }
+    out += (out.empty() ? "" : "; ") + m.title + " " + text;
+  }
+  return out.empty() ? out : out + ".";
+}
+
 void ReportSection::write_csv(const std::string& name, const std::string& text) const {
   io::write_text_atomically((folder_ / name).string(), text);
   wrote(name);

@@ -125,6 +125,9 @@ class RoverDiscrepancyAnalysis : public Analysis {
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;
   void report(const json& j, ReportSection& section) const override;
+  std::string summary(const json& j) const override {
+    return j.at("what_is_wrong").get<std::string>() + " " + j.at("verdict").get<std::string>();
+  }
   std::vector<KeyMetric> key_metrics() const override {
     return {{"rover_held_out_before", "rover held-out error before (sigmas)", "/baseline/held_out"},
             {"rover_held_out_after", "rover held-out error after (sigmas)", "/held_out_after"},

@@ -221,6 +221,19 @@ TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
   }
   EXPECT_TRUE(fs::exists(folder + "/slip_confusion.csv"));
   EXPECT_TRUE(fs::exists(folder + "/odometry_candidates.csv"));
+  // Issue 32: the answers come first (the odometry study's verdict in the
+  // summary, before any picture), and the report says how it was made.
+  const auto summary = html.find("<h2>Summary</h2>"), first_picture = html.find("<img");
+  ASSERT_NE(summary, std::string::npos);
+  EXPECT_LT(summary, first_picture);
+  const std::string verdict = metrics.at("analyses").at("odometry").at("verdict").get<std::string>();
+  const auto in_summary = html.find(verdict.substr(0, 60));
+  EXPECT_GT(in_summary, summary);
+  EXPECT_LT(in_summary, first_picture);
+  EXPECT_EQ(metrics.at("summary").size(), 2u);  // ins-slip's key metrics and the odometry verdict
+  EXPECT_NE(html.find("<h2>How this report was made</h2>"), std::string::npos);
+  EXPECT_NE(metrics.at("made_with").at("command").get<std::string>().find("--mapping wvu_pathfinder --size 640x400"),
+            std::string::npos);
   // No temporary files left behind.
   for (const auto& e : fs::directory_iterator(folder)) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
