@@ -87,8 +87,8 @@ class ReportWriter {
         << esc(fs::path(o_.file).filename().string()) << "</title>\n<style>"
         << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
         << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
-        << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}</style></head><body>\n"
-        << "li{margin:0.4em 0}"
+        << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
+           "0}</style></head><body>\n"
         << "<h1>RoverLab report</h1>\n<p>" << esc(o_.file) << "</p>\n";
   }
 

@@ -232,6 +232,7 @@ TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
   EXPECT_LT(in_summary, first_picture);
   EXPECT_EQ(metrics.at("summary").size(), 2u);  // ins-slip's key metrics and the odometry verdict
   EXPECT_NE(html.find("<h2>How this report was made</h2>"), std::string::npos);
+  EXPECT_EQ(html.find("}<h1>"), std::string::npos);  // no style rule outside <style>
   EXPECT_NE(metrics.at("made_with").at("command").get<std::string>().find("--mapping wvu_pathfinder --size 640x400"),
             std::string::npos);
   // No temporary files left behind.
