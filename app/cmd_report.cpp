@@ -129,7 +129,8 @@ class ReportWriter {
            << "<tr><th>input</th><td style=\"text-align:left\">" << esc(o_.file)
            << (ec ? std::string() : " (" + std::to_string(bytes) + " bytes)") << "</td></tr>\n</table>\n"
            << "<p class=\"note\">Each analysis's settings are in its section and in metrics.json.</p>\n";
-    metrics_["made_with"] = {{"command", command}, {"version", ROVERLAB_VERSION}, {"written", when}};
+    // Not the time: the same log and options give the same metrics.json (campaigns compare them).
+    metrics_["made_with"] = {{"command", command}, {"version", ROVERLAB_VERSION}};
   }
 
   // The files a previous report in the folder wrote (its metrics.json's "files").
