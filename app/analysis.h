@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,6 +22,9 @@
 
 namespace CLI {
 class App;
+}
+namespace roverlab::views {
+struct TractionSurfaceData;
 }
 
 namespace roverlab::app {
@@ -64,7 +68,16 @@ struct KeyMetric {
   std::string title;     // column heading in the HTML
   std::string pointer;   // JSON pointer inside the result document
   bool verdict = false;  // a string, not a number
+  // The cause a study names, which a campaign scores against the effects
+  // injected into its simulated runs (Analysis::expected_cause).
+  bool cause = false;
 };
+
+// The value of `metric` in a result document: the number, the mean of a
+// per-wheel array (null when one of its entries is not a number), the string
+// of a verdict; null when absent. The campaign table and the report's
+// summary read key metrics through it.
+nlohmann::json key_metric_value(const nlohmann::json& document, const KeyMetric& metric);
 
 class Analysis {
  public:
@@ -80,10 +93,13 @@ class Analysis {
   virtual std::string missing(const log::Log& log) const = 0;
   // Whether the GUI and the report run it on this log by themselves.
   virtual bool runs_on_open(const log::Log& log) const { return missing(log).empty(); }
-  // Options bound to members. Their defaults are the command line's; the GUI
-  // and the report call use_view_defaults() first.
+  // Options bound to members. Their defaults are the best the data support
+  // (docs/validation/) and the same on every entry point: the command line,
+  // the GUI, `render`, the report and campaigns; opting out is a flag.
   virtual void declare(CLI::App& cmd) { (void)cmd; }
-  virtual void use_view_defaults() {}
+  // The settings it runs with (its options' values), as run_analysis() puts
+  // them in the result document under "configuration".
+  virtual nlohmann::json configuration() const = 0;
   // Throws UsageError for option values that make no sense, before any log is read.
   virtual void check_options() const {}
   // Throws DataError for what the log lacks, UsageError for bad options.
@@ -92,6 +108,28 @@ class Analysis {
   virtual void print(const nlohmann::json& document, std::FILE* out) const = 0;
   // The result in the HTML report.
   virtual void report(const nlohmann::json& document, ReportSection& section) const = 0;
+  // True when its result holds traction surfaces (the traction-surface view
+  // draws them); traction_surface() then fills `out` from the document:
+  // drawbar pull or resistive torque. False when this document holds none.
+  virtual bool draws_traction_surfaces() const { return false; }
+  virtual bool traction_surface(const nlohmann::json& document, bool drawbar_pull,
+                                views::TractionSurfaceData& out) const {
+    (void)document, (void)drawbar_pull, (void)out;
+    return false;
+  }
+  // One option the GUI's Analysis menu offers as a choice (the contact-angle
+  // model): its flag, the values, the menu's title; none by default.
+  struct Choice {
+    std::string option, menu;         // "--model", "Contact-angle &model"
+    std::vector<std::string> values;  // the first is the default
+  };
+  virtual std::optional<Choice> choice() const { return std::nullopt; }
+  // The cause its `cause` key metric should name for a simulated run with
+  // these injected effects ({"radius-scale": 1.03, ...}); empty: not scored.
+  virtual std::string expected_cause(const nlohmann::json& effects) const {
+    (void)effects;
+    return {};
+  }
   // Its columns in a campaign's table of runs.
   virtual std::vector<KeyMetric> key_metrics() const { return {}; }
   // Its answer in a sentence or two, for the top of the report: by default
@@ -101,8 +139,34 @@ class Analysis {
 
 using Analyses = std::vector<std::unique_ptr<Analysis>>;
 
-// What `analysis.print(document, ...)` writes, as a string (the GUI shows it).
+// Runs `analysis` on `input.log` the one way every entry point does: the
+// result document gains "configuration" (Analysis::configuration()) and
+// "input" (the fingerprint of the log's measured streams, log_fingerprint()).
+// A DataError becomes an InputError naming input.file.
+AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input);
+
+// A hash of the log's rover id and its streams outside estimate/ (names,
+// channels, times, values): two logs with the same measurements share it.
+std::string log_fingerprint(const log::Log& log);
+
+// The result of `analysis` stored in `log` (estimate X -o OUT.h5) when it was
+// made from these measurements with this configuration; nullopt otherwise.
+std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& log);
+// Stores `document` in `estimates` (its metadata's results), to be written
+// with the log.
+void store_result(const Analysis& analysis, const nlohmann::json& document, log::Log& estimates);
+
+// The fields of a result document that differ between two runs of the same
+// configuration on the same log (wall-clock times, the output file), removed.
+nlohmann::json without_run_details(nlohmann::json document);
+
+// What `analysis.print(document, ...)` writes, then the settings line, as a
+// string (the GUI shows it).
 std::string printed(const Analysis& analysis, const nlohmann::json& document);
+// The document's "configuration" as one line: "settings: model auto, filter
+// ekf, ..." (empty when it has none). The command line, the report and the
+// GUI print it under the result.
+std::string configuration_text(const nlohmann::json& document);
 
 // Every registered analysis, in analyses.def order.
 Analyses all_analyses();

@@ -43,9 +43,13 @@ class AnalysisCommand : public Command {
     AnalysisResult r;
     {
       const ProgressLine progress(analysis_->name());
-      r = about_file(file_, [&] { return analysis_->run({lg, file_, progress.callback()}); });
+      r = run_analysis(*analysis_, {lg, file_, progress.callback()});
     }
-    if (output_) write_log_with(lg, r.estimates, *output_);
+    if (output_) {
+      // Kept with its streams: render, report and the GUI reuse it (app/analysis.h).
+      store_result(*analysis_, r.document, r.estimates);
+      write_log_with(lg, r.estimates, *output_);
+    }
     if (json_) {
       if (output_) r.document["output"] = *output_;
       std::cout << r.document.dump(2) << "\n";
@@ -53,6 +57,7 @@ class AnalysisCommand : public Command {
     }
     std::fflush(stdout);
     analysis_->print(r.document, stdout);
+    std::fputs(configuration_text(r.document).c_str(), stdout);
     if (output_) std::printf("\nwrote %s\n", output_->c_str());
     return kSuccess;
   }

@@ -29,6 +29,7 @@
 #include "core/simulation/skid_steer_scenario.h"
 #include "importers/atomic_file.h"
 #include "importers/campaign_file.h"
+#include "importers/hdf5_log.h"
 #include "importers/mapping.h"
 #include "importers/scenario_file.h"
 #include "views/x_display.h"
@@ -103,6 +104,7 @@ class ItemList {
       if (f.string().find_first_of("{}") != std::string::npos) {
         throw InputError(f.string(), "a log path with braces ({ or }) cannot run in a campaign; rename the file");
       }
+      if (!mapping) refuse_without_mapping(e, f);
       json args = {"convert", f.string(), "{output}"};
       json inputs = {f.string()};
       if (mapping) {
@@ -117,6 +119,21 @@ class ItemList {
           {"seed", nullptr}, {"effects", json::object()}, {"scenario", nullptr},
           {"args", args},    {"inputs", inputs}};
     }
+  }
+
+  // A MATLAB file, or an HDF5 file that is not a RoverLab log, is read only
+  // through a mapping: refused here, before the workflow starts, not as a
+  // failed step after it.
+  void refuse_without_mapping(const io::CampaignLogs& e, const fs::path& f) const {
+    std::string ext = f.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const bool mapped = ext == ".mat" || ((ext == ".h5" || ext == ".hdf5") && !io::is_roverlab_hdf5(f.string()));
+    if (!mapped) return;
+    const std::string how =
+        e.where.rfind("--", 0) == 0 ? "give --mapping NAME|FILE" : "give field '" + e.where + ".mapping'";
+    throw InputError(f.string(), "needs a mapping to be read (a " + ext.substr(1) +
+                                     " file that is not a RoverLab log): " + how +
+                                     " (e.g. wvu_pathfinder; `roverlab mappings` lists them)");
   }
 
   void add_simulations(const io::CampaignSimulations& e) {

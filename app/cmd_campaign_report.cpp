@@ -60,22 +60,6 @@ const std::vector<KeyColumn>& key_columns() {
 // "none" on firm ground without an effect; empty when no single answer is
 // right (several effects, or the default slip episodes alone, which look
 // like a smaller wheel radius).
-std::string expected_cause(const json& effects) {
-  std::vector<std::string> others;
-  for (const auto& [name, value] : effects.items()) {
-    if (name != "slip") others.push_back(name);
-  }
-  const bool firm = effects.contains("slip") && effects.at("slip") == 0;
-  if (others.empty()) return firm ? "none" : "";
-  if (others.size() > 1) return "";
-  const std::string& effect = others.front();
-  if (effect == "left-radius-scale" || effect == "right-radius-scale") return "per-side scale";
-  if (effect == "radius-scale") return "radius scale";
-  if (effect == "turning-track-factor") return "turning track";
-  if (effect == "wheel-time-offset") return "time offset";
-  return "";
-}
-
 json read_json(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), "cannot open (is the run finished?)");
@@ -87,22 +71,8 @@ json read_json(const fs::path& path) {
 }
 
 json metric_value(const json& analyses, const KeyColumn& m) {
-  if (!analyses.contains(m.analysis)) return nullptr;
-  const json& doc = analyses.at(m.analysis);
-  const json::json_pointer ptr(m.pointer);
-  if (!doc.contains(ptr)) return nullptr;
-  const json& v = doc.at(ptr);
-  if (m.verdict) return v.is_string() ? v : json(nullptr);
-  if (v.is_number()) return v;
-  if (v.is_array() && !v.empty()) {
-    double sum = 0;
-    for (const auto& x : v) {
-      if (!x.is_number()) return nullptr;
-      sum += x.get<double>();
-    }
-    return sum / static_cast<double>(v.size());
-  }
-  return nullptr;
+  const KeyMetric metric{m.key, m.title, m.pointer, m.verdict};
+  return analyses.contains(m.analysis) ? key_metric_value(analyses.at(m.analysis), metric) : json(nullptr);
 }
 
 std::string effects_text(const json& effects) {
@@ -212,30 +182,42 @@ std::string histogram_svg(const std::string& title, const std::vector<double>& v
   return s.str();
 }
 
-// Named cause (odometry study) against the injected effects, over the
-// simulated runs the study ran on.
+// The first analysis (registry order) with a cause key metric, and that metric.
+std::pair<std::unique_ptr<Analysis>, KeyMetric> cause_metric() {
+  for (auto& a : all_analyses()) {
+    for (const KeyMetric& m : a->key_metrics()) {
+      if (m.cause) return {std::move(a), m};
+    }
+  }
+  return {nullptr, KeyMetric{}};
+}
+
+// Named cause (a study's cause key metric) against the injected effects,
+// over the simulated runs the study ran on.
 json confusion_table(const json& runs) {
+  const auto [study, metric] = cause_metric();
+  if (!study) return {{"injected", json::array()}};
   std::map<std::string, std::map<std::string, int>> counts;
   std::map<std::string, std::string> expected;
   std::set<std::string> columns;
   int scored = 0, as_expected = 0;
   for (const auto& r : runs) {
     const json& analyses = r.at("analyses");
-    if (r.at("kind") == "log" || std::find(analyses.begin(), analyses.end(), "odometry") == analyses.end()) continue;
-    const json& cause = r.at("metrics").at("odometry_cause");
+    if (r.at("kind") == "log" || std::find(analyses.begin(), analyses.end(), study->name()) == analyses.end()) continue;
+    const json& cause = r.at("metrics").at(metric.key);
     const std::string injected = effects_text(r.at("effects"));
     const std::string named = cause.is_string() ? cause.get<std::string>() : "none";
     ++counts[injected][named];
     columns.insert(named);
-    expected[injected] = expected_cause(r.at("effects"));
+    expected[injected] = study->expected_cause(r.at("effects"));
     if (!expected[injected].empty()) {
       ++scored;
       if (expected[injected] == named) ++as_expected;
     }
   }
-  json t = {{"rows", "injected effects"}, {"columns", "named cause"},        {"injected", json::array()},
-            {"named", columns},           {"counts", json::array()},         {"expected", json::array()},
-            {"scored_runs", scored},      {"named_as_expected", as_expected}};
+  json t = {{"study", study->title()},   {"rows", "injected effects"}, {"columns", "named cause"},
+            {"injected", json::array()}, {"named", columns},           {"counts", json::array()},
+            {"expected", json::array()}, {"scored_runs", scored},      {"named_as_expected", as_expected}};
   for (const auto& [injected, row] : counts) {
     t["injected"].push_back(injected);
     json line = json::array();
@@ -337,7 +319,9 @@ class CampaignReportWriter {
   void confusion() {
     confusion_ = confusion_table(runs_);
     if (confusion_.at("injected").empty()) return;
-    html_ << "<h2>Named cause against injected effect</h2>\n<p>Simulated runs the odometry discrepancy study ran on: "
+    html_ << "<h2>Named cause against injected effect</h2>\n<p>Simulated runs "
+          << esc(confusion_.at("study").get<std::string>())
+          << " ran on: "
              "rows are the effects injected into the simulation, columns the cause the study named.</p>\n"
              "<table id=\"confusion\"><tr><th>injected</th><th>expected</th>";
     for (const auto& c : confusion_.at("named")) html_ << "<th>" << esc(c.get<std::string>()) << "</th>";

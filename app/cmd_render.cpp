@@ -50,6 +50,15 @@ std::vector<std::string> estimators() {
   return names;
 }
 
+// The analyses whose results hold traction surfaces.
+std::vector<std::string> surface_analyses() {
+  std::vector<std::string> names;
+  for (const auto& a : all_analyses()) {
+    if (a->draws_traction_surfaces()) names.push_back(a->name());
+  }
+  return names;
+}
+
 int run_render(const RenderOptions& o) {
   const auto [w, h] = parse_size(o.size);
   const views::View* view = views::find_view(o.view);
@@ -57,15 +66,19 @@ int run_render(const RenderOptions& o) {
   if (fs::path(o.output).extension() != ".png") throw UsageError("--output " + o.output + ": must end in .png");
   ViewInputOptions vo;
   if (view->draws_estimates()) vo.analyses = estimators();
-  if (view->uses_surface_data() && !o.soil) vo.analyses = {"net-traction"};  // a rover's own surfaces
+  if (view->uses_surface_data() && !o.soil) vo.analyses = surface_analyses();  // a rover's own surfaces
+  // Refused before any analysis runs: a time outside the log.
+  vo.check_log = [&o](const log::Log& lg) { check_time_in_log(lg, o.time); };
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
-  views::ensure_display();
   ViewOptions options;
   options.time = o.time;
   options.channel_spec = o.channels;
   options.soil = o.soil;
   options.quantity = o.quantity;
-  const Rendered r = render_view(in, *view, options, w, h);
+  // What the view needs is checked before the display server starts.
+  const views::SceneInput input = scene_input(in, *view, options);
+  views::ensure_display();
+  const Rendered r = render_view(*view, input, w, h);
   save_png(r.image, o.output);
   for (const auto& n : in.notes) std::printf("note: %s\n", n.c_str());
   for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());

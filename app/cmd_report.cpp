@@ -61,7 +61,7 @@ class ReportWriter {
       views();
     }
     analyses();
-    if (in_.is_wheel_test() || o_.soil || in_.result("net-traction") != nullptr) {
+    if (in_.is_wheel_test() || o_.soil || has_surfaces()) {
       for (const char* q : {"drawbar-pull", "torque"}) traction_surface(q);
     }
     made_with();
@@ -77,6 +77,10 @@ class ReportWriter {
 
  private:
   std::ostringstream& html() { return section_.html; }
+  bool has_surfaces() const {
+    return std::any_of(in_.analyses.begin(), in_.analyses.end(),
+                       [](const AnalysisRun& run) { return make_analysis(run.name)->draws_traction_surfaces(); });
+  }
   static std::string esc(const std::string& s) { return ReportSection::escape(s); }
   static std::string num(double v, const char* f) { return ReportSection::number(v, f); }
 
@@ -212,6 +216,8 @@ class ReportWriter {
     for (const auto& run : in_.analyses) {
       const std::unique_ptr<Analysis> a = make_analysis(run.name);
       a->report(run.document, section_);
+      if (const std::string settings = configuration_text(run.document); !settings.empty())
+        html() << "<p class=\"note\">" << esc(settings) << "</p>\n";
       metrics_["analyses"][run.name] = run.document;
     }
   }

@@ -1,6 +1,9 @@
 #include "app/render_view.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include <vtkRenderWindow.h>
@@ -47,9 +50,26 @@ Rendered render_scene(views::Scene& scene, std::optional<double> time, int w, in
 }
 
 Rendered render_view(const ViewInput& in, const views::View& view, const ViewOptions& options, int w, int h) {
-  const views::SceneInput input = scene_input(in, view, options);
+  return render_view(view, scene_input(in, view, options), w, h);
+}
+
+Rendered render_view(const views::View& view, const views::SceneInput& input, int w, int h) {
   const std::unique_ptr<views::Scene> scene = view.build(input);
-  return render_scene(*scene, options.time, w, h);
+  return render_scene(*scene, input.time, w, h);
+}
+
+void check_time_in_log(const log::Log& lg, std::optional<double> time) {
+  if (!time) return;
+  double start = std::numeric_limits<double>::infinity(), end = -start;
+  for (const auto& s : lg.streams()) {
+    if (s.size() == 0) continue;
+    start = std::min(start, s.start_time());
+    end = std::max(end, s.end_time());
+  }
+  if (!(start <= end) || (*time >= start && *time <= end)) return;
+  char span[96];
+  std::snprintf(span, sizeof span, "--time %g s is outside the log, which spans %.2f .. %.2f s", *time, start, end);
+  throw UsageError(span);
 }
 
 Rendered render_traction_surface(const views::TractionSurfaceData& data, int w, int h) {

@@ -30,6 +30,14 @@ struct Rendered {
 // drawn from `in`.
 Rendered render_view(const ViewInput& in, const views::View& view, const ViewOptions& options, int w, int h);
 
+// The same for a scene input already made (scene_input), e.g. checked
+// before the display server is started.
+Rendered render_view(const views::View& view, const views::SceneInput& input, int w, int h);
+
+// Throws a UsageError when `time` lies outside every stream of `log` (before
+// any analysis runs on it).
+void check_time_in_log(const log::Log& log, std::optional<double> time);
+
 // The registry's view of a traction surface, for `data` the caller computed.
 Rendered render_traction_surface(const views::TractionSurfaceData& data, int w, int h);
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <set>
 
+#include "app/analysis.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
@@ -35,45 +36,32 @@ std::optional<kinematics::RoverModel> rover_kinematics(const log::Log& lg) {
 
 namespace {
 
-terramechanics::PolynomialSurface surface_from(const nlohmann::json& order, const nlohmann::json& coefficients) {
-  std::vector<double> c;
-  for (const auto& v : coefficients) c.push_back(v.is_number() ? v.get<double>() : NAN);
-  return {order.get<int>(), c};
+// The traction surfaces of an analysis's result (a rover's own, from its
+// estimates: the net-traction estimator, seed 003 section 5.7).
+bool analysis_surface(const ViewInput& in, bool dp, views::TractionSurfaceData& d,
+                      terramechanics::SurfaceFit* fit_out) {
+  for (const auto& run : in.analyses) {
+    const std::unique_ptr<Analysis> a = make_analysis(run.name);
+    if (!a->draws_traction_surfaces() || !a->traction_surface(run.document, dp, d)) continue;
+    if (fit_out) {
+      fit_out->surface = d.surface;
+      fit_out->error = terramechanics::fit_error(d.surface, d.points);
+    }
+    return true;
+  }
+  return false;
 }
 
-// A rover's own traction surfaces (the net-traction analysis, seed 003
-// section 5.7): its estimated points coloured by wheel, the surface fitted
-// to them and, with truth, the true local model; the streams' estimator's.
-bool net_traction_surface(const ViewInput& in, bool dp, views::TractionSurfaceData& d,
-                          terramechanics::SurfaceFit* fit_out) {
-  const nlohmann::json* r = in.result("net-traction");
-  if (r == nullptr || !r->contains("estimators")) return false;
-  const std::string sensors = r->value("force_sensors", std::string("two-axis"));
-  if (!r->at("estimators").contains(sensors)) return false;
-  const nlohmann::json& e = r->at("estimators").at(sensors);
-  const char* key = dp ? "drawbar_pull" : "resistive_torque";
-  if (!e.contains(key) || !e.contains("estimated_points")) return false;
-  const nlohmann::json& q = e.at(key);
-  d.surface = surface_from(q.at("order"), q.at("coefficients"));
-  if (q.contains("truth_coefficients")) d.reference = surface_from(q.at("order"), q.at("truth_coefficients"));
-  d.load_min = q.at("region").at("load_N").at(0).get<double>();
-  d.load_max = q.at("region").at("load_N").at(1).get<double>();
-  d.slip_min = q.at("region").at("slip").at(0).get<double>();
-  d.slip_max = q.at("region").at("slip").at(1).get<double>();
-  const nlohmann::json& p = e.at("estimated_points");
-  const nlohmann::json& values = p.at(dp ? "drawbar_pull_N" : "resistive_torque_Nm");
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!values.at(i).is_number() || !p.at("load_N").at(i).is_number() || !p.at("slip").at(i).is_number()) continue;
-    d.points.push_back(
-        {p.at("load_N").at(i).get<double>(), p.at("slip").at(i).get<double>(), values.at(i).get<double>(), 1.0});
-    d.point_group.push_back(p.at("wheel").at(i).get<int>());
+// The analysis whose estimates the log holds without its result (a log
+// written before results were stored with it): its command, else empty.
+std::string estimates_without_result(const ViewInput& in) {
+  for (const auto& a : all_analyses()) {
+    if (a->draws_traction_surfaces() && a->missing(in.log).empty() && !a->runs_on_open(in.log) &&
+        in.result(a->name()) == nullptr) {
+      return a->command();
+    }
   }
-  d.quantity += std::string(" (rover's estimates, ") + sensors + (d.reference ? "; grey: true local model)" : ")");
-  if (fit_out) {
-    fit_out->surface = d.surface;
-    fit_out->error = terramechanics::fit_error(d.surface, d.points);
-  }
-  return true;
+  return {};
 }
 
 }  // namespace
@@ -89,13 +77,13 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   views::TractionSurfaceData d;
   d.quantity = dp ? "drawbar pull" : "resistive torque";
   d.unit = dp ? "N" : "N m";
-  if (!in.is_wheel_test() && !soil_name && net_traction_surface(in, dp, d, fit_out)) return d;
-  if (!in.is_wheel_test() && !soil_name && in.log.find_stream("estimate/net_traction/wheels") != nullptr &&
-      in.result("net-traction") == nullptr) {
+  if (!in.is_wheel_test() && !soil_name && analysis_surface(in, dp, d, fit_out)) return d;
+  if (const std::string command = in.is_wheel_test() || soil_name ? "" : estimates_without_result(in);
+      !command.empty()) {
     // The estimator is not run again over a log that holds its streams, and the surfaces are fitted in its run.
-    throw InputError(in.file,
-                     "the log already holds net-traction estimates (estimate/net_traction/wheels), which are not "
-                     "estimated again: draw the surfaces from the log the estimator ran on, or give --soil NAME");
+    throw InputError(in.file, "the log holds the estimates of `" + command +
+                                  "` but not its result (written before RoverLab stored results with a log): run "
+                                  "it again on the measured log with -o, or give --soil NAME");
   }
   if (!in.is_wheel_test() && !soil_name) {
     throw InputError(in.file,

@@ -61,9 +61,12 @@ std::vector<std::string> all_analysis_names() {
   return names;
 }
 
-AnalysisResult run_for_views(Analysis& analysis, const log::Log& lg, const std::string& file,
-                             const std::function<void(double)>& progress) {
-  return about_file(file, [&] { return analysis.run({lg, file, progress}); });
+bool reuse_stored_result(ViewInput& in, const Analysis& analysis) {
+  std::optional<nlohmann::json> stored = stored_result(analysis, in.log);
+  if (!stored) return false;
+  in.add(analysis, AnalysisResult{{}, std::move(*stored)});
+  in.notes.push_back("reused the stored result of " + analysis.command() + " (same measurements and settings)");
+  return true;
 }
 
 ViewInput load_view_input(const std::string& file, const std::optional<std::string>& mapping,
@@ -78,18 +81,19 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     return in;
   }
   in.log = load_input(file, mapping).log;
+  if (o.check_log) o.check_log(in.log);
   for (const auto& name : o.analyses) {
     const std::unique_ptr<Analysis> a = make_analysis(name);
     if (!a) throw std::logic_error("no analysis named " + name);
+    if (reuse_stored_result(in, *a)) continue;
     const std::string missing = a->missing(in.log);
     if (!missing.empty()) {
       in.notes.push_back("not run: " + a->command() + " (the log has " + missing + ")");
       continue;
     }
     if (!a->runs_on_open(in.log)) continue;
-    a->use_view_defaults();
     try {
-      in.add(*a, run_for_views(*a, in.log, file));
+      in.add(*a, run_analysis(*a, {in.log, file, {}}));
     } catch (const InputError& e) {
       in.notes.push_back("not run: " + a->command() + " (" + e.problem() + ")");
       continue;

@@ -37,17 +37,20 @@ struct ViewInput {
 
 struct ViewInputOptions {
   // Analyses (by name) to run when they can run on the log and have not yet
-  // (Analysis::runs_on_open), with the views' defaults.
+  // (Analysis::runs_on_open); a result stored in the log with the same
+  // measurements and settings is reused instead.
   std::vector<std::string> analyses;
+  // Called on the log before any analysis runs (a view's own checks, e.g.
+  // the --time range): throws to refuse early.
+  std::function<void(const log::Log&)> check_log;
 };
 
 // The names of every registered analysis: what the report runs.
 std::vector<std::string> all_analysis_names();
 
-// Runs `analysis` (already given the views' defaults) on `log`; a DataError
-// becomes an InputError naming `file`.
-AnalysisResult run_for_views(Analysis& analysis, const log::Log& log, const std::string& file,
-                             const std::function<void(double)>& progress = {});
+// Adds the result of `analysis` stored in the log when its measurements and
+// settings match (app/analysis.h: stored_result); false when there is none.
+bool reuse_stored_result(ViewInput& in, const Analysis& analysis);
 
 // Loads FILE (log formats, or a single-wheel CSV with load_N and slip
 // columns). Throws InputError naming the file.

@@ -100,6 +100,10 @@ void write_file(const log::LogMetadata& meta, std::initializer_list<const log::L
     h5::write_string_attribute(metadata.get(), key.c_str(), value);
   }
 
+  if (!meta.results.empty()) {
+    Handle results = make_group(file.get(), "results");
+    for (const auto& [name, text] : meta.results) h5::write_text_dataset(results.get(), name.c_str(), text);
+  }
   Handle streams = make_group(file.get(), "streams");
   for (const log::Log* part : parts) {
     for (const auto& stream : part->streams()) write_stream(streams.get(), stream);
@@ -137,6 +141,7 @@ namespace {
 
 // Streams nest (estimate/ins/pose): deeper than this is a hard-link cycle.
 constexpr int kMaxStreamDepth = 16;
+constexpr std::size_t kMaxStoredResultBytes = std::size_t{64} << 20;  // a result document larger is damage
 
 // Collects the streams under `group` (relative names joined with '/').
 void collect_streams(hid_t group, const std::string& prefix, std::vector<std::string>& names, int depth = 0) {
@@ -200,6 +205,14 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
       H5Aget_name(attr.get(), key.size(), key.data());
       key.resize(static_cast<std::size_t>(len));
       metadata_.extra[key] = h5::read_string_attribute(group.get(), key.c_str()).value_or("");
+    }
+  }
+  if (h5::object_kind(f, "results") == h5::ObjectKind::group) {
+    Handle group(H5Gopen2(f, "results", H5P_DEFAULT));
+    for (const auto& name : h5::link_names(group.get())) {
+      // A damaged or oversized result is not reused: the analysis runs again.
+      if (auto text = h5::read_text_dataset(group.get(), name.c_str(), kMaxStoredResultBytes))
+        metadata_.results[name] = std::move(*text);
     }
   }
   if (h5::object_kind(f, "streams") != h5::ObjectKind::group) {
@@ -366,6 +379,7 @@ void write_hdf5_log(const log::Log& base, const log::Log& added, const std::stri
   }
   log::LogMetadata meta = base.metadata;
   for (const auto& [key, value] : added.metadata.extra) meta.extra[key] = value;
+  for (const auto& [key, value] : added.metadata.results) meta.results[key] = value;
   write_parts(meta, {&base, &added}, path);
 }
 

@@ -131,6 +131,40 @@ void write_string_attribute(hid_t object, const char* name, const std::string& v
   }
 }
 
+void write_text_dataset(hid_t group, const char* name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1));
+  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  Handle space(H5Screate(H5S_SCALAR));
+  Handle set(H5Dcreate2(group, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  const std::string stored = value.empty() ? std::string(1, '\0') : value;
+  if (!set.valid() || H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data()) < 0) {
+    throw std::runtime_error(std::string("cannot write dataset '") + name + "': " + last_error_text());
+  }
+}
+
+std::optional<std::string> read_text_dataset(hid_t group, const char* name, std::size_t max_bytes) {
+  if (object_kind(group, name) != ObjectKind::dataset) return std::nullopt;
+  Handle set(H5Dopen2(group, name, H5P_DEFAULT));
+  if (!set.valid()) return std::nullopt;
+  Handle type(H5Dget_type(set.get()));
+  Handle space(H5Dget_space(set.get()));
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0 ||
+      H5Sget_simple_extent_npoints(space.get()) != 1) {
+    return std::nullopt;
+  }
+  const size_t size = H5Tget_size(type.get());
+  if (size == 0 || size > max_bytes) return std::nullopt;
+  std::string buffer(size + 1, '\0');
+  Handle mem(H5Tcopy(H5T_C_S1));
+  H5Tset_size(mem.get(), size + 1);
+  H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
+  if (H5Dread(set.get(), mem.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0) return std::nullopt;
+  buffer.resize(buffer.find('\0') == std::string::npos ? size : buffer.find('\0'));
+  return buffer;
+}
+
 void write_int_attribute(hid_t object, const char* name, std::int64_t value) {
   Handle space(H5Screate(H5S_SCALAR));
   Handle attr(H5Acreate2(object, name, H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT));

@@ -47,6 +47,10 @@ std::optional<std::string> read_string_attribute(hid_t object, const char* name)
 std::optional<std::int64_t> read_int_attribute(hid_t object, const char* name);
 void write_string_attribute(hid_t object, const char* name, const std::string& value);
 void write_int_attribute(hid_t object, const char* name, std::int64_t value);
+// A text too long for an attribute (a stored result document) as a scalar
+// string dataset; read back when it is one of at most `max_bytes`.
+void write_text_dataset(hid_t group, const char* name, const std::string& value);
+std::optional<std::string> read_text_dataset(hid_t group, const char* name, std::size_t max_bytes);
 
 // Links of a group, in creation order when the group tracks it, else by name.
 std::vector<std::string> link_names(hid_t group);

@@ -107,12 +107,24 @@ class ContactAngleAnalysis : public Analysis {
   }
 
   void declare(CLI::App& cmd) override;
-  // The views and the report (a finished run, inspected offline): the model the data
-  // choose, the seed's cross-covariance reset, the two-filter smoother.
-  void use_view_defaults() override {
-    model_ = "auto";
-    reset_cross_covariance_ = true;
-    smoother_ = true;
+  std::optional<Choice> choice() const override {
+    return Choice{"--model", "Contact-angle &model", {"auto", "smooth", "c", "c+ss"}};
+  }
+  json configuration() const override {
+    const auto value = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+    return {{"rover", rover_ ? json(*rover_) : json(nullptr)},
+            {"model", model_},
+            {"filter", filter_},
+            {"angle_model", angle_model_},
+            {"reset_cross_covariance", reset_cross_covariance_},
+            {"smoother", smoother_},
+            {"smoother_method", smoother_method_},
+            {"process_noise", process_noise_},
+            {"velocity_variance", value(velocity_variance_)},
+            {"attitude_variance", value(attitude_variance_)},
+            {"slip_variance", value(slip_variance_)},
+            {"angle_variance", value(angle_variance_)},
+            {"joint_rate_window_s", joint_rate_window_}};
   }
   void check_options() const override { (void)options(); }
   AnalysisResult run(const AnalysisInput& in) override;
@@ -137,9 +149,12 @@ class ContactAngleAnalysis : public Analysis {
 
   std::optional<std::string> rover_;  // default: the log's rover id, else exomars_bb2
   std::string model_ = "auto", filter_ = "ekf", angle_model_ = "random-walk";
-  bool reset_cross_covariance_ = false;
-  bool smoother_ = false;
+  // The defaults the data support (docs/validation/contact-angle.md): the seed's
+  // cross-covariance reset and the two-filter smoother over the fast EKF.
+  bool reset_cross_covariance_ = true;
+  bool smoother_ = true;
   std::string smoother_method_ = "two-filter";
+  bool smoother_method_given_ = false;
   std::string process_noise_ = "seed";  // seed (1e-5 per step, section 6.2) | imu (from the IMU noise alone)
   std::optional<double> velocity_variance_, attitude_variance_, slip_variance_, angle_variance_;
   double joint_rate_window_ = 0.0;
@@ -153,16 +168,18 @@ void ContactAngleAnalysis::declare(CLI::App& cmd) {
       ->capture_default_str();
   cmd.add_option("--filter", filter_, "ekf | ukf")->capture_default_str();
   cmd.add_option("--angle-model", angle_model_, "random-walk | damped")->capture_default_str();
-  cmd.add_flag("--reset-cross-covariance", reset_cross_covariance_,
-               "Zero P's off-diagonal elements every step (the seed's workaround)");
-  CLI::Option* smoother = cmd.add_flag("--smoother", smoother_,
-                                       "Offline smoother over the filter's pass (--smoother-method); errors of both");
-  // A method without the smoother would be ignored: it is a usage error.
+  cmd.add_flag("--reset-cross-covariance,!--no-reset-cross-covariance", reset_cross_covariance_,
+               "Zero P's off-diagonal elements every step (the seed's workaround; on by default: "
+               "--no-reset-cross-covariance for the original filter)");
+  cmd.add_flag("--smoother,!--no-smoother", smoother_,
+               "Offline smoother over the filter's pass (--smoother-method), errors of both (on by default: "
+               "--no-smoother for the forward filter alone)");
+  // A method without the smoother would be ignored: it is a usage error (check_options).
   cmd.add_option("--smoother-method", smoother_method_,
                  "two-filter: the filter forward and over the log reversed in time, fused by their variances (any "
                  "filter) | rts: Rauch-Tung-Striebel (the EKF with --reset-cross-covariance only)")
       ->capture_default_str()
-      ->needs(smoother);
+      ->each([this](const std::string&) { smoother_method_given_ = true; });
   cmd.add_option(
          "--process-noise", process_noise_,
          "seed: 1e-5 per step on attitude and velocity as seed 000 section 6.2 | imu: only the IMU's noise drives them")
@@ -192,6 +209,7 @@ estimation::ContactAngleOptions ContactAngleAnalysis::options() const {
   }
   o.reset_cross_covariance = reset_cross_covariance_;
   o.smoother = smoother_;
+  if (smoother_method_given_ && !smoother_) throw UsageError("--smoother-method: given with --no-smoother");
   try {
     o.smoother_method = estimation::parse_smoother_method(smoother_method_);
   } catch (const DataError& e) {
@@ -199,7 +217,7 @@ estimation::ContactAngleOptions ContactAngleAnalysis::options() const {
   }
   if (smoother_ && o.smoother_method == estimation::SmootherMethod::rts &&
       (o.filter != estimation::FilterKind::ekf || !reset_cross_covariance_))
-    throw UsageError("--smoother-method rts: runs over the EKF with --reset-cross-covariance only");
+    throw UsageError("--smoother-method rts: runs over the EKF with the cross-covariance reset only");
   if (process_noise_ == "imu") {
     o.attitude_variance = o.velocity_variance = 1e-12;
   } else if (process_noise_ != "seed") {

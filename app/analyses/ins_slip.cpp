@@ -132,6 +132,17 @@ class InsSlipAnalysis : public Analysis {
         ->check(finite_in(1e-4, 10.0));
   }
 
+  json configuration() const override {
+    return {{"zupt", !no_zupt_},
+            {"zaru", !no_zaru_},
+            {"nhc", !no_nhc_},
+            {"odometry_aiding", !no_odometry_aiding_},
+            {"smoother", !no_smoother_},
+            {"initial_heading_deg", initial_heading_deg_ ? json(*initial_heading_deg_) : json(nullptr)},
+            {"no_slip_band", no_slip_ ? json(*no_slip_) : json(nullptr)},
+            {"imu_mounting_deg", imu_mounting_deg_.empty() ? json({0.0, 0.0, 0.0}) : json(imu_mounting_deg_)},
+            {"odometry_sigma_mps", odometry_sigma_}};
+  }
   AnalysisResult run(const AnalysisInput& in) override {
     estimation::InsSlipOptions o;
     o.zupt = !no_zupt_;

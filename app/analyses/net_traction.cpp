@@ -17,6 +17,7 @@
 #include "core/estimation/net_traction.h"
 #include "importers/rover_file.h"
 #include "importers/soil_file.h"
+#include "views/traction_surface_scene.h"
 
 namespace roverlab::app {
 
@@ -151,6 +152,15 @@ class NetTractionAnalysis : public Analysis {
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "eq-5.66", "shape"}));
   }
+  json configuration() const override {
+    return {{"force_sensors", force_sensors_ ? json(*force_sensors_) : json(nullptr)},
+            {"order", order_},
+            {"soil", soil_},
+            {"window_s", window_},
+            {"bogie_split", bogie_split_}};
+  }
+  bool draws_traction_surfaces() const override { return true; }
+  bool traction_surface(const json& document, bool drawbar_pull, views::TractionSurfaceData& d) const override;
   void check_options() const override {
     (void)order();
     if (force_sensors_) (void)sensors();
@@ -346,7 +356,7 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
                   {"order", order_},
                   {"window_s", window_},
                   {"seconds", seconds},
-                  {"filter_seconds", r.filter_seconds},
+                  {"wall_seconds", r.filter_seconds},
                   {"standstill_samples", r.standstill_samples},
                   {"rejected_updates",
                    {{"estimator_1", r.rejected_updates[0]},
@@ -459,7 +469,7 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "%s: rover %s, %s force sensors (streams), %.1f s of log, filters %.2f s\n",
                j.at("file").get<std::string>().c_str(), j.at("rover").get<std::string>().c_str(),
                j.at("force_sensors").get<std::string>().c_str(), j.at("seconds").get<double>(),
-               j.at("filter_seconds").get<double>());
+               j.at("wall_seconds").get<double>());
   for (const auto& w : j.value("warnings", json::array()))
     std::fprintf(out, "warning: %s\n", w.get<std::string>().c_str());
   const auto standstill = j.at("standstill_samples").get<std::size_t>();
@@ -573,6 +583,41 @@ void NetTractionAnalysis::report(const json& j, ReportSection& s) const {
       s.html << ".</p>\n";
     }
   }
+}
+
+terramechanics::PolynomialSurface surface_from(const json& order, const json& coefficients) {
+  std::vector<double> c;
+  for (const auto& v : coefficients) c.push_back(v.is_number() ? v.get<double>() : NAN);
+  return {order.get<int>(), c};
+}
+
+// The rover's own traction surfaces (seed 003 section 5.7): its estimated
+// points coloured by wheel, the surface fitted to them and, with truth, the
+// true local model; those of the estimator of the log's force sensors.
+bool NetTractionAnalysis::traction_surface(const json& r, bool dp, views::TractionSurfaceData& d) const {
+  if (!r.contains("estimators")) return false;
+  const std::string sensors = r.value("force_sensors", std::string("two-axis"));
+  if (!r.at("estimators").contains(sensors)) return false;
+  const json& e = r.at("estimators").at(sensors);
+  const char* key = dp ? "drawbar_pull" : "resistive_torque";
+  if (!e.contains(key) || !e.contains("estimated_points")) return false;
+  const json& q = e.at(key);
+  d.surface = surface_from(q.at("order"), q.at("coefficients"));
+  if (q.contains("truth_coefficients")) d.reference = surface_from(q.at("order"), q.at("truth_coefficients"));
+  d.load_min = q.at("region").at("load_N").at(0).get<double>();
+  d.load_max = q.at("region").at("load_N").at(1).get<double>();
+  d.slip_min = q.at("region").at("slip").at(0).get<double>();
+  d.slip_max = q.at("region").at("slip").at(1).get<double>();
+  const json& p = e.at("estimated_points");
+  const json& values = p.at(dp ? "drawbar_pull_N" : "resistive_torque_Nm");
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!values.at(i).is_number() || !p.at("load_N").at(i).is_number() || !p.at("slip").at(i).is_number()) continue;
+    d.points.push_back(
+        {p.at("load_N").at(i).get<double>(), p.at("slip").at(i).get<double>(), values.at(i).get<double>(), 1.0});
+    d.point_group.push_back(p.at("wheel").at(i).get<int>());
+  }
+  d.quantity += std::string(" (rover's estimates, ") + sensors + (d.reference ? "; grey: true local model)" : ")");
+  return true;
 }
 
 }  // namespace

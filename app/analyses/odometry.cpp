@@ -34,6 +34,7 @@ class OdometryAnalysis : public Analysis {
         ->capture_default_str()
         ->check(finite_in(0.1, 0.9));
   }
+  json configuration() const override { return {{"fit_fraction", fit_fraction_}}; }
   AnalysisResult run(const AnalysisInput& in) override {
     analysis::OdometryStudyOptions options;
     options.fit_fraction = fit_fraction_;
@@ -48,7 +49,22 @@ class OdometryAnalysis : public Analysis {
   std::string summary(const json& j) const override { return j.at("verdict").get<std::string>(); }
   std::vector<KeyMetric> key_metrics() const override {
     return {{"odometry_held_out_rmse_m", "odometry held-out RMSE (m)", "/baseline/held_out_rmse_m"},
-            {"odometry_cause", "named cause (odometry)", "/cause", true}};
+            {"odometry_cause", "named cause (odometry)", "/cause", true, true}};
+  }
+  std::string expected_cause(const json& effects) const override {
+    std::vector<std::string> others;
+    for (const auto& [name, value] : effects.items()) {
+      if (name != "slip") others.push_back(name);
+    }
+    const bool firm = effects.contains("slip") && effects.at("slip") == 0;
+    if (others.empty()) return firm ? "none" : "";
+    if (others.size() > 1) return "";
+    const std::string& effect = others.front();
+    if (effect == "left-radius-scale" || effect == "right-radius-scale") return "per-side scale";
+    if (effect == "radius-scale") return "radius scale";
+    if (effect == "turning-track-factor") return "turning track";
+    if (effect == "wheel-time-offset") return "time offset";
+    return "";
   }
   void report(const json& j, ReportSection& section) const override;
 

@@ -1,9 +1,11 @@
 // The analysis registry (app/analyses/analyses.def) and the report helpers.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 
 #include "app/analysis.h"
+#include "app/command_support.h"
 #include "importers/atomic_file.h"
 
 namespace roverlab::app {
@@ -27,40 +29,114 @@ std::unique_ptr<Analysis> make_analysis(const std::string& name) {
   return nullptr;
 }
 
+namespace {
+
+// FNV-1a over bytes, continued from `h`.
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t k = 0; k < n; ++k) h = (h ^ p[k]) * 1099511628211ULL;
+  return h;
+}
+
+std::uint64_t fnv1a(const std::string& s, std::uint64_t h) { return fnv1a(s.data(), s.size() + 1, h); }
+
+}  // namespace
+
+std::string log_fingerprint(const log::Log& lg) {
+  std::uint64_t h = fnv1a(lg.metadata.rover_id, 14695981039346656037ULL);
+  for (const auto& s : lg.streams()) {
+    if (s.name().rfind("estimate/", 0) == 0) continue;  // what analyses add, not what was measured
+    h = fnv1a(s.name(), h);
+    h = fnv1a(s.time().data(), s.time().size() * sizeof(double), h);
+    for (const auto& c : s.channels()) {
+      h = fnv1a(c.name, h);
+      h = fnv1a(c.unit, h);
+      h = fnv1a(c.values.data(), c.values.size() * sizeof(double), h);
+    }
+  }
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input) {
+  AnalysisResult r = about_file(input.file, [&] { return analysis.run(input); });
+  r.document["configuration"] = analysis.configuration();
+  r.document["input"] = {{"fingerprint", log_fingerprint(input.log)}};
+  return r;
+}
+
+std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& lg) {
+  const auto at = lg.metadata.results.find(analysis.name());
+  if (at == lg.metadata.results.end()) return std::nullopt;
+  nlohmann::json doc = nlohmann::json::parse(at->second, nullptr, false);
+  if (!doc.is_object() || doc.value("configuration", nlohmann::json()) != analysis.configuration() ||
+      !doc.contains("input") || doc.at("input").value("fingerprint", std::string()) != log_fingerprint(lg)) {
+    return std::nullopt;
+  }
+  return doc;
+}
+
+void store_result(const Analysis& analysis, const nlohmann::json& document, log::Log& estimates) {
+  estimates.metadata.results[analysis.name()] = document.dump();
+}
+
+nlohmann::json without_run_details(nlohmann::json document) {
+  if (!document.is_object()) return document;
+  for (const char* key : {"wall_seconds", "output"}) document.erase(key);
+  for (auto& [key, value] : document.items()) {
+    if (value.is_object()) value = without_run_details(std::move(value));
+  }
+  return document;
+}
+
+std::string configuration_text(const nlohmann::json& document) {
+  if (!document.is_object() || !document.contains("configuration") || !document.at("configuration").is_object())
+    return {};
+  std::string text;
+  for (const auto& [key, value] : document.at("configuration").items()) {
+    std::string shown = value.is_string() ? value.get<std::string>() : value.is_null() ? "default" : value.dump();
+    text += (text.empty() ? "settings: " : ", ") + key + " " + shown;
+  }
+  return text.empty() ? text : text + "\n";
+}
+
 std::string printed(const Analysis& analysis, const nlohmann::json& document) {
   char* buffer = nullptr;
   std::size_t size = 0;
   std::FILE* out = open_memstream(&buffer, &size);
   if (out == nullptr) return {};
   analysis.print(document, out);
+  std::fputs(configuration_text(document).c_str(), out);
   std::fclose(out);
   std::string text(buffer, size);
   std::free(buffer);
   return text;
 }
 
+nlohmann::json key_metric_value(const nlohmann::json& doc, const KeyMetric& m) {
+  const nlohmann::json::json_pointer ptr(m.pointer);
+  if (!doc.is_object() || !doc.contains(ptr)) return nullptr;
+  const nlohmann::json& v = doc.at(ptr);
+  if (m.verdict) return v.is_string() ? v : nlohmann::json(nullptr);
+  if (v.is_number()) return v;
+  if (v.is_array() && !v.empty()) {  // per wheel: the mean
+    double sum = 0;
+    for (const auto& x : v) {
+      if (!x.is_number()) return nullptr;
+      sum += x.get<double>();
+    }
+    return sum / static_cast<double>(v.size());
+  }
+  return nullptr;
+}
+
 std::string Analysis::summary(const nlohmann::json& document) const {
   std::string out;
   for (const KeyMetric& m : key_metrics()) {
-    const nlohmann::json::json_pointer at(m.pointer);
-    if (!document.contains(at)) continue;
-    const nlohmann::json& v = document.at(at);
-    std::string text;
-    if (v.is_string()) {
-      text = v.get<std::string>();
-    } else if (v.is_number()) {
-      text = ReportSection::number(v.get<double>(), "%.4g");
-    } else if (v.is_array() && !v.empty()) {  // per wheel: the mean, as in the campaign table
-      double sum = 0;
-      std::size_t n = 0;
-      for (const auto& e : v) {
-        if (e.is_number()) sum += e.get<double>(), ++n;
-      }
-      if (n == 0) continue;
-      text = ReportSection::number(sum / static_cast<double>(n), "%.4g");
-    } else {
-      continue;
-    }
+    const nlohmann::json v = key_metric_value(document, m);
+    if (v.is_null()) continue;
+    const std::string text = v.is_string() ? v.get<std::string>() : ReportSection::number(v.get<double>(), "%.4g");
     out += (out.empty() ? "" : "; ") + m.title + " " + text;
   }
   return out.empty() ? out : out + ".";

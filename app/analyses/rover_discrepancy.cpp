@@ -119,6 +119,9 @@ class RoverDiscrepancyAnalysis : public Analysis {
         ->capture_default_str()
         ->check(finite_in(0.2, 1000.0));
   }
+  json configuration() const override {
+    return {{"scenario", scenario_ ? json(*scenario_) : json(nullptr)}, {"block_s", block_}};
+  }
   void check_options() const override {
     if (scenario_ && scenario_->empty()) throw UsageError("--scenario: the scenario's name is empty");
   }
@@ -126,7 +129,10 @@ class RoverDiscrepancyAnalysis : public Analysis {
   void print(const json& j, std::FILE* out) const override;
   void report(const json& j, ReportSection& section) const override;
   std::string summary(const json& j) const override {
-    return j.at("what_is_wrong").get<std::string>() + " " + j.at("verdict").get<std::string>();
+    const json& regime = j.at("slip_regime");
+    const std::string what = j.at("what_is_wrong").get<std::string>() + " " + j.at("verdict").get<std::string>();
+    // A stuck rover's regime already leads what_is_wrong.
+    return regime.at("stuck").get<bool>() ? what : regime.at("text").get<std::string>() + " " + what;
   }
   std::vector<KeyMetric> key_metrics() const override {
     return {{"rover_held_out_before", "rover held-out error before (sigmas)", "/baseline/held_out"},
@@ -188,7 +194,13 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
             {"held_out_after", r.final_held_out},
             {"simulations", r.simulations},
             {"what_is_wrong", r.what_is_wrong},
-            {"verdict", r.verdict}};
+            {"verdict", r.verdict},
+            {"slip_regime",
+             {{"text", r.slip_regime.text},
+              {"mean_slip", finite_or_null(r.slip_regime.mean_slip)},
+              {"distance_m", r.slip_regime.distance},
+              {"rolled_out_m", r.slip_regime.rolled_out},
+              {"stuck", r.slip_regime.stuck}}}};
   json ch = json::array();
   for (const auto& c : r.channels) {
     ch.push_back({{"stream", c.stream},
@@ -273,6 +285,7 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
                  ReportSection::number(c.at("drift_per_100s")).c_str(), ReportSection::number(c.at("t_drift")).c_str(),
                  ReportSection::number(c.at("held_out_rmse_after")).c_str(), c.at("unit").get<std::string>().c_str());
   }
+  std::fprintf(out, "\n%s\n", j.at("slip_regime").at("text").get<std::string>().c_str());
   std::fprintf(out, "\nChecks among the sensors, and against the model's slip and traction surfaces:\n");
   for (const auto& c : j.at("checks")) {
     const json& sigma = c.at("sigma");
@@ -312,7 +325,8 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
 void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   s.html << "<h2>" << title() << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
-         << "</p>\n<p><b>" << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n<p>"
+         << "</p>\n<p>" << ReportSection::escape(j.at("slip_regime").at("text").get<std::string>()) << "</p>\n<p><b>"
+         << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n<p>"
          << ReportSection::escape(j.at("drive").get<std::string>()) << "; "
          << ReportSection::escape(j.at("held_out_method").get<std::string>()) << ".</p>\n"
          << "<table><tr><th>channel</th><th>unit</th><th>noise</th><th>RMSE</th><th>bias</th><th>drift / 100 s</th>"

@@ -149,19 +149,23 @@ void MainWindow::build_menus() {
     QAction* run = analysis->addAction("Run: " + q(a->title()));
     connect(run, &QAction::triggered, this, [this, name = a->name()] { run_analyses({name}, true); });
   }
-  // The contact-angle model the views show: chosen by the data (auto) or by hand; the estimator runs again.
-  QMenu* model = analysis->addMenu("Contact-angle &model");
-  auto* models = new QActionGroup(this);
-  for (const char* m : {"auto", "smooth", "c", "c+ss"}) {
-    QAction* act = model->addAction(m == std::string("auto") ? "auto (chosen by the data)" : QString(m).toUpper());
-    act->setCheckable(true);
-    act->setChecked(contact_model_ == m);
-    models->addAction(act);
-    connect(act, &QAction::triggered, this, [this, m] {
-      contact_model_ = m;
-      if (input_ && input_->log.find_stream("estimate/contact/wheels") != nullptr)
-        run_analyses({"contact-angle"}, true);
-    });
+  // An analysis's choice (the contact-angle model the views show: chosen by the
+  // data, the first value, or by hand); the analysis runs again with it.
+  for (const auto& a : app::all_analyses()) {
+    const std::optional<app::Analysis::Choice> c = a->choice();
+    if (!c) continue;
+    QMenu* menu = analysis->addMenu(q(c->menu));
+    auto* group = new QActionGroup(this);
+    for (const std::string& v : c->values) {
+      QAction* act = menu->addAction(v == c->values.front() ? q(v + " (chosen by the data)") : q(v).toUpper());
+      act->setCheckable(true);
+      act->setChecked(v == c->values.front());
+      group->addAction(act);
+      connect(act, &QAction::triggered, this, [this, name = a->name(), option = c->option, v] {
+        choices_[name] = option + " " + v;
+        if (input_ && input_->result(name) != nullptr) run_analyses({name}, true);
+      });
+    }
   }
 }
 
@@ -370,6 +374,8 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
                  } else {
                    in = std::make_unique<ViewInput>(app::load_view_input(file, map, o));
                  }
+                 // Results stored with the log (estimate X -o) are shown, not computed again.
+                 for (const auto& an : app::all_analyses()) app::reuse_stored_result(*in, *an);
                  c.check();
                  auto shared = std::make_shared<std::unique_ptr<ViewInput>>(std::move(in));
                  return [this, shared, path] {
@@ -381,7 +387,8 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
                    // Estimates arrive as new streams from the analyses that fit the log.
                    std::vector<std::string> names;
                    for (const auto& an : app::all_analyses()) {
-                     if (an->runs_on_open(input_->log)) names.push_back(an->name());
+                     if (input_->result(an->name()) == nullptr && an->runs_on_open(input_->log))
+                       names.push_back(an->name());
                    }
                    if (!names.empty()) {
                      estimator_pending_ = true;
@@ -405,11 +412,10 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
       if (by_hand) show_error(q(a->title() + " cannot run on this log: " + missing + "."));
       continue;
     }
-    a->use_view_defaults();
-    if (a->name() == "contact-angle") {  // the model chosen in the Analysis menu
+    if (const auto chosen = choices_.find(a->name()); chosen != choices_.end()) {  // chosen in the Analysis menu
       CLI::App options;
       a->declare(options);
-      options.parse("--model " + contact_model_, false);
+      options.parse(chosen->second, false);
     }
     todo.push_back(std::move(a));
   }
@@ -424,7 +430,7 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
         c.report((static_cast<double>(k) + f) / n);
         c.check();
       };
-      results->push_back(app::run_for_views(*todo[k], *lg, file, progress));
+      results->push_back(app::run_analysis(*todo[k], {*lg, file, progress}));
       c.check();
     }
     return [this, todo, results] {

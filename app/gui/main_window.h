@@ -9,6 +9,7 @@
 #include <QMainWindow>
 #include <QString>
 
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -150,7 +151,7 @@ class MainWindow : public QMainWindow {
   QTimer* player_ = nullptr;
   QTimer* render_timer_ = nullptr;
   bool estimator_pending_ = false;
-  std::string contact_model_ = "auto";  // the contact-angle model the views show (Analysis menu)
+  std::map<std::string, std::string> choices_;  // analysis name -> its option chosen in the Analysis menu
   double time_ = 0, t0_ = 0, t1_ = 1;
   qint64 last_tick_ms_ = 0;
   QString last_error_;

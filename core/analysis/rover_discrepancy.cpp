@@ -210,6 +210,7 @@ namespace rover {
 std::vector<RoverRedundancyCheck> redundancy_checks(const std::vector<MeasuredChannel>& channels,
                                                     const RoverScenarioModel& model);
 std::vector<RoverRedundancyCheck> traction_checks(const log::Log& log, const RoverScenarioModel& model);
+RoverSlipRegime slip_regime(const std::vector<MeasuredChannel>& channels, double radius);
 RoverRedundancyCheck slip_check(const std::vector<MeasuredChannel>& channels,
                                 const std::array<std::vector<double>, kChannels>& predicted, double radius);
 void select_causes(Predictor& predictor, const RoverResidualFeatures& features, const RoverStudyOptions& options,
@@ -238,6 +239,7 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   held_out_rmse(r, predictor.channels(), p0, false);
   r.checks = redundancy_checks(predictor.channels(), model);
   r.checks.push_back(slip_check(predictor.channels(), p0, model.geometry.wheel_radius));
+  r.slip_regime = slip_regime(predictor.channels(), model.geometry.wheel_radius);
   for (auto& c : traction_checks(lg, model)) r.checks.push_back(std::move(c));
   r.fit_residuals = predictor.count(Part::fit);
   r.test_residuals = predictor.count(Part::test);

@@ -84,6 +84,15 @@ struct RoverRedundancyCheck {
   bool consistent = true;
 };
 
+// How the measured rover moved against its wheels (velocimeter against the
+// wheel encoders x nominal radius).
+struct RoverSlipRegime {
+  double distance = 0, rolled_out = 0;  // m: the body's path, the wheels' turns x radius
+  double mean_slip = NAN;               // 1 - distance / rolled_out
+  bool stuck = false;                   // slip of 0.9 or more: the run says little about rolling
+  std::string text;                     // "Slip regime: low slip (rolling); ..."
+};
+
 struct RoverDiscrepancyReport {
   std::string scenario, drive, held_out_method;
   double duration = 0;
@@ -92,6 +101,7 @@ struct RoverDiscrepancyReport {
   double baseline_bic = 0;                           // -2 ln L of the nominal model on the fit blocks
   double baseline_held_out = 0, final_held_out = 0;  // RMS normalised residual on the test blocks
   std::vector<RoverRedundancyCheck> checks;
+  RoverSlipRegime slip_regime;
   std::vector<RoverCandidateResult> candidates;  // each alone on the baseline
   std::vector<RoverSelectionStep> selection;     // the named causes, in order
   std::vector<std::string> dropped;              // steps the later causes absorbed (backward check)

@@ -2,6 +2,7 @@
 // against each other and against the static balance of the scenario's masses.
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "core/analysis/rover_discrepancy.h"
 #include "core/analysis/rover_prediction.h"
@@ -26,15 +27,24 @@ RoverRedundancyCheck check(std::string name, double value, double expected, doub
 
 // Mean slip over the run from the velocimeter and the wheel encoders:
 // 1 - (distance the body moved) / (nominal radius x mean wheel angle turned).
-double run_slip(const std::vector<double>& time, const std::vector<double>& speed,
-                const std::array<const std::vector<double>*, 3>& wheel_angles, double radius) {
+double body_distance(const std::vector<double>& time, const std::vector<double>& speed) {
   double distance = 0;
   for (std::size_t k = 1; k < time.size() && k < speed.size(); ++k) {
     distance += 0.5 * (speed[k] + speed[k - 1]) * (time[k] - time[k - 1]);
   }
+  return distance;
+}
+
+double rolled_out(const std::array<const std::vector<double>*, 3>& wheel_angles, double radius) {
   double turned = 0;
   for (const auto* a : wheel_angles) turned += (a->back() - a->front()) / 3;
-  return turned * radius > 0 ? 1 - distance / (turned * radius) : NAN;
+  return turned * radius;
+}
+
+double run_slip(const std::vector<double>& time, const std::vector<double>& speed,
+                const std::array<const std::vector<double>*, 3>& wheel_angles, double radius) {
+  const double rolled = rolled_out(wheel_angles, radius);
+  return rolled > 0 ? 1 - body_distance(time, speed) / rolled : NAN;
 }
 
 }  // namespace
@@ -50,6 +60,28 @@ RoverRedundancyCheck slip_check(const std::vector<MeasuredChannel>& ch,
   return check("velocimeter vs wheel encoders x nominal radius: mean slip over the run", measured, model, 0.005 / 3, "",
                "the body moves as far as the model's wheels and slip say",
                "the body moves another distance than the wheels and the model's slip say: wheel radius or soil");
+}
+
+RoverSlipRegime slip_regime(const std::vector<MeasuredChannel>& ch, double radius) {
+  RoverSlipRegime r;
+  r.distance = body_distance(ch[7].time, ch[7].values);
+  r.rolled_out = rolled_out({&ch[1].values, &ch[2].values, &ch[3].values}, radius);
+  r.mean_slip = r.rolled_out > 0 ? 1 - r.distance / r.rolled_out : NAN;
+  const double s = r.mean_slip;
+  r.stuck = !(s < 0.9);  // NaN (wheels that did not turn forwards) is not a rolling rover either
+  const char* regime = !std::isfinite(s) ? "the wheels did not turn forwards"
+                       : s >= 0.9        ? "stuck: the wheels spin and the rover barely moves"
+                       : s >= 0.5        ? "high slip"
+                       : s >= 0.2        ? "moderate slip"
+                       : s >= -0.05      ? "low slip (rolling)"
+                                         : "skidding (the body moves further than the wheels roll)";
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "Slip regime: %s; the body moved %.3g m while the wheels rolled out %.3g m (mean slip %.2f, "
+                "velocimeter against wheel encoders).",
+                regime, r.distance, r.rolled_out, s);
+  r.text = buf;
+  return r;
 }
 
 std::vector<RoverRedundancyCheck> redundancy_checks(const std::vector<MeasuredChannel>& ch,

@@ -195,16 +195,14 @@ void write_verdict(RoverDiscrepancyReport& r) {
     if (worst == nullptr || c.rmse / c.sigma > worst->rmse / worst->sigma) worst = &c;
   }
   char buf[600];
+  std::string failed;
+  for (const auto& c : r.checks) failed += c.consistent ? "" : (failed.empty() ? "" : "; ") + c.name;
   if (worst == nullptr || worst->rmse / worst->sigma < 1.5) {
-    r.what_is_wrong = "The simulation agrees with every measured channel within its noise.";
-    // ... which its own checks may still contradict (a stuck rover's traction).
-    std::string failed;
-    for (const auto& c : r.checks) failed += c.consistent ? "" : (failed.empty() ? "" : "; ") + c.name;
-    if (!failed.empty())
-      r.what_is_wrong =
-          "The simulation agrees with every measured channel within its noise, but not every check "
-          "below holds: " +
-          failed + ".";
+    // "Agrees" only when the study's own checks hold too.
+    r.what_is_wrong = failed.empty() ? "The simulation agrees with every measured channel within its noise."
+                                     : "Every measured channel is within the simulation's noise, yet these checks "
+                                       "fail: " +
+                                           failed + ".";
   } else {
     std::snprintf(
         buf, sizeof buf,
@@ -213,6 +211,10 @@ void write_verdict(RoverDiscrepancyReport& r) {
         worst->stream.c_str(), worst->channel.c_str(), worst->rmse, worst->unit.c_str(), worst->rmse / worst->sigma,
         worst->bias, worst->unit.c_str(), worst->drift, worst->unit.c_str(), worst->t_drift);
     r.what_is_wrong = buf;
+  }
+  // A stuck rover first: what the channels say about rolling is then little.
+  if (r.slip_regime.stuck) {
+    r.what_is_wrong = r.slip_regime.text + " The run describes a stuck rover, not a rolling one. " + r.what_is_wrong;
   }
   if (r.selection.empty()) {
     r.verdict = worst != nullptr && worst->rmse / worst->sigma >= 1.5

@@ -16,6 +16,9 @@ struct LogMetadata {
   std::string source_file;                   // the file the log was imported from
   std::string description;                   // free text
   std::map<std::string, std::string> extra;  // further key/value pairs kept verbatim
+  // Results stored with the log (`estimate X -o OUT.h5`): analysis name ->
+  // its result document as JSON text, reused when input and settings match.
+  std::map<std::string, std::string> results;
 };
 
 class Log {

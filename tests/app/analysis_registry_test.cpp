@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <set>
 
+#include <CLI/CLI.hpp>
+
 #include "app/analysis.h"
 #include "core/simulation/skid_steer_scenario.h"
 
@@ -75,6 +77,54 @@ TEST(AnalysisRegistry, KeyMetricsAreUniqueAndPointIntoTheResultDocument) {
     ASSERT_TRUE(r.document.contains(at)) << m.pointer;
     EXPECT_TRUE(r.document.at(at).is_number()) << m.pointer;
   }
+}
+
+// A result stored with the log (estimate X -o) is reused only when the
+// measurements and the settings are those it was made from: estimate
+// streams added later do not matter, a changed sample or option does.
+TEST(AnalysisRegistry, AStoredResultIsReusedOnlyForTheSameMeasurementsAndSettings) {
+  const log::Log measured = simulation::simulate_skid_steer(simulation::default_slip_scenario(4));
+  const std::unique_ptr<app::Analysis> ins = app::make_analysis("ins-slip");
+  app::AnalysisResult r = app::run_analysis(*ins, {measured, "sim.h5", {}});
+  ASSERT_TRUE(r.document.contains("configuration"));
+  EXPECT_EQ(r.document.at("configuration").at("smoother"), true);
+  EXPECT_EQ(r.document.at("input").at("fingerprint"), app::log_fingerprint(measured));
+  app::store_result(*ins, r.document, r.estimates);
+  log::Log stored = measured;
+  for (const auto& s : r.estimates.streams()) stored.add_stream(s);
+  stored.metadata.results = r.estimates.metadata.results;
+  EXPECT_EQ(app::log_fingerprint(stored), app::log_fingerprint(measured));  // estimate/ streams left out
+  const std::optional<nlohmann::json> again = app::stored_result(*ins, stored);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(app::without_run_details(*again), app::without_run_details(r.document));
+
+  // Another setting: run again.
+  const std::unique_ptr<app::Analysis> other = app::make_analysis("ins-slip");
+  CLI::App options;
+  other->declare(options);
+  options.parse("--no-zupt", false);
+  EXPECT_FALSE(app::stored_result(*other, stored).has_value());
+  // Another measurement (one IMU sample): run again.
+  log::Log changed;
+  changed.metadata = stored.metadata;
+  for (const auto& s : stored.streams()) {
+    log::Stream copy = s;
+    if (s.name() == "imu") {
+      log::Stream edited(s.name(), s.time());
+      for (const auto& c : s.channels()) {
+        std::vector<double> v = c.values;
+        if (c.name == s.channels().front().name) v[v.size() / 2] += 1e-3;
+        edited.add_channel(c.name, c.unit, v, c.description);
+      }
+      copy = edited;
+    }
+    changed.add_stream(copy);
+  }
+  EXPECT_NE(app::log_fingerprint(changed), app::log_fingerprint(stored));
+  EXPECT_FALSE(app::stored_result(*ins, changed).has_value());
+  // A damaged stored document: run again.
+  stored.metadata.results["ins-slip"] = "{not json";
+  EXPECT_FALSE(app::stored_result(*ins, stored).has_value());
 }
 
 }  // namespace

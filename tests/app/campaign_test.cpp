@@ -87,6 +87,31 @@ TEST(Campaign, ACampaignFileIsCheckedFieldByField) {
   EXPECT_EQ(campaign(quote(dir.file("c.json"))).exit_code, 2);
 }
 
+// A folder of logs that need a mapping, given without one, is refused before
+// the workflow starts (issue 30), in one line naming the file and the option;
+// a campaign file's log names its field.
+TEST(Campaign, LogsThatNeedAMappingAreRefusedBeforeTheWorkflowStarts) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "logs");
+  fs::copy_file(std::string(ROVERLAB_TEST_DATA) + "/test17run.mat", dir.path() / "logs" / "run1.mat");
+  const CommandResult folder = campaign(quote(dir.file("logs")) + " -o " + quote(dir.file("out")));
+  EXPECT_EQ(folder.exit_code, 3) << folder.err;
+  EXPECT_NE(folder.err.find("run1.mat"), std::string::npos) << folder.err;
+  EXPECT_NE(folder.err.find("--mapping"), std::string::npos) << folder.err;
+  EXPECT_EQ(std::count(folder.err.begin(), folder.err.end(), '\n'), 1) << folder.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "Snakefile.json")) << "the workflow was prepared";
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "runs"));
+  write_text(dir.file("c.json"), R"({"format": "roverlab-campaign", "version": 1, "logs": [{"file": ")" +
+                                     dir.file("logs/run1.mat") + R"("}]})");
+  const CommandResult file = campaign(quote(dir.file("c.json")) + " -o " + quote(dir.file("out2")));
+  EXPECT_EQ(file.exit_code, 3) << file.err;
+  EXPECT_NE(file.err.find("logs[0].mapping"), std::string::npos) << file.err;
+  // With the mapping the folder passes the check (a dry run lists its run).
+  const CommandResult mapped =
+      campaign(quote(dir.file("logs")) + " --mapping wvu_pathfinder --dry-run -o " + quote(dir.file("out3")));
+  EXPECT_EQ(mapped.err.find("needs a mapping"), std::string::npos) << mapped.err;
+}
+
 TEST(Campaign, WithoutSnakemakeItSaysSoInOneLine) {
   TempDir dir;
   write_text(dir.file("c.json"), ci_campaign());

@@ -601,15 +601,23 @@ TEST(CliContactAngle, ScenarioThenEstimatePrintsTheErrorTable) {
       run_roverlab("estimate contact-angle " + quote(sim) + " --model smooth --reset-cross-covariance --json");
   ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
   EXPECT_FALSE(nlohmann::json::parse(smooth.out).at("model_evidence").at("consistent").get<bool>());
-  // Smoothing the run without the reset is allowed but said to be unreliable; with it, nothing is said.
+  // Smoothing the run without the reset is allowed but said to be unreliable; with it (the
+  // default, as in the GUI and the report), nothing is said, and the settings line names both.
   const std::string warning = "warning: smoothed without --reset-cross-covariance";
-  const CommandResult bare = run_roverlab("estimate contact-angle " + quote(sim) + " --model c --smoother");
+  const CommandResult bare =
+      run_roverlab("estimate contact-angle " + quote(sim) + " --model c --no-reset-cross-covariance");
   ASSERT_EQ(bare.exit_code, 0) << bare.err;
   EXPECT_NE(bare.out.find(warning), std::string::npos) << bare.out;
-  const CommandResult reset =
-      run_roverlab("estimate contact-angle " + quote(sim) + " --model c --smoother --reset-cross-covariance");
+  const CommandResult reset = run_roverlab("estimate contact-angle " + quote(sim) + " --model c");
   ASSERT_EQ(reset.exit_code, 0) << reset.err;
   EXPECT_EQ(reset.out.find(warning), std::string::npos) << reset.out;
+  EXPECT_NE(reset.out.find("settings: "), std::string::npos) << reset.out;
+  EXPECT_NE(reset.out.find("reset_cross_covariance true"), std::string::npos) << reset.out;
+  EXPECT_NE(reset.out.find("smoother true"), std::string::npos) << reset.out;
+  const CommandResult forward =
+      run_roverlab("estimate contact-angle " + quote(sim) + " --model c --no-smoother --json");
+  ASSERT_EQ(forward.exit_code, 0) << forward.err;
+  EXPECT_EQ(nlohmann::json::parse(forward.out).at("configuration").at("smoother"), false);
 }
 
 TEST(CliContactAngle, BadInputAndUsage) {

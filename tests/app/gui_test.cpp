@@ -18,8 +18,10 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <set>
 #include <thread>
 
+#include "app/analysis.h"
 #include "app/gui/main_window.h"
 #include "app/resources.h"
 #include "core/estimation/contact_model_selection.h"
@@ -269,4 +271,58 @@ TEST(Gui, TheContactAngleModelIsNamedAndTheAnalysisMenuSwitchesIt) {
   ASSERT_TRUE(wait_idle(w));
   EXPECT_NE(w.input()->log.stream("estimate/contact/wheels").find_channel("side_slip_FL"), nullptr);
   EXPECT_EQ(w.input()->result("contact-angle")->at("model"), "c+ss");
+}
+
+// One answer per question (issue 30): each analysis run on the same log
+// through the command line (`estimate X --json`), the report (metrics.json)
+// and the GUI's own job gives the same result document, settings included.
+// Three logs cover the five analyses: a BB2 flying-rover run (contact
+// angles), the bundled WVU field log (INS slip, odometry study) and a
+// simulated Kapvik run (net traction, rover study).
+TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
+  TempDir dir;
+  const auto roverlab = [](const std::string& args) { return run_command(quote(ROVERLAB_EXE) + " " + args); };
+  const std::string bb2 = dir.file("bb2.h5"), wvu = dir.file("wvu.h5"), planar = dir.file("planar.h5");
+  {
+    const auto rover = *io::find_rover("exomars_bb2", app::resource_subfolders("rovers")).dh;
+    auto sc = simulation::flying_rover_scenario("rear-bogie-rotation", rover);
+    sc.rate = 100.0;
+    log::Log lg = simulation::simulate_flying_rover(rover, sc);
+    lg.metadata.rover_id = "exomars_bb2";
+    io::write_hdf5_log(lg, bb2);
+  }
+  ASSERT_EQ(roverlab("convert " + quote(kPathfinder.toStdString()) + " " + quote(wvu) + " --mapping wvu_pathfinder")
+                .exit_code,
+            0);
+  ASSERT_EQ(roverlab("simulate flat_60s -o " + quote(planar)).exit_code, 0);
+  std::set<std::string> compared;
+  for (const std::string& file : {bb2, wvu, planar}) {
+    const std::string folder = dir.file("report_" + std::to_string(compared.size()));
+    const CommandResult report = roverlab("report " + quote(file) + " -o " + quote(folder));
+    ASSERT_EQ(report.exit_code, 0) << report.err;
+    const nlohmann::json metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
+    gui::MainWindow w;
+    w.set_quiet(true);
+    w.show();
+    w.open_file(QString::fromStdString(file));
+    ASSERT_TRUE(wait_until([&] { return w.has_log(); }, 60000));
+    ASSERT_TRUE(wait_idle(w, 300000));
+    for (const auto& [name, from_report] : metrics.at("analyses").items()) {
+      const std::unique_ptr<app::Analysis> a = app::make_analysis(name);
+      ASSERT_NE(a, nullptr) << name;
+      const CommandResult cli = roverlab(a->command() + " " + quote(file) + " --json");
+      ASSERT_EQ(cli.exit_code, 0) << cli.err;
+      const nlohmann::json from_cli = app::without_run_details(nlohmann::json::parse(cli.out));
+      // The differences (JSON patch), not two whole documents, when they differ.
+      EXPECT_EQ(nlohmann::json::diff(from_cli, app::without_run_details(from_report)), nlohmann::json::array())
+          << name << " on " << file;
+      const nlohmann::json* from_gui = w.input()->result(name);
+      ASSERT_NE(from_gui, nullptr) << name << " did not run in the GUI on " << file;
+      EXPECT_EQ(nlohmann::json::diff(from_cli, app::without_run_details(*from_gui)), nlohmann::json::array())
+          << name << " on " << file;
+      EXPECT_TRUE(from_cli.contains("configuration")) << name;
+      compared.insert(name);
+    }
+  }
+  for (const auto& a : app::all_analyses()) EXPECT_EQ(compared.count(a->name()), 1u) << a->name() << " not compared";
 }

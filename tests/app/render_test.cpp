@@ -164,6 +164,44 @@ TEST(Render, TractionSurfaceOfARoverLogShowsItsEstimatedPointsByWheelAndTheTrueS
   EXPECT_GT(grey.count, 3000);  // the true local model
 }
 
+// Issue 30: a result stored with the log (estimate X -o) is reused by render,
+// not computed again; the traction-surface view draws from the log that
+// `estimate net-traction -o` writes; a --time outside the log and a view the
+// log cannot feed are refused before any analysis runs.
+TEST(Render, AStoredResultIsReusedAndWhatAViewLacksIsRefusedFirst) {
+  TempDir dir;
+  const std::string measured = dir.file("run.h5"), traction = dir.file("traction.h5"), study = dir.file("study.h5");
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 30 -o " + quote(measured)).exit_code, 0);
+  const CommandResult nt = run_roverlab("estimate net-traction " + quote(measured) + " -o " + quote(traction));
+  ASSERT_EQ(nt.exit_code, 0) << nt.err;
+  const CommandResult surface =
+      run_roverlab("render " + quote(traction) + " --view traction-surface -o " + quote(dir.file("s.png")));
+  ASSERT_EQ(surface.exit_code, 0) << surface.err;
+  EXPECT_NE(surface.out.find("reused the stored result of estimate net-traction"), std::string::npos) << surface.out;
+  const CommandResult rover = run_roverlab("discrepancy rover " + quote(traction) + " -o " + quote(study));
+  ASSERT_EQ(rover.exit_code, 0) << rover.err;
+  const CommandResult view = run_roverlab("render " + quote(study) + " --view rover -o " + quote(dir.file("r.png")));
+  ASSERT_EQ(view.exit_code, 0) << view.err;
+  EXPECT_NE(view.out.find("reused the stored result of discrepancy rover"), std::string::npos) << view.out;
+  EXPECT_NE(view.out.find("reused the stored result of estimate net-traction"), std::string::npos) << view.out;
+  EXPECT_EQ(view.out.find("ran "), std::string::npos) << view.out;
+  // The measured log holds no result: the study runs.
+  const CommandResult fresh =
+      run_roverlab("render " + quote(measured) + " --view rover -o " + quote(dir.file("f.png")));
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  EXPECT_NE(fresh.out.find("ran discrepancy rover"), std::string::npos) << fresh.out;
+  // Refused before any analysis runs: the error comes alone, with no "ran" note before it.
+  const CommandResult late =
+      run_roverlab("render " + quote(measured) + " --view rover --time 1e6 -o " + quote(dir.file("t.png")));
+  EXPECT_EQ(late.exit_code, 2) << late.err;
+  EXPECT_NE(late.err.find("outside the log"), std::string::npos) << late.err;
+  EXPECT_EQ(late.out, "");
+  const CommandResult angles =
+      run_roverlab("render " + quote(measured) + " --view contact-angles -o " + quote(dir.file("c.png")));
+  EXPECT_EQ(angles.exit_code, 3) << angles.err;
+  EXPECT_FALSE(fs::exists(dir.file("c.png")));
+}
+
 TEST(Render, ErrorsAreOneLineAndLeaveNoFile) {
   TempDir dir;
   const std::string out = quote(dir.file("o.png"));

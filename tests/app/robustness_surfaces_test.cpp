@@ -255,7 +255,7 @@ TEST(NewSurfaces, ContactAnglesAreScoredOnlyWhereTruthExists) {
   ASSERT_EQ(scored.exit_code, 0) << scored.err;
   EXPECT_TRUE(nlohmann::json::parse(scored.out).contains("rms")) << scored.out;
   for (const std::string& file : {empty, late}) {
-    for (const char* options : {"", "--smoother "}) {
+    for (const char* options : {"", "--no-smoother "}) {
       const CommandResult r = run_roverlab(std::string("estimate contact-angle --json ") + options + quote(file));
       ASSERT_EQ(r.exit_code, 0) << file << " " << r.err;
       EXPECT_FALSE(nlohmann::json::parse(r.out).contains("rms")) << file << r.out.substr(0, 400);
@@ -413,7 +413,9 @@ TEST(NewSurfaces, OptionsOutOfRangeOrWithoutEffectAreUsageErrors) {
         run_roverlab("gui " + quote(fl) + " --screenshot " + quote(dir.file("g.png")) + " --time " + time);
     EXPECT_EQ(r.exit_code, 2) << time << r.err;
   }
-  const CommandResult smoother = run_roverlab("estimate contact-angle --smoother-method rts " + quote(fl));
+  // The smoother is on by default (issue 30); a method with --no-smoother is the usage error now.
+  const CommandResult smoother =
+      run_roverlab("estimate contact-angle --no-smoother --smoother-method rts " + quote(fl));
   EXPECT_EQ(smoother.exit_code, 2) << smoother.err;
   EXPECT_TRUE(contains(smoother.err, "--smoother")) << smoother.err;
   for (const char* out : {"out.csv", "out.txt", "out"}) {
@@ -629,9 +631,15 @@ TEST(NewSurfaces, MessagesNameTheRealCause) {
   const SimulatedLog log(dir, "flat.h5", 10);
   const std::string estimated = dir.file("estimated.h5");
   ASSERT_EQ(run_roverlab("estimate net-traction " + quote(log.path()) + " -o " + quote(estimated)).exit_code, 0);
+  // Since issue 30 the log keeps the estimator's result: the view draws from it. A log written
+  // before (estimates without their result) is told what to do.
+  const CommandResult drawn =
+      run_roverlab("render " + quote(estimated) + " --view traction-surface -o " + quote(dir.file("t.png")));
+  EXPECT_EQ(drawn.exit_code, 0) << drawn.err;
+  edit_file(estimated, [](hid_t f) { H5Ldelete(f, "/results", H5P_DEFAULT); });
   expect_one_line(
       run_roverlab("render " + quote(estimated) + " --view traction-surface -o " + quote(dir.file("t.png"))), 3,
-      estimated, "already holds net-traction estimates");
+      estimated, "holds the estimates of `estimate net-traction` but not its result");
   const std::string fl = contact_angle_log(dir, "fl.h5");
   edit_file(fl, [](hid_t f) { cut_stream(f, "wheels", 0); });
   expect_one_line(run_roverlab("estimate contact-angle " + quote(fl)), 3, fl, "stream 'wheels' is empty");

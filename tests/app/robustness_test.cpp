@@ -219,7 +219,9 @@ TEST(Robustness, EstimatorsRejectImuOutliersBridgeDropoutsAndSaySo) {
   EXPECT_EQ(doc.at("health").at("status"), "degraded");
   double sum = 0;
   for (const auto& e : doc.at("rms").at("contact_angle_deg")) sum += e.get<double>();
-  EXPECT_LT(sum / 6.0, 6.9);  // 6.24 deg clean; unprotected, these outliers made it about 130 deg
+  // 7.58 deg clean with the defaults (the reset and the smoother; 6.24 for the original filter alone);
+  // unprotected, these outliers made it about 130 deg.
+  EXPECT_LT(sum / 6.0, 8.3);
   const CommandResult text = run_roverlab("estimate contact-angle " + quote(sim));
   EXPECT_NE(text.out.find("health: degraded: 3 IMU samples rejected as outliers"), std::string::npos) << text.out;
 
