@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <Eigen/Dense>
 
@@ -93,7 +94,7 @@ TractionModel::TractionModel(const PlanarRockerBogieGeometry& g, const RockerBog
 
 // Seed 003 Appendix A: order-5 surfaces over 1..150 N and slips -1..1.
 void TractionModel::fit_surrogate() {
-  std::vector<terramechanics::SurfaceSample> dp, tau, sink;
+  std::vector<terramechanics::SurfaceSample> dp, tau, sink, resistance;
   for (int i = 0; i < 40; ++i) {
     for (int k = 0; k < 41; ++k) {
       const double W = 1.0 + 149.0 * i / 39.0, s = -1.0 + 2.0 * k / 40.0;
@@ -102,12 +103,25 @@ void TractionModel::fit_surrogate() {
       dp.push_back({W, s, t.drawbar_pull});
       tau.push_back({W, s, t.resistive_torque});
       sink.push_back({W, s, t.sinkage});
+      resistance.push_back({W, s, t.motion_resistance});
     }
   }
   if (dp.size() < 50) throw DataError("soil " + soil_->name + " cannot carry the rover's wheel loads");
   dp_ = terramechanics::fit_surface(dp, 5);
   tau_ = terramechanics::fit_surface(tau, 5);
   sinkage_ = terramechanics::fit_surface(sink, 5);
+  resistance_ = terramechanics::fit_surface(resistance, 5);
+}
+
+double TractionModel::largest_carried_load(double limit) const {
+  double carried = 0.0;
+  for (double W = 1.0; W <= limit; W += 1.0) {
+    for (double s : {-1.0, -0.5, 0.0, 0.5, 1.0}) {
+      if (!terramechanics::evaluate(*soil_, wheel_, W, s, options_).ok()) return carried;
+    }
+    carried = W;
+  }
+  return carried;
 }
 
 WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std::size_t& unsupported) const {
@@ -117,6 +131,7 @@ WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std
     W = std::min(W, 150.0);  // the surrogate's fitted range
     out.drawbar_pull = dp_(W, s);
     out.resistive_torque = tau_(W, s);
+    out.resistance = std::max(0.0, resistance_(W, s));
     if (with_sinkage) out.sinkage = sinkage_(W, s);
     return out;
   }
@@ -129,11 +144,33 @@ WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std
   out.drawbar_pull = t.drawbar_pull;
   out.resistive_torque = t.resistive_torque;
   out.sinkage = t.sinkage;
+  out.resistance = t.motion_resistance;
   return out;
 }
 
 Dynamics::Dynamics(const PlanarRockerBogieGeometry& g, const RockerBogieParameters& p, const RockerBogieRun& run)
-    : g_(g), p_(p), run_(run), nominal_(g, run, false), changed_(g, run, true) {}
+    : g_(g), p_(p), run_(run), nominal_(g, run, false), changed_(g, run, true) {
+  // Each wheel must be able to carry half this side's weight at any slip with
+  // its entry angle below 90 deg (Eq. 2.24): beyond, the wheel would sink past
+  // its axle, where the wheel-soil model has no answer (and its polynomial
+  // surrogate extrapolates to sinkages over the radius: issue 34, N10).
+  const double half = 0.5 * (p.body_mass + p.bogie_mass + 3 * p.wheel_mass) * p.gravity;
+  for (const TractionModel* m : {&nominal_, &changed_}) {
+    const double carried = m->largest_carried_load(std::ceil(half));
+    if (carried >= half) continue;
+    char effects[96] = "";
+    if (m == &changed_) {
+      std::snprintf(effects, sizeof effects, " at soil strength %g, slip-sinkage n1 %g", run.effects.soil_strength,
+                    run.effects.slip_sinkage_n1);
+    }
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "soil %s%s cannot carry the rover: at full slip a wheel sinks past its axle under %.0f N, and a "
+                  "wheel may carry half this side's weight, %.0f N",
+                  run.soil.name.c_str(), effects, carried + 1.0, half);
+    throw DataError(text);
+  }
+}
 
 void Dynamics::hold(const Eigen::Vector3d& torque, const Eigen::Vector3d& normal) {
   torque_ = torque;
@@ -154,7 +191,7 @@ WheelTraction Dynamics::traction_at(double w, double W, double s, bool with_sink
   const WheelTraction a = nominal_.evaluate(W, s, with_sinkage, unsupported_);
   const WheelTraction b = changed_.evaluate(W, s, with_sinkage, unsupported_);
   return {(1 - w) * a.drawbar_pull + w * b.drawbar_pull, (1 - w) * a.resistive_torque + w * b.resistive_torque,
-          (1 - w) * a.sinkage + w * b.sinkage};
+          (1 - w) * a.sinkage + w * b.sinkage, (1 - w) * a.resistance + w * b.resistance};
 }
 
 // Eq. 4.49-4.50: [H Psi_q^T; Psi_q 0] [qdd; -lambda] = [tau_a - Hdot qd; Baumgarte right-hand side].
@@ -222,8 +259,16 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
   // the centre's motion along the path and vanishes with it: it can hold a
   // spinning wheel in place but never push the rover backwards (issue 34,
   // N10: a weak soil drove the rover back at -96 m/s).
-  const double dp = traction.drawbar_pull >= 0.0 ? traction.drawbar_pull * (dir * fade)
-                                                 : traction.drawbar_pull * std::tanh(v_t / 0.004);
+  double dp = traction.drawbar_pull >= 0.0 ? traction.drawbar_pull * (dir * fade)
+                                           : traction.drawbar_pull * std::tanh(v_t / 0.004);
+  // A centre moving against the wheel's rolling (sliding down a slope, slip
+  // beyond 1): the shear thrust H = DP + R still follows the rim, and the
+  // compaction resistance R (Eq. 2.21's sigma sin(theta) term) now opposes
+  // the slide too, so the soil holds with H + R rather than H - R (issue 34,
+  // N10: on 11 deg at soil strength 0.5 the rover slid down at 8 m/s).
+  const double against = std::tanh(std::max(0.0, -vt) / 0.004);
+  const double thrust = std::max(0.0, traction.drawbar_pull + traction.resistance);
+  dp += dir * against * 2.0 * (traction.drawbar_pull >= 0.0 ? traction.resistance : thrust);
   const double tr = traction.resistive_torque * (dir * fade);
   tau_a += k.J_wheel[i].transpose() * (dp * t);               // Eq. 4.43
   tau_a -= k.W_wheel[i].transpose() * tr;                     // Eq. 4.42: resists the wheel's rotation

@@ -40,7 +40,8 @@ Mat inertia(const Kinematics& k, const RockerBogieParameters& p);
 // One wheel's traction: Wong-Reece, or its order-5 polynomial surrogate
 // (seed 003 Appendix A) fitted once.
 struct WheelTraction {
-  double drawbar_pull = 0, resistive_torque = 0, sinkage = 0;
+  // resistance: the compaction resistance inside drawbar_pull (>= 0).
+  double drawbar_pull = 0, resistive_torque = 0, sinkage = 0, resistance = 0;
 };
 class TractionModel {
  public:
@@ -53,6 +54,9 @@ class TractionModel {
   // asked for); counts in `unsupported` the loads the soil cannot carry
   // (Wong-Reece only: traction 0, sinkage NaN).
   WheelTraction evaluate(double W, double s, bool with_sinkage, std::size_t& unsupported) const;
+  // The largest load (N, 1 N steps up to `limit`) the soil carries at every
+  // slip with the wheel's entry angle below 90 deg (Wong-Reece, Eq. 2.24).
+  double largest_carried_load(double limit) const;
 
  private:
   void fit_surrogate();
@@ -61,7 +65,7 @@ class TractionModel {
   TractionSource source_;
   terramechanics::Wheel wheel_;
   terramechanics::ModelOptions options_;
-  terramechanics::PolynomialSurface dp_, tau_, sinkage_;
+  terramechanics::PolynomialSurface dp_, tau_, sinkage_, resistance_;
 };
 
 // What one evaluation of the dynamics found at each wheel, for the truth
