@@ -196,6 +196,26 @@ TEST(RockerBogieDynamics, TheVelocityJacobiansAreTheDerivativesOfThePositions) {
   }
 }
 
+// Hdot qd from the Jacobians' rates (issue 34, N8: the two 7x7 inertia
+// builds per evaluation were a quarter of the simulation) equals the
+// difference of Eq. 4.29's inertia along qd.
+TEST(RockerBogieDynamics, TheInertiaRateIsTheDerivativeOfTheInertia) {
+  namespace rb = simulation::rocker_bogie;
+  const simulation::PlanarRockerBogieGeometry g;
+  const simulation::RockerBogieParameters p;
+  rb::Vec q, qd;
+  q << 0.3, 0.2, 0.1, -0.2, 1.0, 2.0, 3.0;
+  qd << 0.02, -0.01, 0.3, -0.5, 0.2, 0.3, 0.4;
+  const double h = 1e-6, e = 1e-4;
+  const rb::Vec expected =
+      (rb::inertia(rb::kinematics(g, p, q + e * qd), p) - rb::inertia(rb::kinematics(g, p, q - e * qd), p)) / (2 * e) *
+      qd;
+  const rb::Vec got = rb::inertia_rate_times(rb::kinematics(g, p, q), rb::kinematics(g, p, q + h * qd),
+                                             rb::kinematics(g, p, q - h * qd), h, p, qd);
+  EXPECT_GT(expected.norm(), 1e-3);
+  EXPECT_LT((got - expected).norm(), 1e-6 * expected.norm()) << got.transpose() << "\n" << expected.transpose();
+}
+
 TEST(RockerBogieDynamics, APlacedRoverAtRestStaysThereWithTheConstraintsCarryingItsWeight) {
   namespace rb = simulation::rocker_bogie;
   const simulation::PlanarRockerBogieGeometry g;
