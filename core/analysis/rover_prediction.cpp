@@ -116,6 +116,7 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
   simulation::RockerBogieRun run = model_.run;
   run.duration = channels_.front().time.back();
   run.sensor_noise = false;
+  run.refuse_unsupported_soil = false;
   run.progress = nullptr;
   run.effects = physical;
   const simulation::RockerBogieResult r = simulation::simulate_rocker_bogie(model_.geometry, model_.parameters, run);

@@ -91,6 +91,11 @@ struct RockerBogieRun {
   bool sensor_noise = true;  // Table 5.1
   unsigned seed = 1;
   std::function<void(double)> progress;  // fraction done
+  // A soil (with the effects) that cannot carry a wheel's share of the rover
+  // at full slip is refused (DataError). The rover study's trials turn this
+  // off: a trial far out (slip-sinkage n1 0.66) is a poor model there, not
+  // the study's end.
+  bool refuse_unsupported_soil = true;
 };
 
 struct RockerBogieResult {

@@ -181,6 +181,7 @@ Dynamics::Dynamics(const PlanarRockerBogieGeometry& g, const RockerBogieParamete
   // surrogate extrapolates to sinkages over the radius: issue 34, N10).
   const double half = 0.5 * (p.body_mass + p.bogie_mass + 3 * p.wheel_mass) * p.gravity;
   for (const TractionModel* m : {&nominal_, &changed_}) {
+    if (!run.refuse_unsupported_soil) break;
     const double carried = m->largest_carried_load(std::ceil(half));
     if (carried >= half) continue;
     char effects[96] = "";
