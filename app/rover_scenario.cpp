@@ -52,7 +52,7 @@ analysis::RoverScenarioModel load_rover_scenario(const io::ScenarioFile& sc,
   simulation::RockerBogieRun& run = model.run;
   const std::string path = sc.path;
   if (path == "rolling") {
-    run.path = simulation::rolling_path();
+    run.path = simulation::rolling_path(sc.rolling_amplitude);
   } else if (path == "flat") {
     run.path = simulation::flat_path();
   } else if (path == "slope") {

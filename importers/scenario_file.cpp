@@ -23,10 +23,24 @@ std::string shown(const std::string& name) {
   return name.size() > 40 ? out + "..." : out;
 }
 
-const char* const kFields[] = {
-    "format",    "version",       "name",     "description",   "kind",      "rover",
-    "path",      "soil",          "traction", "duration_s",    "start_x_m", "desired_speed_mps",
-    "slope_deg", "bump_height_m", "bump_x_m", "bump_length_m", "effects"};
+const char* const kFields[] = {"format",
+                               "version",
+                               "name",
+                               "description",
+                               "kind",
+                               "rover",
+                               "path",
+                               "soil",
+                               "traction",
+                               "duration_s",
+                               "start_x_m",
+                               "desired_speed_mps",
+                               "slope_deg",
+                               "bump_height_m",
+                               "bump_x_m",
+                               "bump_length_m",
+                               "rolling_amplitude_m",
+                               "effects"};
 
 // A field the reader does not know is a misspelling, never ignored.
 void require_known_fields(const JsonNode& j) {
@@ -66,6 +80,9 @@ ScenarioFile read_scenario(const JsonResource& file) {
   s.bump_height = optional_number(j, "bump_height_m", 0.05);
   s.bump_x = optional_number(j, "bump_x_m", 1.0);
   s.bump_length = optional_number(j, "bump_length_m", 0.3);
+  s.rolling_amplitude = optional_number(j, "rolling_amplitude_m", 0.12);
+  // Steeper than 0.5 m over the 4 m wavelength is a wall (crests beyond 38 deg).
+  if (!(s.rolling_amplitude >= 0 && s.rolling_amplitude <= 0.5)) j.fail("rolling_amplitude_m", "must be 0..0.5 (m)");
   if (j.has("effects")) {
     const JsonNode effects = required_object(j, "effects");
     for (const auto& item : effects.value().items()) s.effects[item.key()] = as_number(effects.child(item.key()));

@@ -14,8 +14,9 @@ struct ScenarioFile {
   std::string file, name, description, kind, rover, path, soil, traction;
   double duration = 0, start_x = 0, desired_speed = 0.02;
   double slope_deg = 0, bump_height = 0.05, bump_x = 1.0, bump_length = 0.3;  // path "slope" / "bump"
-  std::map<std::string, double> effects;                                      // NAME -> value
-  std::string document;  // the scenario as compact JSON, recorded in the logs simulated from it
+  double rolling_amplitude = 0.12;        // path "rolling": Eq. 4.51's hills, seed 003
+  std::map<std::string, double> effects;  // NAME -> value
+  std::string document;                   // the scenario as compact JSON, recorded in the logs simulated from it
 };
 
 // Throws InputError naming the file and field: unknown fields (a misspelt

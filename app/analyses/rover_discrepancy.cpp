@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 
@@ -146,9 +147,9 @@ class RoverDiscrepancyAnalysis : public Analysis {
   double block_ = 1.0;
 };
 
-// A scenario on another path (flat, rolling, slope, bump) than the one the
+// A scenario on another path (flat, rolling, slope, bump, with their sizes) than the one the
 // log records cannot be this run's model: refused before minutes of fitting.
-void refuse_another_path(const AnalysisInput& in, const analysis::RoverScenarioModel& model) {
+void refuse_another_run(const AnalysisInput& in, const analysis::RoverScenarioModel& model) {
   const auto& meta = in.log.metadata.extra;
   if (meta.count("scenario_json") == 0 && meta.count("scenario") == 0) return;
   analysis::RoverScenarioModel recorded;
@@ -157,17 +158,38 @@ void refuse_another_path(const AnalysisInput& in, const analysis::RoverScenarioM
   } catch (const std::exception&) {
     return;  // the log's own record is not usable; the scenario given is the model
   }
-  if (recorded.run.path.name == model.run.path.name) return;
-  throw InputError(in.file, "the log was simulated on the " + recorded.run.path.name + " path (scenario " +
-                                recorded.name + "); scenario " + model.name + " drives the " + model.run.path.name +
-                                " path and cannot be this run's model");
+  if (recorded.run.path.name != model.run.path.name) {
+    throw InputError(in.file, "the log was simulated on the " + recorded.run.path.name + " path (scenario " +
+                                  recorded.name + "); scenario " + model.name + " drives the " + model.run.path.name +
+                                  " path and cannot be this run's model");
+  }
+  // On the same path, what no candidate cause changes (issue 34, N6): the
+  // rover and its wheel radius, the speed set point, where the run starts on
+  // a path that is not flat. (The duration is the log's own.)
+  char text[200] = "";
+  const auto differs = [](double a, double b) { return std::abs(a - b) > 1e-9 * std::max(1.0, std::abs(a)); };
+  if (recorded.rover != model.rover) {
+    std::snprintf(text, sizeof text, "rover %s, not %s", recorded.rover.c_str(), model.rover.c_str());
+  } else if (differs(recorded.geometry.wheel_radius, model.geometry.wheel_radius)) {
+    std::snprintf(text, sizeof text, "wheel radius %g m, not %g m", recorded.geometry.wheel_radius,
+                  model.geometry.wheel_radius);
+  } else if (differs(recorded.parameters.desired_speed, model.parameters.desired_speed)) {
+    std::snprintf(text, sizeof text, "desired speed %g m/s, not %g m/s", recorded.parameters.desired_speed,
+                  model.parameters.desired_speed);
+  } else if (recorded.run.path.name.rfind("flat", 0) != 0 && differs(recorded.run.start_x, model.run.start_x)) {
+    std::snprintf(text, sizeof text, "start at x = %g m, not %g m", recorded.run.start_x, model.run.start_x);
+  } else {
+    return;
+  }
+  throw InputError(in.file, "the log was simulated with scenario " + recorded.name + " (" + text + "); scenario " +
+                                model.name + " cannot be this run's model");
 }
 
 AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
   // The scenario the user gives, else the one recorded in (or named by) the log: data, never a path.
   const analysis::RoverScenarioModel model =
       scenario_ ? load_rover_scenario(*scenario_) : load_logs_rover_scenario(in.log.metadata.extra, in.file);
-  if (scenario_) refuse_another_path(in, model);
+  if (scenario_) refuse_another_run(in, model);
   analysis::RoverStudyOptions options;
   options.block = block_;
   options.progress = in.progress;

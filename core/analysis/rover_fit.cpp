@@ -43,7 +43,16 @@ class SimulationCost final : public ceres::CostFunction {
     set_num_residuals(static_cast<int>(likelihood_.effective_count()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(free_.size()));
   }
+  // A trial the simulator refuses (a soil too weak to carry the rover) is a
+  // step Ceres cannot take, not the study's end.
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    try {
+      return evaluate(x, residuals, jacobians);
+    } catch (const DataError&) {
+      return false;
+    }
+  }
+  bool evaluate(double const* const* x, double* residuals, double** jacobians) const {
     std::vector<FitParameter> p = parameters_;
     for (std::size_t j = 0; j < free_.size(); ++j) p[free_[j]].value = x[0][j];
     const std::vector<double> r = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);

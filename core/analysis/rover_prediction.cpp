@@ -1,5 +1,6 @@
 #include "core/analysis/rover_prediction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -97,11 +98,25 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
   const std::array<double, 5> key{physical.soil_strength, physical.slip_sinkage_n1, physical.grouser_height,
                                   physical.wheel_radius_scale, physical.effect_start_x};
   auto it = cache_.find(key);
-  if (it != cache_.end()) return it->second;
-  if (cache_.size() > 16) cache_.clear();
+  if (it != cache_.end()) {
+    cache_order_.erase(std::find(cache_order_.begin(), cache_order_.end(), key));
+    cache_order_.push_back(key);
+    return it->second;
+  }
+  // The least recently used runs go first, within about 256 MB (a fit's
+  // second pass and the sigmas' profile come back to the runs of its first:
+  // clearing all 17 at once made the README's study simulate 13 of its 53
+  // runs twice; issue 34, N8).
+  const double run_bytes = 8.0 * double(simulation::kSensorChannels + 6) * double(channels_.front().time.size());
+  const std::size_t keep = std::clamp<std::size_t>(static_cast<std::size_t>(256e6 / std::max(run_bytes, 1.0)), 4, 64);
+  while (cache_.size() >= keep) {
+    cache_.erase(cache_order_.front());
+    cache_order_.pop_front();
+  }
   simulation::RockerBogieRun run = model_.run;
   run.duration = channels_.front().time.back();
   run.sensor_noise = false;
+  run.refuse_unsupported_soil = false;
   run.progress = nullptr;
   run.effects = physical;
   const simulation::RockerBogieResult r = simulation::simulate_rocker_bogie(model_.geometry, model_.parameters, run);
@@ -117,6 +132,7 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
     s.torque[i] = r.log.stream("commands").channel("wheel_torque_" + std::to_string(i + 1)).values;
   }
   s.front_x = r.log.stream("truth/wheels").channel("centre_x_1").values;
+  cache_order_.push_back(key);
   return cache_.emplace(key, std::move(s)).first->second;
 }
 

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -68,6 +69,7 @@ class Predictor {
   double duration_ = 0;
   int simulations_ = 0;
   std::map<std::array<double, 5>, Simulated> cache_;
+  std::deque<std::array<double, 5>> cache_order_;  // least recently used first
   std::map<Part, GroupedLikelihood> likelihoods_;
 };
 

@@ -14,8 +14,9 @@ namespace roverlab::simulation {
 const std::vector<EffectSpec>& effect_table() {
   using E = RockerBogieEffects;
   static const std::vector<EffectSpec> table = {
-      {"soil-strength", "1", "factor on the soil's c, tan(phi), kc, kphi", 0.1, 10, true, &E::soil_strength, 1.0, 0.075,
-       0.9, true, 0.3},
+      {"soil-strength", "1",
+       "factor on the soil's c, tan(phi), kc, kphi (a soil too weak to carry the rover is refused)", 0.1, 10, true,
+       &E::soil_strength, 1.0, 0.075, 0.9, true, 0.3},
       {"slip-sinkage", "1", "n1 of n = n0 + n1 |s|", 0, 2, true, &E::slip_sinkage_n1, 0.0, 0.1, 0.45, false},
       {"grousers", "m", "grouser height (24 grousers)", 0, 0.05, true, &E::grouser_height, 0.0, 0.002, 0.024, false},
       {"wheel-radius-scale", "1", "true wheel radius over the nominal one", 0.5, 2, true, &E::wheel_radius_scale, 1.0,

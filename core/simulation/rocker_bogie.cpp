@@ -22,13 +22,15 @@ void set_effect(RockerBogieEffects& e, const std::string& name, double v) {
   e.*(spec->member) = v;
 }
 
-WheelCentrePath rolling_path() {
+WheelCentrePath rolling_path(double amplitude) {
   WheelCentrePath p;
-  p.name = "rolling (seed 003 Eq. 4.51)";
+  p.name = amplitude == 0.12 ? "rolling (seed 003 Eq. 4.51)"
+                             : "rolling (seed 003 Eq. 4.51, hills of amplitude " + std::to_string(amplitude) + " m)";
   const double k = M_PI / 2;
-  p.z = [k](double x) { return 0.12 * std::cos(k * x - 1.6) + 0.01 * x; };
-  p.dz = [k](double x) { return -0.12 * k * std::sin(k * x - 1.6) + 0.01; };
-  p.ddz = [k](double x) { return -0.12 * k * k * std::cos(k * x - 1.6); };
+  const double a = amplitude;
+  p.z = [k, a](double x) { return a * std::cos(k * x - 1.6) + 0.01 * x; };
+  p.dz = [k, a](double x) { return -a * k * std::sin(k * x - 1.6) + 0.01; };
+  p.ddz = [k, a](double x) { return -a * k * k * std::cos(k * x - 1.6); };
   return p;
 }
 

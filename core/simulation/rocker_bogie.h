@@ -51,7 +51,9 @@ struct WheelCentrePath {
   std::string name;
   std::function<double(double)> z, dz, ddz;
 };
-WheelCentrePath rolling_path();  // Eq. 4.51
+// Eq. 4.51: z = A cos(pi/2 x - 1.6) + 0.01 x with the seed's A = 0.12 m
+// (crests of 11.2 deg), or gentler hills of amplitude A.
+WheelCentrePath rolling_path(double amplitude = 0.12);
 WheelCentrePath flat_path(double height = 0);
 WheelCentrePath slope_path(double degrees);  // constant grade through x = 0
 // A raised-cosine bump of `height` and `length` starting at x0 on flat ground.
@@ -89,6 +91,11 @@ struct RockerBogieRun {
   bool sensor_noise = true;  // Table 5.1
   unsigned seed = 1;
   std::function<void(double)> progress;  // fraction done
+  // A soil (with the effects) that cannot carry a wheel's share of the rover
+  // at full slip is refused (DataError). The rover study's trials turn this
+  // off: a trial far out (slip-sinkage n1 0.66) is a poor model there, not
+  // the study's end.
+  bool refuse_unsupported_soil = true;
 };
 
 struct RockerBogieResult {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <Eigen/Dense>
 
@@ -75,6 +76,22 @@ Mat inertia(const Kinematics& k, const RockerBogieParameters& p) {
   return H;
 }
 
+// Hdot qd of Eq. 4.49 from the velocity Jacobians' rates along qd (central
+// differences, kp and km at q +- h qd): sum m (Jdot^T J qd + J^T Jdot qd).
+// The angular-velocity Jacobians and the body's translation are constant.
+// Equal to differencing Eq. 4.29's H to O(h^2), without its two 7x7 builds.
+Vec inertia_rate_times(const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h,
+                       const RockerBogieParameters& p, const Vec& qd) {
+  Vec out = Vec::Zero();
+  const auto add = [&](double mass, const Jac& J, const Jac& Jp, const Jac& Jm) {
+    const Jac Jd = (Jp - Jm) / (2 * h);
+    out += mass * (Jd.transpose() * (J * qd) + J.transpose() * (Jd * qd));
+  };
+  add(p.bogie_mass, k.J_bogie, kp.J_bogie, km.J_bogie);
+  for (int i = 0; i < 3; ++i) add(p.wheel_mass, k.J_wheel[i], kp.J_wheel[i], km.J_wheel[i]);
+  return out;
+}
+
 TractionModel::TractionModel(const PlanarRockerBogieGeometry& g, const RockerBogieRun& run, bool with_effects)
     : soil_(&run.soil), source_(run.traction) {
   const RockerBogieEffects& fx = run.effects;
@@ -93,7 +110,7 @@ TractionModel::TractionModel(const PlanarRockerBogieGeometry& g, const RockerBog
 
 // Seed 003 Appendix A: order-5 surfaces over 1..150 N and slips -1..1.
 void TractionModel::fit_surrogate() {
-  std::vector<terramechanics::SurfaceSample> dp, tau, sink;
+  std::vector<terramechanics::SurfaceSample> dp, tau, sink, resistance;
   for (int i = 0; i < 40; ++i) {
     for (int k = 0; k < 41; ++k) {
       const double W = 1.0 + 149.0 * i / 39.0, s = -1.0 + 2.0 * k / 40.0;
@@ -102,21 +119,44 @@ void TractionModel::fit_surrogate() {
       dp.push_back({W, s, t.drawbar_pull});
       tau.push_back({W, s, t.resistive_torque});
       sink.push_back({W, s, t.sinkage});
+      resistance.push_back({W, s, t.motion_resistance});
     }
   }
   if (dp.size() < 50) throw DataError("soil " + soil_->name + " cannot carry the rover's wheel loads");
   dp_ = terramechanics::fit_surface(dp, 5);
   tau_ = terramechanics::fit_surface(tau, 5);
   sinkage_ = terramechanics::fit_surface(sink, 5);
+  resistance_ = terramechanics::fit_surface(resistance, 5);
 }
 
-WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std::size_t& unsupported) const {
+// The load a wheel carries grows with its entry angle up to 90 deg (Eq.
+// 2.24), so the loads carried at a slip are an interval from 0: bisection
+// over whole newtons. A skid's sinkage is that of the mirrored slip.
+double TractionModel::largest_carried_load(double limit) const {
+  const auto carries = [&](double W) {
+    for (double s : {0.0, 0.5, 1.0}) {
+      if (!terramechanics::evaluate(*soil_, wheel_, W, s, options_).ok()) return false;
+    }
+    return true;
+  };
+  double lo = 0.0, hi = std::floor(limit) + 1.0;  // carries lo (nothing), not hi
+  if (carries(hi - 1.0)) return hi - 1.0;
+  while (hi - lo > 1.0) {
+    const double mid = std::floor(0.5 * (lo + hi));
+    (mid >= 1.0 && carries(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std::size_t& unsupported,
+                                      bool with_resistance) const {
   WheelTraction out;
   if (!(W > 0.0)) return out;
   if (source_ == TractionSource::polynomial) {
     W = std::min(W, 150.0);  // the surrogate's fitted range
     out.drawbar_pull = dp_(W, s);
     out.resistive_torque = tau_(W, s);
+    if (with_resistance) out.resistance = std::max(0.0, resistance_(W, s));
     if (with_sinkage) out.sinkage = sinkage_(W, s);
     return out;
   }
@@ -129,11 +169,34 @@ WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std
   out.drawbar_pull = t.drawbar_pull;
   out.resistive_torque = t.resistive_torque;
   out.sinkage = t.sinkage;
+  out.resistance = t.motion_resistance;
   return out;
 }
 
 Dynamics::Dynamics(const PlanarRockerBogieGeometry& g, const RockerBogieParameters& p, const RockerBogieRun& run)
-    : g_(g), p_(p), run_(run), nominal_(g, run, false), changed_(g, run, true) {}
+    : g_(g), p_(p), run_(run), nominal_(g, run, false), changed_(g, run, true) {
+  // Each wheel must be able to carry half this side's weight at any slip with
+  // its entry angle below 90 deg (Eq. 2.24): beyond, the wheel would sink past
+  // its axle, where the wheel-soil model has no answer (and its polynomial
+  // surrogate extrapolates to sinkages over the radius: issue 34, N10).
+  const double half = 0.5 * (p.body_mass + p.bogie_mass + 3 * p.wheel_mass) * p.gravity;
+  for (const TractionModel* m : {&nominal_, &changed_}) {
+    if (!run.refuse_unsupported_soil) break;
+    const double carried = m->largest_carried_load(std::ceil(half));
+    if (carried >= half) continue;
+    char effects[96] = "";
+    if (m == &changed_) {
+      std::snprintf(effects, sizeof effects, " at soil strength %g, slip-sinkage n1 %g", run.effects.soil_strength,
+                    run.effects.slip_sinkage_n1);
+    }
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "soil %s%s cannot carry the rover: at full slip a wheel sinks past its axle under %.0f N, and a "
+                  "wheel may carry half this side's weight, %.0f N",
+                  run.soil.name.c_str(), effects, carried + 1.0, half);
+    throw DataError(text);
+  }
+}
 
 void Dynamics::hold(const Eigen::Vector3d& torque, const Eigen::Vector3d& normal) {
   torque_ = torque;
@@ -149,12 +212,13 @@ double Dynamics::changed_share(double x) const {
   return std::clamp((x - run_.effects.effect_start_x) / kEffectTransition + 0.5, 0.0, 1.0);
 }
 
-WheelTraction Dynamics::traction_at(double w, double W, double s, bool with_sinkage) {
-  if (w <= 0.0 || w >= 1.0) return (w >= 1.0 ? changed_ : nominal_).evaluate(W, s, with_sinkage, unsupported_);
-  const WheelTraction a = nominal_.evaluate(W, s, with_sinkage, unsupported_);
-  const WheelTraction b = changed_.evaluate(W, s, with_sinkage, unsupported_);
+WheelTraction Dynamics::traction_at(double w, double W, double s, bool with_sinkage, bool with_resistance) {
+  if (w <= 0.0 || w >= 1.0)
+    return (w >= 1.0 ? changed_ : nominal_).evaluate(W, s, with_sinkage, unsupported_, with_resistance);
+  const WheelTraction a = nominal_.evaluate(W, s, with_sinkage, unsupported_, with_resistance);
+  const WheelTraction b = changed_.evaluate(W, s, with_sinkage, unsupported_, with_resistance);
   return {(1 - w) * a.drawbar_pull + w * b.drawbar_pull, (1 - w) * a.resistive_torque + w * b.resistive_torque,
-          (1 - w) * a.sinkage + w * b.sinkage};
+          (1 - w) * a.sinkage + w * b.sinkage, (1 - w) * a.resistance + w * b.resistance};
 }
 
 // Eq. 4.49-4.50: [H Psi_q^T; Psi_q 0] [qdd; -lambda] = [tau_a - Hdot qd; Baumgarte right-hand side].
@@ -162,9 +226,8 @@ void Dynamics::accelerations(const Vec& q, const Vec& qd, Vec& qdd, DynamicsRepo
   const Kinematics k = kinematics(g_, p_, q);
   const Mat H = inertia(k, p_);
   const double h = 1e-6;
-  const Mat Hdot =
-      (inertia(kinematics(g_, p_, q + h * qd), p_) - inertia(kinematics(g_, p_, q - h * qd), p_)) / (2 * h);
   const Kinematics kp = kinematics(g_, p_, q + h * qd), km = kinematics(g_, p_, q - h * qd);
+  const Vec Hdot_qd = inertia_rate_times(k, kp, km, h, p_, qd);
   Vec tau_a = Vec::Zero();
   // Gravity: -dV/dPhi (Eq. 4.37).
   tau_a -= p_.gravity * (p_.body_mass * k.J_body.row(1) + p_.bogie_mass * k.J_bogie.row(1)).transpose();
@@ -175,7 +238,7 @@ void Dynamics::accelerations(const Vec& q, const Vec& qd, Vec& qdd, DynamicsRepo
   A.topRightCorner<N, 3>() = c.Psi_q.transpose();
   A.bottomLeftCorner<3, N>() = c.Psi_q;
   Eigen::Matrix<double, N + 3, 1> b;
-  b.head<N>() = tau_a - Hdot * qd;
+  b.head<N>() = tau_a - Hdot_qd;
   b.tail<3>() = -c.Psidot_qd - 2 * p_.baumgarte_alpha * (c.Psi_q * qd) -
                 p_.baumgarte_beta * p_.baumgarte_beta * c.Psi;  // Eq. 4.17
   const Eigen::Matrix<double, N + 3, 1> x = A.partialPivLu().solve(b);
@@ -217,13 +280,22 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
   const double den = std::max({std::abs(roll), std::abs(vt), 1e-6});
   const double s = std::clamp((roll - vt) / den, -1.0, 1.0);
   const double W = normal_(i) > 0 ? normal_(i) / std::cos(gamma) : 0.0;  // Eq. 4.38, held over the step
-  const WheelTraction traction = traction_at(share, W, s, report != nullptr);
+  // Sliding against the rolling (below): the compaction resistance is needed.
+  const double against = std::tanh(std::max(0.0, -vt) / 0.004);
+  const WheelTraction traction = traction_at(share, W, s, report != nullptr, against > 0.0);
   // A net resistance (DP < 0: compaction outweighs the shear thrust) opposes
   // the centre's motion along the path and vanishes with it: it can hold a
   // spinning wheel in place but never push the rover backwards (issue 34,
   // N10: a weak soil drove the rover back at -96 m/s).
-  const double dp = traction.drawbar_pull >= 0.0 ? traction.drawbar_pull * (dir * fade)
-                                                 : traction.drawbar_pull * std::tanh(v_t / 0.004);
+  double dp = traction.drawbar_pull >= 0.0 ? traction.drawbar_pull * (dir * fade)
+                                           : traction.drawbar_pull * std::tanh(v_t / 0.004);
+  // A centre moving against the wheel's rolling (sliding down a slope, slip
+  // beyond 1): the shear thrust H = DP + R still follows the rim, and the
+  // compaction resistance R (Eq. 2.21's sigma sin(theta) term) now opposes
+  // the slide too, so the soil holds with H + R rather than H - R (issue 34,
+  // N10: on 11 deg at soil strength 0.5 the rover slid down at 8 m/s).
+  const double thrust = std::max(0.0, traction.drawbar_pull + traction.resistance);
+  dp += dir * against * 2.0 * (traction.drawbar_pull >= 0.0 ? traction.resistance : thrust);
   const double tr = traction.resistive_torque * (dir * fade);
   tau_a += k.J_wheel[i].transpose() * (dp * t);               // Eq. 4.43
   tau_a -= k.W_wheel[i].transpose() * tr;                     // Eq. 4.42: resists the wheel's rotation

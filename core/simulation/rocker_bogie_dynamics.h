@@ -36,11 +36,15 @@ Kinematics kinematics(const PlanarRockerBogieGeometry& g, const RockerBogieParam
 
 // Eq. 4.29, with the drivetrain's reflected inertia on each wheel joint.
 Mat inertia(const Kinematics& k, const RockerBogieParameters& p);
+// Hdot qd (Eq. 4.49) from the kinematics at q and at q +- h qd.
+Vec inertia_rate_times(const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h,
+                       const RockerBogieParameters& p, const Vec& qd);
 
 // One wheel's traction: Wong-Reece, or its order-5 polynomial surrogate
 // (seed 003 Appendix A) fitted once.
 struct WheelTraction {
-  double drawbar_pull = 0, resistive_torque = 0, sinkage = 0;
+  // resistance: the compaction resistance inside drawbar_pull (>= 0).
+  double drawbar_pull = 0, resistive_torque = 0, sinkage = 0, resistance = 0;
 };
 class TractionModel {
  public:
@@ -52,7 +56,12 @@ class TractionModel {
   // Traction at normal load W and slip s (the surrogate's sinkage only when
   // asked for); counts in `unsupported` the loads the soil cannot carry
   // (Wong-Reece only: traction 0, sinkage NaN).
-  WheelTraction evaluate(double W, double s, bool with_sinkage, std::size_t& unsupported) const;
+  // (The surrogate's compaction resistance only when asked for, as its sinkage.)
+  WheelTraction evaluate(double W, double s, bool with_sinkage, std::size_t& unsupported,
+                         bool with_resistance = true) const;
+  // The largest load (N, 1 N steps up to `limit`) the soil carries at every
+  // slip with the wheel's entry angle below 90 deg (Wong-Reece, Eq. 2.24).
+  double largest_carried_load(double limit) const;
 
  private:
   void fit_surrogate();
@@ -61,7 +70,7 @@ class TractionModel {
   TractionSource source_;
   terramechanics::Wheel wheel_;
   terramechanics::ModelOptions options_;
-  terramechanics::PolynomialSurface dp_, tau_, sinkage_;
+  terramechanics::PolynomialSurface dp_, tau_, sinkage_, resistance_;
 };
 
 // What one evaluation of the dynamics found at each wheel, for the truth
@@ -93,7 +102,7 @@ class Dynamics {
   void wheel(int i, const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h, const Vec& qd,
              Vec& tau_a, Constraints& c, DynamicsReport* report);
   double changed_share(double x) const;  // 0: nominal model, 1: with the effects
-  WheelTraction traction_at(double share, double W, double s, bool with_sinkage);
+  WheelTraction traction_at(double share, double W, double s, bool with_sinkage, bool with_resistance);
 
   const PlanarRockerBogieGeometry& g_;
   const RockerBogieParameters& p_;

@@ -23,6 +23,7 @@ Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip
   t.drawbar_pull = s.drawbar;
   t.resistive_torque = s.torque;
   t.sinkage = s.sinkage;
+  t.motion_resistance = s.resistance;
   return t;
 }
 

@@ -52,6 +52,10 @@ struct Traction {
   double drawbar_pull = 0.0;      // N
   double resistive_torque = 0.0;  // N m
   double sinkage = 0.0;           // r (1 - cos theta_0), m
+  // The compaction (and bulldozing) resistance inside drawbar_pull, N >= 0:
+  // drawbar_pull = thrust - motion_resistance. The thrust follows the rim's
+  // motion over the soil, the resistance opposes the centre's motion.
+  double motion_resistance = 0.0;
   bool ok() const { return status == TractionStatus::ok; }
 };
 

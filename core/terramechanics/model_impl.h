@@ -51,6 +51,10 @@ struct Integrals {
   T normal;   // vertical reaction, Eq. 2.20 (2.5 for Bekker)
   T drawbar;  // Eq. 2.21 (2.6)
   T torque;   // Eq. 2.22 (2.7)
+  // The normal stresses' share of -drawbar (the b r sigma sin(theta) term of
+  // Eq. 2.21 / 2.6): the compaction resistance, which opposes the centre's
+  // motion whichever way the wheel turns.
+  T resistance;
 };
 
 // x^n for x >= 0, with x = 0 giving exactly 0 (and a zero derivative).
@@ -71,7 +75,7 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   const bool grousers = o.extensions.grousers && w.grouser_count > 0 && w.grouser_height > 0.0;
   const T rs = grousers ? r + p.grouser_effectiveness * w.grouser_height : T(r);
   const T cos0 = cos(theta0), sin0 = sin(theta0);
-  Integrals<T> out{T(0.0), T(0.0), T(0.0)};
+  Integrals<T> out{T(0.0), T(0.0), T(0.0), T(0.0)};
 
   if (o.kind == ModelKind::bekker) {
     const T modulus = kc / b + kphi;
@@ -85,6 +89,7 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
       out.normal += weight * sigma * cos(th);                     // Eq. 2.5
       out.drawbar += weight * (tau * cos(th) - sigma * sin(th));  // Eq. 2.6
       out.torque += weight * tau;                                 // Eq. 2.7
+      out.resistance += weight * sigma * sin(th);
     };
     if (o.integration == Integration::simpson) {
       const T h = theta0 / 4.0;  // composite Simpson, two panels (five points)
@@ -97,6 +102,7 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
     out.normal *= b * r;
     out.drawbar *= b * r;
     out.torque *= b * r * r;
+    out.resistance *= b * r;
     return out;
   }
 
@@ -136,6 +142,7 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   out.normal = b * (r * i_sigma_cos + rs * i_tau_sin);   // Eq. 2.20
   out.drawbar = b * (rs * i_tau_cos - r * i_sigma_sin);  // Eq. 2.21
   out.torque = b * rs * rs * i_tau;                      // Eq. 2.22
+  out.resistance = b * r * i_sigma_sin;
   return out;
 }
 
@@ -159,7 +166,7 @@ T bulldozing_resistance(const Params<T>& p, double width, const T& z) {
 template <typename T>
 struct Solution {
   TractionStatus status = TractionStatus::invalid_input;
-  T theta0, theta_m, drawbar, torque, sinkage;
+  T theta0, theta_m, drawbar, torque, sinkage, resistance;
 };
 
 inline double value_of(double x) { return x; }
@@ -245,8 +252,11 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
   out.sinkage = w.radius * (1.0 - cos(theta0));
   out.drawbar = in.drawbar;
   out.torque = in.torque;
+  out.resistance = in.resistance;
   if (o.extensions.bulldozing) {
-    out.drawbar -= p.bulldozing_scale * bulldozing_resistance(p, w.width, out.sinkage);
+    const T bulldozing = p.bulldozing_scale * bulldozing_resistance(p, w.width, out.sinkage);
+    out.drawbar -= bulldozing;
+    out.resistance += bulldozing;
   }
   return out;
 }
@@ -263,6 +273,7 @@ Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOption
   if (zero.status != TractionStatus::ok) return zero;
   mirrored.drawbar = -mirrored.drawbar + 2.0 * zero.drawbar;  // Eq. 2.26
   mirrored.torque = -mirrored.torque + 2.0 * zero.torque;     // Eq. 2.27
+  // The compaction resistance is that of the mirrored slip's sinkage (kept).
   return mirrored;
 }
 

@@ -638,8 +638,10 @@ TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
   const CommandResult r = run_roverlab("simulate flat_60s --duration 10 -o " + quote(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.find("stuck rover"), std::string::npos) << r.out;
-  // Issue 30: the rolling scenario's first slope stops Kapvik on TYII; the run says so.
-  const CommandResult stuck = run_roverlab("simulate rolling_200s --duration 30 -o " + quote(dir.file("roll.h5")));
+  // Issue 30: Eq. 4.51's first 11 deg slope stops Kapvik on TYII; the run says so.
+  const CommandResult stuck =
+      run_roverlab("simulate " + quote(std::string(ROVERLAB_TEST_DATA) + "/scenarios/eq451_hills_200s.json") +
+                   " --duration 30 -o " + quote(dir.file("roll.h5")));
   ASSERT_EQ(stuck.exit_code, 0) << stuck.err;
   EXPECT_NE(stuck.out.find("note: the rover drove"), std::string::npos) << stuck.out;
   EXPECT_NE(stuck.out.find("stuck rover"), std::string::npos) << stuck.out;
@@ -661,6 +663,33 @@ TEST(CliSimulate, RockerBogieOnFlatGroundWritesTruthStreams) {
   EXPECT_EQ(std::stod(io::read_hdf5_log(out).metadata.extra.at("truth/effect/gyro-bias")), 0.01);  // every digit
   fs::remove(dir.file("bad.json"));
   EXPECT_FALSE(fs::exists(dir.file("x.h5")));
+}
+
+// Issue 30 item 3: every bundled scenario does what its name says: its rover
+// drives most of the distance its speed command asks for (rolling_200s, on
+// Eq. 4.51's 0.12 m hills, drove 0.16 m of 4 m), and no run is called stuck.
+TEST(CliSimulate, EveryBundledScenarioDrivesMostOfItsCommandedDistance) {
+  TempDir dir;
+  int scenarios = 0;
+  for (const auto& entry : fs::directory_iterator(std::string(ROVERLAB_RESOURCES_DIR) + "/scenarios")) {
+    if (entry.path().extension() != ".json") continue;
+    ++scenarios;
+    const std::string name = entry.path().stem().string();
+    const CommandResult r = run_roverlab("simulate " + name + " -o " + quote(dir.file(name + ".h5")));
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    EXPECT_EQ(r.out.find("stuck rover"), std::string::npos) << r.out;
+    const nlohmann::json sc = nlohmann::json::parse(read_text(entry.path().string()));
+    const double commanded = sc.at("desired_speed_mps").get<double>() * sc.at("duration_s").get<double>();
+    const log::Log lg = io::read_hdf5_log(dir.file(name + ".h5"));
+    const std::vector<double>& x = lg.stream("truth/pose").channel("x").values;
+    EXPECT_GT(x.back() - x.front(), 0.5 * commanded) << name;
+    // ... and is still driving at the end (bump_crossing's rear wheel
+    // stopped on its 23 deg bump at 95 of 120 s).
+    const std::size_t tail = x.size() / 10;
+    const double speed = sc.at("desired_speed_mps").get<double>();
+    EXPECT_GT((x.back() - x[x.size() - 1 - tail]) / (0.1 * sc.at("duration_s").get<double>()), 0.25 * speed) << name;
+  }
+  EXPECT_GE(scenarios, 4);
 }
 
 // --- seed 003: net-traction estimation --------------------------------------

@@ -122,5 +122,68 @@ TEST(Mutants, OfMcapFilesAreReadOrRefusedInOneLine) {
   }
 }
 
+// Single-byte mutants of a text document at `target` (uniform over the
+// file), each given to `command`: exit 0 or one line and exit 3, never a
+// crash, a hang (20 s) or an internal error. The original is put back.
+std::vector<std::string> mutate_document(const std::string& target, unsigned seed, const std::string& command) {
+  const std::string original = test::read_text(target);
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::vector<std::string> failures;
+  for (int i = 0; i < mutants_per_log(); ++i) {
+    const std::size_t offset = std::uniform_int_distribution<std::size_t>(0, original.size() - 1)(random);
+    std::string bytes = original;
+    auto value = static_cast<char>(byte(random));
+    if (value == bytes[offset]) value = static_cast<char>(~value);
+    bytes[offset] = value;
+    test::write_text(target, bytes);
+    const CommandResult r = run_roverlab(command);
+    const std::string where = std::to_string(offset) + "=" + std::to_string(static_cast<unsigned char>(value));
+    const bool one_line = r.err.empty() || r.err.find('\n') == r.err.size() - 1;
+    if (r.exit_code != 0 && r.exit_code != 3) {
+      failures.push_back(where + ": exit " + std::to_string(r.exit_code) + " " + r.err);
+    } else if (!one_line || (r.exit_code == 3 && r.err.rfind("roverlab: ", 0) != 0)) {
+      failures.push_back(where + ": not one line: " + r.err);
+    }
+  }
+  test::write_text(target, original);
+  return failures;
+}
+
+// Issue 34 item 6: scenario files as `simulate` reads them (every bundled
+// one), and the run documents `campaign report` reads (run.json, and the
+// report/metrics.json that `roverlab report` wrote).
+TEST(Mutants, OfScenarioFilesAreSimulatedOrRefusedInOneLine) {
+  TempDir dir;
+  const std::string scenario = dir.file("scenario.json");
+  unsigned seed = 41;
+  for (const char* name : {"flat_60s", "rolling_200s", "slope_5deg", "bump_crossing"}) {
+    test::write_text(scenario, test::read_text(std::string(ROVERLAB_RESOURCES_DIR) + "/scenarios/" + name + ".json"));
+    const auto failures = mutate_document(
+        scenario, seed++, "simulate " + quote(scenario) + " --duration 0.2 -o " + quote(dir.file("o.h5")));
+    EXPECT_TRUE(failures.empty()) << name << ": " << failures.size() << " of " << mutants_per_log()
+                                  << ", first: " << failures.front();
+  }
+}
+
+TEST(Mutants, OfACampaignRunsDocumentsAreReportedOrRefusedInOneLine) {
+  TempDir dir;
+  const std::string run = dir.file("runs/sim");
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 10 -o " + quote(dir.file("sim.h5"))).exit_code, 0);
+  const CommandResult report = test::run_command("timeout 120 " + quote(kExe) + " report " + quote(dir.file("sim.h5")) +
+                                                 " -o " + quote(run + "/report"));
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  test::write_text(run + "/run.json", R"({"format": "roverlab-campaign-run", "name": "sim", "kind": "simulate",
+    "scenario": "flat_60s", "seed": 1, "effects": {"gyro-bias": 0.01}, "roverlab_version": "test"})");
+  const std::string command = "campaign report " + quote(run) + " -o " + quote(dir.file("out"));
+  ASSERT_EQ(run_roverlab(command).exit_code, 0);
+  unsigned seed = 51;
+  for (const std::string document : {"/run.json", "/report/metrics.json"}) {
+    const auto failures = mutate_document(run + document, seed++, command);
+    EXPECT_TRUE(failures.empty()) << document << ": " << failures.size() << " of " << mutants_per_log()
+                                  << ", first: " << failures.front();
+  }
+}
+
 }  // namespace
 }  // namespace roverlab

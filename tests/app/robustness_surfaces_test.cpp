@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -547,6 +548,18 @@ TEST(NewSurfaces, AStudyAgainstAScenarioOnAnotherPathIsRefusedEarly) {
   const SimulatedLog log(dir, "flat.h5", 10);
   expect_one_line(run_roverlab("discrepancy rover " + quote(log.path()) + " --scenario rolling_200s"), 3, log.path(),
                   "cannot be this run's model");
+  // On the same path, a speed set point no candidate changes: refused at
+  // once too (it was fitted for minutes).
+  nlohmann::json sc =
+      nlohmann::json::parse(test::read_text(std::string(ROVERLAB_RESOURCES_DIR) + "/scenarios/flat_60s.json"));
+  sc["name"] = "flat_fast";
+  sc["desired_speed_mps"] = 0.05;
+  test::write_text(dir.file("flat_fast.json"), sc.dump());
+  const auto start = std::chrono::steady_clock::now();
+  expect_one_line(
+      run_roverlab("discrepancy rover " + quote(log.path()) + " --scenario " + quote(dir.file("flat_fast.json"))), 3,
+      log.path(), "desired speed 0.02 m/s, not 0.05 m/s); scenario flat_fast cannot be this run's model");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
 }
 
 // N23, N28, N18, N34: a log named `...h5` became run `..` (and `rm -rf
