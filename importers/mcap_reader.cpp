@@ -11,6 +11,7 @@
 #include <set>
 
 #include <lz4frame.h>
+#include <zlib.h>
 #include <zstd.h>
 
 #include "core/common/error.h"
@@ -45,6 +46,23 @@ struct McapError {
 std::string hex(std::uint64_t v) {
   char text[32];
   std::snprintf(text, sizeof text, "0x%llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
+// CRC-32 (the zlib / ISO-HDLC one the spec names) of `n` bytes, continuing `crc`.
+std::uint32_t crc32_of(std::uint32_t crc, const std::uint8_t* data, std::uint64_t n) {
+  while (n > 0) {
+    const auto part = static_cast<uInt>(std::min<std::uint64_t>(n, std::uint64_t{1} << 30));
+    crc = static_cast<std::uint32_t>(crc32(crc, data, part));
+    data += part;
+    n -= part;
+  }
+  return crc;
+}
+
+std::string crc_text(std::uint32_t v) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%08x", v);
   return text;
 }
 
@@ -224,6 +242,8 @@ class McapReader {
     if (stats != nullptr) {
       stats->bytes_read = file_.bytes_read();
       stats->indexed = indexed;
+      stats->chunks_read = chunks_read_;
+      stats->chunks_in_file = indexed ? chunks.size() : chunks_seen_;
     }
     return messages_.build(options_.mapping);
   }
@@ -265,14 +285,25 @@ class McapReader {
     Cursor c(tail.data() + 9, 20, "Footer");
     const auto summary_start = c.number<std::uint64_t>();
     const auto summary_offset_start = c.number<std::uint64_t>();
+    const auto summary_crc = c.number<std::uint32_t>();
     if (summary_start == 0) return false;
     const std::uint64_t summary_end = summary_offset_start != 0 ? summary_offset_start : footer;
     if (summary_start < 8 || summary_start > summary_end || summary_end > footer) {
       throw McapError{"the footer's summary offsets (" + std::to_string(summary_start) + ", " +
                       std::to_string(summary_offset_start) + ") lie outside the file"};
     }
+    // The summary and summary offset sections, read at once: the footer's CRC
+    // covers them and its own fields up to the CRC (0: none written).
     std::vector<std::uint8_t> summary;
-    file_.read(summary_start, summary_end - summary_start, summary);
+    file_.read(summary_start, footer - summary_start, summary);
+    if (summary_crc != 0) {
+      const std::uint32_t crc = crc32_of(crc32_of(0, summary.data(), summary.size()), tail.data(), 1 + 8 + 16);
+      if (crc != summary_crc) {
+        throw McapError{"the summary section is damaged (its CRC-32 is " + crc_text(crc) + ", the footer says " +
+                        crc_text(summary_crc) + ")"};
+      }
+    }
+    summary.resize(static_cast<std::size_t>(summary_end - summary_start));
     for_each_record(summary.data(), summary.size(), summary_start,
                     [&](std::uint8_t op, const std::uint8_t* data, std::size_t size, std::uint64_t) {
                       if (op == kChunkIndex) chunks.push_back(chunk_index(data, size));
@@ -352,10 +383,13 @@ class McapReader {
   }
 
   // The data section, record by record, to the Data End or Footer record.
+  // Every byte before the Data End record goes through the CRC its record
+  // holds (0: none written), so every record is read whole.
   void scan() {
     std::uint64_t at = 8;
     std::vector<std::uint8_t> head;
     std::vector<std::uint8_t> content;
+    std::uint32_t crc = crc32_of(0, kMagic, 8);
     while (at < file_.size()) {
       if (file_.size() - at < 9)
         throw McapError{"truncated: a record header at offset " + std::to_string(at) + " is cut"};
@@ -367,12 +401,23 @@ class McapReader {
                         std::to_string(length) + " bytes, more than the file holds (truncated?)"};
       }
       const std::uint8_t op = head[0];
-      if (op == kFooter || op == kDataEnd) return;
+      if (op == kFooter) return;
+      file_.read(at + 9, length, content);
+      if (op == kDataEnd) return check_data_section(crc, content);
+      crc = crc32_of(crc32_of(crc, head.data(), 9), content.data(), content.size());
       if (op == kChunk || op == kSchema || op == kChannel || op == kMessage) {
-        file_.read(at + 9, length, content);
         record(op, content.data(), content.size(), at);
       }
       at += 9 + length;
+    }
+  }
+
+  static void check_data_section(std::uint32_t crc, const std::vector<std::uint8_t>& data_end) {
+    Cursor c(data_end.data(), data_end.size(), "Data End");
+    const auto expected = c.number<std::uint32_t>();
+    if (expected != 0 && expected != crc) {
+      throw McapError{"the data section is damaged (its CRC-32 is " + crc_text(crc) + ", the Data End record says " +
+                      crc_text(expected) + ")"};
     }
   }
 
@@ -431,11 +476,20 @@ class McapReader {
     const auto start = c.number<std::uint64_t>();
     const auto end = c.number<std::uint64_t>();
     const auto uncompressed_size = c.number<std::uint64_t>();
-    (void)c.number<std::uint32_t>();  // CRC of the uncompressed records (0: none)
+    const auto chunk_crc = c.number<std::uint32_t>();  // of the uncompressed records (0: none)
     const std::string compression = c.string();
     const auto [records, n] = c.bytes<std::uint64_t>();
+    ++chunks_seen_;
     if (!time_overlaps(start, end)) return;
+    ++chunks_read_;
     const std::vector<std::uint8_t> plain = decompress(compression, records, n, uncompressed_size);
+    if (chunk_crc != 0) {
+      const std::uint32_t crc = crc32_of(0, plain.data(), plain.size());
+      if (crc != chunk_crc) {
+        throw McapError{"a chunk of messages from " + std::to_string(start) + " ns is damaged (its CRC-32 is " +
+                        crc_text(crc) + ", the chunk says " + crc_text(chunk_crc) + ")"};
+      }
+    }
     for_each_record(plain.data(), plain.size(), 0,
                     [&](std::uint8_t op, const std::uint8_t* d, std::size_t s, std::uint64_t at) {
                       if (op == kMessage || op == kSchema || op == kChannel) record(op, d, s, at);
@@ -508,6 +562,8 @@ class McapReader {
   std::map<std::uint16_t, SchemaRecord> schemas_;
   std::map<std::uint16_t, ChannelRecord> channels_;
   std::map<std::uint16_t, std::uint64_t> message_counts_;  // the summary's statistics
+  std::uint64_t chunks_read_ = 0;                          // chunks decompressed
+  std::uint64_t chunks_seen_ = 0;                          // chunk records met on a scan
   ros::MessageLog messages_;
 };
 

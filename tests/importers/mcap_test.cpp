@@ -194,9 +194,12 @@ TEST(McapBadInput, OneLineNamingTheFileAndTheProblem) {
   write_bytes(path, huge, huge.size());
   EXPECT_EQ(read_error(path), path + ": the record at offset " + std::to_string(chunk) +
                                   " (opcode 0x6) claims 10000000000 bytes, more than the file holds (truncated?)");
-  // An unknown compression: "zstd" becomes "zzzz" wherever it is written.
+  // An unknown compression: "zstd" becomes "zzzz" in the chunks (the
+  // summary's chunk indexes name it too, but its CRC would refuse them).
   std::vector<char> unknown = bytes_of(kData + "imu_ros1_zstd.mcap");
-  for (std::size_t k = 0; k + 4 <= unknown.size(); ++k) {
+  std::uint64_t summary_start = 0;
+  std::memcpy(&summary_start, unknown.data() + unknown.size() - 8 - 20, 8);
+  for (std::size_t k = 0; k + 4 <= summary_start; ++k) {
     if (std::memcmp(unknown.data() + k, "zstd", 4) == 0) std::memcpy(unknown.data() + k, "zzzz", 4);
   }
   write_bytes(path, unknown, unknown.size());
@@ -207,6 +210,63 @@ TEST(McapBadInput, OneLineNamingTheFileAndTheProblem) {
                                       ": topic /thing: message encoding 'protobuf' with schema encoding "
                                       "'protobuf' is not supported (RoverLab reads ros1 with ros1msg, cdr with "
                                       "ros2msg, json)");
+}
+
+// One byte changed where only the CRC-32s can see it (a value's last byte, a
+// schema name's first letter): the chunk's, the summary's and the data
+// section's CRC each refuse the file with one line. Without the checks each
+// of these files reads, with one value or name wrong.
+TEST(McapBadInput, ACrcMismatchNamesTheFileAndWhatIsDamaged) {
+  TempDir dir;
+  const std::string path = dir.file("damaged.mcap");
+  // A chunk (uncompressed, so the byte changed is a value's): its last byte.
+  std::vector<char> bytes = bytes_of(kData + "imu_ros1_none.mcap");
+  const std::size_t chunk = first_record(bytes, 0x06);
+  ASSERT_GT(chunk, 0U);
+  std::uint64_t records = 0;
+  std::memcpy(&records, bytes.data() + chunk + 9 + 32, 8);
+  std::uint64_t chunk_start = 0;
+  std::memcpy(&chunk_start, bytes.data() + chunk + 9, 8);
+  ASSERT_EQ(bytes[chunk + 9 + 28], 0);  // no compression: an empty string
+  bytes[chunk + 9 + 40 + records - 1] ^= 0x01;
+  write_bytes(path, bytes, bytes.size());
+  std::string error = read_error(path);
+  EXPECT_EQ(
+      error.rfind(path + ": a chunk of messages from " + std::to_string(chunk_start) + " ns is damaged (its CRC-32 is ",
+                  0),
+      0U)
+      << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos);
+
+  // The summary: the first letter of its first record's name (a Schema's).
+  bytes = bytes_of(kData + "imu_ros1_zstd.mcap");
+  std::uint64_t summary_start = 0;
+  std::memcpy(&summary_start, bytes.data() + bytes.size() - 8 - 20, 8);
+  ASSERT_GT(summary_start, 0U);
+  ASSERT_EQ(bytes[summary_start], 0x03);
+  ASSERT_EQ(bytes[summary_start + 9 + 2 + 4], 's');  // sensor_msgs/Imu
+  bytes[summary_start + 9 + 2 + 4] = 't';
+  write_bytes(path, bytes, bytes.size());
+  error = read_error(path);
+  EXPECT_EQ(error.rfind(path + ": the summary section is damaged (its CRC-32 is ", 0), 0U) << error;
+
+  // The data section of a file without chunks or summary: a message's last byte.
+  bytes = bytes_of(kData + "imu_ros1_unchunked_no_summary.mcap");
+  const std::size_t message = first_record(bytes, 0x05);
+  ASSERT_GT(message, 0U);
+  std::uint64_t length = 0;
+  std::memcpy(&length, bytes.data() + message + 1, 8);
+  bytes[message + 9 + length - 1] ^= 0x01;
+  write_bytes(path, bytes, bytes.size());
+  error = read_error(path);
+  EXPECT_EQ(error.rfind(path + ": the data section is damaged (its CRC-32 is ", 0), 0U) << error;
+
+  // The files as written read, and give the counts of the chunks they read.
+  io::McapReadStats stats;
+  EXPECT_EQ(io::read_mcap(kData + "imu_ros1_none.mcap", {}, {}, &stats).stream("imu/data").size(), 100U);
+  EXPECT_TRUE(stats.indexed);
+  EXPECT_GT(stats.chunks_read, 0U);
+  EXPECT_EQ(stats.chunks_read, stats.chunks_in_file);
 }
 
 }  // namespace
