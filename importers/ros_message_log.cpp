@@ -281,7 +281,12 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
       const StreamMapping& sm = mapping->streams[k];
       const Topic& t = *chosen[k];
       const std::vector<std::size_t> rows = t.rows();
-      log::Stream stream(sm.name, time_of(t, rows));
+      struct Mapped {
+        const ChannelMapping* mapping;
+        std::string unit;
+        std::vector<double> values;
+      };
+      std::vector<Mapped> mapped;
       for (const auto& cm : sm.channels) {
         const std::string where = "mapping " + label + ": channel " + sm.name + "/" + cm.name + ": ";
         if (cm.component) throw InputError(path_, where + "'component' is for HDF5 variables, not topics");
@@ -315,7 +320,24 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
         std::vector<double> values = column(source->columns[it->second], source_rows);
         const log::UnitConversion si = log::unit_to_si(cm.unit);
         for (double& v : values) v = (v * si.factor + si.offset) * cm.scale + 0.0;  // + 0.0: no -0 from flips
-        stream.add_channel(cm.name, si.si_unit, std::move(values), cm.description);
+        mapped.push_back({&cm, si.si_unit, std::move(values)});
+      }
+      // A message without any of the stream's fields (a /tf message that
+      // carries other frames) gives no sample.
+      std::vector<double> time = time_of(t, rows);
+      std::vector<std::size_t> keep;
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        const bool any = mapped.empty() || std::any_of(mapped.begin(), mapped.end(),
+                                                       [&](const Mapped& m) { return !std::isnan(m.values[i]); });
+        if (any) keep.push_back(i);
+      }
+      if (keep.size() < rows.size()) {
+        time = column(time, keep);
+        for (Mapped& m : mapped) m.values = column(m.values, keep);
+      }
+      log::Stream stream(sm.name, std::move(time));
+      for (Mapped& m : mapped) {
+        stream.add_channel(m.mapping->name, m.unit, std::move(m.values), m.mapping->description);
       }
       out.add_stream(std::move(stream));
     }

@@ -229,7 +229,8 @@ class Decoder::Walk {
       }
     } else if (f.type == Primitive::message) {
       if (!take && d_.min_size_[f.nested] == 0) return;  // nothing to read, nothing to keep
-      for (std::size_t i = 0; i < n; ++i) message(f.nested, take, false);
+      const bool frames = take && d_.schema_.types[f.nested].frame_field >= 0;
+      for (std::size_t i = 0; i < n; ++i) message(f.nested, take, false, frames);
     } else if (take) {
       for (std::size_t i = 0; i < n; ++i) out_.values.push_back(number(f.type));
     } else if (n > 0) {
@@ -240,12 +241,17 @@ class Decoder::Walk {
     }
   }
 
-  void message(std::size_t index, bool emit, bool root) {
+  // frame: the message is an element of an array its child_frame_id labels.
+  void message(std::size_t index, bool emit, bool root, bool frame = false) {
     const MessageType& type = d_.schema_.types[index];
     for (std::size_t k = 0; k < type.fields.size(); ++k) {
       const Field& f = type.fields[k];
       if (f.is_array) {
         array(type, k, emit);
+      } else if (frame && static_cast<int>(k) == type.frame_field) {
+        std::string_view id = string();
+        while (!id.empty() && id.front() == '/') id.remove_prefix(1);  // tf's "/base_link" is tf2's "base_link"
+        out_.labels.push_back(sanitized_label(std::string(id)));
       } else if (root && k == 0 && d_.header_stamp_field_ >= 0) {
         header(f.nested, emit);
       } else {
@@ -317,9 +323,14 @@ class Namer {
         continue;
       }
       if (f.type == Primitive::string) continue;
+      const bool frames = f.type == Primitive::message && schema_.types[f.nested].frame_field >= 0;
       for (std::size_t i = 0; i < n; ++i) {
-        const std::string element =
+        std::string element =
             name + "." + (labels != nullptr && label_count == n && !labels[i].empty() ? labels[i] : std::to_string(i));
+        if (frames) {  // each element's child_frame_id, as the walk met it
+          const std::string* frame = next_label < m_.labels.size() ? &m_.labels[next_label++] : nullptr;
+          element = name + "." + (frame != nullptr && !frame->empty() ? *frame : std::to_string(i));
+        }
         if (f.type == Primitive::message) {
           message(f.nested, element + ".");
         } else {

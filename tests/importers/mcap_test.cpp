@@ -17,6 +17,7 @@
 #include "core/common/error.h"
 #include "importers/log_file.h"
 #include "importers/mcap_file.h"
+#include "kapvik_ros_log.h"
 #include "test_support.h"
 
 using namespace roverlab;
@@ -85,6 +86,22 @@ TEST(Mcap, Ros1MessagesReadBackFromEveryChunkingAndCompression) {
   const std::string renamed = dir.file("imu.log");
   std::filesystem::copy_file(kData + "imu_ros1_lz4.mcap", renamed);
   EXPECT_EQ(io::load_log(renamed).format, "MCAP");
+}
+
+// WrenchStamped, TwistStamped and TFMessage (with JointState and Imu),
+// written by the MCAP project's writer (make_kapvik_mcap.mjs) in ROS 1 and
+// ROS 2 (CDR) encodings, onto the rover's streams by
+// resources/mappings/ros_kapvik.json, as the same data in a bag
+// (Ros1Bag.WrenchTwistAndTfMapOntoTheRoversStreams).
+TEST(Mcap, WrenchTwistAndTfMapOntoTheRoversStreams) {
+  io::LoadOptions o;
+  o.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/ros_kapvik.json");
+  for (const char* file : {"kapvik_ros1_zstd.mcap", "kapvik_cdr_lz4_no_summary.mcap"}) {
+    SCOPED_TRACE(file);
+    const log::Log lg = io::load_log(kData + file, o).log;
+    EXPECT_EQ(lg.metadata.rover_id, "kapvik_planar");
+    roverlab::test::kapvik::expect_mapped_log(lg);
+  }
 }
 
 TEST(Mcap, HeaderStampOnRequest) {
