@@ -2,6 +2,7 @@
 // specification at mcap.dev (format version 0); every length in the file is
 // checked against what the file (or the chunk) holds before it is used.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -226,18 +227,36 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
 class McapReader {
  public:
   McapReader(const std::string& path, const LoadOptions& options, const McapSelection& selection)
-      : path_(path), options_(options), selection_(selection), file_(path), messages_(path, message_options(options)) {
-    wanted_.insert(selection.topics.begin(), selection.topics.end());
+      : path_(path),
+        options_(options),
+        file_(path),
+        start_ns_(selection.start_ns),
+        end_ns_(selection.end_ns),
+        relative_(!selection.start_ns && !selection.end_ns && (options.start_s || options.end_s)),
+        messages_(path, message_options(options)) {
+    for (const auto& t : selection.topics) wanted_.insert(ros::topic_key(t));
+    for (const auto& t : options.topics) wanted_.insert(ros::topic_key(t));
   }
 
   log::Log read(McapReadStats* stats) {
     check_magic_and_header();
     std::vector<ChunkIndexRecord> chunks;
     const bool indexed = read_summary(chunks) && !chunks.empty();
+    indexed_ = indexed;
     if (indexed) {
+      // The file's first message: the statistics' start time, or the earliest chunk's.
+      std::uint64_t first = statistics_start_.value_or(std::numeric_limits<std::uint64_t>::max());
+      for (const auto& c : chunks) first = std::min(first, c.start_time);
+      fix_origin(first);
       read_indexed(chunks);
     } else {
       scan();
+    }
+    for (const std::string& t : options_.topics) {
+      const std::string topic = ros::topic_key(t);
+      const bool found = std::any_of(channels_.begin(), channels_.end(),
+                                     [&](const auto& c) { return ros::topic_key(c.second.topic) == topic; });
+      if (!found) throw McapError{"no topic /" + topic + " in the file"};
     }
     if (stats != nullptr) {
       stats->bytes_read = file_.bytes_read();
@@ -317,11 +336,12 @@ class McapReader {
   // Messages per channel: a whole-file read allocates each column once.
   void statistics(const std::uint8_t* data, std::size_t size) {
     Cursor c(data, size, "Statistics");
-    (void)c.number<std::uint64_t>();                              // message count
+    const auto count = c.number<std::uint64_t>();                 // message count
     (void)c.number<std::uint16_t>();                              // schema count
     for (int k = 0; k < 4; ++k) (void)c.number<std::uint32_t>();  // channel, attachment, metadata, chunk counts
-    (void)c.number<std::uint64_t>();                              // message start time
-    (void)c.number<std::uint64_t>();                              // message end time
+    const auto start = c.number<std::uint64_t>();                 // message start time
+    if (count > 0) statistics_start_ = start;
+    (void)c.number<std::uint64_t>();  // message end time
     const auto [map, map_size] = c.bytes<std::uint32_t>();
     Cursor m(map, map_size, "Statistics");
     for (std::size_t k = 0; k < map_size / 10; ++k) {
@@ -351,7 +371,21 @@ class McapReader {
   }
 
   bool time_overlaps(std::uint64_t start, std::uint64_t end) const {
-    return !(selection_.start_ns && end < *selection_.start_ns) && !(selection_.end_ns && start > *selection_.end_ns);
+    return !(start_ns_ && end < *start_ns_) && !(end_ns_ && start > *end_ns_);
+  }
+
+  // A time range in seconds after the file's first message (LoadOptions)
+  // becomes log times once that message's time is known: from the summary,
+  // or on a scan the first chunk or message met.
+  void fix_origin(std::uint64_t first_ns) {
+    if (!relative_ || origin_ns_ || first_ns > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+      return;
+    }
+    origin_ns_ = first_ns;
+    const auto at = [&](double s) { return first_ns + static_cast<std::uint64_t>(std::llround(s * 1e9)); };
+    if (options_.start_s) start_ns_ = at(*options_.start_s);
+    if (options_.end_s) end_ns_ = at(*options_.end_s);
+    messages_.set_time_origin(static_cast<std::int64_t>(first_ns));
   }
 
   void read_indexed(std::vector<ChunkIndexRecord>& chunks) {
@@ -363,7 +397,7 @@ class McapReader {
         bool any = false;
         for (std::uint16_t id : chunk.channels) {
           const auto it = channels_.find(id);
-          any = any || (it != channels_.end() && wanted_.count(it->second.topic) != 0);
+          any = any || (it != channels_.end() && wanted_.count(ros::topic_key(it->second.topic)) != 0);
         }
         if (!any) continue;
       }
@@ -480,7 +514,10 @@ class McapReader {
     const std::string compression = c.string();
     const auto [records, n] = c.bytes<std::uint64_t>();
     ++chunks_seen_;
-    if (!time_overlaps(start, end)) return;
+    fix_origin(start);
+    // On a scan a chunk outside the range is still read: it may hold the
+    // Schema and Channel records of later messages.
+    if (indexed_ && !time_overlaps(start, end)) return;
     ++chunks_read_;
     const std::vector<std::uint8_t> plain = decompress(compression, records, n, uncompressed_size);
     if (chunk_crc != 0) {
@@ -525,7 +562,7 @@ class McapReader {
     }
     ch.topic_index = messages_.add_topic(ch.topic, type, definition, dialect, encoding);
     const auto count = message_counts_.find(id);
-    const bool whole = !selection_.start_ns && !selection_.end_ns && selection_.topics.empty();
+    const bool whole = !start_ns_ && !end_ns_ && wanted_.empty();
     // A count no file of this size could hold (a message record takes at least 31 bytes, before any
     // compression) is not believed beyond that.
     if (whole && count != message_counts_.end()) {
@@ -542,12 +579,13 @@ class McapReader {
     const auto log_time = c.number<std::uint64_t>();
     (void)c.number<std::uint64_t>();  // publish time
     const auto [bytes, n] = c.rest();
+    fix_origin(log_time);
     if (!time_overlaps(log_time, log_time)) return;
     const auto it = channels_.find(id);
     if (it == channels_.end()) {
       throw McapError{"a message on channel " + std::to_string(id) + ", which no Channel record defines"};
     }
-    if (!wanted_.empty() && wanted_.count(it->second.topic) == 0) return;
+    if (!wanted_.empty() && wanted_.count(ros::topic_key(it->second.topic)) == 0) return;
     if (log_time > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
       throw McapError{"a message's log time " + std::to_string(log_time) + " ns is beyond the year 2262"};
     }
@@ -556,7 +594,6 @@ class McapReader {
 
   std::string path_;
   const LoadOptions& options_;
-  const McapSelection& selection_;
   File file_;
   std::set<std::string> wanted_;
   std::map<std::uint16_t, SchemaRecord> schemas_;
@@ -564,6 +601,12 @@ class McapReader {
   std::map<std::uint16_t, std::uint64_t> message_counts_;  // the summary's statistics
   std::uint64_t chunks_read_ = 0;                          // chunks decompressed
   std::uint64_t chunks_seen_ = 0;                          // chunk records met on a scan
+  std::optional<std::uint64_t> statistics_start_;          // the summary's first message time
+  std::optional<std::uint64_t> start_ns_;                  // the log times to read
+  std::optional<std::uint64_t> end_ns_;
+  bool relative_ = false;  // the range is LoadOptions' seconds after the first message
+  bool indexed_ = false;   // the summary's chunk indexes choose the chunks
+  std::optional<std::uint64_t> origin_ns_;
   ros::MessageLog messages_;
 };
 

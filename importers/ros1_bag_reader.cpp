@@ -1,9 +1,11 @@
 // ROS 1 bags (format 2.0) as a LogReader: the rosbag library reads the file
 // (chunks uncompressed, bz2 or lz4); each connection's message definition
 // drives a generic decoder (importers/ros_message_log.h).
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <new>
+#include <set>
 #include <unordered_map>
 
 #include <console_bridge/console.h>
@@ -91,12 +93,15 @@ class Ros1BagReader final : public LogReader {
     std::unordered_map<const void*, std::size_t> topic_of;  // by connection
     std::unordered_map<std::string, std::size_t> counts;    // messages per topic, from the bag's index
     each_message(
-        path,
-        [&](rosbag::Bag& bag) {
+        path, options,
+        [&](rosbag::Bag& bag, const Range& range) {
           rosbag::View all(bag);
           for (const rosbag::ConnectionInfo* c : all.getConnections()) {
-            if (counts.count(c->topic) == 0) counts[c->topic] = rosbag::View(bag, rosbag::TopicQuery(c->topic)).size();
+            if (counts.count(c->topic) == 0) {
+              counts[c->topic] = rosbag::View(bag, rosbag::TopicQuery(c->topic), range.start, range.end).size();
+            }
           }
+          if (range.relative) messages.set_time_origin(static_cast<std::int64_t>(range.origin.toNSec()));
         },
         [&](const rosbag::MessageInstance& m, const BagBytes& bytes) {
           const void* connection = m.getConnectionHeader().get();
@@ -115,14 +120,38 @@ class Ros1BagReader final : public LogReader {
   // The crash guard's trial: the library's calls on every message, no decoding.
   void trial_read(const std::string& path, const LoadOptions&) const override {
     each_message(
-        path, [](rosbag::Bag&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
+        path, {}, [](rosbag::Bag&, const Range&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
   }
 
  private:
-  // Calls opened(the bag), then visit(message, its bytes) for every message
-  // of the bag, in time order.
+  // The record times to read: a range in seconds after the bag's first message.
+  struct Range {
+    ::ros::Time start = ::ros::TIME_MIN;
+    ::ros::Time end = ::ros::TIME_MAX;
+    ::ros::Time origin;
+    bool relative = false;
+  };
+
+  static Range range_of(rosbag::Bag& bag, const LoadOptions& options) {
+    Range r;
+    if (!options.start_s && !options.end_s) return r;
+    r.relative = true;
+    r.origin = rosbag::View(bag).getBeginTime();
+    const auto at = [&](double seconds) {
+      ::ros::Time t;
+      t.fromNSec(r.origin.toNSec() + static_cast<std::uint64_t>(std::llround(seconds * 1e9)));
+      return t;
+    };
+    if (options.start_s) r.start = at(*options.start_s);
+    if (options.end_s) r.end = at(*options.end_s);
+    return r;
+  }
+
+  // Calls opened(the bag, the range read), then visit(message, its bytes) for
+  // every message of the bag that `options` selects (topics, time range), in
+  // time order.
   template <class Opened, class Visit>
-  static void each_message(const std::string& path, Opened&& opened, Visit&& visit) {
+  static void each_message(const std::string& path, const LoadOptions& options, Opened&& opened, Visit&& visit) {
     const std::string version = bag_version(path);
     if (version.empty()) throw InputError(path, "not a ROS bag (no '#ROSBAG V2.0' line at the start)");
     if (version != "2.0") throw InputError(path, "ROS bag version " + version + "; RoverLab reads version 2.0");
@@ -131,8 +160,21 @@ class Ros1BagReader final : public LogReader {
     try {
       rosbag::Bag bag;
       bag.open(path, rosbag::bagmode::Read);
-      opened(bag);
-      rosbag::View view(bag);
+      std::set<std::string> wanted;
+      for (const auto& t : options.topics) wanted.insert(ros::topic_key(t));
+      std::set<std::string> found;
+      for (const rosbag::ConnectionInfo* c : rosbag::View(bag).getConnections()) found.insert(ros::topic_key(c->topic));
+      for (const auto& t : wanted) {
+        if (found.count(t) == 0) throw InputError(path, "no topic /" + t + " in the file");
+      }
+      const Range range = range_of(bag, options);
+      opened(bag, range);
+      rosbag::View view(
+          bag,
+          [&](const rosbag::ConnectionInfo* c) {
+            return wanted.empty() || wanted.count(ros::topic_key(c->topic)) != 0;
+          },
+          range.start, range.end);
       for (const rosbag::MessageInstance& m : view) {
         const boost::shared_ptr<BagBytes> bytes = m.instantiate<BagBytes>();
         if (!bytes) throw InputError(path, "corrupt ROS bag: a message could not be read");

@@ -40,6 +40,25 @@ std::string seconds_text(std::int64_t ns) {
 
 }  // namespace
 
+void parse_time_range(const std::string& text, std::optional<double>& start_s, std::optional<double>& end_s) {
+  const auto colon = text.find(':');
+  const auto number = [&](const std::string& part) -> std::optional<double> {
+    if (part.empty()) return std::nullopt;
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (end != part.c_str() + part.size() || !std::isfinite(v) || v < 0 || v > 1e9) {
+      throw DataError("time range '" + text + "': '" + part + "' is not a number of seconds from 0 to 1e9");
+    }
+    return v;
+  };
+  if (colon == std::string::npos) throw DataError("time range '" + text + "' is not START:END (seconds)");
+  start_s = number(text.substr(0, colon));
+  end_s = number(text.substr(colon + 1));
+  if (start_s && end_s && *end_s < *start_s) throw DataError("time range '" + text + "' ends before it starts");
+}
+
+std::string topic_key(const std::string& topic) { return stream_name(topic); }
+
 TimeSource parse_time_source(const std::string& text) {
   if (text == "record") return TimeSource::record;
   if (text == "header") return TimeSource::header;
@@ -241,6 +260,7 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
   for (Topic* t : chosen) {
     if (!t->time_ns.empty()) origin = std::min(origin, *std::min_element(t->time_ns.begin(), t->time_ns.end()));
   }
+  if (origin_ns_) origin = *origin_ns_;
   if (origin == std::numeric_limits<std::int64_t>::max() || (mapping && mapping->time_origin != "first_sample")) {
     origin = 0;
   }

@@ -323,6 +323,54 @@ TEST(Bb2Bag, ContactAngleGivesTheHdf5LogsAnswer) {
   EXPECT_EQ(run_roverlab("estimate contact-angle " + quote(bag) + options).exit_code == 0, false);
 }
 
+// `info` and `convert` with --topics and --time START:END (seconds after the
+// file's first message): a part of an MCAP file (read through its chunk
+// indexes) and of a bag; misuse is one line, exit 2 (a bad option) or 3 (a
+// topic the file lacks).
+TEST(RosPartCli, InfoAndConvertReadATopicSubsetAndATimeRange) {
+  TempDir dir;
+  const std::string mcap = std::string(ROVERLAB_TEST_DATA) + "/mcap/ranged_zstd.mcap";
+  const std::string out = dir.file("part.h5");
+  const CommandResult c =
+      run_roverlab("convert " + quote(mcap) + " " + quote(out) + " --topics /imu/data --time 4.5:5.5");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const log::Log part = io::read_hdf5_log(out);
+  ASSERT_EQ(part.stream("imu/data").size(), 101U);
+  EXPECT_NEAR(part.stream("imu/data").time().front(), 4.5, 1e-9);
+  EXPECT_EQ(part.stream("imu/data").channel("header.seq").values.back(), 550.0);
+
+  const std::string wvu = std::string(ROVERLAB_TEST_DATA) + "/mcap/wvu_pathfinder_ros1.mcap";
+  const CommandResult info = run_roverlab("info " + quote(wvu) + " --topics /imu/data,/odom --time 10:20 --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const json doc = json::parse(info.out);
+  ASSERT_EQ(doc.at("streams").size(), 2U);
+  for (const auto& s : doc.at("streams")) {
+    EXPECT_TRUE(s.at("name") == "imu/data" || s.at("name") == "odom") << s.at("name");
+    EXPECT_GE(s.at("start_s").get<double>(), 10.0);
+    EXPECT_LE(s.at("end_s").get<double>(), 20.0);
+    EXPECT_GT(s.at("duration_s").get<double>(), 9.5);
+  }
+
+  // A bag, through a mapping: only the mapped topics' range.
+  const std::string sim = dir.file("sim.h5");
+  ASSERT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 100 -o " + quote(sim)).exit_code, 0);
+  const std::string bag = dir.file("bb2.bag");
+  write_bb2_bag(io::read_hdf5_log(sim), bag);
+  const CommandResult mapped = run_roverlab("info " + quote(bag) + " -m ros_exomars_bb2 --time :2 --json");
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  EXPECT_EQ(json::parse(mapped.out).at("streams").at(0).at("samples"), 201);
+
+  const auto one_line = [](const CommandResult& r) { return std::count(r.err.begin(), r.err.end(), '\n') <= 2; };
+  const CommandResult missing = run_roverlab("info " + quote(mcap) + " --topics /camera");
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_NE(missing.err.find(mcap + ": no topic /camera in the file"), std::string::npos) << missing.err;
+  const CommandResult backwards = run_roverlab("info " + quote(mcap) + " --time 5:4");
+  EXPECT_EQ(backwards.exit_code, 2);
+  EXPECT_TRUE(one_line(backwards)) << backwards.err;
+  EXPECT_EQ(run_roverlab("info " + quote(mcap) + " --time ten:20").exit_code, 2);
+  EXPECT_EQ(run_roverlab("info " + quote(sim) + " --time 1:2").exit_code, 2);
+}
+
 TEST(RosBagCli, BadBagsExitThreeWithOneLine) {
   TempDir dir;
   const std::string fake = dir.file("fake.bag");

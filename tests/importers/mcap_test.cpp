@@ -167,6 +167,55 @@ TEST(Mcap, ATimeRangeReadsOnlyTheChunksThatHoldIt) {
   EXPECT_LE(nothing.bytes_read, size / 10);
 }
 
+// LoadOptions' topics and time range (seconds after the file's first
+// message, what `convert --topics --time` passes): through the chunk indexes
+// only the chunks that hold the range are decompressed; a file without a
+// summary, scanned, gives the same messages at the same times.
+TEST(Mcap, TopicsAndATimeRangeInSecondsReadOnlyTheirChunks) {
+  io::LoadOptions o;
+  o.topics = {"imu/data"};  // with or without the leading '/'
+  o.start_s = 4.5;
+  o.end_s = 5.5;
+  io::McapReadStats stats;
+  const log::Log part = io::read_mcap(kData + "ranged_zstd.mcap", o, {}, &stats);
+  EXPECT_TRUE(stats.indexed);
+  const log::Stream& s = part.stream("imu/data");
+  ASSERT_EQ(s.size(), 101U);
+  EXPECT_NEAR(s.time().front(), 4.5, 1e-9);  // the file's clock, not the range's
+  EXPECT_NEAR(s.time().back(), 5.5, 1e-9);
+  EXPECT_EQ(s.channel("angular_velocity.x").values[0], value(450, 10));
+  io::McapReadStats whole;
+  (void)io::read_mcap(kData + "ranged_zstd.mcap", {}, {}, &whole);
+  EXPECT_EQ(whole.chunks_read, whole.chunks_in_file);
+  EXPECT_EQ(stats.chunks_in_file, whole.chunks_in_file);
+  EXPECT_LE(stats.chunks_read * 5, whole.chunks_read) << stats.chunks_read << " of " << whole.chunks_read;
+  std::printf("1 s of 10 s: %llu of %llu chunks decompressed\n", static_cast<unsigned long long>(stats.chunks_read),
+              static_cast<unsigned long long>(whole.chunks_read));
+
+  // Indexed and scanned: the same part.
+  o.start_s = 0.2;
+  o.end_s = 0.4;
+  o.topics = {"/imu/data"};
+  const log::Log indexed = io::read_mcap(kData + "imu_ros1_zstd.mcap", o);
+  const log::Log scanned = io::read_mcap(kData + "imu_ros1_zstd_no_summary.mcap", o);
+  ASSERT_EQ(indexed.stream("imu/data").size(), 21U);
+  EXPECT_EQ(indexed.stream("imu/data").time(), scanned.stream("imu/data").time());
+  EXPECT_EQ(indexed.stream("imu/data").channel("linear_acceleration.y").values,
+            scanned.stream("imu/data").channel("linear_acceleration.y").values);
+  EXPECT_EQ(indexed.stream("imu/data").channel("header.seq").values.front(), 20.0);
+  // Only an end: from the first message.
+  o.start_s.reset();
+  EXPECT_EQ(io::read_mcap(kData + "imu_ros1_zstd.mcap", o).stream("imu/data").size(), 41U);
+  // A topic the file lacks: one line.
+  o.topics = {"/imu/data", "/camera"};
+  try {
+    (void)io::read_mcap(kData + "imu_ros1_zstd.mcap", o);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), kData + "imu_ros1_zstd.mcap: no topic /camera in the file");
+  }
+}
+
 // The offset of the first record with `opcode` after the magic, walking the
 // data section's records.
 std::size_t first_record(const std::vector<char>& bytes, std::uint8_t opcode) {

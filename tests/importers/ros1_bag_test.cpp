@@ -400,6 +400,29 @@ TEST(Ros1Bag, WrenchTwistAndTfMapOntoTheRoversStreams) {
   EXPECT_EQ(tf.find_channel("transforms.0.transform.translation.x"), nullptr);
 }
 
+// LoadOptions' topics and time range on a bag: the library's view of those
+// connections and record times, times from the bag's first message.
+TEST(Ros1Bag, TopicsAndATimeRangeInSeconds) {
+  namespace k = roverlab::test::kapvik;
+  TempDir dir;
+  const std::string path = dir.file("kapvik.bag");
+  write_kapvik_bag(path, rosbag::compression::LZ4);
+  io::LoadOptions o;
+  o.topics = {"/imu/data", "tf"};
+  o.start_s = 0.5;
+  o.end_s = 1.0;
+  const log::Log lg = io::load_log(path, o).log;
+  ASSERT_EQ(lg.streams().size(), 2U);
+  const log::Stream& imu = lg.stream("imu/data");
+  ASSERT_EQ(imu.size(), 11U);  // messages 10 .. 20
+  EXPECT_NEAR(imu.time().front(), 0.5, 1e-9);
+  EXPECT_NEAR(imu.time().back(), 1.0, 1e-9);
+  EXPECT_EQ(imu.channel("linear_acceleration.x").values[0], k::value(10, 0));
+  EXPECT_EQ(lg.stream("tf").size(), 11U);
+  o.topics = {"/imu/data", "/camera"};
+  EXPECT_EQ(load_error(path, o), path + ": no topic /camera in the file");
+}
+
 // Debian's python3-rosbag decodes the same bag with classes genpy generates
 // from the bag's own definitions (tests/importers/rosbag_numeric_fields.py):
 // every numeric field it finds is a channel, value for value, and every
