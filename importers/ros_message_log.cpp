@@ -101,14 +101,14 @@ struct MessageLog::Topic {
       layout.push_back(it->second);
     }
     layout_lengths = scratch.lengths;
-    layout_labels = scratch.labels;
+    if (!decoder) layout_labels = scratch.labels;  // a decoder says when its labels change
     has_layout = true;
   }
 
   // Appends scratch: values named by the decoder, or by scratch.labels (JSON).
   void append(std::int64_t t) {
-    if (!has_layout || scratch.lengths != layout_lengths || scratch.labels != layout_labels ||
-        scratch.values.size() != layout.size()) {
+    const bool labels_changed = decoder ? scratch.labels_changed : scratch.labels != layout_labels;
+    if (!has_layout || labels_changed || scratch.lengths != layout_lengths || scratch.values.size() != layout.size()) {
       relayout(decoder ? decoder->value_names(scratch) : scratch.labels);
     }
     time_ns.push_back(t);
