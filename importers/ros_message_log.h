@@ -70,6 +70,10 @@ class MessageLog {
 
  private:
   struct Topic;
+  log::Stream mapped_stream(const StreamMapping& sm, const Topic& t, const std::string& label,
+                            std::int64_t origin) const;
+  static std::vector<double> seconds_of(const Topic& t, const std::vector<std::size_t>& rows, std::int64_t origin);
+
   std::string path_;
   MessageLogOptions options_;
   std::vector<std::unique_ptr<Topic>> topics_;
