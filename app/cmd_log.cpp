@@ -24,6 +24,7 @@ struct InfoOptions {
   std::string file;
   std::optional<std::string> mapping;
   bool json = false;
+  RosPart part;  // --topics, --time
 };
 
 struct ConvertOptions {
@@ -31,6 +32,7 @@ struct ConvertOptions {
   std::string output;
   std::optional<std::string> mapping;
   std::optional<std::string> stream;  // the one stream a CSV output takes
+  RosPart part;                       // --topics, --time
 };
 
 namespace fs = std::filesystem;
@@ -65,7 +67,7 @@ std::string fmt(const char* format, double v) {
 }  // namespace
 
 int run_info(const InfoOptions& options) {
-  const io::LoadedLog loaded = load_input(options.file, options.mapping);
+  const io::LoadedLog loaded = load_input(options.file, options.mapping, options.part);
   const log::Log& lg = loaded.log;
   const auto& meta = lg.metadata;
   if (options.json) {
@@ -156,7 +158,7 @@ int run_convert(const ConvertOptions& options) {
     return kUsageError;
   }
   refuse_overwriting_input(options.input, options.output, "OUT");
-  const io::LoadedLog loaded = load_input(options.input, options.mapping);
+  const io::LoadedLog loaded = load_input(options.input, options.mapping, options.part);
   if (to_csv) {
     const log::Log& lg = loaded.log;
     if (options.stream) {
@@ -189,6 +191,15 @@ int run_list_mappings() {
   return kSuccess;
 }
 
+namespace {
+void add_ros_part_options(CLI::App& cmd, RosPart& part) {
+  cmd.add_option("--topics", part.topics, "ROS bag or MCAP input: only these topics (comma-separated)")->delimiter(',');
+  cmd.add_option("--time", part.time,
+                 "ROS bag or MCAP input: only START:END, seconds after the file's first message (either may be "
+                 "empty); MCAP files with a summary read only the chunks that hold it");
+}
+}  // namespace
+
 Commands make_log_commands() {
   Commands commands;
   commands.push_back(make_command<InfoOptions>(
@@ -199,6 +210,7 @@ Commands make_log_commands() {
         cmd.add_option("--mapping,-m", o.mapping,
                        "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5, bag or MCAP input");
         cmd.add_flag("--json", o.json, "Print JSON instead of text");
+        add_ros_part_options(cmd, o.part);
       },
       run_info));
   commands.push_back(make_command<ConvertOptions>(
@@ -209,6 +221,7 @@ Commands make_log_commands() {
         cmd.add_option("--mapping,-m", o.mapping,
                        "Mapping NAME (resources/mappings/NAME.json) or FILE for .mat/HDF5, bag or MCAP input");
         cmd.add_option("--stream,-s", o.stream, "For .csv output: the stream to write");
+        add_ros_part_options(cmd, o.part);
       },
       run_convert));
   struct NoOptions {};

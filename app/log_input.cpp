@@ -4,6 +4,7 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "importers/mapping.h"
+#include "importers/ros_message_log.h"
 
 namespace roverlab::app {
 
@@ -13,7 +14,25 @@ RosInputOptions& ros_input_options() {
 }
 
 io::LoadedLog load_input(const std::string& file, const std::optional<std::string>& mapping) {
+  return load_input(file, mapping, RosPart{});
+}
+
+io::LoadedLog load_input(const std::string& file, const std::optional<std::string>& mapping, const RosPart& part) {
   io::LoadOptions options;
+  options.topics = part.topics;
+  if (part.time) {
+    try {
+      io::ros::parse_time_range(*part.time, options.start_s, options.end_s);
+    } catch (const DataError& e) {
+      throw UsageError(std::string("--time: ") + e.what());
+    }
+  }
+  if (!part.topics.empty() || part.time) {
+    const io::LogReader* reader = io::find_log_reader(file);
+    if (reader != nullptr && reader->name() != "ROS 1 bag" && reader->name() != "MCAP") {
+      throw UsageError("--topics and --time read a part of a ROS bag or MCAP file, not of a " + reader->name());
+    }
+  }
   options.header_time = ros_input_options().time == "header";
   options.max_array = ros_input_options().max_array;
   if (mapping) {

@@ -11,7 +11,10 @@
 //
 // Counters: file_MB, MBps (file bytes per second), payload_MB (the numeric
 // channels RoverLab keeps), kept_ratio (bytes still allocated after the read,
-// mallinfo2, over the payload).
+// mallinfo2, over the payload), peak_MB (one more read in a fresh process:
+// its peak resident set, VmHWM, less that of one that reads nothing) and
+// peak_ratio (peak_MB over the payload). The 1 GB figure of
+// docs/performance.md: ROVERLAB_BENCH_BAG_MB=1000.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <unistd.h>
@@ -36,6 +39,7 @@
 #include <sensor_msgs/JointState.h>
 #include <sensor_msgs/NavSatFix.h>
 #include <tf2_msgs/TFMessage.h>
+#include <zlib.h>
 
 #include "importers/log_file.h"
 #include "importers/log_reader.h"
@@ -164,18 +168,21 @@ const std::string& bag_path() {
                            ("roverlab-bench-" + std::to_string(::getpid()) + ".bag"))
                               .string();
     write_bag(p);
-    std::atexit([] {
-      std::error_code ec;
-      fs::remove(bag_path(), ec);
-    });
     return p;
   }();
+  // Registered after `path` is made, so run before it is destroyed (an exit
+  // handler registered inside its initialiser ran after, and removed nothing).
+  static const bool removed_at_exit = std::atexit([] {
+                                        std::error_code ec;
+                                        fs::remove(bag_path(), ec);
+                                      }) == 0;
+  (void)removed_at_exit;
   return path;
 }
 
 // The same messages as an MCAP file (format version 0): ROS 1 encoding,
-// uncompressed 1 MB chunks, a summary with schemas, channels and chunk
-// indexes. Written here from the bag (a minimal writer for the benchmark
+// uncompressed 1 MB chunks with their CRC-32, a summary with schemas,
+// channels and chunk indexes. Written here from the bag (a minimal writer for the benchmark
 // only; the reader's tests use the MCAP project's own writer).
 class McapWriter {
  public:
@@ -285,7 +292,9 @@ class McapWriter {
     put<std::uint64_t>(c, chunk_start_);
     put<std::uint64_t>(c, chunk_end_);
     put<std::uint64_t>(c, chunk_.size());
-    put<std::uint32_t>(c, 0);
+    // The CRC-32 of the records, as the MCAP project's writer gives it (the reader checks it).
+    put<std::uint32_t>(c, static_cast<std::uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(chunk_.data()),
+                                                           static_cast<uInt>(chunk_.size()))));
     put_string(c, "");
     put<std::uint64_t>(c, chunk_.size());
     c += chunk_;
@@ -333,18 +342,69 @@ const std::string& mcap_path() {
       writer.message(channel, m.getTime().toNSec(), bytes->data, bytes->size);
     }
     writer.close();
-    std::atexit([] {
-      std::error_code ec;
-      fs::remove(mcap_path(), ec);
-    });
     return p;
   }();
+  // Registered after `path` is made, so run before it is destroyed (an exit
+  // handler registered inside its initialiser ran after, and removed nothing).
+  static const bool removed_at_exit = std::atexit([] {
+                                        std::error_code ec;
+                                        fs::remove(mcap_path(), ec);
+                                      }) == 0;
+  (void)removed_at_exit;
   return path;
 }
 
 std::size_t allocated_bytes() {
   const struct mallinfo2 m = mallinfo2();
   return m.uordblks + m.hblkhd;
+}
+
+// One read, alone in a fresh process (this program run with --peak-child
+// MODE FILE): "rosbag" iterates the bag as BM_RosbagIterate, "bag" is
+// RoverLab's bag reader, "guarded" load_log, "mcap" and "mcap-range" the MCAP
+// reader (all, or the middle 10 % of the time), "none" nothing.
+void rosbag_iterate(const std::string& path);
+log::Log read_mcap_part(const std::string& path, bool range, io::McapReadStats* stats);
+
+// Prints the process's peak resident set (VmHWM, kB): this process's own,
+// where getrusage's ru_maxrss would also hold the forking parent's.
+int peak_child(const std::string& mode, const std::string& path) {
+  if (mode == "rosbag") rosbag_iterate(path);
+  if (mode == "bag") benchmark::DoNotOptimize(io::find_log_reader(path)->read(path, {}));
+  if (mode == "guarded") benchmark::DoNotOptimize(io::load_log(path).log);
+  if (mode == "mcap" || mode == "mcap-range") benchmark::DoNotOptimize(read_mcap_part(path, mode != "mcap", nullptr));
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmHWM:", 0) == 0) std::printf("%s\n", line.substr(6).c_str());
+  }
+  return 0;
+}
+
+// The peak resident set (VmHWM, MB) of that fresh process, less the peak of
+// one that reads nothing (the program and its libraries).
+double peak_mb(const std::string& mode, const std::string& path) {
+  const auto run = [](const std::string& m, const std::string& p) {
+    const std::string command = "'/proc/" + std::to_string(::getpid()) + "/exe' --peak-child " + m + " '" + p + "'";
+    std::FILE* child = ::popen(command.c_str(), "r");
+    if (child == nullptr) return -1.0;
+    double kb = -1.0;
+    if (std::fscanf(child, "%lf", &kb) != 1) kb = -1.0;
+    return ::pclose(child) == 0 && kb >= 0 ? kb * 1024.0 / 1e6 : -1.0;
+  };
+  static const double idle = run("none", path);
+  return run(mode, path) - idle;
+}
+
+void rosbag_iterate(const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  std::vector<std::uint8_t> buffer;
+  for (const rosbag::MessageInstance& m : view) {
+    buffer.resize(m.size());
+    ros::serialization::OStream s(buffer.data(), static_cast<std::uint32_t>(buffer.size()));
+    m.write(s);
+  }
+  benchmark::DoNotOptimize(buffer.data());
 }
 
 void BM_RosbagIterate(benchmark::State& state) {
@@ -364,6 +424,7 @@ void BM_RosbagIterate(benchmark::State& state) {
     }
     benchmark::DoNotOptimize(buffer.data());
   }
+  state.counters["peak_MB"] = peak_mb("rosbag", path);
   state.counters["file_MB"] = file_mb;
   state.counters["messages"] = static_cast<double>(messages);
   state.counters["MBps"] = benchmark::Counter(file_mb * 1e6 * static_cast<double>(state.iterations()),
@@ -402,6 +463,8 @@ void BM_RoverLabReadBag(benchmark::State& state) {
     kept_ratio = static_cast<double>(after - before) / static_cast<double>(lg.payload_bytes());
     benchmark::DoNotOptimize(lg);
   }
+  state.counters["peak_MB"] = peak_mb(guarded ? "guarded" : "bag", path);
+  state.counters["peak_ratio"] = state.counters["peak_MB"] / payload_mb;
   state.counters["file_MB"] = file_mb;
   state.counters["payload_MB"] = payload_mb;
   state.counters["kept_ratio"] = kept_ratio;
@@ -415,24 +478,21 @@ void BM_RoverLabReadMcap(benchmark::State& state) {
   const bool range = state.range(0) != 0;
   const std::string& path = mcap_path();
   const double file_mb = static_cast<double>(fs::file_size(path)) / 1e6;
-  io::McapSelection selection;
-  if (range) {
-    const std::uint64_t start = at(0.0).toNSec();
-    const auto span = static_cast<std::uint64_t>(recording_seconds() * 1e9);
-    selection.start_ns = start + span / 2;
-    selection.end_ns = start + span / 2 + span / 10;
-  }
   double payload_mb = 0.0;
   double kept_ratio = 0.0;
   io::McapReadStats stats;
   for (auto _ : state) {
     const std::size_t before = allocated_bytes();
-    log::Log lg = io::read_mcap(path, {}, selection, &stats);
+    log::Log lg = read_mcap_part(path, range, &stats);
     const std::size_t after = allocated_bytes();
     payload_mb = static_cast<double>(lg.payload_bytes()) / 1e6;
     kept_ratio = static_cast<double>(after - before) / static_cast<double>(lg.payload_bytes());
     benchmark::DoNotOptimize(lg);
   }
+  state.counters["peak_MB"] = peak_mb(range ? "mcap-range" : "mcap", path);
+  state.counters["peak_ratio"] = state.counters["peak_MB"] / payload_mb;
+  state.counters["chunks_read"] = static_cast<double>(stats.chunks_read);
+  state.counters["chunks_in_file"] = static_cast<double>(stats.chunks_in_file);
   state.counters["file_MB"] = file_mb;
   state.counters["payload_MB"] = payload_mb;
   state.counters["kept_ratio"] = kept_ratio;
@@ -443,8 +503,28 @@ void BM_RoverLabReadMcap(benchmark::State& state) {
 
 }  // namespace
 
+namespace {
+log::Log read_mcap_part(const std::string& path, bool range, io::McapReadStats* stats) {
+  io::McapSelection selection;
+  if (range) {
+    const std::uint64_t start = at(0.0).toNSec();
+    const auto span = static_cast<std::uint64_t>(recording_seconds() * 1e9);
+    selection.start_ns = start + span / 2;
+    selection.end_ns = start + span / 2 + span / 10;
+  }
+  return io::read_mcap(path, {}, selection, stats);
+}
+}  // namespace
+
 BENCHMARK(BM_RosbagIterate)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_RosbagIterateZeroCopy)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_RoverLabReadBag)->ArgName("guarded")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_RoverLabReadMcap)->ArgName("range")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (argc == 4 && std::string(argv[1]) == "--peak-child") return peak_child(argv[2], argv[3]);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -22,6 +22,14 @@ struct LoadOptions {
   // arrays longer than max_array elements are skipped.
   bool header_time = false;
   std::size_t max_array = 64;
+  // ROS bags and MCAP files: only these topics ("/imu" or "imu"; all when
+  // empty; a topic the file lacks is an error), and only the messages logged
+  // from start_s to end_s seconds after the file's first message (times then
+  // count from that first message). MCAP files with a summary read only the
+  // chunks that hold them.
+  std::vector<std::string> topics;
+  std::optional<double> start_s;
+  std::optional<double> end_s;
 };
 
 // How sure a reader is that a file is its own: by content first (a format

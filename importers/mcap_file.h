@@ -3,7 +3,9 @@
 // records of the data section, chunks stored plain or compressed with zstd
 // or lz4, and the summary section's chunk indexes when the file has them (a
 // time range or a few topics then reads only the chunks that hold them); a
-// linear scan of the data section otherwise. Messages encoded as `ros1`
+// linear scan of the data section otherwise. The CRC-32s the file holds (the
+// summary's, each chunk's, and the data section's on a scan) are checked: a
+// mismatch is an InputError, as damaged bytes would give wrong values. Messages encoded as `ros1`
 // (schema `ros1msg`), `cdr` (schema `ros2msg`) or `json` are decoded as
 // importers/ros_message_log.h describes.
 
@@ -30,6 +32,8 @@ struct McapSelection {
 struct McapReadStats {
   std::uint64_t bytes_read = 0;
   bool indexed = false;
+  std::uint64_t chunks_read = 0;     // chunks decompressed
+  std::uint64_t chunks_in_file = 0;  // the summary's chunk indexes (a scan: the chunks it read)
 };
 
 // True when the file starts with MCAP's magic bytes.

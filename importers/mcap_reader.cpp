@@ -2,6 +2,7 @@
 // specification at mcap.dev (format version 0); every length in the file is
 // checked against what the file (or the chunk) holds before it is used.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -11,6 +12,7 @@
 #include <set>
 
 #include <lz4frame.h>
+#include <zlib.h>
 #include <zstd.h>
 
 #include "core/common/error.h"
@@ -45,6 +47,23 @@ struct McapError {
 std::string hex(std::uint64_t v) {
   char text[32];
   std::snprintf(text, sizeof text, "0x%llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
+// CRC-32 (the zlib / ISO-HDLC one the spec names) of `n` bytes, continuing `crc`.
+std::uint32_t crc32_of(std::uint32_t crc, const std::uint8_t* data, std::uint64_t n) {
+  while (n > 0) {
+    const auto part = static_cast<uInt>(std::min<std::uint64_t>(n, std::uint64_t{1} << 30));
+    crc = static_cast<std::uint32_t>(crc32(crc, data, part));
+    data += part;
+    n -= part;
+  }
+  return crc;
+}
+
+std::string crc_text(std::uint32_t v) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%08x", v);
   return text;
 }
 
@@ -208,22 +227,42 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
 class McapReader {
  public:
   McapReader(const std::string& path, const LoadOptions& options, const McapSelection& selection)
-      : path_(path), options_(options), selection_(selection), file_(path), messages_(path, message_options(options)) {
-    wanted_.insert(selection.topics.begin(), selection.topics.end());
+      : path_(path),
+        options_(options),
+        file_(path),
+        start_ns_(selection.start_ns),
+        end_ns_(selection.end_ns),
+        relative_(!selection.start_ns && !selection.end_ns && (options.start_s || options.end_s)),
+        messages_(path, message_options(options)) {
+    for (const auto& t : selection.topics) wanted_.insert(ros::topic_key(t));
+    for (const auto& t : options.topics) wanted_.insert(ros::topic_key(t));
   }
 
   log::Log read(McapReadStats* stats) {
     check_magic_and_header();
     std::vector<ChunkIndexRecord> chunks;
     const bool indexed = read_summary(chunks) && !chunks.empty();
+    indexed_ = indexed;
     if (indexed) {
+      // The file's first message: the statistics' start time, or the earliest chunk's.
+      std::uint64_t first = statistics_start_.value_or(std::numeric_limits<std::uint64_t>::max());
+      for (const auto& c : chunks) first = std::min(first, c.start_time);
+      fix_origin(first);
       read_indexed(chunks);
     } else {
       scan();
     }
+    for (const std::string& t : options_.topics) {
+      const std::string topic = ros::topic_key(t);
+      const bool found = std::any_of(channels_.begin(), channels_.end(),
+                                     [&](const auto& c) { return ros::topic_key(c.second.topic) == topic; });
+      if (!found) throw McapError{"no topic /" + topic + " in the file"};
+    }
     if (stats != nullptr) {
       stats->bytes_read = file_.bytes_read();
       stats->indexed = indexed;
+      stats->chunks_read = chunks_read_;
+      stats->chunks_in_file = indexed ? chunks.size() : chunks_seen_;
     }
     return messages_.build(options_.mapping);
   }
@@ -265,14 +304,25 @@ class McapReader {
     Cursor c(tail.data() + 9, 20, "Footer");
     const auto summary_start = c.number<std::uint64_t>();
     const auto summary_offset_start = c.number<std::uint64_t>();
+    const auto summary_crc = c.number<std::uint32_t>();
     if (summary_start == 0) return false;
     const std::uint64_t summary_end = summary_offset_start != 0 ? summary_offset_start : footer;
     if (summary_start < 8 || summary_start > summary_end || summary_end > footer) {
       throw McapError{"the footer's summary offsets (" + std::to_string(summary_start) + ", " +
                       std::to_string(summary_offset_start) + ") lie outside the file"};
     }
+    // The summary and summary offset sections, read at once: the footer's CRC
+    // covers them and its own fields up to the CRC (0: none written).
     std::vector<std::uint8_t> summary;
-    file_.read(summary_start, summary_end - summary_start, summary);
+    file_.read(summary_start, footer - summary_start, summary);
+    if (summary_crc != 0) {
+      const std::uint32_t crc = crc32_of(crc32_of(0, summary.data(), summary.size()), tail.data(), 1 + 8 + 16);
+      if (crc != summary_crc) {
+        throw McapError{"the summary section is damaged (its CRC-32 is " + crc_text(crc) + ", the footer says " +
+                        crc_text(summary_crc) + ")"};
+      }
+    }
+    summary.resize(static_cast<std::size_t>(summary_end - summary_start));
     for_each_record(summary.data(), summary.size(), summary_start,
                     [&](std::uint8_t op, const std::uint8_t* data, std::size_t size, std::uint64_t) {
                       if (op == kChunkIndex) chunks.push_back(chunk_index(data, size));
@@ -286,11 +336,12 @@ class McapReader {
   // Messages per channel: a whole-file read allocates each column once.
   void statistics(const std::uint8_t* data, std::size_t size) {
     Cursor c(data, size, "Statistics");
-    (void)c.number<std::uint64_t>();                              // message count
+    const auto count = c.number<std::uint64_t>();                 // message count
     (void)c.number<std::uint16_t>();                              // schema count
     for (int k = 0; k < 4; ++k) (void)c.number<std::uint32_t>();  // channel, attachment, metadata, chunk counts
-    (void)c.number<std::uint64_t>();                              // message start time
-    (void)c.number<std::uint64_t>();                              // message end time
+    const auto start = c.number<std::uint64_t>();                 // message start time
+    if (count > 0) statistics_start_ = start;
+    (void)c.number<std::uint64_t>();  // message end time
     const auto [map, map_size] = c.bytes<std::uint32_t>();
     Cursor m(map, map_size, "Statistics");
     for (std::size_t k = 0; k < map_size / 10; ++k) {
@@ -320,7 +371,21 @@ class McapReader {
   }
 
   bool time_overlaps(std::uint64_t start, std::uint64_t end) const {
-    return !(selection_.start_ns && end < *selection_.start_ns) && !(selection_.end_ns && start > *selection_.end_ns);
+    return !(start_ns_ && end < *start_ns_) && !(end_ns_ && start > *end_ns_);
+  }
+
+  // A time range in seconds after the file's first message (LoadOptions)
+  // becomes log times once that message's time is known: from the summary,
+  // or on a scan the first chunk or message met.
+  void fix_origin(std::uint64_t first_ns) {
+    if (!relative_ || origin_ns_ || first_ns > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+      return;
+    }
+    origin_ns_ = first_ns;
+    const auto at = [&](double s) { return first_ns + static_cast<std::uint64_t>(std::llround(s * 1e9)); };
+    if (options_.start_s) start_ns_ = at(*options_.start_s);
+    if (options_.end_s) end_ns_ = at(*options_.end_s);
+    messages_.set_time_origin(static_cast<std::int64_t>(first_ns));
   }
 
   void read_indexed(std::vector<ChunkIndexRecord>& chunks) {
@@ -332,7 +397,7 @@ class McapReader {
         bool any = false;
         for (std::uint16_t id : chunk.channels) {
           const auto it = channels_.find(id);
-          any = any || (it != channels_.end() && wanted_.count(it->second.topic) != 0);
+          any = any || (it != channels_.end() && wanted_.count(ros::topic_key(it->second.topic)) != 0);
         }
         if (!any) continue;
       }
@@ -352,10 +417,13 @@ class McapReader {
   }
 
   // The data section, record by record, to the Data End or Footer record.
+  // Every byte before the Data End record goes through the CRC its record
+  // holds (0: none written), so every record is read whole.
   void scan() {
     std::uint64_t at = 8;
     std::vector<std::uint8_t> head;
     std::vector<std::uint8_t> content;
+    std::uint32_t crc = crc32_of(0, kMagic, 8);
     while (at < file_.size()) {
       if (file_.size() - at < 9)
         throw McapError{"truncated: a record header at offset " + std::to_string(at) + " is cut"};
@@ -367,12 +435,23 @@ class McapReader {
                         std::to_string(length) + " bytes, more than the file holds (truncated?)"};
       }
       const std::uint8_t op = head[0];
-      if (op == kFooter || op == kDataEnd) return;
+      if (op == kFooter) return;
+      file_.read(at + 9, length, content);
+      if (op == kDataEnd) return check_data_section(crc, content);
+      crc = crc32_of(crc32_of(crc, head.data(), 9), content.data(), content.size());
       if (op == kChunk || op == kSchema || op == kChannel || op == kMessage) {
-        file_.read(at + 9, length, content);
         record(op, content.data(), content.size(), at);
       }
       at += 9 + length;
+    }
+  }
+
+  static void check_data_section(std::uint32_t crc, const std::vector<std::uint8_t>& data_end) {
+    Cursor c(data_end.data(), data_end.size(), "Data End");
+    const auto expected = c.number<std::uint32_t>();
+    if (expected != 0 && expected != crc) {
+      throw McapError{"the data section is damaged (its CRC-32 is " + crc_text(crc) + ", the Data End record says " +
+                      crc_text(expected) + ")"};
     }
   }
 
@@ -431,11 +510,23 @@ class McapReader {
     const auto start = c.number<std::uint64_t>();
     const auto end = c.number<std::uint64_t>();
     const auto uncompressed_size = c.number<std::uint64_t>();
-    (void)c.number<std::uint32_t>();  // CRC of the uncompressed records (0: none)
+    const auto chunk_crc = c.number<std::uint32_t>();  // of the uncompressed records (0: none)
     const std::string compression = c.string();
     const auto [records, n] = c.bytes<std::uint64_t>();
-    if (!time_overlaps(start, end)) return;
+    ++chunks_seen_;
+    fix_origin(start);
+    // On a scan a chunk outside the range is still read: it may hold the
+    // Schema and Channel records of later messages.
+    if (indexed_ && !time_overlaps(start, end)) return;
+    ++chunks_read_;
     const std::vector<std::uint8_t> plain = decompress(compression, records, n, uncompressed_size);
+    if (chunk_crc != 0) {
+      const std::uint32_t crc = crc32_of(0, plain.data(), plain.size());
+      if (crc != chunk_crc) {
+        throw McapError{"a chunk of messages from " + std::to_string(start) + " ns is damaged (its CRC-32 is " +
+                        crc_text(crc) + ", the chunk says " + crc_text(chunk_crc) + ")"};
+      }
+    }
     for_each_record(plain.data(), plain.size(), 0,
                     [&](std::uint8_t op, const std::uint8_t* d, std::size_t s, std::uint64_t at) {
                       if (op == kMessage || op == kSchema || op == kChannel) record(op, d, s, at);
@@ -471,7 +562,7 @@ class McapReader {
     }
     ch.topic_index = messages_.add_topic(ch.topic, type, definition, dialect, encoding);
     const auto count = message_counts_.find(id);
-    const bool whole = !selection_.start_ns && !selection_.end_ns && selection_.topics.empty();
+    const bool whole = !start_ns_ && !end_ns_ && wanted_.empty();
     // A count no file of this size could hold (a message record takes at least 31 bytes, before any
     // compression) is not believed beyond that.
     if (whole && count != message_counts_.end()) {
@@ -488,12 +579,13 @@ class McapReader {
     const auto log_time = c.number<std::uint64_t>();
     (void)c.number<std::uint64_t>();  // publish time
     const auto [bytes, n] = c.rest();
+    fix_origin(log_time);
     if (!time_overlaps(log_time, log_time)) return;
     const auto it = channels_.find(id);
     if (it == channels_.end()) {
       throw McapError{"a message on channel " + std::to_string(id) + ", which no Channel record defines"};
     }
-    if (!wanted_.empty() && wanted_.count(it->second.topic) == 0) return;
+    if (!wanted_.empty() && wanted_.count(ros::topic_key(it->second.topic)) == 0) return;
     if (log_time > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
       throw McapError{"a message's log time " + std::to_string(log_time) + " ns is beyond the year 2262"};
     }
@@ -502,12 +594,19 @@ class McapReader {
 
   std::string path_;
   const LoadOptions& options_;
-  const McapSelection& selection_;
   File file_;
   std::set<std::string> wanted_;
   std::map<std::uint16_t, SchemaRecord> schemas_;
   std::map<std::uint16_t, ChannelRecord> channels_;
   std::map<std::uint16_t, std::uint64_t> message_counts_;  // the summary's statistics
+  std::uint64_t chunks_read_ = 0;                          // chunks decompressed
+  std::uint64_t chunks_seen_ = 0;                          // chunk records met on a scan
+  std::optional<std::uint64_t> statistics_start_;          // the summary's first message time
+  std::optional<std::uint64_t> start_ns_;                  // the log times to read
+  std::optional<std::uint64_t> end_ns_;
+  bool relative_ = false;  // the range is LoadOptions' seconds after the first message
+  bool indexed_ = false;   // the summary's chunk indexes choose the chunks
+  std::optional<std::uint64_t> origin_ns_;
   ros::MessageLog messages_;
 };
 

@@ -40,6 +40,25 @@ std::string seconds_text(std::int64_t ns) {
 
 }  // namespace
 
+void parse_time_range(const std::string& text, std::optional<double>& start_s, std::optional<double>& end_s) {
+  const auto colon = text.find(':');
+  const auto number = [&](const std::string& part) -> std::optional<double> {
+    if (part.empty()) return std::nullopt;
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (end != part.c_str() + part.size() || !std::isfinite(v) || v < 0 || v > 1e9) {
+      throw DataError("time range '" + text + "': '" + part + "' is not a number of seconds from 0 to 1e9");
+    }
+    return v;
+  };
+  if (colon == std::string::npos) throw DataError("time range '" + text + "' is not START:END (seconds)");
+  start_s = number(text.substr(0, colon));
+  end_s = number(text.substr(colon + 1));
+  if (start_s && end_s && *end_s < *start_s) throw DataError("time range '" + text + "' ends before it starts");
+}
+
+std::string topic_key(const std::string& topic) { return stream_name(topic); }
+
 TimeSource parse_time_source(const std::string& text) {
   if (text == "record") return TimeSource::record;
   if (text == "header") return TimeSource::header;
@@ -82,14 +101,14 @@ struct MessageLog::Topic {
       layout.push_back(it->second);
     }
     layout_lengths = scratch.lengths;
-    layout_labels = scratch.labels;
+    if (!decoder) layout_labels = scratch.labels;  // a decoder says when its labels change
     has_layout = true;
   }
 
   // Appends scratch: values named by the decoder, or by scratch.labels (JSON).
   void append(std::int64_t t) {
-    if (!has_layout || scratch.lengths != layout_lengths || scratch.labels != layout_labels ||
-        scratch.values.size() != layout.size()) {
+    const bool labels_changed = decoder ? scratch.labels_changed : scratch.labels != layout_labels;
+    if (!has_layout || labels_changed || scratch.lengths != layout_lengths || scratch.values.size() != layout.size()) {
       relayout(decoder ? decoder->value_names(scratch) : scratch.labels);
     }
     time_ns.push_back(t);
@@ -207,6 +226,24 @@ void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const st
   t.append(stamped ? t.scratch.header_stamp_ns : record_ns);
 }
 
+namespace {
+
+// values[rows[0]], values[rows[1]], ...
+std::vector<double> picked(const std::vector<double>& values, const std::vector<std::size_t>& rows) {
+  std::vector<double> out(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) out[i] = values[rows[i]];
+  return out;
+}
+
+}  // namespace
+
+// The times of a topic's rows, seconds after `origin` (ns).
+std::vector<double> MessageLog::seconds_of(const Topic& t, const std::vector<std::size_t>& rows, std::int64_t origin) {
+  std::vector<double> seconds(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) seconds[i] = static_cast<double>(t.time_ns[rows[i]] - origin) * 1e-9;
+  return seconds;
+}
+
 log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
   log::Log out;
   out.metadata.source_file = std::filesystem::path(path_).filename().string();
@@ -241,32 +278,22 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
   for (Topic* t : chosen) {
     if (!t->time_ns.empty()) origin = std::min(origin, *std::min_element(t->time_ns.begin(), t->time_ns.end()));
   }
+  if (origin_ns_) origin = *origin_ns_;
   if (origin == std::numeric_limits<std::int64_t>::max() || (mapping && mapping->time_origin != "first_sample")) {
     origin = 0;
   }
   if (origin != 0) out.metadata.extra["time_origin"] = seconds_text(origin);
 
-  const auto time_of = [&](const Topic& t, const std::vector<std::size_t>& rows) {
-    std::vector<double> seconds(rows.size());
-    for (std::size_t i = 0; i < rows.size(); ++i) seconds[i] = static_cast<double>(t.time_ns[rows[i]] - origin) * 1e-9;
-    return seconds;
-  };
-  const auto column = [](const std::vector<double>& values, const std::vector<std::size_t>& rows) {
-    std::vector<double> picked(rows.size());
-    for (std::size_t i = 0; i < rows.size(); ++i) picked[i] = values[rows[i]];
-    return picked;
-  };
-
   try {
     if (!mapping) {
       for (Topic* t : chosen) {
         const std::vector<std::size_t> rows = t->rows();
-        log::Stream stream(stream_name(t->name), time_of(*t, rows));
+        log::Stream stream(stream_name(t->name), seconds_of(*t, rows, origin));
         for (std::size_t c = 0; c < t->columns.size(); ++c) {
           const bool seconds = t->channel_names[c] == "header.stamp";
           // In time order with no repeated time already (the common case): moved, not copied.
           std::vector<double> values =
-              rows.size() == t->time_ns.size() ? std::move(t->columns[c]) : column(t->columns[c], rows);
+              rows.size() == t->time_ns.size() ? std::move(t->columns[c]) : picked(t->columns[c], rows);
           stream.add_channel(t->channel_names[c], seconds ? "s" : "1", std::move(values));
         }
         out.add_stream(std::move(stream));
@@ -278,51 +305,78 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
     out.metadata.description = mapping->description;
     out.metadata.extra["mapping"] = mapping->name;
     for (std::size_t k = 0; k < mapping->streams.size(); ++k) {
-      const StreamMapping& sm = mapping->streams[k];
-      const Topic& t = *chosen[k];
-      const std::vector<std::size_t> rows = t.rows();
-      log::Stream stream(sm.name, time_of(t, rows));
-      for (const auto& cm : sm.channels) {
-        const std::string where = "mapping " + label + ": channel " + sm.name + "/" + cm.name + ": ";
-        if (cm.component) throw InputError(path_, where + "'component' is for HDF5 variables, not topics");
-        // The variable is a topic and a field: the longest topic that starts it.
-        const std::string variable = stream_name(cm.variable);
-        const Topic* source = nullptr;
-        for (const auto& candidate : topics_) {
-          const std::string topic = stream_name(candidate->name);
-          if (variable.size() > topic.size() + 1 && variable.compare(0, topic.size(), topic) == 0 &&
-              variable[topic.size()] == '/' && (source == nullptr || topic.size() > stream_name(source->name).size())) {
-            source = candidate.get();
-          }
-        }
-        if (source == nullptr) throw InputError(path_, where + "no topic in the file starts " + cm.variable);
-        const std::string field = variable.substr(stream_name(source->name).size() + 1);
-        const auto it = source->index.find(field);
-        if (it == source->index.end()) {
-          throw InputError(path_,
-                           where + "topic " + source->name + " (" + source->type + ") has no numeric field " + field);
-        }
-        // Another topic's field joins the stream when its messages come at the same times.
-        const std::vector<std::size_t> source_rows = source == &t ? rows : source->rows();
-        bool same_times = source_rows.size() == rows.size();
-        for (std::size_t i = 0; same_times && i < rows.size(); ++i) {
-          same_times = source->time_ns[source_rows[i]] == t.time_ns[rows[i]];
-        }
-        if (!same_times) {
-          throw InputError(
-              path_, where + "topic " + source->name + " is not stamped at the times of the stream's topic " + t.name);
-        }
-        std::vector<double> values = column(source->columns[it->second], source_rows);
-        const log::UnitConversion si = log::unit_to_si(cm.unit);
-        for (double& v : values) v = (v * si.factor + si.offset) * cm.scale + 0.0;  // + 0.0: no -0 from flips
-        stream.add_channel(cm.name, si.si_unit, std::move(values), cm.description);
-      }
-      out.add_stream(std::move(stream));
+      out.add_stream(mapped_stream(mapping->streams[k], *chosen[k], label, origin));
     }
   } catch (const DataError& e) {
     throw InputError(path_, e.what());
   }
   return out;
+}
+
+// One stream of a mapping, from its topic `t`: the channels it names, in SI
+// units, at the messages that carry at least one of them.
+log::Stream MessageLog::mapped_stream(const StreamMapping& sm, const Topic& t, const std::string& label,
+                                      std::int64_t origin) const {
+  const std::vector<std::size_t> rows = t.rows();
+  struct Mapped {
+    const ChannelMapping* mapping;
+    std::string unit;
+    std::vector<double> values;
+  };
+  std::vector<Mapped> mapped;
+  for (const auto& cm : sm.channels) {
+    const std::string where = "mapping " + label + ": channel " + sm.name + "/" + cm.name + ": ";
+    if (cm.component) throw InputError(path_, where + "'component' is for HDF5 variables, not topics");
+    // The variable is a topic and a field: the longest topic that starts it.
+    const std::string variable = stream_name(cm.variable);
+    const Topic* source = nullptr;
+    for (const auto& candidate : topics_) {
+      const std::string topic = stream_name(candidate->name);
+      if (variable.size() > topic.size() + 1 && variable.compare(0, topic.size(), topic) == 0 &&
+          variable[topic.size()] == '/' && (source == nullptr || topic.size() > stream_name(source->name).size())) {
+        source = candidate.get();
+      }
+    }
+    if (source == nullptr) throw InputError(path_, where + "no topic in the file starts " + cm.variable);
+    const std::string field = variable.substr(stream_name(source->name).size() + 1);
+    const auto it = source->index.find(field);
+    if (it == source->index.end()) {
+      throw InputError(path_,
+                       where + "topic " + source->name + " (" + source->type + ") has no numeric field " + field);
+    }
+    // Another topic's field joins the stream when its messages come at the same times.
+    const std::vector<std::size_t> source_rows = source == &t ? rows : source->rows();
+    bool same_times = source_rows.size() == rows.size();
+    for (std::size_t i = 0; same_times && i < rows.size(); ++i) {
+      same_times = source->time_ns[source_rows[i]] == t.time_ns[rows[i]];
+    }
+    if (!same_times) {
+      throw InputError(
+          path_, where + "topic " + source->name + " is not stamped at the times of the stream's topic " + t.name);
+    }
+    std::vector<double> values = picked(source->columns[it->second], source_rows);
+    const log::UnitConversion si = log::unit_to_si(cm.unit);
+    for (double& v : values) v = (v * si.factor + si.offset) * cm.scale + 0.0;  // + 0.0: no -0 from flips
+    mapped.push_back({&cm, si.si_unit, std::move(values)});
+  }
+  // A message without any of the stream's fields (a /tf message that
+  // carries other frames) gives no sample.
+  std::vector<double> time = seconds_of(t, rows, origin);
+  std::vector<std::size_t> keep;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const bool any = mapped.empty() || std::any_of(mapped.begin(), mapped.end(),
+                                                   [&](const Mapped& m) { return !std::isnan(m.values[i]); });
+    if (any) keep.push_back(i);
+  }
+  if (keep.size() < rows.size()) {
+    time = picked(time, keep);
+    for (Mapped& m : mapped) m.values = picked(m.values, keep);
+  }
+  log::Stream stream(sm.name, std::move(time));
+  for (Mapped& m : mapped) {
+    stream.add_channel(m.mapping->name, m.unit, std::move(m.values), m.mapping->description);
+  }
+  return stream;
 }
 
 }  // namespace roverlab::io::ros

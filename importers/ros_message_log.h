@@ -26,6 +26,13 @@ enum class TimeSource { record, header };
 // "record" or "header"; throws DataError otherwise.
 TimeSource parse_time_source(const std::string& text);
 
+// "START:END" seconds (either may be empty: from the start, to the end);
+// throws DataError unless 0 <= START <= END, both finite.
+void parse_time_range(const std::string& text, std::optional<double>& start_s, std::optional<double>& end_s);
+
+// "/imu/data" and "imu/data" alike: a topic without its leading '/'s.
+std::string topic_key(const std::string& topic);
+
 struct MessageLogOptions {
   TimeSource time = TimeSource::record;
   Limits limits;
@@ -53,15 +60,24 @@ class MessageLog {
   // message when it does not match its definition.
   void add_message(std::size_t topic, std::int64_t record_ns, const std::uint8_t* data, std::size_t size);
 
+  // Times count from this Unix time (ns) rather than from the first message
+  // read (a time range counts from the file's first message).
+  void set_time_origin(std::int64_t ns) { origin_ns_ = ns; }
+
   // The log: every topic, or what `mapping` names. Throws InputError. The
   // decoded columns move into the log: call it once, last.
   log::Log build(const std::optional<Mapping>& mapping);
 
  private:
   struct Topic;
+  log::Stream mapped_stream(const StreamMapping& sm, const Topic& t, const std::string& label,
+                            std::int64_t origin) const;
+  static std::vector<double> seconds_of(const Topic& t, const std::vector<std::size_t>& rows, std::int64_t origin);
+
   std::string path_;
   MessageLogOptions options_;
   std::vector<std::unique_ptr<Topic>> topics_;
+  std::optional<std::int64_t> origin_ns_;
 };
 
 }  // namespace roverlab::io::ros

@@ -44,12 +44,8 @@ std::size_t saturated_product(std::size_t a, std::size_t b) {
   return a > kHuge / b ? kHuge : a * b;
 }
 
-std::string sanitized_label(std::string label) {
-  for (char& c : label) {
-    if (c == '/' || c == '\0' || c == '\n' || c == '\r') c = '_';
-  }
-  return label;
-}
+// A label's character as a channel name may hold it.
+char sanitized_char(char c) { return c == '/' || c == '\0' || c == '\n' || c == '\r' ? '_' : c; }
 
 template <class T>
 T swapped(T v) {
@@ -104,6 +100,21 @@ class Decoder::Walk {
   }
 
  private:
+  // The next label, sanitized: compared with the previous message's in place.
+  void label(std::string_view raw) {
+    std::vector<std::string>& labels = out_.labels;
+    const std::size_t i = out_.label_count++;
+    if (i < labels.size() && labels[i].size() == raw.size()) {
+      bool same = true;
+      for (std::size_t c = 0; same && c < raw.size(); ++c) same = labels[i][c] == sanitized_char(raw[c]);
+      if (same) return;
+    }
+    if (i >= labels.size()) labels.emplace_back();
+    labels[i].assign(raw);
+    for (char& c : labels[i]) c = sanitized_char(c);
+    out_.labels_changed = true;
+  }
+
   [[noreturn]] void fail() const {
     throw DecodeError("message of " + std::to_string(size_) + " bytes is shorter than its definition (" +
                       d_.schema_.types[0].name + ") needs");
@@ -225,11 +236,12 @@ class Decoder::Walk {
       const bool labels = take && static_cast<int>(k) == type.label_field;
       for (std::size_t i = 0; i < n; ++i) {
         const std::string_view s = string();
-        if (labels) out_.labels.push_back(sanitized_label(std::string(s)));
+        if (labels) label(s);
       }
     } else if (f.type == Primitive::message) {
       if (!take && d_.min_size_[f.nested] == 0) return;  // nothing to read, nothing to keep
-      for (std::size_t i = 0; i < n; ++i) message(f.nested, take, false);
+      const bool frames = take && d_.schema_.types[f.nested].frame_field >= 0;
+      for (std::size_t i = 0; i < n; ++i) message(f.nested, take, false, frames);
     } else if (take) {
       for (std::size_t i = 0; i < n; ++i) out_.values.push_back(number(f.type));
     } else if (n > 0) {
@@ -240,12 +252,17 @@ class Decoder::Walk {
     }
   }
 
-  void message(std::size_t index, bool emit, bool root) {
+  // frame: the message is an element of an array its child_frame_id labels.
+  void message(std::size_t index, bool emit, bool root, bool frame = false) {
     const MessageType& type = d_.schema_.types[index];
     for (std::size_t k = 0; k < type.fields.size(); ++k) {
       const Field& f = type.fields[k];
       if (f.is_array) {
         array(type, k, emit);
+      } else if (frame && static_cast<int>(k) == type.frame_field) {
+        std::string_view id = string();
+        while (!id.empty() && id.front() == '/') id.remove_prefix(1);  // tf's "/base_link" is tf2's "base_link"
+        label(id);
       } else if (root && k == 0 && d_.header_stamp_field_ >= 0) {
         header(f.nested, emit);
       } else {
@@ -317,9 +334,14 @@ class Namer {
         continue;
       }
       if (f.type == Primitive::string) continue;
+      const bool frames = f.type == Primitive::message && schema_.types[f.nested].frame_field >= 0;
       for (std::size_t i = 0; i < n; ++i) {
-        const std::string element =
+        std::string element =
             name + "." + (labels != nullptr && label_count == n && !labels[i].empty() ? labels[i] : std::to_string(i));
+        if (frames) {  // each element's child_frame_id, as the walk met it
+          const std::string* frame = next_label < m_.labels.size() ? &m_.labels[next_label++] : nullptr;
+          element = name + "." + (frame != nullptr && !frame->empty() ? *frame : std::to_string(i));
+        }
         if (f.type == Primitive::message) {
           message(f.nested, element + ".");
         } else {
@@ -374,9 +396,14 @@ Decoder::Decoder(Schema schema, Encoding encoding, Limits limits)
 void Decoder::decode(const std::uint8_t* data, std::size_t size, DecodedMessage& out) const {
   out.values.clear();
   out.lengths.clear();
-  out.labels.clear();
+  out.label_count = 0;
+  out.labels_changed = false;
   out.header_stamp_ns = -1;
   Walk(*this, data, size, out).run();
+  if (out.labels.size() != out.label_count) {  // fewer labels than the previous message
+    out.labels.resize(out.label_count);
+    out.labels_changed = true;
+  }
 }
 
 std::vector<std::string> Decoder::value_names(const DecodedMessage& message) const {

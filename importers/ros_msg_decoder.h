@@ -44,7 +44,13 @@ struct Limits {
 struct DecodedMessage {
   std::vector<double> values;
   std::vector<std::uint32_t> lengths;  // each variable-length array's length, in walk order
-  std::vector<std::string> labels;     // the entries of each `string[] name` field, in walk order
+  // The entries of each `string[] name` field (and child_frame_id of an
+  // array's elements), in walk order; kept from message to message, so that
+  // labels_changed says whether this message's differ from the previous one
+  // decoded into the same DecodedMessage (no allocation when they do not).
+  std::vector<std::string> labels;
+  std::size_t label_count = 0;
+  bool labels_changed = true;
   // header.stamp in nanoseconds when the type starts with a std_msgs/Header
   // (and the stamp is not negative); -1 otherwise.
   std::int64_t header_stamp_ns = -1;

@@ -247,6 +247,15 @@ class Builder {
         break;
       }
     }
+    bool nested_labels = false;
+    for (const Field& f : t.fields) {
+      nested_labels = nested_labels || (f.type == Primitive::message && schema_.types[f.nested].has_labels);
+    }
+    for (std::size_t k = 0; k < t.fields.size() && t.label_field < 0 && !nested_labels; ++k) {
+      const Field& f = t.fields[k];
+      if (f.name == "child_frame_id" && f.type == Primitive::string && !f.is_array) t.frame_field = static_cast<int>(k);
+    }
+    t.has_labels = nested_labels || t.label_field >= 0 || t.frame_field >= 0;
     index_.emplace(section.name, index);
     stack_.pop_back();
     return index;

@@ -57,6 +57,12 @@ struct MessageType {
   // Index of a `string[] name` field whose entries label the parallel
   // numeric arrays after it (sensor_msgs/JointState); -1 when none.
   int label_field = -1;
+  // Index of a `string child_frame_id` field (geometry_msgs/TransformStamped):
+  // in an array of this type (tf2_msgs/TFMessage) it names each element, as
+  // `name` entries do. -1 when none, or when the type holds other labels.
+  int frame_field = -1;
+  // The type or a type inside it has a label_field or a frame_field.
+  bool has_labels = false;
 };
 
 struct Schema {

@@ -18,6 +18,7 @@
 #include <sensor_msgs/JointState.h>
 #include <sensor_msgs/NavSatFix.h>
 
+#include "importers/hdf5_log.h"
 #include "importers/log_file.h"
 #include "test_support.h"
 
@@ -223,6 +224,152 @@ TEST(WvuMcap, InsSlipAndOdometryDiscrepancyGiveTheMatlabFilesAnswers) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     expect_same(json::parse(mat.out), json::parse(r.out), 1e-6);
   }
+}
+
+// A simulated ExoMars BB2 run (seed 000's flying-rover scenario) as a rover
+// running ROS records it (the ROS library's writer): the IMU on /imu/data, and
+// every joint (bogies, steering, drives) in one sensor_msgs/JointState on
+// /joint_states, as resources/mappings/ros_exomars_bb2.json says.
+void write_bb2_bag(const log::Log& lg, const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  bag.setCompression(rosbag::compression::LZ4);
+  const log::Stream& imu = lg.stream("imu");
+  const log::Stream& joints = lg.stream("joints");
+  const log::Stream& wheels = lg.stream("wheels");
+  ASSERT_EQ(joints.time(), imu.time());
+  ASSERT_EQ(wheels.time(), imu.time());
+  const char* const wheel_names[] = {"FL", "ML", "RL", "RR", "MR", "FR"};
+  for (std::size_t i = 0; i < imu.size(); ++i) {
+    const ros::Time t = stamp(imu.time()[i]);
+    sensor_msgs::Imu m;
+    m.header.stamp = t;
+    m.orientation_covariance[0] = -1;
+    m.linear_acceleration.x = imu.channel("specific_force_x").values[i];
+    m.linear_acceleration.y = imu.channel("specific_force_y").values[i];
+    m.linear_acceleration.z = imu.channel("specific_force_z").values[i];
+    m.angular_velocity.x = imu.channel("angular_rate_x").values[i];
+    m.angular_velocity.y = imu.channel("angular_rate_y").values[i];
+    m.angular_velocity.z = imu.channel("angular_rate_z").values[i];
+    bag.write("/imu/data", t, m);
+    sensor_msgs::JointState js;
+    js.header.stamp = t;
+    for (const auto& c : joints.channels()) {
+      if (c.name.size() > 5 && c.name.compare(c.name.size() - 5, 5, "_rate") == 0) continue;
+      js.name.push_back(c.name);
+      js.position.push_back(c.values[i]);
+      js.velocity.push_back(joints.channel(c.name + "_rate").values[i]);
+    }
+    for (const char* w : wheel_names) {
+      js.name.push_back(std::string("wheel_") + w);
+      js.position.push_back(0.0);
+      js.velocity.push_back(wheels.channel(std::string("rate_") + w).values[i]);
+    }
+    bag.write("/joint_states", t, js);
+  }
+  bag.close();
+}
+
+// `estimate contact-angle` (seed 000) on that bag through the mapping gives
+// what it gives on the same sensor streams in a RoverLab HDF5 log: every
+// number of its JSON to 1e-6 (the bag's times are whole nanoseconds), and the
+// same estimated contact angles.
+TEST(Bb2Bag, ContactAngleGivesTheHdf5LogsAnswer) {
+  TempDir dir;
+  const std::string sim = dir.file("sim.h5");
+  ASSERT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 100 -o " + quote(sim)).exit_code, 0);
+  const log::Log full = io::read_hdf5_log(sim);
+  // The sensors alone, as the bag has them (no truth).
+  log::Log sensors;
+  sensors.metadata.rover_id = full.metadata.rover_id;
+  for (const char* s : {"imu", "joints", "wheels"}) sensors.add_stream(full.stream(s));
+  const std::string h5 = dir.file("sensors.h5");
+  io::write_hdf5_log(sensors, h5);
+  const std::string bag = dir.file("bb2.bag");
+  write_bb2_bag(full, bag);
+
+  const std::string options = " --model c --reset-cross-covariance --json";
+  const std::string est_h5 = dir.file("est_h5.h5");
+  const std::string est_bag = dir.file("est_bag.h5");
+  const CommandResult a = run_roverlab("estimate contact-angle " + quote(h5) + options + " -o " + quote(est_h5));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const CommandResult b =
+      run_roverlab("estimate contact-angle " + quote(bag) + " -m ros_exomars_bb2" + options + " -o " + quote(est_bag));
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  // The estimated contact angles, sample by sample.
+  const log::Log ea = io::read_hdf5_log(est_h5);
+  const log::Log eb = io::read_hdf5_log(est_bag);
+  const log::Stream& wa = ea.stream("estimate/contact/wheels");
+  const log::Stream& wb = eb.stream("estimate/contact/wheels");
+  ASSERT_EQ(wa.size(), full.stream("imu").size());
+  ASSERT_EQ(wb.size(), wa.size());
+  for (const char* w : {"FL", "ML", "RL", "RR", "MR", "FR"}) {
+    const auto& x = wa.channel(std::string("contact_angle_") + w).values;
+    const auto& y = wb.channel(std::string("contact_angle_") + w).values;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
+    EXPECT_LT(worst, 1e-6) << w;
+  }
+  // The front-left bogie turned: its wheel's contact angle moved.
+  const auto& fl = wb.channel("contact_angle_FL").values;
+  EXPECT_GT(*std::max_element(fl.begin(), fl.end()) - *std::min_element(fl.begin(), fl.end()), 0.1);
+  json from_h5 = json::parse(a.out);
+  json from_bag = json::parse(b.out);
+  EXPECT_EQ(from_bag.at("rover"), "exomars_bb2");
+  from_h5.erase("wall_seconds");  // how long it took
+  from_bag.erase("wall_seconds");
+  from_h5.erase("output");  // the two -o files
+  from_bag.erase("output");
+  expect_same(from_h5, from_bag, 1e-6);
+  // Without the mapping the bag has no imu, joints or wheels stream: refused.
+  EXPECT_EQ(run_roverlab("estimate contact-angle " + quote(bag) + options).exit_code == 0, false);
+}
+
+// `info` and `convert` with --topics and --time START:END (seconds after the
+// file's first message): a part of an MCAP file (read through its chunk
+// indexes) and of a bag; misuse is one line, exit 2 (a bad option) or 3 (a
+// topic the file lacks).
+TEST(RosPartCli, InfoAndConvertReadATopicSubsetAndATimeRange) {
+  TempDir dir;
+  const std::string mcap = std::string(ROVERLAB_TEST_DATA) + "/mcap/ranged_zstd.mcap";
+  const std::string out = dir.file("part.h5");
+  const CommandResult c =
+      run_roverlab("convert " + quote(mcap) + " " + quote(out) + " --topics /imu/data --time 4.5:5.5");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const log::Log part = io::read_hdf5_log(out);
+  ASSERT_EQ(part.stream("imu/data").size(), 101U);
+  EXPECT_NEAR(part.stream("imu/data").time().front(), 4.5, 1e-9);
+  EXPECT_EQ(part.stream("imu/data").channel("header.seq").values.back(), 550.0);
+
+  const std::string wvu = std::string(ROVERLAB_TEST_DATA) + "/mcap/wvu_pathfinder_ros1.mcap";
+  const CommandResult info = run_roverlab("info " + quote(wvu) + " --topics /imu/data,/odom --time 10:20 --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const json doc = json::parse(info.out);
+  ASSERT_EQ(doc.at("streams").size(), 2U);
+  for (const auto& s : doc.at("streams")) {
+    EXPECT_TRUE(s.at("name") == "imu/data" || s.at("name") == "odom") << s.at("name");
+    EXPECT_GE(s.at("start_s").get<double>(), 10.0);
+    EXPECT_LE(s.at("end_s").get<double>(), 20.0);
+    EXPECT_GT(s.at("duration_s").get<double>(), 9.5);
+  }
+
+  // A bag, through a mapping: only the mapped topics' range.
+  const std::string sim = dir.file("sim.h5");
+  ASSERT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 100 -o " + quote(sim)).exit_code, 0);
+  const std::string bag = dir.file("bb2.bag");
+  write_bb2_bag(io::read_hdf5_log(sim), bag);
+  const CommandResult mapped = run_roverlab("info " + quote(bag) + " -m ros_exomars_bb2 --time :2 --json");
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  EXPECT_EQ(json::parse(mapped.out).at("streams").at(0).at("samples"), 201);
+
+  const auto one_line = [](const CommandResult& r) { return std::count(r.err.begin(), r.err.end(), '\n') <= 2; };
+  const CommandResult missing = run_roverlab("info " + quote(mcap) + " --topics /camera");
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_NE(missing.err.find(mcap + ": no topic /camera in the file"), std::string::npos) << missing.err;
+  const CommandResult backwards = run_roverlab("info " + quote(mcap) + " --time 5:4");
+  EXPECT_EQ(backwards.exit_code, 2);
+  EXPECT_TRUE(one_line(backwards)) << backwards.err;
+  EXPECT_EQ(run_roverlab("info " + quote(mcap) + " --time ten:20").exit_code, 2);
+  EXPECT_EQ(run_roverlab("info " + quote(sim) + " --time 1:2").exit_code, 2);
 }
 
 TEST(RosBagCli, BadBagsExitThreeWithOneLine) {

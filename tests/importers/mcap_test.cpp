@@ -17,6 +17,7 @@
 #include "core/common/error.h"
 #include "importers/log_file.h"
 #include "importers/mcap_file.h"
+#include "kapvik_ros_log.h"
 #include "test_support.h"
 
 using namespace roverlab;
@@ -87,6 +88,22 @@ TEST(Mcap, Ros1MessagesReadBackFromEveryChunkingAndCompression) {
   EXPECT_EQ(io::load_log(renamed).format, "MCAP");
 }
 
+// WrenchStamped, TwistStamped and TFMessage (with JointState and Imu),
+// written by the MCAP project's writer (make_kapvik_mcap.mjs) in ROS 1 and
+// ROS 2 (CDR) encodings, onto the rover's streams by
+// resources/mappings/ros_kapvik.json, as the same data in a bag
+// (Ros1Bag.WrenchTwistAndTfMapOntoTheRoversStreams).
+TEST(Mcap, WrenchTwistAndTfMapOntoTheRoversStreams) {
+  io::LoadOptions o;
+  o.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/ros_kapvik.json");
+  for (const char* file : {"kapvik_ros1_zstd.mcap", "kapvik_cdr_lz4_no_summary.mcap"}) {
+    SCOPED_TRACE(file);
+    const log::Log lg = io::load_log(kData + file, o).log;
+    EXPECT_EQ(lg.metadata.rover_id, "kapvik_planar");
+    roverlab::test::kapvik::expect_mapped_log(lg);
+  }
+}
+
 TEST(Mcap, HeaderStampOnRequest) {
   io::LoadOptions o;
   o.header_time = true;
@@ -150,6 +167,55 @@ TEST(Mcap, ATimeRangeReadsOnlyTheChunksThatHoldIt) {
   EXPECT_LE(nothing.bytes_read, size / 10);
 }
 
+// LoadOptions' topics and time range (seconds after the file's first
+// message, what `convert --topics --time` passes): through the chunk indexes
+// only the chunks that hold the range are decompressed; a file without a
+// summary, scanned, gives the same messages at the same times.
+TEST(Mcap, TopicsAndATimeRangeInSecondsReadOnlyTheirChunks) {
+  io::LoadOptions o;
+  o.topics = {"imu/data"};  // with or without the leading '/'
+  o.start_s = 4.5;
+  o.end_s = 5.5;
+  io::McapReadStats stats;
+  const log::Log part = io::read_mcap(kData + "ranged_zstd.mcap", o, {}, &stats);
+  EXPECT_TRUE(stats.indexed);
+  const log::Stream& s = part.stream("imu/data");
+  ASSERT_EQ(s.size(), 101U);
+  EXPECT_NEAR(s.time().front(), 4.5, 1e-9);  // the file's clock, not the range's
+  EXPECT_NEAR(s.time().back(), 5.5, 1e-9);
+  EXPECT_EQ(s.channel("angular_velocity.x").values[0], value(450, 10));
+  io::McapReadStats whole;
+  (void)io::read_mcap(kData + "ranged_zstd.mcap", {}, {}, &whole);
+  EXPECT_EQ(whole.chunks_read, whole.chunks_in_file);
+  EXPECT_EQ(stats.chunks_in_file, whole.chunks_in_file);
+  EXPECT_LE(stats.chunks_read * 5, whole.chunks_read) << stats.chunks_read << " of " << whole.chunks_read;
+  std::printf("1 s of 10 s: %llu of %llu chunks decompressed\n", static_cast<unsigned long long>(stats.chunks_read),
+              static_cast<unsigned long long>(whole.chunks_read));
+
+  // Indexed and scanned: the same part.
+  o.start_s = 0.2;
+  o.end_s = 0.4;
+  o.topics = {"/imu/data"};
+  const log::Log indexed = io::read_mcap(kData + "imu_ros1_zstd.mcap", o);
+  const log::Log scanned = io::read_mcap(kData + "imu_ros1_zstd_no_summary.mcap", o);
+  ASSERT_EQ(indexed.stream("imu/data").size(), 21U);
+  EXPECT_EQ(indexed.stream("imu/data").time(), scanned.stream("imu/data").time());
+  EXPECT_EQ(indexed.stream("imu/data").channel("linear_acceleration.y").values,
+            scanned.stream("imu/data").channel("linear_acceleration.y").values);
+  EXPECT_EQ(indexed.stream("imu/data").channel("header.seq").values.front(), 20.0);
+  // Only an end: from the first message.
+  o.start_s.reset();
+  EXPECT_EQ(io::read_mcap(kData + "imu_ros1_zstd.mcap", o).stream("imu/data").size(), 41U);
+  // A topic the file lacks: one line.
+  o.topics = {"/imu/data", "/camera"};
+  try {
+    (void)io::read_mcap(kData + "imu_ros1_zstd.mcap", o);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), kData + "imu_ros1_zstd.mcap: no topic /camera in the file");
+  }
+}
+
 // The offset of the first record with `opcode` after the magic, walking the
 // data section's records.
 std::size_t first_record(const std::vector<char>& bytes, std::uint8_t opcode) {
@@ -194,9 +260,12 @@ TEST(McapBadInput, OneLineNamingTheFileAndTheProblem) {
   write_bytes(path, huge, huge.size());
   EXPECT_EQ(read_error(path), path + ": the record at offset " + std::to_string(chunk) +
                                   " (opcode 0x6) claims 10000000000 bytes, more than the file holds (truncated?)");
-  // An unknown compression: "zstd" becomes "zzzz" wherever it is written.
+  // An unknown compression: "zstd" becomes "zzzz" in the chunks (the
+  // summary's chunk indexes name it too, but its CRC would refuse them).
   std::vector<char> unknown = bytes_of(kData + "imu_ros1_zstd.mcap");
-  for (std::size_t k = 0; k + 4 <= unknown.size(); ++k) {
+  std::uint64_t summary_start = 0;
+  std::memcpy(&summary_start, unknown.data() + unknown.size() - 8 - 20, 8);
+  for (std::size_t k = 0; k + 4 <= summary_start; ++k) {
     if (std::memcmp(unknown.data() + k, "zstd", 4) == 0) std::memcpy(unknown.data() + k, "zzzz", 4);
   }
   write_bytes(path, unknown, unknown.size());
@@ -207,6 +276,63 @@ TEST(McapBadInput, OneLineNamingTheFileAndTheProblem) {
                                       ": topic /thing: message encoding 'protobuf' with schema encoding "
                                       "'protobuf' is not supported (RoverLab reads ros1 with ros1msg, cdr with "
                                       "ros2msg, json)");
+}
+
+// One byte changed where only the CRC-32s can see it (a value's last byte, a
+// schema name's first letter): the chunk's, the summary's and the data
+// section's CRC each refuse the file with one line. Without the checks each
+// of these files reads, with one value or name wrong.
+TEST(McapBadInput, ACrcMismatchNamesTheFileAndWhatIsDamaged) {
+  TempDir dir;
+  const std::string path = dir.file("damaged.mcap");
+  // A chunk (uncompressed, so the byte changed is a value's): its last byte.
+  std::vector<char> bytes = bytes_of(kData + "imu_ros1_none.mcap");
+  const std::size_t chunk = first_record(bytes, 0x06);
+  ASSERT_GT(chunk, 0U);
+  std::uint64_t records = 0;
+  std::memcpy(&records, bytes.data() + chunk + 9 + 32, 8);
+  std::uint64_t chunk_start = 0;
+  std::memcpy(&chunk_start, bytes.data() + chunk + 9, 8);
+  ASSERT_EQ(bytes[chunk + 9 + 28], 0);  // no compression: an empty string
+  bytes[chunk + 9 + 40 + records - 1] ^= 0x01;
+  write_bytes(path, bytes, bytes.size());
+  std::string error = read_error(path);
+  EXPECT_EQ(
+      error.rfind(path + ": a chunk of messages from " + std::to_string(chunk_start) + " ns is damaged (its CRC-32 is ",
+                  0),
+      0U)
+      << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos);
+
+  // The summary: the first letter of its first record's name (a Schema's).
+  bytes = bytes_of(kData + "imu_ros1_zstd.mcap");
+  std::uint64_t summary_start = 0;
+  std::memcpy(&summary_start, bytes.data() + bytes.size() - 8 - 20, 8);
+  ASSERT_GT(summary_start, 0U);
+  ASSERT_EQ(bytes[summary_start], 0x03);
+  ASSERT_EQ(bytes[summary_start + 9 + 2 + 4], 's');  // sensor_msgs/Imu
+  bytes[summary_start + 9 + 2 + 4] = 't';
+  write_bytes(path, bytes, bytes.size());
+  error = read_error(path);
+  EXPECT_EQ(error.rfind(path + ": the summary section is damaged (its CRC-32 is ", 0), 0U) << error;
+
+  // The data section of a file without chunks or summary: a message's last byte.
+  bytes = bytes_of(kData + "imu_ros1_unchunked_no_summary.mcap");
+  const std::size_t message = first_record(bytes, 0x05);
+  ASSERT_GT(message, 0U);
+  std::uint64_t length = 0;
+  std::memcpy(&length, bytes.data() + message + 1, 8);
+  bytes[message + 9 + length - 1] ^= 0x01;
+  write_bytes(path, bytes, bytes.size());
+  error = read_error(path);
+  EXPECT_EQ(error.rfind(path + ": the data section is damaged (its CRC-32 is ", 0), 0U) << error;
+
+  // The files as written read, and give the counts of the chunks they read.
+  io::McapReadStats stats;
+  EXPECT_EQ(io::read_mcap(kData + "imu_ros1_none.mcap", {}, {}, &stats).stream("imu/data").size(), 100U);
+  EXPECT_TRUE(stats.indexed);
+  EXPECT_GT(stats.chunks_read, 0U);
+  EXPECT_EQ(stats.chunks_read, stats.chunks_in_file);
 }
 
 }  // namespace

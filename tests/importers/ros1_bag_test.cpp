@@ -25,6 +25,7 @@
 #include "core/common/error.h"
 #include "importers/log_file.h"
 #include "importers/ros_msg_decoder.h"
+#include "kapvik_ros_log.h"
 #include "raw_ros_message.h"
 #include "test_support.h"
 
@@ -256,9 +257,9 @@ TEST(Ros1Bag, EveryMappedMessageTypeDecodes) {
     EXPECT_EQ(lg.stream("odom").channel("pose.covariance.35").values[i], value(i, 8));
     EXPECT_EQ(lg.stream("odom").channel("twist.twist.linear.x").values[i], value(i, 9));
     EXPECT_EQ(lg.stream("odom").channel("pose.pose.orientation.yaw").values[i], 0.0);
-    EXPECT_EQ(lg.stream("tf").channel("transforms.0.transform.translation.x").values[i], value(i, 20));
-    EXPECT_EQ(lg.stream("tf").channel("transforms.1.transform.translation.x").values[i], value(i, 21));
-    EXPECT_EQ(lg.stream("tf").channel("transforms.1.header.stamp").values[i], at(0.1 * i).toSec());
+    EXPECT_EQ(lg.stream("tf").channel("transforms.base_link.transform.translation.x").values[i], value(i, 20));
+    EXPECT_EQ(lg.stream("tf").channel("transforms.mast.transform.translation.x").values[i], value(i, 21));
+    EXPECT_EQ(lg.stream("tf").channel("transforms.mast.header.stamp").values[i], at(0.1 * i).toSec());
   }
   // Arrays longer than the limit are skipped whole: the covariances (9 and
   // 36) and the two transforms go, the scalars stay.
@@ -304,6 +305,122 @@ TEST(Ros1Bag, AMappingNamesTopicsAsRoverStreamsWithUnits) {
     "streams": [{"name": "imu", "time": {"variable": "/imu", "unit": "s"}, "channels": []}]})");
   o.mapping = io::load_mapping(mapping);
   EXPECT_EQ(load_error(bag_path, o), bag_path + ": mapping ros_test: no topic /imu in the file");
+}
+
+// A planar rocker-bogie's log as tests/importers/kapvik_ros_log.h describes
+// it, written by the ROS library's own writer with the message classes ROS
+// generates.
+void write_kapvik_bag(const std::string& path, rosbag::compression::CompressionType compression) {
+  namespace k = roverlab::test::kapvik;
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  bag.setCompression(compression);
+  for (int i = 0; i < k::kMessages; ++i) {
+    ros::Time t = kStart;
+    t += ros::Duration().fromNSec(std::int64_t{50'000'000} * i);
+    sensor_msgs::Imu imu;
+    imu.header.stamp = t;
+    imu.linear_acceleration.x = k::value(i, 0);
+    imu.linear_acceleration.z = k::value(i, 2);
+    imu.angular_velocity.y = k::value(i, 4);
+    imu.orientation.w = 1.0;
+    bag.write("/imu/data", t, imu);
+    sensor_msgs::JointState joints;
+    joints.header.stamp = t;
+    joints.name = {"wheel_1", "bogie", "wheel_2", "wheel_3"};
+    for (int j = 0; j < 4; ++j) joints.position.push_back(k::value(i, 10 + j));
+    bag.write("/joint_states", t, joints);
+    sensor_msgs::JointState commands;
+    commands.header.stamp = t;
+    commands.name = {"wheel_1", "wheel_2", "wheel_3"};
+    for (int j = 0; j < 3; ++j) commands.effort.push_back(k::value(i, 20 + j));
+    bag.write("/joint_commands", t, commands);
+    geometry_msgs::TwistStamped twist;
+    twist.header.stamp = t;
+    twist.twist.linear.x = k::value(i, 30);
+    twist.twist.angular.y = k::value(i, 31);
+    bag.write("/velocimeter", t, twist);
+    for (int w = 0; w < 3; ++w) {
+      geometry_msgs::WrenchStamped wrench;
+      wrench.header.stamp = t;
+      wrench.header.frame_id = "wheel_" + std::to_string(w + 1);
+      wrench.wrench.force.x = k::value(i, 40 + w);
+      wrench.wrench.force.z = k::value(i, 50 + w);
+      wrench.wrench.torque.y = k::value(i, 60 + w);
+      bag.write("/wheel_" + std::to_string(w + 1) + "/wrench", t, wrench);
+    }
+    tf2_msgs::TFMessage tf;
+    geometry_msgs::TransformStamped mast;
+    mast.header.stamp = t;
+    mast.header.frame_id = "base_link";
+    mast.child_frame_id = "mast";
+    mast.transform.translation.x = k::value(i, 79);
+    mast.transform.rotation.w = 1.0;
+    geometry_msgs::TransformStamped base;
+    base.header.stamp = t;
+    base.header.frame_id = "odom";
+    base.child_frame_id = "base_link";
+    base.transform.translation.x = k::value(i, 70);
+    base.transform.translation.y = k::value(i, 71);
+    base.transform.translation.z = k::value(i, 72);
+    base.transform.rotation.y = std::sin(k::pitch(i) / 2);
+    base.transform.rotation.w = std::cos(k::pitch(i) / 2);
+    if (!k::has_base_link(i)) {
+      tf.transforms = {mast};
+    } else if (i % 2 == 1) {
+      tf.transforms = {mast, base};
+    } else {
+      tf.transforms = {base, mast};
+    }
+    bag.write("/tf", t, tf);
+  }
+  bag.close();
+}
+
+// geometry_msgs/WrenchStamped, TwistStamped and tf2_msgs/TFMessage (with
+// JointState and Imu) onto the rover's forces, velocimeter, pose, joints,
+// commands and imu streams by resources/mappings/ros_kapvik.json, with units,
+// value for value; the transforms named by their child_frame_id.
+TEST(Ros1Bag, WrenchTwistAndTfMapOntoTheRoversStreams) {
+  TempDir dir;
+  io::LoadOptions o;
+  o.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/ros_kapvik.json");
+  for (const auto compression : {rosbag::compression::Uncompressed, rosbag::compression::LZ4}) {
+    const std::string path = dir.file("kapvik" + std::to_string(static_cast<int>(compression)) + ".bag");
+    write_kapvik_bag(path, compression);
+    const log::Log lg = io::load_log(path, o).log;
+    EXPECT_EQ(lg.metadata.rover_id, "kapvik_planar");
+    roverlab::test::kapvik::expect_mapped_log(lg);
+  }
+  // Without a mapping: each transform's channels named by its frame.
+  const log::Log raw = io::load_log(dir.file("kapvik0.bag")).log;
+  const log::Stream& tf = raw.stream("tf");
+  EXPECT_EQ(tf.channel("transforms.mast.transform.translation.x").values[1], roverlab::test::kapvik::value(1, 79));
+  EXPECT_EQ(tf.channel("transforms.base_link.transform.translation.x").values[1], roverlab::test::kapvik::value(1, 70));
+  EXPECT_TRUE(std::isnan(tf.channel("transforms.base_link.transform.translation.x").values[3]));
+  EXPECT_EQ(tf.find_channel("transforms.0.transform.translation.x"), nullptr);
+}
+
+// LoadOptions' topics and time range on a bag: the library's view of those
+// connections and record times, times from the bag's first message.
+TEST(Ros1Bag, TopicsAndATimeRangeInSeconds) {
+  namespace k = roverlab::test::kapvik;
+  TempDir dir;
+  const std::string path = dir.file("kapvik.bag");
+  write_kapvik_bag(path, rosbag::compression::LZ4);
+  io::LoadOptions o;
+  o.topics = {"/imu/data", "tf"};
+  o.start_s = 0.5;
+  o.end_s = 1.0;
+  const log::Log lg = io::load_log(path, o).log;
+  ASSERT_EQ(lg.streams().size(), 2U);
+  const log::Stream& imu = lg.stream("imu/data");
+  ASSERT_EQ(imu.size(), 11U);  // messages 10 .. 20
+  EXPECT_NEAR(imu.time().front(), 0.5, 1e-9);
+  EXPECT_NEAR(imu.time().back(), 1.0, 1e-9);
+  EXPECT_EQ(imu.channel("linear_acceleration.x").values[0], k::value(10, 0));
+  EXPECT_EQ(lg.stream("tf").size(), 11U);
+  o.topics = {"/imu/data", "/camera"};
+  EXPECT_EQ(load_error(path, o), path + ": no topic /camera in the file");
 }
 
 // Debian's python3-rosbag decodes the same bag with classes genpy generates

@@ -5,7 +5,9 @@ own message definitions): {topic: {field: [value per message]}}.
 
 Fields are named as RoverLab names its channels (docs/log-format.md): '.'
 between levels, array elements by index, numeric arrays after a `string[]
-name` field of the same length by its entries; time and duration as seconds,
+name` field of the same length by its entries, elements that have a
+`child_frame_id` (tf2_msgs/TFMessage's transforms) by it, without a leading
+'/'; time and duration as seconds,
 bool as 0/1; strings skipped; arrays longer than MAX_ARRAY skipped. The
 roll/pitch/yaw RoverLab derives from quaternions are not fields and not here.
 
@@ -45,6 +47,9 @@ def flatten(message, prefix, out):
                 value = list(value)
             for i, element in enumerate(value):
                 label = labels[i] if labels is not None and len(labels) == len(value) and labels[i] else str(i)
+                frame = getattr(element, "child_frame_id", None)
+                if isinstance(frame, str) and frame.lstrip("/"):
+                    label = frame.lstrip("/").replace("/", "_")
                 if hasattr(element, "__slots__"):
                     flatten(element, name + "." + label + ".", out)
                 else:
