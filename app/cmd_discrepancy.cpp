@@ -23,6 +23,7 @@ struct SingleWheelDiscrepancyOptions {
   std::string file;
   std::string soil;
   std::string integration = "simpson";
+  std::string hold_out = "points";
   bool json = false;
 };
 
@@ -111,6 +112,11 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                  {"delta_bic", c.delta_bic},
                  {"held_out_score_sigma", c.held_out_score},
                  {"parameters", json::array()}};
+    json ho = json::object();
+    for (std::size_t i = 0; i < r.quantities.size() && i < c.held_out_rmse.size(); ++i) {
+      ho[to_string(r.quantities[i])] = nullable(c.held_out_rmse[i]);
+    }
+    step["held_out_rmse"] = ho;
     for (const auto& p : c.fit.parameters) {
       step["parameters"].push_back(
           {{"name", to_string(p.parameter)}, {"value", p.value}, {"sigma", nullable(p.sigma)}});
@@ -139,6 +145,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   analysis::DiscrepancyOptions options;
   try {
     options.baseline.integration = parse_integration(o.integration);
+    options.hold_out = analysis::parse_hold_out(o.hold_out);
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
@@ -162,12 +169,12 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
                 s.rmse * k, u, s.bias * k, u, s.slope_vs_slip * k, s.t_slip, s.slope_vs_load * k * 100.0, s.t_load);
   }
   std::printf("\ncandidate causes (each fitted with Ceres; held-out = %s):\n", r.held_out_method.c_str());
-  std::printf("  %-14s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC",
+  std::printf("  %-20s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC",
               "held-out sigma");
-  std::printf("  %-14s %-24s %22s %10s %14.3f\n", "(baseline)", "-", "-", "0", r.baseline_score);
+  std::printf("  %-20s %-24s %22s %10s %14.3f\n", "(baseline)", "-", "-", "0", r.baseline_score);
   for (const auto& c : r.candidates) {
     if (!c.applicable) {
-      std::printf("  %-14s not applicable: %s\n", c.name.c_str(), c.not_applicable_because.c_str());
+      std::printf("  %-20s not applicable: %s\n", c.name.c_str(), c.not_applicable_because.c_str());
       continue;
     }
     for (std::size_t i = 0; i < c.fit.parameters.size(); ++i) {
@@ -179,18 +186,18 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
         std::snprintf(value, sizeof value, "%.4g (undetermined)%s", p.value, p.at_bound ? " (bound)" : "");
       }
       if (i == 0) {
-        std::printf("  %-14s %-24s %22s %10s %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
+        std::printf("  %-20s %-24s %22s %10s %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
                     analysis::format_delta_bic(c.delta_bic).c_str(), c.held_out_score);
       } else {
-        std::printf("  %-14s %-24s %22s\n", "", to_string(p.parameter), value);
+        std::printf("  %-20s %-24s %22s\n", "", to_string(p.parameter), value);
       }
     }
   }
   if (!r.selection.empty()) {
     std::printf("\nforward selection (each step refits the chain with one more cause):\n");
-    std::printf("  %-36s %12s %14s\n", "model", "delta BIC", "held-out sigma");
+    std::printf("  %-48s %12s %14s\n", "model", "delta BIC", "held-out sigma");
     for (const auto& c : r.selection) {
-      std::printf("  %-36s %12s %14.3f\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),
+      std::printf("  %-48s %12s %14.3f\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),
                   c.held_out_score);
     }
   } else if (r.best_pair && r.best_pair->applicable) {
@@ -214,6 +221,9 @@ Commands make_single_wheel_commands() {
             ->required();
         cmd.add_option("--soil", o.soil, "Soil NAME (resources/soils/NAME.json) or FILE")->required();
         cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
+        cmd.add_option("--hold-out", o.hold_out,
+                       "points | wheel | slip: what a held-out fold is (a point; every point of one wheel or one slip)")
+            ->capture_default_str();
         cmd.add_flag("--json", o.json, "Print JSON");
       },
       run_discrepancy_single_wheel));

@@ -40,6 +40,8 @@ struct TerramechanicsOptions {
   double grouser_effectiveness = 1.0;
   double bulldozing_scale = 1.0;
   double soil_strength = 1.0;
+  double shear_modulus_slip = 2.0;
+  double rear_angle_ratio = 0.2;
   std::string format = "csv";
 };
 
@@ -81,8 +83,13 @@ ModelOptions model_options(const TerramechanicsOptions& o) try {
     } else if (part == "bulldozing") {
       m.extensions.bulldozing = true;
       m.extensions.bulldozing_scale = o.bulldozing_scale;
+    } else if (part == "slip-shear-modulus") {
+      m.extensions.shear_modulus_slip = o.shear_modulus_slip;
+    } else if (part == "rear-angle") {
+      m.extensions.rear_angle_ratio = o.rear_angle_ratio;
     } else {
-      throw DataError("unknown model extension '" + part + "' (slip-sinkage, grousers, bulldozing)");
+      throw DataError("unknown model extension '" + part +
+                      "' (slip-sinkage, grousers, bulldozing, slip-shear-modulus, rear-angle)");
     }
   }
   m.extensions.soil_strength = o.soil_strength;
@@ -448,8 +455,10 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
         ->capture_default_str()
         ->check(finite_in(0.0, 100.0));
   }
-  cmd.add_option("--model", o.model,
-                 "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing (e.g. wong+slip-sinkage)")
+  cmd.add_option(
+         "--model", o.model,
+         "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing, +slip-shear-modulus, +rear-angle "
+         "(e.g. wong+slip-sinkage)")
       ->capture_default_str();
   cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
   cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")
@@ -467,6 +476,12 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--soil-strength", o.soil_strength, "factor on c, tan(phi), kc, kphi")
       ->capture_default_str()
       ->check(finite_in(0.01, 100.0));
+  cmd.add_option("--shear-modulus-slip", o.shear_modulus_slip, "K = K0 (1 + k_s s) (with +slip-shear-modulus)")
+      ->capture_default_str()
+      ->check(finite_in(-0.9, 20.0));
+  cmd.add_option("--rear-angle-ratio", o.rear_angle_ratio, "theta_r = -kappa theta_0 (with +rear-angle)")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 1.0));
 }
 
 }  // namespace

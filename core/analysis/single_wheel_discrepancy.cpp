@@ -192,7 +192,8 @@ class SingleWheelStudy {
                           const CandidateResult* start_from = nullptr, bool with_held_out = true) const;
   void select_forward();
   void check_points_can_tell_candidates_apart() const;
-  std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit) const;
+  std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit,
+                                      const std::vector<const SingleWheelCandidate*>& set) const;
   void choose_best();
   void write_what_is_wrong();
   void find_partial();
@@ -206,6 +207,7 @@ class SingleWheelStudy {
     const std::size_t n = points_.size();
     return n <= o_.max_leave_one_out_points ? n : n <= o_.large_points ? o_.folds : std::min(o_.folds, o_.large_folds);
   }
+  void assign_folds();
 
   const Soil& soil_;
   const std::vector<WheelTestPoint>& points_;
@@ -214,15 +216,15 @@ class SingleWheelStudy {
   bool any_grousers_ = false;
   std::vector<std::unique_ptr<SingleWheelCandidate>> candidates_;
   DiscrepancyReport report_;
+  std::vector<std::size_t> fold_of_;  // held-out fold of each point
+  std::size_t folds_ = 0;
 };
 
 DiscrepancyReport SingleWheelStudy::run() {
   if (points_.empty()) throw DataError("no single-wheel points");
   report_.points = points_.size();
   check_points_can_tell_candidates_apart();
-  report_.held_out_method = !o_.leave_one_out                               ? "in-sample"
-                            : points_.size() <= o_.max_leave_one_out_points ? "leave-one-out"
-                                                                            : std::to_string(fold_count()) + "-fold";
+  assign_folds();
   find_quantities();
   score_baseline();
   any_grousers_ = std::any_of(points_.begin(), points_.end(),
@@ -265,6 +267,40 @@ void SingleWheelStudy::check_points_can_tell_candidates_apart() const {
     throw DataError("every point is at slip " + fmt("%.3g", lo->slip) +
                     "; a discrepancy study needs points at two slips at least, 0.01 apart");
   }
+}
+
+// The held-out folds: point j in fold j mod folds, or one fold per wheel
+// label or per slip value (grouped: a wheel or a slip the fit never saw).
+void SingleWheelStudy::assign_folds() {
+  const std::size_t n = points_.size();
+  fold_of_.assign(n, 0);
+  if (!o_.leave_one_out) {
+    report_.held_out_method = "in-sample";
+    return;
+  }
+  if (o_.hold_out == HoldOut::points) {
+    folds_ = fold_count();
+    for (std::size_t j = 0; j < n; ++j) fold_of_[j] = j % folds_;
+    report_.held_out_method = n <= o_.max_leave_one_out_points ? "leave-one-out" : std::to_string(folds_) + "-fold";
+    return;
+  }
+  const bool by_wheel = o_.hold_out == HoldOut::wheel;
+  std::vector<std::string> keys;
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto& w = points_[j].wheel;  // a wheel: its label and its geometry
+    const std::string key = by_wheel ? points_[j].wheel_label + fmt("|%.6g", w.radius) + fmt("|%.6g", w.width) +
+                                           fmt("|%.6g", w.grouser_count * w.grouser_height)
+                                     : fmt("%.6g", points_[j].slip);
+    auto at = std::find(keys.begin(), keys.end(), key);
+    if (at == keys.end()) at = keys.insert(keys.end(), key);
+    fold_of_[j] = static_cast<std::size_t>(at - keys.begin());
+  }
+  folds_ = keys.size();
+  if (folds_ < 2) {
+    throw DataError(std::string("holding out by ") + (by_wheel ? "wheel needs two wheels" : "slip needs two slips") +
+                    " at least (the points have one)");
+  }
+  report_.held_out_method = by_wheel ? "leave-one-wheel-out" : "leave-one-slip-out";
 }
 
 void SingleWheelStudy::find_quantities() {
@@ -344,7 +380,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
   c.delta_bic = c.bic - report_.baseline_bic;
   if (!with_held_out) return c;  // held_out_rmse empty: no held-out test passes
-  const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit) : c.fit.residuals;
+  const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit, set) : c.fit.residuals;
   const auto held_stats = residual_statistics(predicted, points_);
   for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
   c.held_out_score = score_of(predicted, o_.sigma);
@@ -446,10 +482,10 @@ bool SingleWheelStudy::held_out_gain(const std::vector<double>& rmse, const std:
 
 // Held out: refit without each fold of points (one point each up to
 // max_leave_one_out_points), predict the fold.
-std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOptions& io,
-                                                      const IdentificationResult& fit) const {
+std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOptions& io, const IdentificationResult& fit,
+                                                      const std::vector<const SingleWheelCandidate*>& set) const {
   const std::size_t n = points_.size();
-  const std::size_t folds = fold_count();
+  const std::size_t folds = folds_;
   std::vector<PointResidual> out;
   IdentificationOptions refit = io;
   refit.model.extensions = fit.extensions;
@@ -458,19 +494,36 @@ std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOption
   // ... or a long way along a valley the data hardly determine, where further
   // steps barely change the held-out predictions: at most 5 steps.
   refit.max_iterations = 5;
+  Soil from = fit.soil;
+  if (o_.hold_out != HoldOut::points) {
+    // A wheel or a slip the fit never saw: each fold is fitted afresh from the
+    // nominal soil and the candidates' start values, so that a parameter the
+    // other folds cannot determine (grousers without a grousered wheel) does
+    // not keep the value the held-out fold gave it.
+    from = soil_;
+    refit.model.extensions = o_.baseline.extensions;
+    for (const auto* candidate : set) {
+      candidate->configure(refit.model.extensions);
+      for (const auto& [parameter, value] : candidate->parameters()) {
+        if (value >= 0.0) set_parameter(from, refit.model.extensions, parameter, value);
+      }
+    }
+    refit.tolerance = io.tolerance;
+    refit.max_iterations = 100;
+  }
   for (std::size_t fold = 0; fold < folds; ++fold) {
     std::vector<WheelTestPoint> train, test;
     std::vector<std::size_t> test_index;
     train.reserve(n);
     for (std::size_t j = 0; j < n; ++j) {
-      if (j % folds == fold) {
+      if (fold_of_[j] == fold) {
         test.push_back(points_[j]);
         test_index.push_back(j);
       } else {
         train.push_back(points_[j]);
       }
     }
-    const IdentificationResult f = identify_soil(fit.soil, train, refit);
+    const IdentificationResult f = identify_soil(from, train, refit);
     IdentificationOptions predict_only;
     predict_only.model = refit.model;
     predict_only.model.extensions = f.extensions;
@@ -695,6 +748,13 @@ void SingleWheelStudy::write_no_significant_verdict() {
 }
 
 }  // namespace
+
+HoldOut parse_hold_out(const std::string& text) {
+  if (text == "points") return HoldOut::points;
+  if (text == "wheel") return HoldOut::wheel;
+  if (text == "slip") return HoldOut::slip;
+  throw DataError("unknown hold-out '" + text + "' (points, wheel, slip)");
+}
 
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
                                      const DiscrepancyOptions& options) {

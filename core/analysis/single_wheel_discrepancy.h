@@ -54,6 +54,11 @@ struct CandidateResult {
   double held_out_score = 0.0;               // RMS of held-out residuals in sigmas
 };
 
+// What a held-out fold is: points (leave-one-out or k-fold), every point of
+// one wheel (a wheel the fit never saw), or every point at one slip.
+enum class HoldOut { points, wheel, slip };
+HoldOut parse_hold_out(const std::string& text);  // throws DataError
+
 struct DiscrepancyOptions {
   terramechanics::ModelOptions baseline;  // Wong-Reece, Simpson, no extensions
   terramechanics::MeasurementSigma sigma;
@@ -68,6 +73,7 @@ struct DiscrepancyOptions {
   // hundreds of points; the refits dominate the study's cost).
   std::size_t large_points = 2000;
   std::size_t large_folds = 5;
+  HoldOut hold_out = HoldOut::points;
 };
 
 struct DiscrepancyReport {
@@ -77,7 +83,8 @@ struct DiscrepancyReport {
   double baseline_score = 0.0;                 // RMS residual in sigmas
   double baseline_bic = 0.0;
   std::size_t points = 0, measurements = 0, unsupported = 0;
-  std::string held_out_method;  // "leave-one-out", "10-fold" or "in-sample"
+  std::string
+      held_out_method;  // "leave-one-out", "10-fold", "leave-one-wheel-out", "leave-one-slip-out" or "in-sample"
   std::vector<CandidateResult> candidates;
   int best = -1;  // index of the winning candidate, -1 when none is significant
   bool significant = false;

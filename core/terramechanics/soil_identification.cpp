@@ -54,6 +54,8 @@ const ParameterName kParameters[] = {
     {Parameter::grouser_effectiveness, "grouser_effectiveness", {0.0, 2.0}},
     {Parameter::bulldozing_scale, "bulldozing_scale", {0.0, 10.0}},
     {Parameter::soil_strength, "soil_strength", {0.1, 5.0}},
+    {Parameter::shear_modulus_slip, "shear_modulus_slip", {-0.9, 20.0}},
+    {Parameter::rear_angle_ratio, "rear_angle_ratio", {0.0, 1.0}},
 };
 
 // Assigns one free parameter inside the model's parameter set.
@@ -96,6 +98,12 @@ void assign(detail::Params<T>& p, Parameter which, const T& v) {
       break;
     case Parameter::soil_strength:
       p.soil_strength = v;
+      break;
+    case Parameter::shear_modulus_slip:
+      p.shear_modulus_slip = v;
+      break;
+    case Parameter::rear_angle_ratio:
+      p.rear_angle_ratio = v;
       break;
   }
 }
@@ -182,6 +190,10 @@ double get_parameter(const Soil& s, const Extensions& e, Parameter p) {
       return e.bulldozing_scale;
     case Parameter::soil_strength:
       return e.soil_strength;
+    case Parameter::shear_modulus_slip:
+      return e.shear_modulus_slip;
+    case Parameter::rear_angle_ratio:
+      return e.rear_angle_ratio;
   }
   return NAN;
 }
@@ -223,6 +235,12 @@ void set_parameter(Soil& s, Extensions& e, Parameter p, double v) {
       break;
     case Parameter::soil_strength:
       e.soil_strength = v;
+      break;
+    case Parameter::shear_modulus_slip:
+      e.shear_modulus_slip = v;
+      break;
+    case Parameter::rear_angle_ratio:
+      e.rear_angle_ratio = v;
       break;
   }
 }

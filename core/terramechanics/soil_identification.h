@@ -23,7 +23,9 @@ enum class Parameter {
   slip_sinkage_n1,
   grouser_effectiveness,
   bulldozing_scale,
-  soil_strength
+  soil_strength,
+  shear_modulus_slip,
+  rear_angle_ratio
 };
 const char* to_string(Parameter p);
 Parameter parse_parameter(const std::string& text);  // throws DataError

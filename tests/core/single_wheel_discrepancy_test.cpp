@@ -239,7 +239,8 @@ TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
   const auto candidates = analysis::single_wheel_candidates();
   std::vector<std::string> names;
   for (const auto& c : candidates) names.push_back(c->name());
-  EXPECT_EQ(names, (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength",
+                                             "max-stress-angle", "slip-shear-modulus", "rear-angle"}));
   // Only the grouser candidate needs grousers, and it switches their model on.
   Extensions e;
   for (const auto& c : candidates) {
@@ -342,4 +343,122 @@ TEST(Calibration, TheParametersIntervalsCoverTheHiddenValue) {
   EXPECT_GE(within1, count * 50 / 100);
   EXPECT_LE(within1, count * 85 / 100);
   EXPECT_GE(within2, count * 85 / 100);
+}
+
+// Issue 33 item 4: the drawbar-pull extensions from the literature, each
+// hidden alone in simulated wheel tests (four noise draws); the study names
+// it first and its parameter's 2-sigma interval covers the truth in at least
+// three draws of four (measured over 11 draws: 31 of 33 within 2 sigma),
+// with held-out error at the noise level.
+struct HiddenExtension {
+  const char* effect;
+  Parameter parameter;
+  double value;
+};
+
+class HiddenDrawbarExtension : public ::testing::TestWithParam<HiddenExtension> {};
+
+TEST_P(HiddenDrawbarExtension, IsNamedAndItsParameterRecovered) {
+  const HiddenExtension e = GetParam();
+  Soil soil = test::ding_tyii();
+  ModelOptions model;
+  set_parameter(soil, model.extensions, e.parameter, e.value);
+  const analysis::DiscrepancyOptions options;
+  int covered = 0;
+  for (unsigned draw = 1; draw <= 4; ++draw) {
+    std::mt19937 rng(draw);
+    std::normal_distribution<double> unit(0.0, 1.0);
+    auto points = testbed(Hidden{}, 5, options.sigma);
+    for (auto& p : points) {  // the same testbed, generated with the extension on
+      const Traction t = evaluate(soil, p.wheel, p.load, p.slip, model);
+      p.drawbar_pull = t.drawbar_pull + options.sigma.drawbar_pull * unit(rng);
+      p.torque = t.resistive_torque + options.sigma.torque * unit(rng);
+      p.sinkage = t.sinkage + options.sigma.sinkage * unit(rng);
+    }
+    const auto r = analysis::study_single_wheel(test::ding_tyii(), points, options);
+    ASSERT_FALSE(r.selection.empty()) << e.effect << ": " << r.verdict;
+    const auto& c = r.selection.front();
+    EXPECT_EQ(c.name, e.effect) << r.verdict;
+    bool found = false;
+    for (const auto& p : c.fit.parameters) {
+      if (p.parameter != e.parameter) continue;
+      found = true;
+      covered += std::abs(p.value - e.value) < 2.0 * p.sigma ? 1 : 0;
+      std::printf("%s draw %u: %s = %.4f +- %.4f (truth %.4f)\n", e.effect, draw, to_string(p.parameter), p.value,
+                  p.sigma, e.value);
+    }
+    EXPECT_TRUE(found);
+    EXPECT_LT(c.held_out_score, 1.3) << r.verdict;
+    EXPECT_LT(c.delta_bic, -10.0);
+  }
+  EXPECT_GE(covered, 3) << e.effect;
+}
+
+INSTANTIATE_TEST_SUITE_P(Literature, HiddenDrawbarExtension,
+                         ::testing::Values(HiddenExtension{"slip-shear-modulus", Parameter::shear_modulus_slip, 2.5},
+                                           HiddenExtension{"rear-angle", Parameter::rear_angle_ratio, 0.3},
+                                           HiddenExtension{"max-stress-angle", Parameter::c2, 0.05}));
+
+namespace {
+
+double held_out_drawbar(const analysis::DiscrepancyReport& r, const analysis::CandidateResult& c) {
+  for (std::size_t i = 0; i < r.quantities.size(); ++i) {
+    if (r.quantities[i] == Quantity::drawbar_pull) return c.held_out_rmse[i];
+  }
+  return NAN;
+}
+
+}  // namespace
+
+// Issue 33 item 4: on the 12 real Ding 2011 points the drawbar-pull misfit
+// (baseline RMSE 5.90 N) is cut by a third or more on held-out points by the
+// chain forward selection builds from the literature's extensions, both
+// leaving one point out and leaving one slip out (every point at that slip,
+// both wheels); before them the chain reached 5.68 N.
+TEST(RealDingData, TheLiteratureExtensionsCutTheHeldOutDrawbarPullByAThird) {
+  const auto points = io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
+  for (auto hold_out : {analysis::HoldOut::points, analysis::HoldOut::slip}) {
+    analysis::DiscrepancyOptions options;
+    options.hold_out = hold_out;
+    const auto r = analysis::study_single_wheel(test::ding_tyii(), points, options);
+    ASSERT_FALSE(r.selection.empty()) << r.verdict;
+    const double before = r.baseline_held_out_rmse[0];
+    ASSERT_EQ(r.quantities[0], Quantity::drawbar_pull);
+    EXPECT_NEAR(before, 5.90, 0.01);
+    const double after = held_out_drawbar(r, r.selection.back());
+    EXPECT_LT(after, 0.7 * before) << r.held_out_method << ": " << r.verdict;
+    EXPECT_TRUE(named_in_chain(r, "slip-shear-modulus")) << r.verdict;
+    EXPECT_EQ(verdict_of(r, Quantity::drawbar_pull).explained_by, "slip-shear-modulus") << r.verdict;
+  }
+}
+
+// Holding out a whole wheel: each fold is fitted afresh, so the grousers'
+// parameter, which only the grousered wheel determines, cannot be carried
+// into its own prediction from the fit on all points. Hidden grousers are
+// found and predicted at the noise level point by point, but not for a
+// grousered wheel the fit never saw.
+TEST(HoldOut, AWheelTheFitNeverSawLendsItNoParameter) {
+  const Hidden h = pick_effect(1, false);
+  ASSERT_EQ(h.effect, "grousers");
+  const auto points = testbed(h, 1, analysis::DiscrepancyOptions{}.sigma);
+  analysis::DiscrepancyOptions by_point, by_wheel;
+  by_wheel.hold_out = analysis::HoldOut::wheel;
+  const auto a = analysis::study_single_wheel(test::ding_tyii(), points, by_point);
+  const auto b = analysis::study_single_wheel(test::ding_tyii(), points, by_wheel);
+  EXPECT_EQ(b.held_out_method, "leave-one-wheel-out");
+  const auto grousers = [](const analysis::DiscrepancyReport& r) {
+    for (const auto& c : r.candidates) {
+      if (c.name == "grousers") return c;
+    }
+    throw std::runtime_error("no grousers candidate");
+  };
+  EXPECT_LT(grousers(a).held_out_score, 1.3);
+  EXPECT_GT(grousers(b).held_out_score, 1.6 * grousers(a).held_out_score);
+  // One wheel only: nothing to hold out, said in words.
+  std::vector<WheelTestPoint> smooth;
+  for (const auto& p : points) {
+    if (p.wheel.grouser_count == 0) smooth.push_back(p);
+  }
+  EXPECT_THROW(analysis::study_single_wheel(test::ding_tyii(), smooth, by_wheel), DataError);
+  EXPECT_THROW(analysis::parse_hold_out("wheels"), DataError);
 }
