@@ -36,6 +36,9 @@ struct Extensions {
   // Rear angle (Wong & Reece 1967; Ishigami et al. 2007): the soil rebounds
   // and the contact reaches theta_r = -kappa theta_0 behind the bottom.
   double rear_angle_ratio = 0.0;
+  // Slip-angle model only: a scale on the Hegedus sidewall term (Ishigami
+  // et al. 2007 Eq. 10), multiplying LateralOptions::sidewall_scale.
+  double sidewall_scale = 1.0;
 };
 
 struct ModelOptions {

@@ -38,7 +38,7 @@ std::vector<Node> nodes(const ModelOptions& o, double theta0, double theta_m, do
 
 // The soil's values after the soil-strength factor, and the wheel's shear radius.
 struct Setup {
-  double r, b, rs, n, c, tan_phi, modulus, k_x, k_y, gamma, rear_angle_ratio;
+  double r, b, rs, n, c, tan_phi, modulus, k_x, k_y, gamma, rear_angle_ratio, sidewall_scale;
 };
 
 Setup setup(const Soil& soil, const Wheel& w, const Extensions& e, double s) {
@@ -55,6 +55,7 @@ Setup setup(const Soil& soil, const Wheel& w, const Extensions& e, double s) {
   u.k_x = soil.shear_modulus * (1.0 + e.shear_modulus_slip * s);               // K(s), Ding et al. 2015 (model.h)
   u.k_y = soil.lateral_shear_modulus > 0.0 ? soil.lateral_shear_modulus : u.k_x;
   u.rear_angle_ratio = e.rear_angle_ratio;
+  u.sidewall_scale = e.sidewall_scale;
   u.gamma = soil.density * kGravity;
   return u;
 }
@@ -113,11 +114,11 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
     const double h = u.r * (ct - cos0);  // depth of the sidewall point, Eq. 10
     i_side += node.weight * sidewall_per_length(u.c, u.tan_phi, u.gamma, h) * (u.r - h * ct);
   }
-  in.normal = u.b * (u.r * i_sigma_cos + u.rs * i_tau_sin);   // Eq. 11 (Eq. 2.20, seed 003)
-  in.drawbar = u.b * (u.rs * i_tau_cos - u.r * i_sigma_sin);  // Eq. 9 (Eq. 2.21)
-  in.torque = u.b * u.rs * u.rs * i_tau;                      // Eq. 12 (Eq. 2.22)
-  in.lateral_shear = u.b * u.rs * i_tau_y;                    // Eq. 10, first term
-  in.sidewall = lat.sidewall_scale * i_side;                  // Eq. 10, second term (one sidewall)
+  in.normal = u.b * (u.r * i_sigma_cos + u.rs * i_tau_sin);      // Eq. 11 (Eq. 2.20, seed 003)
+  in.drawbar = u.b * (u.rs * i_tau_cos - u.r * i_sigma_sin);     // Eq. 9 (Eq. 2.21)
+  in.torque = u.b * u.rs * u.rs * i_tau;                         // Eq. 12 (Eq. 2.22)
+  in.lateral_shear = u.b * u.rs * i_tau_y;                       // Eq. 10, first term
+  in.sidewall = lat.sidewall_scale * u.sidewall_scale * i_side;  // Eq. 10, second term (one sidewall)
   return in;
 }
 
