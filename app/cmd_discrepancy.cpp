@@ -45,6 +45,8 @@ json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
                                 {"t_bias", s.t_bias},
                                 {"slope_vs_load", s.slope_vs_load},
                                 {"t_load", s.t_load},
+                                {"slope_vs_slip_angle_per_rad", s.slope_vs_slip_angle},
+                                {"t_slip_angle", s.t_slip_angle},
                                 {"unit", unit_of(s.quantity)}};
   }
   return j;
@@ -55,6 +57,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
   json j = {
       {"file", file},
       {"soil", soil.name},
+      {"baseline_model", r.baseline_model},
       {"points", r.points},
       {"measurements", r.measurements},
       {"held_out_method", r.held_out_method},
@@ -129,6 +132,15 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                       {"held_out_score_sigma",
                        r.best_pair->held_out_rmse.empty() ? json(nullptr) : nullable(r.best_pair->held_out_score)}};
   }
+  j["final_model"] = r.final_model;
+  j["per_wheel"] = json::array();
+  for (const auto& w : r.per_wheel) {
+    j["per_wheel"].push_back({{"wheel", w.wheel},
+                              {"quantity", to_string(w.quantity)},
+                              {"count", w.count},
+                              {"baseline_rmse", nullable(w.baseline_rmse)},
+                              {"held_out_rmse", nullable(w.model_rmse)}});
+  }
   json base = json::object();
   for (std::size_t i = 0; i < r.quantities.size(); ++i) base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
   j["baseline"]["held_out_rmse"] = base;
@@ -157,8 +169,8 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     return kSuccess;
   }
 
-  std::printf("%s: %zu points, %zu measurements, soil %s, baseline Wong-Reece (%s)\n", o.file.c_str(), r.points,
-              r.measurements, soil.name.c_str(), o.integration.c_str());
+  std::printf("%s: %zu points, %zu measurements, soil %s, baseline %s (%s)\n", o.file.c_str(), r.points, r.measurements,
+              soil.name.c_str(), r.baseline_model.c_str(), o.integration.c_str());
   if (r.unsupported > 0) std::printf("  %zu measurements at loads the model cannot carry (skipped)\n", r.unsupported);
   std::printf("\nbaseline residuals (predicted - measured):\n");
   std::printf("  %-13s %5s %12s %12s %16s %16s\n", "quantity", "n", "RMSE", "bias", "trend/slip (t)", "trend/100N (t)");
@@ -206,6 +218,13 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
                 r.best_pair->held_out_rmse.empty()
                     ? " (not held out: its BIC does not pass)"
                     : (", held-out " + std::to_string(r.best_pair->held_out_score) + " sigma").c_str());
+  }
+  std::printf("\nper wheel (baseline RMSE -> %s, held out):\n", r.final_model.c_str());
+  for (const auto& w : r.per_wheel) {
+    const double k = w.quantity == Quantity::sinkage ? 1000.0 : 1.0;
+    const char* u = w.quantity == Quantity::sinkage ? "mm" : unit_of(w.quantity);
+    std::printf("  %-20s %-14s %4zu %9.3f -> %9.3f %s\n", w.wheel.c_str(), to_string(w.quantity), w.count,
+                w.baseline_rmse * k, w.model_rmse * k, u);
   }
   std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
   return kSuccess;
