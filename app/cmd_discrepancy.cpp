@@ -205,6 +205,20 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
       }
     }
   }
+  std::printf("\nheld-out RMSE per quantity (%s):\n  %-20s", r.held_out_method.c_str(), "model");
+  for (Quantity q : r.quantities) std::printf(" %16s", to_string(q));
+  const auto rmse_row = [&](const std::string& name, const std::vector<double>& rmse) {
+    std::printf("\n  %-20s", name.c_str());
+    for (std::size_t i = 0; i < r.quantities.size() && i < rmse.size(); ++i) {
+      const bool mm = r.quantities[i] == Quantity::sinkage;
+      std::printf(" %12.3f %-3s", rmse[i] * (mm ? 1000.0 : 1.0), mm ? "mm" : unit_of(r.quantities[i]));
+    }
+  };
+  rmse_row("(baseline)", r.baseline_held_out_rmse);
+  for (const auto& c : r.candidates) {
+    if (c.applicable) rmse_row(c.name, c.held_out_rmse);
+  }
+  std::printf("\n");
   if (!r.selection.empty()) {
     std::printf("\nforward selection (each step refits the chain with one more cause):\n");
     std::printf("  %-48s %12s %14s\n", "model", "delta BIC", "held-out sigma");
