@@ -23,6 +23,7 @@ struct SingleWheelDiscrepancyOptions {
   std::string file;
   std::string soil;
   std::string integration = "simpson";
+  std::string hold_out = "points";
   bool json = false;
 };
 
@@ -44,6 +45,8 @@ json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
                                 {"t_bias", s.t_bias},
                                 {"slope_vs_load", s.slope_vs_load},
                                 {"t_load", s.t_load},
+                                {"slope_vs_slip_angle_per_rad", s.slope_vs_slip_angle},
+                                {"t_slip_angle", s.t_slip_angle},
                                 {"unit", unit_of(s.quantity)}};
   }
   return j;
@@ -54,6 +57,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
   json j = {
       {"file", file},
       {"soil", soil.name},
+      {"baseline_model", r.baseline_model},
       {"points", r.points},
       {"measurements", r.measurements},
       {"held_out_method", r.held_out_method},
@@ -111,6 +115,11 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                  {"delta_bic", c.delta_bic},
                  {"held_out_score_sigma", c.held_out_score},
                  {"parameters", json::array()}};
+    json ho = json::object();
+    for (std::size_t i = 0; i < r.quantities.size() && i < c.held_out_rmse.size(); ++i) {
+      ho[to_string(r.quantities[i])] = nullable(c.held_out_rmse[i]);
+    }
+    step["held_out_rmse"] = ho;
     for (const auto& p : c.fit.parameters) {
       step["parameters"].push_back(
           {{"name", to_string(p.parameter)}, {"value", p.value}, {"sigma", nullable(p.sigma)}});
@@ -122,6 +131,15 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                       {"delta_bic", nullable(r.best_pair->delta_bic)},
                       {"held_out_score_sigma",
                        r.best_pair->held_out_rmse.empty() ? json(nullptr) : nullable(r.best_pair->held_out_score)}};
+  }
+  j["final_model"] = r.final_model;
+  j["per_wheel"] = json::array();
+  for (const auto& w : r.per_wheel) {
+    j["per_wheel"].push_back({{"wheel", w.wheel},
+                              {"quantity", to_string(w.quantity)},
+                              {"count", w.count},
+                              {"baseline_rmse", nullable(w.baseline_rmse)},
+                              {"held_out_rmse", nullable(w.model_rmse)}});
   }
   json base = json::object();
   for (std::size_t i = 0; i < r.quantities.size(); ++i) base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
@@ -139,6 +157,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   analysis::DiscrepancyOptions options;
   try {
     options.baseline.integration = parse_integration(o.integration);
+    options.hold_out = analysis::parse_hold_out(o.hold_out);
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
@@ -150,8 +169,8 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     return kSuccess;
   }
 
-  std::printf("%s: %zu points, %zu measurements, soil %s, baseline Wong-Reece (%s)\n", o.file.c_str(), r.points,
-              r.measurements, soil.name.c_str(), o.integration.c_str());
+  std::printf("%s: %zu points, %zu measurements, soil %s, baseline %s (%s)\n", o.file.c_str(), r.points, r.measurements,
+              soil.name.c_str(), r.baseline_model.c_str(), o.integration.c_str());
   if (r.unsupported > 0) std::printf("  %zu measurements at loads the model cannot carry (skipped)\n", r.unsupported);
   std::printf("\nbaseline residuals (predicted - measured):\n");
   std::printf("  %-13s %5s %12s %12s %16s %16s\n", "quantity", "n", "RMSE", "bias", "trend/slip (t)", "trend/100N (t)");
@@ -162,12 +181,12 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
                 s.rmse * k, u, s.bias * k, u, s.slope_vs_slip * k, s.t_slip, s.slope_vs_load * k * 100.0, s.t_load);
   }
   std::printf("\ncandidate causes (each fitted with Ceres; held-out = %s):\n", r.held_out_method.c_str());
-  std::printf("  %-14s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC",
+  std::printf("  %-20s %-24s %22s %10s %14s\n", "candidate", "parameter", "value +- 1 sigma", "delta BIC",
               "held-out sigma");
-  std::printf("  %-14s %-24s %22s %10s %14.3f\n", "(baseline)", "-", "-", "0", r.baseline_score);
+  std::printf("  %-20s %-24s %22s %10s %14.3f\n", "(baseline)", "-", "-", "0", r.baseline_score);
   for (const auto& c : r.candidates) {
     if (!c.applicable) {
-      std::printf("  %-14s not applicable: %s\n", c.name.c_str(), c.not_applicable_because.c_str());
+      std::printf("  %-20s not applicable: %s\n", c.name.c_str(), c.not_applicable_because.c_str());
       continue;
     }
     for (std::size_t i = 0; i < c.fit.parameters.size(); ++i) {
@@ -179,18 +198,32 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
         std::snprintf(value, sizeof value, "%.4g (undetermined)%s", p.value, p.at_bound ? " (bound)" : "");
       }
       if (i == 0) {
-        std::printf("  %-14s %-24s %22s %10s %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
+        std::printf("  %-20s %-24s %22s %10s %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
                     analysis::format_delta_bic(c.delta_bic).c_str(), c.held_out_score);
       } else {
-        std::printf("  %-14s %-24s %22s\n", "", to_string(p.parameter), value);
+        std::printf("  %-20s %-24s %22s\n", "", to_string(p.parameter), value);
       }
     }
   }
+  std::printf("\nheld-out RMSE per quantity (%s):\n  %-20s", r.held_out_method.c_str(), "model");
+  for (Quantity q : r.quantities) std::printf(" %16s", to_string(q));
+  const auto rmse_row = [&](const std::string& name, const std::vector<double>& rmse) {
+    std::printf("\n  %-20s", name.c_str());
+    for (std::size_t i = 0; i < r.quantities.size() && i < rmse.size(); ++i) {
+      const bool mm = r.quantities[i] == Quantity::sinkage;
+      std::printf(" %12.3f %-3s", rmse[i] * (mm ? 1000.0 : 1.0), mm ? "mm" : unit_of(r.quantities[i]));
+    }
+  };
+  rmse_row("(baseline)", r.baseline_held_out_rmse);
+  for (const auto& c : r.candidates) {
+    if (c.applicable) rmse_row(c.name, c.held_out_rmse);
+  }
+  std::printf("\n");
   if (!r.selection.empty()) {
     std::printf("\nforward selection (each step refits the chain with one more cause):\n");
-    std::printf("  %-36s %12s %14s\n", "model", "delta BIC", "held-out sigma");
+    std::printf("  %-48s %12s %14s\n", "model", "delta BIC", "held-out sigma");
     for (const auto& c : r.selection) {
-      std::printf("  %-36s %12s %14.3f\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),
+      std::printf("  %-48s %12s %14.3f\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),
                   c.held_out_score);
     }
   } else if (r.best_pair && r.best_pair->applicable) {
@@ -199,6 +232,13 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
                 r.best_pair->held_out_rmse.empty()
                     ? " (not held out: its BIC does not pass)"
                     : (", held-out " + std::to_string(r.best_pair->held_out_score) + " sigma").c_str());
+  }
+  std::printf("\nper wheel (baseline RMSE -> %s, held out):\n", r.final_model.c_str());
+  for (const auto& w : r.per_wheel) {
+    const double k = w.quantity == Quantity::sinkage ? 1000.0 : 1.0;
+    const char* u = w.quantity == Quantity::sinkage ? "mm" : unit_of(w.quantity);
+    std::printf("  %-20s %-14s %4zu %9.3f -> %9.3f %s\n", w.wheel.c_str(), to_string(w.quantity), w.count,
+                w.baseline_rmse * k, w.model_rmse * k, u);
   }
   std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
   return kSuccess;
@@ -214,6 +254,9 @@ Commands make_single_wheel_commands() {
             ->required();
         cmd.add_option("--soil", o.soil, "Soil NAME (resources/soils/NAME.json) or FILE")->required();
         cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
+        cmd.add_option("--hold-out", o.hold_out,
+                       "points | wheel | slip: what a held-out fold is (a point; every point of one wheel or one slip)")
+            ->capture_default_str();
         cmd.add_flag("--json", o.json, "Print JSON");
       },
       run_discrepancy_single_wheel));

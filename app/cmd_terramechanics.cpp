@@ -6,6 +6,7 @@
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -40,6 +41,8 @@ struct TerramechanicsOptions {
   double grouser_effectiveness = 1.0;
   double bulldozing_scale = 1.0;
   double soil_strength = 1.0;
+  double shear_modulus_slip = 2.0;
+  double rear_angle_ratio = 0.2;
   std::string format = "csv";
 };
 
@@ -81,8 +84,13 @@ ModelOptions model_options(const TerramechanicsOptions& o) try {
     } else if (part == "bulldozing") {
       m.extensions.bulldozing = true;
       m.extensions.bulldozing_scale = o.bulldozing_scale;
+    } else if (part == "slip-shear-modulus") {
+      m.extensions.shear_modulus_slip = o.shear_modulus_slip;
+    } else if (part == "rear-angle") {
+      m.extensions.rear_angle_ratio = o.rear_angle_ratio;
     } else {
-      throw DataError("unknown model extension '" + part + "' (slip-sinkage, grousers, bulldozing)");
+      throw DataError("unknown model extension '" + part +
+                      "' (slip-sinkage, grousers, bulldozing, slip-shear-modulus, rear-angle)");
     }
   }
   m.extensions.soil_strength = o.soil_strength;
@@ -272,34 +280,105 @@ int run_terramechanics(const TerramechanicsOptions& o) {
   return kSuccess;
 }
 
-int run_terramechanics_surface(const SurfaceOptions& o) {
-  const Soil soil = io::find_soil(o.model.soil, resource_subfolders("soils"));
-  const Wheel wheel = wheel_of(o.model);
-  const ModelOptions m = model_options(o.model);
-  if (o.grid < 2 || !(o.load_max > o.load_min) || !(o.slip_max > o.slip_min)) {
-    throw UsageError("the grid needs at least 2 points per axis and non-empty ranges");
-  }
-  std::vector<SurfaceSample> dp, tau;
+// The model on the surface grid at one slip angle (none: straight driving,
+// evaluate()), and the Eq. 2.28 surfaces of DP, tau_R and, at a slip angle,
+// F_y fitted to it: F_y(W, s, beta) as one surface per beta.
+struct GridSurfaces {
+  SurfaceFit drawbar, torque, lateral;
   std::size_t unsupported = 0;
+};
+
+GridSurfaces grid_surfaces(const SurfaceOptions& o, const Soil& soil, const Wheel& wheel, const ModelOptions& m,
+                           std::optional<double> slip_angle_deg) {
+  std::vector<SurfaceSample> dp, tau, fy;
+  GridSurfaces out;
   const bool show_progress = isatty(2);
+  const LateralOptions lateral = slip_angle_deg ? lateral_options(o.model) : LateralOptions{};
   for (int i = 0; i < o.grid; ++i) {
     const double load = o.load_min + (o.load_max - o.load_min) * i / (o.grid - 1);
     for (int k = 0; k < o.grid; ++k) {
       const double slip = o.slip_min + (o.slip_max - o.slip_min) * k / (o.grid - 1);
-      const Traction t = evaluate(soil, wheel, load, slip, m);
+      Traction t;
+      double lateral_force = 0.0;
+      if (slip_angle_deg) {
+        const SlipAngleTraction st =
+            evaluate_slip_angle(soil, wheel, load, slip, *slip_angle_deg * M_PI / 180.0, m, lateral);
+        t = st;
+        lateral_force = st.lateral_force;
+      } else {
+        t = evaluate(soil, wheel, load, slip, m);
+      }
       if (!t.ok()) {
-        ++unsupported;
+        ++out.unsupported;
         continue;
       }
       dp.push_back({load, slip, t.drawbar_pull});
       tau.push_back({load, slip, t.resistive_torque});
+      fy.push_back({load, slip, lateral_force});
     }
     if (show_progress) std::fprintf(stderr, "\rgrid %3d %%", (i + 1) * 100 / o.grid);
   }
   if (show_progress) std::fprintf(stderr, "\r          \r");
   if (dp.size() < 30) throw DataError("fewer than 30 supported grid points: the soil cannot carry these loads");
-  const SurfaceFit fdp = fit_with(dp, o.order);
-  const SurfaceFit ftau = fit_with(tau, o.order);
+  out.drawbar = fit_with(dp, o.order);
+  out.torque = fit_with(tau, o.order);
+  if (slip_angle_deg) out.lateral = fit_with(fy, o.order);
+  return out;
+}
+
+// `terramechanics surface --slip-angle ...`: DP, tau_R and F_y surfaces over
+// (W, s) at each slip angle (the slip-angle model, Ishigami 2007).
+int run_slip_angle_surfaces(const SurfaceOptions& o, const Soil& soil, const Wheel& wheel, const ModelOptions& m) {
+  json angles = json::array();
+  if (!o.json) {
+    std::printf("soil %s, wheel r = %g m, b = %g m, %s integration, slip-angle model (%s shear)\n", soil.name.c_str(),
+                wheel.radius, wheel.width, o.model.integration.c_str(), o.model.lateral_shear.c_str());
+  }
+  for (double deg : o.model.slip_angles_deg) {
+    const GridSurfaces g = grid_surfaces(o, soil, wheel, m, deg);
+    if (o.json) {
+      angles.push_back({{"slip_angle_deg", deg},
+                        {"unsupported_points", g.unsupported},
+                        {"drawbar_pull", surface_json(g.drawbar)},
+                        {"resistive_torque", surface_json(g.torque)},
+                        {"lateral_force", surface_json(g.lateral)}});
+      continue;
+    }
+    std::printf("\nslip angle %g deg: grid %d x %d over W = %g..%g N, s = %g..%g; %zu points unsupported\n", deg,
+                o.grid, o.grid, o.load_min, o.load_max, o.slip_min, o.slip_max, g.unsupported);
+    print_surface("drawbar pull DP(W, s)", "N", g.drawbar);
+    print_surface("resistive torque tau_R(W, s)", "N m", g.torque);
+    print_surface("lateral force F_y(W, s)", "N", g.lateral);
+  }
+  if (o.json) {
+    std::cout << json{{"soil", soil.name},
+                      {"grid", o.grid},
+                      {"load_range_N", {o.load_min, o.load_max}},
+                      {"slip_range", {o.slip_min, o.slip_max}},
+                      {"lateral_shear", o.model.lateral_shear},
+                      {"slip_angles", angles}}
+                     .dump(2)
+              << "\n";
+  }
+  return kSuccess;
+}
+
+int run_terramechanics_surface(const SurfaceOptions& o) {
+  const Soil soil = io::find_soil(o.model.soil, resource_subfolders("soils"));
+  const Wheel wheel = wheel_of(o.model);
+  ModelOptions m = model_options(o.model);
+  if (o.grid < 2 || !(o.load_max > o.load_min) || !(o.slip_max > o.slip_min)) {
+    throw UsageError("the grid needs at least 2 points per axis and non-empty ranges");
+  }
+  if (!o.model.slip_angles_deg.empty()) {
+    if (m.kind == ModelKind::bekker) throw UsageError("--slip-angle needs --model wong or ishigami (not bekker)");
+    m.kind = ModelKind::ishigami;
+    return run_slip_angle_surfaces(o, soil, wheel, m);
+  }
+  const GridSurfaces g = grid_surfaces(o, soil, wheel, m, std::nullopt);
+  const SurfaceFit& fdp = g.drawbar;
+  const SurfaceFit& ftau = g.torque;
+  const std::size_t unsupported = g.unsupported;
   if (o.json) {
     std::cout << json{{"soil", soil.name},
                       {"grid", o.grid},
@@ -333,7 +412,7 @@ void check_fit_points(const std::string& file, const io::NumericTable& t) {
     const std::string row = "row " + std::to_string(i + 1);
     if (!(load[i] >= 0 && load[i] <= 1e6)) throw InputError(file, row + ": load_N must be 0..1e6 N");
     if (!(std::abs(slip[i]) <= 1)) throw InputError(file, row + ": slip must be in [-1, 1]");
-    for (const char* column : {"drawbar_pull_N", "resistive_torque_Nm", "torque_Nm"}) {
+    for (const char* column : {"drawbar_pull_N", "resistive_torque_Nm", "torque_Nm", "lateral_force_N"}) {
       const auto* v = t.find(column);
       if (v != nullptr && std::isfinite((*v)[i]) && !(std::abs((*v)[i]) <= 1e6)) {
         throw InputError(file, row + ": " + column + " must be within +-1e6");
@@ -349,21 +428,22 @@ void check_fit_points(const std::string& file, const io::NumericTable& t) {
   }
 }
 
-int run_terramechanics_fit(const FitOptions& o) {
-  const io::NumericTable t = io::read_numeric_table(o.file, {"load_N", "slip"});
-  check_fit_points(o.file, t);
+// Surfaces of each measured column over the given rows (all, or one slip
+// angle's), the JSON of each, and the text when not --json. False when no
+// column has a value there.
+bool fit_columns(const FitOptions& o, const io::NumericTable& t, const std::vector<std::size_t>& rows, json& out) {
   const auto& load = *t.find("load_N");
   const auto& slip = *t.find("slip");
-  json out = {{"file", o.file}};
   bool any = false;
   for (const auto& [column, title, unit] :
        {std::tuple<std::string, std::string, const char*>{"drawbar_pull_N", "drawbar pull DP(W, s)", "N"},
         {"resistive_torque_Nm", "resistive torque tau_R(W, s)", "N m"},
-        {"torque_Nm", "torque tau(W, s)", "N m"}}) {
+        {"torque_Nm", "torque tau(W, s)", "N m"},
+        {"lateral_force_N", "lateral force F_y(W, s)", "N"}}) {
     const auto* values = t.find(column);
     if (values == nullptr) continue;
     std::vector<SurfaceSample> samples;
-    for (std::size_t i = 0; i < values->size(); ++i) {
+    for (std::size_t i : rows) {
       if (std::isfinite((*values)[i]) && std::isfinite(load[i]) && std::isfinite(slip[i])) {
         samples.push_back({load[i], slip[i], (*values)[i]});
       }
@@ -407,7 +487,44 @@ int run_terramechanics_fit(const FitOptions& o) {
       }
     }
   }
-  if (!any) throw InputError(o.file, "no drawbar_pull_N, resistive_torque_Nm or torque_Nm values to fit");
+  return any;
+}
+
+// With a slip_angle_deg column: the surfaces of each slip angle apart
+// (F_y(W, s, beta) as one surface per beta, as `surface --slip-angle`).
+int run_terramechanics_fit(const FitOptions& o) {
+  const io::NumericTable t = io::read_numeric_table(o.file, {"load_N", "slip"});
+  check_fit_points(o.file, t);
+  json out = {{"file", o.file}};
+  const auto* angle = t.find("slip_angle_deg");
+  const std::size_t n = t.find("load_N")->size();
+  bool any = false;
+  if (angle == nullptr) {
+    std::vector<std::size_t> rows(n);
+    for (std::size_t i = 0; i < n; ++i) rows[i] = i;
+    any = fit_columns(o, t, rows, out);
+  } else {
+    std::set<double> angles;
+    for (double a : *angle) {
+      if (std::isfinite(a)) angles.insert(a);
+    }
+    out["slip_angles"] = json::array();
+    for (double a : angles) {
+      std::vector<std::size_t> rows;
+      for (std::size_t i = 0; i < n; ++i) {
+        if ((*angle)[i] == a) rows.push_back(i);
+      }
+      if (!o.json) std::printf("slip angle %g deg (%zu rows):\n", a, rows.size());
+      json one = {{"slip_angle_deg", a}};
+      if (fit_columns(o, t, rows, one)) {
+        any = true;
+        out["slip_angles"].push_back(one);
+      }
+    }
+  }
+  if (!any) {
+    throw InputError(o.file, "no drawbar_pull_N, resistive_torque_Nm, torque_Nm or lateral_force_N values to fit");
+  }
   if (o.json) std::cout << out.dump(2) << "\n";
   return kSuccess;
 }
@@ -437,19 +554,23 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
         ->delimiter(',')
         ->check(finite_in(-1.0, 1.0));
     cmd.add_option("--format", o.format, "csv or json")->capture_default_str();
-    cmd.add_option("--slip-angle", o.slip_angles_deg,
-                   "Slip angles beta, deg in [-90, 90] (comma separated; adds the lateral force, Ishigami 2007)")
-        ->delimiter(',')
-        ->check(finite_in(-90.0, 90.0));
-    cmd.add_option("--lateral-shear", o.lateral_shear,
-                   "shared (one Mohr-Coulomb strength for tau_x and tau_y) | independent (Ishigami 2007 as printed)")
-        ->capture_default_str();
-    cmd.add_option("--sidewall-scale", o.sidewall_scale, "scale of the sidewall bulldozing term (0: off)")
-        ->capture_default_str()
-        ->check(finite_in(0.0, 100.0));
   }
-  cmd.add_option("--model", o.model,
-                 "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing (e.g. wong+slip-sinkage)")
+  cmd.add_option("--slip-angle", o.slip_angles_deg,
+                 need_lists
+                     ? "Slip angles beta, deg in [-90, 90] (comma separated; adds the lateral force, Ishigami 2007)"
+                     : "Slip angles beta, deg in [-90, 90]: DP, tau_R and F_y surfaces at each (Ishigami 2007)")
+      ->delimiter(',')
+      ->check(finite_in(-90.0, 90.0));
+  cmd.add_option("--lateral-shear", o.lateral_shear,
+                 "shared (one Mohr-Coulomb strength for tau_x and tau_y) | independent (Ishigami 2007 as printed)")
+      ->capture_default_str();
+  cmd.add_option("--sidewall-scale", o.sidewall_scale, "scale of the sidewall bulldozing term (0: off)")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 100.0));
+  cmd.add_option(
+         "--model", o.model,
+         "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing, +slip-shear-modulus, +rear-angle "
+         "(e.g. wong+slip-sinkage)")
       ->capture_default_str();
   cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
   cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")
@@ -467,6 +588,12 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--soil-strength", o.soil_strength, "factor on c, tan(phi), kc, kphi")
       ->capture_default_str()
       ->check(finite_in(0.01, 100.0));
+  cmd.add_option("--shear-modulus-slip", o.shear_modulus_slip, "K = K0 (1 + k_s s) (with +slip-shear-modulus)")
+      ->capture_default_str()
+      ->check(finite_in(-0.9, 20.0));
+  cmd.add_option("--rear-angle-ratio", o.rear_angle_ratio, "theta_r = -kappa theta_0 (with +rear-angle)")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 1.0));
 }
 
 }  // namespace
@@ -492,7 +619,8 @@ Commands make_terramechanics_commands() {
       run_terramechanics_surface));
   commands.push_back(make_command<FitOptions>(
       "terramechanics fit",
-      "Fit traction-surface polynomials to a CSV of points (load_N, slip, drawbar_pull_N / resistive_torque_Nm)",
+      "Fit traction-surface polynomials to a CSV of points (load_N, slip, drawbar_pull_N / resistive_torque_Nm / "
+      "lateral_force_N; per slip_angle_deg when given)",
       [](CLI::App& cmd, FitOptions& o) {
         cmd.add_option("FILE", o.file, "CSV of points")->required();
         cmd.add_option("--order", o.order, "Polynomial order 1..6, or auto (cross-validated)")->capture_default_str();

@@ -23,6 +23,8 @@ class SingleWheelCandidate {
   virtual std::vector<std::pair<terramechanics::Parameter, double>> parameters() const = 0;
   // Applies only when some wheel in the data has grousers.
   virtual bool needs_grousers() const { return false; }
+  // Applies only when the data has points at a slip angle (the slip-angle model).
+  virtual bool needs_lateral_force() const { return false; }
   // Switches on the model extension it stands for.
   virtual void configure(terramechanics::Extensions&) const {}
 };

@@ -15,6 +15,8 @@ using namespace roverlab::terramechanics;
 
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 struct Line {
   double slope = 0.0, t = 0.0;
 };
@@ -82,6 +84,8 @@ std::string words(Quantity q) {
       return "torque";
     case Quantity::sinkage:
       return "sinkage";
+    case Quantity::lateral_force:
+      return "lateral force";
   }
   return "?";
 }
@@ -126,8 +130,7 @@ MeasurementSigma profiled_sigma(const std::vector<PointResidual>& residuals, con
       ++m;
     }
     if (m == 0) continue;
-    const double s = std::max(std::sqrt(sq / static_cast<double>(m)), stated.of(q));
-    (q == Quantity::drawbar_pull ? out.drawbar_pull : q == Quantity::torque ? out.torque : out.sinkage) = s;
+    out.at(q) = std::max(std::sqrt(sq / static_cast<double>(m)), stated.of(q));
   }
   return out;
 }
@@ -145,12 +148,13 @@ std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidu
                                                    const std::vector<WheelTestPoint>& points) {
   std::vector<QuantityResiduals> out;
   for (Quantity q : kQuantities) {
-    std::vector<double> e, slip, load;
+    std::vector<double> e, slip, load, beta;
     for (const auto& r : residuals) {
       if (r.quantity != q || !std::isfinite(r.predicted)) continue;
       e.push_back(r.predicted - r.measured);
       slip.push_back(points[r.point].slip);
       load.push_back(points[r.point].load);
+      beta.push_back(points[r.point].slip_angle);
     }
     if (e.empty()) continue;
     QuantityResiduals s;
@@ -170,6 +174,9 @@ std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidu
     s.t_slip = ls.t;
     s.slope_vs_load = ll.slope;
     s.t_load = ll.t;
+    const Line lb = regress(beta, e);
+    s.slope_vs_slip_angle = lb.slope;
+    s.t_slip_angle = lb.t;
     out.push_back(s);
   }
   return out;
@@ -192,12 +199,15 @@ class SingleWheelStudy {
                           const CandidateResult* start_from = nullptr, bool with_held_out = true) const;
   void select_forward();
   void check_points_can_tell_candidates_apart() const;
-  std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit) const;
+  std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit,
+                                      const std::vector<const SingleWheelCandidate*>& set) const;
   void choose_best();
   void write_what_is_wrong();
   void find_partial();
   void write_verdict();
   void judge_quantities();
+  void score_per_wheel();
+  std::string wheel_name(const WheelTestPoint& p) const;
   void write_no_significant_verdict();
   void write_chain_verdict();
   std::string cause_sentence(const std::string& lead, const CandidateResult& c, const std::string& end) const;
@@ -206,6 +216,7 @@ class SingleWheelStudy {
     const std::size_t n = points_.size();
     return n <= o_.max_leave_one_out_points ? n : n <= o_.large_points ? o_.folds : std::min(o_.folds, o_.large_folds);
   }
+  void assign_folds();
 
   const Soil& soil_;
   const std::vector<WheelTestPoint>& points_;
@@ -214,15 +225,16 @@ class SingleWheelStudy {
   bool any_grousers_ = false;
   std::vector<std::unique_ptr<SingleWheelCandidate>> candidates_;
   DiscrepancyReport report_;
+  std::vector<std::size_t> fold_of_;  // held-out fold of each point
+  std::size_t folds_ = 0;
 };
 
 DiscrepancyReport SingleWheelStudy::run() {
   if (points_.empty()) throw DataError("no single-wheel points");
   report_.points = points_.size();
+  report_.baseline_model = o_.baseline.kind == ModelKind::ishigami ? "Ishigami (slip angle)" : "Wong-Reece";
   check_points_can_tell_candidates_apart();
-  report_.held_out_method = !o_.leave_one_out                               ? "in-sample"
-                            : points_.size() <= o_.max_leave_one_out_points ? "leave-one-out"
-                                                                            : std::to_string(fold_count()) + "-fold";
+  assign_folds();
   find_quantities();
   score_baseline();
   any_grousers_ = std::any_of(points_.begin(), points_.end(),
@@ -237,6 +249,7 @@ DiscrepancyReport SingleWheelStudy::run() {
   find_partial();
   write_verdict();
   judge_quantities();
+  score_per_wheel();
   return std::move(report_);
 }
 
@@ -250,20 +263,93 @@ void SingleWheelStudy::check_points_can_tell_candidates_apart() const {
                     " points, to fit a candidate and hold points out (the file has " + std::to_string(points_.size()) +
                     ")");
   }
-  // The study's baseline and candidates are the straight-driving model: a
-  // point at a slip angle would be predicted as if beta were 0. Refused until
-  // the study predicts the lateral force (issue 33, item 3).
-  const auto steered = std::count_if(points_.begin(), points_.end(), [](const auto& p) { return p.slip_angle != 0.0; });
-  if (steered > 0) {
-    throw DataError(std::to_string(steered) +
-                    " points at a nonzero slip_angle_deg: the single-wheel study models straight driving only "
-                    "(the slip-angle model is `roverlab terramechanics --slip-angle`)");
-  }
+  // Points at a slip angle (or with a lateral force) are predicted by the
+  // slip-angle model (study_single_wheel sets it): two slip angles 1 deg
+  // apart tell the candidates apart as well as two slips do.
   const auto [lo, hi] =
       std::minmax_element(points_.begin(), points_.end(), [](const auto& a, const auto& b) { return a.slip < b.slip; });
-  if (hi->slip - lo->slip < 0.01) {
+  const auto [blo, bhi] = std::minmax_element(points_.begin(), points_.end(),
+                                              [](const auto& a, const auto& b) { return a.slip_angle < b.slip_angle; });
+  if (hi->slip - lo->slip < 0.01 && bhi->slip_angle - blo->slip_angle < kPi / 180.0) {
     throw DataError("every point is at slip " + fmt("%.3g", lo->slip) +
-                    "; a discrepancy study needs points at two slips at least, 0.01 apart");
+                    "; a discrepancy study needs points at two slips at least, 0.01 apart (or at two slip angles)");
+  }
+}
+
+// The held-out folds: point j in fold j mod folds, or one fold per wheel
+// label or per slip value (grouped: a wheel or a slip the fit never saw).
+void SingleWheelStudy::assign_folds() {
+  const std::size_t n = points_.size();
+  fold_of_.assign(n, 0);
+  if (!o_.leave_one_out) {
+    report_.held_out_method = "in-sample";
+    return;
+  }
+  if (o_.hold_out == HoldOut::points) {
+    folds_ = fold_count();
+    for (std::size_t j = 0; j < n; ++j) fold_of_[j] = j % folds_;
+    report_.held_out_method = n <= o_.max_leave_one_out_points ? "leave-one-out" : std::to_string(folds_) + "-fold";
+    return;
+  }
+  const bool by_wheel = o_.hold_out == HoldOut::wheel;
+  std::vector<std::string> keys;
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto& w = points_[j].wheel;  // a wheel: its label and its geometry
+    const std::string key = by_wheel ? points_[j].wheel_label + fmt("|%.6g", w.radius) + fmt("|%.6g", w.width) +
+                                           fmt("|%.6g", w.grouser_count * w.grouser_height)
+                                     : fmt("%.6g", points_[j].slip);
+    auto at = std::find(keys.begin(), keys.end(), key);
+    if (at == keys.end()) at = keys.insert(keys.end(), key);
+    fold_of_[j] = static_cast<std::size_t>(at - keys.begin());
+  }
+  folds_ = keys.size();
+  if (folds_ < 2) {
+    throw DataError(std::string("holding out by ") + (by_wheel ? "wheel needs two wheels" : "slip needs two slips") +
+                    " at least (the points have one)");
+  }
+  report_.held_out_method = by_wheel ? "leave-one-wheel-out" : "leave-one-slip-out";
+}
+
+std::string SingleWheelStudy::wheel_name(const WheelTestPoint& p) const {
+  if (!p.wheel_label.empty()) return p.wheel_label;
+  return "r " + fmt("%.4g", p.wheel.radius) + " m, b " + fmt("%.4g", p.wheel.width) + " m" +
+         (p.wheel.grouser_count > 0 ? ", " + std::to_string(p.wheel.grouser_count) + " grousers" : std::string());
+}
+
+// Per wheel and quantity: the baseline's RMSE and the final model's held-out
+// RMSE (the figures a wheel's own reference model is compared with).
+void SingleWheelStudy::score_per_wheel() {
+  IdentificationOptions base;
+  base.model = o_.baseline;
+  base.sigma = o_.sigma;
+  const std::vector<PointResidual> baseline = identify_soil(soil_, points_, base).residuals;
+  const bool chain = !report_.selection.empty() && !report_.selection.back().held_out.empty();
+  report_.final_model = chain ? report_.selection.back().name : "baseline";
+  const std::vector<PointResidual>& model = chain ? report_.selection.back().held_out : baseline;
+  std::vector<std::string> wheels;
+  for (const auto& p : points_) {
+    if (std::find(wheels.begin(), wheels.end(), wheel_name(p)) == wheels.end()) wheels.push_back(wheel_name(p));
+  }
+  const auto rmse = [&](const std::vector<PointResidual>& rs, const std::string& wheel, Quantity q, std::size_t& n) {
+    double sq = 0.0;
+    n = 0;
+    for (const auto& r : rs) {
+      if (r.quantity != q || !std::isfinite(r.predicted) || wheel_name(points_[r.point]) != wheel) continue;
+      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
+      ++n;
+    }
+    return n > 0 ? std::sqrt(sq / static_cast<double>(n)) : NAN;
+  };
+  for (const auto& wheel : wheels) {
+    for (Quantity q : report_.quantities) {
+      WheelHeldOut w;
+      w.wheel = wheel;
+      w.quantity = q;
+      w.baseline_rmse = rmse(baseline, wheel, q, w.count);
+      std::size_t m = 0;
+      w.model_rmse = rmse(model, wheel, q, m);
+      if (w.count > 0) report_.per_wheel.push_back(w);
+    }
   }
 }
 
@@ -273,7 +359,7 @@ void SingleWheelStudy::find_quantities() {
       report_.quantities.push_back(q);
     }
   }
-  if (report_.quantities.empty()) throw DataError("no measured drawbar pull, torque or sinkage");
+  if (report_.quantities.empty()) throw DataError("no measured drawbar pull, torque, sinkage or lateral force");
 }
 
 void SingleWheelStudy::score_baseline() {
@@ -302,6 +388,11 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
     if (candidate->needs_grousers() && !any_grousers_) {
       c.applicable = false;
       c.not_applicable_because = "no wheel in the data has grousers";
+      return c;
+    }
+    if (candidate->needs_lateral_force() && o_.baseline.kind != ModelKind::ishigami) {
+      c.applicable = false;
+      c.not_applicable_because = "no point has a slip angle or a measured lateral force";
       return c;
     }
   }
@@ -344,10 +435,11 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
   c.delta_bic = c.bic - report_.baseline_bic;
   if (!with_held_out) return c;  // held_out_rmse empty: no held-out test passes
-  const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit) : c.fit.residuals;
+  const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit, set) : c.fit.residuals;
   const auto held_stats = residual_statistics(predicted, points_);
   for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
   c.held_out_score = score_of(predicted, o_.sigma);
+  c.held_out = predicted;
   return c;
 }
 
@@ -446,10 +538,10 @@ bool SingleWheelStudy::held_out_gain(const std::vector<double>& rmse, const std:
 
 // Held out: refit without each fold of points (one point each up to
 // max_leave_one_out_points), predict the fold.
-std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOptions& io,
-                                                      const IdentificationResult& fit) const {
+std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOptions& io, const IdentificationResult& fit,
+                                                      const std::vector<const SingleWheelCandidate*>& set) const {
   const std::size_t n = points_.size();
-  const std::size_t folds = fold_count();
+  const std::size_t folds = folds_;
   std::vector<PointResidual> out;
   IdentificationOptions refit = io;
   refit.model.extensions = fit.extensions;
@@ -458,19 +550,36 @@ std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOption
   // ... or a long way along a valley the data hardly determine, where further
   // steps barely change the held-out predictions: at most 5 steps.
   refit.max_iterations = 5;
+  Soil from = fit.soil;
+  if (o_.hold_out != HoldOut::points) {
+    // A wheel or a slip the fit never saw: each fold is fitted afresh from the
+    // nominal soil and the candidates' start values, so that a parameter the
+    // other folds cannot determine (grousers without a grousered wheel) does
+    // not keep the value the held-out fold gave it.
+    from = soil_;
+    refit.model.extensions = o_.baseline.extensions;
+    for (const auto* candidate : set) {
+      candidate->configure(refit.model.extensions);
+      for (const auto& [parameter, value] : candidate->parameters()) {
+        if (value >= 0.0) set_parameter(from, refit.model.extensions, parameter, value);
+      }
+    }
+    refit.tolerance = io.tolerance;
+    refit.max_iterations = 100;
+  }
   for (std::size_t fold = 0; fold < folds; ++fold) {
     std::vector<WheelTestPoint> train, test;
     std::vector<std::size_t> test_index;
     train.reserve(n);
     for (std::size_t j = 0; j < n; ++j) {
-      if (j % folds == fold) {
+      if (fold_of_[j] == fold) {
         test.push_back(points_[j]);
         test_index.push_back(j);
       } else {
         train.push_back(points_[j]);
       }
     }
-    const IdentificationResult f = identify_soil(fit.soil, train, refit);
+    const IdentificationResult f = identify_soil(from, train, refit);
     IdentificationOptions predict_only;
     predict_only.model = refit.model;
     predict_only.model.extensions = f.extensions;
@@ -512,12 +621,12 @@ void SingleWheelStudy::write_what_is_wrong() {
     }
   }
   if (report_.baseline_score <= 1.5) {
-    report_.what_is_wrong =
-        "The baseline Wong-Reece model fits every measured quantity within about its measurement error (RMS " +
-        fmt("%.2f", report_.baseline_score) + " sigma).";
+    report_.what_is_wrong = "The baseline " + report_.baseline_model +
+                            " model fits every measured quantity within about its measurement error (RMS " +
+                            fmt("%.2f", report_.baseline_score) + " sigma).";
     return;
   }
-  std::string s = "The baseline Wong-Reece model " +
+  std::string s = "The baseline " + report_.baseline_model + " model " +
                   std::string(worst->bias > 0 ? "over-predicts " : "under-predicts ") + words(worst->quantity) +
                   " by " + show(worst->quantity, std::abs(worst->bias)) + " on average (RMSE " +
                   show(worst->quantity, worst->rmse) + ")";
@@ -525,6 +634,9 @@ void SingleWheelStudy::write_what_is_wrong() {
     s += ", and the error " + std::string(worst->slope_vs_slip * worst->bias > 0 ? "grows" : "changes") +
          " with slip (" + (worst->slope_vs_slip > 0 ? "+" : "-") +
          show(worst->quantity, std::abs(worst->slope_vs_slip)) + " per unit slip)";
+  } else if (std::abs(worst->t_slip_angle) >= 3.0) {
+    s += ", and the error changes with slip angle (" + std::string(worst->slope_vs_slip_angle > 0 ? "+" : "-") +
+         show(worst->quantity, std::abs(worst->slope_vs_slip_angle) * kPi / 18.0) + " per 10 deg)";
   } else if (std::abs(worst->t_load) >= 3.0) {
     s += ", and the error changes with load (" + std::string(worst->slope_vs_load > 0 ? "+" : "-") +
          show(worst->quantity, std::abs(worst->slope_vs_load) * 100.0) + " per 100 N)";
@@ -614,7 +726,7 @@ void SingleWheelStudy::judge_quantities() {
     for (const auto& b : report_.baseline) {
       if (b.quantity != q) continue;
       const std::pair<const char*, double> ts[] = {
-          {"bias", b.t_bias}, {"slip trend", b.t_slip}, {"load trend", b.t_load}};
+          {"bias", b.t_bias}, {"slip trend", b.t_slip}, {"load trend", b.t_load}, {"slip-angle trend", b.t_slip_angle}};
       for (const auto& [name, t] : ts) {
         if (std::abs(t) < 3.0) continue;
         v.significant = true;
@@ -670,7 +782,8 @@ void SingleWheelStudy::judge_quantities() {
 void SingleWheelStudy::write_no_significant_verdict() {
   const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
   const bool any = std::any_of(report_.baseline.begin(), report_.baseline.end(), [](const QuantityResiduals& b) {
-    return std::abs(b.t_bias) >= 3.0 || std::abs(b.t_slip) >= 3.0 || std::abs(b.t_load) >= 3.0;
+    return std::abs(b.t_bias) >= 3.0 || std::abs(b.t_slip) >= 3.0 || std::abs(b.t_load) >= 3.0 ||
+           std::abs(b.t_slip_angle) >= 3.0;
   });
   report_.verdict = std::string(any ? "No cause is decisive" : "No significant discrepancy") +
                     ": the best candidate, " + c.name + ", changes BIC by " + format_delta_bic(c.delta_bic) +
@@ -696,9 +809,23 @@ void SingleWheelStudy::write_no_significant_verdict() {
 
 }  // namespace
 
+HoldOut parse_hold_out(const std::string& text) {
+  if (text == "points") return HoldOut::points;
+  if (text == "wheel") return HoldOut::wheel;
+  if (text == "slip") return HoldOut::slip;
+  throw DataError("unknown hold-out '" + text + "' (points, wheel, slip)");
+}
+
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
                                      const DiscrepancyOptions& options) {
-  return SingleWheelStudy(soil, points, options).run();
+  // A wheel at a slip angle, or a measured lateral force: the baseline is the
+  // slip-angle model (Ishigami et al. 2007; Wong-Reece at beta = 0).
+  DiscrepancyOptions o = options;
+  const bool lateral = std::any_of(points.begin(), points.end(), [](const WheelTestPoint& p) {
+    return p.slip_angle != 0.0 || p.lateral_force.has_value();
+  });
+  if (lateral && o.baseline.kind == ModelKind::wong_reece) o.baseline.kind = ModelKind::ishigami;
+  return SingleWheelStudy(soil, points, o).run();
 }
 
 }  // namespace roverlab::analysis

@@ -22,7 +22,9 @@ struct QuantityResiduals {
   double t_slip = 0.0;         // t statistic of that slope
   double slope_vs_load = 0.0;  // per N
   double t_load = 0.0;
-  double t_bias = 0.0;  // bias over its standard error
+  double t_bias = 0.0;               // bias over its standard error
+  double slope_vs_slip_angle = 0.0;  // per rad of slip angle (0 when it does not vary)
+  double t_slip_angle = 0.0;
 };
 
 // Per measured quantity (issue 29): whether the baseline's error in it is
@@ -48,11 +50,27 @@ struct CandidateResult {
   std::string not_applicable_because;
   terramechanics::IdentificationResult fit;  // on all points
   double bic = 0.0;
-  double delta_bic = 0.0;                    // against the baseline; negative is better
-  std::vector<QuantityResiduals> in_sample;  // residuals of the fit on all points
-  std::vector<double> held_out_rmse;         // per quantity (order of `quantities`), leave-one-out
-  double held_out_score = 0.0;               // RMS of held-out residuals in sigmas
+  double delta_bic = 0.0;                               // against the baseline; negative is better
+  std::vector<QuantityResiduals> in_sample;             // residuals of the fit on all points
+  std::vector<double> held_out_rmse;                    // per quantity (order of `quantities`), leave-one-out
+  double held_out_score = 0.0;                          // RMS of held-out residuals in sigmas
+  std::vector<terramechanics::PointResidual> held_out;  // each point's prediction when held out
 };
+
+// Held-out RMSE of one quantity on one wheel's points (wheel tests are
+// compared per wheel, e.g. smooth against grousered).
+struct WheelHeldOut {
+  std::string wheel;  // the wheel's label (its geometry when unlabelled)
+  Quantity quantity;
+  std::size_t count = 0;
+  double baseline_rmse = NAN;  // the baseline's (nothing fitted: in-sample)
+  double model_rmse = NAN;     // the study's final model's, held out
+};
+
+// What a held-out fold is: points (leave-one-out or k-fold), every point of
+// one wheel (a wheel the fit never saw), or every point at one slip.
+enum class HoldOut { points, wheel, slip };
+HoldOut parse_hold_out(const std::string& text);  // throws DataError
 
 struct DiscrepancyOptions {
   terramechanics::ModelOptions baseline;  // Wong-Reece, Simpson, no extensions
@@ -68,16 +86,19 @@ struct DiscrepancyOptions {
   // hundreds of points; the refits dominate the study's cost).
   std::size_t large_points = 2000;
   std::size_t large_folds = 5;
+  HoldOut hold_out = HoldOut::points;
 };
 
 struct DiscrepancyReport {
+  std::string baseline_model;                  // "Wong-Reece", or "Ishigami (slip angle)" for points at a slip angle
   std::vector<Quantity> quantities;            // measured in the file
   std::vector<QuantityResiduals> baseline;     // baseline residuals
   std::vector<double> baseline_held_out_rmse;  // = in-sample: nothing is fitted
   double baseline_score = 0.0;                 // RMS residual in sigmas
   double baseline_bic = 0.0;
   std::size_t points = 0, measurements = 0, unsupported = 0;
-  std::string held_out_method;  // "leave-one-out", "10-fold" or "in-sample"
+  std::string
+      held_out_method;  // "leave-one-out", "10-fold", "leave-one-wheel-out", "leave-one-slip-out" or "in-sample"
   std::vector<CandidateResult> candidates;
   int best = -1;  // index of the winning candidate, -1 when none is significant
   bool significant = false;
@@ -91,6 +112,8 @@ struct DiscrepancyReport {
   // When the first step alone does not pass: the best pair with it, as tried.
   std::optional<CandidateResult> best_pair;
   std::vector<QuantityVerdict> quantity_verdicts;  // one per measured quantity
+  std::string final_model;                         // the forward selection's chain, or "baseline"
+  std::vector<WheelHeldOut> per_wheel;             // per wheel and quantity, of final_model
   std::string what_is_wrong;                       // one sentence on the baseline's residuals
   std::string verdict;  // one sentence: the cause and the gain, or "no significant discrepancy"
 };

@@ -30,6 +30,15 @@ struct Extensions {
   // Soil strength factor: multiplies c, tan(phi), kc and kphi (a uniformly
   // weaker or stronger soil than the nominal description).
   double soil_strength = 1.0;
+  // Slip-dependent shear deformation modulus (Ding et al. 2015, J. Field
+  // Robotics 32(6)): K = K_0 (1 + k_s s), s >= 0 (the skid side mirrors it).
+  double shear_modulus_slip = 0.0;
+  // Rear angle (Wong & Reece 1967; Ishigami et al. 2007): the soil rebounds
+  // and the contact reaches theta_r = -kappa theta_0 behind the bottom.
+  double rear_angle_ratio = 0.0;
+  // Slip-angle model only: a scale on the Hegedus sidewall term (Ishigami
+  // et al. 2007 Eq. 10), multiplying LateralOptions::sidewall_scale.
+  double sidewall_scale = 1.0;
 };
 
 struct ModelOptions {

@@ -27,6 +27,7 @@ template <typename T>
 struct Params {
   T n, cohesion, tan_phi, shear_modulus, kc, kphi, c1, c2, density;
   T slip_sinkage_n1, grouser_effectiveness, bulldozing_scale, soil_strength;
+  T shear_modulus_slip, rear_angle_ratio;
 };
 
 template <typename T>
@@ -43,7 +44,9 @@ Params<T> make_params(const Soil& s, const Extensions& e) {
                    T(e.slip_sinkage_n1),
                    T(e.grouser_effectiveness),
                    T(e.bulldozing_scale),
-                   T(e.soil_strength)};
+                   T(e.soil_strength),
+                   T(e.shear_modulus_slip),
+                   T(e.rear_angle_ratio)};
 }
 
 template <typename T>
@@ -109,12 +112,17 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   // Wong-Reece.
   const T modulus = (kc + kphi * b) * pow(T(b), n - 1.0);  // k1 + k2 b, Eq. 2.12-2.13
   const T theta_m = theta0 * (p.c1 + p.c2 * s);            // Eq. 2.10
+  // Rear angle (rebound): contact down to theta_r = -kappa theta_0 behind
+  // the bottom dead centre (Wong & Reece 1967; Ishigami et al. 2007 Eq. 6).
+  const T theta_r = -p.rear_angle_ratio * theta0;
+  // Slip-dependent shear deformation modulus K = K_0 (1 + k_s s) (Ding et al. 2015, J. Field Robotics 32(6)).
+  const T shear_modulus = p.shear_modulus * (1.0 + p.shear_modulus_slip * s);
   auto sample = [&](const T& th, T& sigma, T& tau) {
     // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front).
-    const T th_eq = th >= theta_m ? th : theta0 - th / theta_m * (theta0 - theta_m);
+    const T th_eq = th >= theta_m ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
     sigma = modulus * power(T(r / b) * (cos(th_eq) - cos0), n);
     const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - sin(th)));  // Eq. 2.18
-    tau = (c + sigma * tan_phi) * (1.0 - exp(-j / p.shear_modulus));  // Eq. 2.19
+    tau = (c + sigma * tan_phi) * (1.0 - exp(-j / shear_modulus));    // Eq. 2.19
   };
   T i_sigma_cos(0.0), i_sigma_sin(0.0), i_tau_cos(0.0), i_tau_sin(0.0), i_tau(0.0);
   auto add = [&](const T& th, const T& weight) {
@@ -128,16 +136,16 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
     i_tau += weight * tau;
   };
   if (o.integration == Integration::simpson) {
-    // Eq. 2.25: Simpson on [theta_m, theta_0] and on [0, theta_m].
-    const T front = (theta0 - theta_m) / 6.0, rear = theta_m / 6.0;
+    // Eq. 2.25: Simpson on [theta_m, theta_0] and on [theta_r, theta_m].
+    const T front = (theta0 - theta_m) / 6.0, rear = (theta_m - theta_r) / 6.0;
     add(theta0, front);
     add((theta0 + theta_m) * 0.5, 4.0 * front);
     add(theta_m, front + rear);
-    add(theta_m * 0.5, 4.0 * rear);
-    add(T(0.0), rear);
+    add((theta_m + theta_r) * 0.5, 4.0 * rear);
+    add(theta_r, rear);
   } else {
-    const T h = theta0 / double(o.riemann_points);
-    for (int k = 0; k < o.riemann_points; ++k) add(h * (k + 0.5), h);
+    const T h = (theta0 - theta_r) / double(o.riemann_points);
+    for (int k = 0; k < o.riemann_points; ++k) add(theta_r + h * (k + 0.5), h);
   }
   out.normal = b * (r * i_sigma_cos + rs * i_tau_sin);   // Eq. 2.20
   out.drawbar = b * (rs * i_tau_cos - r * i_sigma_sin);  // Eq. 2.21
@@ -199,7 +207,9 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
                         value_of(p.slip_sinkage_n1),
                         value_of(p.grouser_effectiveness),
                         value_of(p.bulldozing_scale),
-                        value_of(p.soil_strength)};
+                        value_of(p.soil_strength),
+                        value_of(p.shear_modulus_slip),
+                        value_of(p.rear_angle_ratio)};
   }
   auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
   double hi = kPi / 2.0;

@@ -19,25 +19,26 @@ struct Node {
 
 // The quadrature of the Wong-Reece model (model_impl.h): Simpson on the two
 // zones (Eq. 2.25, seed 003) or the midpoint Riemann sum.
-std::vector<Node> nodes(const ModelOptions& o, double theta0, double theta_m) {
+// The contact runs from the rear angle theta_r <= 0 to theta0.
+std::vector<Node> nodes(const ModelOptions& o, double theta0, double theta_m, double theta_r) {
   if (o.integration == Integration::simpson) {
-    const double front = (theta0 - theta_m) / 6.0, rear = theta_m / 6.0;
+    const double front = (theta0 - theta_m) / 6.0, rear = (theta_m - theta_r) / 6.0;
     return {{theta0, front},
             {0.5 * (theta0 + theta_m), 4.0 * front},
             {theta_m, front + rear},
-            {0.5 * theta_m, 4.0 * rear},
-            {0.0, rear}};
+            {0.5 * (theta_m + theta_r), 4.0 * rear},
+            {theta_r, rear}};
   }
   std::vector<Node> out;
   out.reserve(static_cast<std::size_t>(o.riemann_points));
-  const double h = theta0 / o.riemann_points;
-  for (int k = 0; k < o.riemann_points; ++k) out.push_back({h * (k + 0.5), h});
+  const double h = (theta0 - theta_r) / o.riemann_points;
+  for (int k = 0; k < o.riemann_points; ++k) out.push_back({theta_r + h * (k + 0.5), h});
   return out;
 }
 
 // The soil's values after the soil-strength factor, and the wheel's shear radius.
 struct Setup {
-  double r, b, rs, n, c, tan_phi, modulus, k_x, k_y, gamma;
+  double r, b, rs, n, c, tan_phi, modulus, k_x, k_y, gamma, rear_angle_ratio, sidewall_scale;
 };
 
 Setup setup(const Soil& soil, const Wheel& w, const Extensions& e, double s) {
@@ -51,8 +52,10 @@ Setup setup(const Soil& soil, const Wheel& w, const Extensions& e, double s) {
   u.c = f * soil.cohesion;
   u.tan_phi = f * std::tan(soil.friction_angle);
   u.modulus = (f * soil.kc + f * soil.kphi * u.b) * std::pow(u.b, u.n - 1.0);  // Eq. 2.12-2.13, seed 003
-  u.k_x = soil.shear_modulus;
-  u.k_y = lateral_shear_modulus(soil);
+  u.k_x = soil.shear_modulus * (1.0 + e.shear_modulus_slip * s);               // K(s), Ding et al. 2015 (model.h)
+  u.k_y = soil.lateral_shear_modulus > 0.0 ? soil.lateral_shear_modulus : u.k_x;
+  u.rear_angle_ratio = e.rear_angle_ratio;
+  u.sidewall_scale = e.sidewall_scale;
   u.gamma = soil.density * kGravity;
   return u;
 }
@@ -79,10 +82,11 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
   const double tan_beta = std::tan(beta);
   Integrals in;
   double i_sigma_cos = 0, i_sigma_sin = 0, i_tau_cos = 0, i_tau_sin = 0, i_tau = 0, i_tau_y = 0, i_side = 0;
-  for (const Node& node : nodes(o, theta0, theta_m)) {
+  const double theta_r = -u.rear_angle_ratio * theta0;  // rear angle (model.h)
+  for (const Node& node : nodes(o, theta0, theta_m, theta_r)) {
     const double th = node.theta;
     // Eq. 2.11 and 2.14, seed 003 (Eq. 3 of Ishigami 2007 with Wong's moduli).
-    const double th_eq = th >= theta_m ? th : theta0 - th / theta_m * (theta0 - theta_m);
+    const double th_eq = th >= theta_m ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
     const double sigma = u.modulus * detail::power(u.r / u.b * (std::cos(th_eq) - cos0), u.n);
     const double strength = u.c + sigma * u.tan_phi;
     const double j_x = u.rs * ((theta0 - th) - (1.0 - s) * (sin0 - std::sin(th)));  // Eq. 6
@@ -110,11 +114,11 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
     const double h = u.r * (ct - cos0);  // depth of the sidewall point, Eq. 10
     i_side += node.weight * sidewall_per_length(u.c, u.tan_phi, u.gamma, h) * (u.r - h * ct);
   }
-  in.normal = u.b * (u.r * i_sigma_cos + u.rs * i_tau_sin);   // Eq. 11 (Eq. 2.20, seed 003)
-  in.drawbar = u.b * (u.rs * i_tau_cos - u.r * i_sigma_sin);  // Eq. 9 (Eq. 2.21)
-  in.torque = u.b * u.rs * u.rs * i_tau;                      // Eq. 12 (Eq. 2.22)
-  in.lateral_shear = u.b * u.rs * i_tau_y;                    // Eq. 10, first term
-  in.sidewall = lat.sidewall_scale * i_side;                  // Eq. 10, second term (one sidewall)
+  in.normal = u.b * (u.r * i_sigma_cos + u.rs * i_tau_sin);      // Eq. 11 (Eq. 2.20, seed 003)
+  in.drawbar = u.b * (u.rs * i_tau_cos - u.r * i_sigma_sin);     // Eq. 9 (Eq. 2.21)
+  in.torque = u.b * u.rs * u.rs * i_tau;                         // Eq. 12 (Eq. 2.22)
+  in.lateral_shear = u.b * u.rs * i_tau_y;                       // Eq. 10, first term
+  in.sidewall = lat.sidewall_scale * u.sidewall_scale * i_side;  // Eq. 10, second term (one sidewall)
   return in;
 }
 

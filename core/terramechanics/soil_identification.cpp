@@ -3,11 +3,13 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "core/common/error.h"
 #include "core/terramechanics/model_impl.h"
+#include "core/terramechanics/slip_angle_model.h"
 
 namespace roverlab::terramechanics {
 
@@ -19,6 +21,8 @@ const char* to_string(Quantity q) {
       return "torque";
     case Quantity::sinkage:
       return "sinkage";
+    case Quantity::lateral_force:
+      return "lateral_force";
   }
   return "?";
 }
@@ -31,6 +35,8 @@ const char* unit_of(Quantity q) {
       return "N*m";
     case Quantity::sinkage:
       return "m";
+    case Quantity::lateral_force:
+      return "N";
   }
   return "?";
 }
@@ -54,6 +60,10 @@ const ParameterName kParameters[] = {
     {Parameter::grouser_effectiveness, "grouser_effectiveness", {0.0, 2.0}},
     {Parameter::bulldozing_scale, "bulldozing_scale", {0.0, 10.0}},
     {Parameter::soil_strength, "soil_strength", {0.1, 5.0}},
+    {Parameter::shear_modulus_slip, "shear_modulus_slip", {-0.9, 20.0}},
+    {Parameter::rear_angle_ratio, "rear_angle_ratio", {0.0, 1.0}},
+    {Parameter::lateral_shear_modulus, "lateral_shear_modulus", {1e-4, 0.2}},
+    {Parameter::sidewall_scale, "sidewall_scale", {0.0, 20.0}},
 };
 
 // Assigns one free parameter inside the model's parameter set.
@@ -97,6 +107,15 @@ void assign(detail::Params<T>& p, Parameter which, const T& v) {
     case Parameter::soil_strength:
       p.soil_strength = v;
       break;
+    case Parameter::shear_modulus_slip:
+      p.shear_modulus_slip = v;
+      break;
+    case Parameter::rear_angle_ratio:
+      p.rear_angle_ratio = v;
+      break;
+    case Parameter::lateral_shear_modulus:  // the slip-angle model only (SlipAnglePointCost)
+    case Parameter::sidewall_scale:
+      break;
   }
 }
 
@@ -117,7 +136,7 @@ struct PointCost {
     int r = 0;
     for (Quantity q : kQuantities) {
       const auto m = point->measured(q);
-      if (!m) continue;
+      if (!m || q == Quantity::lateral_force) continue;  // straight driving: no lateral force
       const T& predicted = q == Quantity::drawbar_pull ? sol.drawbar : q == Quantity::torque ? sol.torque : sol.sinkage;
       residual[r++] = (predicted - *m) / sigma.of(q);
     }
@@ -125,9 +144,50 @@ struct PointCost {
   }
 };
 
-int measured_count(const WheelTestPoint& p) {
+// The slip-angle model's values of the four quantities (NaN: not carried).
+std::array<double, 4> predict(const Soil& soil, const ModelOptions& model, const WheelTestPoint& point) {
+  std::array<double, 4> out{NAN, NAN, NAN, NAN};
+  if (model.kind != ModelKind::ishigami) {
+    const Traction t = evaluate(soil, point.wheel, point.load, point.slip, model);
+    if (t.ok()) out = {t.drawbar_pull, t.resistive_torque, t.sinkage, NAN};
+    return out;
+  }
+  const SlipAngleTraction t = evaluate_slip_angle(soil, point.wheel, point.load, point.slip, point.slip_angle, model);
+  if (t.ok()) out = {t.drawbar_pull, t.resistive_torque, t.sinkage, t.lateral_force};
+  return out;
+}
+
+// The same residuals through the slip-angle model (Ishigami et al. 2007),
+// which is written for doubles: its derivatives by central differences.
+struct SlipAnglePointCost {
+  const Soil* soil;
+  const ModelOptions* model;
+  const WheelTestPoint* point;
+  const std::vector<Parameter>* free;
+  MeasurementSigma sigma;
+
+  bool operator()(double const* const* x, double* residual) const {
+    Soil s = *soil;
+    ModelOptions m = *model;
+    for (std::size_t k = 0; k < free->size(); ++k) set_parameter(s, m.extensions, (*free)[k], x[0][k]);
+    const auto predicted = predict(s, m, *point);
+    int r = 0;
+    for (Quantity q : kQuantities) {
+      const auto measured = point->measured(q);
+      if (!measured) continue;
+      const double v = predicted[static_cast<std::size_t>(q)];
+      if (!std::isfinite(v)) return false;
+      residual[r++] = (v - *measured) / sigma.of(q);
+    }
+    return true;
+  }
+};
+
+int measured_count(const WheelTestPoint& p, const ModelOptions& model) {
   int n = 0;
-  for (Quantity q : kQuantities) n += p.measured(q) ? 1 : 0;
+  for (Quantity q : kQuantities) {
+    n += p.measured(q) && (q != Quantity::lateral_force || model.kind == ModelKind::ishigami) ? 1 : 0;
+  }
   return n;
 }
 
@@ -182,6 +242,14 @@ double get_parameter(const Soil& s, const Extensions& e, Parameter p) {
       return e.bulldozing_scale;
     case Parameter::soil_strength:
       return e.soil_strength;
+    case Parameter::shear_modulus_slip:
+      return e.shear_modulus_slip;
+    case Parameter::rear_angle_ratio:
+      return e.rear_angle_ratio;
+    case Parameter::lateral_shear_modulus:
+      return lateral_shear_modulus(s);
+    case Parameter::sidewall_scale:
+      return e.sidewall_scale;
   }
   return NAN;
 }
@@ -224,6 +292,18 @@ void set_parameter(Soil& s, Extensions& e, Parameter p, double v) {
     case Parameter::soil_strength:
       e.soil_strength = v;
       break;
+    case Parameter::shear_modulus_slip:
+      e.shear_modulus_slip = v;
+      break;
+    case Parameter::rear_angle_ratio:
+      e.rear_angle_ratio = v;
+      break;
+    case Parameter::lateral_shear_modulus:
+      s.lateral_shear_modulus = v;
+      break;
+    case Parameter::sidewall_scale:
+      e.sidewall_scale = v;
+      break;
   }
 }
 
@@ -256,10 +336,16 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
   if (k > 0) {
     ceres::Problem problem;
     for (const auto& point : points) {
-      const int m = measured_count(point);
+      const int m = measured_count(point, options.model);
       if (m == 0) continue;
-      auto* cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
-          new PointCost{&soil, &options.model, &point, &options.free, options.sigma});
+      ceres::DynamicCostFunction* cost = nullptr;
+      if (options.model.kind == ModelKind::ishigami) {
+        cost = new ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>(
+            new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma});
+      } else {
+        cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
+            new PointCost{&soil, &options.model, &point, &options.free, options.sigma});
+      }
       cost->AddParameterBlock(static_cast<int>(k));
       cost->SetNumResiduals(m);
       ceres::LossFunction* loss = options.huber_sigmas > 0.0 ? new ceres::HuberLoss(options.huber_sigmas) : nullptr;
@@ -321,19 +407,16 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
   ModelOptions fitted = options.model;
   fitted.extensions = result.extensions;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const Traction t = evaluate(result.soil, points[i].wheel, points[i].load, points[i].slip, fitted);
+    const auto predicted = predict(result.soil, fitted, points[i]);
     for (Quantity q : kQuantities) {
       const auto m = points[i].measured(q);
-      if (!m) continue;
+      if (!m || (q == Quantity::lateral_force && fitted.kind != ModelKind::ishigami)) continue;
       PointResidual r;
       r.point = i;
       r.quantity = q;
       r.measured = *m;
       r.sigma = options.sigma.of(q);
-      r.predicted = !t.ok()                       ? NAN
-                    : q == Quantity::drawbar_pull ? t.drawbar_pull
-                    : q == Quantity::torque       ? t.resistive_torque
-                                                  : t.sinkage;
+      r.predicted = predicted[static_cast<std::size_t>(q)];
       const double z = (r.predicted - r.measured) / r.sigma;
       result.chi2 += std::isfinite(z) ? z * z : 0.0;
       ++result.measurements;

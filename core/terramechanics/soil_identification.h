@@ -23,7 +23,11 @@ enum class Parameter {
   slip_sinkage_n1,
   grouser_effectiveness,
   bulldozing_scale,
-  soil_strength
+  soil_strength,
+  shear_modulus_slip,
+  rear_angle_ratio,
+  lateral_shear_modulus,  // k_y of the slip-angle model (Ishigami et al. 2007)
+  sidewall_scale          // scale on its Hegedus sidewall term
 };
 const char* to_string(Parameter p);
 Parameter parse_parameter(const std::string& text);  // throws DataError

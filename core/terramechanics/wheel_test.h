@@ -9,8 +9,10 @@
 
 namespace roverlab::terramechanics {
 
-enum class Quantity { drawbar_pull, torque, sinkage };
-inline constexpr Quantity kQuantities[] = {Quantity::drawbar_pull, Quantity::torque, Quantity::sinkage};
+// lateral_force: F_y of a wheel at a slip angle (slip_angle_model.h).
+enum class Quantity { drawbar_pull, torque, sinkage, lateral_force };
+inline constexpr Quantity kQuantities[] = {Quantity::drawbar_pull, Quantity::torque, Quantity::sinkage,
+                                           Quantity::lateral_force};
 const char* to_string(Quantity q);
 const char* unit_of(Quantity q);
 
@@ -24,7 +26,7 @@ struct WheelTestPoint {
   double slip_angle = 0.0;
   std::optional<double> drawbar_pull;  // N
   // F_y, the soil's force on the wheel along +y, N (negative when it resists
-  // a positive slip angle). Not yet one of the study's quantities.
+  // a positive slip angle).
   std::optional<double> lateral_force;
   std::optional<double> torque;   // N m (driving torque = resistive torque in steady state)
   std::optional<double> sinkage;  // m
@@ -38,6 +40,8 @@ struct WheelTestPoint {
         return torque;
       case Quantity::sinkage:
         return sinkage;
+      case Quantity::lateral_force:
+        return lateral_force;
     }
     return std::nullopt;
   }
@@ -45,11 +49,28 @@ struct WheelTestPoint {
 
 // Standard deviation of a measurement of each quantity.
 struct MeasurementSigma {
-  double drawbar_pull = 0.5;  // N
-  double torque = 0.2;        // N m
-  double sinkage = 0.0005;    // m
+  double drawbar_pull = 0.5;   // N
+  double torque = 0.2;         // N m
+  double sinkage = 0.0005;     // m
+  double lateral_force = 0.5;  // N
   double of(Quantity q) const {
-    return q == Quantity::drawbar_pull ? drawbar_pull : q == Quantity::torque ? torque : sinkage;
+    return q == Quantity::drawbar_pull    ? drawbar_pull
+           : q == Quantity::torque        ? torque
+           : q == Quantity::lateral_force ? lateral_force
+                                          : sinkage;
+  }
+  double& at(Quantity q) {
+    switch (q) {
+      case Quantity::drawbar_pull:
+        return drawbar_pull;
+      case Quantity::torque:
+        return torque;
+      case Quantity::lateral_force:
+        return lateral_force;
+      case Quantity::sinkage:
+        break;
+    }
+    return sinkage;
   }
 };
 

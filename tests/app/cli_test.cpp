@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "core/common/error.h"
+#include "core/terramechanics/traction_surface.h"
 #include "importers/hdf5_log.h"
 #include "importers/log_file.h"
 #include "importers/mapping.h"
@@ -339,6 +341,46 @@ TEST(CliTerramechanics, SlipAngleAddsTheLateralForce) {
   EXPECT_EQ(run_roverlab(wheel + " --slip-angle 10 --lateral-shear sideways").exit_code, 2);
 }
 
+// Issue 33 item 2: F_y(W, s, beta) as one Eq. 2.28 surface per slip angle,
+// fitted the way the DP surfaces are.
+TEST(CliTerramechanics, SurfaceAtSlipAnglesFitsTheLateralForce) {
+  const std::string grid =
+      "terramechanics surface --soil ding_tyii --radius 0.075 --width 0.07 --load-max 200 "
+      "--order 4 --grid 30 --json";
+  const CommandResult r = run_roverlab(grid + " --slip-angle 0,20");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc.at("slip_angles").size(), 2u);
+  const auto& zero = doc.at("slip_angles")[0];
+  const auto& twenty = doc.at("slip_angles")[1];
+  // At beta = 0: no lateral force, and the DP surface of the straight wheel.
+  EXPECT_EQ(zero.at("lateral_force").at("max_abs_error").get<double>(), 0.0);
+  for (const auto& c : zero.at("lateral_force").at("coefficients")) EXPECT_EQ(c.get<double>(), 0.0);
+  const auto straight = nlohmann::json::parse(run_roverlab(grid).out);
+  const auto& a = straight.at("drawbar_pull").at("coefficients");
+  const auto& b = zero.at("drawbar_pull").at("coefficients");
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i].get<double>(), b[i].get<double>(), 1e-6);
+  // At 20 deg the F_y surface fits its grid to a small fraction of F_y and
+  // gives the model's value: F_y(100 N, s = 0.5) from the coefficients.
+  const auto& fy = twenty.at("lateral_force");
+  EXPECT_LT(fy.at("mean_abs_error").get<double>(), 0.2);
+  double value = 0.0;
+  const auto coefficients = fy.at("coefficients").get<std::vector<double>>();
+  for (std::size_t i = 0; i < coefficients.size(); ++i) {
+    const auto [k, l] = roverlab::terramechanics::PolynomialSurface::exponents(i);
+    value += coefficients[i] * std::pow(0.5, k) * std::pow(100.0, l);
+  }
+  const auto row = nlohmann::json::parse(
+      run_roverlab("terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 100 --slip 0.5 "
+                   "--slip-angle 20 --format json")
+          .out);
+  const double model = row.at("rows")[0].at("lateral_force_N").get<double>();
+  EXPECT_LT(model, -10.0);
+  EXPECT_NEAR(value, model, 0.5);
+  EXPECT_EQ(run_roverlab(grid + " --slip-angle 10 --model bekker").exit_code, 2);
+}
+
 TEST(CliTerramechanics, FitRecoversTheSurfaceOfItsOwnGrid) {
   TempDir dir;
   const std::string points = dir.file("grid.csv");
@@ -359,6 +401,38 @@ TEST(CliTerramechanics, FitRecoversTheSurfaceOfItsOwnGrid) {
   EXPECT_TRUE(doc.contains("resistive_torque_Nm"));
 }
 
+// Issue 33 item 2: points at slip angles (the slip-angle rows of
+// `terramechanics --slip-angle`) are fitted per slip angle, F_y included.
+TEST(CliTerramechanics, FitAtSlipAnglesFitsEachAngleAndTheLateralForce) {
+  TempDir dir;
+  const std::string points = dir.file("steer.csv");
+  const CommandResult g = run_roverlab(
+      "terramechanics --soil dry_sand --radius 0.075 --width 0.07 --load 10,30,50,70,90,110 "
+      "--slip 0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9 --slip-angle 0,30");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  write_text(points, g.out);
+  const CommandResult f = run_roverlab("terramechanics fit " + quote(points) + " --json --order 4");
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const auto doc = nlohmann::json::parse(f.out);
+  ASSERT_EQ(doc.at("slip_angles").size(), 2u);
+  const auto& zero = doc.at("slip_angles")[0];
+  const auto& thirty = doc.at("slip_angles")[1];
+  EXPECT_EQ(zero.at("slip_angle_deg"), 0.0);
+  EXPECT_EQ(zero.at("drawbar_pull_N").at("points"), 60);
+  EXPECT_EQ(zero.at("lateral_force_N").at("max_abs_error").get<double>(), 0.0);
+  EXPECT_EQ(thirty.at("lateral_force_N").at("points"), 60);
+  EXPECT_LT(thirty.at("lateral_force_N").at("rmse").get<double>(), 0.5);
+  EXPECT_NE(thirty.at("lateral_force_N").at("coefficients")[0].get<double>(), 0.0);
+  // Without the column the document is as before (one surface per quantity).
+  const CommandResult plain =
+      run_roverlab("terramechanics --soil dry_sand --radius 0.075 --width 0.07 --load 10,50,90 --slip 0,0.3,0.6,0.9");
+  write_text(dir.file("plain.csv"), plain.out);
+  const auto p =
+      nlohmann::json::parse(run_roverlab("terramechanics fit " + quote(dir.file("plain.csv")) + " --json").out);
+  EXPECT_FALSE(p.contains("slip_angles"));
+  EXPECT_TRUE(p.contains("drawbar_pull_N"));
+}
+
 TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   const std::string file = std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv";
   const CommandResult r = run_roverlab("discrepancy single-wheel " + quote(file) + " --soil ding_tyii --json");
@@ -370,7 +444,8 @@ TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   // Measured sinkage grows with slip much faster than the static model's.
   EXPECT_LT(base.at("sinkage").at("slope_vs_slip").get<double>(), -0.01);
   EXPECT_LT(base.at("sinkage").at("t_slip").get<double>(), -3.0);
-  EXPECT_EQ(doc.at("candidates").size(), 4u);
+  EXPECT_EQ(doc.at("candidates").size(), 9u);  // the lateral two not applicable here
+  EXPECT_EQ(doc.at("baseline_model"), "Wong-Reece");
   EXPECT_FALSE(doc.at("verdict").get<std::string>().empty());
   const CommandResult text = run_roverlab("discrepancy single-wheel " + quote(file) + " --soil ding_tyii");
   EXPECT_EQ(text.exit_code, 0);
@@ -386,12 +461,15 @@ TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   EXPECT_EQ(w.exit_code, 0) << w.err;
   EXPECT_NE(w.err.find("line 10"), std::string::npos) << w.err;
   EXPECT_EQ(nlohmann::json::parse(w.out).at("points"), 8);
-  // Points at a slip angle are refused in one line until the study models them.
+  // Points at a slip angle (issue 33 item 3): the slip-angle model is the
+  // baseline and the lateral force one of the quantities.
   write_text(steer, rows + "0.15735,0.165,80,0.3,20,5,-12,0.03\n");
-  const CommandResult steered = run_roverlab("discrepancy single-wheel " + quote(steer) + " --soil ding_tyii");
-  EXPECT_EQ(steered.exit_code, 3) << steered.err;
-  EXPECT_EQ(count_lines(steered.err), 2u) << steered.err;  // the warning and the error
-  EXPECT_NE(steered.err.find("slip_angle_deg"), std::string::npos) << steered.err;
+  const CommandResult steered = run_roverlab("discrepancy single-wheel " + quote(steer) + " --soil ding_tyii --json");
+  EXPECT_EQ(steered.exit_code, 0) << steered.err;
+  EXPECT_EQ(count_lines(steered.err), 1u) << steered.err;  // the warning
+  const auto sdoc = nlohmann::json::parse(steered.out);
+  EXPECT_EQ(sdoc.at("baseline_model"), "Ishigami (slip angle)");
+  EXPECT_EQ(sdoc.at("baseline").at("residuals").at("lateral_force").at("count"), 1);
   // Bad input: a file without the measured columns.
   write_text(dir.file("bad.csv"), "radius_m,width_m,load_N,slip\n0.1,0.1,80,0.2\n");
   const CommandResult bad =

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <random>
 #include <stdexcept>
 
 #include "core/analysis/single_wheel_candidates.h"
 #include "core/analysis/single_wheel_discrepancy.h"
 #include "core/common/error.h"
+#include "core/terramechanics/slip_angle_model.h"
 #include "importers/wheel_test_csv.h"
 #include "terramechanics_soils.h"
 #include "tests/support/calibration_seeds.h"
@@ -239,11 +241,17 @@ TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
   const auto candidates = analysis::single_wheel_candidates();
   std::vector<std::string> names;
   for (const auto& c : candidates) names.push_back(c->name());
-  EXPECT_EQ(names, (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength"}));
-  // Only the grouser candidate needs grousers, and it switches their model on.
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength", "max-stress-angle",
+                                      "slip-shear-modulus", "rear-angle", "lateral-shear-modulus", "sidewall"}));
+  // Only the grouser candidate needs grousers, and it switches their model on;
+  // only the lateral ones need points at a slip angle.
   Extensions e;
   for (const auto& c : candidates) {
     EXPECT_EQ(c->needs_grousers(), std::string(c->name()) == "grousers") << c->name();
+    EXPECT_EQ(c->needs_lateral_force(),
+              std::string(c->name()) == "lateral-shear-modulus" || std::string(c->name()) == "sidewall")
+        << c->name();
     c->configure(e);
   }
   EXPECT_TRUE(e.grousers);
@@ -342,4 +350,274 @@ TEST(Calibration, TheParametersIntervalsCoverTheHiddenValue) {
   EXPECT_GE(within1, count * 50 / 100);
   EXPECT_LE(within1, count * 85 / 100);
   EXPECT_GE(within2, count * 85 / 100);
+}
+
+// Issue 33 item 4: the drawbar-pull extensions from the literature, each
+// hidden alone in simulated wheel tests (four noise draws); the study names
+// it first and its parameter's 2-sigma interval covers the truth in at least
+// three draws of four (measured over 11 draws: 31 of 33 within 2 sigma),
+// with held-out error at the noise level.
+struct HiddenExtension {
+  const char* effect;
+  Parameter parameter;
+  double value;
+};
+
+class HiddenDrawbarExtension : public ::testing::TestWithParam<HiddenExtension> {};
+
+TEST_P(HiddenDrawbarExtension, IsNamedAndItsParameterRecovered) {
+  const HiddenExtension e = GetParam();
+  Soil soil = test::ding_tyii();
+  ModelOptions model;
+  set_parameter(soil, model.extensions, e.parameter, e.value);
+  const analysis::DiscrepancyOptions options;
+  int covered = 0;
+  for (unsigned draw = 1; draw <= 4; ++draw) {
+    std::mt19937 rng(draw);
+    std::normal_distribution<double> unit(0.0, 1.0);
+    auto points = testbed(Hidden{}, 5, options.sigma);
+    for (auto& p : points) {  // the same testbed, generated with the extension on
+      const Traction t = evaluate(soil, p.wheel, p.load, p.slip, model);
+      p.drawbar_pull = t.drawbar_pull + options.sigma.drawbar_pull * unit(rng);
+      p.torque = t.resistive_torque + options.sigma.torque * unit(rng);
+      p.sinkage = t.sinkage + options.sigma.sinkage * unit(rng);
+    }
+    const auto r = analysis::study_single_wheel(test::ding_tyii(), points, options);
+    ASSERT_FALSE(r.selection.empty()) << e.effect << ": " << r.verdict;
+    const auto& c = r.selection.front();
+    EXPECT_EQ(c.name, e.effect) << r.verdict;
+    bool found = false;
+    for (const auto& p : c.fit.parameters) {
+      if (p.parameter != e.parameter) continue;
+      found = true;
+      covered += std::abs(p.value - e.value) < 2.0 * p.sigma ? 1 : 0;
+      std::printf("%s draw %u: %s = %.4f +- %.4f (truth %.4f)\n", e.effect, draw, to_string(p.parameter), p.value,
+                  p.sigma, e.value);
+    }
+    EXPECT_TRUE(found);
+    EXPECT_LT(c.held_out_score, 1.3) << r.verdict;
+    EXPECT_LT(c.delta_bic, -10.0);
+  }
+  EXPECT_GE(covered, 3) << e.effect;
+}
+
+INSTANTIATE_TEST_SUITE_P(Literature, HiddenDrawbarExtension,
+                         ::testing::Values(HiddenExtension{"slip-shear-modulus", Parameter::shear_modulus_slip, 2.5},
+                                           HiddenExtension{"rear-angle", Parameter::rear_angle_ratio, 0.3},
+                                           HiddenExtension{"max-stress-angle", Parameter::c2, 0.05}));
+
+namespace {
+
+double held_out_drawbar(const analysis::DiscrepancyReport& r, const analysis::CandidateResult& c) {
+  for (std::size_t i = 0; i < r.quantities.size(); ++i) {
+    if (r.quantities[i] == Quantity::drawbar_pull) return c.held_out_rmse[i];
+  }
+  return NAN;
+}
+
+}  // namespace
+
+// Issue 33 item 4: on the 12 real Ding 2011 points the drawbar-pull misfit
+// (baseline RMSE 5.90 N) is cut by a third or more on held-out points by the
+// chain forward selection builds from the literature's extensions, both
+// leaving one point out and leaving one slip out (every point at that slip,
+// both wheels); before them the chain reached 5.68 N.
+TEST(RealDingData, TheLiteratureExtensionsCutTheHeldOutDrawbarPullByAThird) {
+  const auto points = io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
+  for (auto hold_out : {analysis::HoldOut::points, analysis::HoldOut::slip}) {
+    analysis::DiscrepancyOptions options;
+    options.hold_out = hold_out;
+    const auto r = analysis::study_single_wheel(test::ding_tyii(), points, options);
+    ASSERT_FALSE(r.selection.empty()) << r.verdict;
+    const double before = r.baseline_held_out_rmse[0];
+    ASSERT_EQ(r.quantities[0], Quantity::drawbar_pull);
+    EXPECT_NEAR(before, 5.90, 0.01);
+    const double after = held_out_drawbar(r, r.selection.back());
+    EXPECT_LT(after, 0.7 * before) << r.held_out_method << ": " << r.verdict;
+    EXPECT_TRUE(named_in_chain(r, "slip-shear-modulus")) << r.verdict;
+    EXPECT_EQ(verdict_of(r, Quantity::drawbar_pull).explained_by, "slip-shear-modulus") << r.verdict;
+  }
+}
+
+// Holding out a whole wheel: each fold is fitted afresh, so the grousers'
+// parameter, which only the grousered wheel determines, cannot be carried
+// into its own prediction from the fit on all points. Hidden grousers are
+// found and predicted at the noise level point by point, but not for a
+// grousered wheel the fit never saw.
+TEST(HoldOut, AWheelTheFitNeverSawLendsItNoParameter) {
+  const Hidden h = pick_effect(1, false);
+  ASSERT_EQ(h.effect, "grousers");
+  const auto points = testbed(h, 1, analysis::DiscrepancyOptions{}.sigma);
+  analysis::DiscrepancyOptions by_point, by_wheel;
+  by_wheel.hold_out = analysis::HoldOut::wheel;
+  const auto a = analysis::study_single_wheel(test::ding_tyii(), points, by_point);
+  const auto b = analysis::study_single_wheel(test::ding_tyii(), points, by_wheel);
+  EXPECT_EQ(b.held_out_method, "leave-one-wheel-out");
+  const auto grousers = [](const analysis::DiscrepancyReport& r) {
+    for (const auto& c : r.candidates) {
+      if (c.name == "grousers") return c;
+    }
+    throw std::runtime_error("no grousers candidate");
+  };
+  EXPECT_LT(grousers(a).held_out_score, 1.3);
+  EXPECT_GT(grousers(b).held_out_score, 1.6 * grousers(a).held_out_score);
+  // One wheel only: nothing to hold out, said in words.
+  std::vector<WheelTestPoint> smooth;
+  for (const auto& p : points) {
+    if (p.wheel.grouser_count == 0) smooth.push_back(p);
+  }
+  EXPECT_THROW(analysis::study_single_wheel(test::ding_tyii(), smooth, by_wheel), DataError);
+  EXPECT_THROW(analysis::parse_hold_out("wheels"), DataError);
+}
+
+// Issue 33 item 3: wheel tests at slip angles, written as a CSV with the
+// slip_angle_deg and lateral_force_N columns from the slip-angle model
+// (Ishigami et al. 2007) with a hidden lateral shear modulus k_y (the soil's
+// K_s times a factor in [1.5, 3]) and noise (0.5 N, 0.2 N m, 0.5 mm, 0.5 N).
+namespace {
+
+struct LateralTestbed {
+  std::vector<WheelTestPoint> points;
+  double k_y = 0.0;
+};
+
+LateralTestbed lateral_testbed(unsigned seed, double sidewall_scale = 1.0) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  Soil soil = test::ding_tyii();
+  LateralTestbed out;
+  out.k_y = soil.shear_modulus * (1.5 + 1.5 * u(rng));
+  soil.lateral_shear_modulus = out.k_y;
+  ModelOptions model;
+  model.kind = ModelKind::ishigami;
+  model.extensions.sidewall_scale = sidewall_scale;
+  const std::string path = ::testing::TempDir() + "/lateral_" + std::to_string(seed) + ".csv";
+  {
+    std::ofstream csv(path);
+    csv << "wheel,grouser_count,grouser_height_m,radius_m,width_m,load_N,slip,slip_angle_deg,drawbar_pull_N,"
+           "torque_Nm,sinkage_m,lateral_force_N\n";
+    const Wheel wheels[] = {{0.157, 0.165, 0, 0.0}, {0.157, 0.165, 30, 0.01}};
+    for (const Wheel& w : wheels) {
+      for (double load : {60.0, 120.0}) {
+        for (double slip : {0.1, 0.3, 0.5}) {
+          for (double beta_deg : {0.0, 15.0, 30.0, 60.0}) {
+            const auto t = evaluate_slip_angle(soil, w, load, slip, beta_deg * M_PI / 180.0, model);
+            csv << (w.grouser_count ? "grousered" : "smooth") << ',' << w.grouser_count << ',' << w.grouser_height
+                << ',' << w.radius << ',' << w.width << ',' << load << ',' << slip << ',' << beta_deg << ','
+                << t.drawbar_pull + 0.5 * unit(rng) << ',' << t.resistive_torque + 0.2 * unit(rng) << ','
+                << t.sinkage + 0.0005 * unit(rng) << ',' << t.lateral_force + 0.5 * unit(rng) << '\n';
+          }
+        }
+      }
+    }
+  }
+  out.points = io::read_wheel_test_csv(path);
+  std::remove(path.c_str());
+  return out;
+}
+
+const analysis::CandidateResult* candidate_named(const analysis::DiscrepancyReport& r, const std::string& name) {
+  for (const auto& c : r.candidates) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+double held_out_of(const analysis::DiscrepancyReport& r, const std::vector<double>& rmse, Quantity q) {
+  for (std::size_t i = 0; i < r.quantities.size(); ++i) {
+    if (r.quantities[i] == q) return rmse[i];
+  }
+  return NAN;
+}
+
+}  // namespace
+
+// The study reads the lateral columns, predicts with the slip-angle model,
+// names the hidden lateral shear modulus, recovers it, and its held-out
+// lateral-force error falls to the noise.
+TEST(LateralHiddenEffect, TheLateralShearModulusIsNamedAndRecovered) {
+  const auto bed = lateral_testbed(1);
+  ASSERT_EQ(bed.points.size(), 48u);
+  const auto r = analysis::study_single_wheel(test::ding_tyii(), bed.points);
+  EXPECT_EQ(r.baseline_model, "Ishigami (slip angle)");
+  ASSERT_EQ(r.quantities.size(), 4u);
+  EXPECT_EQ(r.quantities[3], Quantity::lateral_force);
+  ASSERT_FALSE(r.selection.empty()) << r.verdict;
+  EXPECT_EQ(r.selection.front().name, "lateral-shear-modulus") << r.verdict;
+  const auto& p = r.selection.front().fit.parameters.at(0);
+  EXPECT_EQ(p.parameter, Parameter::lateral_shear_modulus);
+  EXPECT_LT(std::abs(p.value - bed.k_y), 2.0 * p.sigma) << p.value << " +- " << p.sigma << ", truth " << bed.k_y;
+  const double before = held_out_of(r, r.baseline_held_out_rmse, Quantity::lateral_force);
+  const double after = held_out_of(r, r.selection.front().held_out_rmse, Quantity::lateral_force);
+  EXPECT_GT(before, 3.0);
+  EXPECT_LT(after, 0.75);  // the 0.5 N noise, held out
+  EXPECT_EQ(verdict_of(r, Quantity::lateral_force).explained_by, "lateral-shear-modulus") << r.verdict;
+  // Per wheel (the figures compared with a wheel's own reference model): the
+  // final model's held-out lateral-force RMSE on each wheel near the noise.
+  int lateral_wheels = 0;
+  for (const auto& w : r.per_wheel) {
+    if (w.quantity != Quantity::lateral_force) continue;
+    ++lateral_wheels;
+    EXPECT_EQ(w.count, 24u) << w.wheel;
+    EXPECT_LT(w.model_rmse, 0.75) << w.wheel;
+    EXPECT_GT(w.baseline_rmse, 2.0) << w.wheel;
+  }
+  EXPECT_EQ(lateral_wheels, 2);
+  // The sidewall candidate is there, and does not explain it as well.
+  const auto* sidewall = candidate_named(r, "sidewall");
+  ASSERT_NE(sidewall, nullptr);
+  EXPECT_TRUE(sidewall->applicable);
+  EXPECT_GT(held_out_of(r, sidewall->held_out_rmse, Quantity::lateral_force), 2.0 * after);
+}
+
+// Straight-driving data: the lateral candidates do not apply.
+TEST(LateralCandidates, NeedPointsAtASlipAngle) {
+  const auto points = testbed(pick_effect(1, true), 1, analysis::DiscrepancyOptions{}.sigma);
+  const auto r = analysis::study_single_wheel(test::ding_tyii(), points);
+  EXPECT_EQ(r.baseline_model, "Wong-Reece");
+  for (const char* name : {"lateral-shear-modulus", "sidewall"}) {
+    const auto* c = candidate_named(r, name);
+    ASSERT_NE(c, nullptr) << name;
+    EXPECT_FALSE(c->applicable) << name;
+  }
+}
+
+// Calibration of the lateral shear modulus's +-1 sigma on simulated truth
+// (seeds 3000-; ROVERLAB_CALIBRATION_SEEDS for more): its intervals cover
+// the hidden k_y about as often as they say.
+TEST(LateralCalibration, TheLateralShearModulusIntervalCoversTheHiddenValue) {
+  const unsigned n = test::calibration_seeds(8);
+  unsigned within1 = 0, within2 = 0, count = 0;
+  for (unsigned seed = 3000; seed < 3000 + n; ++seed) {
+    const auto bed = lateral_testbed(seed);
+    const auto r = analysis::study_single_wheel(test::ding_tyii(), bed.points);
+    const auto* c = candidate_named(r, "lateral-shear-modulus");
+    if (c == nullptr || c->fit.parameters.empty() || !std::isfinite(c->fit.parameters[0].sigma)) continue;
+    const double z = std::abs(c->fit.parameters[0].value - bed.k_y) / c->fit.parameters[0].sigma;
+    ++count;
+    within1 += z <= 1 ? 1 : 0;
+    within2 += z <= 2 ? 1 : 0;
+  }
+  std::printf("lateral runs: %u, with a sigma: %u, within 1 sigma: %u, within 2 sigma: %u\n", n, count, within1,
+              within2);
+  ASSERT_EQ(count, n);
+  EXPECT_GE(within1, count * 40 / 100);
+  EXPECT_LE(within1, count * 90 / 100);
+  EXPECT_GE(within2, count * 75 / 100);
+}
+
+// A hidden sidewall term three times Hegedus's (k_y still hidden as above):
+// forward selection names both lateral causes.
+TEST(LateralHiddenEffect, ALargerSidewallTermIsNamedWithTheShearModulus) {
+  const auto bed = lateral_testbed(2, 3.0);
+  const auto r = analysis::study_single_wheel(test::ding_tyii(), bed.points);
+  ASSERT_FALSE(r.selection.empty()) << r.verdict;
+  EXPECT_TRUE(named_in_chain(r, "sidewall")) << r.verdict;
+  EXPECT_TRUE(named_in_chain(r, "lateral-shear-modulus")) << r.verdict;
+  for (const auto& p : r.selection.back().fit.parameters) {
+    if (p.parameter == Parameter::sidewall_scale) {
+      EXPECT_LT(std::abs(p.value - 3.0), 3.0 * p.sigma) << p.value << " +- " << p.sigma;
+    }
+  }
 }

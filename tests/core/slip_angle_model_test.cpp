@@ -30,8 +30,10 @@ ModelOptions riemann(int points) {
 }  // namespace
 
 TEST(SlipAngleModel, AtZeroSlipAngleItIsTheWongReeceModel) {
-  std::vector<Extensions> variants(4);
+  std::vector<Extensions> variants(5);
   variants[1].slip_sinkage_n1 = 0.4;
+  variants[4].shear_modulus_slip = 2.0;  // issue 33 item 4's extensions
+  variants[4].rear_angle_ratio = 0.3;
   variants[2].grousers = true;
   variants[2].grouser_effectiveness = 0.7;
   variants[3].bulldozing = true;

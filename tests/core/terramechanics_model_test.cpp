@@ -233,3 +233,50 @@ TEST(WongReece, JetDerivativesThroughTheRootSolveMatchFiniteDifferences) {
     EXPECT_NEAR(sol.sinkage.v[k], fd[2], 1e-4 * (1e-3 + std::abs(fd[2]))) << "parameter " << k;
   }
 }
+
+// Issue 33 item 4: the rear angle (theta_r = -kappa theta_f) and the
+// slip-dependent shear modulus (K = K0 (1 + k_s s)) against values computed
+// independently by tests/data/single_wheel/extensions_reference.py (plain
+// Python from the equations, 500-point midpoint rule, bisection):
+//   load, slip, kappa, k_s: sinkage_m, DP_N, torque_Nm
+TEST(Extensions, RearAngleAndSlipShearModulusMatchAnIndependentCalculation) {
+  struct Row {
+    double load, slip, kappa, k_s, sinkage, drawbar, torque;
+  };
+  const Row rows[] = {
+      {80, 0.3, 0.00, 0.0, 0.0100328534, 16.4327451, 4.51488392},
+      {80, 0.3, 0.25, 0.0, 0.00878266777, 20.9293363, 4.74458601},
+      {80, 0.1, 0.00, 3.0, 0.00982932957, 0.669467752, 1.96166012},
+      {120, 0.6, 0.40, 1.5, 0.0112965077, 34.3207792, 7.72100403},
+      {40, 0.0, 0.20, 2.0, 0.00562739435, -2.58237325, 0.162904908},
+  };
+  const Wheel ding{0.15735, 0.165, 0, 0.0};
+  for (const Row& r : rows) {
+    ModelOptions o;
+    o.integration = Integration::riemann;
+    o.riemann_points = 500;
+    o.extensions.rear_angle_ratio = r.kappa;
+    o.extensions.shear_modulus_slip = r.k_s;
+    const Traction t = evaluate(ding_tyii(), ding, r.load, r.slip, o);
+    ASSERT_TRUE(t.ok());
+    EXPECT_NEAR(t.sinkage, r.sinkage, 1e-9) << r.load << " N, s " << r.slip << ", kappa " << r.kappa;
+    EXPECT_NEAR(t.drawbar_pull, r.drawbar, 1e-6) << r.load << " N, s " << r.slip << ", kappa " << r.kappa;
+    EXPECT_NEAR(t.resistive_torque, r.torque, 1e-7) << r.load << " N, s " << r.slip << ", kappa " << r.kappa;
+  }
+  // The rear contact carries part of the load behind the bottom: less sinkage
+  // and more pull at the same slip (row 2 against row 1); a stiffer shear
+  // modulus at higher slip builds thrust more slowly (row 3 against the
+  // baseline, 3.57 N at 80 N, s = 0.1). With Simpson too.
+  const Traction base = evaluate(ding_tyii(), ding, 80.0, 0.1);
+  ModelOptions stiff;
+  stiff.extensions.shear_modulus_slip = 3.0;
+  EXPECT_LT(evaluate(ding_tyii(), ding, 80.0, 0.1, stiff).drawbar_pull, base.drawbar_pull - 2.0);
+  EXPECT_DOUBLE_EQ(evaluate(ding_tyii(), ding, 80.0, 0.0, stiff).drawbar_pull,
+                   evaluate(ding_tyii(), ding, 80.0, 0.0).drawbar_pull);  // no slip, no change
+  ModelOptions rear;
+  rear.extensions.rear_angle_ratio = 0.25;
+  const Traction tr = evaluate(ding_tyii(), ding, 80.0, 0.3, rear);
+  const Traction t0 = evaluate(ding_tyii(), ding, 80.0, 0.3);
+  EXPECT_LT(tr.sinkage, t0.sinkage);
+  EXPECT_GT(tr.drawbar_pull, t0.drawbar_pull + 2.0);
+}
