@@ -141,6 +141,7 @@ struct MapScene::Parts {
   vtkSmartPointer<vtkActor> start, start_rim, end, grid, bar;
   vtkSmartPointer<vtkTextActor> start_text, end_text, bar_text, north_text, time_text;
   std::vector<std::string> legend_entries;
+  std::vector<vtkSmartPointer<vtkTextActor>> legend_texts;
   double scale_length = 0;
   MapRect visible{};
   double marker_radius = 0.1;
@@ -328,16 +329,17 @@ void MapScene::add_legend() {
   for (std::size_t i = 0; i < entries.size(); ++i) {
     if (i == tracks_.size()) y -= 0.03;  // the slip classes apart from the tracks
     const Eigen::Vector3d& c = entries[i].second;
-    auto box = panel_swatch(0.06, y - 0.005, 0.1, y + 0.02);
+    auto box = panel_swatch(0.06, y - 0.005, 0.085, y + 0.02);
     box->GetProperty()->SetColor(c.x(), c.y(), c.z());
     p.panel->AddViewProp(box);
     vtkNew<vtkTextActor> text;
     text->SetInput(entries[i].first.c_str());
-    text->GetTextProperty()->SetFontSize(17);
+    text->GetTextProperty()->SetFontSize(17);  // fit() sizes it to the panel
     text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
     text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
     text->GetPositionCoordinate()->SetValue(0.14, y - 0.005);
     p.panel->AddViewProp(text);
+    p.legend_texts.emplace_back(text);
     p.legend_entries.push_back(entries[i].first);
     y -= 0.045;
   }
@@ -436,9 +438,16 @@ void MapScene::detach(vtkRenderWindow* window) {
 }
 
 void MapScene::fit_width(int pixels) {
+  // The window's own shape (a GUI pane may be narrower than the width asked for).
   vtkRenderWindow* window = parts_->map->GetRenderWindow();
-  const int height = window != nullptr ? window->GetSize()[1] : 0;
-  if (pixels > 0 && height > 0) fit(kPanel * pixels / height);
+  const int* size = window != nullptr ? window->GetSize() : nullptr;
+  if (size != nullptr && size[0] > 0 && size[1] > 0) {
+    pixels = size[0];
+    fit(kPanel * size[0] / size[1]);
+  }
+  // The legend's names fit the panel: about 11 characters' width of it.
+  const int font = std::clamp(static_cast<int>((1.0 - kPanel) * pixels / 11.0), 10, 17);
+  for (auto& text : parts_->legend_texts) text->GetTextProperty()->SetFontSize(font);
 }
 
 void MapScene::set_time(double t) {

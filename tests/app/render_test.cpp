@@ -363,3 +363,44 @@ TEST(Report, FilesOfConvertRenderAndReportHaveTheModeTheUmaskGives) {
     EXPECT_EQ(st.st_mode & 0777, folder_mode) << folder;
   }
 }
+
+namespace {
+
+// The row of the widest run of INS-blue pixels at least `min_run` long (the
+// map's marker, a disc 14 px across; the track itself is 3 px wide), -1 if none.
+int marker_row(const views::Image& img, int min_run) {
+  int best_row = -1, best = 0;
+  for (int y = 0; y < img.height; ++y) {
+    int run = 0;
+    for (int x = 0; x < img.width; ++x) {
+      const unsigned char* p = img.pixel(x, y);
+      run = (p[2] > 170 && p[0] < 70 && p[1] > 50 && p[1] < 130) ? run + 1 : 0;
+      if (run >= min_run && run > best) {
+        best = run;
+        best_row = y;
+      }
+    }
+  }
+  return best_row;
+}
+
+}  // namespace
+
+// Issue 32: the GUI's map pane follows the cursor: the INS marker of the WVU
+// drive north sits lower in the window at 10 s than at 60 s (north is up).
+TEST(Render, TheGuiMapPaneFollowsTheCursor) {
+  TempDir dir;
+  int rows[2] = {-1, -1};
+  const double times[2] = {10.0, 60.0};
+  for (int k = 0; k < 2; ++k) {
+    const std::string png = dir.file("map" + std::to_string(k) + ".png");
+    const CommandResult r = run_roverlab("gui " + quote(kPathfinder) + " -m wvu_pathfinder --tab Map --time " +
+                                         std::to_string(times[k]) + " --screenshot " + quote(png));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    rows[k] = marker_row(views::read_png(png), 11);
+  }
+  ASSERT_GE(rows[0], 0) << "no marker at 10 s";
+  ASSERT_GE(rows[1], 0) << "no marker at 60 s";
+  // 50 s at about 0.5 m/s north: about 25 m, well over 150 pixels on a 34 m track 800 pixels high.
+  EXPECT_GT(rows[0] - rows[1], 150);
+}
