@@ -222,7 +222,10 @@ void MainWindow::build_view_tabs() {
     tab.dock->setWidget(tab.page);
     addDockWidget(Qt::RightDockWidgetArea, tab.dock);
     if (!view_tabs_.empty()) tabifyDockWidget(view_tabs_.front().dock, tab.dock);
-    connect(tab.dock, &QDockWidget::visibilityChanged, this, [this] { render_views(); });
+    connect(tab.dock, &QDockWidget::visibilityChanged, this, [this, k = view_tabs_.size()] {
+      view_tabs_[k].stale = true;
+      render_views();
+    });
     view_tabs_.push_back(std::move(tab));
   }
 }
@@ -385,7 +388,7 @@ void MainWindow::build_timeline() {
   render_timer_ = new QTimer(this);
   render_timer_->setSingleShot(true);
   render_timer_->setInterval(16);
-  connect(render_timer_, &QTimer::timeout, this, &MainWindow::render_now);
+  connect(render_timer_, &QTimer::timeout, this, &MainWindow::render_next);
   player_ = new QTimer(this);
   player_->setInterval(33);
   connect(player_, &QTimer::timeout, this, &MainWindow::on_tick);
@@ -827,7 +830,9 @@ void MainWindow::set_time(double t) {
   }
   time_label_->setText(QString("t = %1 s / %2 s").arg(time_, 0, 'f', 2).arg(t1_, 0, 'f', 1));
   for (auto& tab : view_tabs_) {
-    if (tab.scene) tab.scene->set_time(time_);
+    if (!tab.scene) continue;
+    tab.scene->set_time(time_);
+    tab.stale = true;
   }
   render_views();
   emit time_changed(time_);
@@ -839,18 +844,42 @@ void MainWindow::render_views() {
   if (!render_timer_->isActive()) render_timer_->start();
 }
 
+// The panes in view (side by side, or in front of their tab group: Qt keeps
+// the others "visible" but off screen, so what counts is the region shown);
+// the surface does not follow the timeline: its widget repaints itself.
+bool MainWindow::renders(const ViewTab& tab) {
+  return tab.widget->isVisible() && !tab.widget->visibleRegion().isEmpty() && tab.scene && tab.scene->follows_time();
+}
+
+void MainWindow::render_pane(ViewTab& tab) {
+  // A pane the user resized (moved beside another, floated) is laid out again for its size.
+  if (tab.widget->width() != tab.fitted_width || tab.widget->height() != tab.fitted_height) {
+    tab.fitted_width = tab.widget->width();
+    tab.fitted_height = tab.widget->height();
+    tab.scene->fit_width(std::max(400, tab.fitted_width));
+  }
+  tab.widget->renderWindow()->Render();
+  tab.stale = false;
+}
+
 void MainWindow::render_now() {
   for (auto& tab : view_tabs_) {
-    // The panes in view (side by side, or in front of their tab group); the
-    // surface does not follow the timeline: its widget repaints itself.
-    if (!tab.widget->isVisible() || !tab.scene || !tab.scene->follows_time()) continue;
-    // A pane the user resized (moved beside another, floated) is laid out again for its size.
-    if (tab.widget->width() != tab.fitted_width || tab.widget->height() != tab.fitted_height) {
-      tab.fitted_width = tab.widget->width();
-      tab.fitted_height = tab.widget->height();
-      tab.scene->fit_width(std::max(400, tab.fitted_width));
+    if (renders(tab)) render_pane(tab);
+  }
+}
+
+// One pane a turn of the event loop: several panes side by side never hold
+// it for more than one frame.
+void MainWindow::render_next() {
+  bool more = false;
+  for (auto& tab : view_tabs_) {
+    if (!tab.stale || !renders(tab)) continue;
+    if (more) {
+      QTimer::singleShot(0, this, &MainWindow::render_next);
+      return;
     }
-    tab.widget->renderWindow()->Render();
+    render_pane(tab);
+    more = true;
   }
 }
 

@@ -111,6 +111,7 @@ class MainWindow : public QMainWindow {
     std::unique_ptr<views::Scene> scene;
     bool available = false;                   // the log feeds the view
     int fitted_width = 0, fitted_height = 0;  // the widget's size the scene was last laid out for
+    bool stale = true;                        // its picture is older than the timeline's time
     ViewTab();
     ViewTab(ViewTab&&) noexcept;
     ~ViewTab();
@@ -140,6 +141,9 @@ class MainWindow : public QMainWindow {
   void rebuild_analysis();
   void rebuild_surface();
   void render_views();
+  static bool renders(const ViewTab& tab);
+  void render_pane(ViewTab& tab);
+  void render_next();
   QWidget* build_analysis_tab();
   void fill_candidates(const nlohmann::json& odometry_result);
   // Runs the analyses `names` in one background job; `by_hand`: say why one cannot run.

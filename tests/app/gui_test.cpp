@@ -348,6 +348,8 @@ TEST(Gui, ALayoutSavedOnOneLogArrangesAnotherWithTheSameStreams) {
   for (const auto& c : w.chart()->channels()) plotted = plotted || (c.stream == "imu" && c.channel == "angular_rate_z");
   EXPECT_TRUE(plotted);
   EXPECT_EQ(w.input()->file, second);
+  w.close();
+  QSettings().clear();  // the next tests' windows start tabbed as built
   // Not a layout: one error naming the file.
   write_text(dir.file("bad.json"), "{\"format\": \"something else\"}");
   try {
