@@ -258,7 +258,8 @@ class CampaignReportWriter {
   void head() {
     html_
         << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>RoverLab campaign report</title>\n"
-        << "<style>body{font-family:sans-serif;max-width:1400px;margin:2em auto;color:#222}"
+        << "<style>body{font-family:sans-serif;max-width:1400px;margin:2em auto;padding:0 1.5em;box-sizing:border-box;"
+        << "color:#222}.wide{overflow-x:auto;max-width:100%}"
         << "table{border-collapse:collapse;margin:1em 0;font-size:90%}td,th{border:1px solid #bbb;padding:3px 6px;"
         << "text-align:right}th{background:#eef}td.t{text-align:left}.note{color:#555}img{margin:4px}</style>"
         << "</head><body>\n<h1>RoverLab campaign report</h1>\n<p>" << runs_.size() << " runs";
@@ -269,7 +270,9 @@ class CampaignReportWriter {
   }
 
   void table() {
-    html_ << "<h2>Runs</h2>\n<table id=\"runs\"><tr><th>run</th><th>kind</th><th>scenario</th><th>seed</th>"
+    // In a box that scrolls sideways: a column per key metric of every analysis is wider than a page.
+    html_ << "<h2>Runs</h2>\n<div class=\"wide\"><table "
+             "id=\"runs\"><tr><th>run</th><th>kind</th><th>scenario</th><th>seed</th>"
              "<th>injected effects</th>";
     for (const auto& m : key_columns()) html_ << "<th>" << esc(m.title) << "</th>";
     html_ << "</tr>\n";
@@ -283,7 +286,7 @@ class CampaignReportWriter {
       for (const auto& m : key_columns()) html_ << cell(r.at("metrics").at(m.key));
       html_ << "</tr>\n";
     }
-    html_ << "</table>\n";
+    html_ << "</table></div>\n";
   }
 
   // A metric cell as the HTML shows it: 4 significant digits, an en dash when absent.
@@ -323,7 +326,7 @@ class CampaignReportWriter {
           << esc(confusion_.at("study").get<std::string>())
           << " ran on: "
              "rows are the effects injected into the simulation, columns the cause the study named.</p>\n"
-             "<table id=\"confusion\"><tr><th>injected</th><th>expected</th>";
+             "<div class=\"wide\"><table id=\"confusion\"><tr><th>injected</th><th>expected</th>";
     for (const auto& c : confusion_.at("named")) html_ << "<th>" << esc(c.get<std::string>()) << "</th>";
     html_ << "</tr>\n";
     for (std::size_t i = 0; i < confusion_.at("injected").size(); ++i) {
@@ -338,7 +341,7 @@ class CampaignReportWriter {
       }
       html_ << "</tr>\n";
     }
-    html_ << "</table>\n<p>" << confusion_.at("named_as_expected").get<int>() << " of "
+    html_ << "</table></div>\n<p>" << confusion_.at("named_as_expected").get<int>() << " of "
           << confusion_.at("scored_runs").get<int>()
           << " runs whose injected effect has one right answer (column \"expected\") had it named. Without "
              "slip=0 the drive has slip episodes, whose steady slip looks like a smaller wheel radius.</p>\n";

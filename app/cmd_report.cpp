@@ -92,7 +92,7 @@ class ReportWriter {
         << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
         << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
         << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
-           "0}</style></head><body>\n"
+           "0}.notes{color:#555;font-size:90%}.notes li{margin:0.1em 0}</style></head><body>\n"
         << "<h1>RoverLab report</h1>\n<p>" << esc(o_.file) << "</p>\n";
   }
 
@@ -109,7 +109,10 @@ class ReportWriter {
       lines.push_back({{"analysis", run.name}, {"summary", text}});
     }
     html() << "</ul>\n";
-    for (const auto& n : in_.notes) html() << "<p class=\"note\">" << esc(n) << "</p>\n";
+    // What ran and what did not, one short line each (issue 32: the first screen holds the answers).
+    html() << "<ul class=\"notes\">\n";
+    for (const auto& n : in_.notes) html() << "<li>" << esc(n) << "</li>\n";
+    html() << "</ul>\n";
     metrics_["summary"] = lines;
   }
 

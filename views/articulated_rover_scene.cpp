@@ -1,6 +1,7 @@
 #include "views/articulated_rover_scene.h"
 
 #include <vtkActor.h>
+#include <vtkBillboardTextActor3D.h>
 #include <vtkCamera.h>
 #include <vtkCubeSource.h>
 #include <vtkCylinderSource.h>
@@ -83,6 +84,7 @@ std::string articulated_rover_needs(const log::Log& lg, const kinematics::RoverM
 struct ArticulatedRoverScene::Parts {
   vtkSmartPointer<vtkRenderer> renderer = vtkSmartPointer<vtkRenderer>::New();
   vtkSmartPointer<vtkTextActor> text = vtkSmartPointer<vtkTextActor>::New();
+  std::vector<vtkSmartPointer<vtkBillboardTextActor3D>> labels;  // FL .. FR beside each wheel
   std::vector<vtkSmartPointer<vtkActor>> wheels, links, estimate, truth, side_slip, sigma;
   const log::Stream* joints = nullptr;
   const log::Stream* estimate_stream = nullptr;
@@ -132,6 +134,13 @@ ArticulatedRoverScene::ArticulatedRoverScene(const log::Log& lg, kinematics::Rov
         Vector3d(ContactAngleScene::truth_rgb[0], ContactAngleScene::truth_rgb[1], ContactAngleScene::truth_rgb[2]),
         0.8));
     p.side_slip.push_back(arrow_actor(kSideSlipRgb, 0.9));
+    p.labels.push_back(vtkSmartPointer<vtkBillboardTextActor3D>::New());
+    p.labels.back()->SetInput(rover_.wheels[w].name.c_str());
+    p.labels.back()->GetTextProperty()->SetFontSize(18);
+    p.labels.back()->GetTextProperty()->SetBold(true);
+    p.labels.back()->GetTextProperty()->SetColor(0.1, 0.1, 0.15);
+    p.labels.back()->GetTextProperty()->SetJustificationToCentered();
+    p.renderer->AddViewProp(p.labels.back());
     p.sigma.push_back(line_actor(polyline({Vector3d::Zero(), Vector3d::UnitX()}), Vector3d(0.12, 0.35, 0.85), 2.0));
     for (auto* a : {p.wheels.back().Get(), p.links.back().Get(), p.estimate.back().Get(), p.truth.back().Get(),
                     p.side_slip.back().Get(), p.sigma.back().Get()}) {
@@ -202,11 +211,16 @@ void ArticulatedRoverScene::set_time(double t) {
   char line[480];
   // The estimates' model, as the estimator named it (chosen by the data, or set by hand and maybe rejected).
   const std::string model = p.estimate_stream != nullptr ? estimation::model_label(*p.estimate_stream) : "";
-  std::snprintf(
-      line, sizeof line,
-      "t = %.2f s   %s%s%s\nblue: velocity at the estimated contact angle   green: truth   orange: side slip\n"
-      "wheels: grey at no slip, red at |slip| >= 0.5",
-      t, rover_.name.c_str(), model.empty() ? "" : "   ", model.c_str());
+  // The key names only what is drawn: no side-slip arrow under model C, no truth in a field log.
+  std::string key;
+  const auto drawn = [](const std::vector<vtkSmartPointer<vtkActor>>& arrows) {
+    return std::any_of(arrows.begin(), arrows.end(), [](const auto& a) { return a->GetVisibility() != 0; });
+  };
+  if (drawn(p.estimate)) key += "blue: velocity at the estimated contact angle   ";
+  if (drawn(p.truth)) key += "green: truth   ";
+  if (drawn(p.side_slip)) key += "orange: side slip";
+  std::snprintf(line, sizeof line, "t = %.2f s   %s%s%s\n%s%swheels: grey at no slip, red at |slip| >= 0.5", t,
+                rover_.name.c_str(), model.empty() ? "" : "   ", model.c_str(), key.c_str(), key.empty() ? "" : "\n");
   p.text->SetInput(line);
 }
 
@@ -224,6 +238,10 @@ void ArticulatedRoverScene::pose_wheel(std::size_t w, const std::vector<double>&
   const Eigen::Matrix3d R = attitude * pose.R;
   const Vector3d centre = attitude * pose.r;
   centres_[w] = centre;
+  // The wheel's name above it, outboard.
+  const Vector3d outboard = centre.y() >= 0.0 ? Vector3d(0, 0.9 * r, 1.6 * r) : Vector3d(0, -0.9 * r, 1.6 * r);
+  const Vector3d label_at = centre + outboard;
+  p.labels[w]->SetPosition(label_at.x(), label_at.y(), label_at.z());
   vtkNew<vtkMatrix4x4> m;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) m->SetElement(i, j, R(i, j));
@@ -273,6 +291,17 @@ void ArticulatedRoverScene::pose_wheel(std::size_t w, const std::vector<double>&
   if (!std::isfinite(slip)) slip = value_at(p.truth_stream, "slip_" + name, kt);
   const double redness = std::isfinite(slip) ? std::min(std::abs(slip) / 0.5, 1.0) : 0.0;
   p.wheels[w]->GetProperty()->SetColor(0.6 + 0.3 * redness, 0.6 - 0.45 * redness, 0.62 - 0.45 * redness);
+}
+
+std::string ArticulatedRoverScene::caption() const { return parts_->text->GetInput(); }
+
+std::vector<std::pair<std::string, Eigen::Vector3d>> ArticulatedRoverScene::wheel_labels() const {
+  std::vector<std::pair<std::string, Eigen::Vector3d>> out;
+  for (const auto& label : parts_->labels) {
+    const double* at = label->GetPosition();
+    out.emplace_back(label->GetInput(), Eigen::Vector3d(at[0], at[1], at[2]));
+  }
+  return out;
 }
 
 }  // namespace roverlab::views

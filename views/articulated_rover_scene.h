@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -33,6 +34,10 @@ class ArticulatedRoverScene : public Scene {
   double start_time() const override { return t0_; }
   double end_time() const override { return t1_; }
   std::vector<std::string> notes() const override { return notes_; }
+  // The text at the top: time, rover, model, and the key of what is drawn.
+  std::string caption() const;
+  // The wheel labels (FL .. FR) and where each is drawn.
+  std::vector<std::pair<std::string, Eigen::Vector3d>> wheel_labels() const;
 
   // What set_time drew, in the body frame g (m): each wheel's centre and
   // contact point, and the contact-angle arrow's unit direction (estimate;

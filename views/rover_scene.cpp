@@ -314,13 +314,15 @@ void RoverScene::add_ground() {
 void RoverScene::add_tracks() {
   vtkNew<vtkLegendBoxActor> legend;
   legend->SetNumberOfEntries(static_cast<int>(tracks_.size()));
-  // Legend symbol: a short horizontal line.
-  const auto symbol = segments({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0)});
+  // Legend symbol: a colour swatch (a line at the symbol box's foot read as "_" before each name).
+  const auto symbol = legend_swatch();
+  legend_symbol_ = symbol;
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     const Eigen::Vector3d c = track_colour(tracks_[i].source);
     parts_->renderer->AddActor(track_actor(tracks_[i], c, 0.01 + 0.002 * static_cast<double>(i)));
     double rgb[3] = {c.x(), c.y(), c.z()};
     legend->SetEntry(static_cast<int>(i), symbol, tracks_[i].source.c_str(), rgb);
+    legend_entries_.push_back(tracks_[i].source);
   }
   legend->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   legend->GetPositionCoordinate()->SetValue(0.01, 0.01);
@@ -357,6 +359,8 @@ void RoverScene::add_text() {
 }
 
 vtkRenderer* RoverScene::renderer() const { return parts_->renderer; }
+
+vtkPolyData* RoverScene::legend_symbol() const { return legend_symbol_; }
 
 void RoverScene::attach(vtkRenderWindow* window) { window->AddRenderer(parts_->renderer); }
 

@@ -16,6 +16,7 @@
 #include "core/log/log.h"
 #include "views/view.h"
 
+class vtkPolyData;
 class vtkRenderer;
 
 namespace roverlab::views {
@@ -63,6 +64,9 @@ class RoverScene : public Scene {
   int shown_slip_class() const { return shown_class_; }
   // World position of the rover body centre at the last set_time.
   Eigen::Vector3d rover_position() const { return position_; }
+  // The legend's names, and the symbol drawn before each (a filled swatch).
+  const std::vector<std::string>& legend_entries() const { return legend_entries_; }
+  vtkPolyData* legend_symbol() const;
   // Colour the body is drawn in (RGB 0..1): tests look for it.
   static Eigen::Vector3d body_colour() { return {0.93, 0.93, 0.95}; }
 
@@ -81,6 +85,8 @@ class RoverScene : public Scene {
   std::unique_ptr<Parts> parts_;
   std::vector<PoseTrack> tracks_;
   std::vector<std::string> notes_;
+  std::vector<std::string> legend_entries_;
+  vtkSmartPointer<vtkPolyData> legend_symbol_;
   std::string pose_source_;
   double start_ = 0, end_ = 0;
   int shown_class_ = -1;

@@ -104,7 +104,7 @@ void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels
     c->GetLegend()->SetInline(true);
     c->GetLegend()->GetLabelProperties()->SetFontSize(13);
     c->GetAxis(vtkAxis::BOTTOM)->SetTitle(g + 1 == groups_.size() ? "time (s)" : "");
-    c->GetAxis(vtkAxis::LEFT)->SetTitle(units[g].empty() ? "value" : "(" + units[g] + ")");
+    c->GetAxis(vtkAxis::LEFT)->SetTitle(y_title(g));
   }
   bool first = true;
   for (const auto& c : channels_) {
@@ -118,6 +118,41 @@ void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels
   t1_ = end_;
   cursor_t_ = start_;
   rebuild();
+}
+
+namespace {
+
+// The quantity a channel holds: its name without an axis or wheel suffix,
+// in words ("specific_force_x" -> "specific force", "angle_FL" -> "angle").
+std::string quantity_of(std::string name) {
+  const auto cut = name.rfind('_');
+  if (cut != std::string::npos) {
+    const std::string tail = name.substr(cut + 1);
+    static const std::vector<std::string> suffixes = {"x",  "y", "z", "FL", "FR", "RL", "RR", "ML",
+                                                      "MR", "1", "2", "3",  "4",  "5",  "6"};
+    if (std::find(suffixes.begin(), suffixes.end(), tail) != suffixes.end()) name.erase(cut);
+  }
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+
+}  // namespace
+
+std::string TimeSeriesChart::y_title(std::size_t g) const {
+  std::vector<std::string> quantities;
+  std::string unit;
+  for (std::size_t i : groups_.at(g)) {
+    const auto& c = log_->stream(channels_[i].stream).channel(channels_[i].channel);
+    unit = c.unit;
+    const std::string q = quantity_of(c.name);
+    if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) quantities.push_back(q);
+  }
+  std::string title;
+  for (std::size_t k = 0; k < quantities.size() && k < 2; ++k) title += (k > 0 ? ", " : "") + quantities[k];
+  if (quantities.size() > 2) title += ", ...";
+  // A ratio (unit "1") is named alone; any other unit follows its quantity.
+  if (!unit.empty() && unit != "1") title += " (" + unit + ")";
+  return title.empty() ? "value" : title;
 }
 
 TimeSeriesChart::~TimeSeriesChart() = default;

@@ -47,6 +47,8 @@ class TimeSeriesChart : public Scene {
   // Plot i from the top (one per unit).
   vtkChartXY* chart(std::size_t i = 0) const;
   std::size_t plot_count() const { return groups_.size(); }
+  // Plot g's value-axis title: the quantities it shows and their unit, e.g. "angular rate (rad/s)".
+  std::string y_title(std::size_t g) const;
   // Shown window in time; redecimates to about `columns` buckets.
   void set_window(double t0, double t1, std::size_t columns = 1000);
   void set_cursor(double t);

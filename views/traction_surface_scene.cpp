@@ -17,11 +17,15 @@
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkSphereSource.h>
+#include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/common/error.h"
 #include "views/view.h"
@@ -218,6 +222,31 @@ void add_points(vtkRenderer* renderer, const TractionSurfaceData& d, const Displ
   for (int g : groups) add_point_group(renderer, d, box, g);
 }
 
+// "drawbar pull (ding_tyii model)" -> the quantity and what the surface is
+// ("ding_tyii model"): the axis names the quantity, a caption the rest.
+std::pair<std::string, std::string> split_quantity(const std::string& q) {
+  const auto at = q.find(" (");
+  if (at == std::string::npos || q.back() != ')') return {q, ""};
+  return {q.substr(0, at), q.substr(at + 2, q.size() - at - 3)};
+}
+
+// Round values inside [lo, hi], four to eight of them: steps of 1, 2 or 5 times a power of ten.
+std::vector<double> round_ticks(double lo, double hi) {
+  const double span = hi - lo;
+  if (!(span > 0) || !std::isfinite(span)) return {lo};
+  const double decade = std::pow(10.0, std::floor(std::log10(span / 4.0)));
+  double step = decade;
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    step = m * decade;
+    if (span / step <= 7.0) break;
+  }
+  std::vector<double> ticks;
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step) {
+    ticks.push_back(std::abs(v) < 1e-9 * step ? 0.0 : v);
+  }
+  return ticks;
+}
+
 // Axes in real units around the display box.
 vtkSmartPointer<vtkCubeAxesActor> axes_of(const TractionSurfaceData& d, double lo, double hi, vtkCamera* camera) {
   vtkNew<vtkCubeAxesActor> axes;
@@ -227,7 +256,7 @@ vtkSmartPointer<vtkCubeAxesActor> axes_of(const TractionSurfaceData& d, double l
   axes->SetZAxisRange(lo, hi);
   axes->SetXTitle("load W (N)");
   axes->SetYTitle("slip s");
-  axes->SetZTitle((d.quantity + " (" + d.unit + ")").c_str());
+  axes->SetZTitle((split_quantity(d.quantity).first + " (" + d.unit + ")").c_str());
   axes->SetCamera(camera);
   axes->SetFlyModeToOuterEdges();
   for (int k = 0; k < 3; ++k) {
@@ -250,6 +279,12 @@ vtkSmartPointer<vtkScalarBarActor> colour_bar(vtkLookupTable* lut, const std::st
   bar->GetLabelTextProperty()->SetFontSize(14);
   bar->SetTitle(unit.c_str());
   bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
+  // Round values (the bar's own five labels were its range in fifths: 38.9, 26.8, ...).
+  vtkNew<vtkDoubleArray> labels;
+  for (double v : round_ticks(lut->GetTableRange()[0], lut->GetTableRange()[1])) labels->InsertNextValue(v);
+  bar->SetCustomLabels(labels);
+  bar->SetUseCustomLabels(true);
+  bar->SetLabelFormat("%g");
   bar->SetPosition(0.9, 0.1);
   bar->SetWidth(0.08);
   bar->SetHeight(0.8);
@@ -289,6 +324,16 @@ TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, i
   add_points(out.renderer, d, box);
   out.renderer->AddActor(axes_of(d, g.lo, g.hi, out.renderer->GetActiveCamera()));
   out.renderer->AddViewProp(colour_bar(lut, d.unit));
+  // What the surface and the points are, above the picture (it was crammed into the height axis's title).
+  if (const std::string what = split_quantity(d.quantity).second; !what.empty()) {
+    vtkNew<vtkTextActor> caption;
+    caption->SetInput(("surface: " + what).c_str());
+    caption->GetTextProperty()->SetFontSize(16);
+    caption->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
+    caption->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+    caption->GetPositionCoordinate()->SetValue(0.02, 0.94);
+    out.renderer->AddViewProp(caption);
+  }
   place_camera(out.renderer);
   return out;
 }

@@ -93,6 +93,8 @@ class View {
   virtual double report_height() const { return 1.0; }
   // True when the GUI turns the camera as a trackball (3D scenes).
   virtual bool trackball_camera() const { return false; }
+  // True when the GUI only pans and zooms, never turns the camera (maps: north stays up).
+  virtual bool top_down_camera() const { return false; }
 
  protected:
   virtual std::unique_ptr<Scene> make_scene(const SceneInput& input) const = 0;

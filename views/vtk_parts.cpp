@@ -15,6 +15,7 @@
 #include <vtkTransform.h>
 
 #include <Eigen/Geometry>
+#include <utility>
 
 namespace roverlab::views {
 
@@ -99,6 +100,18 @@ vtkSmartPointer<vtkPolyData> segments(const std::vector<Eigen::Vector3d>& points
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(pts);
   poly->SetLines(cells);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> legend_swatch() {
+  vtkNew<vtkPoints> pts;
+  for (const auto& [x, y] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}}) pts->InsertNextPoint(x, y, 0.0);
+  vtkNew<vtkCellArray> cells;
+  const vtkIdType ids[4] = {0, 1, 2, 3};
+  cells->InsertNextCell(4, ids);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(pts);
+  poly->SetPolys(cells);
   return poly;
 }
 

@@ -35,6 +35,9 @@ vtkSmartPointer<vtkPolyData> polyline(const std::vector<Eigen::Vector3d>& points
 // or, with `pairs`, from points 2k to 2k + 1.
 vtkSmartPointer<vtkPolyData> segments(const std::vector<Eigen::Vector3d>& points, bool pairs = false);
 
+// A unit square, filled: a legend's colour swatch.
+vtkSmartPointer<vtkPolyData> legend_swatch();
+
 // The polyline/mapper/actor triple: `lines` drawn unlit, `width` pixels wide.
 vtkSmartPointer<vtkActor> line_actor(vtkPolyData* lines, const Eigen::Vector3d& rgb, double width);
 vtkSmartPointer<vtkActor> line_actor(vtkAlgorithmOutput* port, const Eigen::Vector3d& rgb, double width);

@@ -30,7 +30,8 @@ struct GuiOptions {
   std::optional<std::string> mapping;
   std::optional<std::string> screenshot;  // save the window as PNG and exit
   std::optional<double> time;
-  std::optional<std::string> tab;  // Rover, Plots, Traction surface, Analysis
+  std::optional<std::string> tab;     // a pane's title: Rover, Map, Plots, Traction surface, Analysis
+  std::optional<std::string> layout;  // a layout file (View > Save layout) applied before FILE opens
   int width = 1400, height = 900;
 };
 
@@ -69,6 +70,7 @@ int run_gui(const GuiOptions& o) {
   if (o.tab && !window.tab_names().contains(QString::fromStdString(*o.tab))) {
     throw UsageError("--tab " + *o.tab + ": expected one of " + window.tab_names().join(", ").toStdString());
   }
+  if (o.layout) window.apply_layout(QString::fromStdString(*o.layout));
   int code = kSuccess;
   if (o.screenshot) {
     window.set_quiet(true);
@@ -131,7 +133,8 @@ Commands make_gui_commands() {
         cmd.add_option("--screenshot", o.screenshot,
                        "Save the window as PNG once FILE is loaded and analysed, then exit");
         cmd.add_option("--time,-t", o.time, "With --screenshot: the timeline's time, s")->check(finite_in(-1e12, 1e12));
-        cmd.add_option("--tab", o.tab, "With --screenshot: Rover | Plots | Traction surface | Analysis");
+        cmd.add_option("--tab", o.tab, "With --screenshot: the pane in front (Rover | Map | Plots | ... | Analysis)");
+        cmd.add_option("--layout", o.layout, "A layout FILE (View > Save layout): panes and plotted channels");
         // As render --size: a window larger than 8192 pixels cannot be grabbed.
         cmd.add_option("--width", o.width, "Window width, 16..8192")
             ->capture_default_str()

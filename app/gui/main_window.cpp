@@ -2,6 +2,7 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkInteractorStyleRubberBand2D.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkRenderWindowInteractor.h>
 #include <CLI/CLI.hpp>
@@ -14,6 +15,7 @@
 #include <QDockWidget>
 #include <QDragEnterEvent>
 #include <QDropEvent>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QHBoxLayout>
@@ -27,6 +29,7 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QSlider>
+#include <QStackedWidget>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -47,6 +50,7 @@
 #include "app/view_data.h"
 #include "core/common/error.h"
 #include "core/estimation/slip.h"
+#include "importers/atomic_file.h"
 #include "importers/mapping.h"
 #include "importers/rover_file.h"
 #include "views/contact_angle_scene.h"
@@ -116,16 +120,30 @@ MainWindow::ViewTab* MainWindow::tab_where(bool (views::View::*uses)() const) {
   return nullptr;
 }
 
+// No central widget: every view is a dock the user arranges (tabbed
+// together at first, as the tabs were).
 void MainWindow::build_ui() {
   resize(1400, 900);
+  setDockNestingEnabled(true);
+  setTabPosition(Qt::AllDockWidgetAreas, QTabWidget::North);
   build_menus();
   build_streams_dock();
-  tabs_ = new QTabWidget;
   build_view_tabs();
-  tabs_->addTab(build_analysis_tab(), "Analysis");
+  analysis_dock_ = new QDockWidget("Analysis");
+  analysis_dock_->setObjectName("pane/analysis");
+  analysis_dock_->setWidget(build_analysis_tab());
+  addDockWidget(Qt::RightDockWidgetArea, analysis_dock_);
+  if (!view_tabs_.empty()) {
+    tabifyDockWidget(view_tabs_.front().dock, analysis_dock_);
+    view_tabs_.front().dock->raise();
+  }
+  build_layout_menu();
   build_timeline();
-  setCentralWidget(tabs_);
   build_status_bar();
+  // The streams a narrow column, the panes the rest.
+  if (auto* streams = findChild<QDockWidget*>("streams"); streams != nullptr && !view_tabs_.empty()) {
+    resizeDocks({streams, view_tabs_.front().dock}, {330, 1070}, Qt::Horizontal);
+  }
 }
 
 void MainWindow::build_menus() {
@@ -176,7 +194,7 @@ void MainWindow::build_streams_dock() {
   connect(tree_, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item, int) {
     if (item->parent() == nullptr) return;
     add_plot_channel(item->parent()->text(0), item->text(0));
-    if (const ViewTab* plots = tab_where(&views::View::uses_channels)) tabs_->setCurrentWidget(plots->page);
+    if (const ViewTab* plots = tab_where(&views::View::uses_channels)) show_pane(plots->page);
   });
   auto* dock = new QDockWidget("Streams (double-click a channel to plot it)");
   dock->setObjectName("streams");
@@ -184,7 +202,7 @@ void MainWindow::build_streams_dock() {
   addDockWidget(Qt::LeftDockWidgetArea, dock);
 }
 
-// One tab per registered view, in registry order.
+// One pane per registered view, in registry order, tabbed together.
 void MainWindow::build_view_tabs() {
   for (const auto& view : views::all_views()) {
     ViewTab tab;
@@ -192,11 +210,136 @@ void MainWindow::build_view_tabs() {
     tab.widget = new QVTKOpenGLNativeWidget;
     if (view->trackball_camera()) {
       tab.widget->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New());
+    } else if (view->top_down_camera()) {  // pan and zoom, never turned: north stays up
+      tab.widget->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleRubberBand2D>::New());
     }
-    tab.page = view->uses_surface_data() ? build_surface_page(tab.widget) : tab.widget;
-    tabs_->addTab(tab.page, q(view->title()));
+    tab.why = new QLabel("Nothing to show yet: open a log (File > Open, or drop a file here).");
+    tab.why->setWordWrap(true);
+    tab.why->setAlignment(Qt::AlignCenter);
+    tab.why->setMargin(24);
+    tab.page = new QStackedWidget;
+    tab.page->addWidget(view->uses_surface_data() ? build_surface_page(tab.widget) : tab.widget);
+    tab.page->addWidget(tab.why);
+    tab.page->setCurrentIndex(view->uses_surface_data() ? 0 : 1);
+    tab.dock = new QDockWidget(q(view->title()));
+    tab.dock->setObjectName(q("pane/" + view->name()));
+    tab.dock->setWidget(tab.page);
+    addDockWidget(Qt::RightDockWidgetArea, tab.dock);
+    if (!view_tabs_.empty()) tabifyDockWidget(view_tabs_.front().dock, tab.dock);
+    connect(tab.dock, &QDockWidget::visibilityChanged, this, [this, k = view_tabs_.size()] {
+      view_tabs_[k].stale = true;
+      render_views();
+    });
     view_tabs_.push_back(std::move(tab));
   }
+}
+
+// View > Save layout, Load layout: the panes' arrangement and the plotted channels, to reuse on another log.
+void MainWindow::build_layout_menu() {
+  QMenu* menu = menuBar()->addMenu("&View");
+  for (const auto& tab : view_tabs_) menu->addAction(tab.dock->toggleViewAction());
+  menu->addAction(analysis_dock_->toggleViewAction());
+  menu->addSeparator();
+  connect(menu->addAction("&Save layout..."), &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getSaveFileName(this, "Save the layout", {}, "RoverLab layouts (*.json)");
+    if (path.isEmpty()) return;
+    try {
+      save_layout(path);
+    } catch (const std::exception& e) {
+      show_error(e.what());
+    }
+  });
+  connect(menu->addAction("&Load layout..."), &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, "Apply a layout", {}, "RoverLab layouts (*.json)");
+    if (path.isEmpty()) return;
+    try {
+      apply_layout(path);
+    } catch (const std::exception& e) {
+      show_error(e.what());
+    }
+  });
+}
+
+void MainWindow::show_pane(QWidget* page) {
+  for (const auto& tab : view_tabs_) {
+    if (tab.page != page) continue;
+    tab.dock->show();
+    tab.dock->raise();
+  }
+}
+
+QDockWidget* MainWindow::pane(const QString& title) const {
+  for (const auto& tab : view_tabs_) {
+    if (tab.dock->windowTitle() == title) return tab.dock;
+  }
+  return analysis_dock_->windowTitle() == title ? analysis_dock_ : nullptr;
+}
+
+QString MainWindow::pane_note(const QString& title) const {
+  for (const auto& tab : view_tabs_) {
+    if (tab.dock->windowTitle() == title) return tab.page->currentWidget() == tab.why ? tab.why->text() : QString();
+  }
+  return {};
+}
+
+void MainWindow::save_layout(const QString& path) const {
+  nlohmann::json plots = nlohmann::json::array();
+  for (const auto& [stream, channel] : plot_channels_) plots.push_back({{"stream", stream}, {"channel", channel}});
+  if (plot_channels_.empty() && chart() != nullptr) {
+    for (const auto& c : chart()->channels()) plots.push_back({{"stream", c.stream}, {"channel", c.channel}});
+  }
+  nlohmann::json front = nlohmann::json::array();  // the panes in front of their tab groups
+  for (const QString& title : tab_names()) {
+    if (pane(title)->isVisible() && !pane(title)->visibleRegion().isEmpty()) front.push_back(title.toStdString());
+  }
+  const nlohmann::json doc = {{"format", "roverlab-layout"},
+                              {"version", 1},
+                              {"panes_in_front", front},
+                              {"plots", plots},
+                              {"window_state", saveState().toBase64().toStdString()}};
+  io::write_text_atomically(path.toStdString(), doc.dump(2) + "\n");
+}
+
+void MainWindow::apply_layout(const QString& path) {
+  QFile file(path);
+  if (!file.open(QIODevice::ReadOnly)) throw InputError(path.toStdString(), "cannot read the layout");
+  const nlohmann::json doc = nlohmann::json::parse(file.readAll().toStdString(), nullptr, false);
+  if (!doc.is_object() || doc.value("format", "") != "roverlab-layout" || !doc.contains("window_state") ||
+      !doc.at("window_state").is_string()) {
+    throw InputError(path.toStdString(), "not a RoverLab layout (a JSON file of format roverlab-layout)");
+  }
+  if (!restoreState(QByteArray::fromBase64(QByteArray::fromStdString(doc.at("window_state").get<std::string>())))) {
+    throw InputError(path.toStdString(), "the layout's window state cannot be read");
+  }
+  layout_channels_.clear();
+  for (const auto& p : doc.value("plots", nlohmann::json::array())) {
+    if (p.is_object() && p.value("stream", "").size() > 0 && p.value("channel", "").size() > 0) {
+      layout_channels_.emplace_back(p.at("stream").get<std::string>(), p.at("channel").get<std::string>());
+    }
+  }
+  for (const auto& title : doc.value("panes_in_front", nlohmann::json::array())) {
+    if (title.is_string()) select_tab(q(title.get<std::string>()));
+  }
+  if (input_ && !input_->is_wheel_test()) {
+    plot_channels_ = layout_channels_in_log();
+    rebuild_views();
+    set_time(time_);
+  }
+}
+
+std::vector<std::pair<std::string, std::string>> MainWindow::layout_channels_in_log() {
+  std::vector<std::pair<std::string, std::string>> found;
+  QStringList missing;
+  for (const auto& [stream, channel] : layout_channels_) {
+    const log::Stream* s = input_->log.find_stream(stream);
+    if (s != nullptr && s->find_channel(channel) != nullptr) {
+      found.emplace_back(stream, channel);
+    } else {
+      missing << q(stream + ":" + channel);
+    }
+  }
+  if (!missing.isEmpty()) status_->setText("The layout's channels this log lacks: " + missing.join(", "));
+  return found;
 }
 
 // The traction surface's page: its soil and quantity above the view.
@@ -210,6 +353,7 @@ QWidget* MainWindow::build_surface_page(QVTKOpenGLNativeWidget* widget) {
   surface_quantity_ = new QComboBox;
   surface_quantity_->addItems({"drawbar-pull", "torque"});
   surface_note_ = new QLabel;
+  surface_note_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
   bar->addWidget(new QLabel("model soil:"));
   bar->addWidget(surface_soil_);
   bar->addWidget(new QLabel("quantity:"));
@@ -248,8 +392,7 @@ void MainWindow::build_timeline() {
   render_timer_ = new QTimer(this);
   render_timer_->setSingleShot(true);
   render_timer_->setInterval(16);
-  connect(render_timer_, &QTimer::timeout, this, &MainWindow::render_now);
-  connect(tabs_, &QTabWidget::currentChanged, this, [this] { render_views(); });
+  connect(render_timer_, &QTimer::timeout, this, &MainWindow::render_next);
   player_ = new QTimer(this);
   player_->setInterval(33);
   connect(player_, &QTimer::timeout, this, &MainWindow::on_tick);
@@ -268,6 +411,9 @@ void MainWindow::build_timeline() {
 // The status bar with the job's progress and cancel.
 void MainWindow::build_status_bar() {
   status_ = new QLabel("Open a log: File > Open, or drop a file here.");
+  // A long line is cut at the window's edge, never widens the window past the screen.
+  status_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+  status_->setMinimumWidth(40);
   progress_ = new QProgressBar;
   progress_->setRange(0, 1000);
   progress_->setMaximumWidth(240);
@@ -440,7 +586,7 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
       QWidget* shown = rebuild_views();  // a view the new estimates made available comes to the front
       rebuild_analysis();
       rebuild_surface();  // a rover's net-traction estimates feed the traction-surface tab
-      if (shown != nullptr) tabs_->setCurrentWidget(shown);
+      if (shown != nullptr) show_pane(shown);
       set_time(t);
     };
   });
@@ -456,6 +602,7 @@ void MainWindow::install(std::unique_ptr<ViewInput> in) {
   }
   plot_channels_.clear();
   input_ = std::move(in);
+  if (!input_->is_wheel_test()) plot_channels_ = layout_channels_in_log();
   rebuild_tree();
   rebuild_views();
   rebuild_analysis();
@@ -464,7 +611,7 @@ void MainWindow::install(std::unique_ptr<ViewInput> in) {
   for (const auto& n : input_->notes) notes += q(n) + "; ";
   status_->setText(QString("%1 loaded. %2").arg(q(input_->file), notes));
   if (const ViewTab* surface = tab_where(&views::View::uses_surface_data); surface && input_->is_wheel_test()) {
-    tabs_->setCurrentWidget(surface->page);
+    show_pane(surface->page);
   }
   set_time(t0_);
 }
@@ -501,6 +648,12 @@ void MainWindow::add_plot_channel(const QString& stream, const QString& channel)
 
 QWidget* MainWindow::rebuild_views() {
   if (!input_ || input_->is_wheel_test()) {
+    for (auto& tab : view_tabs_) {
+      if (tab.view->uses_surface_data()) continue;
+      tab.why->setText(q("Nothing to show: " + (input_ ? input_->file : std::string("no log")) +
+                         " is a single-wheel test table, drawn in the Traction surface pane."));
+      tab.page->setCurrentWidget(tab.why);
+    }
     t0_ = 0;
     t1_ = 1;
     return nullptr;
@@ -544,7 +697,11 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   }
   vtkRenderWindow* window = tab.widget->renderWindow();
   const bool was = tab.available;
-  tab.available = tab.view->needs(in).empty();
+  const std::string missing = tab.view->needs(in);
+  tab.available = missing.empty();
+  // A view the log cannot feed says why, in words, where its picture would be.
+  tab.why->setText(q("Nothing to show in " + tab.view->title() + ": " + missing));
+  if (!tab.view->uses_surface_data()) tab.page->setCurrentIndex(tab.available ? 0 : 1);
   if (!tab.available) {
     if (tab.scene && !tab.view->resets_scene()) {
       tab.scene->detach(window);
@@ -679,7 +836,9 @@ void MainWindow::set_time(double t) {
   }
   time_label_->setText(QString("t = %1 s / %2 s").arg(time_, 0, 'f', 2).arg(t1_, 0, 'f', 1));
   for (auto& tab : view_tabs_) {
-    if (tab.scene) tab.scene->set_time(time_);
+    if (!tab.scene) continue;
+    tab.scene->set_time(time_);
+    tab.stale = true;
   }
   render_views();
   emit time_changed(time_);
@@ -691,27 +850,57 @@ void MainWindow::render_views() {
   if (!render_timer_->isActive()) render_timer_->start();
 }
 
+// The panes in view (side by side, or in front of their tab group: Qt keeps
+// the others "visible" but off screen, so what counts is the region shown);
+// the surface does not follow the timeline: its widget repaints itself.
+bool MainWindow::renders(const ViewTab& tab) {
+  return tab.widget->isVisible() && !tab.widget->visibleRegion().isEmpty() && tab.scene && tab.scene->follows_time();
+}
+
+void MainWindow::render_pane(ViewTab& tab) {
+  // A pane the user resized (moved beside another, floated) is laid out again for its size.
+  if (tab.widget->width() != tab.fitted_width || tab.widget->height() != tab.fitted_height) {
+    tab.fitted_width = tab.widget->width();
+    tab.fitted_height = tab.widget->height();
+    tab.scene->fit_width(std::max(400, tab.fitted_width));
+  }
+  tab.widget->renderWindow()->Render();
+  tab.stale = false;
+}
+
 void MainWindow::render_now() {
-  QWidget* page = tabs_->currentWidget();
   for (auto& tab : view_tabs_) {
-    // The surface does not follow the timeline: its widget repaints itself.
-    if (tab.page == page && tab.scene && tab.scene->follows_time()) tab.widget->renderWindow()->Render();
+    if (renders(tab)) render_pane(tab);
+  }
+}
+
+// One pane a turn of the event loop: several panes side by side never hold
+// it for more than one frame.
+void MainWindow::render_next() {
+  bool more = false;
+  for (auto& tab : view_tabs_) {
+    if (!tab.stale || !renders(tab)) continue;
+    if (more) {
+      QTimer::singleShot(0, this, &MainWindow::render_next);
+      return;
+    }
+    render_pane(tab);
+    more = true;
   }
 }
 
 bool MainWindow::select_tab(const QString& name) {
-  for (int i = 0; i < tabs_->count(); ++i) {
-    if (tabs_->tabText(i) == name) {
-      tabs_->setCurrentIndex(i);
-      return true;
-    }
-  }
-  return false;
+  QDockWidget* dock = pane(name);
+  if (dock == nullptr) return false;
+  dock->show();
+  dock->raise();
+  return true;
 }
 
 QStringList MainWindow::tab_names() const {
   QStringList names;
-  for (int i = 0; i < tabs_->count(); ++i) names << tabs_->tabText(i);
+  for (const auto& tab : view_tabs_) names << tab.dock->windowTitle();
+  names << analysis_dock_->windowTitle();
   return names;
 }
 

@@ -17,11 +17,12 @@
 #include "app/views_input.h"
 
 class QComboBox;
+class QDockWidget;
 class QLabel;
 class QProgressBar;
 class QPushButton;
 class QSlider;
-class QTabWidget;
+class QStackedWidget;
 class QTableWidget;
 class QTimer;
 class QToolButton;
@@ -71,9 +72,22 @@ class MainWindow : public QMainWindow {
   QString last_error() const { return last_error_; }
   // Errors go to a modal dialog unless quiet (tests, screenshots): then only to last_error.
   void set_quiet(bool quiet) { quiet_ = quiet; }
-  // Shows the tab titled `name`; false when there is none.
+  // Shows the pane titled `name` (in front of the panes tabbed with it); false when there is none.
   bool select_tab(const QString& name);
+  // The panes' titles: one per registered view, then Analysis.
   QStringList tab_names() const;
+  // The dockable pane titled `title` (nullptr when none): the user moves,
+  // tabs, splits, floats and closes them.
+  QDockWidget* pane(const QString& title) const;
+  // What the pane says instead of a picture when the log cannot feed its view (empty when it draws).
+  QString pane_note(const QString& title) const;
+  // The arrangement of the panes and the plotted channels, as a file
+  // (JSON: format roverlab-layout), written atomically.
+  void save_layout(const QString& path) const;
+  // Arranges the panes as the file says and plots its channels on this log
+  // and the logs opened after (those a log lacks are named in the status
+  // bar). Throws InputError naming the file when it is not a layout.
+  void apply_layout(const QString& path);
   void add_plot_channel(const QString& stream, const QString& channel);
 
  signals:
@@ -86,14 +100,19 @@ class MainWindow : public QMainWindow {
   void dropEvent(QDropEvent* event) override;
 
  private:
-  // One tab per registered view (views/views.def): its page, the VTK widget
-  // on it and the scene it shows (none when the log cannot feed the view).
+  // One pane per registered view (views/views.def): its dock, its page (the
+  // VTK widget, or in its place the words saying why there is nothing to
+  // show), and the scene it shows (none when the log cannot feed the view).
   struct ViewTab {
     const views::View* view = nullptr;
-    QWidget* page = nullptr;
+    QDockWidget* dock = nullptr;
+    QStackedWidget* page = nullptr;
+    QLabel* why = nullptr;
     QVTKOpenGLNativeWidget* widget = nullptr;
     std::unique_ptr<views::Scene> scene;
-    bool available = false;  // the log feeds the view
+    bool available = false;                   // the log feeds the view
+    int fitted_width = 0, fitted_height = 0;  // the widget's size the scene was last laid out for
+    bool stale = true;                        // its picture is older than the timeline's time
     ViewTab();
     ViewTab(ViewTab&&) noexcept;
     ~ViewTab();
@@ -106,6 +125,11 @@ class MainWindow : public QMainWindow {
   void build_menus();
   void build_streams_dock();
   void build_view_tabs();
+  void build_layout_menu();
+  // Brings the pane holding `page` to the front.
+  void show_pane(QWidget* page);
+  // The layout's channels that the log has; the others named in the status bar.
+  std::vector<std::pair<std::string, std::string>> layout_channels_in_log();
   QWidget* build_surface_page(QVTKOpenGLNativeWidget* widget);
   void build_timeline();
   void build_status_bar();
@@ -118,6 +142,9 @@ class MainWindow : public QMainWindow {
   void rebuild_analysis();
   void rebuild_surface();
   void render_views();
+  static bool renders(const ViewTab& tab);
+  void render_pane(ViewTab& tab);
+  void render_next();
   QWidget* build_analysis_tab();
   void fill_candidates(const nlohmann::json& odometry_result);
   // Runs the analyses `names` in one background job; `by_hand`: say why one cannot run.
@@ -131,7 +158,8 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<ViewInput> input_;
   std::vector<ViewTab> view_tabs_;
   std::vector<std::pair<std::string, std::string>> plot_channels_;
-  QTabWidget* tabs_ = nullptr;
+  std::vector<std::pair<std::string, std::string>> layout_channels_;  // from the last layout applied
+  QDockWidget* analysis_dock_ = nullptr;
   QTreeWidget* tree_ = nullptr;
   QComboBox* surface_soil_ = nullptr;
   QComboBox* surface_quantity_ = nullptr;

@@ -8,8 +8,11 @@
 #include <vtkOpenGLRenderWindow.h>
 #include <QAction>
 #include <QApplication>
+#include <QDockWidget>
 #include <QElapsedTimer>
 #include <QMessageBox>
+#include <QScreen>
+#include <QSettings>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
 #include <QThread>
@@ -24,9 +27,11 @@
 #include "app/analysis.h"
 #include "app/gui/main_window.h"
 #include "app/resources.h"
+#include "core/common/error.h"
 #include "core/estimation/contact_model_selection.h"
 #include "core/estimation/ins_slip.h"
 #include "core/simulation/flying_rover.h"
+#include "core/simulation/skid_steer_scenario.h"
 #include "importers/hdf5_log.h"
 #include "importers/rover_file.h"
 #include "test_support.h"
@@ -325,4 +330,119 @@ TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
     }
   }
   for (const auto& a : app::all_analyses()) EXPECT_EQ(compared.count(a->name()), 1u) << a->name() << " not compared";
+}
+
+namespace {
+
+std::string skid_steer_log(const TempDir& dir, const std::string& name, unsigned seed) {
+  const std::string file = dir.file(name);
+  io::write_hdf5_log(simulation::simulate_skid_steer(simulation::default_slip_scenario(seed)), file);
+  return file;
+}
+
+// Where a pane is in the window.
+QRect in_window(const QWidget& w, const QWidget* pane) { return {pane->mapTo(&w, QPoint(0, 0)), pane->size()}; }
+
+bool in_view(const QDockWidget* d) { return d->isVisible() && !d->visibleRegion().isEmpty(); }
+
+}  // namespace
+
+// Issue 32: the views are panes the user arranges. The map put beside the
+// rover and a channel plotted on one log, saved as a layout, and the layout
+// applied to another log with the same streams: the same panes side by side
+// and the same channel plotted.
+TEST(Gui, ALayoutSavedOnOneLogArrangesAnotherWithTheSameStreams) {
+  TempDir dir;
+  const std::string first = skid_steer_log(dir, "first.h5", 2), second = skid_steer_log(dir, "second.h5", 5);
+  const std::string layout = dir.file("layout.json");
+  QSettings().clear();  // a window restores the arrangement the last one closed with
+  {
+    gui::MainWindow w;
+    w.set_quiet(true);
+    w.show();
+    w.open_file(QString::fromStdString(first));
+    ASSERT_TRUE(wait_until([&] { return w.has_log(); }, 60000));
+    ASSERT_TRUE(wait_idle(w, 120000));
+    QDockWidget *rover = w.pane("Rover"), *map = w.pane("Map");
+    ASSERT_NE(rover, nullptr);
+    ASSERT_NE(map, nullptr);
+    w.select_tab("Rover");
+    // Tabbed together at first: only one of them in view.
+    EXPECT_NE(in_view(rover), in_view(map));
+    // As a user drags the map's tab out to the right of the others.
+    w.removeDockWidget(map);
+    w.addDockWidget(Qt::RightDockWidgetArea, map, Qt::Horizontal);
+    map->show();
+    w.add_plot_channel("imu", "angular_rate_z");
+    w.select_tab("Rover");
+    ASSERT_TRUE(wait_until([&] { return in_view(rover) && in_view(map); }, 5000));
+    w.save_layout(QString::fromStdString(layout));
+    w.close();
+  }
+  const auto doc = nlohmann::json::parse(read_text(layout));
+  EXPECT_EQ(doc.at("format"), "roverlab-layout");
+  // ROVERLAB_KEEP_LAYOUT=<file>: keep it (e.g. for `roverlab gui --layout FILE --screenshot`).
+  if (const char* keep = std::getenv("ROVERLAB_KEEP_LAYOUT")) write_text(keep, read_text(layout));
+  QSettings().clear();
+  gui::MainWindow w;
+  w.set_quiet(true);
+  w.show();
+  // A new window: tabbed as built.
+  EXPECT_FALSE(in_view(w.pane("Rover")) && in_view(w.pane("Map")));
+  w.apply_layout(QString::fromStdString(layout));
+  w.open_file(QString::fromStdString(second));
+  ASSERT_TRUE(wait_until([&] { return w.has_log(); }, 60000));
+  ASSERT_TRUE(wait_idle(w, 120000));
+  ASSERT_TRUE(wait_until([&] { return in_view(w.pane("Rover")) && in_view(w.pane("Map")); }, 5000));
+  const QRect rover = in_window(w, w.pane("Rover")), map = in_window(w, w.pane("Map"));
+  EXPECT_FALSE(rover.intersects(map)) << "side by side";
+  EXPECT_GT(rover.width(), 150);
+  EXPECT_GT(map.width(), 150);
+  EXPECT_LE(rover.right(), map.left());  // the map right of the rover, as arranged
+  ASSERT_NE(w.chart(), nullptr);
+  bool plotted = false;
+  for (const auto& c : w.chart()->channels()) plotted = plotted || (c.stream == "imu" && c.channel == "angular_rate_z");
+  EXPECT_TRUE(plotted);
+  EXPECT_EQ(w.input()->file, second);
+  w.close();
+  QSettings().clear();  // the next tests' windows start tabbed as built
+  // Not a layout: one error naming the file.
+  write_text(dir.file("bad.json"), "{\"format\": \"something else\"}");
+  try {
+    w.apply_layout(QString::fromStdString(dir.file("bad.json")));
+    ADD_FAILURE() << "a file that is not a layout was applied";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+  }
+}
+
+// A pane whose view the log cannot feed says why in words (it was a black
+// panel), and a long status line never widens the window (it grew to 2014 px).
+TEST(Gui, APaneWithNothingToShowSaysWhyAndTheWindowNeverGrows) {
+  TempDir dir;
+  const std::string file = dir.file("flying.h5");
+  {
+    const auto rover = *io::find_rover("exomars_bb2", app::resource_subfolders("rovers")).dh;
+    auto sc = simulation::flying_rover_scenario("fl-bogie-rotation", rover);
+    sc.rate = 50.0;
+    log::Log lg = simulation::simulate_flying_rover(rover, sc);
+    lg.metadata.rover_id = "exomars_bb2";
+    io::write_hdf5_log(lg, file);
+  }
+  gui::MainWindow w;
+  w.set_quiet(true);
+  w.resize(1000, 700);
+  w.show();
+  const int width = w.width();
+  EXPECT_TRUE(w.pane_note("Map").contains("open a log")) << w.pane_note("Map").toStdString();
+  w.open_file(QString::fromStdString(file));
+  ASSERT_TRUE(wait_until([&] { return w.has_log(); }, 60000));
+  ASSERT_TRUE(wait_idle(w, 120000));
+  w.select_tab("Map");
+  EXPECT_TRUE(w.pane_note("Map").contains("no position to map")) << w.pane_note("Map").toStdString();
+  EXPECT_TRUE(w.pane_note("Rover").isEmpty()) << "the rover view draws this log";
+  // The status line holds every note of the load (a long line): the window keeps its width.
+  QCoreApplication::processEvents();
+  EXPECT_EQ(w.width(), width);
+  EXPECT_LE(w.width(), QGuiApplication::primaryScreen()->availableGeometry().width());
 }

@@ -10,6 +10,9 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <tuple>
+
+#include <sys/stat.h>
 
 #include "image_support.h"
 #include "test_support.h"
@@ -239,7 +242,9 @@ TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
                         "Slip classes", "What the wheel odometry gets wrong", "turning track"}) {
     EXPECT_NE(html.find(s), std::string::npos) << s;
   }
-  for (const char* f : {"rover.png", "timeseries.png", "slip.png"}) {
+  // Issue 32: the map, its own section, every track on it.
+  EXPECT_NE(html.find("map.png"), std::string::npos);
+  for (const char* f : {"rover.png", "map.png", "timeseries.png", "slip.png"}) {
     const views::Image img = views::read_png(folder + "/" + f);
     EXPECT_GT(distinct_colours(img), 20) << f;
   }
@@ -369,4 +374,71 @@ TEST(Report, FlyingRoverLogGetsTheContactAngleSection) {
   printed.erase("wall_seconds");
   contact.erase("wall_seconds");
   EXPECT_EQ(printed, contact);
+}
+
+// Issue 32: every file `convert`, `render` and `report` write, and the
+// report's folder, have the mode the umask gives (they were 0600 whatever
+// the umask: a shared folder or a web server could not serve a report).
+TEST(Report, FilesOfConvertRenderAndReportHaveTheModeTheUmaskGives) {
+  TempDir dir;
+  for (const auto& [umask, file_mode, folder_mode] : {std::tuple{"022", 0644u, 0755u}, {"077", 0600u, 0700u}}) {
+    const std::string h5 = dir.file(std::string("wvu") + umask + ".h5"),
+                      png = dir.file(std::string("map") + umask + ".png"),
+                      folder = dir.file(std::string("report") + umask);
+    const std::string sh = std::string("umask ") + umask + " && " + quote(kExe);
+    ASSERT_EQ(run_command(sh + " convert " + quote(kPathfinder) + " " + quote(h5) + " -m wvu_pathfinder").exit_code, 0);
+    ASSERT_EQ(run_command(sh + " render " + quote(h5) + " --view map --size 320x200 -o " + quote(png)).exit_code, 0);
+    ASSERT_EQ(run_command(sh + " report " + quote(h5) + " --size 320x200 -o " + quote(folder)).exit_code, 0);
+    struct stat st {};
+    std::vector<std::string> files = {h5, png};
+    for (const auto& e : fs::directory_iterator(folder)) files.push_back(e.path().string());
+    EXPECT_GE(files.size(), 8u);  // index.html, metrics.json, the pictures, the CSV tables
+    for (const auto& f : files) {
+      ASSERT_EQ(::stat(f.c_str(), &st), 0) << f;
+      EXPECT_EQ(st.st_mode & 0777, file_mode) << f << " under umask " << umask;
+    }
+    ASSERT_EQ(::stat(folder.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, folder_mode) << folder;
+  }
+}
+
+namespace {
+
+// The row of the widest run of INS-blue pixels at least `min_run` long (the
+// map's marker, a disc 14 px across; the track itself is 3 px wide), -1 if none.
+int marker_row(const views::Image& img, int min_run) {
+  int best_row = -1, best = 0;
+  for (int y = 0; y < img.height; ++y) {
+    int run = 0;
+    for (int x = 0; x < img.width; ++x) {
+      const unsigned char* p = img.pixel(x, y);
+      run = (p[2] > 170 && p[0] < 70 && p[1] > 50 && p[1] < 130) ? run + 1 : 0;
+      if (run >= min_run && run > best) {
+        best = run;
+        best_row = y;
+      }
+    }
+  }
+  return best_row;
+}
+
+}  // namespace
+
+// Issue 32: the GUI's map pane follows the cursor: the INS marker of the WVU
+// drive north sits lower in the window at 10 s than at 60 s (north is up).
+TEST(Render, TheGuiMapPaneFollowsTheCursor) {
+  TempDir dir;
+  int rows[2] = {-1, -1};
+  const double times[2] = {10.0, 60.0};
+  for (int k = 0; k < 2; ++k) {
+    const std::string png = dir.file("map" + std::to_string(k) + ".png");
+    const CommandResult r = run_roverlab("gui " + quote(kPathfinder) + " -m wvu_pathfinder --tab Map --time " +
+                                         std::to_string(times[k]) + " --screenshot " + quote(png));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    rows[k] = marker_row(views::read_png(png), 11);
+  }
+  ASSERT_GE(rows[0], 0) << "no marker at 10 s";
+  ASSERT_GE(rows[1], 0) << "no marker at 60 s";
+  // 50 s at about 0.5 m/s north: about 25 m, well over 150 pixels on a 34 m track 800 pixels high.
+  EXPECT_GT(rows[0] - rows[1], 150);
 }

@@ -85,6 +85,26 @@ TEST(ArticulatedRoverScene, TheArrowPointsWhereTheWheelMoves) {
   EXPECT_LT(blue_up.mean_y, blue_level.mean_y - 5.0);
 }
 
+// Issue 32: each wheel named beside it, and the key names only what is
+// drawn (this log estimates contact angles only: no side slip, no truth).
+TEST(ArticulatedRoverScene, WheelsAreLabelledAndTheKeyListsOnlyWhatIsDrawn) {
+  const log::Log lg = bb2_log(0.3);
+  views::ArticulatedRoverScene scene(lg, bb2());
+  render_scene(scene, 640, 400, 0.5);
+  const auto labels = scene.wheel_labels();
+  ASSERT_EQ(labels.size(), 6u);
+  for (std::size_t w = 0; w < 6; ++w) {
+    EXPECT_EQ(labels[w].first, kWheels[w]);
+    const Eigen::Vector3d offset = labels[w].second - scene.wheel_centres()[w];
+    EXPECT_GT(offset.z(), 0.0) << kWheels[w] << " above its wheel";
+    EXPECT_LT(offset.norm(), 0.5) << kWheels[w];
+  }
+  const std::string caption = scene.caption();
+  EXPECT_NE(caption.find("blue: velocity at the estimated contact angle"), std::string::npos) << caption;
+  EXPECT_EQ(caption.find("side slip"), std::string::npos) << caption;
+  EXPECT_EQ(caption.find("green: truth"), std::string::npos) << caption;
+}
+
 TEST(ArticulatedRoverScene, NeedsADhRoverAndItsJoints) {
   const log::Log empty;
   const kinematics::RoverModel model = bb2();

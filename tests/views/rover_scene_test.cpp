@@ -9,6 +9,8 @@
 #include "scene_support.h"
 #include "views/rover_scene.h"
 
+#include <vtkPolyData.h>
+
 using namespace roverlab;
 using namespace roverlab::test;
 
@@ -46,6 +48,13 @@ TEST(RoverScene, FollowsTheGpsTrackWithWheelsInTheSlipClassColour) {
   EXPECT_NEAR(scene.rover_position().x(), 0.0, 1e-9);
   EXPECT_NEAR(scene.rover_position().y(), 5.0, 1e-9);
   EXPECT_EQ(scene.shown_slip_class(), 0);
+  // Issue 32: the legend names the track, behind a filled swatch (a line at the foot read as "_gps").
+  EXPECT_EQ(scene.legend_entries(), std::vector<std::string>{"gps"});
+  ASSERT_NE(scene.legend_symbol(), nullptr);
+  EXPECT_EQ(scene.legend_symbol()->GetNumberOfPolys(), 1);
+  EXPECT_EQ(scene.legend_symbol()->GetNumberOfLines(), 0);
+  const double* box = scene.legend_symbol()->GetBounds();
+  EXPECT_GT(box[3] - box[2], 0.5 * (box[1] - box[0])) << "as tall as wide, not a line";
   // Class none: green wheels, around the middle of the picture.
   const Region green = find_pixels(img, [](int r, int g, int b) { return g - r > 50 && g - b > 50; });
   EXPECT_GT(green.count, 100);

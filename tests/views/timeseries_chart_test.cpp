@@ -61,6 +61,31 @@ TEST(TimeSeriesChart, DrawsTheStepWhereItsDataIsAndTheCursorAtItsTime) {
   EXPECT_NEAR(best_x, 0.75 * img.width, 0.12 * img.width);
 }
 
+// Issue 32: a value axis names its quantity, not only the unit ("(1)" said nothing).
+TEST(TimeSeriesChart, ValueAxesNameTheirQuantityAndUnit) {
+  log::Log lg;
+  const std::vector<double> t = times(1.0, 0.1);
+  log::Stream imu("imu", t);
+  for (const char* axis : {"x", "y", "z"}) imu.add_channel(std::string("angular_rate_") + axis, "rad/s", t);
+  imu.add_channel("specific_force_z", "m/s^2", t);
+  lg.add_stream(std::move(imu));
+  log::Stream slip("estimate/ins/slip", t);
+  slip.add_channel("slip_ratio", "1", t);
+  slip.add_channel("reference_slip", "1", t);
+  lg.add_stream(std::move(slip));
+  views::TimeSeriesChart chart(lg, {{"imu", "angular_rate_x"},
+                                    {"imu", "angular_rate_z"},
+                                    {"imu", "specific_force_z"},
+                                    {"estimate/ins/slip", "slip_ratio"},
+                                    {"estimate/ins/slip", "reference_slip"}});
+  ASSERT_EQ(chart.plot_count(), 3u);
+  EXPECT_EQ(chart.y_title(0), "angular rate (rad/s)");
+  EXPECT_EQ(chart.y_title(1), "specific force (m/s^2)");
+  EXPECT_EQ(chart.y_title(2), "slip ratio, reference slip");
+  EXPECT_EQ(chart.chart(0)->GetAxis(vtkAxis::LEFT)->GetTitle(), "angular rate (rad/s)");
+  EXPECT_EQ(chart.chart(2)->GetAxis(vtkAxis::LEFT)->GetTitle(), "slip ratio, reference slip");
+}
+
 TEST(TimeSeriesChart, ItsViewResetsItWithOtherChannelsInTheSameContextView) {
   const log::Log lg = step();
   const views::View* plots = nullptr;

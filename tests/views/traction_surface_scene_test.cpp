@@ -5,7 +5,16 @@
 
 #include <vtkActor.h>
 #include <vtkActorCollection.h>
+#include <vtkCubeAxesActor.h>
+#include <vtkDoubleArray.h>
+#include <vtkPropCollection.h>
 #include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTextActor.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
 
 #include "core/common/error.h"
 #include "scene_support.h"
@@ -55,6 +64,44 @@ TEST(TractionSurfaceScene, SpansItsColourMapWithTheMeasuredPoints) {
   EXPECT_GT(red.count, 300);
   EXPECT_GT(blue.count, 300);
   EXPECT_GT(dark.count, 30);  // points, residuals and axis text
+}
+
+// Issue 32: the colour bar's values are round (they were its range in fifths,
+// 38.9, 26.8, 14.6, 2.49, -9.65), and the height axis names the quantity and
+// its unit only, the model in a caption above.
+TEST(TractionSurfaceScene, RoundColourValuesAndItsOwnAxisTitles) {
+  views::TractionSurfaceData d = plane();
+  d.quantity = "drawbar pull (ding_tyii model)";
+  d.points.push_back({60.0, 0.3, -9.65});  // a range that does not start at a round value
+  const views::TractionSurfaceScene surface = views::make_traction_surface_scene(d);
+  vtkScalarBarActor* bar = nullptr;
+  vtkCubeAxesActor* axes = nullptr;
+  std::vector<std::string> texts;
+  vtkPropCollection* props = surface.renderer->GetViewProps();
+  props->InitTraversal();
+  for (vtkProp* p = props->GetNextProp(); p != nullptr; p = props->GetNextProp()) {
+    if (auto* b = vtkScalarBarActor::SafeDownCast(p)) bar = b;
+    if (auto* a = vtkCubeAxesActor::SafeDownCast(p)) axes = a;
+    if (auto* t = vtkTextActor::SafeDownCast(p)) texts.emplace_back(t->GetInput());
+  }
+  ASSERT_NE(bar, nullptr);
+  ASSERT_NE(axes, nullptr);
+  EXPECT_EQ(std::string(axes->GetZTitle()), "drawbar pull (N)");
+  EXPECT_EQ(texts, std::vector<std::string>{"surface: ding_tyii model"});
+  ASSERT_TRUE(bar->GetUseCustomLabels());
+  vtkDoubleArray* labels = bar->GetCustomLabels();
+  ASSERT_GE(labels->GetNumberOfTuples(), 4);
+  EXPECT_LE(labels->GetNumberOfTuples(), 8);
+  const double step = labels->GetValue(1) - labels->GetValue(0);
+  for (vtkIdType k = 0; k < labels->GetNumberOfTuples(); ++k) {
+    const double v = labels->GetValue(k);
+    EXPECT_GE(v, surface.value_min - 1e-9);
+    EXPECT_LE(v, surface.value_max + 1e-9);
+    EXPECT_NEAR(v / step, std::round(v / step), 1e-9) << v;  // a multiple of the step
+  }
+  const double decade = std::pow(10.0, std::floor(std::log10(step)));
+  const double m = step / decade;
+  EXPECT_TRUE(std::abs(m - 1) < 1e-9 || std::abs(m - 2) < 1e-9 || std::abs(m - 5) < 1e-9) << step;
 }
 
 TEST(TractionSurfaceScene, RefusesAnEmptyRange) {
