@@ -11,6 +11,7 @@
 #include "app/commands.h"
 #include "app/render_view.h"
 #include "app/views_input.h"
+#include "core/common/error.h"
 #include "views/view.h"
 #include "views/x_display.h"
 
@@ -68,7 +69,10 @@ int run_render(const RenderOptions& o) {
   if (view->draws_estimates()) vo.analyses = estimators();
   if (view->uses_surface_data() && !o.soil) vo.analyses = surface_analyses();  // a rover's own surfaces
   // Refused before any analysis runs: a time outside the log.
-  vo.check_log = [&o](const log::Log& lg) { check_time_in_log(lg, o.time); };
+  vo.check_log = [&o, view](const log::Log& lg) {
+    check_time_in_log(lg, o.time);
+    if (const std::string lacks = view->needs_before_estimates(lg); !lacks.empty()) throw InputError(o.file, lacks);
+  };
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
   ViewOptions options;
   options.time = o.time;

@@ -217,6 +217,14 @@ class ContactAnglesView : public View {
   std::string heading() const override { return "Contact and side-slip angles"; }
   bool draws_estimates() const override { return true; }
   std::string needs(const SceneInput& in) const override { return contact_angle_needs(*in.log); }
+  // Without the estimator's streams and without what it needs, no analysis can feed the view.
+  std::string needs_before_estimates(const log::Log& lg) const override {
+    if (lg.find_stream("estimate/contact/wheels") != nullptr) return {};
+    for (const char* s : {"imu", "joints", "wheels"}) {
+      if (lg.find_stream(s) == nullptr) return contact_angle_needs(lg);
+    }
+    return {};
+  }
 
  protected:
   std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {

@@ -88,6 +88,12 @@ class View {
   // True when the view draws estimates the app's analyses add to a log (the
   // app runs those that can run before building it).
   virtual bool draws_estimates() const { return false; }
+  // What the log lacks that no analysis can add (its measured streams),
+  // checked before any analysis runs: empty when the view may be fed.
+  virtual std::string needs_before_estimates(const log::Log& log) const {
+    (void)log;
+    return {};
+  }
   // The report's image height for this view, as a fraction of a scene's
   // (charts are drawn wide and low).
   virtual double report_height() const { return 1.0; }

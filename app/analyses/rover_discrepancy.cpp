@@ -307,7 +307,9 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
                  ReportSection::number(c.at("drift_per_100s")).c_str(), ReportSection::number(c.at("t_drift")).c_str(),
                  ReportSection::number(c.at("held_out_rmse_after")).c_str(), c.at("unit").get<std::string>().c_str());
   }
-  std::fprintf(out, "\n%s\n", j.at("slip_regime").at("text").get<std::string>().c_str());
+  // A stuck rover's regime leads what_is_wrong below.
+  if (!j.at("slip_regime").at("stuck").get<bool>())
+    std::fprintf(out, "\n%s\n", j.at("slip_regime").at("text").get<std::string>().c_str());
   std::fprintf(out, "\nChecks among the sensors, and against the model's slip and traction surfaces:\n");
   for (const auto& c : j.at("checks")) {
     const json& sigma = c.at("sigma");
@@ -347,8 +349,11 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
 void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   s.html << "<h2>" << title() << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
-         << "</p>\n<p>" << ReportSection::escape(j.at("slip_regime").at("text").get<std::string>()) << "</p>\n<p><b>"
-         << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n<p>"
+         << "</p>\n<p>"
+         << ReportSection::escape(j.at("slip_regime").at("stuck").get<bool>()
+                                      ? std::string()
+                                      : j.at("slip_regime").at("text").get<std::string>())
+         << "</p>\n<p><b>" << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n<p>"
          << ReportSection::escape(j.at("drive").get<std::string>()) << "; "
          << ReportSection::escape(j.at("held_out_method").get<std::string>()) << ".</p>\n"
          << "<table><tr><th>channel</th><th>unit</th><th>noise</th><th>RMSE</th><th>bias</th><th>drift / 100 s</th>"
