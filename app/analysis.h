@@ -79,6 +79,21 @@ struct KeyMetric {
 // summary read key metrics through it.
 nlohmann::json key_metric_value(const nlohmann::json& document, const KeyMetric& metric);
 
+// A table of a result as the GUI's Analysis pane shows it (the slip-class
+// confusion, a study's candidates). Built from the result document by the
+// analysis that wrote it, so no other code reads the document's keys.
+struct ResultTable {
+  struct Cell {
+    std::string text;
+    double shade = 0.0;  // 0..1: how strongly the cell is tinted (a fraction)
+    bool bold = false;   // the row the result picks
+  };
+  std::string title;                    // "What the wheel odometry gets wrong: candidate causes"
+  std::vector<std::string> columns;     // headings, with units
+  std::vector<std::string> row_names;   // empty: rows have no heading
+  std::vector<std::vector<Cell>> rows;  // rows[i].size() == columns.size()
+};
+
 class Analysis {
  public:
   virtual ~Analysis() = default;
@@ -130,6 +145,11 @@ class Analysis {
     (void)effects;
     return {};
   }
+  // The tables of its result the GUI shows; none by default.
+  virtual std::vector<ResultTable> tables(const nlohmann::json& document) const {
+    (void)document;
+    return {};
+  }
   // Its columns in a campaign's table of runs.
   virtual std::vector<KeyMetric> key_metrics() const { return {}; }
   // Its answer in a sentence or two, for the top of the report: by default
@@ -151,7 +171,9 @@ std::string log_fingerprint(const log::Log& log);
 
 // The result of `analysis` stored in `log` (estimate X -o OUT.h5) when it was
 // made from these measurements with this configuration; nullopt otherwise.
-std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& log);
+// `fingerprint` gives log_fingerprint(log) (asked only when a result is stored).
+std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& log,
+                                            const std::function<std::string()>& fingerprint = {});
 // Stores `document` in `estimates` (its metadata's results), to be written
 // with the log.
 void store_result(const Analysis& analysis, const nlohmann::json& document, log::Log& estimates);

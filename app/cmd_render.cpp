@@ -42,32 +42,15 @@ std::string views_that(bool (views::View::*uses)() const) {
   return out;
 }
 
-// The analyses that add estimate streams: a view that draws estimates gets them.
-std::vector<std::string> estimators() {
-  std::vector<std::string> names;
-  for (const auto& a : all_analyses()) {
-    if (a->adds_streams()) names.push_back(a->name());
-  }
-  return names;
-}
-
-// The analyses whose results hold traction surfaces.
-std::vector<std::string> surface_analyses() {
-  std::vector<std::string> names;
-  for (const auto& a : all_analyses()) {
-    if (a->draws_traction_surfaces()) names.push_back(a->name());
-  }
-  return names;
-}
-
 int run_render(const RenderOptions& o) {
   const auto [w, h] = parse_size(o.size);
   const views::View* view = views::find_view(o.view);
   if (view == nullptr) throw UsageError("--view " + o.view + ": expected " + views::view_names());
   if (fs::path(o.output).extension() != ".png") throw UsageError("--output " + o.output + ": must end in .png");
   ViewInputOptions vo;
-  if (view->draws_estimates()) vo.analyses = estimators();
-  if (view->uses_surface_data() && !o.soil) vo.analyses = surface_analyses();  // a rover's own surfaces
+  if (view->draws_estimates()) vo.analyses = all_analysis_names(&Analysis::adds_streams);  // the estimators
+  if (view->uses_surface_data() && !o.soil)                                                // a rover's own surfaces
+    vo.analyses = all_analysis_names(&Analysis::draws_traction_surfaces);
   // Refused before any analysis runs: a time outside the log.
   vo.check_log = [&o, view](const log::Log& lg) {
     check_time_in_log(lg, o.time);

@@ -79,7 +79,7 @@ class ReportWriter {
   std::ostringstream& html() { return section_.html; }
   bool has_surfaces() const {
     return std::any_of(in_.analyses.begin(), in_.analyses.end(),
-                       [](const AnalysisRun& run) { return make_analysis(run.name)->draws_traction_surfaces(); });
+                       [](const AnalysisRun& run) { return run.analysis->draws_traction_surfaces(); });
   }
   static std::string esc(const std::string& s) { return ReportSection::escape(s); }
   static std::string num(double v, const char* f) { return ReportSection::number(v, f); }
@@ -102,7 +102,7 @@ class ReportWriter {
     html() << "<h2>Summary</h2>\n<ul>\n";
     json lines = json::array();
     for (const auto& run : in_.analyses) {
-      const std::unique_ptr<Analysis> a = make_analysis(run.name);
+      const Analysis* a = run.analysis.get();
       const std::string text = a->summary(run.document);
       if (text.empty()) continue;
       html() << "<li><b>" << esc(a->title()) << "</b>: " << esc(text) << "</li>\n";
@@ -217,8 +217,7 @@ class ReportWriter {
 
   void analyses() {
     for (const auto& run : in_.analyses) {
-      const std::unique_ptr<Analysis> a = make_analysis(run.name);
-      a->report(run.document, section_);
+      run.analysis->report(run.document, section_);
       if (const std::string settings = configuration_text(run.document); !settings.empty())
         html() << "<p class=\"note\">" << esc(settings) << "</p>\n";
       metrics_["analyses"][run.name] = run.document;

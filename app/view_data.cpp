@@ -41,8 +41,7 @@ namespace {
 bool analysis_surface(const ViewInput& in, bool dp, views::TractionSurfaceData& d,
                       terramechanics::SurfaceFit* fit_out) {
   for (const auto& run : in.analyses) {
-    const std::unique_ptr<Analysis> a = make_analysis(run.name);
-    if (!a->draws_traction_surfaces() || !a->traction_surface(run.document, dp, d)) continue;
+    if (!run.analysis->draws_traction_surfaces() || !run.analysis->traction_surface(run.document, dp, d)) continue;
     if (fit_out) {
       fit_out->surface = d.surface;
       fit_out->error = terramechanics::fit_error(d.surface, d.points);

@@ -37,10 +37,16 @@ const nlohmann::json* ViewInput::result(const std::string& name) const {
   return nullptr;
 }
 
-void ViewInput::add(const Analysis& analysis, AnalysisResult r) {
+const std::string& ViewInput::fingerprint() const {
+  if (!fingerprint_) fingerprint_ = log_fingerprint(log);
+  return *fingerprint_;
+}
+
+void ViewInput::add(std::shared_ptr<const Analysis> analysis, AnalysisResult r) {
   // An analysis run again (another model chosen in the GUI) replaces its streams.
   for (const auto& s : r.estimates.streams()) log.replace_stream(s);
-  AnalysisRun run{analysis.name(), analysis.title(), std::move(r.document)};
+  std::string name = analysis->name(), title = analysis->title();
+  AnalysisRun run{std::move(analysis), std::move(name), std::move(title), std::move(r.document)};
   for (auto& a : analyses) {
     if (a.name == run.name) {
       a = std::move(run);
@@ -55,17 +61,21 @@ void ViewInput::add(const Analysis& analysis, AnalysisResult r) {
   analyses.insert(at, std::move(run));
 }
 
-std::vector<std::string> all_analysis_names() {
+std::vector<std::string> all_analysis_names(const std::function<bool(const Analysis&)>& keep) {
   std::vector<std::string> names;
-  for (const auto& a : all_analyses()) names.push_back(a->name());
+  for (const auto& a : all_analyses()) {
+    if (!keep || keep(*a)) names.push_back(a->name());
+  }
   return names;
 }
 
-bool reuse_stored_result(ViewInput& in, const Analysis& analysis) {
-  std::optional<nlohmann::json> stored = stored_result(analysis, in.log);
+bool reuse_stored_result(ViewInput& in, std::shared_ptr<const Analysis> analysis) {
+  if (in.result(analysis->name()) != nullptr) return false;
+  std::optional<nlohmann::json> stored = stored_result(*analysis, in.log, [&] { return in.fingerprint(); });
   if (!stored) return false;
-  in.add(analysis, AnalysisResult{{}, std::move(*stored)});
-  in.notes.push_back("reused the stored result of " + analysis.command() + " (same measurements and settings)");
+  const std::string command = analysis->command();
+  in.add(std::move(analysis), AnalysisResult{{}, std::move(*stored)});
+  in.notes.push_back("reused the stored result of " + command + " (same measurements and settings)");
   return true;
 }
 
@@ -83,9 +93,9 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
   in.log = load_input(file, mapping).log;
   if (o.check_log) o.check_log(in.log);
   for (const auto& name : o.analyses) {
-    const std::unique_ptr<Analysis> a = make_analysis(name);
+    const std::shared_ptr<Analysis> a = make_analysis(name);
     if (!a) throw std::logic_error("no analysis named " + name);
-    if (reuse_stored_result(in, *a)) continue;
+    if (reuse_stored_result(in, a)) continue;
     const std::string missing = a->missing(in.log);
     if (!missing.empty()) {
       in.notes.push_back("not run: " + a->command() + " (the log has " + missing + ")");
@@ -93,7 +103,7 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     }
     if (!a->runs_on_open(in.log)) continue;
     try {
-      in.add(*a, run_analysis(*a, {in.log, file, {}}));
+      in.add(a, run_analysis(*a, {in.log, file, {}}));
     } catch (const InputError& e) {
       in.notes.push_back("not run: " + a->command() + " (" + e.problem() + ")");
       continue;

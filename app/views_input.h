@@ -3,6 +3,7 @@
 // the GUI): the log, with the results (and estimate streams) of the analyses
 // asked for that can run on it; or the traction points of a single-wheel CSV.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,8 +17,10 @@
 
 namespace roverlab::app {
 
-// One analysis's result as the views hold it (app/analysis.h).
+// One analysis's result as the views hold it (app/analysis.h), with the
+// analysis (and its settings) that made it: its document is read through it.
 struct AnalysisRun {
+  std::shared_ptr<const Analysis> analysis;
   std::string name, title;
   nlohmann::json document;
 };
@@ -32,7 +35,13 @@ struct ViewInput {
   // The result document of analysis `name`, nullptr when it has not run.
   const nlohmann::json* result(const std::string& name) const;
   // Adds (or replaces) a result and the streams the log does not have yet.
-  void add(const Analysis& analysis, AnalysisResult result);
+  void add(std::shared_ptr<const Analysis> analysis, AnalysisResult result);
+  // log_fingerprint(log), computed once: the analyses add estimate/ streams
+  // only, which it leaves out.
+  const std::string& fingerprint() const;
+
+ private:
+  mutable std::optional<std::string> fingerprint_;
 };
 
 struct ViewInputOptions {
@@ -45,12 +54,14 @@ struct ViewInputOptions {
   std::function<void(const log::Log&)> check_log;
 };
 
-// The names of every registered analysis: what the report runs.
-std::vector<std::string> all_analysis_names();
+// The names of the registered analyses for which `keep` holds (every one
+// when it is empty: what the report runs), in registry order.
+std::vector<std::string> all_analysis_names(const std::function<bool(const Analysis&)>& keep = {});
 
 // Adds the result of `analysis` stored in the log when its measurements and
 // settings match (app/analysis.h: stored_result); false when there is none.
-bool reuse_stored_result(ViewInput& in, const Analysis& analysis);
+// Nothing is done when `in` already holds a result of that analysis.
+bool reuse_stored_result(ViewInput& in, std::shared_ptr<const Analysis> analysis);
 
 // Loads FILE (log formats, or a single-wheel CSV with load_N and slip
 // columns). Throws InputError naming the file.

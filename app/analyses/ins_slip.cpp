@@ -55,6 +55,27 @@ json confusion_json(const ConfusionMatrix& c) {
   return j;
 }
 
+// The confusion as a table: rows estimated, columns reference, each cell the
+// column-normalised fraction, tinted by it.
+ResultTable confusion_table(const json& c, const std::string& title) {
+  ResultTable t;
+  t.title = title + " (rows: estimated, columns: reference; % of each reference class)";
+  for (const json& k : c.at("classes")) {
+    t.columns.push_back(k.get<std::string>());
+    t.row_names.push_back(k.get<std::string>());
+  }
+  for (const json& row : c.at("column_normalised")) {
+    std::vector<ResultTable::Cell> cells;
+    for (const json& f : row) {
+      char text[32] = "-";
+      if (f.is_number()) std::snprintf(text, sizeof text, "%.1f %%", 100.0 * f.get<double>());
+      cells.push_back({text, f.is_number() ? f.get<double>() : 0.0, false});
+    }
+    t.rows.push_back(std::move(cells));
+  }
+  return t;
+}
+
 void print_confusion(const json& c, std::FILE* out) {
   std::fprintf(out, "slip classes, column-normalised (%% of each reference class; rows: estimated):\n");
   std::fprintf(out, "  %-10s", "");
@@ -172,6 +193,7 @@ class InsSlipAnalysis : public Analysis {
         {"slip_class_accuracy", "slip class accuracy", "/slip_confusion/accuracy"}};
   }
   void report(const json& j, ReportSection& section) const override;
+  std::vector<ResultTable> tables(const json& j) const override;
 
  private:
   static json document(const std::string& file, const estimation::InsSlipOptions& o,
@@ -237,6 +259,14 @@ class InsSlipAnalysis : public Analysis {
 };
 
 const char* on_off(const json& b) { return b.get<bool>() ? "on" : "off"; }
+
+std::vector<ResultTable> InsSlipAnalysis::tables(const json& j) const {
+  std::vector<ResultTable> out;
+  if (j.contains("slip_confusion")) out.push_back(confusion_table(j.at("slip_confusion"), "Slip classes"));
+  if (j.contains("slip_confusion_moving"))
+    out.push_back(confusion_table(j.at("slip_confusion_moving"), "Slip classes while driving"));
+  return out;
+}
 
 // What the IMU's vibration leaves the slip detector (estimation::ImuVibration).
 void print_vibration(const json& j, std::FILE* out) {

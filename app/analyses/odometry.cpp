@@ -67,6 +67,7 @@ class OdometryAnalysis : public Analysis {
     return "";
   }
   void report(const json& j, ReportSection& section) const override;
+  std::vector<ResultTable> tables(const json& j) const override;
 
  private:
   static json document(const std::string& file, const analysis::OdometryDiscrepancyReport& r);
@@ -162,6 +163,29 @@ void OdometryAnalysis::print(const json& j, std::FILE* out) const {
     }
   }
   std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
+}
+
+std::vector<ResultTable> OdometryAnalysis::tables(const json& j) const {
+  ResultTable t;
+  t.title = "What the wheel odometry gets wrong: candidate causes";
+  t.columns = {"candidate", "fitted", "fit RMSE (m)", "delta BIC", "held-out RMSE (m)", "held-out final (m)"};
+  const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
+  const json& b = j.at("baseline");
+  t.rows.push_back({{"(nominal geometry)"},
+                    {""},
+                    {n(b.at("fit_rmse_m"), "%.2f")},
+                    {"0"},
+                    {n(b.at("held_out_rmse_m"), "%.2f")},
+                    {n(b.at("held_out_final_m"), "%.2f")}});
+  for (const auto& c : j.at("candidates")) {
+    const bool picked = c.at("name") == j.at("cause");
+    std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},    {parameters_text(c.at("parameters"))},
+                                       {n(c.at("fit_rmse_m"), "%.2f")},      {n(c.at("delta_bic"), "%.1f")},
+                                       {n(c.at("held_out_rmse_m"), "%.2f")}, {n(c.at("held_out_final_m"), "%.2f")}};
+    for (auto& cell : row) cell.bold = picked;
+    t.rows.push_back(std::move(row));
+  }
+  return {t};
 }
 
 void OdometryAnalysis::report(const json& j, ReportSection& s) const {

@@ -66,12 +66,14 @@ AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input) {
   return r;
 }
 
-std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& lg) {
+std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& lg,
+                                            const std::function<std::string()>& fingerprint) {
   const auto at = lg.metadata.results.find(analysis.name());
   if (at == lg.metadata.results.end()) return std::nullopt;
   nlohmann::json doc = nlohmann::json::parse(at->second, nullptr, false);
   if (!doc.is_object() || doc.value("configuration", nlohmann::json()) != analysis.configuration() ||
-      !doc.contains("input") || doc.at("input").value("fingerprint", std::string()) != log_fingerprint(lg)) {
+      !doc.contains("input") ||
+      doc.at("input").value("fingerprint", std::string()) != (fingerprint ? fingerprint() : log_fingerprint(lg))) {
     return std::nullopt;
   }
   return doc;

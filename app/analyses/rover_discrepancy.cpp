@@ -129,6 +129,7 @@ class RoverDiscrepancyAnalysis : public Analysis {
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;
   void report(const json& j, ReportSection& section) const override;
+  std::vector<ResultTable> tables(const json& j) const override;
   std::string summary(const json& j) const override {
     const json& regime = j.at("slip_regime");
     const std::string what = j.at("what_is_wrong").get<std::string>() + " " + j.at("verdict").get<std::string>();
@@ -344,6 +345,35 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
                  "not give it a +-1 sigma)\n");
   }
   std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
+}
+
+std::vector<ResultTable> RoverDiscrepancyAnalysis::tables(const json& j) const {
+  const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
+  ResultTable candidates;
+  candidates.title = "What the simulation gets wrong: candidate causes";
+  candidates.columns = {"candidate", "fitted (+-1 sigma)", "delta BIC", "held-out (noise sigmas)"};
+  candidates.rows.push_back({{"(nominal)"}, {""}, {"0"}, {n(j.at("baseline").at("held_out"), "%.3g")}});
+  for (const auto& c : j.at("candidates")) {
+    std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},
+                                       {parameters_text(c.at("parameters"), c.at("screened").get<bool>())},
+                                       {roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>())},
+                                       {n(c.at("held_out"), "%.3g")}};
+    for (auto& cell : row) cell.bold = c.at("significant").get<bool>();
+    candidates.rows.push_back(std::move(row));
+  }
+  ResultTable checks;
+  checks.title = "Checks among the sensors and against the model";
+  checks.columns = {"check", "value", "expected", "unit", "verdict"};
+  for (const auto& c : j.at("checks")) {
+    std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},
+                                       {n(c.at("value"), "%.4g")},
+                                       {n(c.at("expected"), "%.4g")},
+                                       {c.at("unit").get<std::string>()},
+                                       {c.at("verdict").get<std::string>()}};
+    for (auto& cell : row) cell.bold = !c.at("consistent").get<bool>();
+    checks.rows.push_back(std::move(row));
+  }
+  return {candidates, checks};
 }
 
 void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {

@@ -27,6 +27,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSlider>
 #include <QStackedWidget>
@@ -49,7 +50,6 @@
 #include "app/resources.h"
 #include "app/view_data.h"
 #include "core/common/error.h"
-#include "core/estimation/slip.h"
 #include "importers/atomic_file.h"
 #include "importers/mapping.h"
 #include "importers/rover_file.h"
@@ -461,28 +461,18 @@ QWidget* MainWindow::build_analysis_tab() {
   results_ = new QTreeWidget;
   results_->setHeaderLabels({"result", "value"});
   results_->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
-  confusion_ = new QTableWidget(estimation::kSlipClasses, estimation::kSlipClasses);
-  QStringList classes;
-  for (int k = 0; k < estimation::kSlipClasses; ++k)
-    classes << estimation::to_string(static_cast<estimation::SlipClass>(k));
-  confusion_->setHorizontalHeaderLabels(classes);
-  confusion_->setVerticalHeaderLabels(classes);
-  confusion_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  confusion_->setMaximumHeight(200);
-  candidates_ = new QTableWidget(0, 5);
-  candidates_->setHorizontalHeaderLabels(
-      {"candidate", "fitted", "fit RMSE (m)", "held-out RMSE (m)", "held-out final (m)"});
-  candidates_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  candidates_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  tables_ = new QWidget;  // each table whole, in a scroll area of their own
+  tables_->setLayout(new QVBoxLayout);
+  tables_->layout()->setContentsMargins(0, 0, 0, 0);
+  auto* tables_scroll = new QScrollArea;
+  tables_scroll->setWidget(tables_);
+  tables_scroll->setWidgetResizable(true);
   auto* scroll = new QScrollArea;
   scroll->setWidget(analysis_text_);
   scroll->setWidgetResizable(true);
   layout->addWidget(scroll, 1);
   layout->addWidget(results_, 1);
-  layout->addWidget(new QLabel("Slip classes, column-normalised (rows: estimated, columns: reference)"));
-  layout->addWidget(confusion_);
-  layout->addWidget(new QLabel("What the wheel odometry gets wrong: candidate causes"));
-  layout->addWidget(candidates_, 1);
+  layout->addWidget(tables_scroll, 2);
   return page;
 }
 
@@ -521,7 +511,7 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
                    in = std::make_unique<ViewInput>(app::load_view_input(file, map, o));
                  }
                  // Results stored with the log (estimate X -o) are shown, not computed again.
-                 for (const auto& an : app::all_analyses()) app::reuse_stored_result(*in, *an);
+                 for (auto& an : app::all_analyses()) app::reuse_stored_result(*in, std::move(an));
                  c.check();
                  auto shared = std::make_shared<std::unique_ptr<ViewInput>>(std::move(in));
                  return [this, shared, path] {
@@ -580,7 +570,7 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
       c.check();
     }
     return [this, todo, results] {
-      for (std::size_t k = 0; k < todo.size(); ++k) input_->add(*todo[k], std::move((*results)[k]));
+      for (std::size_t k = 0; k < todo.size(); ++k) input_->add(todo[k], std::move((*results)[k]));
       const double t = time_;
       rebuild_tree();
       QWidget* shown = rebuild_views();  // a view the new estimates made available comes to the front
@@ -744,68 +734,68 @@ void add_json_items(QTreeWidgetItem* parent, const nlohmann::json& v) {
   }
 }
 
-}  // namespace
-
-void MainWindow::rebuild_analysis() {
-  confusion_->clearContents();
-  candidates_->setRowCount(0);
-  results_->clear();
-  if (!input_) return;
-  QString text;
-  for (const auto& run : input_->analyses) {
-    const std::unique_ptr<app::Analysis> a = app::make_analysis(run.name);
-    text += "<b>" + q(run.title).toHtmlEscaped() + "</b><pre>" + q(app::printed(*a, run.document)).toHtmlEscaped() +
-            "</pre>";
-    auto* top = new QTreeWidgetItem(results_, {q(run.title), ""});
-    add_json_items(top, run.document);
-  }
-  if (const nlohmann::json* ins = input_->result("ins-slip"); ins != nullptr && ins->contains("slip_confusion")) {
-    const nlohmann::json& fractions = ins->at("slip_confusion").at("column_normalised");
-    for (int e = 0; e < estimation::kSlipClasses; ++e) {
-      for (int t = 0; t < estimation::kSlipClasses; ++t) {
-        const nlohmann::json& f = fractions.at(e).at(t);
-        auto* item =
-            new QTableWidgetItem(f.is_number() ? QString("%1 %").arg(100.0 * f.get<double>(), 0, 'f', 1) : "-");
-        if (f.is_number())
-          item->setBackground(QColor::fromRgbF(1.0 - 0.5 * f.get<double>(), 1.0 - 0.5 * f.get<double>(), 1.0));
-        confusion_->setItem(e, t, item);
+// One table of a result (Analysis::tables) as a table widget named by its title.
+QWidget* table_widget(const app::ResultTable& t) {
+  auto* table = new QTableWidget(static_cast<int>(t.rows.size()), static_cast<int>(t.columns.size()));
+  table->setObjectName(q(t.title));
+  QStringList columns, rows;
+  for (const auto& c : t.columns) columns << q(c);
+  for (const auto& r : t.row_names) rows << q(r);
+  table->setHorizontalHeaderLabels(columns);
+  if (!rows.isEmpty()) table->setVerticalHeaderLabels(rows);
+  table->verticalHeader()->setVisible(!rows.isEmpty());
+  table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    for (std::size_t k = 0; k < t.rows[i].size() && k < t.columns.size(); ++k) {
+      const app::ResultTable::Cell& cell = t.rows[i][k];
+      auto* item = new QTableWidgetItem(q(cell.text));
+      if (cell.shade > 0.0) {
+        const double f = 1.0 - 0.5 * std::min(1.0, cell.shade);
+        item->setBackground(QColor::fromRgbF(f, f, 1.0));
       }
-    }
-  }
-  if (const nlohmann::json* odo = input_->result("odometry"); odo != nullptr) fill_candidates(*odo);
-  if (text.isEmpty()) text = "No analyses yet: none of the registered analyses can run on this log.";
-  analysis_text_->setText(text);
-}
-
-// The odometry study's candidates from its result document.
-void MainWindow::fill_candidates(const nlohmann::json& r) {
-  const nlohmann::json& candidates = r.at("candidates");
-  candidates_->setRowCount(static_cast<int>(candidates.size()) + 1);
-  auto row = [&](int i, const QString& name, const QString& fitted, const nlohmann::json& fit,
-                 const nlohmann::json& held, const nlohmann::json& fin, bool bold) {
-    const QStringList cells{name, fitted, json_text(fit), json_text(held), json_text(fin)};
-    for (int k = 0; k < cells.size(); ++k) {
-      auto* item = new QTableWidgetItem(cells[k]);
-      if (bold) {
+      if (cell.bold) {
         QFont font = item->font();
         font.setBold(true);
         item->setFont(font);
       }
-      candidates_->setItem(i, k, item);
+      table->setItem(static_cast<int>(i), static_cast<int>(k), item);
     }
-  };
-  const nlohmann::json& b = r.at("baseline");
-  row(0, "(nominal geometry)", "", b.at("fit_rmse_m"), b.at("held_out_rmse_m"), b.at("held_out_final_m"), false);
-  int i = 1;
-  for (const auto& c : candidates) {
-    QString fitted;
-    for (const auto& p : c.at("parameters")) {
-      fitted +=
-          q(p.at("name").get<std::string>()) + " = " + QString::number(p.at("value").get<double>(), 'g', 4) + "  ";
-    }
-    row(i++, q(c.at("name").get<std::string>()), fitted, c.at("fit_rmse_m"), c.at("held_out_rmse_m"),
-        c.at("held_out_final_m"), c.at("name") == r.at("cause"));
   }
+  // Tall enough for every row: the scroll area around the tables scrolls, not each table.
+  table->resizeRowsToContents();
+  int height = table->horizontalHeader()->sizeHint().height() + 2 * table->frameWidth();
+  for (int i = 0; i < table->rowCount(); ++i) height += table->rowHeight(i);
+  if (table->horizontalScrollBarPolicy() != Qt::ScrollBarAlwaysOff)
+    height += table->horizontalScrollBar()->sizeHint().height();
+  table->setFixedHeight(height);
+  table->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  return table;
+}
+
+}  // namespace
+
+void MainWindow::rebuild_analysis() {
+  while (QLayoutItem* old = tables_->layout()->takeAt(0)) {
+    delete old->widget();
+    delete old;
+  }
+  results_->clear();
+  if (!input_) return;
+  QString text;
+  for (const auto& run : input_->analyses) {
+    text += "<b>" + q(run.title).toHtmlEscaped() + "</b><pre>" +
+            q(app::printed(*run.analysis, run.document)).toHtmlEscaped() + "</pre>";
+    auto* top = new QTreeWidgetItem(results_, {q(run.title), ""});
+    add_json_items(top, run.document);
+    for (const app::ResultTable& t : run.analysis->tables(run.document)) {
+      tables_->layout()->addWidget(new QLabel(q(t.title)));
+      tables_->layout()->addWidget(table_widget(t));
+    }
+  }
+  static_cast<QVBoxLayout*>(tables_->layout())->addStretch(1);
+  if (text.isEmpty()) text = "No analyses yet: none of the registered analyses can run on this log.";
+  analysis_text_->setText(text);
 }
 
 void MainWindow::rebuild_surface() {

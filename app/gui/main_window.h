@@ -146,7 +146,6 @@ class MainWindow : public QMainWindow {
   void render_pane(ViewTab& tab);
   void render_next();
   QWidget* build_analysis_tab();
-  void fill_candidates(const nlohmann::json& odometry_result);
   // Runs the analyses `names` in one background job; `by_hand`: say why one cannot run.
   void run_analyses(const std::vector<std::string>& names, bool by_hand);
   void show_error(const QString& text);
@@ -164,8 +163,7 @@ class MainWindow : public QMainWindow {
   QComboBox* surface_soil_ = nullptr;
   QComboBox* surface_quantity_ = nullptr;
   QLabel* surface_note_ = nullptr;
-  QTableWidget* confusion_ = nullptr;
-  QTableWidget* candidates_ = nullptr;
+  QWidget* tables_ = nullptr;  // the analyses' result tables (Analysis::tables)
   QLabel* analysis_text_ = nullptr;
   QTreeWidget* results_ = nullptr;
   QSlider* slider_ = nullptr;

@@ -55,6 +55,21 @@ TEST(AnalysisRegistry, TextAndReportAreWrittenFromTheResultDocument) {
   EXPECT_NE(section.html.str().find("Slip classes"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(folder / "slip_confusion.csv"));
   std::filesystem::remove_all(folder);
+  // The GUI's tables come from the document too: each confusion cell is the
+  // column-normalised fraction in per cent, tinted by it.
+  edited["slip_confusion"]["column_normalised"][1][2] = 0.4321;
+  const std::vector<app::ResultTable> tables = ins->tables(edited);
+  ASSERT_FALSE(tables.empty());
+  const app::ResultTable& t = tables.front();
+  EXPECT_EQ(t.columns.size(), edited.at("slip_confusion").at("classes").size());
+  EXPECT_EQ(t.row_names, t.columns);
+  ASSERT_EQ(t.rows.size(), t.columns.size());
+  EXPECT_EQ(t.rows[1][2].text, "43.2 %");
+  EXPECT_DOUBLE_EQ(t.rows[1][2].shade, 0.4321);
+  nlohmann::json without = edited;
+  without.erase("slip_confusion");
+  without.erase("slip_confusion_moving");
+  EXPECT_TRUE(ins->tables(without).empty());
 }
 
 // A campaign's columns come from the analyses: unique keys, and each numeric

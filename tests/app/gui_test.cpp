@@ -15,6 +15,7 @@
 #include <QSettings>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
+#include <QTableWidget>
 #include <QThread>
 #include <QTimer>
 
@@ -300,7 +301,7 @@ TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
                 .exit_code,
             0);
   ASSERT_EQ(roverlab("simulate flat_60s -o " + quote(planar)).exit_code, 0);
-  std::set<std::string> compared;
+  std::set<std::string> compared, with_tables;
   for (const std::string& file : {bb2, wvu, planar}) {
     const std::string folder = dir.file("report_" + std::to_string(compared.size()));
     const CommandResult report = roverlab("report " + quote(file) + " -o " + quote(folder));
@@ -326,10 +327,26 @@ TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
       EXPECT_EQ(nlohmann::json::diff(from_cli, app::without_run_details(*from_gui)), nlohmann::json::array())
           << name << " on " << file;
       EXPECT_TRUE(from_cli.contains("configuration")) << name;
+      // Its tables (Analysis::tables) in the Analysis pane, cell for cell.
+      for (const app::ResultTable& t : a->tables(*from_gui)) {
+        const auto* table = w.findChild<QTableWidget*>(QString::fromStdString(t.title));
+        ASSERT_NE(table, nullptr) << t.title;
+        ASSERT_EQ(table->rowCount(), static_cast<int>(t.rows.size())) << t.title;
+        for (std::size_t i = 0; i < t.rows.size(); ++i) {
+          for (std::size_t k = 0; k < t.columns.size(); ++k) {
+            const QTableWidgetItem* item = table->item(static_cast<int>(i), static_cast<int>(k));
+            ASSERT_NE(item, nullptr) << t.title;
+            EXPECT_EQ(item->text().toStdString(), t.rows[i][k].text) << t.title << " row " << i;
+          }
+        }
+        with_tables.insert(name);
+      }
       compared.insert(name);
     }
   }
   for (const auto& a : app::all_analyses()) EXPECT_EQ(compared.count(a->name()), 1u) << a->name() << " not compared";
+  // The slip-class confusion and the two studies' candidates are shown.
+  for (const char* name : {"ins-slip", "odometry", "rover-discrepancy"}) EXPECT_EQ(with_tables.count(name), 1u) << name;
 }
 
 namespace {
