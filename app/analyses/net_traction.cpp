@@ -26,7 +26,6 @@ namespace {
 using nlohmann::json;
 constexpr double kDeg = 180.0 / M_PI;
 // A rover whose forward speed never exceeds this has not moved.
-constexpr double kMovingSpeed = 2e-3;  // m/s
 
 json vec(const Eigen::Vector3d& v, double scale = 1.0) {
   return json::array({finite_or_null(v(0) * scale), finite_or_null(v(1) * scale), finite_or_null(v(2) * scale)});
@@ -125,7 +124,7 @@ class NetTractionAnalysis : public Analysis {
     std::string m = estimation::net_traction_missing(lg);
     if (!m.empty()) return m;
     if (!planar_rover(lg)) return "the log's rover '" + lg.metadata.rover_id + "' is not a planar rocker-bogie";
-    if (!moves(lg.stream("velocimeter")))
+    if (!analysis::drives(lg.stream("velocimeter")))
       return "the rover never moves (forward speed within 2 mm/s over every second)";
     return "";
   }
@@ -186,22 +185,6 @@ class NetTractionAnalysis : public Analysis {
       return std::nullopt;
     }
   }
-  // Whether the forward speed averaged over some second exceeds 2 mm/s (a
-  // single sample may, by the velocimeter's noise alone).
-  static bool moves(const log::Stream& velocimeter) {
-    const auto& v = velocimeter.channel("forward_speed").values;
-    const auto& t = velocimeter.time();
-    const auto value = [&](std::size_t k) { return std::isfinite(v[k]) ? v[k] : 0.0; };
-    double sum = 0;
-    std::size_t first = 0;
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      sum += value(k);
-      for (; t[k] - t[first] > 1.0; ++first) sum -= value(first);
-      const auto n = static_cast<double>(k - first + 1);
-      if (t[k] - t[first] >= 0.9 && std::abs(sum) > kMovingSpeed * n) return true;
-    }
-    return false;
-  }
   static bool planar_rover(const log::Log& lg) {
     const auto d = rover_of(lg, "");
     return d && d->planar.has_value();
@@ -215,6 +198,10 @@ class NetTractionAnalysis : public Analysis {
     } catch (const std::exception&) {
     }
     throw UsageError("--order " + order_ + ": expected 1..6 or auto");
+  }
+  analysis::BogieSplit bogie_split() const {
+    if (bogie_split_ == "eq-5.66") return analysis::BogieSplit::eq_5_66;
+    return bogie_split_ == "shape" ? analysis::BogieSplit::shape : analysis::BogieSplit::automatic;
   }
   estimation::ForceSensors sensors() const {
     try {
@@ -320,34 +307,15 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
   if (force_sensors_) o.force_sensors = sensors();
   o.progress = in.progress;
   estimation::NetTractionResult r = estimation::run_net_traction(in.log, rover, o);
-  bool shape_split = false;
-  json split_evidence = nullptr;
-  if (bogie_split_ != "eq-5.66" && !r.single_axis.empty()) {  // section 5.6's split in two passes
-    analysis::SteadyStateOptions so;
-    so.window_seconds = window_;
-    try {
-      estimation::NetTractionResult second = analysis::single_axis_second_pass(in.log, rover, o, r, so);
-      if (bogie_split_ == "auto") {  // keep the second pass only if its points stay as consistent
-        const double first_rmse = analysis::single_axis_drawbar_pull_fit_rmse(r, so);
-        const double second_rmse = analysis::single_axis_drawbar_pull_fit_rmse(second, so);
-        const bool keep = second_rmse < analysis::kSecondPassFitGrowthLimit * first_rmse;
-        split_evidence = {{"first_pass_dp_fit_rmse_N", first_rmse},
-                          {"second_pass_dp_fit_rmse_N", second_rmse},
-                          {"growth_limit", analysis::kSecondPassFitGrowthLimit},
-                          {"kept", keep ? "shape" : "eq-5.66"}};
-        shape_split = keep;  // else Eq. 5.66's pass stays
-      } else {
-        shape_split = true;
-      }
-      if (shape_split && r.force_sensors == estimation::ForceSensors::single_axis) {
-        r = std::move(second);
-      } else if (shape_split) {
-        r.single_axis = std::move(second.single_axis);
-        r.rejected_updates[2] = second.rejected_updates[2];
-      }
-    } catch (const DataError&) {  // too few points for the shape: Eq. 5.66 alone (the fits say why)
-    }
-  }
+  analysis::SteadyStateOptions so;
+  so.window_seconds = window_;
+  const analysis::BogieSplitChoice split = analysis::choose_bogie_split(in.log, rover, o, bogie_split(), so, r);
+  const bool shape_split = split.shape;
+  const json split_evidence = split.compared ? json{{"first_pass_dp_fit_rmse_N", split.first_pass_fit_rmse},
+                                                    {"second_pass_dp_fit_rmse_N", split.second_pass_fit_rmse},
+                                                    {"growth_limit", analysis::kSecondPassFitGrowthLimit},
+                                                    {"kept", split.shape ? "shape" : "eq-5.66"}}
+                                             : json(nullptr);
   AnalysisResult out;
   const double seconds = r.time.empty() ? 0.0 : r.time.back() - r.time.front();
   out.document = {{"file", in.file},

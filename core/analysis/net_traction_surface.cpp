@@ -515,4 +515,45 @@ std::string surface_term(std::size_t i) {
   return t.empty() ? "1" : t;
 }
 
+BogieSplitChoice choose_bogie_split(const log::Log& lg, const estimation::net_traction::RoverConstants& rover,
+                                    const estimation::NetTractionOptions& options, BogieSplit split,
+                                    const SteadyStateOptions& steady, estimation::NetTractionResult& r) {
+  BogieSplitChoice choice;
+  if (split == BogieSplit::eq_5_66 || r.single_axis.empty()) return choice;
+  try {
+    estimation::NetTractionResult second = single_axis_second_pass(lg, rover, options, r, steady);
+    choice.shape = true;
+    if (split == BogieSplit::automatic) {  // keep the second pass only if its points stay as consistent
+      choice.compared = true;
+      choice.first_pass_fit_rmse = single_axis_drawbar_pull_fit_rmse(r, steady);
+      choice.second_pass_fit_rmse = single_axis_drawbar_pull_fit_rmse(second, steady);
+      choice.shape = choice.second_pass_fit_rmse < kSecondPassFitGrowthLimit * choice.first_pass_fit_rmse;
+    }
+    if (choice.shape && r.force_sensors == estimation::ForceSensors::single_axis) {
+      r = std::move(second);
+    } else if (choice.shape) {
+      r.single_axis = std::move(second.single_axis);
+      r.rejected_updates[2] = second.rejected_updates[2];
+    }
+  } catch (const DataError&) {  // too few points for the shape: Eq. 5.66 alone (the fits say why)
+    choice.shape = false;
+  }
+  return choice;
+}
+
+bool drives(const log::Stream& velocimeter, double speed) {
+  const auto& v = velocimeter.channel("forward_speed").values;
+  const auto& t = velocimeter.time();
+  const auto value = [&](std::size_t k) { return std::isfinite(v[k]) ? v[k] : 0.0; };
+  double sum = 0;
+  std::size_t first = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {  // a moving mean over one second
+    sum += value(k);
+    for (; t[k] - t[first] > 1.0; ++first) sum -= value(first);
+    const auto n = static_cast<double>(k - first + 1);
+    if (t[k] - t[first] >= 0.9 && std::abs(sum) > speed * n) return true;
+  }
+  return false;
+}
+
 }  // namespace roverlab::analysis

@@ -165,6 +165,32 @@ double single_axis_drawbar_pull_fit_rmse(const estimation::NetTractionResult& pa
 // true local model, 39-56 % where it is further; docs/validation/net-traction.md).
 constexpr double kSecondPassFitGrowthLimit = 1.25;
 
+// How the single-axis estimator splits the bogie's perpendicular load
+// (section 5.6): Eq. 5.66 alone, the second pass's shape, or the shape only
+// when its DP fit stays within kSecondPassFitGrowthLimit of the first's.
+enum class BogieSplit { eq_5_66, shape, automatic };
+
+// What choose_bogie_split decided, and on what evidence (auto only).
+struct BogieSplitChoice {
+  bool shape = false;                                            // the second pass's split was kept
+  bool compared = false;                                         // auto compared the two passes' fits
+  double first_pass_fit_rmse = NAN, second_pass_fit_rmse = NAN;  // N, when compared
+};
+
+// Section 5.6 in two passes when `split` asks for it and `result` has a
+// single-axis estimator: runs single_axis_second_pass and, when the split is
+// kept, puts its single-axis estimates (all of the result, when the rover has
+// single-axis sensors only) into `result`. Too few points for the shape
+// leaves Eq. 5.66's pass.
+BogieSplitChoice choose_bogie_split(const log::Log& log, const estimation::net_traction::RoverConstants& rover,
+                                    const estimation::NetTractionOptions& options, BogieSplit split,
+                                    const SteadyStateOptions& steady, estimation::NetTractionResult& result);
+
+// Whether the forward speed averaged over some second exceeds `speed` (m/s;
+// a single sample may, by the velocimeter's noise alone): the rover drives,
+// so there are traction points to estimate.
+bool drives(const log::Stream& velocimeter, double speed = 2e-3);
+
 // Issue 12 item 5: soil parameters fitted (Ceres, core/terramechanics/
 // soil_identification.h) to the estimated steady-state points (drawbar pull
 // and resistive torque at each load and slip), from `start`, with +-1

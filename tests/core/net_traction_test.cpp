@@ -316,7 +316,38 @@ TEST(NetTraction, AutoKeepsTheSecondPassOnlyWhereItsPointsStayConsistent) {
                 one.drawbar_pull.comparison.rms_percent, two.drawbar_pull.comparison.rms_percent);
     EXPECT_EQ(kept, seconds == 200) << seconds << " s: growth " << growth;
     EXPECT_EQ(kept, two.drawbar_pull.comparison.rms_percent < one.drawbar_pull.comparison.rms_percent) << seconds;
+    // What the analysis runs (choose_bogie_split) makes the same choice on the same evidence.
+    estimation::NetTractionResult chosen = r;
+    const analysis::BogieSplitChoice choice =
+        analysis::choose_bogie_split(rolling_log(seconds), {}, {}, analysis::BogieSplit::automatic, {}, chosen);
+    EXPECT_TRUE(choice.compared);
+    EXPECT_EQ(choice.shape, kept) << seconds;
+    EXPECT_NEAR(choice.second_pass_fit_rmse / choice.first_pass_fit_rmse, growth, 1e-9);
+    estimation::NetTractionResult eq = r;
+    EXPECT_FALSE(
+        analysis::choose_bogie_split(rolling_log(seconds), {}, {}, analysis::BogieSplit::eq_5_66, {}, eq).shape);
   }
+}
+
+// A rover that drives is told from one that stands with a noisy velocimeter
+// or a single spike: the forward speed averaged over a second.
+TEST(NetTraction, ARoverDrivesWhenItsSpeedAveragedOverASecondExceeds2MmPerSecond) {
+  std::vector<double> t, standing, spike, creeping;
+  for (int k = 0; k < 500; ++k) {
+    t.push_back(0.01 * k);
+    standing.push_back(k % 2 == 0 ? 0.01 : -0.01);          // noise of 1 cm/s, mean zero
+    spike.push_back(k == 250 ? 0.1 : 0.0);                  // one sample of 10 cm/s: 1 mm/s over that second
+    creeping.push_back(k >= 200 && k < 320 ? 0.003 : 0.0);  // 3 mm/s for 1.2 s
+  }
+  const auto stream = [&](const std::vector<double>& v) {
+    log::Stream s("velocimeter", t);
+    s.add_channel("forward_speed", "m/s", v);
+    return s;
+  };
+  EXPECT_FALSE(analysis::drives(stream(standing)));
+  EXPECT_FALSE(analysis::drives(stream(spike)));
+  EXPECT_TRUE(analysis::drives(stream(creeping)));
+  EXPECT_FALSE(analysis::drives(stream(creeping), 0.004));
 }
 
 // Section 5.8 / Table 5.2: order-2 surfaces from the estimates against the
