@@ -211,7 +211,7 @@ std::vector<RoverRedundancyCheck> redundancy_checks(const std::vector<MeasuredCh
                                                     const RoverScenarioModel& model);
 std::vector<RoverRedundancyCheck> traction_checks(const log::Log& log, const RoverScenarioModel& model);
 RoverSlipRegime slip_regime(const std::vector<MeasuredChannel>& channels, double radius);
-RoverRedundancyCheck slip_check(const std::vector<MeasuredChannel>& channels,
+RoverRedundancyCheck slip_check(const std::vector<MeasuredChannel>& channels, const RoverSlipRegime& measured,
                                 const std::array<std::vector<double>, kChannels>& predicted, double radius);
 void select_causes(Predictor& predictor, const RoverResidualFeatures& features, const RoverStudyOptions& options,
                    RoverDiscrepancyReport& report, std::vector<FitParameter>& chain);
@@ -238,8 +238,8 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   channel_statistics(r, predictor.channels(), p0, slip, base);
   held_out_rmse(r, predictor.channels(), p0, false);
   r.checks = redundancy_checks(predictor.channels(), model);
-  r.checks.push_back(slip_check(predictor.channels(), p0, model.geometry.wheel_radius));
   r.slip_regime = slip_regime(predictor.channels(), model.geometry.wheel_radius);
+  r.checks.push_back(slip_check(predictor.channels(), r.slip_regime, p0, model.geometry.wheel_radius));
   for (auto& c : traction_checks(lg, model)) r.checks.push_back(std::move(c));
   r.fit_residuals = predictor.count(Part::fit);
   r.test_residuals = predictor.count(Part::test);

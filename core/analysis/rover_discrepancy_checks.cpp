@@ -52,9 +52,10 @@ double run_slip(const std::vector<double>& time, const std::vector<double>& spee
 // The velocimeter against the wheel encoders times the nominal radius: the
 // mean slip they give, against the same from the simulation's channels (a
 // wheel radius or soil cause changes it; a sensor bias does not).
-RoverRedundancyCheck slip_check(const std::vector<MeasuredChannel>& ch,
+// `measured` is slip_regime()'s: the same integration over the measured channels.
+RoverRedundancyCheck slip_check(const std::vector<MeasuredChannel>& ch, const RoverSlipRegime& regime,
                                 const std::array<std::vector<double>, kChannels>& predicted, double radius) {
-  const double measured = run_slip(ch[7].time, ch[7].values, {&ch[1].values, &ch[2].values, &ch[3].values}, radius);
+  const double measured = regime.mean_slip;
   const double model = run_slip(ch[7].time, predicted[7], {&predicted[1], &predicted[2], &predicted[3]}, radius);
   // Stated tolerance: 0.005 of slip (the velocimeter's noise integrates to far less).
   return check("velocimeter vs wheel encoders x nominal radius: mean slip over the run", measured, model, 0.005 / 3, "",
