@@ -19,6 +19,8 @@ struct RoverResidualFeatures {
   double change_x = NAN;     // m: the front wheel's x in the baseline simulation at change_time
   double hold_start = NAN;   // s: first time the wheel encoders stop changing for 1 s or more (NaN: never)
   bool from_start = false;   // the torques depart within the first 2 s: a change over the whole run
+  // Mean slip over the run, velocimeter against encoders: measured, and the nominal simulation's.
+  double measured_slip = NAN, model_slip = NAN;
 };
 
 struct RoverCandidateParameter {

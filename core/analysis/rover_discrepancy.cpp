@@ -240,10 +240,13 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   r.checks = redundancy_checks(predictor.channels(), model);
   r.slip_regime = slip_regime(predictor.channels(), model.geometry.wheel_radius);
   r.checks.push_back(slip_check(predictor.channels(), r.slip_regime, p0, model.geometry.wheel_radius));
+  const double slip_check_model = r.checks.back().expected;
   for (auto& c : traction_checks(lg, model)) r.checks.push_back(std::move(c));
   r.fit_residuals = predictor.count(Part::fit);
   r.test_residuals = predictor.count(Part::test);
-  const RoverResidualFeatures f = features(predictor.channels(), p0, base);
+  RoverResidualFeatures f = features(predictor.channels(), p0, base);
+  f.measured_slip = r.slip_regime.mean_slip;
+  f.model_slip = slip_check_model;
   std::vector<FitParameter> chain;
   select_causes(predictor, f, options, r, chain);
   const Prediction p1 = predictor.predict(effects_of(predictor.scenario_effects(), chain));

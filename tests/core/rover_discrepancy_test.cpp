@@ -216,6 +216,22 @@ TEST(RoverDiscrepancy, AStrongerSoilOverTheWholeRunIsNamedAsTheSoil) {
   EXPECT_EQ(r.verdict.find("+- 0 "), std::string::npos) << r.verdict;
 }
 
+// Outside the random pool: a soil so weak the rover is stuck (mean slip
+// above 0.9). From the nominal strength the fit stopped at the edge where
+// the model starts to roll and added two sensor causes to the rest (0.82
+// plus an IMU time offset and a force scale for a true 0.5; 1.97 for 0.3).
+TEST(RoverDiscrepancy, ASoilSoWeakTheRoverIsStuckIsNamedAloneWithItsStrength) {
+  const auto m = flat_model(40);
+  for (const double strength : {0.4, 0.55}) {
+    const auto r = analysis::study_rover(measured(m, {{"soil-strength", strength}}, 7010), m);
+    EXPECT_TRUE(r.slip_regime.stuck) << r.slip_regime.text;
+    ASSERT_EQ(causes(r), std::vector<std::string>{"soil-strength"}) << r.verdict;
+    const auto& p = fitted(r, "soil-strength");
+    ASSERT_TRUE(std::isfinite(p.sigma) && p.sigma > 0) << r.verdict;
+    EXPECT_NEAR(p.value, strength, std::max(3 * p.sigma, 0.002)) << p.value << " +- " << p.sigma;
+  }
+}
+
 // Issue 29: the statistics stay readable on a random-effect run (the report
 // of seed 5 printed delta BIC -1.9e11 and sigmas of 0).
 TEST(RoverDiscrepancy, ARandomEffectRunsStatisticsMeanWhatTheySay) {
