@@ -163,7 +163,7 @@ std::uint32_t ChunkReader::u32(std::size_t at) const {
   return v;
 }
 
-void ChunkReader::load(std::uint64_t position) {
+void ChunkReader::load(std::uint64_t position, bool library_calls_only) {
   position_ = position;
   size_ = at_ = 0;
   if (position > file_size_ || file_size_ - position < 8) fail("lies beyond the end of the file");
@@ -201,6 +201,7 @@ void ChunkReader::load(std::uint64_t position) {
   } else if (size != stored) {
     fail("uncompressed, but its sizes differ (" + std::to_string(size) + " and " + std::to_string(stored) + ")");
   }
+  if (library_calls_only && type == rosbag::compression::Uncompressed) return;  // size_ = 0: no records
   if (size > capacity_) {
     records_.reset(new std::uint8_t[size]);
     capacity_ = size;

@@ -72,8 +72,10 @@ class ChunkReader {
   ChunkReader& operator=(const ChunkReader&) = delete;
 
   // Reads and decompresses the chunk at `position`; next() then hands out its
-  // messages in file order. Throws FormatError.
-  void load(std::uint64_t position);
+  // messages in file order. Throws FormatError. `library_calls_only`: an
+  // uncompressed chunk's records are not read (only its header), for the
+  // crash guard's trial, which need only make the library's calls.
+  void load(std::uint64_t position, bool library_calls_only = false);
 
   // The chunk's next message data record (connection records are skipped);
   // false at the chunk's end. Throws FormatError on a malformed record.

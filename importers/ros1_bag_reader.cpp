@@ -101,12 +101,14 @@ class Ros1BagReader final : public LogReader {
     });
   }
 
-  // The crash guard's trial: the library calls read() makes on every chunk
-  // (or every message, through the View), no decoding.
+  // The crash guard's trial: the library calls read() makes (opening the
+  // bag, decompressing each compressed chunk; or every message through the
+  // View), no decoding. An uncompressed chunk is left to the parent: reading
+  // it is a plain read, and the record loop checks every length it meets.
   void trial_read(const std::string& path, const LoadOptions&) const override {
     guarded(path, [&] {
       if (!each_chunk_message(
-              path, {}, [](const Opened&) {}, [](Connection&, const rosbag_chunks::Message&) { return true; })) {
+              path, {}, [](const Opened&) {}, [](Connection&, const rosbag_chunks::Message&) { return true; }, true)) {
         each_message(
             path, {}, [](rosbag::Bag&, const Range&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
       }
@@ -267,8 +269,10 @@ class Ros1BagReader final : public LogReader {
   // and checks its index and connections); the chunks are read by
   // rosbag_chunks::ChunkReader. False when visit stopped, or when the index
   // is not as the chunk loop needs it (nothing is then visited).
+  // `library_calls_only`: an uncompressed chunk's records are not read.
   template <class Open, class Visit>
-  static bool each_chunk_message(const std::string& path, const LoadOptions& options, Open&& opened, Visit&& visit) {
+  static bool each_chunk_message(const std::string& path, const LoadOptions& options, Open&& opened, Visit&& visit,
+                                 bool library_calls_only = false) {
     const std::optional<rosbag_chunks::BagIndex> index = rosbag_chunks::read_index(path);
     if (!index) return false;
     rosbag::Bag bag;
@@ -286,7 +290,7 @@ class Ros1BagReader final : public LogReader {
     rosbag_chunks::Message m;
     for (const rosbag_chunks::ChunkInfo& chunk : index->chunks) {
       if (chunk.end_ns < start || chunk.start_ns > end) continue;
-      reader.load(chunk.position);
+      reader.load(chunk.position, library_calls_only);
       while (reader.next(m)) {
         const auto it = connections.find(m.connection);
         if (it == connections.end()) {
