@@ -17,6 +17,7 @@
 #include <rosbag/view.h>
 
 #include "core/common/error.h"
+#include "importers/crash_guard.h"
 #include "importers/log_reader.h"
 #include "importers/ros1_bag_chunks.h"
 #include "importers/ros_message_log.h"
@@ -95,10 +96,13 @@ class Ros1BagReader final : public LogReader {
   // encrypted, or a topic's record times go back in the file (the View hands
   // out each topic's messages in time order; the chunks' order is the file's).
   log::Log read(const std::string& path, const LoadOptions& options) const override {
-    return guarded(path, [&] {
-      std::optional<log::Log> lg = read_chunks(path, options);
-      return lg ? std::move(*lg) : read_view(path, options);
-    });
+    std::optional<log::Log> lg = guarded(path, [&] { return read_chunks(path, options); });
+    if (lg) return std::move(*lg);
+    // The View's per-message path, which the crash guard's trial ran only if
+    // the index was the reason: under the guard again before it runs here.
+    survive_crash(
+        path, [&] { view_trial(path); }, "ROS bag", "rosbag library");
+    return guarded(path, [&] { return read_view(path, options); });
   }
 
   // The crash guard's trial: the library calls read() makes (opening the
@@ -109,9 +113,17 @@ class Ros1BagReader final : public LogReader {
     guarded(path, [&] {
       if (!each_chunk_message(
               path, {}, [](const Opened&) {}, [](Connection&, const rosbag_chunks::Message&) { return true; }, true)) {
-        each_message(
-            path, {}, [](rosbag::Bag&, const Range&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
+        view_trial(path);
       }
+      return 0;
+    });
+  }
+
+  // The library's calls on every message through the View, no decoding.
+  static void view_trial(const std::string& path) {
+    guarded(path, [&] {
+      each_message(
+          path, {}, [](rosbag::Bag&, const Range&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
       return 0;
     });
   }
