@@ -2,7 +2,8 @@
 // wrenches, GPS, odometry, commands, TF, and camera-sized images that are
 // skipped), about ROVERLAB_BENCH_BAG_MB megabytes (default 100), written
 // once with the ROS library's own writer (uncompressed chunks): RoverLab's reader
-// (load_log: decode every numeric field into channels) beside the rosbag C++
+// (load_log: decode every numeric field into channels; the crash guard's
+// trial alone) beside the rosbag C++
 // API merely iterating the same bag, copying out each message's bytes
 // (size() and write()) or not (instantiate() of a type that points at them),
 // in the same run (issue 31).
@@ -472,6 +473,19 @@ void BM_RoverLabReadBag(benchmark::State& state) {
                                               benchmark::Counter::kIsRate, benchmark::Counter::kIs1000);
 }
 
+// What the crash guard's child runs before load_log reads (the reader's
+// trial_read): the library opens the bag and decompresses each compressed
+// chunk, whose records are walked; an uncompressed chunk is not read.
+void BM_RoverLabScanBag(benchmark::State& state) {
+  const std::string& path = bag_path();
+  const double file_mb = static_cast<double>(fs::file_size(path)) / 1e6;
+  const io::LogReader* reader = io::find_log_reader(path);
+  for (auto _ : state) reader->trial_read(path, {});
+  state.counters["file_MB"] = file_mb;
+  state.counters["MBps"] = benchmark::Counter(file_mb * 1e6 * static_cast<double>(state.iterations()),
+                                              benchmark::Counter::kIsRate, benchmark::Counter::kIs1000);
+}
+
 // The same data as MCAP: all of it, and a time range of 10 % through the
 // chunk indexes (bytes_fraction: bytes read over the file's size).
 void BM_RoverLabReadMcap(benchmark::State& state) {
@@ -518,6 +532,7 @@ log::Log read_mcap_part(const std::string& path, bool range, io::McapReadStats* 
 
 BENCHMARK(BM_RosbagIterate)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_RosbagIterateZeroCopy)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_RoverLabScanBag)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_RoverLabReadBag)->ArgName("guarded")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_RoverLabReadMcap)->ArgName("range")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 int main(int argc, char** argv) {

@@ -1,6 +1,7 @@
-// ROS 1 bags (format 2.0) as a LogReader: the rosbag library reads the file
-// (chunks uncompressed, bz2 or lz4); each connection's message definition
-// drives a generic decoder (importers/ros_message_log.h).
+// ROS 1 bags (format 2.0) as a LogReader: the rosbag library opens the file
+// (its index and connections) and decompresses its chunks (bz2, lz4), whose
+// records are read by importers/ros1_bag_chunks.h; each connection's message
+// definition drives a generic decoder (importers/ros_message_log.h).
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -16,7 +17,9 @@
 #include <rosbag/view.h>
 
 #include "core/common/error.h"
+#include "importers/crash_guard.h"
 #include "importers/log_reader.h"
+#include "importers/ros1_bag_chunks.h"
 #include "importers/ros_message_log.h"
 
 namespace roverlab::io {
@@ -77,96 +80,6 @@ std::string bag_version(const std::string& path) {
   return end == std::string::npos ? "?" : version.substr(0, end);
 }
 
-// Messages per connection id, from the bag's chunk info records (format 2.0:
-// the file header's index_pos, then conn_count connection records and
-// chunk_count chunk info records, each chunk's counts per connection): a few
-// kilobytes read, where the library's View::size() walks every index entry.
-// Empty when the records are not as expected (the caller then asks the library).
-class ChunkInfoCounts {
- public:
-  explicit ChunkInfoCounts(const std::string& path) : in_(std::fopen(path.c_str(), "rb")) {}
-  ~ChunkInfoCounts() {
-    if (in_ != nullptr) std::fclose(in_);
-  }
-  ChunkInfoCounts(const ChunkInfoCounts&) = delete;
-  ChunkInfoCounts& operator=(const ChunkInfoCounts&) = delete;
-
-  std::map<std::uint32_t, std::uint64_t> counts() {
-    std::map<std::uint32_t, std::uint64_t> out;
-    std::uint64_t total = 0;
-    if (in_ == nullptr || std::fseek(in_, 13, SEEK_SET) != 0) return {};  // after "#ROSBAG V2.0\n"
-    std::map<std::string, std::string> fields;
-    if (!record(fields) || fields["op"] != std::string(1, '\x03')) return {};
-    const auto index_pos = number<std::uint64_t>(fields["index_pos"]);
-    const auto connections = number<std::uint32_t>(fields["conn_count"]);
-    const auto chunks = number<std::uint32_t>(fields["chunk_count"]);
-    if (!index_pos || !connections || !chunks || *index_pos > static_cast<std::uint64_t>(LONG_MAX) ||
-        std::fseek(in_, static_cast<long>(*index_pos), SEEK_SET) != 0) {
-      return {};
-    }
-    for (std::uint32_t k = 0; k < *connections; ++k) {
-      if (!record(fields) || fields["op"] != std::string(1, '\x07')) return {};
-    }
-    for (std::uint32_t k = 0; k < *chunks; ++k) {
-      if (!record(fields) || fields["op"] != std::string(1, '\x06')) return {};
-      const auto n = number<std::uint32_t>(fields["count"]);
-      if (!n || data_.size() != std::size_t{8} * *n) return {};
-      for (std::uint32_t e = 0; e < *n; ++e) {
-        std::uint32_t pair[2];
-        std::memcpy(pair, data_.data() + 8 * e, 8);
-        out[pair[0]] += pair[1];
-        total += pair[1];
-      }
-    }
-    // A message record takes more than 40 bytes: counts the file could not hold are not believed.
-    if (std::fseek(in_, 0, SEEK_END) != 0 || std::ftell(in_) < 0 ||
-        total > static_cast<std::uint64_t>(std::ftell(in_)) / 40) {
-      return {};
-    }
-    return out;
-  }
-
- private:
-  template <class T>
-  static std::optional<T> number(const std::string& bytes) {
-    if (bytes.size() != sizeof(T)) return std::nullopt;
-    T v;
-    std::memcpy(&v, bytes.data(), sizeof v);
-    return v;
-  }
-
-  // One record: its header's fields, its data in data_.
-  bool record(std::map<std::string, std::string>& fields) {
-    fields.clear();
-    std::string header;
-    if (!block(header)) return false;
-    std::size_t at = 0;
-    while (at + 4 <= header.size()) {
-      std::uint32_t n = 0;
-      std::memcpy(&n, header.data() + at, 4);
-      at += 4;
-      if (n > header.size() - at) return false;
-      const std::string field = header.substr(at, n);
-      at += n;
-      const std::size_t eq = field.find('=');
-      if (eq == std::string::npos) return false;
-      fields[field.substr(0, eq)] = field.substr(eq + 1);
-    }
-    return at == header.size() && block(data_);
-  }
-
-  // A uint32 length and that many bytes (at most 64 MiB: an index record is small).
-  bool block(std::string& out) {
-    std::uint32_t n = 0;
-    if (std::fread(&n, 4, 1, in_) != 1 || n > (1U << 26)) return false;
-    out.resize(n);
-    return n == 0 || std::fread(out.data(), 1, n, in_) == n;
-  }
-
-  std::FILE* in_;
-  std::string data_;
-};
-
 class Ros1BagReader final : public LogReader {
  public:
   std::string name() const override { return "ROS 1 bag"; }
@@ -178,26 +91,141 @@ class Ros1BagReader final : public LogReader {
 
   std::pair<std::string, std::string> crash_guard_names() const override { return {"ROS bag", "rosbag library"}; }
 
+  // The chunks read record by record (importers/ros1_bag_chunks.h); through
+  // the library's View when the index is not as expected, the bag is
+  // encrypted, or a topic's record times go back in the file (the View hands
+  // out each topic's messages in time order; the chunks' order is the file's).
   log::Log read(const std::string& path, const LoadOptions& options) const override {
-    ros::MessageLogOptions message_options;
-    message_options.time = options.header_time ? ros::TimeSource::header : ros::TimeSource::record;
-    message_options.limits.max_array = options.max_array;
-    ros::MessageLog messages(path, message_options);
+    std::optional<log::Log> lg = guarded(path, [&] { return read_chunks(path, options); });
+    if (lg) return std::move(*lg);
+    // The View's per-message path, which the crash guard's trial ran only if
+    // the index was the reason: under the guard again before it runs here.
+    survive_crash(
+        path, [&] { view_trial(path); }, "ROS bag", "rosbag library");
+    return guarded(path, [&] { return read_view(path, options); });
+  }
+
+  // The crash guard's trial: the library calls read() makes (opening the
+  // bag, decompressing each compressed chunk; or every message through the
+  // View), no decoding. An uncompressed chunk is left to the parent: reading
+  // it is a plain read, and the record loop checks every length it meets.
+  void trial_read(const std::string& path, const LoadOptions&) const override {
+    guarded(path, [&] {
+      if (!each_chunk_message(
+              path, {}, [](const Opened&) {}, [](Connection&, const rosbag_chunks::Message&) { return true; }, true)) {
+        view_trial(path);
+      }
+      return 0;
+    });
+  }
+
+  // The library's calls on every message through the View, no decoding.
+  static void view_trial(const std::string& path) {
+    guarded(path, [&] {
+      each_message(
+          path, {}, [](rosbag::Bag&, const Range&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
+      return 0;
+    });
+  }
+
+ private:
+  // The record times to read: a range in seconds after the bag's first message.
+  struct Range {
+    ::ros::Time start = ::ros::TIME_MIN;
+    ::ros::Time end = ::ros::TIME_MAX;
+    ::ros::Time origin;
+    bool relative = false;
+  };
+
+  // A connection of the bag, as the chunk loop meets its messages.
+  struct Connection {
+    const rosbag::ConnectionInfo* info = nullptr;
+    bool wanted = true;
+    std::size_t topic = SIZE_MAX;  // in the MessageLog, once its first message is read
+  };
+
+  // What the chunk loop tells its caller once the bag is open.
+  struct Opened {
+    rosbag::Bag& bag;
+    const rosbag_chunks::BagIndex& index;
+    const Range& range;
+  };
+
+  static ros::MessageLogOptions message_options(const LoadOptions& options) {
+    ros::MessageLogOptions o;
+    o.time = options.header_time ? ros::TimeSource::header : ros::TimeSource::record;
+    o.limits.max_array = options.max_array;
+    return o;
+  }
+
+  // The library's and the chunk loop's exceptions as one line naming the file.
+  template <class Read>
+  static auto guarded(const std::string& path, Read&& read) -> decltype(read()) {
+    const std::string version = bag_version(path);
+    if (version.empty()) throw InputError(path, "not a ROS bag (no '#ROSBAG V2.0' line at the start)");
+    if (version != "2.0") throw InputError(path, "ROS bag version " + version + "; RoverLab reads version 2.0");
+    // The library's own log lines are not RoverLab's one line.
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+    try {
+      return read();
+    } catch (const InputError&) {
+      throw;
+    } catch (const rosbag_chunks::FormatError& e) {
+      throw InputError(path, std::string("corrupt ROS bag: ") + e.what());
+    } catch (const std::bad_alloc&) {
+      throw InputError(path, "corrupt ROS bag: a length in the file asks for more memory than there is");
+    } catch (const std::exception& e) {
+      throw InputError(path, std::string("corrupt or unreadable ROS bag: ") + e.what());
+    }
+  }
+
+  static std::optional<log::Log> read_chunks(const std::string& path, const LoadOptions& options) {
+    ros::MessageLog messages(path, message_options(options));
+    std::unordered_map<std::string, std::size_t> counts;  // messages per topic
+    std::vector<std::int64_t> last_ns;                    // per topic: its latest record time so far
+    const bool read = each_chunk_message(
+        path, options,
+        [&](const Opened& o) {
+          // A whole bag: its chunk infos' counts; a time range: the library's count of the view.
+          for (const rosbag::ConnectionInfo* c : rosbag::View(o.bag).getConnections()) {
+            if (!o.range.relative) {
+              const auto it = o.index.messages.find(c->id);
+              counts[c->topic] += it != o.index.messages.end() ? it->second : 0;
+            } else if (counts.count(c->topic) == 0) {
+              counts[c->topic] = rosbag::View(o.bag, rosbag::TopicQuery(c->topic), o.range.start, o.range.end).size();
+            }
+          }
+          if (o.range.relative) messages.set_time_origin(static_cast<std::int64_t>(o.range.origin.toNSec()));
+        },
+        [&](Connection& c, const rosbag_chunks::Message& m) {
+          if (c.topic == SIZE_MAX) {
+            c.topic = messages.add_topic(c.info->topic, c.info->datatype, c.info->msg_def, ros::Dialect::ros1,
+                                         ros::Encoding::ros1);
+            if (c.topic >= last_ns.size()) {
+              last_ns.resize(c.topic + 1, INT64_MIN);
+              messages.expect_messages(c.topic, counts[c.info->topic]);
+            }
+          }
+          const std::int64_t t = m.time_ns();
+          if (t < last_ns[c.topic]) return false;  // not in time order: the View's order is needed
+          last_ns[c.topic] = t;
+          messages.add_message(c.topic, t, m.data, m.size);
+          return true;
+        });
+    if (!read) return std::nullopt;
+    messages.order_topics_by_first_record();  // as the View meets them
+    return messages.build(options.mapping);
+  }
+
+  static log::Log read_view(const std::string& path, const LoadOptions& options) {
+    ros::MessageLog messages(path, message_options(options));
     std::unordered_map<const void*, std::size_t> topic_of;  // by connection (its topic's address)
     std::unordered_map<std::string, std::size_t> counts;    // messages per topic, from the bag's index
     each_message(
         path, options,
         [&](rosbag::Bag& bag, const Range& range) {
-          // A whole bag: its chunk infos' counts; a time range (or an index not as
-          // expected): the library's count of the view.
-          const auto by_connection =
-              range.relative ? std::map<std::uint32_t, std::uint64_t>{} : ChunkInfoCounts(path).counts();
-          rosbag::View all(bag);
-          for (const rosbag::ConnectionInfo* c : all.getConnections()) {
-            if (!by_connection.empty()) {
-              const auto it = by_connection.find(c->id);
-              counts[c->topic] += it != by_connection.end() ? it->second : 0;
-            } else if (counts.count(c->topic) == 0) {
+          for (const rosbag::ConnectionInfo* c : rosbag::View(bag).getConnections()) {
+            if (counts.count(c->topic) == 0) {
               counts[c->topic] = rosbag::View(bag, rosbag::TopicQuery(c->topic), range.start, range.end).size();
             }
           }
@@ -219,21 +247,6 @@ class Ros1BagReader final : public LogReader {
     return messages.build(options.mapping);
   }
 
-  // The crash guard's trial: the library's calls on every message, no decoding.
-  void trial_read(const std::string& path, const LoadOptions&) const override {
-    each_message(
-        path, {}, [](rosbag::Bag&, const Range&) {}, [](const rosbag::MessageInstance&, const BagBytes&) {});
-  }
-
- private:
-  // The record times to read: a range in seconds after the bag's first message.
-  struct Range {
-    ::ros::Time start = ::ros::TIME_MIN;
-    ::ros::Time end = ::ros::TIME_MAX;
-    ::ros::Time origin;
-    bool relative = false;
-  };
-
   static Range range_of(rosbag::Bag& bag, const LoadOptions& options) {
     Range r;
     if (!options.start_s && !options.end_s) return r;
@@ -249,45 +262,80 @@ class Ros1BagReader final : public LogReader {
     return r;
   }
 
+  // The topics `options` names ("imu" and "/imu" alike; all when none), each
+  // checked against the bag's connections.
+  static std::set<std::string> wanted_topics(rosbag::Bag& bag, const std::string& path, const LoadOptions& options) {
+    std::set<std::string> wanted;
+    for (const auto& t : options.topics) wanted.insert(ros::topic_key(t));
+    std::set<std::string> found;
+    for (const rosbag::ConnectionInfo* c : rosbag::View(bag).getConnections()) found.insert(ros::topic_key(c->topic));
+    for (const auto& t : wanted) {
+      if (found.count(t) == 0) throw InputError(path, "no topic /" + t + " in the file");
+    }
+    return wanted;
+  }
+
+  // Calls opened(Opened), then visit(its connection, message) for every
+  // message of the chunks that `options` selects (topics, time range), in
+  // file order, until visit returns false. The library opens the bag (reads
+  // and checks its index and connections); the chunks are read by
+  // rosbag_chunks::ChunkReader. False when visit stopped, or when the index
+  // is not as the chunk loop needs it (nothing is then visited).
+  // `library_calls_only`: an uncompressed chunk's records are not read.
+  template <class Open, class Visit>
+  static bool each_chunk_message(const std::string& path, const LoadOptions& options, Open&& opened, Visit&& visit,
+                                 bool library_calls_only = false) {
+    const std::optional<rosbag_chunks::BagIndex> index = rosbag_chunks::read_index(path);
+    if (!index) return false;
+    rosbag::Bag bag;
+    bag.open(path, rosbag::bagmode::Read);
+    const std::set<std::string> wanted = wanted_topics(bag, path, options);
+    const Range range = range_of(bag, options);
+    std::unordered_map<std::uint32_t, Connection> connections;
+    for (const rosbag::ConnectionInfo* c : rosbag::View(bag).getConnections()) {
+      connections[c->id] = {c, wanted.empty() || wanted.count(ros::topic_key(c->topic)) != 0};
+    }
+    opened(Opened{bag, *index, range});
+    const std::uint64_t start = range.start.toNSec();
+    const std::uint64_t end = range.end.toNSec();
+    rosbag_chunks::ChunkReader reader(path);
+    rosbag_chunks::Message m;
+    for (const rosbag_chunks::ChunkInfo& chunk : index->chunks) {
+      if (chunk.end_ns < start || chunk.start_ns > end) continue;
+      reader.load(chunk.position, library_calls_only);
+      while (reader.next(m)) {
+        const auto it = connections.find(m.connection);
+        if (it == connections.end()) {
+          throw rosbag_chunks::FormatError("a message of connection " + std::to_string(m.connection) +
+                                           ", which the bag's index does not list");
+        }
+        const auto t = static_cast<std::uint64_t>(m.time_ns());
+        // The library's index leaves out messages at time 0 (before ros::TIME_MIN).
+        if (!it->second.wanted || t < start || t > end || t == 0) continue;
+        if (!visit(it->second, m)) return false;
+      }
+    }
+    return true;
+  }
+
   // Calls opened(the bag, the range read), then visit(message, its bytes) for
   // every message of the bag that `options` selects (topics, time range), in
-  // time order.
+  // time order, through the library's View.
   template <class Opened, class Visit>
   static void each_message(const std::string& path, const LoadOptions& options, Opened&& opened, Visit&& visit) {
-    const std::string version = bag_version(path);
-    if (version.empty()) throw InputError(path, "not a ROS bag (no '#ROSBAG V2.0' line at the start)");
-    if (version != "2.0") throw InputError(path, "ROS bag version " + version + "; RoverLab reads version 2.0");
-    // The library's own log lines are not RoverLab's one line.
-    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
-    try {
-      rosbag::Bag bag;
-      bag.open(path, rosbag::bagmode::Read);
-      std::set<std::string> wanted;
-      for (const auto& t : options.topics) wanted.insert(ros::topic_key(t));
-      std::set<std::string> found;
-      for (const rosbag::ConnectionInfo* c : rosbag::View(bag).getConnections()) found.insert(ros::topic_key(c->topic));
-      for (const auto& t : wanted) {
-        if (found.count(t) == 0) throw InputError(path, "no topic /" + t + " in the file");
-      }
-      const Range range = range_of(bag, options);
-      opened(bag, range);
-      rosbag::View view(
-          bag,
-          [&](const rosbag::ConnectionInfo* c) {
-            return wanted.empty() || wanted.count(ros::topic_key(c->topic)) != 0;
-          },
-          range.start, range.end);
-      for (const rosbag::MessageInstance& m : view) {
-        const boost::shared_ptr<BagBytes> bytes = m.instantiate<BagBytes>();
-        if (!bytes) throw InputError(path, "corrupt ROS bag: a message could not be read");
-        visit(m, *bytes);
-      }
-    } catch (const InputError&) {
-      throw;
-    } catch (const std::bad_alloc&) {
-      throw InputError(path, "corrupt ROS bag: a length in the file asks for more memory than there is");
-    } catch (const std::exception& e) {
-      throw InputError(path, std::string("corrupt or unreadable ROS bag: ") + e.what());
+    rosbag::Bag bag;
+    bag.open(path, rosbag::bagmode::Read);
+    const std::set<std::string> wanted = wanted_topics(bag, path, options);
+    const Range range = range_of(bag, options);
+    opened(bag, range);
+    rosbag::View view(
+        bag,
+        [&](const rosbag::ConnectionInfo* c) { return wanted.empty() || wanted.count(ros::topic_key(c->topic)) != 0; },
+        range.start, range.end);
+    for (const rosbag::MessageInstance& m : view) {
+      const boost::shared_ptr<BagBytes> bytes = m.instantiate<BagBytes>();
+      if (!bytes) throw InputError(path, "corrupt ROS bag: a message could not be read");
+      visit(m, *bytes);
     }
   }
 };

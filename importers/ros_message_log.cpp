@@ -83,6 +83,7 @@ struct MessageLog::Topic {
   std::vector<std::size_t> layout;
   DecodedMessage scratch;
   std::size_t expected = 0;  // messages the file's index announces (0: unknown)
+  std::int64_t first_record_ns = std::numeric_limits<std::int64_t>::max();
 
   void relayout(const std::vector<std::string>& names) {
     layout.clear();
@@ -204,6 +205,7 @@ void MessageLog::expect_messages(std::size_t topic, std::size_t count) {
 
 void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const std::uint8_t* data, std::size_t size) {
   Topic& t = *topics_.at(topic);
+  if (t.time_ns.empty()) t.first_record_ns = std::min(t.first_record_ns, record_ns);
   const auto where = [&] {
     return "topic " + t.name + ", message " + std::to_string(t.time_ns.size() + 1) + " (" + t.type + "): ";
   };
@@ -224,6 +226,13 @@ void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const st
   }
   const bool stamped = options_.time == TimeSource::header && t.scratch.header_stamp_ns > 0;
   t.append(stamped ? t.scratch.header_stamp_ns : record_ns);
+}
+
+void MessageLog::order_topics_by_first_record() {
+  std::stable_sort(topics_.begin(), topics_.end(),
+                   [](const std::unique_ptr<Topic>& a, const std::unique_ptr<Topic>& b) {
+                     return a->first_record_ns < b->first_record_ns;
+                   });
 }
 
 namespace {

@@ -60,6 +60,12 @@ class MessageLog {
   // message when it does not match its definition.
   void add_message(std::size_t topic, std::int64_t record_ns, const std::uint8_t* data, std::size_t size);
 
+  // The topics in the order of their first messages' record times (ties in
+  // the order they were added): as a reader that reads in time order adds
+  // them, for one that reads a file's chunks in file order. Indexes returned
+  // by add_topic are not valid after it: call it just before build().
+  void order_topics_by_first_record();
+
   // Times count from this Unix time (ns) rather than from the first message
   // read (a time range counts from the file's first message).
   void set_time_origin(std::int64_t ns) { origin_ns_ = ns; }
