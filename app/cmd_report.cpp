@@ -18,6 +18,7 @@
 #include "app/command.h"
 #include "app/commands.h"
 #include "app/render_view.h"
+#include "app/report_pdf.h"
 #include "app/resources.h"
 #include "app/views_input.h"
 #include "core/common/error.h"
@@ -46,6 +47,7 @@ struct ReportOptions {
   std::string quantity = "drawbar-pull";
   std::string size = "1280x800";
   std::string output;
+  bool pdf = false;
 };
 
 class ReportWriter {
@@ -69,6 +71,7 @@ class ReportWriter {
     const std::vector<std::string> previous = previous_files();
     section_.wrote("metrics.json");
     section_.wrote("index.html");
+    if (o_.pdf) section_.wrote("report.pdf");
     metrics_["files"] = section_.written();
     io::write_text_atomically((dir_ / "metrics.json").string(), metrics_.dump(2) + "\n");
     io::write_text_atomically((dir_ / "index.html").string(), html().str());
@@ -92,7 +95,10 @@ class ReportWriter {
         << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
         << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
         << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
-           "0}.notes{color:#555;font-size:90%}.notes li{margin:0.1em 0}</style></head><body>\n"
+           "0}.notes{color:#555;font-size:90%}.notes li{margin:0.1em 0}"
+           // Printed (--pdf, A4): the page's width, no heading alone at a page's foot, no picture cut in two.
+           "@page{size:A4;margin:14mm}@media print{body{max-width:none;margin:0;font-size:10pt}"
+           "h2{break-after:avoid}img,svg,tr{break-inside:avoid}table{font-size:8.5pt}}</style></head><body>\n"
         << "<h1>RoverLab report</h1>\n<p>" << esc(o_.file) << "</p>\n";
   }
 
@@ -122,7 +128,7 @@ class ReportWriter {
     std::string command = "roverlab report " + o_.file;
     if (o_.mapping) command += " --mapping " + *o_.mapping;
     if (o_.soil) command += " --soil " + *o_.soil;
-    command += " --size " + o_.size + " -o " + o_.output;
+    command += " --size " + o_.size + (o_.pdf ? " --pdf" : "") + " -o " + o_.output;
     std::error_code ec;
     const auto bytes = fs::file_size(o_.file, ec);
     const std::time_t now = std::time(nullptr);
@@ -280,6 +286,7 @@ void check_report_folder(const std::string& output) {
 int run_report(const ReportOptions& o) {
   const auto [w, h] = parse_size(o.size);
   check_report_folder(o.output);
+  if (o.pdf) (void)report_pdf_printer();
   // An unknown soil is an error, not a silently missing section.
   if (o.soil) (void)io::find_soil(*o.soil, resource_subfolders("soils"));
   ViewInputOptions vo;
@@ -294,6 +301,10 @@ int run_report(const ReportOptions& o) {
   views::ensure_display();
   ReportWriter(o, in, w, h).write();
   std::printf("wrote %s\n", (dir / "index.html").string().c_str());
+  if (o.pdf) {
+    print_report_pdf((dir / "index.html").string(), (dir / "report.pdf").string());
+    std::printf("wrote %s\n", (dir / "report.pdf").string().c_str());
+  }
   return kSuccess;
 }
 
@@ -309,6 +320,7 @@ Commands make_report_commands() {
         cmd.add_option("--soil", o.soil, "Add the traction surfaces of soil NAME|FILE");
         cmd.add_option("--size", o.size, "WxH pixels of the 3D views")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "Report folder (created if missing)")->required();
+        cmd.add_flag("--pdf", o.pdf, "Also print the report to DIR/report.pdf (A4, through headless Chromium)");
       },
       run_report));
   return commands;
