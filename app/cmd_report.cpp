@@ -8,6 +8,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -26,6 +27,7 @@
 #include "importers/soil_file.h"
 
 #include "app/view_data.h"
+#include "views/timeseries_chart.h"
 #include "views/view.h"
 #include "views/x_display.h"
 
@@ -209,13 +211,52 @@ class ReportWriter {
       std::string file = view->name();
       std::replace(file.begin(), file.end(), '-', '_');
       image(file + ".png", view->heading(), r);
-      if (view->uses_channels()) slip_plot(*view, h);
+      if (view->uses_channels()) {
+        disagreement_plot(*view, h);
+        slip_plot(*view, h);
+      }
     }
+  }
+
+  // The two channels where the rover simulation disagrees most with the
+  // measurement (RMSE in noise sigmas): measured minus simulated, nominal and
+  // with the named causes.
+  void disagreement_plot(const views::View& plots, int h) {
+    const auto run = std::find_if(in_.analyses.begin(), in_.analyses.end(),
+                                  [](const AnalysisRun& a) { return a.name == "rover-discrepancy"; });
+    if (run == in_.analyses.end() || !run->document.contains("channels")) return;
+    std::vector<std::pair<double, std::string>> ranked;
+    for (const auto& c : run->document.at("channels")) {
+      const std::string stream = c.at("stream").get<std::string>(), channel = c.at("channel").get<std::string>();
+      const log::Stream* residual = in_.log.find_stream("estimate/rover_discrepancy/residual_nominal/" + stream);
+      if (residual == nullptr || residual->find_channel(channel) == nullptr) continue;
+      const double sigmas = c.at("rmse").get<double>() / std::max(c.at("sigma").get<double>(), 1e-300);
+      ranked.emplace_back(sigmas, stream + ":" + channel);
+    }
+    if (ranked.empty()) return;
+    std::sort(ranked.begin(), ranked.end(), std::greater<>());
+    ViewOptions o;
+    o.channel_spec = "";
+    std::string names;
+    for (std::size_t k = 0; k < ranked.size() && k < 2; ++k) {
+      const std::string& measured = ranked[k].second;
+      *o.channel_spec += std::string(k ? "," : "") + "estimate/rover_discrepancy/residual_nominal/" + measured +
+                         ",estimate/rover_discrepancy/residual_with_causes/" + measured;
+      names += (k ? " and " : "") + measured + " (RMSE " + num(ranked[k].first, "%.3g") + " noise sigmas)";
+    }
+    image("disagreement.png",
+          "Where the simulation disagrees most: measured minus simulated, nominal and with the causes",
+          render_view(in_, plots, o, w_, h * static_cast<int>(std::min<std::size_t>(ranked.size(), 2))));
+    html() << "<p class=\"note\">The channels with the largest RMSE in noise sigmas: " << esc(names) << ".</p>\n";
   }
 
   void slip_plot(const views::View& plots, int h) {
     const log::Stream* slip = in_.log.find_stream("estimate/ins/slip");
     if (slip == nullptr || slip->find_channel("reference_slip") == nullptr) return;
+    // Not twice: the default plot may be this very pair (views::default_channels).
+    for (const auto& c : views::default_channels(in_.log)) {
+      if (c.stream == "estimate/ins/slip" && c.channel == "reference_slip") return;
+    }
     ViewOptions o;
     o.channel_spec = "estimate/ins/slip:slip_ratio,estimate/ins/slip:reference_slip";
     image("slip.png", "Slip ratio: INS estimate and reference", render_view(in_, plots, o, w_, h));

@@ -185,6 +185,36 @@ void refuse_another_run(const AnalysisInput& in, const analysis::RoverScenarioMo
                                 model.name + " cannot be this run's model");
 }
 
+// Each measured channel minus the simulation, nominal and with the named
+// causes: estimate/rover_discrepancy/residual_nominal/<stream> and
+// .../residual_with_causes/<stream>, channels named as the measured ones, on
+// the measured time stamps (the report plots where they disagree most).
+void add_residual_streams(const log::Log& lg, const analysis::RoverDiscrepancyReport& r, log::Log& out) {
+  std::vector<log::Stream> streams;
+  const auto stream_of = [&](const std::string& name, const std::vector<double>& time) -> log::Stream& {
+    auto it = std::find_if(streams.begin(), streams.end(), [&](const log::Stream& s) { return s.name() == name; });
+    if (it != streams.end()) return *it;
+    return streams.emplace_back(name, time);
+  };
+  for (const auto& c : r.channels) {
+    const log::Stream* measured = lg.find_stream(c.stream);
+    const log::Channel* values = measured != nullptr ? measured->find_channel(c.channel) : nullptr;
+    if (values == nullptr || c.time != measured->time() || c.predicted_before.size() != c.time.size() ||
+        c.predicted_after.size() != c.time.size())
+      continue;
+    std::vector<double> before(c.time.size()), after(c.time.size());
+    for (std::size_t k = 0; k < c.time.size(); ++k) {
+      before[k] = values->values[k] - c.predicted_before[k];
+      after[k] = values->values[k] - c.predicted_after[k];
+    }
+    stream_of("estimate/rover_discrepancy/residual_nominal/" + c.stream, c.time)
+        .add_channel(c.channel, c.unit, before, "measured minus the nominal simulation");
+    stream_of("estimate/rover_discrepancy/residual_with_causes/" + c.stream, c.time)
+        .add_channel(c.channel, c.unit, after, "measured minus the simulation with the named causes");
+  }
+  for (auto& s : streams) out.add_stream(std::move(s));
+}
+
 AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
   // The scenario the user gives, else the one recorded in (or named by) the log: data, never a path.
   const analysis::RoverScenarioModel model =
@@ -202,6 +232,7 @@ AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
   st.add_channel("after", "1", r.residual_after, "the same with the named causes");
   st.add_channel("slip", "1", r.slip, "mean wheel slip from encoders and velocimeter");
   out.estimates.add_stream(std::move(st));
+  add_residual_streams(in.log, r, out.estimates);
   return out;
 }
 

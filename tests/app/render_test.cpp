@@ -238,13 +238,15 @@ TEST(Report, PathfinderReportHasTheViewsTablesAndMachineReadableMetrics) {
       run_roverlab("report " + quote(kPathfinder) + " -m wvu_pathfinder --size 640x400 -o " + quote(folder));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = read_text(folder + "/index.html");
-  for (const char* s : {"<h2>Rover</h2>", "rover.png", "timeseries.png", "slip.png", "INS slip detection",
-                        "Slip classes", "What the wheel odometry gets wrong", "turning track"}) {
+  for (const char* s : {"<h2>Rover</h2>", "rover.png", "timeseries.png", "INS slip detection", "Slip classes",
+                        "What the wheel odometry gets wrong", "turning track"}) {
     EXPECT_NE(html.find(s), std::string::npos) << s;
   }
+  // The default plot is the INS slip against its reference (not the raw IMU): the slip plot is not drawn twice.
+  EXPECT_EQ(html.find("slip.png"), std::string::npos);
   // Issue 32: the map, its own section, every track on it.
   EXPECT_NE(html.find("map.png"), std::string::npos);
-  for (const char* f : {"rover.png", "map.png", "timeseries.png", "slip.png"}) {
+  for (const char* f : {"rover.png", "map.png", "timeseries.png"}) {
     const views::Image img = views::read_png(folder + "/" + f);
     EXPECT_GT(distinct_colours(img), 20) << f;
   }
@@ -531,4 +533,17 @@ TEST(Report, RoverStudyResidualsBeforeAndAfterTheCausesArePlottedAgainstTimeAndS
                             "nominal model", "with wheel"}) {
     EXPECT_NE(html.find(label), std::string::npos) << label;
   }
+  // Default plots chosen for what they show: the channel where the simulation disagrees most (RMSE in sigmas),
+  // measured minus simulated, nominal and with the causes.
+  std::string worst;
+  double most = 0;
+  for (const auto& c : doc.at("channels")) {
+    const double sigmas = c.at("rmse").get<double>() / c.at("sigma").get<double>();
+    if (sigmas > most) {
+      most = sigmas;
+      worst = c.at("stream").get<std::string>() + ":" + c.at("channel").get<std::string>();
+    }
+  }
+  EXPECT_TRUE(fs::is_regular_file(folder + "/disagreement.png"));
+  EXPECT_NE(html.find("largest RMSE in noise sigmas: " + worst + " (RMSE"), std::string::npos) << worst;
 }
