@@ -330,15 +330,15 @@ void ArticulatedRoverScene::place_ground() {
     for (std::size_t w : wheels) {
       Vector3d t = ground_tangents_[w];
       if (t.x() < 0.0) t = -t;
-      for (const double s : {-r, 0.0, r}) line.push_back(ground_contacts_[w] + s * t);
+      for (const double s : {-r, 0.0, r}) line.emplace_back(ground_contacts_[w] + s * t);
     }
     if (!line.empty()) {
       line.insert(line.begin(), line.front() - Vector3d(reach, 0.0, 0.0));
-      line.push_back(line.back() + Vector3d(reach, 0.0, 0.0));
+      line.emplace_back(line.back() + Vector3d(reach, 0.0, 0.0));
     }
     vtkNew<vtkPoints> points;
     vtkNew<vtkCellArray> strip;
-    strip->InsertNextCell(static_cast<vtkIdType>(2 * line.size()));
+    strip->InsertNextCell(static_cast<int>(2 * line.size()));
     for (const auto& c : line) {
       for (const double dy : {half_width, -half_width})
         strip->InsertCellPoint(points->InsertNextPoint(c.x(), c.y() + dy, c.z()));
