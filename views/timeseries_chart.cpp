@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/common/error.h"
@@ -256,6 +257,7 @@ void TimeSeriesChart::set_window(double t0, double t1, std::size_t columns) {
 
 void TimeSeriesChart::rebuild() {
   bands_.clear();
+  labels_.assign(channels_.size(), std::string());
   tables_.assign(channels_.size(), nullptr);
   plots_.assign(channels_.size(), nullptr);
   cursors_.clear();
@@ -296,7 +298,29 @@ void TimeSeriesChart::rebuild() {
     cp->SetLegendVisibility(false);
     cursors_.push_back(cursor);
   }
+  link_time_axes();
   refresh();
+}
+
+// Each plot's time axis tells the others when it moves (vtkChart::UpdateRange).
+void TimeSeriesChart::link_time_axes() {
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    vtkAxis* axis = chart(g)->GetAxis(vtkAxis::BOTTOM);
+    axis->RemoveObservers(vtkChart::UpdateRange);
+    axis->AddObserver(vtkChart::UpdateRange, this, &TimeSeriesChart::time_axis_moved);
+  }
+}
+
+void TimeSeriesChart::time_axis_moved(vtkObject* caller, unsigned long /*event*/, void* /*data*/) {
+  if (linking_) return;
+  auto* axis = vtkAxis::SafeDownCast(caller);
+  if (axis == nullptr || !(axis->GetMaximum() > axis->GetMinimum())) return;
+  linking_ = true;
+  // The window the user chose, for every plot; the data redecimated for it (refresh sets the axes).
+  t0_ = axis->GetMinimum();
+  t1_ = axis->GetMaximum();
+  refresh();
+  linking_ = false;
 }
 
 void TimeSeriesChart::refresh() {
@@ -310,6 +334,7 @@ void TimeSeriesChart::refresh() {
       auto table = make_display_table(s, c.channel, t0_, t1_, columns_);
       const std::string label = c.stream + ":" + c.channel + " (" + s.channel(c.channel).unit + ")";
       table->GetColumn(1)->SetName(label.c_str());
+      labels_[i] = label;
       for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r) {
         const double v = table->GetValue(r, 1).ToDouble();
         if (std::isfinite(v)) {
@@ -336,13 +361,36 @@ void TimeSeriesChart::refresh() {
     chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
     chart->GetAxis(vtkAxis::LEFT)->SetRange(lo - pad, hi + pad);
     chart->GetAxis(vtkAxis::BOTTOM)->SetBehavior(vtkAxis::FIXED);
+    const bool was_linking = linking_;
+    linking_ = true;  // setting the window is not the user zooming
     chart->GetAxis(vtkAxis::BOTTOM)->SetRange(t0_, t1_);
+    linking_ = was_linking;
   }
   set_cursor(cursor_t_);
 }
 
+std::vector<TimeSeriesChart::Reading> TimeSeriesChart::readout() const {
+  std::vector<Reading> out;
+  for (const auto& c : channels_) {
+    const log::Stream& s = log_->stream(c.stream);
+    const log::Channel& ch = s.channel(c.channel);
+    const bool inside = !s.empty() && cursor_t_ >= s.start_time() && cursor_t_ <= s.end_time();
+    out.push_back(
+        {c.stream, c.channel, ch.unit, inside ? log::interpolate_linear(s.time(), ch.values, cursor_t_) : NAN});
+  }
+  return out;
+}
+
 void TimeSeriesChart::set_cursor(double t) {
   cursor_t_ = t;
+  // The legend reads every curve's value at the cursor.
+  const std::vector<Reading> now = readout();
+  for (std::size_t i = 0; i < plots_.size() && i < now.size(); ++i) {
+    if (plots_[i] == nullptr || labels_[i].empty()) continue;
+    char value[40];
+    std::snprintf(value, sizeof value, " = %.4g", now[i].value);
+    plots_[i]->SetLabel(labels_[i] + (std::isfinite(now[i].value) ? value : " = -"));
+  }
   for (std::size_t g = 0; g < cursors_.size(); ++g) {
     auto& c = cursors_[g];
     c->SetValue(0, 0, t);

@@ -17,6 +17,7 @@ class vtkChartXY;
 class vtkContextView;
 class vtkPlot;
 class vtkPlotArea;
+class vtkObject;
 class vtkTable;
 
 namespace roverlab::views {
@@ -64,6 +65,17 @@ class TimeSeriesChart : public Scene {
   double end_time() const override { return end_; }
   double default_time() const override { return start_; }
   const std::vector<ChannelRef>& channels() const { return channels_; }
+  // Every curve's value at the cursor time (linear between samples, NaN
+  // outside its stream's span); each legend entry shows it ("... = 0.12").
+  struct Reading {
+    std::string stream, channel, unit;
+    double value = 0;
+  };
+  std::vector<Reading> readout() const;
+  double cursor_time() const { return cursor_t_; }
+  // Zoom is linked: a plot's time axis zoomed or panned (mouse wheel, drag)
+  // sets every plot's time axis to the same window.
+  std::pair<double, double> window() const { return {t0_, t1_}; }
   // Channels drawn with a +-1 sigma band (those whose stream holds their sigma).
   std::size_t band_count() const;
   // Points drawn for each channel in the current window (after decimation).
@@ -79,6 +91,10 @@ class TimeSeriesChart : public Scene {
     vtkSmartPointer<vtkTable> table;
   };
   void refresh_band(Band& band, double& lo, double& hi);
+  void link_time_axes();
+  void time_axis_moved(vtkObject* axis, unsigned long event, void* data);
+  std::vector<std::string> labels_;  // per channel, without the value at the cursor
+  bool linking_ = false;
   std::vector<Band> bands_;
   const log::Log* log_;
   std::vector<ChannelRef> channels_;

@@ -5,6 +5,9 @@
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>
+#include <vtkContextMouseEvent.h>
+#include <vtkPlot.h>
+#include <vtkRect.h>
 
 #include <cmath>
 
@@ -162,4 +165,48 @@ TEST(TimeSeriesChart, TheDefaultPlotIsAnEstimateAgainstTruthWithItsBand) {
   ASSERT_EQ(ins_shown.size(), 2u);
   EXPECT_EQ(ins_shown[0].channel, "slip_ratio");
   EXPECT_EQ(ins_shown[1].channel, "reference_slip");
+}
+
+// Issue 32: the cursor reads every curve's value at its time (in the legend),
+// and zoom is linked: the mouse wheel over one plot zooms every plot's time axis.
+TEST(TimeSeriesChart, TheCursorReadsEveryCurveAndZoomIsLinkedAcrossPlots) {
+  log::Log lg;
+  const std::vector<double> t = times(10.0, 0.01);
+  std::vector<double> ramp(t.size()), square(t.size());
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    ramp[k] = 2.0 * t[k];
+    square[k] = t[k] * t[k];
+  }
+  log::Stream s("s", t);
+  s.add_channel("distance", "m", ramp);
+  s.add_channel("area", "m^2", square);
+  lg.add_stream(std::move(s));
+  views::TimeSeriesChart chart(lg, {{"s", "distance"}, {"s", "area"}});
+  ASSERT_EQ(chart.plot_count(), 2u);
+  (void)render_scene(chart, 480, 360, 2.505);
+  const auto now = chart.readout();
+  ASSERT_EQ(now.size(), 2u);
+  EXPECT_NEAR(now[0].value, 5.01, 1e-9);           // between samples: linear
+  EXPECT_NEAR(now[1].value, 2.505 * 2.505, 1e-4);  // (the square, linear between 2.50 and 2.51)
+  EXPECT_EQ(now[1].unit, "m^2");
+  EXPECT_NE(std::string(chart.chart(0)->GetPlot(0)->GetLabel()).find("distance (m) = 5.01"), std::string::npos)
+      << chart.chart(0)->GetPlot(0)->GetLabel();
+  EXPECT_NE(std::string(chart.chart(1)->GetPlot(0)->GetLabel()).find("area (m^2) = 6.27"), std::string::npos)
+      << chart.chart(1)->GetPlot(0)->GetLabel();
+
+  // The wheel over the lower plot, in its middle.
+  vtkChartXY* lower = chart.chart(1);
+  vtkContextMouseEvent wheel;
+  const vtkRectf area(lower->GetPoint1()[0], lower->GetPoint1()[1], lower->GetPoint2()[0] - lower->GetPoint1()[0],
+                      lower->GetPoint2()[1] - lower->GetPoint1()[1]);
+  wheel.SetScreenPos(vtkVector2i(static_cast<int>(area.GetX() + area.GetWidth() / 2),
+                                 static_cast<int>(area.GetY() + area.GetHeight() / 2)));
+  wheel.SetPos(vtkVector2f(area.GetX() + area.GetWidth() / 2, area.GetY() + area.GetHeight() / 2));
+  ASSERT_TRUE(lower->MouseWheelEvent(wheel, 3));
+  const double lo = lower->GetAxis(vtkAxis::BOTTOM)->GetMinimum(), hi = lower->GetAxis(vtkAxis::BOTTOM)->GetMaximum();
+  EXPECT_LT(hi - lo, 9.0);  // zoomed in
+  EXPECT_DOUBLE_EQ(chart.chart(0)->GetAxis(vtkAxis::BOTTOM)->GetMinimum(), lo);
+  EXPECT_DOUBLE_EQ(chart.chart(0)->GetAxis(vtkAxis::BOTTOM)->GetMaximum(), hi);
+  EXPECT_DOUBLE_EQ(chart.window().first, lo);
+  EXPECT_DOUBLE_EQ(chart.window().second, hi);
 }
