@@ -8,6 +8,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "app/command.h"
 #include "app/commands.h"
 #include "app/render_view.h"
+#include "app/report_pdf.h"
 #include "app/resources.h"
 #include "app/views_input.h"
 #include "core/common/error.h"
@@ -25,6 +27,7 @@
 #include "importers/soil_file.h"
 
 #include "app/view_data.h"
+#include "views/timeseries_chart.h"
 #include "views/view.h"
 #include "views/x_display.h"
 
@@ -46,6 +49,7 @@ struct ReportOptions {
   std::string quantity = "drawbar-pull";
   std::string size = "1280x800";
   std::string output;
+  bool pdf = false;
 };
 
 class ReportWriter {
@@ -69,6 +73,7 @@ class ReportWriter {
     const std::vector<std::string> previous = previous_files();
     section_.wrote("metrics.json");
     section_.wrote("index.html");
+    if (o_.pdf) section_.wrote("report.pdf");
     metrics_["files"] = section_.written();
     io::write_text_atomically((dir_ / "metrics.json").string(), metrics_.dump(2) + "\n");
     io::write_text_atomically((dir_ / "index.html").string(), html().str());
@@ -92,7 +97,10 @@ class ReportWriter {
         << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
         << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
         << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
-           "0}.notes{color:#555;font-size:90%}.notes li{margin:0.1em 0}</style></head><body>\n"
+           "0}.notes{color:#555;font-size:90%}.notes li{margin:0.1em 0}"
+           // Printed (--pdf, A4): the page's width, no heading alone at a page's foot, no picture cut in two.
+           "@page{size:A4;margin:14mm}@media print{body{max-width:none;margin:0;font-size:10pt}"
+           "h2{break-after:avoid}img,svg,tr{break-inside:avoid}table{font-size:8.5pt}}</style></head><body>\n"
         << "<h1>RoverLab report</h1>\n<p>" << esc(o_.file) << "</p>\n";
   }
 
@@ -122,7 +130,7 @@ class ReportWriter {
     std::string command = "roverlab report " + o_.file;
     if (o_.mapping) command += " --mapping " + *o_.mapping;
     if (o_.soil) command += " --soil " + *o_.soil;
-    command += " --size " + o_.size + " -o " + o_.output;
+    command += " --size " + o_.size + (o_.pdf ? " --pdf" : "") + " -o " + o_.output;
     std::error_code ec;
     const auto bytes = fs::file_size(o_.file, ec);
     const std::time_t now = std::time(nullptr);
@@ -203,13 +211,52 @@ class ReportWriter {
       std::string file = view->name();
       std::replace(file.begin(), file.end(), '-', '_');
       image(file + ".png", view->heading(), r);
-      if (view->uses_channels()) slip_plot(*view, h);
+      if (view->uses_channels()) {
+        disagreement_plot(*view, h);
+        slip_plot(*view, h);
+      }
     }
+  }
+
+  // The two channels where the rover simulation disagrees most with the
+  // measurement (RMSE in noise sigmas): measured minus simulated, nominal and
+  // with the named causes.
+  void disagreement_plot(const views::View& plots, int h) {
+    const auto run = std::find_if(in_.analyses.begin(), in_.analyses.end(),
+                                  [](const AnalysisRun& a) { return a.name == "rover-discrepancy"; });
+    if (run == in_.analyses.end() || !run->document.contains("channels")) return;
+    std::vector<std::pair<double, std::string>> ranked;
+    for (const auto& c : run->document.at("channels")) {
+      const std::string stream = c.at("stream").get<std::string>(), channel = c.at("channel").get<std::string>();
+      const log::Stream* residual = in_.log.find_stream("estimate/rover_discrepancy/residual_nominal/" + stream);
+      if (residual == nullptr || residual->find_channel(channel) == nullptr) continue;
+      const double sigmas = c.at("rmse").get<double>() / std::max(c.at("sigma").get<double>(), 1e-300);
+      ranked.emplace_back(sigmas, stream + ":" + channel);
+    }
+    if (ranked.empty()) return;
+    std::sort(ranked.begin(), ranked.end(), std::greater<>());
+    ViewOptions o;
+    o.channel_spec = "";
+    std::string names;
+    for (std::size_t k = 0; k < ranked.size() && k < 2; ++k) {
+      const std::string& measured = ranked[k].second;
+      *o.channel_spec += std::string(k ? "," : "") + "estimate/rover_discrepancy/residual_nominal/" + measured +
+                         ",estimate/rover_discrepancy/residual_with_causes/" + measured;
+      names += (k ? " and " : "") + measured + " (RMSE " + num(ranked[k].first, "%.3g") + " noise sigmas)";
+    }
+    image("disagreement.png",
+          "Where the simulation disagrees most: measured minus simulated, nominal and with the causes",
+          render_view(in_, plots, o, w_, h * static_cast<int>(std::min<std::size_t>(ranked.size(), 2))));
+    html() << "<p class=\"note\">The channels with the largest RMSE in noise sigmas: " << esc(names) << ".</p>\n";
   }
 
   void slip_plot(const views::View& plots, int h) {
     const log::Stream* slip = in_.log.find_stream("estimate/ins/slip");
     if (slip == nullptr || slip->find_channel("reference_slip") == nullptr) return;
+    // Not twice: the default plot may be this very pair (views::default_channels).
+    for (const auto& c : views::default_channels(in_.log)) {
+      if (c.stream == "estimate/ins/slip" && c.channel == "reference_slip") return;
+    }
     ViewOptions o;
     o.channel_spec = "estimate/ins/slip:slip_ratio,estimate/ins/slip:reference_slip";
     image("slip.png", "Slip ratio: INS estimate and reference", render_view(in_, plots, o, w_, h));
@@ -279,6 +326,7 @@ void check_report_folder(const std::string& output) {
 int run_report(const ReportOptions& o) {
   const auto [w, h] = parse_size(o.size);
   check_report_folder(o.output);
+  if (o.pdf) (void)report_pdf_printer();
   // An unknown soil is an error, not a silently missing section.
   if (o.soil) (void)io::find_soil(*o.soil, resource_subfolders("soils"));
   ViewInputOptions vo;
@@ -293,6 +341,10 @@ int run_report(const ReportOptions& o) {
   views::ensure_display();
   ReportWriter(o, in, w, h).write();
   std::printf("wrote %s\n", (dir / "index.html").string().c_str());
+  if (o.pdf) {
+    print_report_pdf((dir / "index.html").string(), (dir / "report.pdf").string());
+    std::printf("wrote %s\n", (dir / "report.pdf").string().c_str());
+  }
   return kSuccess;
 }
 
@@ -308,6 +360,7 @@ Commands make_report_commands() {
         cmd.add_option("--soil", o.soil, "Add the traction surfaces of soil NAME|FILE");
         cmd.add_option("--size", o.size, "WxH pixels of the 3D views")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "Report folder (created if missing)")->required();
+        cmd.add_flag("--pdf", o.pdf, "Also print the report to DIR/report.pdf (A4, through headless Chromium)");
       },
       run_report));
   return commands;

@@ -3,10 +3,12 @@
 #include <vtkActor.h>
 #include <vtkBillboardTextActor3D.h>
 #include <vtkCamera.h>
+#include <vtkCellArray.h>
 #include <vtkCubeSource.h>
 #include <vtkCylinderSource.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
@@ -19,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/common/error.h"
 #include "core/estimation/contact_model_selection.h"
@@ -86,6 +89,9 @@ struct ArticulatedRoverScene::Parts {
   vtkSmartPointer<vtkTextActor> text = vtkSmartPointer<vtkTextActor>::New();
   std::vector<vtkSmartPointer<vtkBillboardTextActor3D>> labels;  // FL .. FR beside each wheel
   std::vector<vtkSmartPointer<vtkActor>> wheels, links, estimate, truth, side_slip, sigma;
+  vtkSmartPointer<vtkActor> ground[2];  // the strips under the left and the right wheels
+  vtkSmartPointer<vtkCubeSource> base;  // the plane beneath them
+  double extent = 1.0;
   const log::Stream* joints = nullptr;
   const log::Stream* estimate_stream = nullptr;
   const log::Stream* truth_stream = nullptr;
@@ -115,6 +121,8 @@ ArticulatedRoverScene::ArticulatedRoverScene(const log::Log& lg, kinematics::Rov
   const std::size_t n = rover_.wheels.size();
   const double r = rover_.wheel_radius;
   centres_.assign(n, Vector3d::Zero());
+  ground_contacts_.assign(n, Vector3d::Zero());
+  ground_tangents_.assign(n, Vector3d::UnitX());
   contacts_.assign(n, Vector3d::Zero());
   directions_.assign(n, Vector3d::Constant(NAN));
   p.renderer->SetBackground(0.93, 0.94, 0.97);
@@ -165,12 +173,18 @@ ArticulatedRoverScene::ArticulatedRoverScene(const log::Log& lg, kinematics::Rov
   body->SetBounds(0.7 * lo.x(), 0.7 * hi.x(), 0.45 * lo.y(), 0.45 * hi.y(), -0.06, 0.06);
   p.renderer->AddActor(actor_of(body->GetOutputPort(), kBodyRgb));
   const double extent = std::max((hi - lo).norm(), 4.0 * r);
-  vtkNew<vtkCubeSource> terrain;
-  terrain->SetBounds(centre.x() - 1.5 * extent, centre.x() + 1.5 * extent, centre.y() - 1.5 * extent,
-                     centre.y() + 1.5 * extent, ground - 0.02, ground - 0.005);
-  auto terrain_actor = actor_of(terrain->GetOutputPort(), Vector3d(0.74, 0.66, 0.53));
+  p.extent = extent;
+  p.base = vtkSmartPointer<vtkCubeSource>::New();
+  p.base->SetBounds(centre.x() - 1.5 * extent, centre.x() + 1.5 * extent, centre.y() - 1.5 * extent,
+                    centre.y() + 1.5 * extent, ground - 0.02, ground - 0.005);
+  auto terrain_actor = actor_of(p.base->GetOutputPort(), Vector3d(0.74, 0.66, 0.53));
   terrain_actor->GetProperty()->SetOpacity(0.55);
   p.renderer->AddActor(terrain_actor);
+  for (auto& strip : p.ground) {
+    strip = actor_of(polyline({Vector3d::Zero(), Vector3d::UnitX()}), Vector3d(0.74, 0.62, 0.45));
+    strip->GetProperty()->SetAmbient(0.45);  // lit from the camera, a level strip would be dark
+    p.renderer->AddActor(strip);
+  }
   p.text->GetTextProperty()->SetFontSize(16);
   p.text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
   p.text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
@@ -208,6 +222,7 @@ void ArticulatedRoverScene::set_time(double t) {
   const std::size_t ke = p.estimate_stream != nullptr ? p.estimate_stream->nearest_index(t) : 0;
   const std::size_t kt = p.truth_stream != nullptr ? p.truth_stream->nearest_index(t) : 0;
   for (std::size_t w = 0; w < rover_.wheels.size(); ++w) pose_wheel(w, q, ke, kt);
+  place_ground();
   char line[480];
   // The estimates' model, as the estimator named it (chosen by the data, or set by hand and maybe rejected).
   const std::string model = p.estimate_stream != nullptr ? estimation::model_label(*p.estimate_stream) : "";
@@ -269,6 +284,10 @@ void ArticulatedRoverScene::pose_wheel(std::size_t w, const std::vector<double>&
   const Vector3d normal = -std::sin(at) * f + std::cos(at) * u;
   const Vector3d contact = centre - r * normal;
   contacts_[w] = contact;
+  // The ground touches the wheel at the true contact angle when the log has it.
+  const double at_ground = std::isfinite(gamma_truth) ? gamma_truth : at;
+  ground_contacts_[w] = centre - r * (-std::sin(at_ground) * f + std::cos(at_ground) * u);
+  ground_tangents_[w] = along(at_ground);
   const double length = 1.8 * r;
   p.estimate[w]->SetVisibility(std::isfinite(gamma));
   directions_[w] = std::isfinite(gamma) ? along(gamma) : Vector3d::Constant(NAN);
@@ -291,6 +310,71 @@ void ArticulatedRoverScene::pose_wheel(std::size_t w, const std::vector<double>&
   if (!std::isfinite(slip)) slip = value_at(p.truth_stream, "slip_" + name, kt);
   const double redness = std::isfinite(slip) ? std::min(std::abs(slip) / 0.5, 1.0) : 0.0;
   p.wheels[w]->GetProperty()->SetColor(0.6 + 0.3 * redness, 0.6 - 0.45 * redness, 0.62 - 0.45 * redness);
+}
+
+// Each side's strip: through each wheel's contact point, tangent there for a
+// wheel radius either way, joined straight between wheels, carried on level
+// for half the rover's size ahead and behind; the base plane just below.
+void ArticulatedRoverScene::place_ground() {
+  Parts& p = *parts_;
+  const double r = rover_.wheel_radius, half_width = 0.9 * r, reach = 0.5 * p.extent;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int side = 0; side < 2; ++side) {
+    std::vector<std::size_t> wheels;
+    for (std::size_t w = 0; w < centres_.size(); ++w) {
+      if ((centres_[w].y() >= 0.0) == (side == 0)) wheels.push_back(w);
+    }
+    std::sort(wheels.begin(), wheels.end(),
+              [&](std::size_t a, std::size_t b) { return ground_contacts_[a].x() < ground_contacts_[b].x(); });
+    std::vector<Vector3d> line;
+    for (std::size_t w : wheels) {
+      Vector3d t = ground_tangents_[w];
+      if (t.x() < 0.0) t = -t;
+      for (const double s : {-r, 0.0, r}) line.emplace_back(ground_contacts_[w] + s * t);
+    }
+    if (!line.empty()) {
+      line.insert(line.begin(), line.front() - Vector3d(reach, 0.0, 0.0));
+      line.emplace_back(line.back() + Vector3d(reach, 0.0, 0.0));
+    }
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> strip;
+    strip->InsertNextCell(static_cast<int>(2 * line.size()));
+    for (const auto& c : line) {
+      for (const double dy : {half_width, -half_width})
+        strip->InsertCellPoint(points->InsertNextPoint(c.x(), c.y() + dy, c.z()));
+      lowest = std::min(lowest, c.z());
+    }
+    vtkNew<vtkPolyData> data;
+    data->SetPoints(points);
+    data->SetStrips(strip);
+    vtkPolyDataMapper::SafeDownCast(p.ground[side]->GetMapper())->SetInputData(data);
+  }
+  if (std::isfinite(lowest)) {
+    double b[6];
+    p.base->GetBounds(b);
+    p.base->SetBounds(b[0], b[1], b[2], b[3], lowest - 0.02, lowest - 0.005);
+  }
+}
+
+std::vector<std::vector<Vector3d>> ArticulatedRoverScene::ground_strips() const {
+  std::vector<std::vector<Vector3d>> out;
+  for (const auto& strip : parts_->ground) {
+    vtkPolyData* data = vtkPolyData::SafeDownCast(strip->GetMapper()->GetInput());
+    if (data == nullptr || data->GetPoints() == nullptr) continue;
+    out.emplace_back();
+    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i) {
+      double x[3];
+      data->GetPoint(i, x);
+      out.back().emplace_back(x[0], x[1], x[2]);
+    }
+  }
+  return out;
+}
+
+std::vector<double> ArticulatedRoverScene::base_plane_bounds() const {
+  double b[6];
+  parts_->base->GetBounds(b);
+  return {b, b + 6};
 }
 
 std::string ArticulatedRoverScene::caption() const { return parts_->text->GetInput(); }

@@ -10,6 +10,7 @@
 #include <vtkNew.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
+#include <vtkPlotArea.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTable.h>
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/common/error.h"
@@ -51,7 +53,72 @@ std::vector<ChannelRef> parse_channels(const log::Log& lg, const std::string& sp
   return out;
 }
 
+std::string sigma_channel_of(const log::Stream& stream, const std::string& channel) {
+  // "pitch" -> "pitch_sigma"; "drawbar_pull_1" -> "drawbar_pull_sigma_1"; "contact_angle_FL" ->
+  // "contact_angle_FL_sigma".
+  std::vector<std::string> names = {channel + "_sigma"};
+  const auto cut = channel.rfind('_');
+  if (cut != std::string::npos) names.push_back(channel.substr(0, cut) + "_sigma" + channel.substr(cut));
+  for (const auto& n : names) {
+    if (stream.find_channel(n) != nullptr) return n;
+  }
+  return {};
+}
+
+namespace {
+
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// Whether a truth changes at all (a contact angle on flat ground does not: a
+// flat line says little).
+bool varies(const std::vector<double>& values) {
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  return lo != values.end() && *hi - *lo > 1e-9 * std::max(1.0, std::abs(*hi));
+}
+
+// An estimate and the truth of the same channel, where the truth changes: the
+// quantity that says most first (the contact angle, drawbar pull, slip, load),
+// then any other.
+std::vector<ChannelRef> estimate_against_truth(const log::Log& lg) {
+  static const std::vector<std::string> order = {"contact_angle", "drawbar_pull", "slip", "normal_load", ""};
+  for (const auto& quantity : order) {
+    for (const auto& e : lg.streams()) {
+      if (!starts_with(e.name(), "estimate/") || e.size() < 2) continue;
+      for (const auto& c : e.channels()) {
+        if (c.name.find("_sigma") != std::string::npos || !starts_with(c.name, quantity.c_str())) continue;
+        for (const auto& t : lg.streams()) {
+          if (starts_with(t.name(), "truth/") && t.size() >= 2 && t.find_channel(c.name) != nullptr &&
+              varies(t.channel(c.name).values))
+            return {{e.name(), c.name}, {t.name(), c.name}};
+        }
+      }
+    }
+  }
+  return {};
+}
+
+// An estimate beside the reference it is scored against in its own stream
+// (estimate/ins/slip: slip_ratio and reference_slip).
+std::vector<ChannelRef> estimate_against_reference(const log::Log& lg) {
+  for (const auto& e : lg.streams()) {
+    if (!starts_with(e.name(), "estimate/") || e.size() < 2) continue;
+    for (const auto& c : e.channels()) {
+      if (!starts_with(c.name, "reference_")) continue;
+      const std::string quantity = c.name.substr(10);
+      for (const auto& other : e.channels()) {
+        if (&other != &c && starts_with(other.name, quantity.c_str()))
+          return {{e.name(), other.name}, {e.name(), c.name}};
+      }
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 std::vector<ChannelRef> default_channels(const log::Log& lg) {
+  if (auto pair = estimate_against_truth(lg); !pair.empty()) return pair;
+  if (auto pair = estimate_against_reference(lg); !pair.empty()) return pair;
   std::vector<ChannelRef> out;
   for (const auto& s : lg.streams()) {
     if (s.channels().empty() || s.size() < 2) continue;
@@ -189,6 +256,8 @@ void TimeSeriesChart::set_window(double t0, double t1, std::size_t columns) {
 }
 
 void TimeSeriesChart::rebuild() {
+  bands_.clear();
+  labels_.assign(channels_.size(), std::string());
   tables_.assign(channels_.size(), nullptr);
   plots_.assign(channels_.size(), nullptr);
   cursors_.clear();
@@ -196,6 +265,16 @@ void TimeSeriesChart::rebuild() {
     vtkChartXY* chart = this->chart(g);
     chart->ClearPlots();
     for (std::size_t i : groups_[g]) {
+      // The estimate's +-1 sigma band under its line, when the stream holds the sigma.
+      const std::string sigma = sigma_channel_of(log_->stream(channels_[i].stream), channels_[i].channel);
+      if (!sigma.empty()) {
+        auto* area = vtkPlotArea::SafeDownCast(chart->AddPlot(vtkChart::AREA));
+        unsigned char rgb[3];
+        line_colour(i, rgb);
+        area->SetColor(rgb[0], rgb[1], rgb[2], 70);
+        area->SetLabel("+-1 sigma of " + channels_[i].channel);
+        bands_.push_back({i, sigma, area, nullptr});
+      }
       vtkPlot* line = chart->AddPlot(vtkChart::LINE);
       unsigned char rgb[3];
       line_colour(i, rgb);
@@ -219,7 +298,29 @@ void TimeSeriesChart::rebuild() {
     cp->SetLegendVisibility(false);
     cursors_.push_back(cursor);
   }
+  link_time_axes();
   refresh();
+}
+
+// Each plot's time axis tells the others when it moves (vtkChart::UpdateRange).
+void TimeSeriesChart::link_time_axes() {
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    vtkAxis* axis = chart(g)->GetAxis(vtkAxis::BOTTOM);
+    axis->RemoveObservers(vtkChart::UpdateRange);
+    axis->AddObserver(vtkChart::UpdateRange, this, &TimeSeriesChart::time_axis_moved);
+  }
+}
+
+void TimeSeriesChart::time_axis_moved(vtkObject* caller, unsigned long /*event*/, void* /*data*/) {
+  if (linking_) return;
+  auto* axis = vtkAxis::SafeDownCast(caller);
+  if (axis == nullptr || !(axis->GetMaximum() > axis->GetMinimum())) return;
+  linking_ = true;
+  // The window the user chose, for every plot; the data redecimated for it (refresh sets the axes).
+  t0_ = axis->GetMinimum();
+  t1_ = axis->GetMaximum();
+  refresh();
+  linking_ = false;
 }
 
 void TimeSeriesChart::refresh() {
@@ -233,6 +334,7 @@ void TimeSeriesChart::refresh() {
       auto table = make_display_table(s, c.channel, t0_, t1_, columns_);
       const std::string label = c.stream + ":" + c.channel + " (" + s.channel(c.channel).unit + ")";
       table->GetColumn(1)->SetName(label.c_str());
+      labels_[i] = label;
       for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r) {
         const double v = table->GetValue(r, 1).ToDouble();
         if (std::isfinite(v)) {
@@ -251,18 +353,44 @@ void TimeSeriesChart::refresh() {
       lo -= 0.5;
       hi += 0.5;
     }
+    for (auto& band : bands_) {
+      if (std::find(groups_[g].begin(), groups_[g].end(), band.channel) != groups_[g].end()) refresh_band(band, lo, hi);
+    }
     const double pad = 0.05 * (hi - lo);
     ranges_.emplace_back(lo - pad, hi + pad);
     chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
     chart->GetAxis(vtkAxis::LEFT)->SetRange(lo - pad, hi + pad);
     chart->GetAxis(vtkAxis::BOTTOM)->SetBehavior(vtkAxis::FIXED);
+    const bool was_linking = linking_;
+    linking_ = true;  // setting the window is not the user zooming
     chart->GetAxis(vtkAxis::BOTTOM)->SetRange(t0_, t1_);
+    linking_ = was_linking;
   }
   set_cursor(cursor_t_);
 }
 
+std::vector<TimeSeriesChart::Reading> TimeSeriesChart::readout() const {
+  std::vector<Reading> out;
+  for (const auto& c : channels_) {
+    const log::Stream& s = log_->stream(c.stream);
+    const log::Channel& ch = s.channel(c.channel);
+    const bool inside = !s.empty() && cursor_t_ >= s.start_time() && cursor_t_ <= s.end_time();
+    out.push_back(
+        {c.stream, c.channel, ch.unit, inside ? log::interpolate_linear(s.time(), ch.values, cursor_t_) : NAN});
+  }
+  return out;
+}
+
 void TimeSeriesChart::set_cursor(double t) {
   cursor_t_ = t;
+  // The legend reads every curve's value at the cursor.
+  const std::vector<Reading> now = readout();
+  for (std::size_t i = 0; i < plots_.size() && i < now.size(); ++i) {
+    if (plots_[i] == nullptr || labels_[i].empty()) continue;
+    char value[40];
+    std::snprintf(value, sizeof value, " = %.4g", now[i].value);
+    plots_[i]->SetLabel(labels_[i] + (std::isfinite(now[i].value) ? value : " = -"));
+  }
   for (std::size_t g = 0; g < cursors_.size(); ++g) {
     auto& c = cursors_[g];
     c->SetValue(0, 0, t);
@@ -272,6 +400,41 @@ void TimeSeriesChart::set_cursor(double t) {
     c->Modified();
   }
 }
+
+// The band's table (time, value - sigma, value + sigma), every k-th sample in
+// the window so that about 2 * columns remain; widens [lo, hi] to hold it.
+void TimeSeriesChart::refresh_band(Band& band, double& lo, double& hi) {
+  const log::Stream& s = log_->stream(channels_[band.channel].stream);
+  const auto& value = s.channel(channels_[band.channel].channel).values;
+  const auto& sigma = s.channel(band.sigma).values;
+  const auto& time = s.time();
+  const auto first = static_cast<std::size_t>(std::lower_bound(time.begin(), time.end(), t0_) - time.begin());
+  const auto last = static_cast<std::size_t>(std::upper_bound(time.begin(), time.end(), t1_) - time.begin());
+  const std::size_t step = std::max<std::size_t>(1, (last - std::min(first, last)) / (2 * columns_));
+  auto table = vtkSmartPointer<vtkTable>::New();
+  vtkNew<vtkDoubleArray> t, low, high;
+  t->SetName("time");
+  low->SetName("value - sigma");
+  high->SetName("+-1 sigma");
+  for (std::size_t k = first; k < last; k += step) {
+    if (!std::isfinite(value[k]) || !std::isfinite(sigma[k])) continue;
+    t->InsertNextValue(time[k]);
+    low->InsertNextValue(value[k] - sigma[k]);
+    high->InsertNextValue(value[k] + sigma[k]);
+    lo = std::min(lo, value[k] - sigma[k]);
+    hi = std::max(hi, value[k] + sigma[k]);
+  }
+  table->AddColumn(t);
+  table->AddColumn(low);
+  table->AddColumn(high);
+  band.area->SetInputData(table);
+  band.area->SetInputArray(0, "time");
+  band.area->SetInputArray(1, "value - sigma");
+  band.area->SetInputArray(2, "+-1 sigma");
+  band.table = table;
+}
+
+std::size_t TimeSeriesChart::band_count() const { return bands_.size(); }
 
 std::vector<std::size_t> TimeSeriesChart::drawn_points() const {
   std::vector<std::size_t> out;

@@ -16,6 +16,8 @@ class vtkChartMatrix;
 class vtkChartXY;
 class vtkContextView;
 class vtkPlot;
+class vtkPlotArea;
+class vtkObject;
 class vtkTable;
 
 namespace roverlab::views {
@@ -24,9 +26,15 @@ namespace roverlab::views {
 // of its channels. Throws DataError naming what the log lacks.
 std::vector<ChannelRef> parse_channels(const log::Log& log, const std::string& spec);
 
-// Channels a plot shows when none are asked for: up to four of the first
-// stream that has any.
+// Channels a plot shows when none are asked for, chosen for what they show:
+// an estimate against the truth of the same channel (contact angle, drawbar
+// pull, slip, load first), else an estimate against the reference in its own
+// stream (reference_slip), else up to four of the first stream.
 std::vector<ChannelRef> default_channels(const log::Log& log);
+
+// The channel holding `channel`'s 1-sigma in `stream` ("pitch_sigma",
+// "drawbar_pull_sigma_1"); empty when there is none.
+std::string sigma_channel_of(const log::Stream& stream, const std::string& channel);
 
 // Distinct line colours (RGB 0..255) for plot i.
 void line_colour(std::size_t i, unsigned char rgb[3]);
@@ -57,12 +65,37 @@ class TimeSeriesChart : public Scene {
   double end_time() const override { return end_; }
   double default_time() const override { return start_; }
   const std::vector<ChannelRef>& channels() const { return channels_; }
+  // Every curve's value at the cursor time (linear between samples, NaN
+  // outside its stream's span); each legend entry shows it ("... = 0.12").
+  struct Reading {
+    std::string stream, channel, unit;
+    double value = 0;
+  };
+  std::vector<Reading> readout() const;
+  double cursor_time() const { return cursor_t_; }
+  // Zoom is linked: a plot's time axis zoomed or panned (mouse wheel, drag)
+  // sets every plot's time axis to the same window.
+  std::pair<double, double> window() const { return {t0_, t1_}; }
+  // Channels drawn with a +-1 sigma band (those whose stream holds their sigma).
+  std::size_t band_count() const;
   // Points drawn for each channel in the current window (after decimation).
   std::vector<std::size_t> drawn_points() const;
 
  private:
   void rebuild();  // plots and cursors, after the channels changed
   void refresh();  // decimated data and axis ranges, after the window changed
+  struct Band {
+    std::size_t channel;
+    std::string sigma;
+    vtkPlotArea* area;  // owned by its chart
+    vtkSmartPointer<vtkTable> table;
+  };
+  void refresh_band(Band& band, double& lo, double& hi);
+  void link_time_axes();
+  void time_axis_moved(vtkObject* axis, unsigned long event, void* data);
+  std::vector<std::string> labels_;  // per channel, without the value at the cursor
+  bool linking_ = false;
+  std::vector<Band> bands_;
   const log::Log* log_;
   std::vector<ChannelRef> channels_;
   vtkSmartPointer<vtkContextView> view_;

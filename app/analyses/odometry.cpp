@@ -2,10 +2,12 @@
 // GPS track, the cause among the candidates, the fitted correction and its
 // held-out gain.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "app/analysis.h"
 #include "app/command_support.h"
+#include "app/report_plot.h"
 #include "core/analysis/odometry_discrepancy.h"
 
 namespace roverlab::app {
@@ -98,6 +100,22 @@ json OdometryAnalysis::document(const std::string& file, const analysis::Odometr
   j["selection"] = json::array();
   for (const auto& c : r.selection) j["selection"].push_back(candidate_json(c));
   j["rejected_step"] = r.rejected_step ? candidate_json(*r.rejected_step) : json(nullptr);
+  // The track error before and after the named cause, at most 600 samples, for the report's plots.
+  const analysis::OdometryResiduals& res = r.residuals;
+  json plot = {{"time_s", json::array()},
+               {"before_m", json::array()},
+               {"after_m", json::array()},
+               {"slip", json::array()},
+               {"held_out_rms_before_m", res.rms_before},
+               {"held_out_rms_after_m", finite_or_null(res.rms_after)}};
+  const std::size_t stride = std::max<std::size_t>(1, (res.time.size() + 599) / 600);
+  for (std::size_t k = 0; k < res.time.size(); k += stride) {
+    plot["time_s"].push_back(res.time[k]);
+    plot["before_m"].push_back(finite_or_null(res.before[k]));
+    plot["after_m"].push_back(finite_or_null(res.after[k]));
+    plot["slip"].push_back(finite_or_null(res.slip[k]));
+  }
+  j["residuals"] = plot;
   return j;
 }
 
@@ -188,6 +206,50 @@ std::vector<ResultTable> OdometryAnalysis::tables(const json& j) const {
   return {t};
 }
 
+std::vector<double> numbers(const json& a) {
+  std::vector<double> v;
+  v.reserve(a.size());
+  for (const auto& x : a) v.push_back(x.is_number() ? x.get<double>() : NAN);
+  return v;
+}
+
+// The track error before and after the named cause, overlaid, against time
+// (the dashed line: the held-out part starts, dead-reckoned afresh) and slip.
+void residual_plots(const json& j, ReportSection& s) {
+  if (!j.contains("residuals")) return;
+  const json& r = j.at("residuals");
+  std::vector<double> t = numbers(r.at("time_s")), before = numbers(r.at("before_m")), after = numbers(r.at("after_m"));
+  const std::vector<double> slip = numbers(r.at("slip"));
+  const double split = j.at("split_time_s").get<double>();
+  const std::string cause = j.at("cause").is_string() ? j.at("cause").get<std::string>() : std::string();
+  std::vector<PlotSeries> series = {{"nominal geometry", "#888888", before}};
+  if (!cause.empty()) series.emplace_back("with " + cause, "#1f77b4", after);
+  PlotSpec by_time{"Track error against GPS, before and after the cause", "time (s)", "position error (m)", series};
+  // The line breaks where the held-out part starts afresh.
+  const auto at = static_cast<std::ptrdiff_t>(std::upper_bound(t.begin(), t.end(), split) - t.begin());
+  t.insert(t.begin() + at, split);
+  for (auto& one : by_time.series) {
+    one.x = t;
+    one.y.insert(one.y.begin() + at, NAN);
+  }
+  by_time.marker_x = split;
+  by_time.marker_label = "held out";
+  by_time.css_class = "plot residual-plot";
+  PlotSpec by_slip{"Track error against slip", "slip (1 - GPS speed / wheel speed)", "position error (m)", series};
+  for (auto& one : by_slip.series) {
+    one.x = slip;
+    one.points = true;
+  }
+  by_slip.css_class = "plot residual-plot";
+  s.html << "<p>Track error (horizontal distance to the GPS fix), nominal geometry grey"
+         << (cause.empty() ? std::string(" (no cause named)") : ", with the named cause blue") << "; held-out RMS "
+         << ReportSection::number(r.at("held_out_rms_before_m"), "%.2f") << " m"
+         << (cause.empty() ? std::string()
+                           : " before, " + ReportSection::number(r.at("held_out_rms_after_m"), "%.2f") + " m after")
+         << ". Each part is dead-reckoned from its own start; slip where the wheels roll at 0.05 m/s or more.</p>\n"
+         << plot_svg(by_time) << plot_svg(by_slip) << "\n";
+}
+
 void OdometryAnalysis::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   const json& b = j.at("baseline");
@@ -215,6 +277,7 @@ void OdometryAnalysis::report(const json& j, ReportSection& s) const {
            (c.at("significant").get<bool>() ? "1" : "0") + "\n";
   }
   s.html << "</table>\n<p><b>" << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n";
+  residual_plots(j, s);
   s.write_csv("odometry_candidates.csv", csv);
 }
 

@@ -10,6 +10,7 @@
 #include "app/analysis.h"
 #include "app/command_support.h"
 #include "app/commands.h"
+#include "app/report_plot.h"
 #include "app/rover_scenario.h"
 #include "core/analysis/likelihood.h"
 #include "core/analysis/rover_discrepancy.h"
@@ -54,43 +55,42 @@ std::string parameters_text(const json& ps, bool screened = false) {
   return t;
 }
 
-// A scatter of points (x, y) as inline SVG on a log10 y axis, two series
-// (before grey, after blue): the residual before can be thousands of sigmas.
-std::string scatter_svg(const std::string& title, const std::string& xlabel, const std::vector<double>& x,
-                        const std::vector<double>& y0, const std::vector<double>& y1) {
-  const auto ly = [](double y) { return std::log10(std::max(y, 0.01)); };
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  double xmin = inf, xmax = -inf, ymin = inf, ymax = -inf;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    if (!std::isfinite(x[k]) || !std::isfinite(y0[k]) || !std::isfinite(y1[k])) continue;
-    xmin = std::min(xmin, x[k]);
-    xmax = std::max(xmax, x[k]);
-    ymin = std::min({ymin, ly(y0[k]), ly(y1[k])});
-    ymax = std::max({ymax, ly(y0[k]), ly(y1[k])});
+// RMS of the finite values of v; NaN when there are none.
+double rms(const std::vector<double>& v) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (const double x : v) {
+    if (!std::isfinite(x)) continue;
+    sum += x * x;
+    ++n;
   }
-  std::ostringstream s;
-  const double W = 420, H = 220, L = 50, B = 190, T = 20;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\">"
-    << "<text x=\"" << L << "\" y=\"14\" font-size=\"12\">" << ReportSection::escape(title) << "</text>"
-    << "<line x1=\"" << L << "\" y1=\"" << B << "\" x2=\"" << W - 10 << "\" y2=\"" << B << "\" stroke=\"black\"/>"
-    << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << B << "\" stroke=\"black\"/>"
-    << "<text x=\"" << L << "\" y=\"" << H - 5 << "\" font-size=\"11\">" << ReportSection::escape(xlabel) << " ("
-    << ReportSection::number(xmin) << " .. " << ReportSection::number(xmax) << ")</text>"
-    << "<text x=\"2\" y=\"" << T + 8 << "\" font-size=\"10\">" << ReportSection::number(std::pow(10, ymax)) << "</text>"
-    << "<text x=\"2\" y=\"" << B << "\" font-size=\"10\">" << ReportSection::number(std::pow(10, ymin)) << "</text>";
-  if (!(xmax > xmin)) return s.str() + "</svg>";
-  if (!(ymax > ymin)) ymax = ymin + 1;
-  for (int series = 0; series < 2; ++series) {
-    const std::vector<double>& y = series == 0 ? y0 : y1;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      if (!std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
-      const double px = L + (x[k] - xmin) / (xmax - xmin) * (W - L - 10),
-                   py = B - (ly(y[k]) - ymin) / (ymax - ymin) * (B - T);
-      s << "<circle cx=\"" << px << "\" cy=\"" << py << "\" r=\"1.2\" fill=\"" << (series == 0 ? "#999" : "#1f77b4")
-        << "\"/>";
-    }
+  return n ? std::sqrt(sum / static_cast<double>(n)) : NAN;
+}
+
+// The residual before and after the named causes, overlaid, against time and
+// against slip; log y: before a cause is named it can be thousands of sigmas.
+void residual_plots(const json& j, const std::vector<double>& t, const std::vector<double>& slip,
+                    const std::vector<double>& before, const std::vector<double>& after, ReportSection& s) {
+  const std::string causes = j.at("causes_text").get<std::string>();
+  const std::vector<PlotSeries> series = {{"nominal model", "#888888", before},
+                                          {causes == "none" ? "no cause named" : "with " + causes, "#1f77b4", after}};
+  PlotSpec by_time{"Residual against time, before and after the causes", "time (s)",
+                   "residual, RMS over channels (noise sigmas)", series};
+  by_time.log_y = true;
+  by_time.css_class = "plot residual-plot";
+  for (auto& one : by_time.series) one.x = t;
+  PlotSpec by_slip = by_time;
+  by_slip.title = "Residual against slip";
+  by_slip.x_title = "mean wheel slip (1)";
+  for (auto& one : by_slip.series) {
+    one.x = slip;
+    one.points = true;
   }
-  return s.str() + "</svg>";
+  s.html << "<p>Residual (RMS over the channels, each in its noise sigmas; log scale): nominal model grey, with the "
+            "named causes blue; RMS over the run "
+         << ReportSection::number(rms(before), "%.3g") << " before, " << ReportSection::number(rms(after), "%.3g")
+         << " after.</p>\n"
+         << plot_svg(by_time) << plot_svg(by_slip) << "\n";
 }
 
 class RoverDiscrepancyAnalysis : public Analysis {
@@ -186,6 +186,36 @@ void refuse_another_run(const AnalysisInput& in, const analysis::RoverScenarioMo
                                 model.name + " cannot be this run's model");
 }
 
+// Each measured channel minus the simulation, nominal and with the named
+// causes: estimate/rover_discrepancy/residual_nominal/<stream> and
+// .../residual_with_causes/<stream>, channels named as the measured ones, on
+// the measured time stamps (the report plots where they disagree most).
+void add_residual_streams(const log::Log& lg, const analysis::RoverDiscrepancyReport& r, log::Log& out) {
+  std::vector<log::Stream> streams;
+  const auto stream_of = [&](const std::string& name, const std::vector<double>& time) -> log::Stream& {
+    auto it = std::find_if(streams.begin(), streams.end(), [&](const log::Stream& s) { return s.name() == name; });
+    if (it != streams.end()) return *it;
+    return streams.emplace_back(name, time);
+  };
+  for (const auto& c : r.channels) {
+    const log::Stream* measured = lg.find_stream(c.stream);
+    const log::Channel* values = measured != nullptr ? measured->find_channel(c.channel) : nullptr;
+    if (values == nullptr || c.time != measured->time() || c.predicted_before.size() != c.time.size() ||
+        c.predicted_after.size() != c.time.size())
+      continue;
+    std::vector<double> before(c.time.size()), after(c.time.size());
+    for (std::size_t k = 0; k < c.time.size(); ++k) {
+      before[k] = values->values[k] - c.predicted_before[k];
+      after[k] = values->values[k] - c.predicted_after[k];
+    }
+    stream_of("estimate/rover_discrepancy/residual_nominal/" + c.stream, c.time)
+        .add_channel(c.channel, c.unit, before, "measured minus the nominal simulation");
+    stream_of("estimate/rover_discrepancy/residual_with_causes/" + c.stream, c.time)
+        .add_channel(c.channel, c.unit, after, "measured minus the simulation with the named causes");
+  }
+  for (auto& s : streams) out.add_stream(std::move(s));
+}
+
 AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
   // The scenario the user gives, else the one recorded in (or named by) the log: data, never a path.
   const analysis::RoverScenarioModel model =
@@ -203,6 +233,7 @@ AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
   st.add_channel("after", "1", r.residual_after, "the same with the named causes");
   st.add_channel("slip", "1", r.slip, "mean wheel slip from encoders and velocimeter");
   out.estimates.add_stream(std::move(st));
+  add_residual_streams(in.log, r, out.estimates);
   return out;
 }
 
@@ -431,11 +462,7 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
     for (const auto& x : j.at("plot").at(key)) v.push_back(x.is_number() ? x.get<double>() : NAN);
     return v;
   };
-  const std::vector<double> before = series("before"), after = series("after");
-  s.html << "<p>Residual (RMS over channels, in noise sigmas, log scale): nominal model grey, with the named causes "
-            "blue.</p>\n"
-         << scatter_svg("residual against time", "time (s)", series("time"), before, after)
-         << scatter_svg("residual against slip", "mean wheel slip", series("slip"), before, after) << "\n";
+  residual_plots(j, series("time"), series("slip"), series("before"), series("after"), s);
   s.write_csv("rover_discrepancy_channels.csv", csv);
 }
 

@@ -66,6 +66,35 @@ constexpr int kSliderSteps = 10000;
 
 QString q(const std::string& s) { return QString::fromStdString(s); }
 
+// The streams tree, a drag source: the channels picked (a stream: all of
+// its channels) as "stream<TAB>channel" lines under kChannelsMime, which a
+// plot pane takes.
+class StreamsTree : public QTreeWidget {
+ public:
+  StreamsTree() {
+    setDragEnabled(true);
+    setDragDropMode(QAbstractItemView::DragOnly);
+    setSelectionMode(QAbstractItemView::ExtendedSelection);
+  }
+
+ protected:
+  QStringList mimeTypes() const override { return {MainWindow::kChannelsMime}; }
+  QMimeData* mimeData(const QList<QTreeWidgetItem*> items)
+      const override {  // NOLINT(performance-unnecessary-value-param): Qt 5 signature
+    QStringList lines;
+    for (const QTreeWidgetItem* item : items) {
+      if (item->parent() != nullptr) {
+        lines << item->parent()->text(0) + "\t" + item->text(0);
+      } else {
+        for (int i = 0; i < item->childCount(); ++i) lines << item->text(0) + "\t" + item->child(i)->text(0);
+      }
+    }
+    auto* data = new QMimeData;
+    data->setData(MainWindow::kChannelsMime, lines.join("\n").toUtf8());
+    return data;
+  }
+};
+
 std::vector<std::string> soil_names() {
   std::vector<std::string> names;
   for (const auto& folder : app::resource_subfolders("soils")) {
@@ -188,7 +217,7 @@ void MainWindow::build_menus() {
 }
 
 void MainWindow::build_streams_dock() {
-  tree_ = new QTreeWidget;
+  tree_ = new StreamsTree;
   tree_->setHeaderLabels({"stream / channel", "unit", "samples", "rate (Hz)"});
   tree_->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
   connect(tree_, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item, int) {
@@ -196,7 +225,7 @@ void MainWindow::build_streams_dock() {
     add_plot_channel(item->parent()->text(0), item->text(0));
     if (const ViewTab* plots = tab_where(&views::View::uses_channels)) show_pane(plots->page);
   });
-  auto* dock = new QDockWidget("Streams (double-click a channel to plot it)");
+  auto* dock = new QDockWidget("Streams (double-click a channel, or drag it onto the plots)");
   dock->setObjectName("streams");
   dock->setWidget(tree_);
   addDockWidget(Qt::LeftDockWidgetArea, dock);
@@ -221,6 +250,12 @@ void MainWindow::build_view_tabs() {
     tab.page->addWidget(view->uses_surface_data() ? build_surface_page(tab.widget) : tab.widget);
     tab.page->addWidget(tab.why);
     tab.page->setCurrentIndex(view->uses_surface_data() ? 0 : 1);
+    if (view->uses_channels()) {  // a drop target for channels dragged from the streams tree
+      for (QWidget* target : {static_cast<QWidget*>(tab.widget), static_cast<QWidget*>(tab.page)}) {
+        target->setAcceptDrops(true);
+        target->installEventFilter(this);
+      }
+    }
     tab.dock = new QDockWidget(q(view->title()));
     tab.dock->setObjectName(q("pane/" + view->name()));
     tab.dock->setWidget(tab.page);
@@ -935,6 +970,23 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   settings.setValue("window/geometry", saveGeometry());
   settings.setValue("window/state", saveState());
   event->accept();
+}
+
+// Channels dropped on the plot pane are plotted there.
+bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
+  const bool drag = event->type() == QEvent::DragEnter || event->type() == QEvent::DragMove;
+  if (!drag && event->type() != QEvent::Drop) return QMainWindow::eventFilter(watched, event);
+  auto* drop = static_cast<QDropEvent*>(event);
+  if (!drop->mimeData()->hasFormat(kChannelsMime)) return QMainWindow::eventFilter(watched, event);
+  drop->acceptProposedAction();
+  if (drag) return true;
+  const QStringList lines = QString::fromUtf8(drop->mimeData()->data(kChannelsMime)).split('\n', Qt::SkipEmptyParts);
+  for (const QString& line : lines) {
+    const QStringList parts = line.split('\t');
+    if (parts.size() == 2) add_plot_channel(parts[0], parts[1]);
+  }
+  if (const ViewTab* plots = tab_where(&views::View::uses_channels)) show_pane(plots->page);
+  return true;
 }
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {

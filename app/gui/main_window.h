@@ -89,6 +89,8 @@ class MainWindow : public QMainWindow {
   // bar). Throws InputError naming the file when it is not a layout.
   void apply_layout(const QString& path);
   void add_plot_channel(const QString& stream, const QString& channel);
+  // What the streams tree drags: "stream<TAB>channel" lines; the plot pane takes a drop of it.
+  static constexpr const char* kChannelsMime = "application/x-roverlab-channels";
 
  signals:
   void log_loaded();
@@ -98,6 +100,7 @@ class MainWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
   void dragEnterEvent(QDragEnterEvent* event) override;
   void dropEvent(QDropEvent* event) override;
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
   // One pane per registered view (views/views.def): its dock, its page (the

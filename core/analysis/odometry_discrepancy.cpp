@@ -207,6 +207,7 @@ class OdometryStudy {
   std::vector<double> parameter_sigmas(ceres::Problem& problem, std::vector<double>& x,
                                        const std::vector<double>& r_fit) const;
   void choose_cause();
+  void residual_series();
   void select_forward();
   void write_what_is_wrong();
   void write_verdict();
@@ -228,6 +229,7 @@ OdometryDiscrepancyReport OdometryStudy::run() {
   models_ = odometry_candidates(context);
   for (const auto& model : models_) rep_.candidates.push_back(fit_candidate(*model));
   choose_cause();
+  residual_series();
   select_forward();
   write_what_is_wrong();
   write_verdict();
@@ -362,6 +364,7 @@ OdometryCandidate OdometryStudy::fit_candidate(const OdometryCandidateModel& mod
   cand.bic = bic(r_fit, k);
   cand.delta_bic = cand.bic - rep_.baseline_bic;
   cand.parameters = model.summary(x, parameter_sigmas(problem, x, r_fit));
+  cand.fitted = x;
   const std::vector<double> r_test = track_errors(test_, ref_, o_.rover, model.held_out_corrections(x.data()));
   cand.held_out_rmse = rmse_of(r_test);
   cand.held_out_final = final_of(r_test);
@@ -432,6 +435,35 @@ void OdometryStudy::choose_cause() {
 // RMSE by min_improvement, the one with the lowest BIC is kept. (Chosen by
 // BIC alone, the many-parameter slip episodes win every step: track errors
 // are correlated in time, and BIC counts them as independent.)
+// The residuals before and after the named cause along the whole drive, for
+// the report's plots; the RMS over the held-out part is the study's score.
+void OdometryStudy::residual_series() {
+  OdometryResiduals& out = rep_.residuals;
+  const OdometryCandidateModel* cause = rep_.best >= 0 ? models_[static_cast<std::size_t>(rep_.best)].get() : nullptr;
+  const double* x = cause != nullptr ? rep_.candidates[static_cast<std::size_t>(rep_.best)].fitted.data() : nullptr;
+  for (const Part* part : {&fit_, &test_}) {
+    const std::vector<double> before = track_errors(*part, ref_, o_.rover, {});
+    std::vector<double> after;
+    if (cause != nullptr) {
+      after =
+          track_errors(*part, ref_, o_.rover, part == &fit_ ? cause->corrections(x) : cause->held_out_corrections(x));
+    }
+    for (std::size_t j = 0; j < part->ref.size(); ++j) {
+      const std::size_t k = part->ref[j];
+      out.time.push_back(ref_.time[k]);
+      out.before.push_back(std::hypot(before[2 * j], before[2 * j + 1]));
+      out.after.push_back(after.empty() ? NAN : std::hypot(after[2 * j], after[2 * j + 1]));
+      const double wheel = o_.rover.wheel_radius * 0.5 *
+                           (log::interpolate_linear(wheels_.time, wheels_.left_rate, ref_.time[k]) +
+                            log::interpolate_linear(wheels_.time, wheels_.right_rate, ref_.time[k]));
+      const double slip = 1.0 - std::hypot(ref_.v_east[k], ref_.v_north[k]) / wheel;
+      out.slip.push_back(std::abs(wheel) >= 0.05 && std::abs(slip) <= 1.0 ? slip : NAN);
+    }
+  }
+  out.rms_before = rep_.baseline_held_out_rmse;
+  out.rms_after = cause != nullptr ? rep_.candidates[static_cast<std::size_t>(rep_.best)].held_out_rmse : NAN;
+}
+
 void OdometryStudy::select_forward() {
   if (rep_.best < 0) return;
   std::vector<std::size_t> chain{static_cast<std::size_t>(rep_.best)};

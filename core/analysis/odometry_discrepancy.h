@@ -10,6 +10,7 @@
 // episodes (piecewise-constant slip), time offset between wheel and
 // reference streams.
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,6 +46,17 @@ struct OdometryCandidate {
   double held_out_rmse = 0;       // m, on the test part
   double held_out_final = 0;      // m, at the end of the test part
   bool significant = false;       // delta BIC < -10 and held-out gain >= min_gain and >= min_improvement
+  std::vector<double> fitted;     // the parameters as the candidate's model takes them
+};
+
+// The horizontal track error at each reference sample of both parts, with
+// the nominal geometry (before) and the named cause (after; NaN when none is
+// named), each part dead-reckoned from its own start as the study scores it;
+// the slip there, 1 - reference speed / wheel speed (NaN where the wheels
+// roll slower than 0.05 m/s or the slip is outside [-1, 1]).
+struct OdometryResiduals {
+  std::vector<double> time, before, after, slip;  // s, m, m, 1
+  double rms_before = 0, rms_after = NAN;         // m, over the held-out part
 };
 
 struct OdometryDiscrepancyReport {
@@ -68,6 +80,7 @@ struct OdometryDiscrepancyReport {
   // The further step with the lowest held-out RMSE, tried and not kept
   // (absent when every candidate is in or no cause is named).
   std::optional<OdometryCandidate> rejected_step;
+  OdometryResiduals residuals;
   std::string what_is_wrong, verdict;
 };
 

@@ -143,7 +143,11 @@ void channel_statistics(RoverDiscrepancyReport& r, const std::vector<MeasuredCha
                         const std::vector<double>& slip, const Simulated& base) {
   for (std::size_t c = 0; c < kChannels; ++c) {
     const MeasuredChannel& m = ch[c];
-    RoverChannelResiduals s{m.stream, m.name, m.unit, m.sigma};
+    RoverChannelResiduals s;
+    s.stream = m.stream;
+    s.channel = m.name;
+    s.unit = m.unit;
+    s.sigma = m.sigma;
     std::vector<double> res(m.values.size()), t100(m.values.size()), x(m.values.size()), sl(m.values.size(), NAN),
         load(m.values.size(), NAN);
     double sum = 0, sq = 0;
@@ -251,6 +255,11 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   select_causes(predictor, f, options, r, chain);
   const Prediction p1 = predictor.predict(effects_of(predictor.scenario_effects(), chain));
   held_out_rmse(r, predictor.channels(), p1, true);
+  for (std::size_t c = 0; c < kChannels && c < r.channels.size(); ++c) {
+    r.channels[c].time = predictor.channels()[c].time;
+    r.channels[c].predicted_before = p0[c];
+    r.channels[c].predicted_after = p1[c];
+  }
   r.time = predictor.channels()[0].time;
   r.residual_before = residual_series(predictor.channels(), p0);
   r.residual_after = residual_series(predictor.channels(), p1);

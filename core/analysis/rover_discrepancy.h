@@ -52,6 +52,9 @@ struct RoverChannelResiduals {
   double slope_vs_position = 0, t_position = 0;  // unit per m of the simulated front-wheel x
   double slope_vs_load = 0, t_load = 0;          // unit per N of the mean measured wheel load
   double held_out_rmse_before = 0, held_out_rmse_after = 0;
+  // For plots: the measured time stamps and the simulation's values there,
+  // nominal and with the named causes.
+  std::vector<double> time, predicted_before, predicted_after;
 };
 
 struct RoverParameterFit {

@@ -9,15 +9,19 @@
 #include <QAction>
 #include <QApplication>
 #include <QDockWidget>
+#include <QDragEnterEvent>
 #include <QElapsedTimer>
 #include <QMessageBox>
+#include <QMimeData>
 #include <QScreen>
 #include <QSettings>
+#include <QStackedWidget>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
 #include <QTableWidget>
 #include <QThread>
 #include <QTimer>
+#include <QTreeWidget>
 
 #include <atomic>
 #include <chrono>
@@ -462,4 +466,75 @@ TEST(Gui, APaneWithNothingToShowSaysWhyAndTheWindowNeverGrows) {
   QCoreApplication::processEvents();
   EXPECT_EQ(w.width(), width);
   EXPECT_LE(w.width(), QGuiApplication::primaryScreen()->availableGeometry().width());
+}
+
+// Issue 32: channels dragged from the streams tree onto the plot pane are
+// plotted there: the tree's own drag data (its model's mime data for the
+// items picked, as a drag carries it) dropped on the pane, through Qt's
+// events; a stream dragged brings all its channels; other data is refused.
+TEST(Gui, ChannelsDraggedFromTheStreamsTreeOntoThePlotPaneArePlotted) {
+  TempDir dir;
+  const std::string log = skid_steer_log(dir, "drag.h5", 3);
+  QSettings().clear();
+  gui::MainWindow w;
+  w.set_quiet(true);
+  w.show();
+  w.open_file(QString::fromStdString(log));
+  ASSERT_TRUE(wait_until([&] { return w.has_log(); }, 60000));
+  ASSERT_TRUE(wait_idle(w, 120000));
+  w.select_tab("Plots");
+  QDockWidget* plots = w.pane("Plots");
+  ASSERT_NE(plots, nullptr);
+  auto* page = qobject_cast<QStackedWidget*>(plots->widget());
+  ASSERT_NE(page, nullptr);
+  QWidget* target = page->currentWidget();
+  auto* tree = w.findChild<QTreeWidget*>();
+  ASSERT_NE(tree, nullptr);
+  const auto plotted = [&](const std::string& stream, const std::string& channel) {
+    if (w.chart() == nullptr) return false;
+    for (const auto& c : w.chart()->channels()) {
+      if (c.stream == stream && c.channel == channel) return true;
+    }
+    return false;
+  };
+  const auto drag_of = [&](const QString& stream, const QString& channel) -> QMimeData* {
+    const auto streams = tree->findItems(stream, Qt::MatchExactly, 0);
+    if (streams.isEmpty()) return nullptr;
+    QTreeWidgetItem* item = streams.front();
+    for (int i = 0; !channel.isEmpty() && i < streams.front()->childCount(); ++i) {
+      if (streams.front()->child(i)->text(0) == channel) item = streams.front()->child(i);
+    }
+    tree->setCurrentItem(item);
+    return tree->model()->mimeData({tree->currentIndex()});
+  };
+  const auto drop = [&](QMimeData* data) {
+    const QPoint at(target->width() / 2, target->height() / 2);
+    QDragEnterEvent enter(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &enter);
+    const bool accepted = enter.isAccepted();
+    QDropEvent dropped(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(target, &dropped);
+    return accepted;
+  };
+  ASSERT_FALSE(plotted("imu", "angular_rate_z"));
+  std::unique_ptr<QMimeData> one(drag_of("imu", "angular_rate_z"));
+  ASSERT_NE(one, nullptr);
+  EXPECT_TRUE(one->hasFormat(gui::MainWindow::kChannelsMime));
+  EXPECT_TRUE(drop(one.get()));
+  EXPECT_TRUE(plotted("imu", "angular_rate_z"));
+  // A whole stream: every channel of it.
+  std::unique_ptr<QMimeData> stream(drag_of("wheels", ""));
+  ASSERT_NE(stream, nullptr);
+  EXPECT_TRUE(drop(stream.get()));
+  const log::Stream* wheels = w.input()->log.find_stream("wheels");
+  ASSERT_NE(wheels, nullptr);
+  for (const auto& c : wheels->channels()) EXPECT_TRUE(plotted("wheels", c.name)) << c.name;
+  // Plain text is not a channel: refused, nothing added.
+  const std::size_t before = w.chart()->channels().size();
+  QMimeData text;
+  text.setText("imu\tspecific_force_x");
+  EXPECT_FALSE(drop(&text));
+  EXPECT_EQ(w.chart()->channels().size(), before);
+  w.close();
+  QSettings().clear();
 }

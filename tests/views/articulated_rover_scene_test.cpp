@@ -4,10 +4,12 @@
 // the arrow points where the wheel moves.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/common/error.h"
 #include "core/log/log.h"
+#include "core/simulation/flying_rover.h"
 #include "importers/rover_file.h"
 #include "scene_support.h"
 #include "views/articulated_rover_scene.h"
@@ -112,4 +114,80 @@ TEST(ArticulatedRoverScene, NeedsADhRoverAndItsJoints) {
   EXPECT_NE(views::articulated_rover_needs(bb2_log(0.0), nullptr).find("DH"), std::string::npos);
   EXPECT_EQ(views::articulated_rover_needs(bb2_log(0.0), &model), "");
   EXPECT_THROW(views::ArticulatedRoverScene(empty, model), DataError);
+}
+
+namespace {
+
+// The strips' centre lines (each pair of vertices across a strip, averaged), per strip in order.
+std::vector<Eigen::Vector3d> centre_line(const std::vector<Eigen::Vector3d>& vertices) {
+  std::vector<Eigen::Vector3d> out;
+  for (std::size_t i = 0; i + 1 < vertices.size(); i += 2) out.push_back(0.5 * (vertices[i] + vertices[i + 1]));
+  return out;
+}
+
+}  // namespace
+
+// Issue 32: the wheels touch the ground where the kinematics put them, and
+// the bump of the bump-crossing scenario is drawn. The flying BB2 crossing
+// its bump (truth contact angles to +-0.6 rad): the ground under each side
+// passes through every wheel's contact point, no point of it comes inside a
+// wheel, it is flat at the start and rises by centimetres on the bump, and
+// the base plane lies below it all. (The old single plane at the wheels' rest
+// height had the middle-left wheel 3 cm into it at 6.4 s.)
+TEST(ArticulatedRoverScene, WheelsTouchTheGroundAndTheBumpIsDrawn) {
+  const kinematics::RoverModel rover = bb2();
+  simulation::FlyingRoverScenario scenario = simulation::flying_rover_scenario("bump-crossing", rover);
+  scenario.rate = 50.0;
+  scenario.noise = false;
+  const log::Log lg = simulation::simulate_flying_rover(rover, scenario);
+  views::ArticulatedRoverScene scene(lg, rover);
+  const double r = rover.wheel_radius;
+  double rest_ground = 0.0, largest_rise = 0.0, deepest_below_rest = 0.0;
+  for (const double t : {0.0, 6.4, 9.3, 19.0, 22.2, 30.0}) {
+    scene.set_time(t);
+    const auto strips = scene.ground_strips();
+    ASSERT_EQ(strips.size(), 2u);
+    std::vector<Eigen::Vector3d> line, vertices;
+    std::vector<std::size_t> ends;  // where each strip's centre line ends in `line`
+    for (const auto& strip : strips) {
+      const auto one = centre_line(strip);
+      line.insert(line.end(), one.begin(), one.end());
+      vertices.insert(vertices.end(), strip.begin(), strip.end());
+      ends.push_back(line.size());
+    }
+    for (std::size_t w = 0; w < 6; ++w) {
+      const Eigen::Vector3d centre = scene.wheel_centres()[w], contact = scene.ground_contacts()[w];
+      EXPECT_NEAR((contact - centre).norm(), r, 1e-9);
+      double nearest = 1e9;
+      for (const auto& p : line) nearest = std::min(nearest, (p - contact).norm());
+      EXPECT_LT(nearest, 1e-6) << kWheels[w] << " at t = " << t << ": the ground misses its contact point";
+      // (vtkPoints hold floats: a micrometre.) The ground's centre line, sampled every few millimetres near the wheel,
+      // stays outside its circle.
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        if (std::find(ends.begin(), ends.end(), i + 1) != ends.end()) continue;  // not across two strips
+        if (std::abs(line[i].y() - centre.y()) > r) continue;
+        for (int s = 0; s <= 40; ++s) {
+          const Eigen::Vector3d p = line[i] + (line[i + 1] - line[i]) * (s / 40.0);
+          const Eigen::Vector2d in_plane(p.x() - centre.x(), p.z() - centre.z());
+          EXPECT_GE(in_plane.norm(), r - 2e-3) << kWheels[w] << " cuts into the ground at t = " << t;
+        }
+      }
+      if (t == 0.0) rest_ground = std::min(rest_ground, centre.z() - r);
+      deepest_below_rest = std::max(deepest_below_rest, rest_ground - (centre.z() - r));
+    }
+    double lo = 1e9, hi = -1e9;
+    for (const auto& p : line) {
+      if (p.y() < 0) continue;  // the left side crosses the bump
+      lo = std::min(lo, p.z());
+      hi = std::max(hi, p.z());
+    }
+    if (t == 0.0) {
+      EXPECT_LT(hi - lo, 1e-6) << "flat at the start";
+    }
+    largest_rise = std::max(largest_rise, hi - lo);
+    const std::vector<double> base = scene.base_plane_bounds();
+    for (const auto& p : vertices) EXPECT_LT(base[5], p.z()) << "the base plane covers the ground at t = " << t;
+  }
+  EXPECT_GT(largest_rise, 0.04);        // the bump, drawn
+  EXPECT_GT(deepest_below_rest, 0.01);  // what the old plane at rest height cut into
 }

@@ -5,6 +5,9 @@
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>
+#include <vtkContextMouseEvent.h>
+#include <vtkPlot.h>
+#include <vtkRect.h>
 
 #include <cmath>
 
@@ -107,4 +110,103 @@ TEST(TimeSeriesChart, ItsViewResetsItWithOtherChannelsInTheSameContextView) {
   ASSERT_TRUE(plots->reset(*scene, in));
   EXPECT_EQ(chart->view(), view);
   EXPECT_EQ(chart->channels().size(), 2u);
+}
+
+// Issue 32: the default plot is chosen for what it shows, not the first
+// stream's raw channels: an estimate against its truth (the truth that
+// changes: a flat contact angle is passed over for the drawbar pull), drawn
+// with its +-1 sigma band, whose area holds estimate - sigma .. estimate + sigma;
+// without truth, an estimate against the reference in its stream.
+TEST(TimeSeriesChart, TheDefaultPlotIsAnEstimateAgainstTruthWithItsBand) {
+  log::Log lg;
+  const std::vector<double> t = times(10.0, 0.1);
+  log::Stream imu("imu", t);
+  imu.add_channel("pitch_rate", "rad/s", t);
+  lg.add_stream(std::move(imu));
+  std::vector<double> pull(t.size()), sigma(t.size(), 0.5), flat(t.size(), 0.0);
+  for (std::size_t k = 0; k < t.size(); ++k) pull[k] = std::sin(t[k]);
+  log::Stream estimate("estimate/net_traction/wheels", t);
+  estimate.add_channel("contact_angle_1", "rad", flat);
+  estimate.add_channel("drawbar_pull_1", "N", pull);
+  estimate.add_channel("drawbar_pull_sigma_1", "N", sigma);
+  lg.add_stream(std::move(estimate));
+  log::Stream truth("truth/wheels", t);
+  truth.add_channel("contact_angle_1", "rad", flat);
+  truth.add_channel("drawbar_pull_1", "N", pull);
+  lg.add_stream(std::move(truth));
+  const std::vector<views::ChannelRef> shown = views::default_channels(lg);
+  ASSERT_EQ(shown.size(), 2u);
+  EXPECT_EQ(shown[0].stream, "estimate/net_traction/wheels");
+  EXPECT_EQ(shown[0].channel, "drawbar_pull_1");
+  EXPECT_EQ(shown[1].stream, "truth/wheels");
+  EXPECT_EQ(shown[1].channel, "drawbar_pull_1");
+  views::TimeSeriesChart chart(lg, shown);
+  ASSERT_EQ(chart.band_count(), 1u);
+  // The value axis holds the band: -1 - 0.5 .. 1 + 0.5, padded.
+  EXPECT_LT(chart.chart(0)->GetAxis(vtkAxis::LEFT)->GetMinimum(), -1.45);
+  EXPECT_GT(chart.chart(0)->GetAxis(vtkAxis::LEFT)->GetMaximum(), 1.45);
+  EXPECT_EQ(views::sigma_channel_of(lg.stream("estimate/net_traction/wheels"), "drawbar_pull_1"),
+            "drawbar_pull_sigma_1");
+  const views::Image img = render_scene(chart, 320, 240, 5.0);
+  // The band's light blue (first colour at alpha 70 on white) is drawn.
+  const Region band = find_pixels(img, [](int r, int g, int b) { return r > 150 && r < 215 && b > 200 && g > 190; });
+  EXPECT_GT(band.count, 200);
+
+  log::Log ins;
+  log::Stream raw("imu", t);
+  raw.add_channel("pitch_rate", "rad/s", t);
+  ins.add_stream(std::move(raw));
+  log::Stream slip("estimate/ins/slip", t);
+  slip.add_channel("standstill", "1", t);
+  slip.add_channel("slip_ratio", "1", t);
+  slip.add_channel("reference_slip", "1", t);
+  ins.add_stream(std::move(slip));
+  const std::vector<views::ChannelRef> ins_shown = views::default_channels(ins);
+  ASSERT_EQ(ins_shown.size(), 2u);
+  EXPECT_EQ(ins_shown[0].channel, "slip_ratio");
+  EXPECT_EQ(ins_shown[1].channel, "reference_slip");
+}
+
+// Issue 32: the cursor reads every curve's value at its time (in the legend),
+// and zoom is linked: the mouse wheel over one plot zooms every plot's time axis.
+TEST(TimeSeriesChart, TheCursorReadsEveryCurveAndZoomIsLinkedAcrossPlots) {
+  log::Log lg;
+  const std::vector<double> t = times(10.0, 0.01);
+  std::vector<double> ramp(t.size()), square(t.size());
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    ramp[k] = 2.0 * t[k];
+    square[k] = t[k] * t[k];
+  }
+  log::Stream s("s", t);
+  s.add_channel("distance", "m", ramp);
+  s.add_channel("area", "m^2", square);
+  lg.add_stream(std::move(s));
+  views::TimeSeriesChart chart(lg, {{"s", "distance"}, {"s", "area"}});
+  ASSERT_EQ(chart.plot_count(), 2u);
+  (void)render_scene(chart, 480, 360, 2.505);
+  const auto now = chart.readout();
+  ASSERT_EQ(now.size(), 2u);
+  EXPECT_NEAR(now[0].value, 5.01, 1e-9);           // between samples: linear
+  EXPECT_NEAR(now[1].value, 2.505 * 2.505, 1e-4);  // (the square, linear between 2.50 and 2.51)
+  EXPECT_EQ(now[1].unit, "m^2");
+  EXPECT_NE(std::string(chart.chart(0)->GetPlot(0)->GetLabel()).find("distance (m) = 5.01"), std::string::npos)
+      << chart.chart(0)->GetPlot(0)->GetLabel();
+  EXPECT_NE(std::string(chart.chart(1)->GetPlot(0)->GetLabel()).find("area (m^2) = 6.27"), std::string::npos)
+      << chart.chart(1)->GetPlot(0)->GetLabel();
+
+  // The wheel over the lower plot, in its middle.
+  vtkChartXY* lower = chart.chart(1);
+  vtkContextMouseEvent wheel;
+  const vtkRectf area(lower->GetPoint1()[0], lower->GetPoint1()[1], lower->GetPoint2()[0] - lower->GetPoint1()[0],
+                      lower->GetPoint2()[1] - lower->GetPoint1()[1]);
+  wheel.SetScreenPos(vtkVector2i(static_cast<int>(area.GetX() + area.GetWidth() / 2),
+                                 static_cast<int>(area.GetY() + area.GetHeight() / 2)));
+  wheel.SetPos(vtkVector2f(area.GetX() + area.GetWidth() / 2, area.GetY() + area.GetHeight() / 2));
+  ASSERT_TRUE(lower->MouseWheelEvent(wheel, 3));
+  const double lo = lower->GetAxis(vtkAxis::BOTTOM)->GetMinimum(), hi = lower->GetAxis(vtkAxis::BOTTOM)->GetMaximum();
+  EXPECT_LT(hi - lo, 9.0);  // zoomed in
+  EXPECT_DOUBLE_EQ(chart.chart(0)->GetAxis(vtkAxis::BOTTOM)->GetMinimum(), lo);
+  EXPECT_DOUBLE_EQ(chart.chart(0)->GetAxis(vtkAxis::BOTTOM)->GetMaximum(), hi);
+  EXPECT_DOUBLE_EQ(chart.window().first, lo);
+  EXPECT_DOUBLE_EQ(chart.window().second, hi);
 }
