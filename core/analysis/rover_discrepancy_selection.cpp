@@ -34,6 +34,7 @@ struct Trial {
   bool screened = false;  // judged by its linearised fit alone
   int simulations = 0;
   bool applies = false;
+  JacobianMemo jacobian;  // the screen's, carried into the fit
 };
 
 struct Round {
@@ -66,7 +67,7 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     for (auto& p : t.fit.parameters) p.free = false;
     for (const auto& sp : specs) t.fit.parameters.push_back({sp, sp.start, 0.0, true});
     const int sims = pr.simulations();
-    t.screened_fit = linearised_fit(pr, t.fit.parameters, current.weights);
+    t.screened_fit = linearised_fit(pr, t.fit.parameters, current.weights, t.jacobian);
     t.simulations = pr.simulations() - sims;
     t.screened = true;
     t.fit.score = current;
@@ -88,7 +89,7 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     const auto k = static_cast<double>(t.fit.parameters.size() - chain.size());
     // The screen's optimum is the fit's start, or the best of a grid where a parameter has one.
     grid_start(pr, t.fit.parameters);
-    t.fit = fit_parameters(pr, t.fit.parameters, current.weights, with_sigmas);
+    t.fit = fit_parameters(pr, t.fit.parameters, current.weights, with_sigmas, &t.jacobian);
     t.simulations += pr.simulations() - sims;
     t.screened = false;
     t.delta_bic = t.fit.score.fit - current.fit + k * ln_n;

@@ -29,17 +29,19 @@ RowMajor whitened(const GroupedLikelihood& l, const LikelihoodProfile& at, const
 }
 
 // The fit blocks' whitened residuals as a function of the free parameters;
-// the Jacobian by forward differences (backward at an upper bound). The raw
-// (unwhitened) Jacobian of the last evaluation is kept for the covariance.
+// the Jacobian by forward differences (backward at an upper bound), or
+// carried from the memo (carry_jacobian). The raw (unwhitened) Jacobian of
+// the last evaluation is kept for the covariance.
 class SimulationCost final : public ceres::CostFunction {
  public:
   SimulationCost(Predictor& predictor, std::vector<FitParameter>& parameters, std::vector<std::size_t> free,
-                 const LikelihoodProfile& weights)
+                 const LikelihoodProfile& weights, JacobianMemo& memo)
       : predictor_(predictor),
         likelihood_(predictor.likelihood(Part::fit)),
         parameters_(parameters),
         free_(std::move(free)),
-        weights_(weights) {
+        weights_(weights),
+        memo_(memo) {
     set_num_residuals(static_cast<int>(likelihood_.effective_count()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(free_.size()));
   }
@@ -58,9 +60,44 @@ class SimulationCost final : public ceres::CostFunction {
     const std::vector<double> r = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);
     likelihood_.whiten(weights_, r.data(), residuals);
     if (jacobians == nullptr || jacobians[0] == nullptr) return true;
-    const std::size_t n = r.size(), m = free_.size();
+    const std::size_t m = free_.size();
     last_x_.assign(x[0], x[0] + m);
-    last_raw_.assign(n * m, 0.0);
+    if (!carry_jacobian(r)) forward_differences(p, r);
+    const RowMajor J = whitened(likelihood_, weights_, memo_.raw, m);
+    std::copy(J.data(), J.data() + J.size(), jacobians[0]);
+    return true;
+  }
+  // The raw Jacobian computed last, when it was computed at x (saves a simulation per parameter).
+  const std::vector<double>* raw_jacobian_at(const std::vector<double>& x) const {
+    return x == last_x_ ? &memo_.raw : nullptr;
+  }
+
+ private:
+  // The Jacobian at last_x_ without new simulations, where the one at the
+  // anchor serves (issue 34, N8: each forward difference is a whole run).
+  // A move under a tenth of every parameter's step is below the forward
+  // difference's own resolution: the Jacobian is kept. One parameter moved
+  // further: the secant from the anchor (Broyden's update in one dimension;
+  // the fit converges superlinearly and the secant tends to the derivative
+  // as the steps shrink). Several parameters: forward differences again.
+  bool carry_jacobian(const std::vector<double>& r) const {
+    const std::size_t m = free_.size();
+    if (memo_.x.size() != m || memo_.r.size() != r.size() || memo_.raw.size() != r.size() * m) return false;
+    double moved = 0;  // the largest move in units of the parameter's step
+    for (std::size_t j = 0; j < m; ++j)
+      moved = std::max(moved, std::abs(last_x_[j] - memo_.x[j]) / parameters_[free_[j]].spec.step);
+    if (moved <= 0.1) return true;
+    if (m != 1) return false;
+    const double dx = last_x_[0] - memo_.x[0];
+    for (std::size_t i = 0; i < r.size(); ++i) memo_.raw[i] = (r[i] - memo_.r[i]) / dx;
+    memo_.x = last_x_;
+    memo_.r = r;
+    return true;
+  }
+  // Forward differences (backward at an upper bound): one simulation per parameter.
+  void forward_differences(std::vector<FitParameter>& p, const std::vector<double>& r) const {
+    const std::size_t n = r.size(), m = free_.size();
+    memo_.raw.assign(n * m, 0.0);
     for (std::size_t j = 0; j < m; ++j) {
       FitParameter& q = p[free_[j]];
       const double v = q.value;
@@ -68,24 +105,19 @@ class SimulationCost final : public ceres::CostFunction {
       q.value = v + h;
       const std::vector<double> r2 = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);
       q.value = v;
-      for (std::size_t i = 0; i < n; ++i) last_raw_[i * m + j] = (r2[i] - r[i]) / h;
+      for (std::size_t i = 0; i < n; ++i) memo_.raw[i * m + j] = (r2[i] - r[i]) / h;
     }
-    const RowMajor J = whitened(likelihood_, weights_, last_raw_, m);
-    std::copy(J.data(), J.data() + J.size(), jacobians[0]);
-    return true;
-  }
-  // The raw Jacobian computed last, when it was computed at x (saves a simulation per parameter).
-  const std::vector<double>* raw_jacobian_at(const std::vector<double>& x) const {
-    return x == last_x_ ? &last_raw_ : nullptr;
+    memo_.x = last_x_;
+    memo_.r = r;
   }
 
- private:
   Predictor& predictor_;
   const GroupedLikelihood& likelihood_;
   std::vector<FitParameter>& parameters_;
   std::vector<std::size_t> free_;
   const LikelihoodProfile& weights_;
-  mutable std::vector<double> last_x_, last_raw_;
+  JacobianMemo& memo_;
+  mutable std::vector<double> last_x_;  // where the Jacobian was last asked for (memo_.raw serves there)
 };
 
 // 1-sigma of the free parameters from (J^T J)^-1 at the solution, J whitened
@@ -192,12 +224,13 @@ void grid_start(Predictor& pr, std::vector<FitParameter>& parameters) {
   }
 }
 
-double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights) {
+double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights,
+                      JacobianMemo& memo) {
   std::vector<std::size_t> free;
   std::vector<double> x;
   free_parameters(parameters, free, x);
   const GroupedLikelihood& l = predictor.likelihood(Part::fit);
-  const SimulationCost cost(predictor, parameters, free, weights);
+  const SimulationCost cost(predictor, parameters, free, weights, memo);
   const std::size_t n = l.effective_count(), m = free.size();
   std::vector<double> rw(n), jac(n * m);
   const double* xs[] = {x.data()};
@@ -229,11 +262,11 @@ namespace {
 // One Ceres solve of the free parameters at fixed weights, from x (updated);
 // the parameters' GN sigmas set at the solution's profile. Returns its score.
 Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const std::vector<std::size_t>& free,
-            std::vector<double>& x, const LikelihoodProfile& weights, int iterations) {
+            std::vector<double>& x, const LikelihoodProfile& weights, int iterations, JacobianMemo& memo) {
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
-  SimulationCost cost(predictor, parameters, free, weights);
+  SimulationCost cost(predictor, parameters, free, weights, memo);
   problem.AddResidualBlock(&cost, nullptr, x.data());
   for (std::size_t j = 0; j < free.size(); ++j) {
     problem.SetParameterLowerBound(x.data(), static_cast<int>(j), parameters[free[j]].spec.lower);
@@ -256,7 +289,9 @@ Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const s
 // +-1 sigma from the curvature of the profile likelihood itself (central
 // second differences of -2 ln L, noise scales and autocorrelations
 // re-profiled at every point): cov = 2 H^-1. Steps of three Gauss-Newton
-// sigmas (the parameter's own step where that is not finite), shrunk where
+// sigmas, within a hundredth of the parameter's own step and that step (a
+// quarter of it made the soil's first two trials rises of 600, shrunk and
+// simulated again; issue 34, N8; the step itself where no sigma), shrunk where
 // they leave the quadratic region, one-sided at a bound. A direction in which -2 ln L does not curve up is not
 // determined: NaN. Costs 2m + 2m(m-1) evaluations.
 void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vector<std::size_t>& free, double f0) {
@@ -264,7 +299,8 @@ void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vect
   std::vector<double> h(m);
   for (std::size_t j = 0; j < m; ++j) {
     const FitParameter& q = p[free[j]];
-    h[j] = std::isfinite(q.sigma) && q.sigma > 0 ? std::clamp(3 * q.sigma, q.spec.step / 4, q.spec.step) : q.spec.step;
+    h[j] =
+        std::isfinite(q.sigma) && q.sigma > 0 ? std::clamp(3 * q.sigma, q.spec.step / 100, q.spec.step) : q.spec.step;
     // Inside the bounds on both sides where it can be.
     if (q.value + h[j] > q.spec.upper) h[j] = -h[j];
   }
@@ -337,20 +373,22 @@ void set_profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::
 // likelihood's optimum; the better one is kept, with its sigmas from the
 // profile likelihood's curvature when asked for.
 FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters, const LikelihoodProfile& weights,
-                          bool with_sigmas) {
+                          bool with_sigmas, JacobianMemo* carried) {
   std::vector<std::size_t> free;
   std::vector<double> x;
   free_parameters(parameters, free, x);
+  JacobianMemo own;
+  JacobianMemo& memo = carried != nullptr ? *carried : own;
   FitOutcome out;
   if (free.empty()) {
     out.score = score(predictor, effects_of(predictor.scenario_effects(), parameters));
     out.parameters = std::move(parameters);
     return out;
   }
-  out.score = solve(predictor, parameters, free, x, weights, 8);
+  out.score = solve(predictor, parameters, free, x, weights, 8, memo);
   std::vector<FitParameter> second = parameters;
   std::vector<double> x2 = x;
-  const Score s2 = solve(predictor, second, free, x2, out.score.profile, 3);
+  const Score s2 = solve(predictor, second, free, x2, out.score.profile, 3, memo);
   if (s2.fit < out.score.fit) {
     out.score = s2;
     parameters = std::move(second);

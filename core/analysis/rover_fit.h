@@ -1,7 +1,8 @@
 #pragma once
 // Least-squares fit of effect parameters of the rover simulation to the fit
 // blocks of a log (Ceres, Levenberg-Marquardt, forward differences with each
-// parameter's own step: a physical trial is a new simulation), on residuals
+// parameter's own step: a physical trial is a new simulation; a single
+// parameter's Jacobian then follows secants, JacobianMemo), on residuals
 // whitened by the study's likelihood (likelihood.h) at the profile of the
 // model the parameters are added to, with the parameters' 1-sigma from the
 // Gauss-Newton covariance of the residuals whitened at the solution's
@@ -29,6 +30,14 @@ struct Score {
   LikelihoodProfile weights;  // on the fit blocks: the weights of a fit started here (fit_weights)
 };
 
+// The raw (unwhitened) Jacobian of the fit blocks' residuals in the free
+// parameters and where it was formed, carried from a candidate's screen
+// through its fit's passes: every forward difference is a whole simulation
+// (issue 34, N8). Valid while the free parameters and the held values stay.
+struct JacobianMemo {
+  std::vector<double> x, r, raw;  // the point, the raw residuals there, the Jacobian (n x m, row-major)
+};
+
 struct FitOutcome {
   std::vector<FitParameter> parameters;
   Score score;
@@ -40,8 +49,9 @@ simulation::RockerBogieEffects effects_of(const simulation::RockerBogieEffects& 
 
 // Fits the free parameters (spec.fitted and free); the others are held.
 // `weights`: the profile of the model they are added to.
+// `memo`: a Jacobian formed before (the screen's), read and updated.
 FitOutcome fit_parameters(Predictor& predictor, std::vector<FitParameter> parameters, const LikelihoodProfile& weights,
-                          bool with_sigmas = true);
+                          bool with_sigmas = true, JacobianMemo* memo = nullptr);
 
 // The fitted parameters' +-1 sigma from the profile likelihood's curvature
 // at their values, where -2 ln L on the fit blocks is minus_two_log_l.
@@ -50,7 +60,9 @@ void set_sigmas(Predictor& predictor, std::vector<FitParameter>& parameters, dou
 // Gauss-Newton screen of the free parameters from their values: -2 ln L on
 // the fit blocks that the linearised model predicts at its optimum, and that
 // optimum (clamped to the bounds) written into `parameters`.
-double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights);
+// `memo` receives the Jacobian at the start.
+double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameters, const LikelihoodProfile& weights,
+                      JacobianMemo& memo);
 
 // Moves each free parameter with a grid step to the best point of its grid
 // (-2 ln L on the fit blocks, the others held at their values).

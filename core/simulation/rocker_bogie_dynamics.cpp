@@ -23,6 +23,38 @@ void set_translation_base(Jac& J) {
   J(1, 1) = 1;
 }
 
+// Solves H X = B in place for a small symmetric positive definite H by its
+// Cholesky factor, in plain loops with one division per row.
+template <int M, int K>
+void cholesky_solve(const Eigen::Matrix<double, M, M>& H, Eigen::Matrix<double, M, K>& B) {
+  double L[M][M];
+  double inv[M];  // 1 / L(j, j)
+  for (int j = 0; j < M; ++j) {
+    double d = H(j, j);
+    for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
+    inv[j] = 1.0 / std::sqrt(d);
+    for (int i = j + 1; i < M; ++i) {
+      double v = H(i, j);
+      for (int k = 0; k < j; ++k) v -= L[i][k] * L[j][k];
+      L[i][j] = v * inv[j];
+    }
+  }
+  for (int c = 0; c < K; ++c) {
+    double y[M];
+    for (int i = 0; i < M; ++i) {  // L y = b
+      double v = B(i, c);
+      for (int k = 0; k < i; ++k) v -= L[i][k] * y[k];
+      y[i] = v * inv[i];
+    }
+    for (int i = M - 1; i >= 0; --i) {  // L^T x = y
+      double v = y[i];
+      for (int k = i + 1; k < M; ++k) v -= L[k][i] * y[k];
+      y[i] = v * inv[i];
+    }
+    for (int i = 0; i < M; ++i) B(i, c) = y[i];
+  }
+}
+
 }  // namespace
 
 Vec2 rotate(double a, const Vec2& v) {
@@ -65,30 +97,57 @@ Kinematics kinematics(const PlanarRockerBogieGeometry& g, const RockerBogieParam
 }
 
 // Eq. 4.29, with the drivetrain's reflected inertia on each wheel joint.
+// The translation Jacobians move only x0, z0, pitch and bogie (their wheel
+// columns are zero): their products fill H's top-left 4x4 alone.
 Mat inertia(const Kinematics& k, const RockerBogieParameters& p) {
-  Mat H = p.body_mass * k.J_body.transpose() * k.J_body + p.body_inertia * k.W_body.transpose() * k.W_body;
-  H += p.bogie_mass * k.J_bogie.transpose() * k.J_bogie + p.bogie_inertia * k.W_bogie.transpose() * k.W_bogie;
+  using Jac4 = Eigen::Matrix<double, 2, 4>;
+  const auto translation = [](double mass, const Jac& J) {
+    const Jac4 J4 = J.leftCols<4>();
+    return Eigen::Matrix4d(mass * J4.transpose() * J4);
+  };
+  Mat H = p.body_inertia * k.W_body.transpose() * k.W_body + p.bogie_inertia * k.W_bogie.transpose() * k.W_bogie;
+  Eigen::Matrix4d T = translation(p.body_mass, k.J_body) + translation(p.bogie_mass, k.J_bogie);
   for (int i = 0; i < 3; ++i) {
-    H += p.wheel_mass * k.J_wheel[i].transpose() * k.J_wheel[i] +
-         p.wheel_inertia * k.W_wheel[i].transpose() * k.W_wheel[i];
+    T += translation(p.wheel_mass, k.J_wheel[i]);
+    H += p.wheel_inertia * k.W_wheel[i].transpose() * k.W_wheel[i];
     H(4 + i, 4 + i) += p.wheel_gear_inertia - p.wheel_inertia;
   }
+  H.topLeftCorner<4, 4>() += T;
   return H;
 }
 
-// Hdot qd of Eq. 4.49 from the velocity Jacobians' rates along qd (central
-// differences, kp and km at q +- h qd): sum m (Jdot^T J qd + J^T Jdot qd).
-// The angular-velocity Jacobians and the body's translation are constant.
-// Equal to differencing Eq. 4.29's H to O(h^2), without its two 7x7 builds.
-Vec inertia_rate_times(const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h,
-                       const RockerBogieParameters& p, const Vec& qd) {
+// The Jacobians' rates in closed form: d/dt drotate(a, v) = -a' rotate(a, v)
+// (the second derivative of the rotation is minus itself). They replace
+// central differences of the kinematics at q +- h qd, two of the three
+// kinematics (and their sines and cosines) per evaluation (issue 34, N8).
+JacobianRates jacobian_rates(const PlanarRockerBogieGeometry& g, const Kinematics& k, const Vec& q, const Vec& qd) {
+  const double th_dot = qd(2), tb_dot = qd(2) + qd(3);
+  const Vec2 to_pivot = rotate(q(2), g.rocker_to_bogie);
+  const Vec2 pivot = k.body + to_pivot;
+  JacobianRates r;
+  r.bogie.setZero();
+  r.bogie.col(2) = -th_dot * to_pivot - tb_dot * (k.bogie_com - pivot);
+  r.bogie.col(3) = -tb_dot * (k.bogie_com - pivot);
+  r.wheel[0].setZero();
+  r.wheel[0].col(2) = -th_dot * (k.wheel[0] - k.body);
+  for (int i = 1; i < 3; ++i) {
+    r.wheel[i].setZero();
+    r.wheel[i].col(2) = -th_dot * to_pivot - tb_dot * (k.wheel[i] - pivot);
+    r.wheel[i].col(3) = -tb_dot * (k.wheel[i] - pivot);
+  }
+  return r;
+}
+
+// Hdot qd of Eq. 4.49 from the velocity Jacobians' rates along qd:
+// sum m (Jdot^T J qd + J^T Jdot qd). Equal to differencing Eq. 4.29's H,
+// without its two 7x7 builds.
+Vec inertia_rate_times(const Kinematics& k, const JacobianRates& rates, const RockerBogieParameters& p, const Vec& qd) {
   Vec out = Vec::Zero();
-  const auto add = [&](double mass, const Jac& J, const Jac& Jp, const Jac& Jm) {
-    const Jac Jd = (Jp - Jm) / (2 * h);
+  const auto add = [&](double mass, const Jac& J, const Jac& Jd) {
     out += mass * (Jd.transpose() * (J * qd) + J.transpose() * (Jd * qd));
   };
-  add(p.bogie_mass, k.J_bogie, kp.J_bogie, km.J_bogie);
-  for (int i = 0; i < 3; ++i) add(p.wheel_mass, k.J_wheel[i], kp.J_wheel[i], km.J_wheel[i]);
+  add(p.bogie_mass, k.J_bogie, rates.bogie);
+  for (int i = 0; i < 3; ++i) add(p.wheel_mass, k.J_wheel[i], rates.wheel[i]);
   return out;
 }
 
@@ -225,43 +284,58 @@ WheelTraction Dynamics::traction_at(double w, double W, double s, bool with_sink
 void Dynamics::accelerations(const Vec& q, const Vec& qd, Vec& qdd, DynamicsReport* report) {
   const Kinematics k = kinematics(g_, p_, q);
   const Mat H = inertia(k, p_);
-  const double h = 1e-6;
-  const Kinematics kp = kinematics(g_, p_, q + h * qd), km = kinematics(g_, p_, q - h * qd);
-  const Vec Hdot_qd = inertia_rate_times(k, kp, km, h, p_, qd);
+  const JacobianRates rates = jacobian_rates(g_, k, q, qd);
+  const Vec Hdot_qd = inertia_rate_times(k, rates, p_, qd);
   Vec tau_a = Vec::Zero();
   // Gravity: -dV/dPhi (Eq. 4.37).
   tau_a -= p_.gravity * (p_.body_mass * k.J_body.row(1) + p_.bogie_mass * k.J_bogie.row(1)).transpose();
   Constraints c;
-  for (int i = 0; i < 3; ++i) wheel(i, k, kp, km, h, qd, tau_a, c, report);
-  Eigen::Matrix<double, N + 3, N + 3> A = Eigen::Matrix<double, N + 3, N + 3>::Zero();
-  A.topLeftCorner<N, N>() = H;
-  A.topRightCorner<N, 3>() = c.Psi_q.transpose();
-  A.bottomLeftCorner<3, N>() = c.Psi_q;
-  Eigen::Matrix<double, N + 3, 1> b;
-  b.head<N>() = tau_a - Hdot_qd;
-  b.tail<3>() = -c.Psidot_qd - 2 * p_.baumgarte_alpha * (c.Psi_q * qd) -
-                p_.baumgarte_beta * p_.baumgarte_beta * c.Psi;  // Eq. 4.17
-  const Eigen::Matrix<double, N + 3, 1> x = A.partialPivLu().solve(b);
-  qdd = x.head<N>();
+  for (int i = 0; i < 3; ++i) wheel(i, k, rates, qd, tau_a, c, report);
+  const Eigen::Vector3d b2 = -c.Psidot_qd - 2 * p_.baumgarte_alpha * (c.Psi_q * qd) -
+                             p_.baumgarte_beta * p_.baumgarte_beta * c.Psi;  // Eq. 4.17
+  // [H -Psi_q^T; Psi_q 0] [qdd; lambda] = [tau_a - Hdot qd; b2], eliminated
+  // in the structure of Eq. 4.29 and 4.33 (a 10x10 LU was a quarter of a
+  // run's time; issue 34, N8): H = [A B; B^T D] with D diagonal (a wheel's
+  // rotation couples only to pitch and bogie), Psi_q = [P 0] (the path holds
+  // wheel centres, not their turning). The wheels' accelerations first, then
+  // the reduced [A - B D^-1 B^T, -P^T; P 0] by its Schur complement; A - B
+  // D^-1 B^T is positive definite as H is, P of full rank while the wheels
+  // touch the path.
+  const Vec rhs = tau_a - Hdot_qd;
+  const Eigen::Matrix<double, 4, 3> B = H.topRightCorner<4, 3>();
+  const Eigen::Vector3d d_inv = H.bottomRightCorner<3, 3>().diagonal().cwiseInverse();
+  const Eigen::Matrix<double, 4, 3> BDi = B * d_inv.asDiagonal();
+  const Eigen::Matrix4d reduced = H.topLeftCorner<4, 4>() - BDi * B.transpose();
+  const Eigen::Matrix<double, 3, 4> P = c.Psi_q.leftCols<4>();
+  Eigen::Matrix4d x;  // reduced^-1 [P^T, reduced right-hand side]
+  x.leftCols<3>() = P.transpose();
+  x.col(3) = rhs.head<4>() - BDi * rhs.tail<3>();
+  cholesky_solve(reduced, x);
+  const Eigen::Matrix3d S = P * x.leftCols<3>();
+  Eigen::Vector3d lambda = b2 - P * x.col(3);
+  cholesky_solve(S, lambda);
+  const Eigen::Vector4d a = x.col(3) + x.leftCols<3>() * lambda;
+  qdd.head<4>() = a;
+  qdd.tail<3>() = d_inv.cwiseProduct(rhs.tail<3>() - B.transpose() * a);
   if (report) {
-    report->lambda = -x.tail<3>();
+    report->lambda = lambda;
     report->qdd = qdd;
   }
 }
 
-void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h, const Vec& qd,
-                     Vec& tau_a, Constraints& con, DynamicsReport* report) {
+void Dynamics::wheel(int i, const Kinematics& k, const JacobianRates& rates, const Vec& qd, Vec& tau_a,
+                     Constraints& con, DynamicsReport* report) {
   tau_a -= p_.gravity * p_.wheel_mass * k.J_wheel[i].row(1).transpose();
   const Vec2 c = k.wheel[i];
   const Vec2 v = k.J_wheel[i] * qd;
-  const Vec2 a = ((kp.J_wheel[i] - km.J_wheel[i]) / (2 * h)) * qd;  // Jdot qdot
+  const Vec2 a = rates.wheel[i] * qd;  // Jdot qdot
   const double z1 = run_.path.dz(c.x()), z2 = run_.path.ddz(c.x());
   con.Psi(i) = c.y() - run_.path.z(c.x());  // Eq. 4.33
   con.Psi_q.row(i) = k.J_wheel[i].row(1) - z1 * k.J_wheel[i].row(0);
   con.Psidot_qd(i) = a.y() - z2 * v.x() * v.x() - z1 * a.x();
-  // Traction at the wheel (Eq. 4.40-4.47): contact angle from the path's slope.
-  const double gamma = std::atan(z1);
-  const Vec2 t(std::cos(gamma), std::sin(gamma));
+  // Traction at the wheel (Eq. 4.40-4.47): contact angle gamma = atan(z1) from the path's slope.
+  const double secant = std::sqrt(1.0 + z1 * z1);  // 1 / cos(gamma)
+  const Vec2 t(1.0 / secant, z1 / secant);         // (cos gamma, sin gamma)
   const double v_t = v.dot(t);
   const double omega = k.W_wheel[i] * qd;  // absolute wheel rate, clockwise = forward rolling
   // Slip (Eq. 2.23) or skid (Eq. 2.26) in the wheel's sense of rotation
@@ -279,7 +353,7 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
   const double roll = dir * roll_signed, vt = dir * v_t;
   const double den = std::max({std::abs(roll), std::abs(vt), 1e-6});
   const double s = std::clamp((roll - vt) / den, -1.0, 1.0);
-  const double W = normal_(i) > 0 ? normal_(i) / std::cos(gamma) : 0.0;  // Eq. 4.38, held over the step
+  const double W = normal_(i) > 0 ? normal_(i) * secant : 0.0;  // Eq. 4.38, held over the step
   // Sliding against the rolling (below): the compaction resistance is needed.
   const double against = std::tanh(std::max(0.0, -vt) / 0.004);
   const WheelTraction traction = traction_at(share, W, s, report != nullptr, against > 0.0);
@@ -304,7 +378,7 @@ void Dynamics::wheel(int i, const Kinematics& k, const Kinematics& kp, const Kin
     report->slip(i) = s;
     report->dp(i) = dp;
     report->tau(i) = tr;
-    report->gamma(i) = gamma;
+    report->gamma(i) = std::atan(z1);
     report->rate(i) = omega;
     report->sinkage(i) = traction.sinkage;
   }

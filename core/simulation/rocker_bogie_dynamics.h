@@ -36,9 +36,15 @@ Kinematics kinematics(const PlanarRockerBogieGeometry& g, const RockerBogieParam
 
 // Eq. 4.29, with the drivetrain's reflected inertia on each wheel joint.
 Mat inertia(const Kinematics& k, const RockerBogieParameters& p);
-// Hdot qd (Eq. 4.49) from the kinematics at q and at q +- h qd.
-Vec inertia_rate_times(const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h,
-                       const RockerBogieParameters& p, const Vec& qd);
+// The velocity Jacobians' time derivatives along qd (the angular-velocity
+// Jacobians and the body's translation are constant).
+struct JacobianRates {
+  Jac bogie, wheel[3];
+};
+JacobianRates jacobian_rates(const PlanarRockerBogieGeometry& g, const Kinematics& k, const Vec& q, const Vec& qd);
+
+// Hdot qd (Eq. 4.49) from the Jacobians and their rates.
+Vec inertia_rate_times(const Kinematics& k, const JacobianRates& rates, const RockerBogieParameters& p, const Vec& qd);
 
 // One wheel's traction: Wong-Reece, or its order-5 polynomial surrogate
 // (seed 003 Appendix A) fitted once.
@@ -99,8 +105,8 @@ class Dynamics {
     Eigen::Matrix<double, 3, N> Psi_q;
     Eigen::Vector3d Psi, Psidot_qd;
   };
-  void wheel(int i, const Kinematics& k, const Kinematics& kp, const Kinematics& km, double h, const Vec& qd,
-             Vec& tau_a, Constraints& c, DynamicsReport* report);
+  void wheel(int i, const Kinematics& k, const JacobianRates& rates, const Vec& qd, Vec& tau_a, Constraints& c,
+             DynamicsReport* report);
   double changed_share(double x) const;  // 0: nominal model, 1: with the effects
   WheelTraction traction_at(double share, double W, double s, bool with_sinkage, bool with_resistance);
 

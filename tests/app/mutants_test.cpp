@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <random>
 #include <string>
 
@@ -125,7 +126,9 @@ TEST(Mutants, OfMcapFilesAreReadOrRefusedInOneLine) {
 // Single-byte mutants of a text document at `target` (uniform over the
 // file), each given to `command`: exit 0 or one line and exit 3, never a
 // crash, a hang (20 s) or an internal error. The original is put back.
-std::vector<std::string> mutate_document(const std::string& target, unsigned seed, const std::string& command) {
+// `environment`: assignments put before the command (e.g. PATH=...).
+std::vector<std::string> mutate_document(const std::string& target, unsigned seed, const std::string& command,
+                                         const std::string& environment = "") {
   const std::string original = test::read_text(target);
   std::mt19937 random(seed);
   std::uniform_int_distribution<int> byte(0, 255);
@@ -137,7 +140,7 @@ std::vector<std::string> mutate_document(const std::string& target, unsigned see
     if (value == bytes[offset]) value = static_cast<char>(~value);
     bytes[offset] = value;
     test::write_text(target, bytes);
-    const CommandResult r = run_roverlab(command);
+    const CommandResult r = test::run_command(environment + " timeout 20 " + quote(kExe) + " " + command);
     const std::string where = std::to_string(offset) + "=" + std::to_string(static_cast<unsigned char>(value));
     const bool one_line = r.err.empty() || r.err.find('\n') == r.err.size() - 1;
     if (r.exit_code != 0 && r.exit_code != 3) {
@@ -181,6 +184,53 @@ TEST(Mutants, OfACampaignRunsDocumentsAreReportedOrRefusedInOneLine) {
   for (const std::string document : {"/run.json", "/report/metrics.json"}) {
     const auto failures = mutate_document(run + document, seed++, command);
     EXPECT_TRUE(failures.empty()) << document << ": " << failures.size() << " of " << mutants_per_log()
+                                  << ", first: " << failures.front();
+  }
+}
+
+// Campaign files as `roverlab campaign FILE -o DIR -n` reads them: every
+// field of docs/campaigns.md (a folder and a file of logs, a mapping,
+// flying-rover and skid-steer scenarios with seed lists and ranges, a rate,
+// simulate runs with a duration and effect sets), and the two bundled
+// campaign files without paths. RoverLab reads and checks the whole file and
+// writes DIR/items.json before Snakemake starts; a stub `snakemake` that
+// does nothing stands in for it (the workflow engine is not under test, and
+// its start would cost a second a mutant).
+TEST(Mutants, OfCampaignFilesArePlannedOrRefusedInOneLine) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("logs"));
+  std::filesystem::create_directories(dir.file("stub"));
+  ASSERT_EQ(run_roverlab("simulate flat_60s --duration 2 -o " + quote(dir.file("logs/sim.h5"))).exit_code, 0);
+  test::write_text(dir.file("stub/snakemake"), "#!/bin/sh\nexit 0\n");
+  ASSERT_EQ(test::run_command("chmod +x " + quote(dir.file("stub/snakemake"))).exit_code, 0);
+  const std::string environment = "PATH=" + quote(dir.file("stub")) + ":\"$PATH\"";
+  const std::string every_field = R"({
+  "format": "roverlab-campaign",
+  "version": 1,
+  "name": "every-field",
+  "description": "the fields of docs/campaigns.md",
+  "logs": [
+    {"folder": "logs"},
+    {"file": "logs/sim.h5", "mapping": "wvu_pathfinder"}
+  ],
+  "simulations": [
+    {"scenario": "skid-steer-slip", "seeds": {"first": 1, "count": 4},
+     "effects": [{"slip": 0}, {"slip": 0, "left-radius-scale": 1.05}]},
+    {"scenario": "fl-bogie-rotation", "seeds": [1, 2, 3], "rate": 200},
+    {"simulate": "flat_60s", "seeds": [1], "duration": 20, "effects": [{}, {"soil-strength": 0.8}]}
+  ]
+}
+)";
+  const std::string campaigns = std::string(ROVERLAB_RESOURCES_DIR) + "/../workflows/campaigns/";
+  const std::string file = dir.file("campaign.json");
+  const std::string command = "campaign " + quote(file) + " -o " + quote(dir.file("out")) + " -n";
+  unsigned seed = 61;
+  for (const std::string name : {"every-field", "timing-200", "contact-angle-noise-50"}) {
+    test::write_text(file, name == "every-field" ? every_field : test::read_text(campaigns + name + ".json"));
+    const CommandResult original = test::run_command(environment + " " + quote(kExe) + " " + command);
+    ASSERT_EQ(original.exit_code, 0) << name << ": " << original.err;
+    const auto failures = mutate_document(file, seed++, command, environment);
+    EXPECT_TRUE(failures.empty()) << name << ": " << failures.size() << " of " << mutants_per_log()
                                   << ", first: " << failures.front();
   }
 }

@@ -196,6 +196,29 @@ TEST(RockerBogieDynamics, TheVelocityJacobiansAreTheDerivativesOfThePositions) {
   }
 }
 
+// The Jacobians' rates in closed form (issue 34, N8: they replaced two of
+// the three kinematics per evaluation) are the Jacobians' derivatives along qd.
+TEST(RockerBogieDynamics, TheJacobianRatesAreTheDerivativesOfTheJacobians) {
+  namespace rb = simulation::rocker_bogie;
+  const simulation::PlanarRockerBogieGeometry g;
+  const simulation::RockerBogieParameters p;
+  rb::Vec q, qd;
+  q << 0.3, 0.2, 0.1, -0.2, 1.0, 2.0, 3.0;
+  qd << 0.02, -0.01, 0.3, -0.5, 0.2, 0.3, 0.4;
+  const double e = 1e-5;
+  const rb::Kinematics k = rb::kinematics(g, p, q), kp = rb::kinematics(g, p, q + e * qd),
+                       km = rb::kinematics(g, p, q - e * qd);
+  const rb::JacobianRates r = rb::jacobian_rates(g, k, q, qd);
+  const rb::Jac bogie = (kp.J_bogie - km.J_bogie) / (2 * e);
+  EXPECT_GT(bogie.norm(), 1e-3);
+  EXPECT_LT((r.bogie - bogie).norm(), 1e-8);
+  for (int i = 0; i < 3; ++i) {
+    const rb::Jac wheel = (kp.J_wheel[i] - km.J_wheel[i]) / (2 * e);
+    EXPECT_GT(wheel.norm(), 1e-3) << i;
+    EXPECT_LT((r.wheel[i] - wheel).norm(), 1e-8) << i;
+  }
+}
+
 // Hdot qd from the Jacobians' rates (issue 34, N8: the two 7x7 inertia
 // builds per evaluation were a quarter of the simulation) equals the
 // difference of Eq. 4.29's inertia along qd.
@@ -206,12 +229,12 @@ TEST(RockerBogieDynamics, TheInertiaRateIsTheDerivativeOfTheInertia) {
   rb::Vec q, qd;
   q << 0.3, 0.2, 0.1, -0.2, 1.0, 2.0, 3.0;
   qd << 0.02, -0.01, 0.3, -0.5, 0.2, 0.3, 0.4;
-  const double h = 1e-6, e = 1e-4;
+  const double e = 1e-4;
   const rb::Vec expected =
       (rb::inertia(rb::kinematics(g, p, q + e * qd), p) - rb::inertia(rb::kinematics(g, p, q - e * qd), p)) / (2 * e) *
       qd;
-  const rb::Vec got = rb::inertia_rate_times(rb::kinematics(g, p, q), rb::kinematics(g, p, q + h * qd),
-                                             rb::kinematics(g, p, q - h * qd), h, p, qd);
+  const rb::Kinematics k = rb::kinematics(g, p, q);
+  const rb::Vec got = rb::inertia_rate_times(k, rb::jacobian_rates(g, k, q, qd), p, qd);
   EXPECT_GT(expected.norm(), 1e-3);
   EXPECT_LT((got - expected).norm(), 1e-6 * expected.norm()) << got.transpose() << "\n" << expected.transpose();
 }
