@@ -29,6 +29,7 @@ struct RenderOptions {
   std::optional<std::string> channels;
   std::optional<std::string> soil;
   std::string quantity = "drawbar-pull";
+  std::optional<double> slip_angle_deg;
   std::string size = "1280x800";
   std::string output;
 };
@@ -62,6 +63,7 @@ int run_render(const RenderOptions& o) {
   options.channel_spec = o.channels;
   options.soil = o.soil;
   options.quantity = o.quantity;
+  options.slip_angle_deg = o.slip_angle_deg;
   // What the view needs is checked before the display server starts.
   const views::SceneInput input = scene_input(in, *view, options);
   views::ensure_display();
@@ -90,9 +92,12 @@ Commands make_render_commands() {
         const std::string surfaces = views_that(&views::View::uses_surface_data);
         cmd.add_option("--channels", o.channels, plots + ": stream:channel,... (a stream alone: all its channels)");
         cmd.add_option("--soil", o.soil, surfaces + ": draw the Wong-Reece model surface of soil NAME|FILE");
-        cmd.add_option("--quantity", o.quantity, surfaces + ": drawbar-pull | torque")
+        cmd.add_option("--quantity", o.quantity, surfaces + ": drawbar-pull | torque | lateral-force")
             ->capture_default_str()
-            ->check(CLI::IsMember({"drawbar-pull", "torque"}));
+            ->check(CLI::IsMember({"drawbar-pull", "torque", "lateral-force"}));
+        cmd.add_option("--slip-angle", o.slip_angle_deg,
+                       surfaces + " of lateral-force: slip angle, deg (default: the largest in the file, else 10)")
+            ->check(finite_in(-90.0, 90.0));
         cmd.add_option("--size", o.size, "WxH pixels")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "OUT.png")->required();
       },

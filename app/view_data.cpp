@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
 
@@ -9,6 +10,7 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
+#include "core/terramechanics/slip_angle_model.h"
 #include "importers/rover_file.h"
 #include "importers/soil_file.h"
 #include "views/timeseries_chart.h"
@@ -63,14 +65,109 @@ std::string estimates_without_result(const ViewInput& in) {
   return {};
 }
 
+// Groups 1.. by the points' wheel label, in order of first appearance, named in the view's key.
+void group_by_wheel(const std::vector<std::string>& labels, views::TractionSurfaceData& d) {
+  d.point_group.clear();
+  d.group_names.clear();
+  for (const auto& label : labels) {
+    const auto at = std::find(d.group_names.begin(), d.group_names.end(), label);
+    d.point_group.push_back(static_cast<int>(at - d.group_names.begin()) + 1);
+    if (at == d.group_names.end()) d.group_names.push_back(label);
+  }
+  if (d.group_names.size() == 1 && d.group_names.front().empty()) d.group_names.front() = "wheel";
+}
+
+std::string degrees_text(double deg) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", std::round(deg * 100.0) / 100.0);
+  return text;
+}
+
+// The slip angle (rad) the lateral-force surface is drawn at: the asked one,
+// else the largest |beta| of the points with a lateral force, else 10 deg.
+double lateral_slip_angle(const ViewInput& in, std::optional<double> asked_deg) {
+  if (asked_deg) return *asked_deg * M_PI / 180.0;
+  double largest = 0.0;
+  for (const auto& p : in.wheel_points) {
+    if (p.lateral_force && std::abs(p.slip_angle) > std::abs(largest)) largest = p.slip_angle;
+  }
+  return largest != 0.0 ? largest : 10.0 * M_PI / 180.0;
+}
+
+// F_y(W, s) at one slip angle (Ishigami et al. 2007): the points at that
+// angle, and the soil's model surface on a grid or a surface fitted to them.
+views::TractionSurfaceData lateral_surface_of(const ViewInput& in, const std::optional<std::string>& soil_name,
+                                              terramechanics::SurfaceFit* fit_out, std::optional<double> asked_deg) {
+  using namespace terramechanics;
+  const double beta = lateral_slip_angle(in, asked_deg);
+  const std::string at = "slip angle " + degrees_text(beta * 180.0 / M_PI) + " deg";
+  views::TractionSurfaceData d;
+  d.unit = "N";
+  std::set<double> loads, angles;
+  std::vector<std::string> labels;
+  for (const auto& p : in.wheel_points) {
+    if (!p.lateral_force) continue;
+    angles.insert(std::round(p.slip_angle * 180.0 / M_PI * 100.0) / 100.0);
+    if (std::abs(p.slip_angle - beta) > 0.005 * M_PI / 180.0 + 1e-9 * std::abs(beta)) continue;
+    d.points.push_back({p.load, p.slip, *p.lateral_force});
+    labels.push_back(p.wheel_label);
+    loads.insert(p.load);
+  }
+  if (in.is_wheel_test() && angles.empty() && !soil_name) throw InputError(in.file, "no lateral_force_N values");
+  if (in.is_wheel_test() && !angles.empty() && d.points.empty() && !soil_name) {
+    std::string have;
+    for (double a : angles) have += (have.empty() ? "" : ", ") + degrees_text(a);
+    throw InputError(in.file, "no lateral_force_N at " + at + " (the file has slip angles " + have + " deg)");
+  }
+  if (!in.is_wheel_test() && !soil_name) {
+    throw InputError(in.file, "a lateral-force surface needs a single-wheel CSV with lateral_force_N or --soil NAME");
+  }
+  group_by_wheel(labels, d);
+  const double lo = loads.empty() ? NAN : *loads.begin(), hi = loads.empty() ? NAN : *loads.rbegin();
+  SurfaceFit fit;
+  if (soil_name) {
+    const Soil soil = io::find_soil(*soil_name, resource_subfolders("soils"));
+    Wheel wheel{0.075, 0.07, 0, 0.0};  // Kapvik's wheel when no points say otherwise
+    if (!in.wheel_points.empty()) wheel = in.wheel_points.front().wheel;
+    d.load_min = std::isfinite(lo) ? 0.5 * lo : 10.0;
+    d.load_max = std::isfinite(hi) ? 1.5 * hi : 200.0;
+    std::vector<SurfaceSample> grid;
+    for (int i = 0; i < 40; ++i) {
+      for (int k = 0; k < 40; ++k) {
+        const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0, s = k / 39.0;
+        const SlipAngleTraction t = evaluate_slip_angle(soil, wheel, W, s, beta);
+        if (t.ok()) grid.push_back({W, s, t.lateral_force});
+      }
+    }
+    if (grid.size() < 30) throw InputError(in.file, "soil " + soil.name + " cannot carry these loads");
+    fit.surface = fit_surface(grid, 4);
+    fit.error = fit_error(fit.surface, grid);
+    d.quantity = "lateral force F_y (" + soil.name + " model, " + at + ")";
+  } else {
+    if (loads.size() < 2) {
+      throw InputError(
+          in.file, "all points at " + at + " are at one load: give --soil NAME to draw the model surface through them");
+    }
+    fit = fit_surface_cross_validated(d.points, 4);
+    d.load_min = lo;
+    d.load_max = hi;
+    d.quantity = "lateral force F_y (fitted to the points at " + at + ")";
+  }
+  d.surface = fit.surface;
+  if (fit_out) *fit_out = fit;
+  return d;
+}
+
 }  // namespace
 
 views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::string& quantity,
                                                const std::optional<std::string>& soil_name,
-                                               terramechanics::SurfaceFit* fit_out) {
+                                               terramechanics::SurfaceFit* fit_out,
+                                               std::optional<double> slip_angle_deg) {
   using namespace terramechanics;
+  if (quantity == "lateral-force") return lateral_surface_of(in, soil_name, fit_out, slip_angle_deg);
   if (quantity != "drawbar-pull" && quantity != "torque") {
-    throw std::invalid_argument("quantity must be drawbar-pull or torque");
+    throw std::invalid_argument("quantity must be drawbar-pull, torque or lateral-force");
   }
   const bool dp = quantity == "drawbar-pull";
   views::TractionSurfaceData d;
@@ -91,11 +188,13 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
                      "model surface");
   }
   std::set<double> loads;
+  std::vector<std::string> labels;
   double load_lo = std::numeric_limits<double>::infinity(), load_hi = -load_lo;
   for (const auto& p : in.wheel_points) {
     const auto v = dp ? p.drawbar_pull : p.torque;
     if (!v) continue;
     d.points.push_back({p.load, p.slip, *v});
+    labels.push_back(p.wheel_label);
     loads.insert(p.load);
     load_lo = std::min(load_lo, p.load);
     load_hi = std::max(load_hi, p.load);
@@ -103,6 +202,7 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   if (in.is_wheel_test() && d.points.empty()) {
     throw InputError(in.file, std::string("no ") + (dp ? "drawbar_pull_N" : "torque_Nm") + " values");
   }
+  group_by_wheel(labels, d);
   SurfaceFit fit;
   if (soil_name) {
     // The model surface: Wong-Reece on a grid, fitted as in seed 003 Appendix A.
@@ -144,7 +244,7 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
   s.log = &in.log;
   s.time = o.time;
   if (view.uses_surface_data()) {
-    s.surface = traction_surface_of(in, o.quantity, o.soil);
+    s.surface = traction_surface_of(in, o.quantity, o.soil, nullptr, o.slip_angle_deg);
   } else {
     s.rover = rover_geometry(in.log);
     s.articulated = rover_kinematics(in.log);

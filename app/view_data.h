@@ -27,9 +27,14 @@ std::optional<kinematics::RoverModel> rover_kinematics(const log::Log& log);
 // Appendix A) with the single-wheel points (if any) drawn against it;
 // without, a polynomial fitted to the points (they must span two loads).
 // Throws InputError when there is nothing to draw.
+// "lateral-force": F_y(W, s) at one slip angle (issue 33), the surface
+// fitted as the drawbar pull's, through the points at that angle, or the
+// soil's Ishigami 2007 model; the angle is `slip_angle_deg`, else the
+// largest the points have, else 10 deg. Points are grouped by wheel.
 views::TractionSurfaceData traction_surface_of(const ViewInput& input, const std::string& quantity,
                                                const std::optional<std::string>& soil,
-                                               terramechanics::SurfaceFit* fit = nullptr);
+                                               terramechanics::SurfaceFit* fit = nullptr,
+                                               std::optional<double> slip_angle_deg = std::nullopt);
 
 // What the command line or the GUI asks of a view.
 struct ViewOptions {
@@ -37,6 +42,7 @@ struct ViewOptions {
   std::vector<views::ChannelRef> channels;  // or the channels themselves; neither: the view's default
   std::optional<std::string> soil;          // the model surface's soil, for views of a traction surface
   std::string quantity = "drawbar-pull";
+  std::optional<double> slip_angle_deg;  // the lateral-force surface's slip angle
   std::optional<double> time;
 };
 

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <utility>
@@ -259,6 +260,17 @@ vtkSmartPointer<vtkCubeAxesActor> axes_of(const TractionSurfaceData& d, double l
   axes->SetZTitle((split_quantity(d.quantity).first + " (" + d.unit + ")").c_str());
   axes->SetCamera(camera);
   axes->SetFlyModeToOuterEdges();
+  // The scene's own round tick labels (tick_labels) replace the axes' (the
+  // load axis's last and the slip axis's first met at a corner: "70 0.0").
+  axes->XAxisLabelVisibilityOff();
+  axes->YAxisLabelVisibilityOff();
+  axes->ZAxisLabelVisibilityOff();
+  axes->XAxisTickVisibilityOff();
+  axes->YAxisTickVisibilityOff();
+  axes->ZAxisTickVisibilityOff();
+  axes->XAxisMinorTickVisibilityOff();
+  axes->YAxisMinorTickVisibilityOff();
+  axes->ZAxisMinorTickVisibilityOff();
   for (int k = 0; k < 3; ++k) {
     axes->GetTitleTextProperty(k)->SetColor(0.1, 0.1, 0.1);
     axes->GetLabelTextProperty(k)->SetColor(0.1, 0.1, 0.1);
@@ -267,6 +279,67 @@ vtkSmartPointer<vtkCubeAxesActor> axes_of(const TractionSurfaceData& d, double l
   axes->GetYAxesLinesProperty()->SetColor(0.2, 0.2, 0.2);
   axes->GetZAxesLinesProperty()->SetColor(0.2, 0.2, 0.2);
   return axes;
+}
+
+// Round tick values of [lo, hi] at least kTickMargin of the span from either
+// end (a label at an end would meet the next axis's at the corner), with
+// the fraction of the axis each is at.
+constexpr double kTickMargin = 0.06;
+std::vector<std::pair<double, double>> inner_ticks(double lo, double hi) {
+  std::vector<std::pair<double, double>> out;
+  for (double v : round_ticks(lo, hi)) {
+    const double f = (v - lo) / (hi - lo);
+    if (f >= kTickMargin && f <= 1.0 - kTickMargin) out.emplace_back(v, f);
+  }
+  return out;
+}
+
+// One text in world coordinates, centred on `at`.
+void add_text(vtkRenderer* renderer, const std::string& text, const Eigen::Vector3d& at, int size) {
+  vtkNew<vtkTextActor> label;
+  label->SetInput(text.c_str());
+  label->GetTextProperty()->SetFontSize(size);
+  label->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
+  label->GetTextProperty()->SetJustificationToCentered();
+  label->GetTextProperty()->SetVerticalJustificationToCentered();
+  label->GetPositionCoordinate()->SetCoordinateSystemToWorld();
+  label->GetPositionCoordinate()->SetValue(at.x(), at.y(), at.z());
+  renderer->AddViewProp(label);
+}
+
+// Round tick marks and labels on the edges the default camera shows (load
+// along slip = min, slip along load = max, the value up the near-left
+// corner), none near an end: labels of two axes never share a corner.
+void add_label(vtkRenderer* renderer, double value, const Eigen::Vector3d& at) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  add_text(renderer, text, at, 14);
+}
+
+void add_ticks(vtkRenderer* renderer, const TractionSurfaceData& d, double lo, double hi) {
+  std::vector<Eigen::Vector3d> marks;
+  const double tick = 0.025, gap = 0.075;
+  for (const auto& [v, f] : inner_ticks(d.load_min, d.load_max)) {
+    marks.emplace_back(f, 0.0, 0.0);
+    marks.emplace_back(f, -tick, 0.0);
+    add_label(renderer, v, {f, -gap, 0.0});
+  }
+  for (const auto& [v, f] : inner_ticks(d.slip_min, d.slip_max)) {
+    marks.emplace_back(1.0, f, 0.0);
+    marks.emplace_back(1.0 + tick, f, 0.0);
+    add_label(renderer, v, {1.0 + gap, f, 0.0});
+  }
+  for (const auto& [v, f] : inner_ticks(lo, hi)) {
+    marks.emplace_back(0.0, 0.0, f * kHeight);
+    marks.emplace_back(-tick, 0.0, f * kHeight);
+    add_label(renderer, v, {-gap, 0.0, f * kHeight});
+  }
+  auto lines = actor_of(segments(marks, true), Eigen::Vector3d(0.2, 0.2, 0.2));
+  renderer->AddActor(lines);
+  // The axis titles beyond the labels (the cube axes' own went with their labels).
+  add_text(renderer, "load W (N)", {0.5, -0.23, 0.0}, 16);
+  add_text(renderer, "slip s", {1.24, 0.5, 0.0}, 16);
+  add_text(renderer, split_quantity(d.quantity).first + " (" + d.unit + ")", {0.0, 0.0, kHeight + 0.09}, 16);
 }
 
 vtkSmartPointer<vtkScalarBarActor> colour_bar(vtkLookupTable* lut, const std::string& unit) {
@@ -289,6 +362,30 @@ vtkSmartPointer<vtkScalarBarActor> colour_bar(vtkLookupTable* lut, const std::st
   bar->SetWidth(0.08);
   bar->SetHeight(0.8);
   return bar;
+}
+
+// The key of the point groups drawn (e.g. "smooth", "grousered" or "wheel 1"), each
+// line in its group's colour, at the top left under the caption.
+void add_key(vtkRenderer* renderer, const TractionSurfaceData& d) {
+  if (d.point_group.size() != d.points.size() || d.group_names.empty()) return;
+  std::vector<int> drawn = d.point_group;
+  std::sort(drawn.begin(), drawn.end());
+  drawn.erase(std::unique(drawn.begin(), drawn.end()), drawn.end());
+  double y = 0.94 - 0.055;
+  for (int g : drawn) {
+    if (g < 1 || static_cast<std::size_t>(g) > d.group_names.size()) continue;
+    double rgb[3];
+    group_colour(g, rgb);
+    vtkNew<vtkTextActor> line;
+    line->SetInput(d.group_names[static_cast<std::size_t>(g - 1)].c_str());
+    line->GetTextProperty()->SetFontSize(15);
+    line->GetTextProperty()->SetColor(rgb);
+    line->GetTextProperty()->BoldOn();
+    line->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+    line->GetPositionCoordinate()->SetValue(0.02, y);
+    renderer->AddViewProp(line);
+    y -= 0.045;
+  }
 }
 
 void place_camera(vtkRenderer* renderer) {
@@ -323,6 +420,7 @@ TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, i
   }
   add_points(out.renderer, d, box);
   out.renderer->AddActor(axes_of(d, g.lo, g.hi, out.renderer->GetActiveCamera()));
+  add_ticks(out.renderer, d, g.lo, g.hi);
   out.renderer->AddViewProp(colour_bar(lut, d.unit));
   // What the surface and the points are, above the picture (it was crammed into the height axis's title).
   if (const std::string what = split_quantity(d.quantity).second; !what.empty()) {
@@ -334,6 +432,7 @@ TractionSurfaceScene make_traction_surface_scene(const TractionSurfaceData& d, i
     caption->GetPositionCoordinate()->SetValue(0.02, 0.94);
     out.renderer->AddViewProp(caption);
   }
+  add_key(out.renderer, d);
   place_camera(out.renderer);
   return out;
 }

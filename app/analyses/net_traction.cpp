@@ -584,6 +584,10 @@ bool NetTractionAnalysis::traction_surface(const json& r, bool dp, views::Tracti
         {p.at("load_N").at(i).get<double>(), p.at("slip").at(i).get<double>(), values.at(i).get<double>(), 1.0});
     d.point_group.push_back(p.at("wheel").at(i).get<int>());
   }
+  const int groups = d.point_group.empty() ? 0 : *std::max_element(d.point_group.begin(), d.point_group.end());
+  for (int g = 1; g <= groups; ++g) {
+    d.group_names.push_back("wheel " + std::to_string(g));
+  }
   d.quantity += std::string(" (rover's estimates, ") + sensors + (d.reference ? "; grey: true local model)" : ")");
   return true;
 }

@@ -386,7 +386,7 @@ QWidget* MainWindow::build_surface_page(QVTKOpenGLNativeWidget* widget) {
   surface_soil_->addItem("(fit to the points)");
   for (const auto& s : soil_names()) surface_soil_->addItem(q(s));
   surface_quantity_ = new QComboBox;
-  surface_quantity_->addItems({"drawbar-pull", "torque"});
+  surface_quantity_->addItems({"drawbar-pull", "torque", "lateral-force"});  // F_y at the largest slip angle
   surface_note_ = new QLabel;
   surface_note_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
   bar->addWidget(new QLabel("model soil:"));

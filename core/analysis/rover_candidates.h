@@ -27,11 +27,13 @@ struct RoverCandidateParameter {
   std::string effect;  // simulation::set_effect name
   std::string unit;
   double start = 0, lower = 0, upper = 0;
-  double step = 0;        // finite-difference step of the fit
-  bool fitted = true;     // false: set from the residual features and held (a discrete start time)
-  double resolution = 0;  // stated 1-sigma of a held parameter
-  double grid = 0;        // > 0: the fit starts at the best of a grid of this step over the bounds (a
-                          // position whose likelihood is too sharply peaked for a local start)
+  double step = 0;           // finite-difference step of the fit
+  bool fitted = true;        // false: set from the residual features and held (a discrete start time)
+  double resolution = 0;     // stated 1-sigma of a held parameter
+  double grid = 0;           // > 0: the fit starts at the best of a grid of this step over the bounds (a
+                             // position whose likelihood is too sharply peaked for a local start)
+  bool grid_screen = false;  // the screen's Gauss-Newton step also starts at the grid's best (a response far
+                             // from linear in the parameter, as the drawbar pull's in a slip angle, ~ beta^2)
 };
 
 class RoverCandidate {

@@ -67,6 +67,8 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     for (auto& p : t.fit.parameters) p.free = false;
     for (const auto& sp : specs) t.fit.parameters.push_back({sp, sp.start, 0.0, true});
     const int sims = pr.simulations();
+    if (std::any_of(specs.begin(), specs.end(), [](const RoverCandidateParameter& sp) { return sp.grid_screen; }))
+      grid_start(pr, t.fit.parameters);
     t.screened_fit = linearised_fit(pr, t.fit.parameters, current.weights, t.jacobian);
     t.simulations = pr.simulations() - sims;
     t.screened = true;

@@ -95,8 +95,9 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
   physical.grouser_height = fx.grouser_height;
   physical.wheel_radius_scale = fx.wheel_radius_scale;
   physical.effect_start_x = fx.effect_start_x;
-  const std::array<double, 5> key{physical.soil_strength, physical.slip_sinkage_n1, physical.grouser_height,
-                                  physical.wheel_radius_scale, physical.effect_start_x};
+  physical.slip_angle_deg = fx.slip_angle_deg;
+  const std::array<double, 6> key{physical.soil_strength,      physical.slip_sinkage_n1, physical.grouser_height,
+                                  physical.wheel_radius_scale, physical.effect_start_x,  physical.slip_angle_deg};
   auto it = cache_.find(key);
   if (it != cache_.end()) {
     cache_order_.erase(std::find(cache_order_.begin(), cache_order_.end(), key));

@@ -68,8 +68,8 @@ class Predictor {
   std::vector<MeasuredChannel> channels_;
   double duration_ = 0;
   int simulations_ = 0;
-  std::map<std::array<double, 5>, Simulated> cache_;
-  std::deque<std::array<double, 5>> cache_order_;  // least recently used first
+  std::map<std::array<double, 6>, Simulated> cache_;
+  std::deque<std::array<double, 6>> cache_order_;  // least recently used first
   std::map<Part, GroupedLikelihood> likelihoods_;
 };
 

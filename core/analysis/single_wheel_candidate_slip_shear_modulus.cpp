@@ -6,8 +6,8 @@ namespace {
 
 using terramechanics::Parameter;
 
-// Ding et al. 2015 (J. Field Robotics 32(6)): the shear deformation modulus
-// depends on slip, K = K_0 (1 + k_s s); K_0 is refitted with k_s since the
+// Ding et al. 2015 (J. Field Robotics 32, p. 827, doi:10.1002/rob.21533):
+// the shear deformation modulus depends on slip, K = K_0 (1 + k_s s); K_0 is refitted with k_s since the
 // static modulus is what the slip term scales.
 class SlipShearModulus final : public SingleWheelCandidate {
  public:

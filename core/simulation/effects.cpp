@@ -8,6 +8,8 @@ namespace roverlab::simulation {
 // or up to 1.3 times weaker (a soil 1.9 times weaker holds the flat_60s rover
 // in place from the start), slip-sinkage n1 0.1-0.45 (at n1 = 0.65 the rover
 // does not move in 60 s).
+// The slip angle: 4-30 deg (below 4 deg the drawbar pull changes by less
+// than 0.1 N at the flat_60s rover's slips; Ishigami 2007 Fig. 9 steers to 30 deg).
 // The dropout's "size" is its start as a share of the run (20-80 %); the IMU
 // time offset is not drawn (on a 2 cm/s drive it shows only in the start
 // transient).
@@ -21,6 +23,10 @@ const std::vector<EffectSpec>& effect_table() {
       {"grousers", "m", "grouser height (24 grousers)", 0, 0.05, true, &E::grouser_height, 0.0, 0.002, 0.024, false},
       {"wheel-radius-scale", "1", "true wheel radius over the nominal one", 0.5, 2, true, &E::wheel_radius_scale, 1.0,
        0.01, 0.12, true},
+      {"slip-angle", "deg",
+       "every wheel's slip angle (a steering manoeuvre, or crabbing across a side slope): the Ishigami 2007 model, "
+       "its magnitude (one planar side does not see its sign)",
+       0, 60, true, &E::slip_angle_deg, 0.0, 4, 30, false},
       {"effect-start-x", "m", "where the physical effects begin (wheel centre x)", -1000, 1000, true,
        &E::effect_start_x, -1e9, 0, 0, false},
       {"gyro-bias", "rad/s", "bias on the pitch rate", -1, 1, false, &E::gyro_bias, 0.0, 0.00075, 0.009, true},

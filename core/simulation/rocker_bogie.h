@@ -69,6 +69,7 @@ struct RockerBogieEffects {
   double slip_sinkage_n1 = 0.0;       // n = n0 + n1 |s|
   double grouser_height = 0.0;        // m (24 grousers)
   double wheel_radius_scale = 1.0;    // true radius / nominal (control and encoders assume nominal)
+  double slip_angle_deg = 0.0;        // every wheel's slip angle |beta| (steering or crabbing; Ishigami 2007)
   double effect_start_x = -1e9;       // m
   double gyro_bias = 0.0;             // rad/s on the pitch rate
   double accel_bias = 0.0;            // m/s^2 on both accelerometer axes

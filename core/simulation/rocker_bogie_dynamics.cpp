@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "core/common/error.h"
+#include "core/terramechanics/slip_angle_model.h"
 
 namespace roverlab::simulation::rocker_bogie {
 
@@ -158,6 +159,7 @@ TractionModel::TractionModel(const PlanarRockerBogieGeometry& g, const RockerBog
   if (with_effects) {
     options_.extensions.soil_strength = fx.soil_strength;
     options_.extensions.slip_sinkage_n1 = fx.slip_sinkage_n1;
+    slip_angle_ = fx.slip_angle_deg * M_PI / 180.0;
     if (fx.grouser_height > 0) {
       wheel_.grouser_count = 24;
       wheel_.grouser_height = fx.grouser_height;
@@ -167,13 +169,21 @@ TractionModel::TractionModel(const PlanarRockerBogieGeometry& g, const RockerBog
   if (source_ == TractionSource::polynomial) fit_surrogate();
 }
 
+// A wheel at a slip angle loses drawbar pull and resistive torque to the
+// lateral shear (Ishigami et al. 2007, Eq. 5-7, with one shared Mohr-Coulomb
+// strength); its lateral force has no axis in this planar side.
+terramechanics::Traction TractionModel::wheel_soil(double W, double s) const {
+  if (slip_angle_ == 0.0) return terramechanics::evaluate(*soil_, wheel_, W, s, options_);
+  return terramechanics::evaluate_slip_angle(*soil_, wheel_, W, s, slip_angle_, options_);
+}
+
 // Seed 003 Appendix A: order-5 surfaces over 1..150 N and slips -1..1.
 void TractionModel::fit_surrogate() {
   std::vector<terramechanics::SurfaceSample> dp, tau, sink, resistance;
   for (int i = 0; i < 40; ++i) {
     for (int k = 0; k < 41; ++k) {
       const double W = 1.0 + 149.0 * i / 39.0, s = -1.0 + 2.0 * k / 40.0;
-      const auto t = terramechanics::evaluate(*soil_, wheel_, W, s, options_);
+      const auto t = wheel_soil(W, s);
       if (!t.ok()) continue;
       dp.push_back({W, s, t.drawbar_pull});
       tau.push_back({W, s, t.resistive_torque});
@@ -194,7 +204,7 @@ void TractionModel::fit_surrogate() {
 double TractionModel::largest_carried_load(double limit) const {
   const auto carries = [&](double W) {
     for (double s : {0.0, 0.5, 1.0}) {
-      if (!terramechanics::evaluate(*soil_, wheel_, W, s, options_).ok()) return false;
+      if (!wheel_soil(W, s).ok()) return false;
     }
     return true;
   };
@@ -219,7 +229,7 @@ WheelTraction TractionModel::evaluate(double W, double s, bool with_sinkage, std
     if (with_sinkage) out.sinkage = sinkage_(W, s);
     return out;
   }
-  const auto t = terramechanics::evaluate(*soil_, wheel_, W, s, options_);
+  const auto t = wheel_soil(W, s);
   if (!t.ok()) {
     ++unsupported;
     out.sinkage = NAN;

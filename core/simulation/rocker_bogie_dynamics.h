@@ -55,7 +55,7 @@ struct WheelTraction {
 class TractionModel {
  public:
   // The nominal wheel, or with the run's effects (soil strength, slip
-  // sinkage, grousers, true radius). Throws DataError when the polynomial
+  // sinkage, grousers, true radius, slip angle). Throws DataError when the polynomial
   // surrogate cannot be fitted (the soil cannot carry the wheel loads).
   TractionModel(const PlanarRockerBogieGeometry& g, const RockerBogieRun& run, bool with_effects);
   double radius() const { return wheel_.radius; }
@@ -71,11 +71,14 @@ class TractionModel {
 
  private:
   void fit_surrogate();
+  // Wong-Reece, or at the run's slip angle the Ishigami 2007 model's longitudinal part.
+  terramechanics::Traction wheel_soil(double W, double s) const;
 
   const terramechanics::Soil* soil_;
   TractionSource source_;
   terramechanics::Wheel wheel_;
   terramechanics::ModelOptions options_;
+  double slip_angle_ = 0.0;  // rad
   terramechanics::PolynomialSurface dp_, tau_, sinkage_, resistance_;
 };
 

@@ -30,8 +30,12 @@ struct Extensions {
   // Soil strength factor: multiplies c, tan(phi), kc and kphi (a uniformly
   // weaker or stronger soil than the nominal description).
   double soil_strength = 1.0;
-  // Slip-dependent shear deformation modulus (Ding et al. 2015, J. Field
-  // Robotics 32(6)): K = K_0 (1 + k_s s), s >= 0 (the skid side mirrors it).
+  // Slip-dependent shear deformation modulus (Ding et al. 2015, "Interaction
+  // mechanics model for rigid driving wheels of planetary rovers moving on
+  // sandy terrain with consideration of multiple physical effects", J. Field
+  // Robotics 32, p. 827, doi:10.1002/rob.21533): their K linear in slip,
+  // written K = K_0 (1 + k_s s), s >= 0 (the skid side mirrors it; the form
+  // from memory, not checked against the paper).
   double shear_modulus_slip = 0.0;
   // Rear angle (Wong & Reece 1967; Ishigami et al. 2007): the soil rebounds
   // and the contact reaches theta_r = -kappa theta_0 behind the bottom.

@@ -115,7 +115,7 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   // Rear angle (rebound): contact down to theta_r = -kappa theta_0 behind
   // the bottom dead centre (Wong & Reece 1967; Ishigami et al. 2007 Eq. 6).
   const T theta_r = -p.rear_angle_ratio * theta0;
-  // Slip-dependent shear deformation modulus K = K_0 (1 + k_s s) (Ding et al. 2015, J. Field Robotics 32(6)).
+  // Slip-dependent shear deformation modulus K = K_0 (1 + k_s s) (Ding et al. 2015, doi:10.1002/rob.21533).
   const T shear_modulus = p.shear_modulus * (1.0 + p.shear_modulus_slip * s);
   auto sample = [&](const T& th, T& sigma, T& tau) {
     // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front).

@@ -898,3 +898,48 @@ TEST(Cli, DiscrepancyRoverRefusesALogItCannotStudyInOneLine) {
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("\"causes\": []"), std::string::npos) << ok.out.substr(0, 400);
 }
+
+// Issue 33, item 2: the traction-surface view draws F_y(W, s) of a steered
+// single-wheel file at one slip angle (the largest by default); an angle the
+// file does not have, or a file without lateral forces, is one line naming it.
+TEST(Cli, RenderDrawsTheLateralForceSurfaceOfASteeredFile) {
+  TempDir dir;
+  const std::string steer = dir.file("steer.csv");
+  std::string rows = "wheel,radius_m,width_m,load_N,slip,slip_angle_deg,drawbar_pull_N,lateral_force_N\n";
+  for (const char* wheel : {"smooth", "grousered"}) {
+    for (double load : {40.0, 80.0}) {
+      for (double s : {0.1, 0.3, 0.5}) {
+        for (double beta : {0.0, 20.0}) {
+          const double fy = beta == 0 ? 0.0 : -(10 + 0.1 * load) * (1 - s);
+          rows += std::string(wheel) + ",0.15,0.1," + std::to_string(load) + "," + std::to_string(s) + "," +
+                  std::to_string(beta) + ",5," + std::to_string(fy) + "\n";
+        }
+      }
+    }
+  }
+  write_text(steer, rows);
+  const std::string png = dir.file("fy.png");
+  const CommandResult ok = run_roverlab(
+      "render " + quote(steer) + " --view traction-surface --quantity lateral-force --size 640x400 -o " + quote(png));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_TRUE(std::filesystem::exists(png));
+  const CommandResult absent =
+      run_roverlab("render " + quote(steer) + " --view traction-surface --quantity lateral-force --slip-angle 15 -o " +
+                   quote(dir.file("no.png")));
+  EXPECT_NE(absent.exit_code, 0);
+  EXPECT_EQ(count_lines(absent.err), 1u) << absent.err;
+  EXPECT_NE(absent.err.find("steer.csv"), std::string::npos) << absent.err;
+  EXPECT_NE(absent.err.find("slip angles 0, 20 deg"), std::string::npos) << absent.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("no.png")));
+  const std::string ding = quote(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv");
+  const CommandResult straight = run_roverlab(
+      "render " + ding + " --view traction-surface --quantity lateral-force -o " + quote(dir.file("d.png")));
+  EXPECT_NE(straight.exit_code, 0);
+  EXPECT_NE(straight.err.find("no lateral_force_N values"), std::string::npos) << straight.err;
+  // With a soil, its model's F_y surface at the asked angle, the straight file's wheel.
+  const CommandResult model = run_roverlab("render " + ding +
+                                           " --view traction-surface --quantity lateral-force --soil ding_tyii "
+                                           "--slip-angle 20 --size 640x400 -o " +
+                                           quote(dir.file("m.png")));
+  EXPECT_EQ(model.exit_code, 0) << model.err;
+}

@@ -7,6 +7,7 @@
 #include "core/common/error.h"
 #include "core/simulation/rocker_bogie.h"
 #include "core/simulation/rocker_bogie_dynamics.h"
+#include "core/terramechanics/slip_angle_model.h"
 #include "importers/soil_file.h"
 
 using namespace roverlab;
@@ -174,6 +175,33 @@ TEST(RockerBogie, SteadySlipOnFlatGroundIsWhereTheTerramechanicsBalances) {
     const double expected = model.resistive_torque + p.wheel_damping * w.channel("wheel_rate_" + n).values[k];
     EXPECT_NEAR(torque, expected, 0.05 * std::abs(expected) + 0.02) << i;
     EXPECT_NEAR(w.channel("sinkage_" + n).values[k], model.sinkage, 0.1 * model.sinkage) << i;
+  }
+}
+
+// Issue 33, item 5: wheels at a slip angle (a steering manoeuvre, or crabbing
+// across a side slope) lose drawbar pull to the lateral shear (Ishigami 2007
+// with one shared Mohr-Coulomb strength): the rover slips more, and each
+// motor's steady torque is the slip-angle model's resistive torque at that
+// wheel's load and slip, not the straight wheel's.
+TEST(RockerBogieEffects, ASlipAngleCostsDrawbarPullAndTheTorqueIsTheSlipAngleModels) {
+  const log::Log base = run_with("", 0, 60.0), steered = run_with("slip-angle", 30.0, 60.0);
+  EXPECT_GT(mean_tail(ch(steered, "truth/wheels", "slip_2"), 100),
+            mean_tail(ch(base, "truth/wheels", "slip_2"), 100) + 0.02);
+  const auto soil = io::load_soil(std::string(ROVERLAB_RESOURCES_DIR) + "/soils/ding_tyii.json");
+  const simulation::RockerBogieParameters p;
+  const auto& w = steered.stream("truth/wheels");
+  const std::size_t k = w.size() - 1;
+  for (int i = 1; i <= 3; ++i) {
+    const std::string n = std::to_string(i);
+    const double W = w.channel("normal_load_" + n).values[k], s = w.channel("slip_" + n).values[k];
+    const auto at_angle = terramechanics::evaluate_slip_angle(soil, {0.075, 0.07, 0, 0.0}, W, s, 30.0 * M_PI / 180);
+    const auto straight = terramechanics::evaluate(soil, {0.075, 0.07, 0, 0.0}, W, s);
+    ASSERT_TRUE(at_angle.ok() && straight.ok());
+    const double loss = p.wheel_damping * w.channel("wheel_rate_" + n).values[k];
+    const double torque = ch(steered, "commands", "wheel_torque_" + n)[k];
+    const double tolerance = 0.05 * std::abs(at_angle.resistive_torque + loss) + 0.02;
+    EXPECT_NEAR(torque, at_angle.resistive_torque + loss, tolerance) << i;
+    EXPECT_GT(std::abs(torque - straight.resistive_torque - loss), tolerance) << i;  // the straight wheel's is not it
   }
 }
 
