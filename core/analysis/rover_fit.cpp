@@ -208,6 +208,23 @@ Score score(Predictor& pr, const simulation::RockerBogieEffects& effects) {
 void grid_start(Predictor& pr, std::vector<FitParameter>& parameters) {
   for (auto& p : parameters) {
     if (!(p.spec.grid > 0) || !p.free || !p.spec.fitted) continue;
+    if (p.spec.grid_screen) {
+      // A smooth response (a slip angle's, ~beta^2) has one basin: walk up
+      // the grid from the lower bound and stop where the likelihood turns
+      // (2 simulations where the effect is absent instead of the whole grid).
+      double best = p.spec.lower;
+      p.value = best;
+      double best_f = profile_at(pr, parameters, {}, {});
+      for (double v = p.spec.lower + p.spec.grid; v <= p.spec.upper + 1e-12; v += p.spec.grid) {
+        p.value = v;
+        const double f = profile_at(pr, parameters, {}, {});
+        if (!(f < best_f)) break;
+        best_f = f;
+        best = v;
+      }
+      p.value = best;
+      continue;
+    }
     double best = p.value;
     double best_f = profile_at(pr, parameters, {}, {});
     for (double v = p.spec.lower; v <= p.spec.upper + 1e-12; v += p.spec.grid) {

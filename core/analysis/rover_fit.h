@@ -65,7 +65,9 @@ double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameter
                       JacobianMemo& memo);
 
 // Moves each free parameter with a grid step to the best point of its grid
-// (-2 ln L on the fit blocks, the others held at their values).
+// (-2 ln L on the fit blocks, the others held at their values); a
+// grid_screen parameter (one basin) walks up from its lower bound and stops
+// where -2 ln L stops falling.
 void grid_start(Predictor& predictor, std::vector<FitParameter>& parameters);
 
 // A model's score (the channels' sigmas must be set).
