@@ -739,6 +739,8 @@ void SingleWheelStudy::judge_quantities() {
       if (after <= 0.7 * before && v.explained_by.empty()) {
         const auto plus = step.name.rfind(" + ");
         v.explained_by = plus == std::string::npos ? step.name : step.name.substr(plus + 3);
+        v.explained_by_chain = step.name;
+        v.held_out_step_before = before;
         v.held_out_after = after;
       }
       before = after;
@@ -754,14 +756,19 @@ void SingleWheelStudy::judge_quantities() {
     if (bc != nullptr) v.best_candidate = bc->name;
     if (v.explained_by.empty() && bc != nullptr) v.held_out_after = bc->held_out_rmse[qi];
     std::string t = words(q) + ": ";
+    // The cut the step made, and what the whole chain so far makes of the baseline.
+    const std::string step_cut =
+        v.explained_by_chain == v.explained_by
+            ? " cuts its held-out RMSE " + show(q, v.held_out_before) + " -> " + show(q, v.held_out_after)
+            : ", added to the chain (" + v.explained_by_chain + "), cuts its held-out RMSE " +
+                  show(q, v.held_out_step_before) + " -> " + show(q, v.held_out_after) + " (baseline " +
+                  show(q, v.held_out_before) + ")";
     if (!v.significant && !v.explained_by.empty()) {
-      t += "no bias or trend with slip or load with |t| >= 3, yet " + v.explained_by + " cuts its held-out RMSE " +
-           show(q, v.held_out_before) + " -> " + show(q, v.held_out_after);
+      t += "no bias or trend with slip or load with |t| >= 3, yet " + v.explained_by + step_cut;
     } else if (!v.significant) {
       t += "no significant discrepancy (|t| < 3 for its bias and its trends with slip and load)";
     } else if (!v.explained_by.empty()) {
-      t += "significant (" + why + "), explained by " + v.explained_by + " (held-out RMSE " +
-           show(q, v.held_out_before) + " -> " + show(q, v.held_out_after) + ")";
+      t += "significant (" + why + "), explained by " + v.explained_by + " (which" + step_cut + ")";
     } else if (bc != nullptr && v.held_out_after <= 0.7 * v.held_out_before) {
       t += "significant (" + why + "); " + bc->name + " alone cuts its held-out RMSE " + show(q, v.held_out_before) +
            " -> " + show(q, v.held_out_after) + ", but the evidence over all quantities is not decisive (delta BIC " +

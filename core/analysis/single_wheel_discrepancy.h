@@ -36,6 +36,10 @@ struct QuantityVerdict {
   std::string best_candidate;  // the candidate (alone) that predicts it best on held-out points
   double held_out_before = NAN,
          held_out_after = NAN;  // RMSE: baseline, and with explained_by's chain (else best_candidate)
+  // The selection step that added explained_by: its chain ("slip-sinkage +
+  // slip-shear-modulus") and the held-out RMSE of the step before it.
+  std::string explained_by_chain;
+  double held_out_step_before = NAN;
   std::string sentence;
 };
 

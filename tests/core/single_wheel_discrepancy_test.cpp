@@ -436,6 +436,17 @@ TEST(RealDingData, TheLiteratureExtensionsCutTheHeldOutDrawbarPullByAThird) {
     EXPECT_LT(after, 0.7 * before) << r.held_out_method << ": " << r.verdict;
     EXPECT_TRUE(named_in_chain(r, "slip-shear-modulus")) << r.verdict;
     EXPECT_EQ(verdict_of(r, Quantity::drawbar_pull).explained_by, "slip-shear-modulus") << r.verdict;
+    // The sentence credits the step its own cut, from the step before it (slip-sinkage
+    // alone pulls no better than the baseline), not the baseline's 5.90 N.
+    const auto& v = verdict_of(r, Quantity::drawbar_pull);
+    std::size_t step = 0;
+    while (step < r.selection.size() && r.selection[step].name != v.explained_by_chain) ++step;
+    ASSERT_LT(step, r.selection.size()) << v.explained_by_chain;
+    const double step_before = step == 0 ? before : held_out_drawbar(r, r.selection[step - 1]);
+    EXPECT_DOUBLE_EQ(v.held_out_step_before, step_before);
+    char cut[64];
+    std::snprintf(cut, sizeof cut, "%.2f N -> %.2f N", step_before, v.held_out_after);
+    EXPECT_NE(v.sentence.find(cut), std::string::npos) << cut << " in: " << v.sentence;
   }
 }
 
