@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <set>
 
@@ -63,6 +64,33 @@ std::string estimates_without_result(const ViewInput& in) {
     }
   }
   return {};
+}
+
+// A soil model's surface over load (half the points' lowest to 1.5 x their
+// highest; 10-200 N without points) and slip 0-1: `value` on a 40 x 40 grid
+// (nullopt where the model has no answer), fitted at order 4 as in seed 003
+// Appendix A. Sets d's load range and `fit`; returns the soil's name.
+std::string model_surface(const ViewInput& in, const std::string& soil_name, double load_lo, double load_hi,
+                          views::TractionSurfaceData& d, terramechanics::SurfaceFit& fit,
+                          const std::function<std::optional<double>(
+                              const terramechanics::Soil&, const terramechanics::Wheel&, double, double)>& value) {
+  using namespace terramechanics;
+  const Soil soil = io::find_soil(soil_name, resource_subfolders("soils"));
+  Wheel wheel{0.075, 0.07, 0, 0.0};  // Kapvik's wheel when no points say otherwise
+  if (!in.wheel_points.empty()) wheel = in.wheel_points.front().wheel;
+  d.load_min = std::isfinite(load_lo) ? 0.5 * load_lo : 10.0;
+  d.load_max = std::isfinite(load_hi) ? 1.5 * load_hi : 200.0;
+  std::vector<SurfaceSample> grid;
+  for (int i = 0; i < 40; ++i) {
+    for (int k = 0; k < 40; ++k) {
+      const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0, s = k / 39.0;
+      if (const std::optional<double> v = value(soil, wheel, W, s)) grid.push_back({W, s, *v});
+    }
+  }
+  if (grid.size() < 30) throw InputError(in.file, "soil " + soil.name + " cannot carry these loads");
+  fit.surface = fit_surface(grid, 4);
+  fit.error = fit_error(fit.surface, grid);
+  return soil.name;
 }
 
 // Groups 1.. by the points' wheel label, in order of first appearance, named in the view's key.
@@ -126,23 +154,12 @@ views::TractionSurfaceData lateral_surface_of(const ViewInput& in, const std::op
   const double lo = loads.empty() ? NAN : *loads.begin(), hi = loads.empty() ? NAN : *loads.rbegin();
   SurfaceFit fit;
   if (soil_name) {
-    const Soil soil = io::find_soil(*soil_name, resource_subfolders("soils"));
-    Wheel wheel{0.075, 0.07, 0, 0.0};  // Kapvik's wheel when no points say otherwise
-    if (!in.wheel_points.empty()) wheel = in.wheel_points.front().wheel;
-    d.load_min = std::isfinite(lo) ? 0.5 * lo : 10.0;
-    d.load_max = std::isfinite(hi) ? 1.5 * hi : 200.0;
-    std::vector<SurfaceSample> grid;
-    for (int i = 0; i < 40; ++i) {
-      for (int k = 0; k < 40; ++k) {
-        const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0, s = k / 39.0;
-        const SlipAngleTraction t = evaluate_slip_angle(soil, wheel, W, s, beta);
-        if (t.ok()) grid.push_back({W, s, t.lateral_force});
-      }
-    }
-    if (grid.size() < 30) throw InputError(in.file, "soil " + soil.name + " cannot carry these loads");
-    fit.surface = fit_surface(grid, 4);
-    fit.error = fit_error(fit.surface, grid);
-    d.quantity = "lateral force F_y (" + soil.name + " model, " + at + ")";
+    const std::string soil =
+        model_surface(in, *soil_name, lo, hi, d, fit, [&](const Soil& so, const Wheel& w, double W, double sl) {
+          const SlipAngleTraction t = evaluate_slip_angle(so, w, W, sl, beta);
+          return t.ok() ? std::optional<double>(t.lateral_force) : std::nullopt;
+        });
+    d.quantity = "lateral force F_y (" + soil + " model, " + at + ")";
   } else {
     if (loads.size() < 2) {
       throw InputError(
@@ -206,23 +223,12 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   SurfaceFit fit;
   if (soil_name) {
     // The model surface: Wong-Reece on a grid, fitted as in seed 003 Appendix A.
-    const Soil soil = io::find_soil(*soil_name, resource_subfolders("soils"));
-    Wheel wheel{0.075, 0.07, 0, 0.0};  // Kapvik's wheel when no points say otherwise
-    if (!in.wheel_points.empty()) wheel = in.wheel_points.front().wheel;
-    d.load_min = std::isfinite(load_lo) ? 0.5 * load_lo : 10.0;
-    d.load_max = std::isfinite(load_hi) ? 1.5 * load_hi : 200.0;
-    std::vector<SurfaceSample> grid;
-    for (int i = 0; i < 40; ++i) {
-      for (int k = 0; k < 40; ++k) {
-        const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0, s = k / 39.0;
-        const Traction t = evaluate(soil, wheel, W, s, ModelOptions{});
-        if (t.ok()) grid.push_back({W, s, dp ? t.drawbar_pull : t.resistive_torque});
-      }
-    }
-    if (grid.size() < 30) throw InputError(in.file, "soil " + soil.name + " cannot carry these loads");
-    fit.surface = fit_surface(grid, 4);
-    fit.error = fit_error(fit.surface, grid);
-    d.quantity += " (" + soil.name + " model)";
+    const std::string soil = model_surface(
+        in, *soil_name, load_lo, load_hi, d, fit, [&](const Soil& so, const Wheel& w, double W, double sl) {
+          const Traction t = evaluate(so, w, W, sl, ModelOptions{});
+          return t.ok() ? std::optional<double>(dp ? t.drawbar_pull : t.resistive_torque) : std::nullopt;
+        });
+    d.quantity += " (" + soil + " model)";
   } else {
     if (loads.size() < 2) {
       throw InputError(in.file, "all points are at one load: give --soil NAME to draw the model surface through them");
