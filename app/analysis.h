@@ -161,16 +161,22 @@ using Analyses = std::vector<std::unique_ptr<Analysis>>;
 
 // Runs `analysis` on `input.log` the one way every entry point does: the
 // result document gains "configuration" (Analysis::configuration()) and
-// "input" (the fingerprint of the log's measured streams, log_fingerprint()).
+// "input" (the fingerprint of the log's measured streams, log_fingerprint(),
+// and the program that ran it, program_identity()).
 // A DataError becomes an InputError naming input.file.
 AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input);
+
+// RoverLab's version and the GNU build id of the running program: a result
+// stored by another build (another candidate pool, another fix) is not reused.
+std::string program_identity();
 
 // A hash of the log's rover id and its streams outside estimate/ (names,
 // channels, times, values): two logs with the same measurements share it.
 std::string log_fingerprint(const log::Log& log);
 
 // The result of `analysis` stored in `log` (estimate X -o OUT.h5) when it was
-// made from these measurements with this configuration; nullopt otherwise.
+// made from these measurements with this configuration by this program
+// (program_identity()); nullopt otherwise.
 // `fingerprint` gives log_fingerprint(log) (asked only when a result is stored).
 std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& log,
                                             const std::function<std::string()>& fingerprint = {});
@@ -179,7 +185,7 @@ std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log:
 void store_result(const Analysis& analysis, const nlohmann::json& document, log::Log& estimates);
 
 // The fields of a result document that differ between two runs of the same
-// configuration on the same log (wall-clock times, the output file), removed.
+// configuration on the same log (wall-clock times, the output file, the program that ran it), removed.
 nlohmann::json without_run_details(nlohmann::json document);
 
 // What `analysis.print(document, ...)` writes, then the settings line, as a

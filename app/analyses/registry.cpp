@@ -3,6 +3,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+
+#include <elf.h>
+#include <link.h>
 
 #include "app/analysis.h"
 #include "app/command_support.h"
@@ -40,7 +44,51 @@ std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
 
 std::uint64_t fnv1a(const std::string& s, std::uint64_t h) { return fnv1a(s.data(), s.size() + 1, h); }
 
+// The GNU build id of the main program's ELF notes, in hex; empty when it has none.
+int read_build_id(dl_phdr_info* info, std::size_t, void* out) {
+  auto& id = *static_cast<std::string*>(out);
+  for (int i = 0; i < info->dlpi_phnum; ++i) {
+    const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+    if (ph.p_type != PT_NOTE) continue;
+    // The loader gives the note's place as an address.
+    // NOLINTNEXTLINE(performance-no-int-to-ptr)
+    const char* p = reinterpret_cast<const char*>(info->dlpi_addr + ph.p_vaddr);
+    const char* end = p + ph.p_memsz;
+    while (p + sizeof(ElfW(Nhdr)) <= end) {
+      ElfW(Nhdr) n;
+      std::memcpy(&n, p, sizeof n);
+      const char* name = p + sizeof n;
+      const char* desc = name + ((n.n_namesz + 3U) & ~3U);
+      if (desc + n.n_descsz > end) break;
+      if (n.n_type == NT_GNU_BUILD_ID && n.n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0) {
+        for (std::size_t k = 0; k < n.n_descsz; ++k) {
+          char hex[3];
+          std::snprintf(hex, sizeof hex, "%02x", static_cast<unsigned char>(desc[k]));
+          id += hex;
+        }
+        return 1;
+      }
+      p = desc + ((n.n_descsz + 3U) & ~3U);
+    }
+  }
+  return 1;  // the first object is the main program: stop there
+}
+
 }  // namespace
+
+std::string program_identity() {
+  static const std::string id = [] {
+    std::string build;
+    dl_iterate_phdr(read_build_id, &build);
+#ifdef ROVERLAB_VERSION
+    const std::string version = ROVERLAB_VERSION;
+#else
+    const std::string version = "unknown";
+#endif
+    return build.empty() ? version : version + "+" + build;
+  }();
+  return id;
+}
 
 std::string log_fingerprint(const log::Log& lg) {
   std::uint64_t h = fnv1a(lg.metadata.rover_id, 14695981039346656037ULL);
@@ -62,7 +110,7 @@ std::string log_fingerprint(const log::Log& lg) {
 AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input) {
   AnalysisResult r = about_file(input.file, [&] { return analysis.run(input); });
   r.document["configuration"] = analysis.configuration();
-  r.document["input"] = {{"fingerprint", log_fingerprint(input.log)}};
+  r.document["input"] = {{"fingerprint", log_fingerprint(input.log)}, {"program", program_identity()}};
   return r;
 }
 
@@ -72,7 +120,8 @@ std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log:
   if (at == lg.metadata.results.end()) return std::nullopt;
   nlohmann::json doc = nlohmann::json::parse(at->second, nullptr, false);
   if (!doc.is_object() || doc.value("configuration", nlohmann::json()) != analysis.configuration() ||
-      !doc.contains("input") ||
+      !doc.contains("input") || !doc.at("input").is_object() ||
+      doc.at("input").value("program", std::string()) != program_identity() ||
       doc.at("input").value("fingerprint", std::string()) != (fingerprint ? fingerprint() : log_fingerprint(lg))) {
     return std::nullopt;
   }
@@ -85,7 +134,7 @@ void store_result(const Analysis& analysis, const nlohmann::json& document, log:
 
 nlohmann::json without_run_details(nlohmann::json document) {
   if (!document.is_object()) return document;
-  for (const char* key : {"wall_seconds", "output"}) document.erase(key);
+  for (const char* key : {"wall_seconds", "output", "program"}) document.erase(key);
   for (auto& [key, value] : document.items()) {
     if (value.is_object()) value = without_run_details(std::move(value));
   }

@@ -95,8 +95,9 @@ TEST(AnalysisRegistry, KeyMetricsAreUniqueAndPointIntoTheResultDocument) {
 }
 
 // A result stored with the log (estimate X -o) is reused only when the
-// measurements and the settings are those it was made from: estimate
-// streams added later do not matter, a changed sample or option does.
+// measurements and the settings are those it was made from, by this build:
+// estimate streams added later do not matter, a changed sample or option or
+// another build does.
 TEST(AnalysisRegistry, AStoredResultIsReusedOnlyForTheSameMeasurementsAndSettings) {
   const log::Log measured = simulation::simulate_skid_steer(simulation::default_slip_scenario(4));
   const std::unique_ptr<app::Analysis> ins = app::make_analysis("ins-slip");
@@ -137,6 +138,13 @@ TEST(AnalysisRegistry, AStoredResultIsReusedOnlyForTheSameMeasurementsAndSetting
   }
   EXPECT_NE(app::log_fingerprint(changed), app::log_fingerprint(stored));
   EXPECT_FALSE(app::stored_result(*ins, changed).has_value());
+  // Made by another build of RoverLab (another candidate pool, another fix): run again.
+  EXPECT_EQ(r.document.at("input").at("program"), app::program_identity());
+  EXPECT_GT(app::program_identity().size(), std::string("0.1.0+").size());  // the build id is found
+  nlohmann::json elsewhere = r.document;
+  elsewhere["input"]["program"] = "0.1.0+0123456789abcdef";
+  stored.metadata.results["ins-slip"] = elsewhere.dump();
+  EXPECT_FALSE(app::stored_result(*ins, stored).has_value());
   // A damaged stored document: run again.
   stored.metadata.results["ins-slip"] = "{not json";
   EXPECT_FALSE(app::stored_result(*ins, stored).has_value());
