@@ -2,7 +2,9 @@
 // drive the INS slip detector is tested on (seed 002) and the flying-rover
 // runs of the contact-angle estimator (seed 000 sections 6.3-6.4).
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "app/command.h"
 #include "app/command_support.h"
@@ -43,6 +45,8 @@ struct FlyingRoverOptions {
   std::string rover = "exomars_bb2";
   unsigned seed = 1;
   double rate = 1000.0;
+  double slip_angle_deg = 0.0;
+  std::optional<double> turn_radius;  // m; none: straight
   std::string output;
 };
 
@@ -60,10 +64,22 @@ int run_scenario_flying_rover(const FlyingRoverOptions& o) {
   s.seed = o.seed;
   if (!(o.rate >= 10.0 && o.rate <= 10000.0)) throw UsageError("--rate must be 10..10000 Hz");
   s.rate = o.rate;
+  s.slip_angle = o.slip_angle_deg * M_PI / 180.0;
+  if (o.turn_radius) s.turn_radius = *o.turn_radius;
+  try {
+    simulation::check_steering_manoeuvre(s);
+  } catch (const DataError& e) {
+    const bool radius = o.turn_radius && !(std::abs(*o.turn_radius) >= 1.0);
+    throw UsageError(std::string(radius ? "--turn-radius: " : "--slip-angle: ") + e.what());
+  }
   const log::Log lg = simulation::simulate_flying_rover(rover, s);
   io::write_hdf5_log(lg, o.output);
-  std::printf("wrote %s: scenario %s, rover %s, %.0f s at %.0f Hz, seed %u\n", o.output.c_str(), o.scenario.c_str(),
+  std::printf("wrote %s: scenario %s, rover %s, %.0f s at %.0f Hz, seed %u", o.output.c_str(), o.scenario.c_str(),
               rover.name.c_str(), s.duration, s.rate, s.seed);
+  if (std::isfinite(s.turn_radius))
+    std::printf(", turning about %.2f m to the %s", std::abs(s.turn_radius), s.turn_radius > 0 ? "left" : "right");
+  if (s.slip_angle != 0.0) std::printf(", wheels sliding at %.2f deg", o.slip_angle_deg);
+  std::printf("\n");
   return kSuccess;
 }
 
@@ -79,6 +95,9 @@ const FlyingScenario kFlyingScenarios[] = {
      "Flying ExoMars BB2, rear bogie turning 0.06 rad/s for 10 s, 3 cm/s forward (seed 000 section 6.4)"},
     {"bump-crossing",
      "Flying ExoMars BB2: bogie motion of the left wheels crossing an 8 cm bump, all wheels steering (RoverLab)"},
+    {"flat-turn",
+     "Flying ExoMars BB2 on flat ground turning about a centre 2 m to its left at 3 cm/s, wheels steered along their "
+     "travel; --slip-angle makes them slide (RoverLab, issue 33)"},
 };
 
 }  // namespace
@@ -110,6 +129,15 @@ Commands make_scenario_commands() {
           cmd.add_option("--seed", o.seed, "Noise seed")->capture_default_str();
           cmd.add_option("--rate", o.rate, "Sample rate, Hz")->capture_default_str();
           cmd.add_option("--rover", o.rover, "Rover NAME or FILE")->capture_default_str();
+          cmd.add_option("--turn-radius", o.turn_radius,
+                         "Steering manoeuvre: the body turns about a centre M metres to its left (negative: right, "
+                         "|M| >= 1), every wheel steered along its travel (Ackermann); default the scenario's: "
+                         "straight, flat-turn 2 m");
+          cmd.add_option("--slip-angle", o.slip_angle_deg,
+                         "Hidden lateral effect: every wheel slides at DEG to its heading (seed 000's side-slip angle, "
+                         "positive: velocity left of the wheel plane; within +-45); straight, a crab across a side "
+                         "slope")
+              ->capture_default_str();
           cmd.add_option("--output,-o", o.output, "OUT.h5")->required();
         },
         run_scenario_flying_rover, defaults));

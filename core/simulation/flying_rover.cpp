@@ -1,7 +1,9 @@
 #include "core/simulation/flying_rover.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "core/common/error.h"
 
@@ -24,8 +26,15 @@ std::pair<double, double> bump(double t, double t0, double T, double h) {
 
 }  // namespace
 
+void check_steering_manoeuvre(const FlyingRoverScenario& s) {
+  if (std::isnan(s.turn_radius) || !(std::abs(s.turn_radius) >= 1.0))
+    throw DataError("turn radius " + std::to_string(s.turn_radius) + " m: |R| must be at least 1 m (or infinite)");
+  if (!(std::abs(s.slip_angle) <= M_PI / 4))
+    throw DataError("slip angle " + std::to_string(s.slip_angle * 180 / M_PI) + " deg: must be within +-45 deg");
+}
+
 std::vector<std::string> flying_rover_scenarios() {
-  return {"fl-bogie-rotation", "rear-bogie-rotation", "bump-crossing"};
+  return {"fl-bogie-rotation", "rear-bogie-rotation", "bump-crossing", "flat-turn"};
 }
 
 FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinematics::RoverModel& m) {
@@ -73,8 +82,18 @@ FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinemat
         qd[static_cast<std::size_t>(steer[static_cast<std::size_t>(k)])] = sign[k] * amp * w * std::cos(w * t);
       }
     };
+  } else if (name == "flat-turn") {
+    // No joint moves of its own: the steering manoeuvre alone (a 2 m left
+    // turn unless the caller sets turn_radius; slip_angle 0 unless set).
+    s.duration = 30.0;
+    s.turn_radius = 2.0;
+    s.joints = [nq](double, std::vector<double>& q, std::vector<double>& qd) {
+      q.assign(nq, 0.0);
+      qd.assign(nq, 0.0);
+    };
   } else {
-    throw DataError("unknown scenario '" + name + "' (fl-bogie-rotation, rear-bogie-rotation, bump-crossing)");
+    throw DataError("unknown scenario '" + name +
+                    "' (fl-bogie-rotation, rear-bogie-rotation, bump-crossing, flat-turn)");
   }
   return s;
 }
@@ -113,7 +132,9 @@ class FlyingRoverSimulator {
         joints_(2 * nq_, std::vector<double>(n_)),
         wheel_rate_(nw_, std::vector<double>(n_)),
         body_(6, std::vector<double>(n_, 0.0)),
-        truth_(3 * nw_, std::vector<double>(n_)) {}
+        truth_(3 * nw_, std::vector<double>(n_)) {
+    plan_manoeuvre();
+  }
 
   log::Log run() {
     for (std::size_t i = 0; i < n_; ++i) sample(i);
@@ -122,6 +143,7 @@ class FlyingRoverSimulator {
 
  private:
   double noisy(double value, double variance) { return sc_.noise ? value + std::sqrt(variance) * unit_(rng_) : value; }
+  void plan_manoeuvre();
   void sample(std::size_t i);
   log::Log streams() const;
 
@@ -131,26 +153,68 @@ class FlyingRoverSimulator {
   std::mt19937 rng_;
   std::normal_distribution<double> unit_{0.0, 1.0};
   std::vector<double> t_, q_, qd_;
+  double yaw_rate_ = 0;                           // rad/s, the turn's
+  std::vector<double> steer_offset_, roll_rate_;  // per joint (rad), per wheel (rad/s)
   std::vector<std::vector<double>> imu_, joints_, wheel_rate_, body_, truth_;
 };
 
-// Sample i: a level body at constant speed, so the IMU reads gravity only;
-// every wheel turns at speed / radius (section 6.3).
+// The steering manoeuvre (FlyingRoverScenario::turn_radius, slip_angle):
+// each steering joint's offset that points its wheel's drive frame at the
+// wheel's travel direction less the slip angle (Newton on the heading, the
+// drive frame may sit off the steering axis), and the rate that rolls each
+// wheel without slip. Straight without a slip angle: speed / radius (section 6.3).
+void FlyingRoverSimulator::plan_manoeuvre() {
+  yaw_rate_ = std::isfinite(sc_.turn_radius) ? sc_.speed / sc_.turn_radius : 0.0;
+  steer_offset_.assign(nq_, 0.0);
+  roll_rate_.assign(nw_, sc_.speed / m_.wheel_radius);
+  if (yaw_rate_ == 0.0 && sc_.slip_angle == 0.0) return;
+  std::vector<double> q0, qd0;
+  sc_.joints(0.0, q0, qd0);
+  const Eigen::Vector3d v(sc_.speed, 0.0, 0.0), omega(0.0, 0.0, yaw_rate_);
+  const auto heading_and_travel = [&](int w, std::vector<double> q) {
+    for (std::size_t j = 0; j < nq_; ++j) q[j] += steer_offset_[j];
+    const auto p = kinematics::wheel_pose<double>(m_, w, q.data(), 0.0, 0.0, kinematics::WheelFrame::drive);
+    const Eigen::Vector3d travel = v + omega.cross(p.r);
+    return std::pair{std::atan2(p.R(1, 0), p.R(0, 0)), std::atan2(travel.y(), travel.x())};
+  };
+  for (std::size_t w = 0; w < nw_; ++w) {
+    const int wheel = static_cast<int>(w), s = m_.wheels[w].steer_joint;
+    for (int iteration = 0; s >= 0 && iteration < 4; ++iteration) {
+      const auto [heading, travel] = heading_and_travel(wheel, q0);
+      std::vector<double> nudged = q0;
+      nudged[static_cast<std::size_t>(s)] += 1e-6;
+      const double slope = (heading_and_travel(wheel, nudged).first - heading) / 1e-6;
+      // Seed 000 section 5.2: beta = atan(v . y_c / v . x_c), the travel's angle left of the heading.
+      steer_offset_[static_cast<std::size_t>(s)] += std::remainder(travel - sc_.slip_angle - heading, 2 * M_PI) / slope;
+    }
+    std::vector<double> q = q0;
+    for (std::size_t j = 0; j < nq_; ++j) q[j] += steer_offset_[j];
+    const Eigen::Vector3d vd = kinematics::wheel_velocity<double>(m_, wheel, q.data(), qd0.data(), v, omega, 0.0, 0.0,
+                                                                  kinematics::WheelFrame::drive);
+    roll_rate_[w] = kinematics::wheel_angles(vd).speed_in_plane / m_.wheel_radius;  // Eq. 5.3, s = 0
+  }
+}
+
+// Sample i: a level body at constant speed in body axes, so the IMU reads
+// gravity and, in a turn, the yaw rate and the centripetal force.
 void FlyingRoverSimulator::sample(std::size_t i) {
-  const Eigen::Vector3d v(sc_.speed, 0.0, 0.0), omega = Eigen::Vector3d::Zero();
-  const double rate = sc_.speed / m_.wheel_radius;
+  const Eigen::Vector3d v(sc_.speed, 0.0, 0.0), omega(0.0, 0.0, yaw_rate_);
   t_[i] = static_cast<double>(i) / sc_.rate;
   sc_.joints(t_[i], q_, qd_);
+  for (std::size_t j = 0; j < nq_; ++j) q_[j] += steer_offset_[j];
+  const Eigen::Vector3d specific_force = omega.cross(v) + Eigen::Vector3d(0.0, 0.0, sc_.gravity);
   for (int k = 0; k < 3; ++k) {
-    imu_[static_cast<std::size_t>(k)][i] = noisy(0.0, m_.noise.gyro[k]);
-    imu_[static_cast<std::size_t>(3 + k)][i] = noisy(k == 2 ? sc_.gravity : 0.0, m_.noise.accelerometer[k]);
+    imu_[static_cast<std::size_t>(k)][i] = noisy(omega[k], m_.noise.gyro[k]);
+    imu_[static_cast<std::size_t>(3 + k)][i] = noisy(specific_force[k], m_.noise.accelerometer[k]);
   }
   for (std::size_t j = 0; j < nq_; ++j) {
     joints_[j][i] = noisy(q_[j], joint_variance(m_, j, false));
     joints_[nq_ + j][i] = noisy(qd_[j], joint_variance(m_, j, true));
   }
   body_[0][i] = sc_.speed;
+  body_[5][i] = std::remainder(yaw_rate_ * t_[i], 2 * M_PI);
   for (std::size_t w = 0; w < nw_; ++w) {
+    const double rate = roll_rate_[w];
     wheel_rate_[w][i] = noisy(rate, m_.noise.wheel_rate.empty() ? 1e-12 : m_.noise.wheel_rate[w]);
     const Eigen::Vector3d vd = kinematics::wheel_velocity<double>(m_, static_cast<int>(w), q_.data(), qd_.data(), v,
                                                                   omega, 0.0, 0.0, kinematics::WheelFrame::drive);
@@ -169,6 +233,8 @@ log::Log FlyingRoverSimulator::streams() const {
   out.metadata.extra["truth/generator"] = "flying-rover";
   out.metadata.extra["truth/scenario"] = sc_.name;
   out.metadata.extra["truth/seed"] = std::to_string(sc_.seed);
+  if (std::isfinite(sc_.turn_radius)) out.metadata.extra["truth/turn_radius_m"] = std::to_string(sc_.turn_radius);
+  if (sc_.slip_angle != 0.0) out.metadata.extra["truth/slip_angle_deg"] = std::to_string(sc_.slip_angle * 180.0 / M_PI);
   {
     log::Stream s("imu", t_);
     const char* names[6] = {"angular_rate_x",   "angular_rate_y",   "angular_rate_z",
@@ -207,6 +273,7 @@ log::Log FlyingRoverSimulator::streams() const {
 
 log::Log simulate_flying_rover(const kinematics::RoverModel& m, const FlyingRoverScenario& sc) {
   if (!sc.joints) throw DataError("scenario without joint motion");
+  check_steering_manoeuvre(sc);
   return FlyingRoverSimulator(m, sc).run();
 }
 

@@ -5,6 +5,7 @@
 // from the kinematics, plus a third scenario of RoverLab's: the bogie and
 // steering motion of the left wheels crossing a bump while all wheels steer.
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -24,6 +25,18 @@ struct FlyingRoverScenario {
   std::function<void(double t, std::vector<double>& q, std::vector<double>& qdot)> joints;
   unsigned seed = 1;
   bool noise = true;
+  // A steering manoeuvre (issue 33, RoverLab's, not in the seed): the body
+  // turns about a centre turn_radius to its left (negative: right; infinite:
+  // straight) at yaw rate speed / turn_radius, and every steering joint is
+  // turned, on top of the scenario's own steering, to its wheel's travel
+  // direction in that turn less slip_angle: a wheel the scenario does not
+  // move otherwise slides at slip_angle (seed 000 section 5.2's beta,
+  // positive when the velocity points left of the wheel plane). Straight
+  // with a slip angle is a crab across a side slope: the wheels point
+  // uphill and slide down at slip_angle. Each wheel turns at the rate that
+  // rolls it without slip there (at the joints' angles at t = 0).
+  double turn_radius = INFINITY;  // m, |R| >= 1 (the centre outside the wheels)
+  double slip_angle = 0.0;        // rad, |beta| <= 45 deg
 };
 
 // fl-bogie-rotation (section 6.3): the front-left bogie turns at 0.06 rad/s
@@ -33,8 +46,11 @@ struct FlyingRoverScenario {
 FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinematics::RoverModel& rover);
 std::vector<std::string> flying_rover_scenarios();
 
+// Checks turn_radius and slip_angle; throws DataError naming the bad one.
+void check_steering_manoeuvre(const FlyingRoverScenario& scenario);
+
 // Streams: imu (angular_rate_*, specific_force_*, body axes of the rover
-// description), joints (each joint's angle and <joint>_rate), wheels
+// description; a turn adds its yaw rate and centripetal force), joints (each joint's angle and <joint>_rate), wheels
 // (rate_<wheel>), truth/body (velocity_*, roll, pitch, yaw) and truth/wheels
 // (slip_, contact_angle_, side_slip_<wheel>).
 log::Log simulate_flying_rover(const kinematics::RoverModel& rover, const FlyingRoverScenario& scenario);
