@@ -96,7 +96,7 @@ const FlyingScenario kFlyingScenarios[] = {
     {"bump-crossing",
      "Flying ExoMars BB2: bogie motion of the left wheels crossing an 8 cm bump, all wheels steering (RoverLab)"},
     {"flat-turn",
-     "Flying ExoMars BB2 on flat ground turning about a centre 2 m to its left at 3 cm/s, wheels steered along their "
+     "Flying ExoMars BB2 on flat ground turning about a centre 1 m to its left at 3 cm/s, wheels steered along their "
      "travel; --slip-angle makes them slide (RoverLab, issue 33)"},
 };
 
@@ -132,7 +132,7 @@ Commands make_scenario_commands() {
           cmd.add_option("--turn-radius", o.turn_radius,
                          "Steering manoeuvre: the body turns about a centre M metres to its left (negative: right, "
                          "|M| >= 1), every wheel steered along its travel (Ackermann); default the scenario's: "
-                         "straight, flat-turn 2 m");
+                         "straight, flat-turn 1 m");
           cmd.add_option("--slip-angle", o.slip_angle_deg,
                          "Hidden lateral effect: every wheel slides at DEG to its heading (seed 000's side-slip angle, "
                          "positive: velocity left of the wheel plane; within +-45); straight, a crab across a side "

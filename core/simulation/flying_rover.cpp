@@ -83,10 +83,10 @@ FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinemat
       }
     };
   } else if (name == "flat-turn") {
-    // No joint moves of its own: the steering manoeuvre alone (a 2 m left
+    // No joint moves of its own: the steering manoeuvre alone (a 1 m left
     // turn unless the caller sets turn_radius; slip_angle 0 unless set).
     s.duration = 30.0;
-    s.turn_radius = 2.0;
+    s.turn_radius = 1.0;
     s.joints = [nq](double, std::vector<double>& q, std::vector<double>& qd) {
       q.assign(nq, 0.0);
       qd.assign(nq, 0.0);
