@@ -46,6 +46,7 @@ struct FlyingRoverOptions {
   unsigned seed = 1;
   double rate = 1000.0;
   double slip_angle_deg = 0.0;
+  double slip_angle_from = 0.0;       // s
   std::optional<double> turn_radius;  // m; none: straight
   std::string output;
 };
@@ -65,12 +66,17 @@ int run_scenario_flying_rover(const FlyingRoverOptions& o) {
   if (!(o.rate >= 10.0 && o.rate <= 10000.0)) throw UsageError("--rate must be 10..10000 Hz");
   s.rate = o.rate;
   s.slip_angle = o.slip_angle_deg * M_PI / 180.0;
+  s.slip_angle_from = o.slip_angle_from;
   if (o.turn_radius) s.turn_radius = *o.turn_radius;
   try {
     simulation::check_steering_manoeuvre(s);
   } catch (const DataError& e) {
     const bool radius = o.turn_radius && !(std::abs(*o.turn_radius) >= 1.0);
-    throw UsageError(std::string(radius ? "--turn-radius: " : "--slip-angle: ") + e.what());
+    const bool from = !(o.slip_angle_from >= 0 && o.slip_angle_from < s.duration);
+    throw UsageError(std::string(radius ? "--turn-radius: "
+                                 : from ? "--slip-angle-from: "
+                                        : "--slip-angle: ") +
+                     e.what());
   }
   const log::Log lg = simulation::simulate_flying_rover(rover, s);
   io::write_hdf5_log(lg, o.output);
@@ -79,6 +85,7 @@ int run_scenario_flying_rover(const FlyingRoverOptions& o) {
   if (std::isfinite(s.turn_radius))
     std::printf(", turning about %.2f m to the %s", std::abs(s.turn_radius), s.turn_radius > 0 ? "left" : "right");
   if (s.slip_angle != 0.0) std::printf(", wheels sliding at %.2f deg", o.slip_angle_deg);
+  if (s.slip_angle != 0.0 && s.slip_angle_from > 0) std::printf(" from %.1f s", s.slip_angle_from);
   std::printf("\n");
   return kSuccess;
 }
@@ -137,6 +144,9 @@ Commands make_scenario_commands() {
                          "Hidden lateral effect: every wheel slides at DEG to its heading (seed 000's side-slip angle, "
                          "positive: velocity left of the wheel plane; within +-45); straight, a crab across a side "
                          "slope")
+              ->capture_default_str();
+          cmd.add_option("--slip-angle-from", o.slip_angle_from,
+                         "The slip angle ramps in over 1 s from S seconds (0: there from the start)")
               ->capture_default_str();
           cmd.add_option("--output,-o", o.output, "OUT.h5")->required();
         },

@@ -31,6 +31,9 @@ void check_steering_manoeuvre(const FlyingRoverScenario& s) {
     throw DataError("turn radius " + std::to_string(s.turn_radius) + " m: |R| must be at least 1 m (or infinite)");
   if (!(std::abs(s.slip_angle) <= M_PI / 4))
     throw DataError("slip angle " + std::to_string(s.slip_angle * 180 / M_PI) + " deg: must be within +-45 deg");
+  if (!(s.slip_angle_from >= 0 && s.slip_angle_from < s.duration))
+    throw DataError("slip angle from " + std::to_string(s.slip_angle_from) + " s: must be within the run (0 to " +
+                    std::to_string(s.duration) + " s)");
 }
 
 std::vector<std::string> flying_rover_scenarios() {
@@ -153,20 +156,24 @@ class FlyingRoverSimulator {
   std::mt19937 rng_;
   std::normal_distribution<double> unit_{0.0, 1.0};
   std::vector<double> t_, q_, qd_;
-  double yaw_rate_ = 0;                           // rad/s, the turn's
-  std::vector<double> steer_offset_, roll_rate_;  // per joint (rad), per wheel (rad/s)
+  double yaw_rate_ = 0;  // rad/s, the turn's
+  // Per joint: the turn's steering offset (rad) and d heading / d angle;
+  // per wheel: its speed along its plane without a slip angle (m/s).
+  std::vector<double> steer_offset_, steer_slope_, roll_speed_;
   std::vector<std::vector<double>> imu_, joints_, wheel_rate_, body_, truth_;
 };
 
-// The steering manoeuvre (FlyingRoverScenario::turn_radius, slip_angle):
-// each steering joint's offset that points its wheel's drive frame at the
-// wheel's travel direction less the slip angle (Newton on the heading, the
-// drive frame may sit off the steering axis), and the rate that rolls each
-// wheel without slip. Straight without a slip angle: speed / radius (section 6.3).
+// The steering manoeuvre (FlyingRoverScenario::turn_radius): each steering
+// joint's offset that points its wheel's drive frame along the wheel's
+// travel in the turn (Newton on the heading, the drive frame may sit off the
+// steering axis), the heading's slope in the joint angle (the slip angle's
+// share, slip_angle_at) and each wheel's speed along its plane. Straight:
+// no offset and the body's speed (section 6.3).
 void FlyingRoverSimulator::plan_manoeuvre() {
   yaw_rate_ = std::isfinite(sc_.turn_radius) ? sc_.speed / sc_.turn_radius : 0.0;
   steer_offset_.assign(nq_, 0.0);
-  roll_rate_.assign(nw_, sc_.speed / m_.wheel_radius);
+  steer_slope_.assign(nq_, 1.0);
+  roll_speed_.assign(nw_, sc_.speed);
   if (yaw_rate_ == 0.0 && sc_.slip_angle == 0.0) return;
   std::vector<double> q0, qd0;
   sc_.joints(0.0, q0, qd0);
@@ -184,15 +191,25 @@ void FlyingRoverSimulator::plan_manoeuvre() {
       std::vector<double> nudged = q0;
       nudged[static_cast<std::size_t>(s)] += 1e-6;
       const double slope = (heading_and_travel(wheel, nudged).first - heading) / 1e-6;
-      // Seed 000 section 5.2: beta = atan(v . y_c / v . x_c), the travel's angle left of the heading.
-      steer_offset_[static_cast<std::size_t>(s)] += std::remainder(travel - sc_.slip_angle - heading, 2 * M_PI) / slope;
+      steer_slope_[static_cast<std::size_t>(s)] = slope;
+      steer_offset_[static_cast<std::size_t>(s)] += std::remainder(travel - heading, 2 * M_PI) / slope;
     }
     std::vector<double> q = q0;
     for (std::size_t j = 0; j < nq_; ++j) q[j] += steer_offset_[j];
     const Eigen::Vector3d vd = kinematics::wheel_velocity<double>(m_, wheel, q.data(), qd0.data(), v, omega, 0.0, 0.0,
                                                                   kinematics::WheelFrame::drive);
-    roll_rate_[w] = kinematics::wheel_angles(vd).speed_in_plane / m_.wheel_radius;  // Eq. 5.3, s = 0
+    roll_speed_[w] = kinematics::wheel_angles(vd).speed_in_plane;
   }
+}
+
+// The slip angle at t and its rate: from the start, or ramped in over
+// FlyingRoverScenario::kSlipAngleRamp seconds from slip_angle_from.
+std::pair<double, double> slip_angle_at(const FlyingRoverScenario& sc, double t) {
+  if (!(sc.slip_angle_from > 0)) return {sc.slip_angle, 0.0};
+  const double u = (t - sc.slip_angle_from) / FlyingRoverScenario::kSlipAngleRamp;
+  if (u <= 0) return {0.0, 0.0};
+  if (u >= 1) return {sc.slip_angle, 0.0};
+  return {sc.slip_angle * u, sc.slip_angle / FlyingRoverScenario::kSlipAngleRamp};
 }
 
 // Sample i: a level body at constant speed in body axes, so the IMU reads
@@ -201,7 +218,16 @@ void FlyingRoverSimulator::sample(std::size_t i) {
   const Eigen::Vector3d v(sc_.speed, 0.0, 0.0), omega(0.0, 0.0, yaw_rate_);
   t_[i] = static_cast<double>(i) / sc_.rate;
   sc_.joints(t_[i], q_, qd_);
+  // Seed 000 section 5.2: beta = atan(v . y_c / v . x_c), the travel's angle
+  // left of the heading, so the heading turns by -beta from the travel.
+  const auto [beta, beta_rate] = slip_angle_at(sc_, t_[i]);
   for (std::size_t j = 0; j < nq_; ++j) q_[j] += steer_offset_[j];
+  for (const auto& wheel : m_.wheels) {
+    if (wheel.steer_joint < 0 || (beta_rate == 0.0 && beta == 0.0)) continue;
+    const auto s = static_cast<std::size_t>(wheel.steer_joint);
+    q_[s] -= beta / steer_slope_[s];
+    qd_[s] -= beta_rate / steer_slope_[s];
+  }
   const Eigen::Vector3d specific_force = omega.cross(v) + Eigen::Vector3d(0.0, 0.0, sc_.gravity);
   for (int k = 0; k < 3; ++k) {
     imu_[static_cast<std::size_t>(k)][i] = noisy(omega[k], m_.noise.gyro[k]);
@@ -214,7 +240,7 @@ void FlyingRoverSimulator::sample(std::size_t i) {
   body_[0][i] = sc_.speed;
   body_[5][i] = std::remainder(yaw_rate_ * t_[i], 2 * M_PI);
   for (std::size_t w = 0; w < nw_; ++w) {
-    const double rate = roll_rate_[w];
+    const double rate = roll_speed_[w] * std::cos(beta) / m_.wheel_radius;  // rolls without slip (Eq. 5.3, s = 0)
     wheel_rate_[w][i] = noisy(rate, m_.noise.wheel_rate.empty() ? 1e-12 : m_.noise.wheel_rate[w]);
     const Eigen::Vector3d vd = kinematics::wheel_velocity<double>(m_, static_cast<int>(w), q_.data(), qd_.data(), v,
                                                                   omega, 0.0, 0.0, kinematics::WheelFrame::drive);
@@ -235,6 +261,8 @@ log::Log FlyingRoverSimulator::streams() const {
   out.metadata.extra["truth/seed"] = std::to_string(sc_.seed);
   if (std::isfinite(sc_.turn_radius)) out.metadata.extra["truth/turn_radius_m"] = std::to_string(sc_.turn_radius);
   if (sc_.slip_angle != 0.0) out.metadata.extra["truth/slip_angle_deg"] = std::to_string(sc_.slip_angle * 180.0 / M_PI);
+  if (sc_.slip_angle != 0.0 && sc_.slip_angle_from > 0)
+    out.metadata.extra["truth/slip_angle_from_s"] = std::to_string(sc_.slip_angle_from);
   {
     log::Stream s("imu", t_);
     const char* names[6] = {"angular_rate_x",   "angular_rate_y",   "angular_rate_z",

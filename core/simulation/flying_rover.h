@@ -37,6 +37,10 @@ struct FlyingRoverScenario {
   // rolls it without slip there (at the joints' angles at t = 0).
   double turn_radius = INFINITY;  // m, |R| >= 1 (the centre outside the wheels)
   double slip_angle = 0.0;        // rad, |beta| <= 45 deg
+  // 0: the slip angle from the start; else it ramps in linearly over
+  // kSlipAngleRamp from this time (the steering joints turn, their rates measured).
+  double slip_angle_from = 0.0;                  // s
+  static constexpr double kSlipAngleRamp = 1.0;  // s
 };
 
 // fl-bogie-rotation (section 6.3): the front-left bogie turns at 0.06 rad/s
@@ -46,7 +50,7 @@ struct FlyingRoverScenario {
 FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinematics::RoverModel& rover);
 std::vector<std::string> flying_rover_scenarios();
 
-// Checks turn_radius and slip_angle; throws DataError naming the bad one.
+// Checks turn_radius, slip_angle and slip_angle_from; throws DataError naming the bad one.
 void check_steering_manoeuvre(const FlyingRoverScenario& scenario);
 
 // Streams: imu (angular_rate_*, specific_force_*, body axes of the rover

@@ -3,6 +3,7 @@
 // truth the scenario writes, and model selection finding the effect.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -83,6 +84,35 @@ TEST(SlipAngleScenario, TruthSideSlipIsTheInjectedSlipAngleByPlanarKinematics) {
     EXPECT_NEAR(lg.stream("truth/body").channel("yaw").values[i],
                 std::remainder(r * lg.stream("truth/body").time()[i], 2 * M_PI), 1e-12);
   }
+}
+
+TEST(SlipAngleScenario, ARampedSlipAngleTurnsTheSteeringAtItsMeasuredRateAndTheTruthFollows) {
+  auto s = manoeuvre("flat-turn", 1.0, -8.0);
+  s.slip_angle_from = 10.0;
+  s.noise = false;
+  s.rate = 100.0;
+  const log::Log lg = simulation::simulate_flying_rover(bb2(), s);
+  const auto& truth = lg.stream("truth/wheels");
+  const auto& joints = lg.stream("joints");
+  const auto& t = truth.time();
+  const double beta = -8.0 * M_PI / 180.0;
+  for (std::size_t i = 1; i + 1 < t.size(); ++i) {
+    const double share = std::clamp((t[i] - 10.0) / simulation::FlyingRoverScenario::kSlipAngleRamp, 0.0, 1.0);
+    for (int w = 0; w < 6; ++w) {
+      const std::string n = kWheels[w];
+      ASSERT_NEAR(truth.channel("side_slip_" + n).values[i], share * beta, 1e-9) << n << " t " << t[i];
+      ASSERT_NEAR(truth.channel("slip_" + n).values[i], 0.0, 1e-9) << n << " t " << t[i];
+    }
+    // The steering rate the log reports is the angle's derivative (central difference off the ramp's corners).
+    if (std::abs(t[i] - 10.0) > 0.015 && std::abs(t[i] - 11.0) > 0.015) {
+      const auto& a = joints.channel("steer_FL").values;
+      EXPECT_NEAR(joints.channel("steer_FL_rate").values[i], (a[i + 1] - a[i - 1]) / (t[i + 1] - t[i - 1]), 1e-9)
+          << t[i];
+    }
+  }
+  auto bad = s;
+  bad.slip_angle_from = 30.0;  // the run's end
+  EXPECT_THROW(simulation::simulate_flying_rover(bb2(), bad), DataError);
 }
 
 TEST(SlipAngleScenario, WithoutTheManoeuvreTheScenariosAreUnchangedAndBadValuesAreRefused) {
