@@ -6,6 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/common/error.h"
 #include "core/terramechanics/traction_surface.h"
@@ -705,6 +708,16 @@ TEST(CliContactAngle, BadInputAndUsage) {
   EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rover wvu_pathfinder -o " + quote(dir.file("x.h5"))).exit_code,
             3);
   EXPECT_EQ(run_roverlab("scenario fl-bogie-rotation --rate 0 -o " + quote(dir.file("x.h5"))).exit_code, 2);
+  // The steering manoeuvre's options (issue 33): one line naming the option, no file.
+  for (const auto& [options, named] :
+       std::vector<std::pair<std::string, std::string>>{{"--turn-radius 0.5", "--turn-radius"},
+                                                        {"--slip-angle 60", "--slip-angle"},
+                                                        {"--slip-angle 5 --slip-angle-from 40", "--slip-angle-from"}}) {
+    const CommandResult r = run_roverlab("scenario flat-turn " + options + " -o " + quote(dir.file("x.h5")));
+    EXPECT_EQ(r.exit_code, 2) << options;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(named + ":"), std::string::npos) << r.err;
+  }
   EXPECT_EQ(files_in(dir.path()), 0u);
 }
 
