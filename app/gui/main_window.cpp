@@ -655,10 +655,7 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   const bool was = tab.available;
   const std::string title = tab.dock->windowTitle().toStdString();
   // A plot pane the user added plots what is dropped on it, nothing before.
-  const std::string missing =
-      tab.added && in.channels.empty()
-          ? "nothing plotted yet. Drag channels (or a whole stream) from the Streams tree onto this pane."
-          : tab.view->needs(in);
+  const std::string missing = tab.added && in.channels.empty() ? empty_plot_note(tab) : tab.view->needs(in);
   tab.available = missing.empty();
   // A view the log cannot feed says why, in words, where its picture would be.
   tab.why->setText(q("Nothing to show in " + title + ": " + missing));

@@ -158,6 +158,8 @@ class MainWindow : public QMainWindow {
   void follow_window(std::size_t k, double t0, double t1);
   // The channels the scene of plot pane `tab` plots: those picked, else its defaults.
   void plot_input(const ViewTab& tab, views::SceneInput& in) const;
+  // Why a plot pane the user added plots nothing (none dropped yet, or the log lacks the layout's).
+  static std::string empty_plot_note(const ViewTab& tab);
   QWidget* build_surface_page(QVTKOpenGLNativeWidget* widget);
   void build_timeline();
   void build_status_bar();

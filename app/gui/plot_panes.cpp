@@ -89,8 +89,10 @@ void MainWindow::spread_plot_panes() {
   if (row.isEmpty()) return;
   int rest = width();
   if (auto* streams = findChild<QDockWidget*>("streams"); streams != nullptr && !streams->isHidden()) {
-    resizeDocks({streams}, {std::min(330, width() / 4)}, Qt::Horizontal);  // the streams keep their column
-    rest -= streams->width();
+    // The streams keep their column; the right area (the views and the plots) the rest.
+    const int column = std::min(330, width() / 4);
+    rest -= column;
+    resizeDocks({streams, group != nullptr ? group : row.front()}, {column, rest}, Qt::Horizontal);
   }
   // (One call per area: Qt shares a list that spans the areas unevenly.)
   QList<int> widths;
@@ -149,6 +151,14 @@ void MainWindow::plot_input(const ViewTab& tab, views::SceneInput& in) const {
   if (slip != nullptr && slip->find_channel("reference_slip") != nullptr) {
     in.channels = {{"estimate/ins/slip", "slip_ratio"}, {"estimate/ins/slip", "reference_slip"}};
   }
+}
+
+std::string MainWindow::empty_plot_note(const ViewTab& tab) {
+  std::string lacks;
+  for (const auto& [stream, channel] : tab.wanted) lacks += (lacks.empty() ? "" : ", ") + stream + ":" + channel;
+  const std::string drag = "Drag channels (or a whole stream) from the Streams tree onto this pane.";
+  if (lacks.empty()) return "nothing plotted yet. " + drag;
+  return "this log lacks the layout's channels for it (" + lacks + "). " + drag;
 }
 
 void MainWindow::add_plot_channel(const QString& stream, const QString& channel) {

@@ -701,6 +701,13 @@ TEST(Gui, AVersionOneLayoutStillPlotsItsChannels) {
   ASSERT_TRUE(wait_idle(w, 120000));
   EXPECT_TRUE(plots(w.chart("Plots"), "imu", "angular_rate_z"));
   EXPECT_EQ(w.chart("Plots")->channels().size(), 1u);
+  // A layout whose added pane asks for channels this log lacks: the pane names them.
+  write_text(dir.file("lacks.json"), R"({"format": "roverlab-layout", "version": 2, "plot_panes": [
+    {"name": "pane/timeseries", "channels": []},
+    {"name": "pane/timeseries/2", "title": "Joints", "channels": [{"stream": "joints", "channel": "bogie"}]}]})");
+  w.apply_layout(QString::fromStdString(dir.file("lacks.json")));
+  EXPECT_TRUE(w.pane_note("Joints").contains("lacks the layout's channels for it (joints:bogie)"))
+      << w.pane_note("Joints").toStdString();
   // A plot pane name that is not one: refused in one line naming the file.
   write_text(dir.file("bad.json"),
              R"({"format": "roverlab-layout", "version": 2, "plot_panes": [{"name": "../../x", "channels": []}]})");
