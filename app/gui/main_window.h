@@ -207,6 +207,7 @@ class MainWindow : public QMainWindow {
   QTimer* player_ = nullptr;
   QTimer* render_timer_ = nullptr;
   bool estimator_pending_ = false;
+  bool spread_pending_ = false;                 // new plot panes to share the row once Qt has laid them out
   std::map<std::string, std::string> choices_;  // analysis name -> its option chosen in the Analysis menu
   double time_ = 0, t0_ = 0, t1_ = 1;
   qint64 last_tick_ms_ = 0;

@@ -41,10 +41,10 @@ QDockWidget* MainWindow::new_plot_pane(const QString& name, const QString& title
       pane = QString("%1/%2").arg(kPlotsName).arg(n);
   }
   const QString shown = title.isEmpty() ? "Plots " + pane.section('/', -1) : title;
-  // Beside the last plot pane in view (right of it), else beside the panes.
+  // Beside the last plot pane docked and shown (right of it), else beside the panes.
   QDockWidget* beside = nullptr;
   for (const auto& tab : view_tabs_) {
-    if (tab.view->uses_channels() && !tab.dock->isHidden()) beside = tab.dock;
+    if (tab.view->uses_channels() && !tab.dock->isHidden() && !tab.dock->isFloating()) beside = tab.dock;
   }
   ViewTab& tab = add_pane(*plots, pane, shown);
   tab.added = true;
@@ -58,7 +58,12 @@ QDockWidget* MainWindow::new_plot_pane(const QString& name, const QString& title
   }
   if (beside != nullptr) splitDockWidget(beside, dock, Qt::Horizontal);
   spread_plot_panes();
-  QTimer::singleShot(0, this, &MainWindow::spread_plot_panes);  // again once Qt has laid the new dock out
+  // Again once Qt has laid the new dock out, unless a layout's own arrangement came since.
+  spread_pending_ = true;
+  QTimer::singleShot(0, this, [this] {
+    if (spread_pending_) spread_plot_panes();
+    spread_pending_ = false;
+  });
   if (view_menu_ != nullptr) view_menu_->insertAction(analysis_dock_->toggleViewAction(), dock->toggleViewAction());
   plot_target_ = view_tabs_.size() - 1;
   if (input_ && !input_->is_wheel_test()) {
@@ -237,8 +242,11 @@ void MainWindow::apply_layout(const QString& path) {
   for (const auto& p : layout.plot_panes) {
     if (plot_tab_named(p.name) == nullptr) new_plot_pane(q(p.name), q(p.title));
   }
-  if (!layout.window_state.isEmpty() && !restoreState(layout.window_state)) {
-    throw InputError(path.toStdString(), "the layout's window state cannot be read");
+  if (!layout.window_state.isEmpty()) {
+    if (!restoreState(layout.window_state)) {
+      throw InputError(path.toStdString(), "the layout's window state cannot be read");
+    }
+    spread_pending_ = false;  // the panes as the layout has them
   }
   for (auto& tab : view_tabs_) {
     if (!tab.view->uses_channels()) continue;

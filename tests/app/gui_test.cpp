@@ -586,6 +586,7 @@ TEST(Gui, PlotPanesSideBySideEachTakeTheirOwnDropsAndALayoutRecreatesThem) {
   const std::string first = skid_steer_log(dir, "first.h5", 2), second = skid_steer_log(dir, "second.h5", 5);
   const std::string layout = dir.file("two-plots.json");
   QSettings().clear();
+  int narrow = 0;
   {
     gui::MainWindow w;
     w.set_quiet(true);
@@ -645,6 +646,12 @@ TEST(Gui, PlotPanesSideBySideEachTakeTheirOwnDropsAndALayoutRecreatesThem) {
     EXPECT_EQ(w.width(), width);
     EXPECT_LE(w.frameGeometry().width(), QGuiApplication::primaryScreen()->availableGeometry().width());
     EXPECT_TRUE(w.pane_note("Plots 4").contains("Drag channels"));
+    // The user narrows Plots 2: the layout keeps it narrow.
+    wait_until([] { return false; }, 300);
+    w.resizeDocks({w.pane("Plots"), w.pane("Plots 2"), w.pane("Plots 3"), w.pane("Plots 4")}, {450, 120, 250, 250},
+                  Qt::Horizontal);
+    ASSERT_TRUE(wait_until([&] { return w.pane("Plots 2")->width() < 200; }, 3000)) << w.pane("Plots 2")->width();
+    narrow = w.pane("Plots 2")->width();
     w.save_layout(QString::fromStdString(layout));
     w.close();
   }
@@ -665,6 +672,8 @@ TEST(Gui, PlotPanesSideBySideEachTakeTheirOwnDropsAndALayoutRecreatesThem) {
   ASSERT_TRUE(wait_idle(w, 120000));
   ASSERT_TRUE(wait_until([&] { return in_view(w.pane("Plots")) && in_view(w.pane("Plots 2")); }, 5000));
   EXPECT_LE(in_window(w, w.pane("Plots")).right(), in_window(w, w.pane("Plots 2")).left());
+  wait_until([] { return false; }, 300);  // (a new pane's row is shared out a turn later: not over the layout's)
+  EXPECT_NEAR(w.pane("Plots 2")->width(), narrow, 20) << "as narrow as the layout has it";
   ASSERT_NE(w.chart("Plots 2"), nullptr);
   EXPECT_EQ(w.chart("Plots 2")->channels().size(), 1u);
   EXPECT_TRUE(plots(w.chart("Plots 2"), "imu", "angular_rate_z"));
