@@ -235,7 +235,12 @@ void TimeSeriesChart::detach(vtkRenderWindow* window) {
   if (view_->GetRenderWindow() == window) window->RemoveRenderer(view_->GetRenderer());
 }
 
-void TimeSeriesChart::fit_width(int pixels) { set_window(start_, end_, static_cast<std::size_t>(std::max(pixels, 1))); }
+void TimeSeriesChart::fit_width(int pixels) { set_window(t0_, t1_, static_cast<std::size_t>(std::max(pixels, 1))); }
+
+void TimeSeriesChart::zoom_to_fit() {
+  user_values_.assign(groups_.size(), false);
+  set_window(start_, end_, columns_);
+}
 
 vtkChartXY* TimeSeriesChart::chart(std::size_t i) const {
   auto* matrix = vtkChartMatrix::SafeDownCast(view_->GetScene()->GetItem(0));
@@ -257,6 +262,7 @@ void TimeSeriesChart::set_window(double t0, double t1, std::size_t columns) {
 
 void TimeSeriesChart::rebuild() {
   bands_.clear();
+  user_values_.assign(groups_.size(), false);
   labels_.assign(channels_.size(), std::string());
   tables_.assign(channels_.size(), nullptr);
   plots_.assign(channels_.size(), nullptr);
@@ -302,12 +308,23 @@ void TimeSeriesChart::rebuild() {
   refresh();
 }
 
-// Each plot's time axis tells the others when it moves (vtkChart::UpdateRange).
+// Each plot's time axis tells the others when it moves (vtkChart::UpdateRange);
+// its value axis tells the chart that the user has set it.
 void TimeSeriesChart::link_time_axes() {
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     vtkAxis* axis = chart(g)->GetAxis(vtkAxis::BOTTOM);
     axis->RemoveObservers(vtkChart::UpdateRange);
     axis->AddObserver(vtkChart::UpdateRange, this, &TimeSeriesChart::time_axis_moved);
+    vtkAxis* values = chart(g)->GetAxis(vtkAxis::LEFT);
+    values->RemoveObservers(vtkChart::UpdateRange);
+    values->AddObserver(vtkChart::UpdateRange, this, &TimeSeriesChart::value_axis_moved);
+  }
+}
+
+void TimeSeriesChart::value_axis_moved(vtkObject* caller, unsigned long /*event*/, void* /*data*/) {
+  if (linking_) return;
+  for (std::size_t g = 0; g < groups_.size() && g < user_values_.size(); ++g) {
+    if (chart(g)->GetAxis(vtkAxis::LEFT) == caller) user_values_[g] = true;
   }
 }
 
@@ -321,6 +338,7 @@ void TimeSeriesChart::time_axis_moved(vtkObject* caller, unsigned long /*event*/
   t1_ = axis->GetMaximum();
   refresh();
   linking_ = false;
+  if (user_window_) user_window_(t0_, t1_);
 }
 
 void TimeSeriesChart::refresh() {
@@ -356,13 +374,18 @@ void TimeSeriesChart::refresh() {
     for (auto& band : bands_) {
       if (std::find(groups_[g].begin(), groups_[g].end(), band.channel) != groups_[g].end()) refresh_band(band, lo, hi);
     }
-    const double pad = 0.05 * (hi - lo);
-    ranges_.emplace_back(lo - pad, hi + pad);
-    chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
-    chart->GetAxis(vtkAxis::LEFT)->SetRange(lo - pad, hi + pad);
-    chart->GetAxis(vtkAxis::BOTTOM)->SetBehavior(vtkAxis::FIXED);
     const bool was_linking = linking_;
     linking_ = true;  // setting the window is not the user zooming
+    vtkAxis* values = chart->GetAxis(vtkAxis::LEFT);
+    values->SetBehavior(vtkAxis::FIXED);
+    if (g < user_values_.size() && user_values_[g]) {  // the user's value range stays
+      ranges_.emplace_back(values->GetMinimum(), values->GetMaximum());
+    } else {
+      const double pad = 0.05 * (hi - lo);
+      ranges_.emplace_back(lo - pad, hi + pad);
+      values->SetRange(lo - pad, hi + pad);
+    }
+    chart->GetAxis(vtkAxis::BOTTOM)->SetBehavior(vtkAxis::FIXED);
     chart->GetAxis(vtkAxis::BOTTOM)->SetRange(t0_, t1_);
     linking_ = was_linking;
   }

@@ -4,6 +4,7 @@
 // (min/max per pixel column, never from the model), with a cursor line at
 // the timeline's time in every plot.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,7 @@ class TimeSeriesChart : public Scene {
   // Draws the context view in `window` (with the window's interactor, if any).
   void attach(vtkRenderWindow* window) override;
   void detach(vtkRenderWindow* window) override;
-  // The whole time range, decimated to `pixels` columns.
+  // The window shown (the whole time range at first), decimated to `pixels` columns.
   void fit_width(int pixels) override;
   // Plot i from the top (one per unit).
   vtkChartXY* chart(std::size_t i = 0) const;
@@ -74,8 +75,18 @@ class TimeSeriesChart : public Scene {
   std::vector<Reading> readout() const;
   double cursor_time() const { return cursor_t_; }
   // Zoom is linked: a plot's time axis zoomed or panned (mouse wheel, drag)
-  // sets every plot's time axis to the same window.
+  // sets every plot's time axis to the same window, and only the time axis:
+  // a plot's value axis fits the data in the window until the user zooms or
+  // pans that plot, then stays where the user put it.
   std::pair<double, double> window() const { return {t0_, t1_}; }
+  // The time window shown, keeping the decimation's columns (another chart's zoom, followed).
+  void show_window(double t0, double t1) { set_window(t0, t1, columns_); }
+  // Called with the window when the user zooms or pans a time axis (not when set_window is).
+  void on_user_window(std::function<void(double, double)> listener) { user_window_ = std::move(listener); }
+  // True when the user has zoomed or panned plot g's value axis (it no longer fits the data).
+  bool value_axis_set_by_user(std::size_t g) const { return g < user_values_.size() && user_values_[g]; }
+  // The whole time range, every value axis fitted to its data again.
+  void zoom_to_fit();
   // Channels drawn with a +-1 sigma band (those whose stream holds their sigma).
   std::size_t band_count() const;
   // Points drawn for each channel in the current window (after decimation).
@@ -93,8 +104,11 @@ class TimeSeriesChart : public Scene {
   void refresh_band(Band& band, double& lo, double& hi);
   void link_time_axes();
   void time_axis_moved(vtkObject* axis, unsigned long event, void* data);
+  void value_axis_moved(vtkObject* axis, unsigned long event, void* data);
   std::vector<std::string> labels_;  // per channel, without the value at the cursor
-  bool linking_ = false;
+  bool linking_ = false;             // the chart sets the axes itself: not the user
+  std::vector<bool> user_values_;    // per plot: the user set its value axis
+  std::function<void(double, double)> user_window_;
   std::vector<Band> bands_;
   const log::Log* log_;
   std::vector<ChannelRef> channels_;

@@ -67,15 +67,15 @@ int run_gui(const GuiOptions& o) {
   QApplication::setOrganizationName("RoverLab");
   QApplication::setApplicationName("RoverLab");
   gui::MainWindow window;
-  if (o.tab && !window.tab_names().contains(QString::fromStdString(*o.tab))) {
-    throw UsageError("--tab " + *o.tab + ": expected one of " + window.tab_names().join(", ").toStdString());
-  }
-  if (o.layout) window.apply_layout(QString::fromStdString(*o.layout));
-  int code = kSuccess;
   if (o.screenshot) {
     window.set_quiet(true);
     window.resize(o.width, o.height);
   }
+  if (o.layout) window.apply_layout(QString::fromStdString(*o.layout));  // it may add plot panes
+  if (o.tab && !window.tab_names().contains(QString::fromStdString(*o.tab))) {
+    throw UsageError("--tab " + *o.tab + ": expected one of " + window.tab_names().join(", ").toStdString());
+  }
+  int code = kSuccess;
   window.show();
   if (o.file) {
     window.open_file(QString::fromStdString(*o.file),

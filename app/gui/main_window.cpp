@@ -223,7 +223,7 @@ void MainWindow::build_streams_dock() {
   connect(tree_, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item, int) {
     if (item->parent() == nullptr) return;
     add_plot_channel(item->parent()->text(0), item->text(0));
-    if (const ViewTab* plots = tab_where(&views::View::uses_channels)) show_pane(plots->page);
+    if (plot_target_ < view_tabs_.size()) show_pane(view_tabs_[plot_target_].page);
   });
   auto* dock = new QDockWidget("Streams (double-click a channel, or drag it onto the plots)");
   dock->setObjectName("streams");
@@ -234,46 +234,59 @@ void MainWindow::build_streams_dock() {
 // One pane per registered view, in registry order, tabbed together.
 void MainWindow::build_view_tabs() {
   for (const auto& view : views::all_views()) {
-    ViewTab tab;
-    tab.view = view.get();
-    tab.widget = new QVTKOpenGLNativeWidget;
-    if (view->trackball_camera()) {
-      tab.widget->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New());
-    } else if (view->top_down_camera()) {  // pan and zoom, never turned: north stays up
-      tab.widget->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleRubberBand2D>::New());
-    }
-    tab.why = new QLabel("Nothing to show yet: open a log (File > Open, or drop a file here).");
-    tab.why->setWordWrap(true);
-    tab.why->setAlignment(Qt::AlignCenter);
-    tab.why->setMargin(24);
-    tab.page = new QStackedWidget;
-    tab.page->addWidget(view->uses_surface_data() ? build_surface_page(tab.widget) : tab.widget);
-    tab.page->addWidget(tab.why);
-    tab.page->setCurrentIndex(view->uses_surface_data() ? 0 : 1);
-    if (view->uses_channels()) {  // a drop target for channels dragged from the streams tree
-      for (QWidget* target : {static_cast<QWidget*>(tab.widget), static_cast<QWidget*>(tab.page)}) {
-        target->setAcceptDrops(true);
-        target->installEventFilter(this);
-      }
-    }
-    tab.dock = new QDockWidget(q(view->title()));
-    tab.dock->setObjectName(q("pane/" + view->name()));
-    tab.dock->setWidget(tab.page);
-    addDockWidget(Qt::RightDockWidgetArea, tab.dock);
-    if (!view_tabs_.empty()) tabifyDockWidget(view_tabs_.front().dock, tab.dock);
-    connect(tab.dock, &QDockWidget::visibilityChanged, this, [this, k = view_tabs_.size()] {
-      view_tabs_[k].stale = true;
-      render_views();
-    });
-    view_tabs_.push_back(std::move(tab));
+    ViewTab& tab = add_pane(*view, q("pane/" + view->name()), q(view->title()));
+    if (view_tabs_.size() > 1) tabifyDockWidget(view_tabs_.front().dock, tab.dock);
+    if (view->uses_channels() && plot_target_ == 0) plot_target_ = view_tabs_.size() - 1;
   }
+}
+
+MainWindow::ViewTab& MainWindow::add_pane(const views::View& view, const QString& name, const QString& title) {
+  ViewTab tab;
+  tab.view = &view;
+  tab.widget = new QVTKOpenGLNativeWidget;
+  if (view.trackball_camera()) {
+    tab.widget->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New());
+  } else if (view.top_down_camera()) {  // pan and zoom, never turned: north stays up
+    tab.widget->interactor()->SetInteractorStyle(vtkSmartPointer<vtkInteractorStyleRubberBand2D>::New());
+  }
+  tab.why = new QLabel("Nothing to show yet: open a log (File > Open, or drop a file here).");
+  tab.why->setWordWrap(true);
+  tab.why->setAlignment(Qt::AlignCenter);
+  tab.why->setMargin(24);
+  tab.page = new QStackedWidget;
+  tab.page->addWidget(view.uses_surface_data() ? build_surface_page(tab.widget) : tab.widget);
+  tab.page->addWidget(tab.why);
+  tab.page->setCurrentIndex(view.uses_surface_data() ? 0 : 1);
+  if (view.uses_channels()) {  // a drop target for channels dragged from the streams tree
+    for (QWidget* target :
+         {static_cast<QWidget*>(tab.widget), static_cast<QWidget*>(tab.page), static_cast<QWidget*>(tab.why)}) {
+      target->setAcceptDrops(true);
+      target->installEventFilter(this);
+    }
+  }
+  tab.dock = new QDockWidget(title);
+  tab.dock->setObjectName(name);
+  tab.dock->setWidget(tab.page);
+  addDockWidget(Qt::RightDockWidgetArea, tab.dock);
+  connect(tab.dock, &QDockWidget::visibilityChanged, this, [this, k = view_tabs_.size()] {
+    view_tabs_[k].stale = true;
+    render_views();
+  });
+  view_tabs_.push_back(std::move(tab));
+  return view_tabs_.back();
 }
 
 // View > Save layout, Load layout: the panes' arrangement and the plotted channels, to reuse on another log.
 void MainWindow::build_layout_menu() {
   QMenu* menu = menuBar()->addMenu("&View");
+  view_menu_ = menu;
   for (const auto& tab : view_tabs_) menu->addAction(tab.dock->toggleViewAction());
   menu->addAction(analysis_dock_->toggleViewAction());
+  menu->addSeparator();
+  QAction* add_plots = menu->addAction("&New plot pane");
+  add_plots->setShortcut(QKeySequence("Ctrl+Shift+P"));
+  connect(add_plots, &QAction::triggered, this, [this] { new_plot_pane(); });
+  connect(menu->addAction("&Fit plots to their data"), &QAction::triggered, this, &MainWindow::fit_plots);
   menu->addSeparator();
   connect(menu->addAction("&Save layout..."), &QAction::triggered, this, [this] {
     const QString path = QFileDialog::getSaveFileName(this, "Save the layout", {}, "RoverLab layouts (*.json)");
@@ -315,66 +328,6 @@ QString MainWindow::pane_note(const QString& title) const {
     if (tab.dock->windowTitle() == title) return tab.page->currentWidget() == tab.why ? tab.why->text() : QString();
   }
   return {};
-}
-
-void MainWindow::save_layout(const QString& path) const {
-  nlohmann::json plots = nlohmann::json::array();
-  for (const auto& [stream, channel] : plot_channels_) plots.push_back({{"stream", stream}, {"channel", channel}});
-  if (plot_channels_.empty() && chart() != nullptr) {
-    for (const auto& c : chart()->channels()) plots.push_back({{"stream", c.stream}, {"channel", c.channel}});
-  }
-  nlohmann::json front = nlohmann::json::array();  // the panes in front of their tab groups
-  for (const QString& title : tab_names()) {
-    if (pane(title)->isVisible() && !pane(title)->visibleRegion().isEmpty()) front.push_back(title.toStdString());
-  }
-  const nlohmann::json doc = {{"format", "roverlab-layout"},
-                              {"version", 1},
-                              {"panes_in_front", front},
-                              {"plots", plots},
-                              {"window_state", saveState().toBase64().toStdString()}};
-  io::write_text_atomically(path.toStdString(), doc.dump(2) + "\n");
-}
-
-void MainWindow::apply_layout(const QString& path) {
-  QFile file(path);
-  if (!file.open(QIODevice::ReadOnly)) throw InputError(path.toStdString(), "cannot read the layout");
-  const nlohmann::json doc = nlohmann::json::parse(file.readAll().toStdString(), nullptr, false);
-  if (!doc.is_object() || doc.value("format", "") != "roverlab-layout" || !doc.contains("window_state") ||
-      !doc.at("window_state").is_string()) {
-    throw InputError(path.toStdString(), "not a RoverLab layout (a JSON file of format roverlab-layout)");
-  }
-  if (!restoreState(QByteArray::fromBase64(QByteArray::fromStdString(doc.at("window_state").get<std::string>())))) {
-    throw InputError(path.toStdString(), "the layout's window state cannot be read");
-  }
-  layout_channels_.clear();
-  for (const auto& p : doc.value("plots", nlohmann::json::array())) {
-    if (p.is_object() && p.value("stream", "").size() > 0 && p.value("channel", "").size() > 0) {
-      layout_channels_.emplace_back(p.at("stream").get<std::string>(), p.at("channel").get<std::string>());
-    }
-  }
-  for (const auto& title : doc.value("panes_in_front", nlohmann::json::array())) {
-    if (title.is_string()) select_tab(q(title.get<std::string>()));
-  }
-  if (input_ && !input_->is_wheel_test()) {
-    plot_channels_ = layout_channels_in_log();
-    rebuild_views();
-    set_time(time_);
-  }
-}
-
-std::vector<std::pair<std::string, std::string>> MainWindow::layout_channels_in_log() {
-  std::vector<std::pair<std::string, std::string>> found;
-  QStringList missing;
-  for (const auto& [stream, channel] : layout_channels_) {
-    const log::Stream* s = input_->log.find_stream(stream);
-    if (s != nullptr && s->find_channel(channel) != nullptr) {
-      found.emplace_back(stream, channel);
-    } else {
-      missing << q(stream + ":" + channel);
-    }
-  }
-  if (!missing.isEmpty()) status_->setText("The layout's channels this log lacks: " + missing.join(", "));
-  return found;
 }
 
 // The traction surface's page: its soil and quantity above the view.
@@ -625,16 +578,15 @@ void MainWindow::install(std::unique_ptr<ViewInput> in) {
     tab.scene->detach(tab.widget->renderWindow());
     tab.scene.reset();
   }
-  plot_channels_.clear();
   input_ = std::move(in);
-  if (!input_->is_wheel_test()) plot_channels_ = layout_channels_in_log();
+  const QString missing = plot_layout_channels();
   rebuild_tree();
   rebuild_views();
   rebuild_analysis();
   rebuild_surface();
   QString notes;
   for (const auto& n : input_->notes) notes += q(n) + "; ";
-  status_->setText(QString("%1 loaded. %2").arg(q(input_->file), notes));
+  status_->setText(QString("%1 loaded. %2%3").arg(q(input_->file), missing, notes));
   if (const ViewTab* surface = tab_where(&views::View::uses_surface_data); surface && input_->is_wheel_test()) {
     show_pane(surface->page);
   }
@@ -655,20 +607,6 @@ void MainWindow::rebuild_tree() {
         tree_, {q(s.name()), "", QString::number(s.size()), QString::number(s.mean_rate_hz(), 'f', 1)});
     for (const auto& c : s.channels()) new QTreeWidgetItem(item, {q(c.name), q(c.unit), "", ""});
   }
-}
-
-void MainWindow::add_plot_channel(const QString& stream, const QString& channel) {
-  if (!input_) return;
-  const log::Stream* s = input_->log.find_stream(stream.toStdString());
-  if (s == nullptr || s->find_channel(channel.toStdString()) == nullptr) return;
-  const std::pair<std::string, std::string> ref{stream.toStdString(), channel.toStdString()};
-  if (plot_channels_.empty() && chart() != nullptr) {  // the first pick adds to what is shown
-    for (const auto& c : chart()->channels()) plot_channels_.emplace_back(c.stream, c.channel);
-  }
-  if (std::find(plot_channels_.begin(), plot_channels_.end(), ref) != plot_channels_.end()) return;
-  plot_channels_.push_back(ref);
-  rebuild_views();
-  set_time(time_);
 }
 
 QWidget* MainWindow::rebuild_views() {
@@ -712,20 +650,15 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   in.log = &lg;
   in.rover = app::rover_geometry(lg);
   in.articulated = app::rover_kinematics(lg);
-  if (tab.view->uses_channels()) {
-    // The chosen channels, or the slip when estimated, or the view's defaults.
-    for (const auto& [s, c] : plot_channels_) in.channels.push_back({s, c});
-    const log::Stream* slip = lg.find_stream("estimate/ins/slip");
-    if (in.channels.empty() && slip != nullptr && slip->find_channel("reference_slip") != nullptr) {
-      in.channels = {{"estimate/ins/slip", "slip_ratio"}, {"estimate/ins/slip", "reference_slip"}};
-    }
-  }
+  if (tab.view->uses_channels()) plot_input(tab, in);
   vtkRenderWindow* window = tab.widget->renderWindow();
   const bool was = tab.available;
-  const std::string missing = tab.view->needs(in);
+  const std::string title = tab.dock->windowTitle().toStdString();
+  // A plot pane the user added plots what is dropped on it, nothing before.
+  const std::string missing = tab.added && in.channels.empty() ? empty_plot_note(tab) : tab.view->needs(in);
   tab.available = missing.empty();
   // A view the log cannot feed says why, in words, where its picture would be.
-  tab.why->setText(q("Nothing to show in " + tab.view->title() + ": " + missing));
+  tab.why->setText(q("Nothing to show in " + title + ": " + missing));
   if (!tab.view->uses_surface_data()) tab.page->setCurrentIndex(tab.available ? 0 : 1);
   if (!tab.available) {
     if (tab.scene && !tab.view->resets_scene()) {
@@ -738,6 +671,11 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
     if (tab.scene) tab.scene->detach(window);
     tab.scene = tab.view->build(in);
     tab.scene->attach(window);
+  }
+  if (auto* plots = dynamic_cast<views::TimeSeriesChart*>(tab.scene.get())) {  // zoom linked across plot panes
+    plots->on_user_window([this, k = static_cast<std::size_t>(&tab - view_tabs_.data())](double t0, double t1) {
+      follow_window(k, t0, t1);
+    });
   }
   tab.scene->fit_width(std::max(400, tab.widget->width()));
   return !was;
@@ -970,23 +908,6 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   settings.setValue("window/geometry", saveGeometry());
   settings.setValue("window/state", saveState());
   event->accept();
-}
-
-// Channels dropped on the plot pane are plotted there.
-bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
-  const bool drag = event->type() == QEvent::DragEnter || event->type() == QEvent::DragMove;
-  if (!drag && event->type() != QEvent::Drop) return QMainWindow::eventFilter(watched, event);
-  auto* drop = static_cast<QDropEvent*>(event);
-  if (!drop->mimeData()->hasFormat(kChannelsMime)) return QMainWindow::eventFilter(watched, event);
-  drop->acceptProposedAction();
-  if (drag) return true;
-  const QStringList lines = QString::fromUtf8(drop->mimeData()->data(kChannelsMime)).split('\n', Qt::SkipEmptyParts);
-  for (const QString& line : lines) {
-    const QStringList parts = line.split('\t');
-    if (parts.size() == 2) add_plot_channel(parts[0], parts[1]);
-  }
-  if (const ViewTab* plots = tab_where(&views::View::uses_channels)) show_pane(plots->page);
-  return true;
 }
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {

@@ -35,6 +35,7 @@ namespace roverlab::views {
 class ContactAngleScene;
 class RoverScene;
 class Scene;
+struct SceneInput;
 class TimeSeriesChart;
 class View;
 }  // namespace roverlab::views
@@ -88,7 +89,17 @@ class MainWindow : public QMainWindow {
   // and the logs opened after (those a log lacks are named in the status
   // bar). Throws InputError naming the file when it is not a layout.
   void apply_layout(const QString& path);
+  // Plots stream:channel in the plot pane that last took channels (at first: Plots).
   void add_plot_channel(const QString& stream, const QString& channel);
+  // A new plot pane ("Plots 2", ...) beside the last one, empty until channels are dropped on it
+  // (View > New plot pane); `name` and `title` as a layout gives them. Returns its dock.
+  QDockWidget* new_plot_pane(const QString& name = {}, const QString& title = {});
+  // The plot panes' titles, Plots first.
+  QStringList plot_pane_titles() const;
+  // The chart of the plot pane titled `title` (nullptr when it has none).
+  views::TimeSeriesChart* chart(const QString& title) const;
+  // Every plot pane: the whole time range, every value axis fitted to its data (View > Fit plots).
+  void fit_plots();
   // What the streams tree drags: "stream<TAB>channel" lines; the plot pane takes a drop of it.
   static constexpr const char* kChannelsMime = "application/x-roverlab-channels";
 
@@ -116,6 +127,10 @@ class MainWindow : public QMainWindow {
     bool available = false;                   // the log feeds the view
     int fitted_width = 0, fitted_height = 0;  // the widget's size the scene was last laid out for
     bool stale = true;                        // its picture is older than the timeline's time
+    // Plot panes: the channels picked, those the last layout applied asks for,
+    // and whether the user added the pane (then it plots nothing by default).
+    std::vector<std::pair<std::string, std::string>> channels, wanted;
+    bool added = false;
     ViewTab();
     ViewTab(ViewTab&&) noexcept;
     ~ViewTab();
@@ -128,11 +143,23 @@ class MainWindow : public QMainWindow {
   void build_menus();
   void build_streams_dock();
   void build_view_tabs();
+  // A pane for `view` (its dock named `name`, titled `title`), added to view_tabs_.
+  ViewTab& add_pane(const views::View& view, const QString& name, const QString& title);
   void build_layout_menu();
   // Brings the pane holding `page` to the front.
   void show_pane(QWidget* page);
-  // The layout's channels that the log has; the others named in the status bar.
-  std::vector<std::pair<std::string, std::string>> layout_channels_in_log();
+  // Each plot pane plots the layout's channels that the log has; returns a
+  // sentence naming the others (empty when none).
+  QString plot_layout_channels();
+  ViewTab* plot_tab_named(const std::string& name);
+  void spread_plot_panes();
+  void add_plot_channels(ViewTab& tab, const std::vector<std::pair<std::string, std::string>>& channels);
+  // The other plot panes show the time window the user chose in pane k.
+  void follow_window(std::size_t k, double t0, double t1);
+  // The channels the scene of plot pane `tab` plots: those picked, else its defaults.
+  void plot_input(const ViewTab& tab, views::SceneInput& in) const;
+  // Why a plot pane the user added plots nothing (none dropped yet, or the log lacks the layout's).
+  static std::string empty_plot_note(const ViewTab& tab);
   QWidget* build_surface_page(QVTKOpenGLNativeWidget* widget);
   void build_timeline();
   void build_status_bar();
@@ -159,9 +186,9 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<JobRunner> jobs_;
   std::unique_ptr<ViewInput> input_;
   std::vector<ViewTab> view_tabs_;
-  std::vector<std::pair<std::string, std::string>> plot_channels_;
-  std::vector<std::pair<std::string, std::string>> layout_channels_;  // from the last layout applied
+  std::size_t plot_target_ = 0;  // the plot pane a double-clicked channel goes to (view_tabs_ index)
   QDockWidget* analysis_dock_ = nullptr;
+  QMenu* view_menu_ = nullptr;
   QTreeWidget* tree_ = nullptr;
   QComboBox* surface_soil_ = nullptr;
   QComboBox* surface_quantity_ = nullptr;
@@ -180,6 +207,7 @@ class MainWindow : public QMainWindow {
   QTimer* player_ = nullptr;
   QTimer* render_timer_ = nullptr;
   bool estimator_pending_ = false;
+  bool spread_pending_ = false;                 // new plot panes to share the row once Qt has laid them out
   std::map<std::string, std::string> choices_;  // analysis name -> its option chosen in the Analysis menu
   double time_ = 0, t0_ = 0, t1_ = 1;
   qint64 last_tick_ms_ = 0;

@@ -210,3 +210,82 @@ TEST(TimeSeriesChart, TheCursorReadsEveryCurveAndZoomIsLinkedAcrossPlots) {
   EXPECT_DOUBLE_EQ(chart.window().first, lo);
   EXPECT_DOUBLE_EQ(chart.window().second, hi);
 }
+
+namespace {
+
+// The mouse wheel over the middle of plot `c` (delta > 0 zooms in), as vtkChartXY takes it.
+void wheel_over(vtkChartXY* c, int delta) {
+  vtkContextMouseEvent wheel;
+  const float x = 0.5f * (c->GetPoint1()[0] + c->GetPoint2()[0]), y = 0.5f * (c->GetPoint1()[1] + c->GetPoint2()[1]);
+  wheel.SetScreenPos(vtkVector2i(static_cast<int>(x), static_cast<int>(y)));
+  wheel.SetPos(vtkVector2f(x, y));
+  ASSERT_TRUE(c->MouseWheelEvent(wheel, delta));
+}
+
+std::pair<double, double> value_range(vtkChartXY* c) {
+  return {c->GetAxis(vtkAxis::LEFT)->GetMinimum(), c->GetAxis(vtkAxis::LEFT)->GetMaximum()};
+}
+
+}  // namespace
+
+// Issue 32: linked zoom shares the time axis only. The user's own value zoom
+// on one plot stays when another plot's zoom moves the time window (it was
+// fitted to the data again); a plot the user has not zoomed fits the data in
+// the window; zoom_to_fit gives the whole range and fitted values back.
+TEST(TimeSeriesChart, LinkedZoomSharesTheTimeAxisOnlyAndKeepsTheUsersValueZoom) {
+  log::Log lg;
+  const std::vector<double> t = times(10.0, 0.01);
+  std::vector<double> ramp(t.size()), square(t.size());
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    ramp[k] = 2.0 * t[k];
+    square[k] = t[k] * t[k];
+  }
+  log::Stream s("s", t);
+  s.add_channel("distance", "m", ramp);
+  s.add_channel("area", "m^2", square);
+  lg.add_stream(std::move(s));
+  views::TimeSeriesChart chart(lg, {{"s", "distance"}, {"s", "area"}});
+  (void)render_scene(chart, 480, 360, 2.0);
+  vtkChartXY *upper = chart.chart(0), *lower = chart.chart(1);
+  EXPECT_FALSE(chart.value_axis_set_by_user(0));
+  EXPECT_FALSE(chart.value_axis_set_by_user(1));
+  std::vector<std::pair<double, double>> windows;
+  chart.on_user_window([&](double a, double b) { windows.emplace_back(a, b); });
+
+  // The user zooms the lower plot: its time and value axes (vtkChartXY zooms both).
+  wheel_over(lower, 2);
+  ASSERT_TRUE(chart.value_axis_set_by_user(1));
+  EXPECT_FALSE(chart.value_axis_set_by_user(0)) << "the upper plot only follows the time axis";
+  const auto users = value_range(lower);
+  EXPECT_LT(users.second - users.first, 0.7 * 100.0) << "zoomed in on the values (0..100 m^2)";
+  ASSERT_FALSE(windows.empty());
+  EXPECT_DOUBLE_EQ(windows.back().first, chart.window().first);
+  EXPECT_DOUBLE_EQ(windows.back().second, chart.window().second);
+
+  // Then the upper plot is panned in time through its time axis: both plots
+  // show the new window; the lower keeps the user's values, the upper fits
+  // its ramp (2 t) in the window, 5 % padded.
+  vtkAxis* time = upper->GetAxis(vtkAxis::BOTTOM);
+  time->SetRange(6.0, 8.0);
+  EXPECT_DOUBLE_EQ(chart.window().first, 6.0);
+  EXPECT_DOUBLE_EQ(chart.window().second, 8.0);
+  EXPECT_DOUBLE_EQ(lower->GetAxis(vtkAxis::BOTTOM)->GetMinimum(), 6.0);
+  EXPECT_DOUBLE_EQ(value_range(lower).first, users.first);
+  EXPECT_DOUBLE_EQ(value_range(lower).second, users.second);
+  EXPECT_NEAR(value_range(upper).first, 12.0 - 0.2, 0.05);
+  EXPECT_NEAR(value_range(upper).second, 16.0 + 0.2, 0.05);
+  EXPECT_DOUBLE_EQ(windows.back().first, 6.0);
+
+  // Redrawn at another width (a pane resized): the window stays.
+  chart.fit_width(300);
+  EXPECT_DOUBLE_EQ(chart.window().first, 6.0);
+  EXPECT_DOUBLE_EQ(value_range(lower).second, users.second);
+
+  // Zoom to fit: the whole time range, both value axes on their data again.
+  chart.zoom_to_fit();
+  EXPECT_FALSE(chart.value_axis_set_by_user(1));
+  EXPECT_DOUBLE_EQ(chart.window().first, 0.0);
+  EXPECT_DOUBLE_EQ(chart.window().second, 10.0);
+  EXPECT_NEAR(value_range(lower).first, -5.0, 1e-9);  // 0..100, 5 % padded
+  EXPECT_NEAR(value_range(lower).second, 105.0, 1e-9);
+}
