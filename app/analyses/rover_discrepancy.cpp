@@ -246,6 +246,7 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
             {"residuals", {{"fit", r.fit_residuals}, {"test", r.test_residuals}}},
             {"baseline", {{"bic", r.baseline_bic}, {"held_out", r.baseline_held_out}}},
             {"held_out_after", r.final_held_out},
+            {"incomplete", r.incomplete},
             {"simulations", r.simulations},
             {"what_is_wrong", r.what_is_wrong},
             {"verdict", r.verdict},
@@ -272,7 +273,9 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
                   {"slope_vs_load", finite_or_null(c.slope_vs_load)},
                   {"t_load", finite_or_null(c.t_load)},
                   {"held_out_rmse_before", finite_or_null(c.held_out_rmse_before)},
-                  {"held_out_rmse_after", finite_or_null(c.held_out_rmse_after)}});
+                  {"held_out_rmse_after", finite_or_null(c.held_out_rmse_after)},
+                  {"held_out_sigmas_before", finite_or_null(c.held_out_sigmas_before)},
+                  {"held_out_sigmas_after", finite_or_null(c.held_out_sigmas_after)}});
   }
   j["channels"] = ch;
   json checks = json::array();

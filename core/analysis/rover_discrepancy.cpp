@@ -190,6 +190,28 @@ void held_out_rmse(RoverDiscrepancyReport& r, const std::vector<MeasuredChannel>
   }
 }
 
+// Held-out RMS per channel in noise sigmas, as the study's held-out figure
+// counts them (likelihood.h's groups on the test blocks; encoders as
+// increments, whose noise is sqrt(2) sigmas; no autocorrelation removed).
+void held_out_sigmas(RoverDiscrepancyReport& r, Predictor& pr, const std::vector<FitParameter>& chain, bool after) {
+  const GroupedLikelihood& l = pr.likelihood(Part::test);
+  const std::vector<double> res = pr.residuals(effects_of(pr.scenario_effects(), chain), Part::test);
+  const LikelihoodProfile counts = l.profile(res);  // each group's residuals with their lags
+  LikelihoodProfile yardstick;
+  for (const auto& g : l.groups()) yardstick.groups.push_back({0.0, g.integrated ? std::sqrt(2.0) : 1.0, 0});
+  std::vector<double> w(l.effective_count());
+  l.whiten(yardstick, res.data(), w.data());
+  std::size_t j = 0;
+  for (std::size_t c = 0; c < l.groups().size() && c < r.channels.size(); ++c) {
+    const std::size_t n = counts.groups[c].used;
+    double sq = 0;
+    for (std::size_t k = 0; k < n; ++k) sq += w[j + k] * w[j + k];
+    j += n;
+    (after ? r.channels[c].held_out_sigmas_after : r.channels[c].held_out_sigmas_before) =
+        n > 0 ? std::sqrt(sq / static_cast<double>(n)) : NAN;
+  }
+}
+
 // RMS over channels of the normalised residual at each sample (channels on the first channel's time base).
 std::vector<double> residual_series(const std::vector<MeasuredChannel>& ch, const Prediction& p) {
   const std::size_t n = ch[0].values.size();
@@ -241,6 +263,7 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   const std::vector<double> slip = sensor_slip(predictor.channels(), model.geometry.wheel_radius);
   channel_statistics(r, predictor.channels(), p0, slip, base);
   held_out_rmse(r, predictor.channels(), p0, false);
+  held_out_sigmas(r, predictor, {}, false);
   r.checks = redundancy_checks(predictor.channels(), model);
   r.slip_regime = slip_regime(predictor.channels(), model.geometry.wheel_radius);
   r.checks.push_back(slip_check(predictor.channels(), r.slip_regime, p0, model.geometry.wheel_radius));
@@ -255,6 +278,7 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   select_causes(predictor, f, options, r, chain);
   const Prediction p1 = predictor.predict(effects_of(predictor.scenario_effects(), chain));
   held_out_rmse(r, predictor.channels(), p1, true);
+  held_out_sigmas(r, predictor, chain, true);
   for (std::size_t c = 0; c < kChannels && c < r.channels.size(); ++c) {
     r.channels[c].time = predictor.channels()[c].time;
     r.channels[c].predicted_before = p0[c];

@@ -18,6 +18,7 @@
 // one improves BIC by more than 10 and the held-out error falls. The log's
 // truth streams are never read.
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -36,6 +37,10 @@ struct RoverScenarioModel {
   simulation::RockerBogieRun run;  // duration is taken from the log
 };
 
+// A channel whose held-out residual stays above this many noise sigmas after
+// the named causes (about 1 when the model is right) marks the model incomplete.
+constexpr double kIncompleteSigmas = 1.5;
+
 struct RoverStudyOptions {
   double block = 1.0;         // s, length of the alternating fit/test blocks
   double min_delta_bic = 10;  // a cause must lower BIC by more than this
@@ -52,6 +57,9 @@ struct RoverChannelResiduals {
   double slope_vs_position = 0, t_position = 0;  // unit per m of the simulated front-wheel x
   double slope_vs_load = 0, t_load = 0;          // unit per N of the mean measured wheel load
   double held_out_rmse_before = 0, held_out_rmse_after = 0;
+  // The same in noise sigmas as the held-out figure counts them (encoders as
+  // increments, whose noise is sqrt(2) sigmas): about 1 where the model is right.
+  double held_out_sigmas_before = NAN, held_out_sigmas_after = NAN;
   // For plots: the measured time stamps and the simulation's values there,
   // nominal and with the named causes.
   std::vector<double> time, predicted_before, predicted_after;
@@ -108,6 +116,10 @@ struct RoverDiscrepancyReport {
   std::vector<RoverCandidateResult> candidates;  // each alone on the baseline
   std::vector<RoverSelectionStep> selection;     // the named causes, in order
   std::vector<std::string> dropped;              // steps the later causes absorbed (backward check)
+  // The named causes leave a channel more than kIncompleteSigmas noise sigmas
+  // off on the test blocks: the model is incomplete and the named causes'
+  // +-1 sigma (which assume it is complete) are not confidence intervals.
+  bool incomplete = false;
   int simulations = 0;
   std::string what_is_wrong, verdict;
   // For plots: the measured time of the velocimeter and forces streams and the

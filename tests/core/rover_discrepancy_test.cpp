@@ -280,3 +280,49 @@ TEST(RoverDiscrepancy, AStepTheLaterCausesAbsorbIsDropped) {
   const auto& g = fitted(r, "grousers");
   EXPECT_LT(std::abs(g.value - 0.021990117591605084), 3 * g.sigma) << g.value << " +- " << g.sigma;
 }
+
+// Suite seeds 104 and 393 (flat_60s): a force offset beside a force scale.
+// The force scale fitted alone absorbs the offset in the loads (0.9403 for
+// 0.9321), and with the chain held at that value the offset's screen was
+// worse than nothing (+80 in BIC), so it was never fitted: the study named
+// the scale alone, 319 and 857 of its sigmas off. The candidates of a later
+// round are now fitted with the chain free.
+TEST(RoverDiscrepancy, ACauseTheFirstOneAbsorbedIsNamedBesideIt) {
+  const auto m = flat_model(20);
+  const std::vector<std::pair<double, double>> pairs = {{0.3522401910755912, 0.9320776839186383},
+                                                        {-0.7626085832021574, 1.086553728647127}};
+  unsigned seed = 104;
+  for (const auto& [offset, scale] : pairs) {
+    const auto r = analysis::study_rover(measured(m, {{"force-offset", offset}, {"force-scale", scale}}, seed), m);
+    seed = 393;
+    auto c = causes(r);
+    std::sort(c.begin(), c.end());
+    ASSERT_EQ(c, (std::vector<std::string>{"force-offset", "force-scale"})) << r.verdict;
+    for (const auto& [effect, truth] : {std::pair{"force-offset", offset}, std::pair{"force-scale", scale}}) {
+      const auto& p = fitted(r, effect);
+      EXPECT_LT(std::abs(p.value - truth), 3 * p.sigma) << effect << " " << p.value << " +- " << p.sigma;
+    }
+    EXPECT_FALSE(r.incomplete) << r.verdict;
+    for (const auto& ch : r.channels) EXPECT_LT(ch.held_out_sigmas_after, 1.2) << ch.stream << "/" << ch.channel;
+  }
+}
+
+// A study that stops with a channel still many noise sigmas off has an
+// incomplete model, and the named causes' +-1 sigma assume a complete one:
+// the verdict says so (here the second cause is withheld by max_causes = 1).
+TEST(RoverDiscrepancy, AnIncompleteModelSaysItsSigmasAreNotConfidenceIntervals) {
+  const auto m = flat_model(20);
+  analysis::RoverStudyOptions one;
+  one.max_causes = 1;
+  const auto r = analysis::study_rover(
+      measured(m, {{"force-offset", 0.3522401910755912}, {"force-scale", 0.9320776839186383}}, 104), m, one);
+  ASSERT_EQ(causes(r), std::vector<std::string>{"force-scale"}) << r.verdict;
+  const auto& p = fitted(r, "force-scale");
+  EXPECT_GT(std::abs(p.value - 0.9320776839186383), 10 * p.sigma);  // why the sigma cannot be read as one
+  EXPECT_TRUE(r.incomplete);
+  EXPECT_NE(r.verdict.find("The model is incomplete"), std::string::npos) << r.verdict;
+  EXPECT_NE(r.verdict.find("are not confidence intervals"), std::string::npos) << r.verdict;
+  double worst = 0;
+  for (const auto& ch : r.channels) worst = std::max(worst, ch.held_out_sigmas_after);
+  EXPECT_GT(worst, analysis::kIncompleteSigmas);
+}
