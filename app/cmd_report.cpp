@@ -102,7 +102,8 @@ class ReportWriter {
         << esc(fs::path(o_.file).filename().string()) << "</title>\n<style>"
         << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
         << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
-        << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
+        << "th{background:#eef}caption{text-align:left;font-weight:bold;padding:0.3em 0}.result "
+           "th{text-align:center}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
            "0}.notes{color:#555;font-size:90%}.notes li{margin:0.1em 0}"
            // Printed (--pdf, A4): the page's width, no heading alone at a page's foot, no picture cut in two.
            "@page{size:A4;margin:14mm}@media print{body{max-width:none;margin:0;font-size:10pt}"
@@ -146,8 +147,8 @@ class ReportWriter {
     }
     const std::string distance = r.distance_source.empty()
                                      ? std::string("distance unknown (no pose source)")
-                                     : num(r.distance_m, "%.3g") + " m travelled (" + esc(r.distance_method) +
-                                           ", path length of " + esc(r.distance_source) + ")";
+                                     : num(r.distance_m, "%.3g") + " m travelled along the " + esc(r.distance_method) +
+                                           " (stream " + esc(r.distance_source) + ")";
     html() << "<p class=\"run\"><b>The run</b>: rover " << esc(r.rover.empty() ? "unnamed" : r.rover) << "; "
            << num(r.duration_s, "%.3g") << " s; " << distance << "; " << (r.has_gps_fix ? where : esc(where))
            << ".</p>\n";

@@ -154,6 +154,25 @@ std::string parameters_text(const json& parameters) {
   return text;
 }
 
+// "track_factor 4.778 +- 1.4", "5 windows, median_slip 0.0618": each fitted parameter named, for the tables.
+std::string parameters_named(const json& parameters) {
+  std::string text;
+  for (const auto& p : parameters) {
+    const std::string name = p.at("name").get<std::string>();
+    const double value = p.at("value").get<double>();
+    std::string one;
+    if (p.at("sigma").is_number()) {
+      one = name + " " + roverlab::analysis::format_estimate(value, p.at("sigma").get<double>(), "1");
+    } else if (name == "windows") {
+      one = std::to_string(static_cast<int>(value)) + " windows";
+    } else {
+      one = name + " " + ReportSection::number(value, "%.3g");
+    }
+    text += (text.empty() ? "" : ", ") + one;
+  }
+  return text;
+}
+
 void OdometryAnalysis::print(const json& j, std::FILE* out) const {
   const auto num = [&](const json& v) { return v.get<double>(); };
   const json& b = j.at("baseline");
@@ -214,7 +233,7 @@ std::vector<ResultTable> OdometryAnalysis::tables(const json& j) const {
     const bool picked = c.at("name") == j.at("cause");
     std::vector<ResultTable::Cell> row{
         {c.at("name").get<std::string>()},
-        {parameters_text(c.at("parameters"))},
+        {parameters_named(c.at("parameters"))},
         {n(c.at("fit_rmse_m"), "%.2f")},
         {c.at("delta_bic").is_number() ? roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>())
                                        : n(c.at("delta_bic"), "%.1f")},

@@ -224,7 +224,7 @@ void ReportSection::table(const ResultTable& t) {
     html << (bold ? "<tr style=\"font-weight:bold\">" : "<tr>");
     if (!t.row_names.empty()) html << "<th>" << escape(i < t.row_names.size() ? t.row_names[i] : "") << "</th>";
     for (const auto& cell : row) {
-      std::string style = numeric_text(cell.text) ? "" : "text-align:left;";
+      std::string style = numeric_text(cell.text) ? "white-space:nowrap;" : "text-align:left;";
       if (cell.bold && !bold) style += "font-weight:bold;";
       if (cell.shade > 0) {
         char tint[64];

@@ -48,12 +48,12 @@ struct Source {
 };
 
 constexpr Source kSources[] = {{"truth/motion", "east", "north", "simulated truth"},
-                               {"truth/pose", "x", "z", "simulated truth (planar)"},
-                               {"truth/body", "velocity_x", nullptr, "simulated truth (integrated velocity)"},
-                               {"gps", "east", "north", "GPS"},
+                               {"truth/pose", "x", "z", "simulated planar truth"},
+                               {"truth/body", "velocity_x", nullptr, "simulated truth (its velocity integrated)"},
+                               {"gps", "east", "north", "GPS track"},
                                {"estimate/ins/pose", "east", "north", "INS estimate"},
                                {"estimate/odometry/pose", "east", "north", "wheel odometry"},
-                               {"odometry", "x", "y", "wheel odometry (as logged)"}};
+                               {"odometry", "x", "y", "logged wheel odometry"}};
 
 }  // namespace
 

@@ -16,7 +16,7 @@ struct RunOverview {
   double duration_s = 0;
   double distance_m = 0;        // path length along distance_source; NaN when the log has no pose
   std::string distance_source;  // the stream it was measured on ("gps"), empty when none
-  std::string distance_method;  // in words: "simulated truth", "GPS", "INS estimate", "wheel odometry"
+  std::string distance_method;  // in words: "simulated truth", "GPS track", "INS estimate", "wheel odometry"
   bool has_gps_fix = false;     // the start below is a GPS fix
   double start_latitude_deg = 0, start_longitude_deg = 0;
 };

@@ -157,7 +157,8 @@ TEST_F(ReportDocument, TheFirstSectionGivesTheRunOfTheWvuLog) {
   EXPECT_NEAR(run.at("start").at("latitude_deg").get<double>(), gps["latitude"].front() * 180 / M_PI, 1e-9);
   EXPECT_NEAR(run.at("start").at("longitude_deg").get<double>(), gps["longitude"].front() * 180 / M_PI, 1e-9);
   char line[160];
-  std::snprintf(line, sizeof line, "rover wvu_pathfinder; %.3g s; %.3g m travelled (GPS", end - start, distance);
+  std::snprintf(line, sizeof line, "rover wvu_pathfinder; %.3g s; %.3g m travelled along the GPS track (stream gps)",
+                end - start, distance);
   const auto at = r.html.find(line), summary = r.html.find("<h2>Summary</h2>");
   ASSERT_NE(at, std::string::npos) << line;
   EXPECT_GT(at, summary);
@@ -181,7 +182,7 @@ TEST_F(ReportDocument, TheFirstSectionGivesTheRunOfASimulatedLog) {
   EXPECT_EQ(run.at("distance_source"), "truth/pose");
   EXPECT_NEAR(run.at("duration_s").get<double>(), truth["time"].back() - truth["time"].front(), 1e-9);
   EXPECT_EQ(run.at("start"), "local frame");
-  EXPECT_NE(r.html.find("m travelled (simulated truth (planar)"), std::string::npos);
+  EXPECT_NE(r.html.find("m travelled along the simulated planar truth (stream truth/pose)"), std::string::npos);
   EXPECT_NE(r.html.find("local frame (no GPS fix)"), std::string::npos);
 }
 
