@@ -49,7 +49,7 @@ struct Source {
 
 constexpr Source kSources[] = {{"truth/motion", "east", "north", "simulated truth"},
                                {"truth/pose", "x", "z", "simulated planar truth"},
-                               {"truth/body", "velocity_x", nullptr, "simulated truth (its velocity integrated)"},
+                               {"truth/body", "velocity_x", nullptr, "simulated truth's integrated velocity"},
                                {"gps", "east", "north", "GPS track"},
                                {"estimate/ins/pose", "east", "north", "INS estimate"},
                                {"estimate/odometry/pose", "east", "north", "wheel odometry"},
