@@ -78,10 +78,12 @@ class ReportWriter {
     html() << "</body></html>\n";
     const std::vector<std::string> previous = previous_files();
     section_.wrote("metrics.json");
+    section_.wrote("provenance.json");
     section_.wrote("index.html");
     if (o_.pdf) section_.wrote("report.pdf");
     metrics_["files"] = section_.written();
     io::write_text_atomically((dir_ / "metrics.json").string(), metrics_.dump(2) + "\n");
+    io::write_text_atomically((dir_ / "provenance.json").string(), provenance_.dump(2) + "\n");
     io::write_text_atomically((dir_ / "index.html").string(), html().str());
     remove_stale(previous);
   }
@@ -228,10 +230,12 @@ class ReportWriter {
     }
     html() << "</table>\n";
     const json analyses = analysis_provenance();
-    // Not the time: the same log and options give the same metrics.json (campaigns compare them).
-    metrics_["made_with"] = {
+    // Not the time, nor the files' checksums (an HDF5 log written twice differs in its bytes): the same log
+    // and options give the same metrics.json (campaigns compare them). The whole record: provenance.json.
+    metrics_["made_with"] = {{"command", command}, {"version", ROVERLAB_VERSION}, {"program", program_identity()}};
+    provenance_ = {
         {"command", command}, {"command_run", invoked}, {"version", ROVERLAB_VERSION}, {"program", program_identity()},
-        {"inputs", inputs},   {"analyses", analyses}};
+        {"written", when},    {"inputs", inputs},       {"analyses", analyses}};
   }
 
   // The files a previous report in the folder wrote (its metrics.json's "files").
@@ -401,6 +405,7 @@ class ReportWriter {
   ReportSection section_;
   int w_, h_;
   json metrics_;
+  json provenance_;  // how the report was made, with the input files' SHA-256 (provenance.json)
 };
 
 // A report goes into a new or empty folder, or over a previous report; never
