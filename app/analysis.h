@@ -40,6 +40,8 @@ struct AnalysisResult {     // NOLINT(bugprone-exception-escape): std::map's mov
   nlohmann::json document;  // the result
 };
 
+struct ResultTable;
+
 // A part of the HTML report: an HTML fragment and CSV files beside index.html.
 class ReportSection {
  public:
@@ -53,6 +55,11 @@ class ReportSection {
   // printf-formatted number; an en dash for NaN, infinity and JSON null.
   static std::string number(double value, const char* format = "%.3g");
   static std::string number(const nlohmann::json& value, const char* format = "%.3g");
+  // Appends `table` (the very one Analysis::tables() gives the GUI) as an HTML
+  // table: its title as the caption, its headings, row names and cells as
+  // they are; numbers right-aligned, words left; the row a result picks in
+  // bold, a cell's shade as a tint.
+  void table(const ResultTable& table);
 
  private:
   std::filesystem::path folder_;

@@ -4,7 +4,10 @@
 // surfaces — with CSV and JSON beside it.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -17,13 +20,16 @@
 
 #include "app/analysis.h"
 #include "app/command.h"
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/render_view.h"
 #include "app/report_pdf.h"
 #include "app/resources.h"
 #include "app/views_input.h"
+#include "core/analysis/run_overview.h"
 #include "core/common/error.h"
 #include "importers/atomic_file.h"
+#include "importers/mapping.h"
 #include "importers/soil_file.h"
 
 #include "app/view_data.h"
@@ -72,10 +78,12 @@ class ReportWriter {
     html() << "</body></html>\n";
     const std::vector<std::string> previous = previous_files();
     section_.wrote("metrics.json");
+    section_.wrote("provenance.json");
     section_.wrote("index.html");
     if (o_.pdf) section_.wrote("report.pdf");
     metrics_["files"] = section_.written();
     io::write_text_atomically((dir_ / "metrics.json").string(), metrics_.dump(2) + "\n");
+    io::write_text_atomically((dir_ / "provenance.json").string(), provenance_.dump(2) + "\n");
     io::write_text_atomically((dir_ / "index.html").string(), html().str());
     remove_stale(previous);
   }
@@ -96,7 +104,8 @@ class ReportWriter {
         << esc(fs::path(o_.file).filename().string()) << "</title>\n<style>"
         << "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
         << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
-        << "th{background:#eef}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
+        << "th{background:#eef}caption{text-align:left;font-weight:bold;padding:0.3em 0}.result "
+           "th{text-align:center}img{max-width:100%;border:1px solid #ccc}.note{color:#555}li{margin:0.4em "
            "0}.notes{color:#555;font-size:90%}.notes li{margin:0.1em 0}"
            // Printed (--pdf, A4): the page's width, no heading alone at a page's foot, no picture cut in two.
            "@page{size:A4;margin:14mm}@media print{body{max-width:none;margin:0;font-size:10pt}"
@@ -107,7 +116,9 @@ class ReportWriter {
   // The answers first: each analysis's summary (Analysis::summary), then what
   // was not run and why.
   void summary() {
-    html() << "<h2>Summary</h2>\n<ul>\n";
+    html() << "<h2>Summary</h2>\n";
+    run_overview();
+    html() << "<ul>\n";
     json lines = json::array();
     for (const auto& run : in_.analyses) {
       const Analysis* a = run.analysis.get();
@@ -124,28 +135,107 @@ class ReportWriter {
     metrics_["summary"] = lines;
   }
 
-  // How the report was made: the command that makes it again, the program's
-  // version, when, and the input file.
+  // The run in one line: the rover, how long, how far (and along which pose
+  // source), where (the first GPS fix, else the local frame).
+  void run_overview() {
+    const analysis::RunOverview r = analysis::overview_of(in_.log);
+    std::string where = "local frame (no GPS fix)";
+    if (r.has_gps_fix) {
+      char at[96];
+      std::snprintf(at, sizeof at, "%.5f&deg; %s, %.5f&deg; %s", std::abs(r.start_latitude_deg),
+                    r.start_latitude_deg < 0 ? "S" : "N", std::abs(r.start_longitude_deg),
+                    r.start_longitude_deg < 0 ? "W" : "E");
+      where = std::string("starting at ") + at + " (first GPS fix)";
+    }
+    const std::string distance = r.distance_source.empty()
+                                     ? std::string("distance unknown (no pose source)")
+                                     : num(r.distance_m, "%.3g") + " m travelled along the " + esc(r.distance_method) +
+                                           " (stream " + esc(r.distance_source) + ")";
+    html() << "<p class=\"run\"><b>The run</b>: rover " << esc(r.rover.empty() ? "unnamed" : r.rover) << "; "
+           << num(r.duration_s, "%.3g") << " s; " << distance << "; " << (r.has_gps_fix ? where : esc(where))
+           << ".</p>\n";
+    metrics_["run"] = {
+        {"rover", r.rover},
+        {"duration_s", r.duration_s},
+        {"distance_m", finite_or_null(r.distance_m)},
+        {"distance_source", r.distance_source},
+        {"distance_method", r.distance_method},
+        {"start", r.has_gps_fix ? json{{"latitude_deg", r.start_latitude_deg}, {"longitude_deg", r.start_longitude_deg}}
+                                : json("local frame")}};
+  }
+
+  // The files the report was made from, with their SHA-256: the log, and the mapping and soil files named.
+  json input_files() const {
+    std::vector<std::pair<std::string, std::string>> files = {{"log", o_.file}};
+    if (o_.mapping) files.emplace_back("mapping", io::find_mapping(*o_.mapping, resource_subfolders("mappings")));
+    std::error_code ec;
+    if (o_.soil && fs::is_regular_file(*o_.soil, ec)) files.emplace_back("soil", *o_.soil);
+    json out = json::array();
+    for (const auto& [role, path] : files) {
+      const auto bytes = fs::file_size(path, ec);
+      out.push_back({{"role", role},
+                     {"path", path},
+                     {"bytes", ec ? json(nullptr) : json(bytes)},
+                     {"sha256", sha256_of_file(path)}});
+    }
+    return out;
+  }
+
+  // Every analysis's settings and what it ran on (its document's "configuration" and "input").
+  json analysis_provenance() {
+    json out = json::object();
+    html() << "<table><tr><th>analysis</th><th>settings</th><th>measurements (fingerprint)</th></tr>\n";
+    for (const auto& run : in_.analyses) {
+      const json configuration = run.document.value("configuration", json::object());
+      const json input = run.document.value("input", json::object());
+      std::string settings = configuration_text(run.document);  // "settings: a 1, b 2\n"
+      if (settings.rfind("settings: ", 0) == 0) settings.erase(0, 10);
+      while (!settings.empty() && settings.back() == '\n') settings.pop_back();
+      html() << "<tr><td style=\"text-align:left\">" << esc(run.name) << "</td><td style=\"text-align:left\">"
+             << esc(settings.empty() ? "(no options)" : settings) << "</td><td style=\"text-align:left\"><code>"
+             << esc(input.value("fingerprint", std::string())) << "</code></td></tr>\n";
+      out[run.name] = {{"configuration", configuration}, {"input", input}};
+    }
+    html() << "</table>\n";
+    return out;
+  }
+
+  // How the report was made: the command as run and the command that makes it
+  // again, the program (version and build), when, the input files with their
+  // SHA-256, and each analysis's settings.
   void made_with() {
     std::string command = "roverlab report " + o_.file;
     if (o_.mapping) command += " --mapping " + *o_.mapping;
     if (o_.soil) command += " --soil " + *o_.soil;
     command += " --size " + o_.size + (o_.pdf ? " --pdf" : "") + " -o " + o_.output;
-    std::error_code ec;
-    const auto bytes = fs::file_size(o_.file, ec);
     const std::time_t now = std::time(nullptr);
     char when[32] = "";
     std::tm utc{};
     if (gmtime_r(&now, &utc) != nullptr) std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S UTC", &utc);
-    html() << "<h2>How this report was made</h2>\n<table>"
-           << "<tr><th>command</th><td style=\"text-align:left\"><code>" << esc(command) << "</code></td></tr>\n"
-           << "<tr><th>RoverLab</th><td style=\"text-align:left\">" << esc(ROVERLAB_VERSION) << "</td></tr>\n"
-           << "<tr><th>written</th><td style=\"text-align:left\">" << when << "</td></tr>\n"
-           << "<tr><th>input</th><td style=\"text-align:left\">" << esc(o_.file)
-           << (ec ? std::string() : " (" + std::to_string(bytes) + " bytes)") << "</td></tr>\n</table>\n"
-           << "<p class=\"note\">Each analysis's settings are in its section and in metrics.json.</p>\n";
-    // Not the time: the same log and options give the same metrics.json (campaigns compare them).
-    metrics_["made_with"] = {{"command", command}, {"version", ROVERLAB_VERSION}};
+    std::string invoked;
+    for (const auto& a : command_arguments()) invoked += (invoked.empty() ? "" : " ") + shell_word(a);
+    const json inputs = input_files();
+    html() << "<h2>How this report was made</h2>\n<table class=\"provenance\">"
+           << "<tr><th>command run</th><td style=\"text-align:left\"><code>" << esc(invoked) << "</code></td></tr>\n"
+           << "<tr><th>to make it again</th><td style=\"text-align:left\"><code>" << esc(command)
+           << "</code></td></tr>\n"
+           << "<tr><th>RoverLab</th><td style=\"text-align:left\">" << esc(program_identity()) << "</td></tr>\n"
+           << "<tr><th>written</th><td style=\"text-align:left\">" << when << "</td></tr>\n";
+    for (const auto& f : inputs) {
+      html() << "<tr><th>" << esc(f.at("role").get<std::string>()) << "</th><td style=\"text-align:left\">"
+             << esc(f.at("path").get<std::string>())
+             << (f.at("bytes").is_number() ? " (" + std::to_string(f.at("bytes").get<std::uintmax_t>()) + " bytes)"
+                                           : std::string())
+             << "<br>SHA-256 <code>" << esc(f.at("sha256").get<std::string>()) << "</code></td></tr>\n";
+    }
+    html() << "</table>\n";
+    const json analyses = analysis_provenance();
+    // Not the time, nor the files' checksums (an HDF5 log written twice differs in its bytes): the same log
+    // and options give the same metrics.json (campaigns compare them). The whole record: provenance.json.
+    metrics_["made_with"] = {{"command", command}, {"version", ROVERLAB_VERSION}, {"program", program_identity()}};
+    provenance_ = {
+        {"command", command}, {"command_run", invoked}, {"version", ROVERLAB_VERSION}, {"program", program_identity()},
+        {"written", when},    {"inputs", inputs},       {"analyses", analyses}};
   }
 
   // The files a previous report in the folder wrote (its metrics.json's "files").
@@ -171,6 +261,17 @@ class ReportWriter {
       std::error_code ec;
       if (fs::is_regular_file(dir_ / name, ec)) fs::remove(dir_ / name, ec);
     }
+  }
+
+  // A word as a POSIX shell reads it back: quoted when it holds anything but [A-Za-z0-9_./=:,+-].
+  static std::string shell_word(const std::string& w) {
+    const bool plain = !w.empty() && std::all_of(w.begin(), w.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_./=:,+-", c) != nullptr;
+    });
+    if (plain) return w;
+    std::string q = "'";
+    for (char c : w) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
   }
 
   void image(const std::string& name, const std::string& title, const Rendered& r) {
@@ -304,6 +405,7 @@ class ReportWriter {
   ReportSection section_;
   int w_, h_;
   json metrics_;
+  json provenance_;  // how the report was made, with the input files' SHA-256 (provenance.json)
 };
 
 // A report goes into a new or empty folder, or over a previous report; never

@@ -71,5 +71,7 @@ Commands all_commands();
 
 // Parses argv against every command and runs the one given; returns the exit code.
 int run_command_line(int argc, char** argv);
+// The arguments run_command_line() was given (argv[0] first), for a report's provenance.
+const std::vector<std::string>& command_arguments();
 
 }  // namespace roverlab::app

@@ -130,7 +130,17 @@ int parse_and_run(int argc, char** argv) {
 
 }  // namespace
 
+namespace {
+std::vector<std::string>& arguments() {
+  static std::vector<std::string> args;
+  return args;
+}
+}  // namespace
+
+const std::vector<std::string>& command_arguments() { return arguments(); }
+
 int run_command_line(int argc, char** argv) {
+  arguments().assign(argv, argv + argc);
   try {
     return parse_and_run(argc, argv);
   } catch (const UsageError& e) {

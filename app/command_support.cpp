@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <QCryptographicHash>
+#include <QFile>
+
 #include "app/commands.h"
 
 #include "importers/hdf5_log.h"
@@ -84,6 +87,14 @@ void require_log_output(const std::string& output, const std::string& option) {
 
 void write_log_with(const log::Log& base, const log::Log& added, const std::string& path) {
   io::write_hdf5_log(base, added, path);  // no copy of the (possibly large) input log
+}
+
+std::string sha256_of_file(const std::string& path) {
+  QFile file(QFile::decodeName(QByteArray::fromStdString(path)));
+  if (!file.open(QIODevice::ReadOnly)) return {};
+  QCryptographicHash hash(QCryptographicHash::Sha256);
+  if (!hash.addData(&file)) return {};
+  return hash.result().toHex().toStdString();
 }
 
 }  // namespace roverlab::app

@@ -58,6 +58,9 @@ std::string printable(const std::string& text, std::size_t max = 200);
 // HDF5 file is never written under a .csv or .txt name.
 void require_log_output(const std::string& output, const std::string& option);
 
+// The SHA-256 of a file's bytes, as 64 lower-case hex digits; empty when it cannot be read.
+std::string sha256_of_file(const std::string& path);
+
 // Writes `base` with the streams of `added` (and its metadata.extra entries)
 // to `path` as a RoverLab HDF5 log, atomically.
 void write_log_with(const log::Log& base, const log::Log& added, const std::string& path);

@@ -29,6 +29,8 @@ vtkSmartPointer<vtkRenderWindow> make_offscreen_window(int width, int height) {
 }
 
 Image capture(vtkRenderWindow* window) {
+  // Twice: a chart lays its plots out with the margins its last render's tick labels needed (TimeSeriesChart).
+  window->Render();
   window->Render();
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);

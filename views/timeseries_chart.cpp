@@ -4,6 +4,7 @@
 #include <vtkChartLegend.h>
 #include <vtkChartMatrix.h>
 #include <vtkChartXY.h>
+#include <vtkCommand.h>
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
 #include <vtkDoubleArray.h>
@@ -13,8 +14,10 @@
 #include <vtkPlotArea.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
+#include <vtkTextRenderer.h>
 #include <vtkVector.h>
 
 #include <algorithm>
@@ -116,9 +119,107 @@ std::vector<ChannelRef> estimate_against_reference(const log::Log& lg) {
 
 }  // namespace
 
+namespace {
+
+// How a channel moves: the share of its variance that its means over
+// one-second bins keep (R^2 of the bins, 0 .. 1: motion is slow, sensor noise
+// fast), what white noise would keep (about one over the samples in a bin),
+// and whether it is a ramp (a cumulative quantity such as a wheel angle, a
+// position or a count: the bin means move one way in 75 % of their steps and
+// end half their range or more from where they began).
+struct Movement {
+  double share = 0, noise_share = 1;
+  bool ramp = false;
+};
+
+Movement movement_of(const log::Stream& s, const log::Channel& c) {
+  Movement m;
+  const auto& t = s.time();
+  const double span = s.duration();
+  if (!(span > 0) || t.size() < 20 || !varies(c.values)) return m;
+  const double bin = std::max(1.0, 5.0 * span / static_cast<double>(t.size()));
+  std::vector<double> sum, count;
+  double total = 0, total_sq = 0, n = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double v = c.values[k];
+    if (!std::isfinite(v)) continue;
+    const auto b = static_cast<std::size_t>((t[k] - t.front()) / bin);
+    if (b >= sum.size()) sum.resize(b + 1, 0.0), count.resize(b + 1, 0.0);
+    sum[b] += v;
+    count[b] += 1;
+    total += v;
+    total_sq += v * v;
+    n += 1;
+  }
+  if (n < 20) return m;
+  const double mean = total / n, var_total = total_sq / n - mean * mean;
+  if (!(var_total > 0)) return m;
+  double var_between = 0;
+  std::vector<double> means;
+  for (std::size_t b = 0; b < sum.size(); ++b) {
+    if (count[b] == 0) continue;
+    means.push_back(sum[b] / count[b]);
+    var_between += count[b] * (means.back() - mean) * (means.back() - mean);
+  }
+  m.share = std::min(1.0, var_between / n / var_total);
+  m.noise_share = static_cast<double>(means.size()) / n;
+  int up = 0, down = 0;
+  for (std::size_t b = 1; b < means.size(); ++b) {
+    const double d = means[b] - means[b - 1];
+    if (d > 0) ++up;
+    if (d < 0) ++down;
+  }
+  const auto [lo, hi] = std::minmax_element(means.begin(), means.end());
+  m.ramp = up + down >= 3 && std::max(up, down) >= 0.75 * (up + down) &&
+           std::abs(means.back() - means.front()) >= 0.5 * (*hi - *lo);
+  return m;
+}
+
+// A rate or a speed follows what the rover does.
+bool is_rate(const std::string& unit) { return unit == "m/s" || unit == "rad/s" || unit == "deg/s"; }
+
+// With no estimate to plot, the channels (outside estimate/) that follow the
+// motion: first the rates and speeds whose slow share is 0.1 or more and
+// twice what white noise keeps (the IMU's raw noise is not), then any other
+// channel at least half slow that is not a ramp; each group by its slow
+// share. Up to four, in at most two units (two plots).
+std::vector<ChannelRef> moving_channels(const log::Log& lg) {
+  struct Scored {
+    double score;
+    ChannelRef ref;
+    std::string unit;
+  };
+  std::vector<Scored> scored;
+  for (const auto& s : lg.streams()) {
+    if (starts_with(s.name(), "estimate/") || s.size() < 2) continue;
+    for (const auto& c : s.channels()) {
+      const Movement m = movement_of(s, c);
+      if (is_rate(c.unit) && m.share >= std::max(0.1, 2 * m.noise_share)) {
+        scored.push_back({1.0 + m.share, {s.name(), c.name}, c.unit});
+      } else if (!is_rate(c.unit) && !m.ramp && m.share >= 0.5) {
+        scored.push_back({m.share, {s.name(), c.name}, c.unit});
+      }
+    }
+  }
+  std::stable_sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.score > b.score; });
+  std::vector<ChannelRef> out;
+  std::vector<std::string> units;
+  for (const auto& one : scored) {
+    if (out.size() == 4) break;
+    const bool known = std::find(units.begin(), units.end(), one.unit) != units.end();
+    if (!known && units.size() == 2) continue;
+    if (!known) units.push_back(one.unit);
+    out.push_back(one.ref);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<ChannelRef> default_channels(const log::Log& lg) {
   if (auto pair = estimate_against_truth(lg); !pair.empty()) return pair;
   if (auto pair = estimate_against_reference(lg); !pair.empty()) return pair;
+  if (auto moving = moving_channels(lg); !moving.empty()) return moving;
   std::vector<ChannelRef> out;
   for (const auto& s : lg.streams()) {
     if (s.channels().empty() || s.size() < 2) continue;
@@ -142,7 +243,44 @@ TimeSeriesChart::TimeSeriesChart(const log::Log& lg, std::vector<ChannelRef> cha
   view_->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   vtkNew<vtkChartMatrix> matrix;
   view_->GetScene()->AddItem(matrix);
+  view_->GetRenderer()->AddObserver(vtkCommand::EndEvent, this, &TimeSeriesChart::fit_left_border);
   reset(lg, std::move(channels));
+}
+
+// vtkChartMatrix keeps a fixed left border (50 px) for every plot, whatever
+// its tick labels: "-0.0011" and a y title do not fit. After each render, the
+// widest tick label and the title's height (as the text renderer measures
+// them) set the border the next render uses.
+void TimeSeriesChart::fit_left_border(vtkObject* /*renderer*/, unsigned long /*event*/, void* /*data*/) {
+  vtkTextRenderer* text = vtkTextRenderer::GetInstance();
+  auto* window = view_->GetRenderWindow();
+  if (text == nullptr || window == nullptr) return;
+  const int dpi = window->GetDPI();
+  int needed = 50;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    vtkAxis* axis = chart(g)->GetAxis(vtkAxis::LEFT);
+    int widest = 0, bbox[4] = {0, 0, 0, 0};
+    vtkStringArray* labels = axis->GetTickLabels();
+    for (vtkIdType i = 0; labels != nullptr && i < labels->GetNumberOfValues(); ++i) {
+      if (text->GetBoundingBox(axis->GetLabelProperties(), labels->GetValue(i), bbox, dpi))
+        widest = std::max(widest, bbox[1] - bbox[0]);
+    }
+    int title = 0;
+    if (text->GetBoundingBox(axis->GetTitleProperties(), axis->GetTitle(), bbox, dpi))
+      title = std::min(bbox[1] - bbox[0], bbox[3] - bbox[2]);  // the title is drawn turned: its height
+    // Tick marks and gaps: 5 px from the axis to the labels, 10 px to the title, 8 px to the edge.
+    needed = std::max(needed, widest + title + 23);
+  }
+  auto* matrix = vtkChartMatrix::SafeDownCast(view_->GetScene()->GetItem(0));
+  int borders[4];
+  matrix->GetBorders(borders);
+  if (needed != borders[0]) matrix->SetBorderLeft(needed);
+}
+
+int TimeSeriesChart::left_border() const {
+  int borders[4];
+  vtkChartMatrix::SafeDownCast(view_->GetScene()->GetItem(0))->GetBorders(borders);
+  return borders[0];
 }
 
 void TimeSeriesChart::reset(const log::Log& lg, std::vector<ChannelRef> channels) {

@@ -30,7 +30,12 @@ std::vector<ChannelRef> parse_channels(const log::Log& log, const std::string& s
 // Channels a plot shows when none are asked for, chosen for what they show:
 // an estimate against the truth of the same channel (contact angle, drawbar
 // pull, slip, load first), else an estimate against the reference in its own
-// stream (reference_slip), else up to four of the first stream.
+// stream (reference_slip), else (a raw log) the channels that follow the
+// motion: rates and speeds (m/s, rad/s) whose variance is slower than a
+// second for 10 % or more and twice what white noise would be (not raw IMU
+// noise), then channels at least half slow that are not ramps (a wheel
+// angle, a position, a count), each by that share; up to four, in at most
+// two units. Only when none qualifies, up to four of the first stream.
 std::vector<ChannelRef> default_channels(const log::Log& log);
 
 // The channel holding `channel`'s 1-sigma in `stream` ("pitch_sigma",
@@ -91,6 +96,10 @@ class TimeSeriesChart : public Scene {
   std::size_t band_count() const;
   // Points drawn for each channel in the current window (after decimation).
   std::vector<std::size_t> drawn_points() const;
+  // The left margin (pixels) the plots keep for the value axes' tick labels
+  // and titles: widened after a render whose tick labels needed more (the
+  // next render lays the plots out with it; views::capture renders twice).
+  int left_border() const;
 
  private:
   void rebuild();  // plots and cursors, after the channels changed
@@ -105,6 +114,7 @@ class TimeSeriesChart : public Scene {
   void link_time_axes();
   void time_axis_moved(vtkObject* axis, unsigned long event, void* data);
   void value_axis_moved(vtkObject* axis, unsigned long event, void* data);
+  void fit_left_border(vtkObject* renderer, unsigned long event, void* data);
   std::vector<std::string> labels_;  // per channel, without the value at the cursor
   bool linking_ = false;             // the chart sets the axes itself: not the user
   std::vector<bool> user_values_;    // per plot: the user set its value axis

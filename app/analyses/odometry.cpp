@@ -8,6 +8,7 @@
 #include "app/analysis.h"
 #include "app/command_support.h"
 #include "app/report_plot.h"
+#include "core/analysis/likelihood.h"
 #include "core/analysis/odometry_discrepancy.h"
 
 namespace roverlab::app {
@@ -153,6 +154,25 @@ std::string parameters_text(const json& parameters) {
   return text;
 }
 
+// "track_factor 4.778 +- 1.4", "5 windows, median_slip 0.0618": each fitted parameter named, for the tables.
+std::string parameters_named(const json& parameters) {
+  std::string text;
+  for (const auto& p : parameters) {
+    const std::string name = p.at("name").get<std::string>();
+    const double value = p.at("value").get<double>();
+    std::string one;
+    if (p.at("sigma").is_number()) {
+      one = name + " " + roverlab::analysis::format_estimate(value, p.at("sigma").get<double>(), "1");
+    } else if (name == "windows") {
+      one = std::to_string(static_cast<int>(value)) + " windows";
+    } else {
+      one = name + " " + ReportSection::number(value, "%.3g");
+    }
+    text += (text.empty() ? "" : ", ") + one;
+  }
+  return text;
+}
+
 void OdometryAnalysis::print(const json& j, std::FILE* out) const {
   const auto num = [&](const json& v) { return v.get<double>(); };
   const json& b = j.at("baseline");
@@ -183,10 +203,23 @@ void OdometryAnalysis::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
 }
 
+// Candidates by evidence: the lowest delta BIC (the most the data favour) first, after the nominal geometry.
+std::vector<const json*> by_evidence(const json& candidates) {
+  std::vector<const json*> order;
+  for (const auto& c : candidates) order.push_back(&c);
+  const auto key = [](const json* c) {
+    const json& d = c->at("delta_bic");
+    return d.is_number() && std::isfinite(d.get<double>()) ? d.get<double>() : HUGE_VAL;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](const json* a, const json* b) { return key(a) < key(b); });
+  return order;
+}
+
 std::vector<ResultTable> OdometryAnalysis::tables(const json& j) const {
   ResultTable t;
-  t.title = "What the wheel odometry gets wrong: candidate causes";
-  t.columns = {"candidate", "fitted", "fit RMSE (m)", "delta BIC", "held-out RMSE (m)", "held-out final (m)"};
+  t.title = "What the wheel odometry gets wrong: candidate causes, by evidence";
+  t.columns = {"candidate", "fitted (+-1 sigma)", "fit RMSE (m)",
+               "delta BIC", "held-out RMSE (m)",  "held-out final (m)"};
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   const json& b = j.at("baseline");
   t.rows.push_back({{"(nominal geometry)"},
@@ -195,11 +228,17 @@ std::vector<ResultTable> OdometryAnalysis::tables(const json& j) const {
                     {"0"},
                     {n(b.at("held_out_rmse_m"), "%.2f")},
                     {n(b.at("held_out_final_m"), "%.2f")}});
-  for (const auto& c : j.at("candidates")) {
+  for (const json* cp : by_evidence(j.at("candidates"))) {
+    const json& c = *cp;
     const bool picked = c.at("name") == j.at("cause");
-    std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},    {parameters_text(c.at("parameters"))},
-                                       {n(c.at("fit_rmse_m"), "%.2f")},      {n(c.at("delta_bic"), "%.1f")},
-                                       {n(c.at("held_out_rmse_m"), "%.2f")}, {n(c.at("held_out_final_m"), "%.2f")}};
+    std::vector<ResultTable::Cell> row{
+        {c.at("name").get<std::string>()},
+        {parameters_named(c.at("parameters"))},
+        {n(c.at("fit_rmse_m"), "%.2f")},
+        {c.at("delta_bic").is_number() ? roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>())
+                                       : n(c.at("delta_bic"), "%.1f")},
+        {n(c.at("held_out_rmse_m"), "%.2f")},
+        {n(c.at("held_out_final_m"), "%.2f")}};
     for (auto& cell : row) cell.bold = picked;
     t.rows.push_back(std::move(row));
   }
@@ -252,31 +291,16 @@ void residual_plots(const json& j, ReportSection& s) {
 
 void OdometryAnalysis::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
-  const json& b = j.at("baseline");
   s.html << "<h2>" << title() << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
-         << "</p>\n"
-         << "<table><tr><th>candidate</th><th>fitted</th><th>fit RMSE (m)</th><th>delta BIC</th>"
-            "<th>held-out RMSE (m)</th><th>held-out final (m)</th></tr>\n"
-         << "<tr><td style=\"text-align:left\">(nominal)</td><td></td><td>" << n(b.at("fit_rmse_m"), "%.2f")
-         << "</td><td>0</td><td>" << n(b.at("held_out_rmse_m"), "%.2f") << "</td><td>"
-         << n(b.at("held_out_final_m"), "%.2f") << "</td></tr>\n";
+         << "</p>\n";
+  for (const ResultTable& t : tables(j)) s.table(t);
   std::string csv = "candidate,fit_rmse_m,delta_bic,held_out_rmse_m,held_out_final_m,significant\n";
   for (const auto& c : j.at("candidates")) {
-    std::string params;
-    for (const auto& p : c.at("parameters")) {
-      params += p.at("name").get<std::string>() + " = " + n(p.at("value"), "%.4g") + " ";
-    }
-    const bool best = c.at("name") == j.at("cause");
-    s.html << "<tr" << (best ? " style=\"font-weight:bold\"" : "") << "><td style=\"text-align:left\">"
-           << ReportSection::escape(c.at("name").get<std::string>()) << "</td><td style=\"text-align:left\">"
-           << ReportSection::escape(params) << "</td><td>" << n(c.at("fit_rmse_m"), "%.2f") << "</td><td>"
-           << n(c.at("delta_bic"), "%.1f") << "</td><td>" << n(c.at("held_out_rmse_m"), "%.2f") << "</td><td>"
-           << n(c.at("held_out_final_m"), "%.2f") << "</td></tr>\n";
     csv += c.at("name").get<std::string>() + "," + n(c.at("fit_rmse_m"), "%.6g") + "," + n(c.at("delta_bic"), "%.6g") +
            "," + n(c.at("held_out_rmse_m"), "%.6g") + "," + n(c.at("held_out_final_m"), "%.6g") + "," +
            (c.at("significant").get<bool>() ? "1" : "0") + "\n";
   }
-  s.html << "</table>\n<p><b>" << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n";
+  s.html << "<p><b>" << ReportSection::escape(j.at("verdict").get<std::string>()) << "</b></p>\n";
   residual_plots(j, s);
   s.write_csv("odometry_candidates.csv", csv);
 }

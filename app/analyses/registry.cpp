@@ -1,4 +1,6 @@
 // The analysis registry (app/analyses/analyses.def) and the report helpers.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -196,6 +198,44 @@ std::string Analysis::summary(const nlohmann::json& document) const {
 void ReportSection::write_csv(const std::string& name, const std::string& text) const {
   io::write_text_atomically((folder_ / name).string(), text);
   wrote(name);
+}
+
+namespace {
+
+// A number as the tables write one ("0.9981+-0.0012", "< -1e6", "1,234", "43.2 %", an en dash).
+bool numeric_text(const std::string& text) {
+  if (text.empty()) return false;
+  return std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) || std::strchr(".,+-eE<> %~", c) != nullptr ||
+           (static_cast<unsigned char>(c) & 0x80) != 0;
+  });
+}
+
+}  // namespace
+
+void ReportSection::table(const ResultTable& t) {
+  html << "<table class=\"result\"><caption>" << escape(t.title) << "</caption>\n<tr>";
+  if (!t.row_names.empty()) html << "<th></th>";
+  for (const auto& c : t.columns) html << "<th>" << escape(c) << "</th>";
+  html << "</tr>\n";
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const auto& row = t.rows[i];
+    const bool bold = !row.empty() && std::all_of(row.begin(), row.end(), [](const auto& c) { return c.bold; });
+    html << (bold ? "<tr style=\"font-weight:bold\">" : "<tr>");
+    if (!t.row_names.empty()) html << "<th>" << escape(i < t.row_names.size() ? t.row_names[i] : "") << "</th>";
+    for (const auto& cell : row) {
+      std::string style = numeric_text(cell.text) ? "white-space:nowrap;" : "text-align:left;";
+      if (cell.bold && !bold) style += "font-weight:bold;";
+      if (cell.shade > 0) {
+        char tint[64];
+        std::snprintf(tint, sizeof tint, "background:rgba(31,119,180,%.2f);", 0.6 * std::min(cell.shade, 1.0));
+        style += tint;
+      }
+      html << (style.empty() ? "<td>" : "<td style=\"" + style + "\">") << escape(cell.text) << "</td>";
+    }
+    html << "</tr>\n";
+  }
+  html << "</table>\n";
 }
 
 std::string ReportSection::escape(const std::string& s) {

@@ -384,10 +384,19 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
 std::vector<ResultTable> RoverDiscrepancyAnalysis::tables(const json& j) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   ResultTable candidates;
-  candidates.title = "What the simulation gets wrong: candidate causes";
-  candidates.columns = {"candidate", "fitted (+-1 sigma)", "delta BIC", "held-out (noise sigmas)"};
+  candidates.title = "What the simulation gets wrong: candidate causes, by evidence";
+  candidates.columns = {"candidate", "fitted (+-1 sigma)", "delta BIC", "held-out residual (noise sigmas)"};
   candidates.rows.push_back({{"(nominal)"}, {""}, {"0"}, {n(j.at("baseline").at("held_out"), "%.3g")}});
-  for (const auto& c : j.at("candidates")) {
+  // By evidence: the lowest delta BIC (the most the data favour) first.
+  std::vector<const json*> order;
+  for (const auto& c : j.at("candidates")) order.push_back(&c);
+  const auto evidence = [](const json* c) {
+    const json& d = c->at("delta_bic");
+    return d.is_number() && std::isfinite(d.get<double>()) ? d.get<double>() : HUGE_VAL;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](const json* a, const json* b) { return evidence(a) < evidence(b); });
+  for (const json* cp : order) {
+    const json& c = *cp;
     std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},
                                        {parameters_text(c.at("parameters"), c.at("screened").get<bool>())},
                                        {roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>())},
@@ -398,6 +407,7 @@ std::vector<ResultTable> RoverDiscrepancyAnalysis::tables(const json& j) const {
   ResultTable checks;
   checks.title = "Checks among the sensors and against the model";
   checks.columns = {"check", "value", "expected", "unit", "verdict"};
+  // A check the data contradict is bold.
   for (const auto& c : j.at("checks")) {
     std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},
                                        {n(c.at("value"), "%.4g")},
@@ -443,23 +453,8 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
     }
     csv += "\n";
   }
-  s.html
-      << "</table>\n<table><tr><th>candidate</th><th>fitted (+-1 sigma)</th><th>delta BIC</th><th>held-out</th></tr>\n";
-  for (const auto& c : j.at("candidates")) {
-    s.html << "<tr" << (c.at("significant").get<bool>() ? " style=\"font-weight:bold\"" : "")
-           << "><td style=\"text-align:left\">" << ReportSection::escape(c.at("name").get<std::string>())
-           << "</td><td style=\"text-align:left\">"
-           << ReportSection::escape(parameters_text(c.at("parameters"), c.at("screened").get<bool>())) << "</td><td>"
-           << roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>()) << "</td><td>"
-           << n(c.at("held_out"), "%.3g") << "</td></tr>\n";
-  }
-  s.html << "</table>\n<ul>\n";
-  for (const auto& c : j.at("checks")) {
-    s.html << "<li>" << ReportSection::escape(c.at("name").get<std::string>()) << ": " << n(c.at("value"), "%.4g")
-           << " (expected " << n(c.at("expected"), "%.4g")
-           << "): " << ReportSection::escape(c.at("verdict").get<std::string>()) << "</li>\n";
-  }
-  s.html << "</ul>\n";
+  s.html << "</table>\n";
+  for (const ResultTable& t : tables(j)) s.table(t);
   const auto series = [&](const char* key) {
     std::vector<double> v;
     for (const auto& x : j.at("plot").at(key)) v.push_back(x.is_number() ? x.get<double>() : NAN);

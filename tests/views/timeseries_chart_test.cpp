@@ -289,3 +289,26 @@ TEST(TimeSeriesChart, LinkedZoomSharesTheTimeAxisOnlyAndKeepsTheUsersValueZoom) 
   EXPECT_NEAR(value_range(lower).first, -5.0, 1e-9);  // 0..100, 5 % padded
   EXPECT_NEAR(value_range(lower).second, 105.0, 1e-9);
 }
+
+// The value axis's title is whole (issue 32: the rover study's disagreement
+// plot cut it): with tick labels as wide as "-0.0011" the left margin grows
+// past vtkChartMatrix's fixed 50 px, so the turned title "wheel angle (rad)"
+// is drawn clear of the window's edge, not under it.
+TEST(TimeSeriesChart, TheValueAxisTitleIsWholeBesideWideTickLabels) {
+  log::Log lg;
+  const std::vector<double> t = times(30.0, 0.02);
+  std::vector<double> v(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) v[i] = -0.00038 * t[i];
+  log::Stream joints("joints", t);
+  joints.add_channel("wheel_angle_3", "rad", v);
+  lg.add_stream(std::move(joints));
+  views::TimeSeriesChart chart(lg, {{"joints", "wheel_angle_3"}});
+  const views::Image img = render_scene(chart, 1280, 400);
+  EXPECT_GT(chart.left_border(), 50);
+  const auto dark = [](int r, int g, int b) { return r < 110 && g < 110 && b < 110; };
+  // Nothing of the title on the window's first columns; the title's letters a little further in.
+  EXPECT_EQ(find_pixels(img, dark, 0, 3).count, 0);
+  EXPECT_GT(find_pixels(img, dark, 3, 30).count, 40);
+  // The tick labels right of the title, left of the axis.
+  EXPECT_GT(find_pixels(img, dark, 30, chart.left_border() - 4).count, 40);
+}
