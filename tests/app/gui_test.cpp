@@ -470,6 +470,21 @@ TEST(Gui, APaneWithNothingToShowSaysWhyAndTheWindowNeverGrows) {
   EXPECT_LE(w.width(), QGuiApplication::primaryScreen()->availableGeometry().width());
 }
 
+namespace {
+
+// Sends `data` to `target` as a drag entering it and a drop; true when the drag was accepted.
+bool drop_on(QWidget* target, QMimeData* data) {
+  const QPoint at(target->width() / 2, target->height() / 2);
+  QDragEnterEvent enter(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(target, &enter);
+  const bool accepted = enter.isAccepted();
+  QDropEvent dropped(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(target, &dropped);
+  return accepted;
+}
+
+}  // namespace
+
 // Issue 32: channels dragged from the streams tree onto the plot pane are
 // plotted there: the tree's own drag data (its model's mime data for the
 // items picked, as a drag carries it) dropped on the pane, through Qt's
@@ -509,15 +524,7 @@ TEST(Gui, ChannelsDraggedFromTheStreamsTreeOntoThePlotPaneArePlotted) {
     tree->setCurrentItem(item);
     return tree->model()->mimeData({tree->currentIndex()});
   };
-  const auto drop = [&](QMimeData* data) {
-    const QPoint at(target->width() / 2, target->height() / 2);
-    QDragEnterEvent enter(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
-    QApplication::sendEvent(target, &enter);
-    const bool accepted = enter.isAccepted();
-    QDropEvent dropped(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
-    QApplication::sendEvent(target, &dropped);
-    return accepted;
-  };
+  const auto drop = [&](QMimeData* data) { return drop_on(target, data); };
   ASSERT_FALSE(plotted("imu", "angular_rate_z"));
   std::unique_ptr<QMimeData> one(drag_of("imu", "angular_rate_z"));
   ASSERT_NE(one, nullptr);
@@ -542,17 +549,6 @@ TEST(Gui, ChannelsDraggedFromTheStreamsTreeOntoThePlotPaneArePlotted) {
 }
 
 namespace {
-
-// Sends `data` to `target` as a drag entering it and a drop; true when the drag was accepted.
-bool drop_on(QWidget* target, QMimeData* data) {
-  const QPoint at(target->width() / 2, target->height() / 2);
-  QDragEnterEvent enter(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
-  QApplication::sendEvent(target, &enter);
-  const bool accepted = enter.isAccepted();
-  QDropEvent dropped(at, Qt::CopyAction, data, Qt::LeftButton, Qt::NoModifier);
-  QApplication::sendEvent(target, &dropped);
-  return accepted;
-}
 
 // The streams tree's own drag data for stream:channel (a whole stream when channel is empty).
 QMimeData* tree_drag(gui::MainWindow& w, const QString& stream, const QString& channel) {

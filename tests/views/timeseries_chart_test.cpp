@@ -167,9 +167,10 @@ TEST(TimeSeriesChart, TheDefaultPlotIsAnEstimateAgainstTruthWithItsBand) {
   EXPECT_EQ(ins_shown[1].channel, "reference_slip");
 }
 
-// Issue 32: the cursor reads every curve's value at its time (in the legend),
-// and zoom is linked: the mouse wheel over one plot zooms every plot's time axis.
-TEST(TimeSeriesChart, TheCursorReadsEveryCurveAndZoomIsLinkedAcrossPlots) {
+namespace {
+
+// 10 s at 100 Hz: s:distance = 2 t (m) and s:area = t^2 (m^2).
+log::Log distance_and_area() {
   log::Log lg;
   const std::vector<double> t = times(10.0, 0.01);
   std::vector<double> ramp(t.size()), square(t.size());
@@ -181,6 +182,15 @@ TEST(TimeSeriesChart, TheCursorReadsEveryCurveAndZoomIsLinkedAcrossPlots) {
   s.add_channel("distance", "m", ramp);
   s.add_channel("area", "m^2", square);
   lg.add_stream(std::move(s));
+  return lg;
+}
+
+}  // namespace
+
+// Issue 32: the cursor reads every curve's value at its time (in the legend),
+// and zoom is linked: the mouse wheel over one plot zooms every plot's time axis.
+TEST(TimeSeriesChart, TheCursorReadsEveryCurveAndZoomIsLinkedAcrossPlots) {
+  const log::Log lg = distance_and_area();
   views::TimeSeriesChart chart(lg, {{"s", "distance"}, {"s", "area"}});
   ASSERT_EQ(chart.plot_count(), 2u);
   (void)render_scene(chart, 480, 360, 2.505);
@@ -233,17 +243,7 @@ std::pair<double, double> value_range(vtkChartXY* c) {
 // fitted to the data again); a plot the user has not zoomed fits the data in
 // the window; zoom_to_fit gives the whole range and fitted values back.
 TEST(TimeSeriesChart, LinkedZoomSharesTheTimeAxisOnlyAndKeepsTheUsersValueZoom) {
-  log::Log lg;
-  const std::vector<double> t = times(10.0, 0.01);
-  std::vector<double> ramp(t.size()), square(t.size());
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    ramp[k] = 2.0 * t[k];
-    square[k] = t[k] * t[k];
-  }
-  log::Stream s("s", t);
-  s.add_channel("distance", "m", ramp);
-  s.add_channel("area", "m^2", square);
-  lg.add_stream(std::move(s));
+  const log::Log lg = distance_and_area();
   views::TimeSeriesChart chart(lg, {{"s", "distance"}, {"s", "area"}});
   (void)render_scene(chart, 480, 360, 2.0);
   vtkChartXY *upper = chart.chart(0), *lower = chart.chart(1);
