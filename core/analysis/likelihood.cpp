@@ -111,6 +111,26 @@ void GroupedLikelihood::whiten(const LikelihoodProfile& at, const double* in, do
   }
 }
 
+std::vector<std::size_t> GroupedLikelihood::segments() const {
+  std::vector<std::size_t> out;
+  out.reserve(effective_count());
+  std::size_t begin = 0;
+  for (const auto& g : groups_) {
+    // for_each_usable visits in order; count the segment starts it passes.
+    std::size_t segment = 0;
+    const std::size_t need = lags_needed(g);
+    std::size_t pos = 0;
+    for (std::size_t i = 0; i < g.size; ++i, ++pos) {
+      const std::size_t at = begin + i;
+      if (i > 0 && !start_.empty() && start_[at] != 0) ++segment;
+      if (i == 0 || (!start_.empty() && start_[at] != 0)) pos = 0;
+      if (pos >= need) out.push_back(segment);
+    }
+    begin += g.size;
+  }
+  return out;
+}
+
 std::string format_delta_bic(double d) {
   if (!std::isfinite(d)) return "n/a";
   if (d <= -1e6) return "< -1e6";

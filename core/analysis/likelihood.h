@@ -30,7 +30,7 @@ struct ResidualGroup {
 };
 
 struct GroupProfile {
-  double rho = 0;        // lag-1 autocorrelation of the (differenced) residuals, in [0, 1]
+  double rho = 0;        // lag-1 autocorrelation of the (differenced) residuals, in [min_rho, 1]
   double scale = 1;      // innovation standard deviation, >= the group's floor
   std::size_t used = 0;  // residuals with the lags they need
 };
@@ -64,6 +64,9 @@ class GroupedLikelihood {
   // Jacobian column (linear in its input); out has effective_count() entries.
   // `stride` reads every stride-th value (a column of a row-major matrix).
   void whiten(const LikelihoodProfile& at, const double* in, double* out, std::size_t stride = 1) const;
+  // For each of whiten()'s outputs, the ordinal of its segment within its
+  // group: the same ordinal in every group is the same block of time.
+  std::vector<std::size_t> segments() const;
 
  private:
   std::vector<ResidualGroup> groups_;

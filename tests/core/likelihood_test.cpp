@@ -65,6 +65,17 @@ TEST(Likelihood, SegmentsStartWithoutAPredecessorAndTheFloorHolds) {
   EXPECT_TRUE(std::isfinite(p.minus_two_log_l));
 }
 
+// The block-robust covariance sums scores by block of time: each whitened
+// residual's segment ordinal, the same in every group; an integrated group's
+// first residual of a segment has no increment and no entry.
+TEST(Likelihood, EachWhitenedResidualKnowsItsBlockOfTime) {
+  const GroupedLikelihood l({{"level", 6, false, 0.1, true}, {"angle", 6, true, 0.1, true}},
+                            {1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0});
+  const std::vector<std::size_t> expected{0, 0, 0, 1, 1, 1, 0, 0, 1, 1};
+  EXPECT_EQ(l.segments(), expected);
+  EXPECT_EQ(l.segments().size(), l.effective_count());
+}
+
 TEST(Likelihood, ALevelOffsetInABlockIsNotFreeWhateverTheAutocorrelation) {
   // Noise 0.01 in ten blocks of 50; one block offset by 1. The offset block's
   // first innovation carries the offset, so -2 ln L rises by far more than

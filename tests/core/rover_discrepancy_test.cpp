@@ -211,8 +211,33 @@ TEST(RoverDiscrepancy, ASlipAngleOutsideThePoolIsNamedWithItsSize) {
     ASSERT_EQ(causes(r), std::vector<std::string>{"slip-angle"}) << r.verdict;
     const auto& p = fitted(r, "slip-angle");
     ASSERT_TRUE(std::isfinite(p.sigma) && p.sigma > 0) << r.verdict;
-    EXPECT_LT(std::abs(p.value - beta), 2 * p.sigma) << p.value << " +- " << p.sigma;
+    // One run: 3 sigma (the suite counts 2; with a calibrated sigma one seed
+    // in twenty is beyond 2: seed 5 at 2 deg gives 1.9635 +- 0.018).
+    EXPECT_LT(std::abs(p.value - beta), 3 * p.sigma) << p.value << " +- " << p.sigma;
   }
+}
+
+// A printed +-1 sigma means its scatter: over ten noise seeds at one slip
+// angle the errors sit at an RMS of one sigma. Before the encoders' floor
+// fell below their noise and the sigma became block-robust, they sat at
+// 0.48 sigma (the suite's 2001-2021: 0.49): the sigma was twice the scatter.
+TEST(RoverCalibration, ASlipAnglesSigmaIsItsScatterOverNoiseSeeds) {
+  const auto m = flat_model(60);
+  double sum_z2 = 0;
+  int n = 0;
+  for (unsigned seed = 3001; seed <= 3010; ++seed) {
+    const auto r = analysis::study_rover(measured(m, {{"slip-angle", 8.0}}, seed), m);
+    ASSERT_EQ(causes(r), std::vector<std::string>{"slip-angle"}) << seed << ": " << r.verdict;
+    const auto& p = fitted(r, "slip-angle");
+    ASSERT_TRUE(std::isfinite(p.sigma) && p.sigma > 0) << seed << ": " << r.verdict;
+    const double z = (p.value - 8.0) / p.sigma;
+    sum_z2 += z * z;
+    ++n;
+  }
+  // sqrt(chi2_10 / 10) lies in [0.57, 1.44] with 95 % probability.
+  const double rms = std::sqrt(sum_z2 / n);
+  EXPECT_GT(rms, 0.57);
+  EXPECT_LT(rms, 1.44);
 }
 
 // Issue 29: a soil stronger over the whole run (outside the random pool,
