@@ -308,10 +308,10 @@ Score solve(Predictor& predictor, std::vector<FitParameter>& parameters, const s
 // profile (the weights the fit's last pass used), B the sum over time blocks
 // of each block's score times its transpose, scaled by G/(G-1) for G blocks
 // (White 1980; Liang & Zeger 1986, clustered). It holds where the profile's
-// noise model does not: an encoder's increments of white noise are MA(1)
-// with a unit root, and its noise (0.37 urad, seed 003 Table 5.1) is below
-// the 1 urad floor, so the profile's curvature saw none of what the fit
-// weighed (the suite's slip angles sat at an RMS of 0.49 sigma). Empty (the
+// AR(1) noise model does not: an encoder's increments of white noise are
+// MA(1) with a unit root (with the 1 urad floor of before, the profile's
+// curvature also saw none of the encoders' information, and the suite's slip
+// angles sat at an RMS of 0.49 sigma). Empty (the
 // profile's 2 H^-1 is kept) where fewer than 20 blocks carry the
 // information: a localised effect's few blocks, or a short log's, estimate B
 // too loosely (with 10, a gyro bias's sigma came out 0.6 times its scatter).
@@ -333,17 +333,15 @@ Eigen::MatrixXd block_robust_covariance(Predictor& pr, const std::vector<FitPara
   const std::vector<std::size_t> block = l.segments();
   const std::size_t g = block.empty() ? 0 : *std::max_element(block.begin(), block.end()) + 1;
   if (g < 20) return {};
-  const auto gi = static_cast<Eigen::Index>(g), mi = static_cast<Eigen::Index>(m), ni = static_cast<Eigen::Index>(n);
-  Eigen::MatrixXd J(ni, mi);
+  const auto gi = static_cast<Eigen::Index>(g), mi = static_cast<Eigen::Index>(m);
+  std::vector<double> raw(r0.size() * m);  // d(residual)/d(parameter), row-major
   for (std::size_t j = 0; j < m; ++j) {
-    // d(residual)/d(parameter): central where the curvature was, else forward.
+    // Central where the curvature was, else forward.
     const std::vector<double> a = raw_at(j, 1), b = two_sided[j] != 0 ? raw_at(j, -1) : r0;
     const double span = two_sided[j] != 0 ? 2 * h[j] : h[j];
-    std::vector<double> d(a.size()), de(n);
-    for (std::size_t i = 0; i < d.size(); ++i) d[i] = (a[i] - b[i]) / span;
-    l.whiten(at, d.data(), de.data());
-    for (std::size_t k = 0; k < n; ++k) J(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = de[k];
+    for (std::size_t i = 0; i < r0.size(); ++i) raw[i * m + j] = (a[i] - b[i]) / span;
   }
+  const RowMajor J = whitened(l, at, raw, m);
   Eigen::MatrixXd score = Eigen::MatrixXd::Zero(gi, mi), info = Eigen::MatrixXd::Zero(gi, mi);
   for (std::size_t k = 0; k < n; ++k) {
     const auto bk = static_cast<Eigen::Index>(block[k]);
