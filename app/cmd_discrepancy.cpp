@@ -24,6 +24,7 @@ struct SingleWheelDiscrepancyOptions {
   std::string soil;
   std::string integration = "simpson";
   std::string hold_out = "points";
+  std::string slip_definition = "auto";
   bool json = false;
 };
 
@@ -58,6 +59,8 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
       {"file", file},
       {"soil", soil.name},
       {"baseline_model", r.baseline_model},
+      {"slip_definition", r.slip_definition.empty() ? json(nullptr) : json(r.slip_definition)},
+      {"slip_definition_reason", r.slip_definition_reason},
       {"points", r.points},
       {"measurements", r.measurements},
       {"held_out_method", r.held_out_method},
@@ -158,6 +161,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   try {
     options.baseline.integration = parse_integration(o.integration);
     options.hold_out = analysis::parse_hold_out(o.hold_out);
+    if (o.slip_definition != "auto") options.slip_definition = parse_slip_definition(o.slip_definition);
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
@@ -171,6 +175,10 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
 
   std::printf("%s: %zu points, %zu measurements, soil %s, baseline %s (%s)\n", o.file.c_str(), r.points, r.measurements,
               soil.name.c_str(), r.baseline_model.c_str(), o.integration.c_str());
+  if (!r.slip_definition.empty()) {
+    std::printf("  slip at a slip angle read as %s slip (%s)\n", r.slip_definition.c_str(),
+                r.slip_definition_reason.c_str());
+  }
   if (r.unsupported > 0) std::printf("  %zu measurements at loads the model cannot carry (skipped)\n", r.unsupported);
   std::printf("\nbaseline residuals (predicted - measured):\n");
   std::printf("  %-13s %5s %12s %12s %16s %16s\n", "quantity", "n", "RMSE", "bias", "trend/slip (t)", "trend/100N (t)");
@@ -257,6 +265,11 @@ Commands make_single_wheel_commands() {
         cmd.add_option("--hold-out", o.hold_out,
                        "points | wheel | slip: what a held-out fold is (a point; every point of one wheel or one slip)")
             ->capture_default_str();
+        cmd.add_option("--slip-definition", o.slip_definition,
+                       "auto | longitudinal (s = 1 - v_x / (r w), Ishigami 2007) | travel (s = 1 - |v| / (r w)): how "
+                       "the file's slip is read at a slip angle; auto chooses from the data")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"auto", "longitudinal", "travel"}));
         cmd.add_flag("--json", o.json, "Print JSON");
       },
       run_discrepancy_single_wheel));

@@ -33,6 +33,7 @@ struct TerramechanicsOptions {
   std::vector<double> loads, slips;
   std::vector<double> slip_angles_deg;  // with these (or --model ishigami): the slip-angle model
   std::string lateral_shear = "shared";
+  std::string slip_definition = "longitudinal";
   double sidewall_scale = 1.0;
   std::string model = "wong";
   std::string integration = "simpson";
@@ -95,6 +96,7 @@ ModelOptions model_options(const TerramechanicsOptions& o) try {
   }
   m.extensions.soil_strength = o.soil_strength;
   m.integration = parse_integration(o.integration);
+  m.slip_definition = parse_slip_definition(o.slip_definition);
   m.riemann_points = o.riemann_points;
   if (o.riemann_points < 2) throw DataError("--riemann-points must be at least 2");
   return m;
@@ -564,6 +566,11 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--lateral-shear", o.lateral_shear,
                  "shared (one Mohr-Coulomb strength for tau_x and tau_y) | independent (Ishigami 2007 as printed)")
       ->capture_default_str();
+  cmd.add_option("--slip-definition", o.slip_definition,
+                 "longitudinal (s = 1 - v_x / (r w), Ishigami 2007) | travel (s = 1 - |v| / (r w)): how slip is read "
+                 "at a slip angle")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"longitudinal", "travel"}));
   cmd.add_option("--sidewall-scale", o.sidewall_scale, "scale of the sidewall bulldozing term (0: off)")
       ->capture_default_str()
       ->check(finite_in(0.0, 100.0));

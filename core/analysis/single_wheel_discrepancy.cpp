@@ -823,6 +823,14 @@ HoldOut parse_hold_out(const std::string& text) {
   throw DataError("unknown hold-out '" + text + "' (points, wheel, slip)");
 }
 
+namespace {
+
+// The BIC of a study's final model (its forward selection's last step, else
+// the baseline).
+double final_bic(const DiscrepancyReport& r) { return r.selection.empty() ? r.baseline_bic : r.selection.back().bic; }
+
+}  // namespace
+
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
                                      const DiscrepancyOptions& options) {
   // A wheel at a slip angle, or a measured lateral force: the baseline is the
@@ -832,7 +840,48 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     return p.slip_angle != 0.0 || p.lateral_force.has_value();
   });
   if (lateral && o.baseline.kind == ModelKind::wong_reece) o.baseline.kind = ModelKind::ishigami;
-  return SingleWheelStudy(soil, points, o).run();
+  const bool at_angle = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.slip_angle != 0.0; });
+  if (!at_angle) return SingleWheelStudy(soil, points, o).run();
+  // How the slip is read (SlipDefinition, model.h): given; forced by a point
+  // that read longitudinally would slide sideways at over 10 times its rim
+  // speed; the longitudinal one when the readings differ by < 0.01 in slip;
+  // else the reading whose final model has the lower BIC (the whole study
+  // under each: a hidden effect can mimic the other reading in the baseline).
+  std::string why = "given";
+  double largest = 0.0;
+  for (const auto& p : points) {
+    largest = std::max(largest, (1.0 - p.slip) * (1.0 - std::cos(p.slip_angle)));
+    if (!o.slip_definition && (1.0 - p.slip) * std::abs(std::tan(p.slip_angle)) > 10.0) {
+      o.slip_definition = SlipDefinition::travel;
+      why = fmt("line %.0f", p.source_line) + fmt(": slip %.3g", p.slip) +
+            fmt(" at %.3g deg", p.slip_angle * 180 / kPi) +
+            " read as 1 - v_x / (r w) would slide sideways at over 10 times the rim speed";
+    }
+  }
+  if (!o.slip_definition && largest < 0.01) {
+    o.slip_definition = SlipDefinition::longitudinal;
+    why = fmt("at these slip angles the two readings differ by at most %.3g in slip", largest);
+  }
+  DiscrepancyReport r;
+  if (o.slip_definition) {
+    o.baseline.slip_definition = *o.slip_definition;
+    r = SingleWheelStudy(soil, points, o).run();
+  } else {
+    o.baseline.slip_definition = SlipDefinition::longitudinal;
+    DiscrepancyReport as_longitudinal = SingleWheelStudy(soil, points, o).run();
+    o.baseline.slip_definition = SlipDefinition::travel;
+    DiscrepancyReport as_travel = SingleWheelStudy(soil, points, o).run();
+    const bool travel = final_bic(as_travel) < final_bic(as_longitudinal);
+    const double chosen = final_bic(travel ? as_travel : as_longitudinal);
+    const double other = final_bic(travel ? as_longitudinal : as_travel);
+    why = "the final model's BIC " + fmt("%.1f", chosen) + " read as " + (travel ? "travel" : "longitudinal") +
+          " slip, " + fmt("%.1f", other) + " as " + (travel ? "longitudinal" : "travel");
+    o.baseline.slip_definition = travel ? SlipDefinition::travel : SlipDefinition::longitudinal;
+    r = std::move(travel ? as_travel : as_longitudinal);
+  }
+  r.slip_definition = to_string(o.baseline.slip_definition);
+  r.slip_definition_reason = why;
+  return r;
 }
 
 }  // namespace roverlab::analysis

@@ -91,10 +91,15 @@ struct DiscrepancyOptions {
   std::size_t large_points = 2000;
   std::size_t large_folds = 5;
   HoldOut hold_out = HoldOut::points;
+  // How the file's slip is read at a slip angle (model.h); empty: chosen
+  // from the data (study_single_wheel says how).
+  std::optional<terramechanics::SlipDefinition> slip_definition;
 };
 
 struct DiscrepancyReport {
   std::string baseline_model;                  // "Wong-Reece", or "Ishigami (slip angle)" for points at a slip angle
+  std::string slip_definition;                 // at a slip angle: "longitudinal" or "travel"; empty otherwise
+  std::string slip_definition_reason;          // given by the user, or the evidence that chose it
   std::vector<Quantity> quantities;            // measured in the file
   std::vector<QuantityResiduals> baseline;     // baseline residuals
   std::vector<double> baseline_held_out_rmse;  // = in-sample: nothing is fitted
@@ -122,6 +127,8 @@ struct DiscrepancyReport {
   std::string verdict;  // one sentence: the cause and the gain, or "no significant discrepancy"
 };
 
+// At a slip angle without options.slip_definition the slip's reading is
+// chosen from the data (report's slip_definition and its reason).
 DiscrepancyReport study_single_wheel(const terramechanics::Soil& soil,
                                      const std::vector<terramechanics::WheelTestPoint>& points,
                                      const DiscrepancyOptions& options = {});

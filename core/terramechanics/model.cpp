@@ -62,6 +62,14 @@ ModelKind parse_model_kind(const std::string& text) {
   throw DataError("unknown model '" + text + "' (bekker, wong, ishigami)");
 }
 
+const char* to_string(SlipDefinition d) { return d == SlipDefinition::travel ? "travel" : "longitudinal"; }
+
+SlipDefinition parse_slip_definition(const std::string& text) {
+  if (text == "longitudinal") return SlipDefinition::longitudinal;
+  if (text == "travel") return SlipDefinition::travel;
+  throw DataError("unknown slip definition '" + text + "' (longitudinal, travel)");
+}
+
 Integration parse_integration(const std::string& text) {
   if (text == "simpson") return Integration::simpson;
   if (text == "riemann") return Integration::riemann;

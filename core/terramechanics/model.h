@@ -45,8 +45,22 @@ struct Extensions {
   double sidewall_scale = 1.0;
 };
 
+// How a measured slip is read when the wheel is at a slip angle beta (the
+// slip-angle model only; at beta = 0 the two agree).
+enum class SlipDefinition {
+  // Ishigami et al. 2007: s = 1 - v_x / (r w), v_x the velocity along the
+  // wheel's heading; a wheel sliding sideways at beta = 90 deg has s = 1.
+  longitudinal,
+  // s = 1 - |v| / (r w), v the wheel's travel velocity (a testbed carriage's
+  // speed); then v_x = (1 - s) r w cos(beta), v_y = (1 - s) r w sin(beta).
+  travel,
+};
+const char* to_string(SlipDefinition d);
+SlipDefinition parse_slip_definition(const std::string& text);  // throws DataError
+
 struct ModelOptions {
   ModelKind kind = ModelKind::wong_reece;
+  SlipDefinition slip_definition = SlipDefinition::longitudinal;
   Integration integration = Integration::simpson;
   int riemann_points = 500;
   Extensions extensions;

@@ -74,12 +74,12 @@ double sidewall_per_length(double c, double tan_phi, double gamma, double h) {
   return d1 * (c * h + d2 * gamma * h * h / 2.0);        // R_b, Eq. 10 (gamma: weight density, see docs)
 }
 
-// Stress integrals at entry angle theta0, slip s in [0, 1] and slip angle beta.
-Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions& lat, double s, double beta,
+// Stress integrals at entry angle theta0, longitudinal slip s in [0, 1] and
+// lateral velocity ratio lateral = v_y / (r w) (Ishigami: (1 - s) tan beta).
+Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions& lat, double s, double lateral,
                     double theta0, double c1, double c2) {
   const double theta_m = theta0 * (c1 + c2 * s);  // Eq. 2.10, seed 003; Eq. 4, Ishigami 2007
   const double cos0 = std::cos(theta0), sin0 = std::sin(theta0);
-  const double tan_beta = std::tan(beta);
   Integrals in;
   double i_sigma_cos = 0, i_sigma_sin = 0, i_tau_cos = 0, i_tau_sin = 0, i_tau = 0, i_tau_y = 0, i_side = 0;
   const double theta_r = -u.rear_angle_ratio * theta0;  // rear angle (model.h)
@@ -90,7 +90,7 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
     const double sigma = u.modulus * detail::power(u.r / u.b * (std::cos(th_eq) - cos0), u.n);
     const double strength = u.c + sigma * u.tan_phi;
     const double j_x = u.rs * ((theta0 - th) - (1.0 - s) * (sin0 - std::sin(th)));  // Eq. 6
-    const double j_y = u.rs * (1.0 - s) * (theta0 - th) * tan_beta;                 // Eq. 8
+    const double j_y = u.rs * lateral * (theta0 - th);  // Eq. 8: r (1 - s)(theta0 - theta) tan(beta)
     double tau_x = 0.0, tau_y = 0.0;
     if (lat.shear == LateralShear::independent) {
       tau_x = strength * (1.0 - std::exp(-j_x / u.k_x));                                // Eq. 5
@@ -132,10 +132,10 @@ struct Solved {
 // normal force rising from 0: secant steps on log F_z against log theta0
 // (nearly linear, as in the Wong-Reece solver), kept inside the bracket,
 // bisection when a step leaves it.
-Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const LateralOptions& lat, double s, double beta,
-             double load) {
+Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const LateralOptions& lat, double s,
+             double lateral, double load) {
   const Setup u = setup(soil, w, o.extensions, s);
-  auto at = [&](double th) { return integrate(u, o, lat, s, beta, th, soil.c1, soil.c2); };
+  auto at = [&](double th) { return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2); };
   Solved out;
   double lo = 0.0, hi = kPi / 2.0;
   const double n_hi = at(hi).normal;
@@ -183,8 +183,14 @@ SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, doub
     t.status = TractionStatus::invalid_input;
     return t;
   }
-  const double s = std::abs(slip);
-  const Solved main = solve(soil, wheel, options, lateral, s, slip_angle, load);
+  // The longitudinal slip and lateral velocity ratio v_y / (r w) of the
+  // measured slip (SlipDefinition, model.h).
+  const bool travel = options.slip_definition == SlipDefinition::travel;
+  const double s_x = travel ? 1.0 - (1.0 - slip) * std::cos(slip_angle) : slip;
+  const double v_y = travel ? (1.0 - slip) * std::sin(slip_angle) : 0.0;
+  auto lateral_ratio = [&](double s_used) { return travel ? v_y : (1.0 - s_used) * std::tan(slip_angle); };
+  const double s = std::abs(s_x);
+  const Solved main = solve(soil, wheel, options, lateral, s, lateral_ratio(s), load);
   t.status = main.status;
   if (main.status != TractionStatus::ok) return t;
   const auto p = detail::make_params<double>(soil, options.extensions);
@@ -195,10 +201,10 @@ SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, doub
            p.bulldozing_scale * detail::bulldozing_resistance(p, wheel.width, wheel.radius * (1.0 - std::cos(th)));
   };
   double drawbar = bulldozed(main.in.drawbar, main.theta0), torque = main.in.torque;
-  if (slip < 0.0) {
+  if (s_x < 0.0) {
     // Skid by anti-symmetry about the s = 0 values (Eq. 2.26-2.27, seed 003),
     // at the same slip angle; entry angle and lateral force of the mirrored slip.
-    const Solved zero = solve(soil, wheel, options, lateral, 0.0, slip_angle, load);
+    const Solved zero = solve(soil, wheel, options, lateral, 0.0, lateral_ratio(0.0), load);
     t.status = zero.status;
     if (zero.status != TractionStatus::ok) return t;
     drawbar = -drawbar + 2.0 * bulldozed(zero.in.drawbar, zero.theta0);

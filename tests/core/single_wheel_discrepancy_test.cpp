@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <initializer_list>
 #include <random>
 #include <stdexcept>
 
@@ -492,7 +493,9 @@ struct LateralTestbed {
   double k_y = 0.0;
 };
 
-LateralTestbed lateral_testbed(unsigned seed, double sidewall_scale = 1.0) {
+LateralTestbed lateral_testbed(unsigned seed, double sidewall_scale = 1.0,
+                               SlipDefinition definition = SlipDefinition::longitudinal,
+                               std::initializer_list<double> slip_angles_deg = {0.0, 15.0, 30.0, 60.0}) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::normal_distribution<double> unit(0.0, 1.0);
@@ -503,6 +506,7 @@ LateralTestbed lateral_testbed(unsigned seed, double sidewall_scale = 1.0) {
   ModelOptions model;
   model.kind = ModelKind::ishigami;
   model.extensions.sidewall_scale = sidewall_scale;
+  model.slip_definition = definition;
   const std::string path = ::testing::TempDir() + "/lateral_" + std::to_string(seed) + ".csv";
   {
     std::ofstream csv(path);
@@ -512,7 +516,7 @@ LateralTestbed lateral_testbed(unsigned seed, double sidewall_scale = 1.0) {
     for (const Wheel& w : wheels) {
       for (double load : {60.0, 120.0}) {
         for (double slip : {0.1, 0.3, 0.5}) {
-          for (double beta_deg : {0.0, 15.0, 30.0, 60.0}) {
+          for (double beta_deg : slip_angles_deg) {
             const auto t = evaluate_slip_angle(soil, w, load, slip, beta_deg * M_PI / 180.0, model);
             csv << (w.grouser_count ? "grousered" : "smooth") << ',' << w.grouser_count << ',' << w.grouser_height
                 << ',' << w.radius << ',' << w.width << ',' << load << ',' << slip << ',' << beta_deg << ','
@@ -552,6 +556,7 @@ TEST(LateralHiddenEffect, TheLateralShearModulusIsNamedAndRecovered) {
   ASSERT_EQ(bed.points.size(), 48u);
   const auto r = analysis::study_single_wheel(test::ding_tyii(), bed.points);
   EXPECT_EQ(r.baseline_model, "Ishigami (slip angle)");
+  EXPECT_EQ(r.slip_definition, "longitudinal") << r.slip_definition_reason;
   ASSERT_EQ(r.quantities.size(), 4u);
   EXPECT_EQ(r.quantities[3], Quantity::lateral_force);
   ASSERT_FALSE(r.selection.empty()) << r.verdict;
@@ -580,6 +585,38 @@ TEST(LateralHiddenEffect, TheLateralShearModulusIsNamedAndRecovered) {
   ASSERT_NE(sidewall, nullptr);
   EXPECT_TRUE(sidewall->applicable);
   EXPECT_GT(held_out_of(r, sidewall->held_out_rmse, Quantity::lateral_force), 2.0 * after);
+}
+
+// A file whose slip is the travel slip 1 - |v| / (r w) (a carriage's speed):
+// with points at 90 deg it can be read no other way; without them the
+// baseline's BIC tells. Read as travel slip, the final model predicts the
+// held-out points to the noise; forced to the longitudinal reading, the same
+// study is several times worse.
+TEST(SlipDefinition, ATravelSlipFileIsReadAsTravelSlip) {
+  const auto sideways = lateral_testbed(4, 1.0, SlipDefinition::travel, {0.0, 30.0, 60.0, 90.0});
+  const auto r = analysis::study_single_wheel(test::ding_tyii(), sideways.points);
+  EXPECT_EQ(r.slip_definition, "travel");
+  EXPECT_NE(r.slip_definition_reason.find("10 times the rim speed"), std::string::npos) << r.slip_definition_reason;
+  for (const auto& w : r.per_wheel) {
+    if (w.quantity == Quantity::lateral_force || w.quantity == Quantity::drawbar_pull) {
+      EXPECT_LT(w.model_rmse, 0.8) << w.wheel << ' ' << to_string(w.quantity);
+    }
+  }
+  const auto bed = lateral_testbed(5, 1.0, SlipDefinition::travel, {0.0, 20.0, 40.0, 60.0});
+  const auto chosen = analysis::study_single_wheel(test::ding_tyii(), bed.points);
+  EXPECT_EQ(chosen.slip_definition, "travel") << chosen.slip_definition_reason;
+  analysis::DiscrepancyOptions forced;
+  forced.slip_definition = SlipDefinition::longitudinal;
+  const auto wrong = analysis::study_single_wheel(test::ding_tyii(), bed.points, forced);
+  EXPECT_EQ(wrong.slip_definition_reason, "given");
+  const double right_fy = held_out_of(
+      chosen, chosen.selection.empty() ? chosen.baseline_held_out_rmse : chosen.selection.back().held_out_rmse,
+      Quantity::lateral_force);
+  const double wrong_fy =
+      held_out_of(wrong, wrong.selection.empty() ? wrong.baseline_held_out_rmse : wrong.selection.back().held_out_rmse,
+                  Quantity::lateral_force);
+  EXPECT_LT(right_fy, 0.8);
+  EXPECT_GT(wrong_fy, 3.0 * right_fy);
 }
 
 // Straight-driving data: the lateral candidates do not apply.

@@ -228,3 +228,36 @@ TEST(SlipAngleModel, RefusesBadInput) {
   ASSERT_TRUE(side.ok());
   EXPECT_TRUE(std::isfinite(side.lateral_force));
 }
+
+// A travel slip s = 1 - |v| / (r w) (a testbed carriage's speed) is the
+// longitudinal slip 1 - (1 - s) cos(beta) with the same beta: by hand,
+// s = 0.2 at 30 deg is s_x = 1 - 0.8 x 0.8660254 = 0.30717968. At 90 deg
+// the travel reading keeps v_y = (1 - s) r w: its lateral force is the limit
+// of longitudinal readings approaching 90 deg with (1 - s_x) tan(beta) fixed.
+TEST(SlipAngleModel, ATravelSlipIsTheLongitudinalSlipOfItsVelocity) {
+  ModelOptions longitudinal = riemann(200), travel = riemann(200);
+  travel.slip_definition = SlipDefinition::travel;
+  const auto at = [&](double slip, double deg, const ModelOptions& o) {
+    return evaluate_slip_angle(ding_tyii(), kapvik_wheel(), 60.0, slip, deg * kDeg, o);
+  };
+  for (double slip : {0.0, 0.2, 0.5}) {
+    const auto a = at(slip, 0.0, travel), b = at(slip, 0.0, longitudinal);
+    EXPECT_EQ(a.drawbar_pull, b.drawbar_pull);  // beta = 0: the same reading
+    EXPECT_EQ(a.sinkage, b.sinkage);
+  }
+  const auto t = at(0.2, 30.0, travel), l = at(0.30717968, 30.0, longitudinal);
+  ASSERT_TRUE(t.ok() && l.ok());
+  EXPECT_NEAR(t.drawbar_pull, l.drawbar_pull, 1e-6);
+  EXPECT_NEAR(t.lateral_force, l.lateral_force, 1e-6);
+  EXPECT_NEAR(t.resistive_torque, l.resistive_torque, 1e-7);
+  EXPECT_NEAR(t.sinkage, l.sinkage, 1e-9);
+  EXPECT_GT(std::abs(t.lateral_force - at(0.2, 30.0, longitudinal).lateral_force), 1.0);  // the readings differ
+  // Sideways at 90 deg: the travel reading's v_y / (r w) = 0.7 is the
+  // longitudinal reading's (1 - s_x) tan(beta) at 89.99 deg.
+  const auto side = at(0.3, 90.0, travel);
+  const double beta = 89.99;
+  const auto limit = at(1.0 - 0.7 / std::tan(beta * kDeg), beta, longitudinal);
+  ASSERT_TRUE(side.ok() && limit.ok());
+  EXPECT_NEAR(side.lateral_force, limit.lateral_force, 1e-3 * std::abs(limit.lateral_force));
+  EXPECT_LT(side.lateral_force, -1.0);
+}
