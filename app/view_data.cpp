@@ -154,12 +154,19 @@ views::TractionSurfaceData lateral_surface_of(const ViewInput& in, const std::op
   const double lo = loads.empty() ? NAN : *loads.begin(), hi = loads.empty() ? NAN : *loads.rbegin();
   SurfaceFit fit;
   if (soil_name) {
+    // The slip's reading (model.h): travel when a point read longitudinally
+    // would slide sideways at over 10 times its rim speed, as the study rules.
+    ModelOptions m;
+    m.kind = ModelKind::ishigami;
+    for (const auto& p : in.wheel_points) {
+      if ((1.0 - p.slip) * std::abs(std::tan(p.slip_angle)) > 10.0) m.slip_definition = SlipDefinition::travel;
+    }
     const std::string soil =
         model_surface(in, *soil_name, lo, hi, d, fit, [&](const Soil& so, const Wheel& w, double W, double sl) {
-          const SlipAngleTraction t = evaluate_slip_angle(so, w, W, sl, beta);
+          const SlipAngleTraction t = evaluate_slip_angle(so, w, W, sl, beta, m);
           return t.ok() ? std::optional<double>(t.lateral_force) : std::nullopt;
         });
-    d.quantity = "lateral force F_y (" + soil + " model, " + at + ")";
+    d.quantity = "lateral force F_y (" + soil + " model, " + at + ", " + to_string(m.slip_definition) + " slip)";
   } else {
     if (loads.size() < 2) {
       throw InputError(
