@@ -165,8 +165,11 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
-  const analysis::DiscrepancyReport r =
-      about_file(o.file, [&] { return analysis::study_single_wheel(soil, points, options); });
+  const analysis::DiscrepancyReport r = about_file(o.file, [&] {
+    const ProgressLine progress("single-wheel study");
+    options.progress = progress.callback();
+    return analysis::study_single_wheel(soil, points, options);
+  });
 
   if (o.json) {
     std::cout << report_json(o.file, soil, r).dump(2) << "\n";

@@ -240,7 +240,14 @@ DiscrepancyReport SingleWheelStudy::run() {
   any_grousers_ = std::any_of(points_.begin(), points_.end(),
                               [](const auto& p) { return p.wheel.grouser_count > 0 && p.wheel.grouser_height > 0.0; });
   candidates_ = single_wheel_candidates();
-  for (const auto& candidate : candidates_) report_.candidates.push_back(fit_set({candidate.get()}));
+  // Progress: the candidates alone are about half the work, the selection the rest.
+  const auto done = [&](double fraction) {
+    if (o_.progress) o_.progress(fraction);
+  };
+  for (const auto& candidate : candidates_) {
+    report_.candidates.push_back(fit_set({candidate.get()}));
+    done(0.5 * static_cast<double>(report_.candidates.size()) / static_cast<double>(candidates_.size()));
+  }
   choose_best();
   report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
   select_forward();
@@ -250,6 +257,7 @@ DiscrepancyReport SingleWheelStudy::run() {
   write_verdict();
   judge_quantities();
   score_per_wheel();
+  done(1.0);
   return std::move(report_);
 }
 
@@ -516,6 +524,9 @@ void SingleWheelStudy::select_forward() {
     report_.selection.push_back(std::move(best_fit));
     at = &report_.selection.back();
     held_rmse = &at->held_out_rmse;
+    if (o_.progress) {
+      o_.progress(0.5 + 0.45 * static_cast<double>(chain.size()) / static_cast<double>(candidates_.size()));
+    }
   }
 }
 
@@ -867,9 +878,12 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     o.baseline.slip_definition = *o.slip_definition;
     r = SingleWheelStudy(soil, points, o).run();
   } else {
+    const auto progress = options.progress;
     o.baseline.slip_definition = SlipDefinition::longitudinal;
+    if (progress) o.progress = [&](double f) { progress(0.5 * f); };
     DiscrepancyReport as_longitudinal = SingleWheelStudy(soil, points, o).run();
     o.baseline.slip_definition = SlipDefinition::travel;
+    if (progress) o.progress = [&](double f) { progress(0.5 + 0.5 * f); };
     DiscrepancyReport as_travel = SingleWheelStudy(soil, points, o).run();
     const bool travel = final_bic(as_travel) < final_bic(as_longitudinal);
     const double chosen = final_bic(travel ? as_travel : as_longitudinal);

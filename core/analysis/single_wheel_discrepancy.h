@@ -3,6 +3,7 @@
 // points, which known cause explains it, and what the extended model gains on
 // held-out points.
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -94,6 +95,7 @@ struct DiscrepancyOptions {
   // How the file's slip is read at a slip angle (model.h); empty: chosen
   // from the data (study_single_wheel says how).
   std::optional<terramechanics::SlipDefinition> slip_definition;
+  std::function<void(double)> progress;  // fraction done; may throw to cancel
 };
 
 struct DiscrepancyReport {
