@@ -44,6 +44,8 @@ struct TerramechanicsOptions {
   double soil_strength = 1.0;
   double shear_modulus_slip = 2.0;
   double rear_angle_ratio = 0.2;
+  double shear_residual_ratio = 0.7;
+  double shear_peak_displacement = 0.02;
   std::string format = "csv";
 };
 
@@ -89,9 +91,13 @@ ModelOptions model_options(const TerramechanicsOptions& o) try {
       m.extensions.shear_modulus_slip = o.shear_modulus_slip;
     } else if (part == "rear-angle") {
       m.extensions.rear_angle_ratio = o.rear_angle_ratio;
+    } else if (part == "shear-peak") {
+      m.extensions.shear_peak = true;
+      m.extensions.shear_residual_ratio = o.shear_residual_ratio;
+      m.extensions.shear_peak_displacement = o.shear_peak_displacement;
     } else {
       throw DataError("unknown model extension '" + part +
-                      "' (slip-sinkage, grousers, bulldozing, slip-shear-modulus, rear-angle)");
+                      "' (slip-sinkage, grousers, bulldozing, slip-shear-modulus, rear-angle, shear-peak)");
     }
   }
   m.extensions.soil_strength = o.soil_strength;
@@ -576,8 +582,8 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
       ->check(finite_in(0.0, 100.0));
   cmd.add_option(
          "--model", o.model,
-         "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing, +slip-shear-modulus, +rear-angle "
-         "(e.g. wong+slip-sinkage)")
+         "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing, +slip-shear-modulus, +rear-angle, "
+         "+shear-peak (e.g. wong+slip-sinkage)")
       ->capture_default_str();
   cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
   cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")
@@ -601,6 +607,14 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--rear-angle-ratio", o.rear_angle_ratio, "theta_r = -kappa theta_0 (with +rear-angle)")
       ->capture_default_str()
       ->check(finite_in(0.0, 1.0));
+  cmd.add_option("--shear-residual-ratio", o.shear_residual_ratio,
+                 "K_r, residual over maximum shear stress of the peaked shear curve (with +shear-peak)")
+      ->capture_default_str()
+      ->check(finite_in(0.01, 1.0));
+  cmd.add_option("--shear-peak-displacement", o.shear_peak_displacement,
+                 "K_w, m: shear displacement of the maximum shear stress (with +shear-peak; replaces K_s)")
+      ->capture_default_str()
+      ->check(finite_in(1e-4, 0.2));
 }
 
 }  // namespace

@@ -790,6 +790,12 @@ void SingleWheelStudy::judge_quantities() {
                                 show(q, v.held_out_after) + ")"
                           : std::string());
     }
+    // A chain explains it but no candidate alone cuts it by 30 %: say so, with the best single figure.
+    if (!v.explained_by.empty() && bc != nullptr && bc->held_out_rmse[qi] > 0.7 * v.held_out_before) {
+      t += ", but alone no candidate cuts it by 30 % (best " + bc->name + ": " + show(q, v.held_out_before) + " -> " +
+           show(q, bc->held_out_rmse[qi]) + ", " +
+           fmt("%+.0f", 100.0 * (bc->held_out_rmse[qi] / v.held_out_before - 1.0)) + " %)";
+    }
     v.sentence = t;
     all += (all.empty() ? " Per quantity: " : "; ") + t;
     report_.quantity_verdicts.push_back(std::move(v));

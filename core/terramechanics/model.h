@@ -40,6 +40,16 @@ struct Extensions {
   // Rear angle (Wong & Reece 1967; Ishigami et al. 2007): the soil rebounds
   // and the contact reaches theta_r = -kappa theta_0 behind the bottom.
   double rear_angle_ratio = 0.0;
+  // Peaked ("hump") shear stress-shear displacement relation of dense sand
+  // and compact soils (Wong, Theory of Ground Vehicles, ch. 2; form from
+  // memory, see docs/terramechanics.md): replaces 1 - exp(-j/K) by
+  //   K_r [1 + (1 / (K_r (1 - 1/e)) - 1) exp(1 - j/K_w)] (1 - exp(-j/K_w)),
+  // equal to 1 at j = K_w and tending to K_r; K_r in (0, 1] the residual to
+  // maximum shear stress ratio, K_w (m) the displacement of the maximum (it
+  // takes the place of K_s; slip-shear-modulus scales it alike).
+  bool shear_peak = false;
+  double shear_residual_ratio = 0.7;
+  double shear_peak_displacement = 0.02;
   // Slip-angle model only: a scale on the Hegedus sidewall term (Ishigami
   // et al. 2007 Eq. 10), multiplying LateralOptions::sidewall_scale.
   double sidewall_scale = 1.0;

@@ -27,7 +27,7 @@ template <typename T>
 struct Params {
   T n, cohesion, tan_phi, shear_modulus, kc, kphi, c1, c2, density;
   T slip_sinkage_n1, grouser_effectiveness, bulldozing_scale, soil_strength;
-  T shear_modulus_slip, rear_angle_ratio;
+  T shear_modulus_slip, rear_angle_ratio, shear_residual_ratio, shear_peak_displacement;
 };
 
 template <typename T>
@@ -46,7 +46,9 @@ Params<T> make_params(const Soil& s, const Extensions& e) {
                    T(e.bulldozing_scale),
                    T(e.soil_strength),
                    T(e.shear_modulus_slip),
-                   T(e.rear_angle_ratio)};
+                   T(e.rear_angle_ratio),
+                   T(e.shear_residual_ratio),
+                   T(e.shear_peak_displacement)};
 }
 
 template <typename T>
@@ -65,6 +67,15 @@ template <typename T>
 T power(const T& x, const T& n) {
   if (!(x > 0.0)) return T(0.0);
   return exp(n * log(x));
+}
+
+// The peaked ("hump") shear curve tau / tau_max at x = j / K_w (Wong, Theory
+// of Ground Vehicles, ch. 2): K_r [1 + (1 / (K_r (1 - 1/e)) - 1) e^(1 - x)]
+// (1 - e^-x), written K_r + (e / (e - 1) - K_r) e^(1 - x) in the bracket.
+template <typename T>
+T peaked_shear(const T& x, const T& residual_ratio) {
+  constexpr double kE = 2.71828182845904523536;
+  return (residual_ratio + (kE / (kE - 1.0) - residual_ratio) * exp(1.0 - x)) * (1.0 - exp(-x));
 }
 
 // Stress integrals for entry angle theta0 and slip s >= 0.
@@ -117,12 +128,18 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   const T theta_r = -p.rear_angle_ratio * theta0;
   // Slip-dependent shear deformation modulus K = K_0 (1 + k_s s) (Ding et al. 2015, doi:10.1002/rob.21533).
   const T shear_modulus = p.shear_modulus * (1.0 + p.shear_modulus_slip * s);
+  const bool peak = o.extensions.shear_peak;  // the hump curve's K_w takes K's place
+  const T peak_displacement = p.shear_peak_displacement * (1.0 + p.shear_modulus_slip * s);
   auto sample = [&](const T& th, T& sigma, T& tau) {
     // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front).
     const T th_eq = th >= theta_m ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
     sigma = modulus * power(T(r / b) * (cos(th_eq) - cos0), n);
     const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - sin(th)));  // Eq. 2.18
-    tau = (c + sigma * tan_phi) * (1.0 - exp(-j / shear_modulus));    // Eq. 2.19
+    if (peak) {
+      tau = (c + sigma * tan_phi) * peaked_shear(j / peak_displacement, p.shear_residual_ratio);  // Wong, ch. 2
+    } else {
+      tau = (c + sigma * tan_phi) * (1.0 - exp(-j / shear_modulus));  // Eq. 2.19
+    }
   };
   T i_sigma_cos(0.0), i_sigma_sin(0.0), i_tau_cos(0.0), i_tau_sin(0.0), i_tau(0.0);
   auto add = [&](const T& th, const T& weight) {
@@ -209,7 +226,9 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
                         value_of(p.bulldozing_scale),
                         value_of(p.soil_strength),
                         value_of(p.shear_modulus_slip),
-                        value_of(p.rear_angle_ratio)};
+                        value_of(p.rear_angle_ratio),
+                        value_of(p.shear_residual_ratio),
+                        value_of(p.shear_peak_displacement)};
   }
   auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
   double hi = kPi / 2.0;

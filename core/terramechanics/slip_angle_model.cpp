@@ -39,6 +39,8 @@ std::vector<Node> nodes(const ModelOptions& o, double theta0, double theta_m, do
 // The soil's values after the soil-strength factor, and the wheel's shear radius.
 struct Setup {
   double r, b, rs, n, c, tan_phi, modulus, k_x, k_y, gamma, rear_angle_ratio, sidewall_scale;
+  bool peak;                    // the peaked shear curve (model.h): k_x is then K_w (1 + k_s s)
+  double shear_residual_ratio;  // its K_r
 };
 
 Setup setup(const Soil& soil, const Wheel& w, const Extensions& e, double s) {
@@ -52,12 +54,21 @@ Setup setup(const Soil& soil, const Wheel& w, const Extensions& e, double s) {
   u.c = f * soil.cohesion;
   u.tan_phi = f * std::tan(soil.friction_angle);
   u.modulus = (f * soil.kc + f * soil.kphi * u.b) * std::pow(u.b, u.n - 1.0);  // Eq. 2.12-2.13, seed 003
-  u.k_x = soil.shear_modulus * (1.0 + e.shear_modulus_slip * s);               // K(s), Ding et al. 2015 (model.h)
+  u.peak = e.shear_peak;
+  u.shear_residual_ratio = e.shear_residual_ratio;
+  const double k0 = u.peak ? e.shear_peak_displacement : soil.shear_modulus;
+  u.k_x = k0 * (1.0 + e.shear_modulus_slip * s);  // K(s), Ding et al. 2015 (model.h)
   u.k_y = soil.lateral_shear_modulus > 0.0 ? soil.lateral_shear_modulus : u.k_x;
   u.rear_angle_ratio = e.rear_angle_ratio;
   u.sidewall_scale = e.sidewall_scale;
   u.gamma = soil.density * kGravity;
   return u;
+}
+
+// The shear stress's share of the strength c + sigma tan phi at x = j / k:
+// 1 - exp(-x) (Eq. 5 and 7), or the peaked curve (Wong; model.h).
+double shear_fraction(const Setup& u, double x) {
+  return u.peak ? detail::peaked_shear(x, u.shear_residual_ratio) : 1.0 - std::exp(-x);
 }
 
 struct Integrals {
@@ -93,13 +104,13 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
     const double j_y = u.rs * lateral * (theta0 - th);  // Eq. 8: r (1 - s)(theta0 - theta) tan(beta)
     double tau_x = 0.0, tau_y = 0.0;
     if (lat.shear == LateralShear::independent) {
-      tau_x = strength * (1.0 - std::exp(-j_x / u.k_x));                                // Eq. 5
-      tau_y = std::copysign(strength * (1.0 - std::exp(-std::abs(j_y) / u.k_y)), j_y);  // Eq. 7
+      tau_x = strength * shear_fraction(u, j_x / u.k_x);                                // Eq. 5
+      tau_y = std::copysign(strength * shear_fraction(u, std::abs(j_y) / u.k_y), j_y);  // Eq. 7
     } else {
       const double ux = j_x / u.k_x, uy = j_y / u.k_y;
       const double big_j = std::hypot(ux, uy);
       if (big_j > 0.0) {
-        const double tau = strength * (1.0 - std::exp(-big_j));
+        const double tau = strength * shear_fraction(u, big_j);
         tau_x = tau * ux / big_j;
         tau_y = tau * uy / big_j;
       }

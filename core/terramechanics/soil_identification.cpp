@@ -64,6 +64,10 @@ const ParameterName kParameters[] = {
     {Parameter::rear_angle_ratio, "rear_angle_ratio", {0.0, 1.0}},
     {Parameter::lateral_shear_modulus, "lateral_shear_modulus", {1e-4, 0.2}},
     {Parameter::sidewall_scale, "sidewall_scale", {0.0, 20.0}},
+    // The peaked shear curve: residual over maximum stress in (0, 1], and the
+    // maximum's displacement with the range of K_s.
+    {Parameter::shear_residual_ratio, "shear_residual_ratio", {0.01, 1.0}},
+    {Parameter::shear_peak_displacement, "shear_peak_displacement", {1e-4, 0.2}},
 };
 
 // Assigns one free parameter inside the model's parameter set.
@@ -112,6 +116,12 @@ void assign(detail::Params<T>& p, Parameter which, const T& v) {
       break;
     case Parameter::rear_angle_ratio:
       p.rear_angle_ratio = v;
+      break;
+    case Parameter::shear_residual_ratio:
+      p.shear_residual_ratio = v;
+      break;
+    case Parameter::shear_peak_displacement:
+      p.shear_peak_displacement = v;
       break;
     case Parameter::lateral_shear_modulus:  // the slip-angle model only (SlipAnglePointCost)
     case Parameter::sidewall_scale:
@@ -250,6 +260,10 @@ double get_parameter(const Soil& s, const Extensions& e, Parameter p) {
       return lateral_shear_modulus(s);
     case Parameter::sidewall_scale:
       return e.sidewall_scale;
+    case Parameter::shear_residual_ratio:
+      return e.shear_residual_ratio;
+    case Parameter::shear_peak_displacement:
+      return e.shear_peak_displacement;
   }
   return NAN;
 }
@@ -303,6 +317,12 @@ void set_parameter(Soil& s, Extensions& e, Parameter p, double v) {
       break;
     case Parameter::sidewall_scale:
       e.sidewall_scale = v;
+      break;
+    case Parameter::shear_residual_ratio:
+      e.shear_residual_ratio = v;
+      break;
+    case Parameter::shear_peak_displacement:
+      e.shear_peak_displacement = v;
       break;
   }
 }

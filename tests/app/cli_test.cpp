@@ -311,6 +311,21 @@ TEST(CliTerramechanics, UsageAndInputErrors) {
   EXPECT_EQ(run_roverlab("discrepancy single-wheel --help").exit_code, 0);
 }
 
+// Issue 33 item 4: --model wong+shear-peak with its two parameters gives the
+// value of tests/data/single_wheel/shear_peak_reference.py (80 N, s = 0.3,
+// K_r = 0.6, K_w = 8 mm: DP 32.3899829 N); K_r outside (0, 1] is refused.
+TEST(CliTerramechanics, ShearPeakTakesItsResidualRatioAndPeakDisplacement) {
+  const std::string wheel =
+      "terramechanics --soil ding_tyii --radius 0.15735 --width 0.165 --load 80 --slip 0.3 --integration riemann "
+      "--format json --model wong+shear-peak --shear-peak-displacement 0.008 --shear-residual-ratio ";
+  const CommandResult r = run_roverlab(wheel + "0.6");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out).at("rows")[0].at("drawbar_pull_N").get<double>(), 32.3899829, 1e-6);
+  const CommandResult bad = run_roverlab(wheel + "1.5");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--shear-residual-ratio"), std::string::npos) << bad.err;
+}
+
 TEST(CliTerramechanics, SlipAngleAddsTheLateralForce) {
   const std::string wheel = "terramechanics --soil ding_tyii --radius 0.075 --width 0.07 --load 50 --slip 0.2";
   const CommandResult r = run_roverlab(wheel + " --slip-angle -20,0,20");
@@ -447,7 +462,7 @@ TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   // Measured sinkage grows with slip much faster than the static model's.
   EXPECT_LT(base.at("sinkage").at("slope_vs_slip").get<double>(), -0.01);
   EXPECT_LT(base.at("sinkage").at("t_slip").get<double>(), -3.0);
-  EXPECT_EQ(doc.at("candidates").size(), 9u);  // the lateral two not applicable here
+  EXPECT_EQ(doc.at("candidates").size(), 10u);  // the lateral two not applicable here
   EXPECT_EQ(doc.at("baseline_model"), "Wong-Reece");
   EXPECT_FALSE(doc.at("verdict").get<std::string>().empty());
   const CommandResult text = run_roverlab("discrepancy single-wheel " + quote(file) + " --soil ding_tyii");

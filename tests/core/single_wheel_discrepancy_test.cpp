@@ -242,9 +242,9 @@ TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
   const auto candidates = analysis::single_wheel_candidates();
   std::vector<std::string> names;
   for (const auto& c : candidates) names.push_back(c->name());
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength", "max-stress-angle",
-                                      "slip-shear-modulus", "rear-angle", "lateral-shear-modulus", "sidewall"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength",
+                                             "max-stress-angle", "slip-shear-modulus", "rear-angle", "shear-peak",
+                                             "lateral-shear-modulus", "sidewall"}));
   // Only the grouser candidate needs grousers, and it switches their model on;
   // only the lateral ones need points at a slip angle.
   Extensions e;
@@ -257,6 +257,7 @@ TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
   }
   EXPECT_TRUE(e.grousers);
   EXPECT_TRUE(e.bulldozing);
+  EXPECT_TRUE(e.shear_peak);
 }
 
 namespace {
@@ -355,13 +356,13 @@ TEST(Calibration, TheParametersIntervalsCoverTheHiddenValue) {
 
 // Issue 33 item 4: the drawbar-pull extensions from the literature, each
 // hidden alone in simulated wheel tests (four noise draws); the study names
-// it first and its parameter's 2-sigma interval covers the truth in at least
-// three draws of four (measured over 11 draws: 31 of 33 within 2 sigma),
-// with held-out error at the noise level.
+// it first and each of its parameters' 2-sigma interval covers the truth in
+// at least three draws of four (measured over 11 draws: 31 of 33 within 2
+// sigma), with held-out error at the noise level. The extension is switched
+// on as its candidate does (the peaked shear curve is a switch).
 struct HiddenExtension {
   const char* effect;
-  Parameter parameter;
-  double value;
+  std::vector<std::pair<Parameter, double>> truth;
 };
 
 class HiddenDrawbarExtension : public ::testing::TestWithParam<HiddenExtension> {};
@@ -370,9 +371,12 @@ TEST_P(HiddenDrawbarExtension, IsNamedAndItsParameterRecovered) {
   const HiddenExtension e = GetParam();
   Soil soil = test::ding_tyii();
   ModelOptions model;
-  set_parameter(soil, model.extensions, e.parameter, e.value);
+  for (const auto& c : analysis::single_wheel_candidates()) {
+    if (c->name() == std::string(e.effect)) c->configure(model.extensions);
+  }
+  for (const auto& [parameter, value] : e.truth) set_parameter(soil, model.extensions, parameter, value);
   const analysis::DiscrepancyOptions options;
-  int covered = 0;
+  std::vector<int> covered(e.truth.size(), 0);
   for (unsigned draw = 1; draw <= 4; ++draw) {
     std::mt19937 rng(draw);
     std::normal_distribution<double> unit(0.0, 1.0);
@@ -387,25 +391,34 @@ TEST_P(HiddenDrawbarExtension, IsNamedAndItsParameterRecovered) {
     ASSERT_FALSE(r.selection.empty()) << e.effect << ": " << r.verdict;
     const auto& c = r.selection.front();
     EXPECT_EQ(c.name, e.effect) << r.verdict;
-    bool found = false;
-    for (const auto& p : c.fit.parameters) {
-      if (p.parameter != e.parameter) continue;
-      found = true;
-      covered += std::abs(p.value - e.value) < 2.0 * p.sigma ? 1 : 0;
-      std::printf("%s draw %u: %s = %.4f +- %.4f (truth %.4f)\n", e.effect, draw, to_string(p.parameter), p.value,
-                  p.sigma, e.value);
+    for (std::size_t k = 0; k < e.truth.size(); ++k) {
+      bool found = false;
+      for (const auto& p : c.fit.parameters) {
+        if (p.parameter != e.truth[k].first) continue;
+        found = true;
+        covered[k] += std::abs(p.value - e.truth[k].second) < 2.0 * p.sigma ? 1 : 0;
+        std::printf("%s draw %u: %s = %.4f +- %.4f (truth %.4f)\n", e.effect, draw, to_string(p.parameter), p.value,
+                    p.sigma, e.truth[k].second);
+      }
+      EXPECT_TRUE(found) << to_string(e.truth[k].first);
     }
-    EXPECT_TRUE(found);
     EXPECT_LT(c.held_out_score, 1.3) << r.verdict;
     EXPECT_LT(c.delta_bic, -10.0);
   }
-  EXPECT_GE(covered, 3) << e.effect;
+  for (std::size_t k = 0; k < e.truth.size(); ++k)
+    EXPECT_GE(covered[k], 3) << e.effect << " " << to_string(e.truth[k].first);
 }
 
+// shear-peak: a dense soil whose shear stress peaks at K_w = 8 mm and falls to
+// 60 % of its maximum (Wong's hump curve, model.h).
 INSTANTIATE_TEST_SUITE_P(Literature, HiddenDrawbarExtension,
-                         ::testing::Values(HiddenExtension{"slip-shear-modulus", Parameter::shear_modulus_slip, 2.5},
-                                           HiddenExtension{"rear-angle", Parameter::rear_angle_ratio, 0.3},
-                                           HiddenExtension{"max-stress-angle", Parameter::c2, 0.05}));
+                         ::testing::Values(HiddenExtension{"slip-shear-modulus",
+                                                           {{Parameter::shear_modulus_slip, 2.5}}},
+                                           HiddenExtension{"rear-angle", {{Parameter::rear_angle_ratio, 0.3}}},
+                                           HiddenExtension{"max-stress-angle", {{Parameter::c2, 0.05}}},
+                                           HiddenExtension{"shear-peak",
+                                                           {{Parameter::shear_residual_ratio, 0.6},
+                                                            {Parameter::shear_peak_displacement, 0.008}}}));
 
 namespace {
 
@@ -445,8 +458,21 @@ TEST(RealDingData, TheLiteratureExtensionsCutTheHeldOutDrawbarPullByAThird) {
     ASSERT_LT(step, r.selection.size()) << v.explained_by_chain;
     const double step_before = step == 0 ? before : held_out_drawbar(r, r.selection[step - 1]);
     EXPECT_DOUBLE_EQ(v.held_out_step_before, step_before);
-    char cut[64];
+    char cut[160];
     std::snprintf(cut, sizeof cut, "%.2f N -> %.2f N", step_before, v.held_out_after);
+    EXPECT_NE(v.sentence.find(cut), std::string::npos) << cut << " in: " << v.sentence;
+    // No candidate alone reaches 30 % (issue 33's done-when): the sentence says so with the best
+    // single figure, slip-shear-modulus 5.90 N -> 4.61 N (leave-one-out) or 4.62 N (by slip).
+    const analysis::CandidateResult* alone = nullptr;
+    for (const auto& c : r.candidates) {
+      if (c.applicable && (alone == nullptr || held_out_drawbar(r, c) < held_out_drawbar(r, *alone))) alone = &c;
+    }
+    ASSERT_NE(alone, nullptr);
+    EXPECT_EQ(alone->name, "slip-shear-modulus");
+    EXPECT_GT(held_out_drawbar(r, *alone), 0.7 * before);
+    std::snprintf(cut, sizeof cut, "alone no candidate cuts it by 30 %% (best %s: %.2f N -> %.2f N, %+.0f %%)",
+                  alone->name.c_str(), before, held_out_drawbar(r, *alone),
+                  100.0 * (held_out_drawbar(r, *alone) / before - 1.0));
     EXPECT_NE(v.sentence.find(cut), std::string::npos) << cut << " in: " << v.sentence;
   }
 }

@@ -30,10 +30,14 @@ ModelOptions riemann(int points) {
 }  // namespace
 
 TEST(SlipAngleModel, AtZeroSlipAngleItIsTheWongReeceModel) {
-  std::vector<Extensions> variants(5);
+  std::vector<Extensions> variants(6);
   variants[1].slip_sinkage_n1 = 0.4;
   variants[4].shear_modulus_slip = 2.0;  // issue 33 item 4's extensions
   variants[4].rear_angle_ratio = 0.3;
+  variants[5].shear_peak = true;  // Wong's peaked shear curve, with K_w scaled by slip
+  variants[5].shear_residual_ratio = 0.5;
+  variants[5].shear_peak_displacement = 0.006;
+  variants[5].shear_modulus_slip = 1.0;
   variants[2].grousers = true;
   variants[2].grouser_effectiveness = 0.7;
   variants[3].bulldozing = true;

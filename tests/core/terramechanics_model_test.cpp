@@ -280,3 +280,107 @@ TEST(Extensions, RearAngleAndSlipShearModulusMatchAnIndependentCalculation) {
   EXPECT_LT(tr.sinkage, t0.sinkage);
   EXPECT_GT(tr.drawbar_pull, t0.drawbar_pull + 2.0);
 }
+
+// Issue 33 item 4: Wong's peaked ("hump") shear curve of dense sand,
+// tau / tau_max = K_r [1 + (1 / (K_r (1 - 1/e)) - 1) e^(1 - x)] (1 - e^-x),
+// x = j / K_w, against tests/data/single_wheel/shear_peak_reference.py (plain
+// Python from the printed formula): tau_max exactly at x = 1, K_r tau_max far
+// out, and its maximum at x = 1 only for K_r = e (e - 2) / (e - 1)^2 = 0.6613;
+// elsewhere the curve passes tau_max at K_w and peaks nearby, a little above:
+//   K_r: argmax x, max tau / tau_max
+TEST(ShearPeak, TheCurveMatchesAnIndependentCalculation) {
+  struct Row {
+    double k_r, argmax, max;
+  };
+  const double e = std::exp(1.0);
+  const Row rows[] = {{0.3, 0.7832, 1.027650},
+                      {0.5, 0.8795, 1.006530},
+                      {e * (e - 2.0) / ((e - 1.0) * (e - 1.0)), 1.0000, 1.000000},
+                      {0.8, 1.1653, 1.006680},
+                      {1.0, 1.6931, 1.053524}};
+  for (const Row& r : rows) {
+    EXPECT_NEAR(detail::peaked_shear(1.0, r.k_r), 1.0, 1e-12) << r.k_r;
+    EXPECT_NEAR(detail::peaked_shear(50.0, r.k_r), r.k_r, 1e-12) << r.k_r;
+    double best_x = 0.0, best = 0.0;
+    for (int i = 1; i < 500000; ++i) {
+      const double v = detail::peaked_shear(i * 1e-5, r.k_r);
+      if (v > best) {
+        best = v;
+        best_x = i * 1e-5;
+      }
+    }
+    EXPECT_NEAR(best_x, r.argmax, 1e-4) << r.k_r;
+    EXPECT_NEAR(best, r.max, 1e-6) << r.k_r;
+  }
+}
+
+// The wheel with the peaked curve in place of Eq. 2.19 (K_w scaled by
+// 1 + k_s s) against the same script (500-point midpoint rule, bisection):
+//   load, slip, K_r, K_w, k_s: sinkage_m, DP_N, torque_Nm
+TEST(ShearPeak, TheWheelMatchesAnIndependentCalculationAndIsOffByDefault) {
+  struct Row {
+    double load, slip, k_r, k_w, k_s, sinkage, drawbar, torque;
+  };
+  const Row rows[] = {
+      {80, 0.1, 0.6, 0.008, 0.0, 0.00952352823, 29.6775127, 6.46063506},
+      {80, 0.3, 0.6, 0.008, 0.0, 0.00978777449, 32.3899829, 6.98017323},
+      {80, 0.6, 0.4, 0.004, 0.0, 0.0107066495, 10.7594114, 3.82300543},
+      {120, 0.2, 0.9, 0.020, 1.5, 0.0126401645, 24.3700021, 7.01758669},
+      {40, 0.0, 0.7, 0.010, 0.0, 0.006281844, -0.67513623, 0.621152229},
+  };
+  const Wheel ding{0.15735, 0.165, 0, 0.0};
+  for (const Row& r : rows) {
+    ModelOptions o;
+    o.integration = Integration::riemann;
+    o.riemann_points = 500;
+    o.extensions.shear_peak = true;
+    o.extensions.shear_residual_ratio = r.k_r;
+    o.extensions.shear_peak_displacement = r.k_w;
+    o.extensions.shear_modulus_slip = r.k_s;
+    const Traction t = evaluate(ding_tyii(), ding, r.load, r.slip, o);
+    ASSERT_TRUE(t.ok());
+    EXPECT_NEAR(t.sinkage, r.sinkage, 1e-9) << r.load << " N, s " << r.slip << ", K_r " << r.k_r;
+    EXPECT_NEAR(t.drawbar_pull, r.drawbar, 1e-6) << r.load << " N, s " << r.slip << ", K_r " << r.k_r;
+    EXPECT_NEAR(t.resistive_torque, r.torque, 1e-7) << r.load << " N, s " << r.slip << ", K_r " << r.k_r;
+  }
+  // Switched off, its parameters change nothing: the baseline bit for bit.
+  ModelOptions off;
+  off.extensions.shear_residual_ratio = 0.3;
+  off.extensions.shear_peak_displacement = 0.001;
+  for (Integration integration : {Integration::simpson, Integration::riemann}) {
+    for (double slip : {-0.4, 0.0, 0.3}) {
+      ModelOptions base;
+      base.integration = off.integration = integration;
+      const Traction a = evaluate(ding_tyii(), ding, 80.0, slip, off),
+                     b = evaluate(ding_tyii(), ding, 80.0, slip, base);
+      EXPECT_EQ(a.drawbar_pull, b.drawbar_pull);
+      EXPECT_EQ(a.resistive_torque, b.resistive_torque);
+      EXPECT_EQ(a.sinkage, b.sinkage);
+    }
+  }
+}
+
+// Soil identification differentiates through it: the Jets' derivatives with
+// respect to K_r and K_w equal central differences.
+TEST(ShearPeak, JetDerivativesMatchFiniteDifferences) {
+  using J = ceres::Jet<double, 2>;
+  ModelOptions o;
+  o.extensions.shear_peak = true;
+  const Wheel w{0.157, 0.165, 0, 0.0};
+  auto p = detail::make_params<J>(ding_tyii(), o.extensions);
+  p.shear_residual_ratio = J(0.6, 0);
+  p.shear_peak_displacement = J(0.008, 1);
+  const auto sol = detail::solve(p, w, o, 0.3, 80.0);
+  ASSERT_EQ(sol.status, TractionStatus::ok);
+  auto drawbar = [&](double k_r, double k_w) {
+    auto q = detail::make_params<double>(ding_tyii(), o.extensions);
+    q.shear_residual_ratio = k_r;
+    q.shear_peak_displacement = k_w;
+    return detail::solve(q, w, o, 0.3, 80.0).drawbar;
+  };
+  const double d_kr = (drawbar(0.6 + 1e-6, 0.008) - drawbar(0.6 - 1e-6, 0.008)) / 2e-6;
+  const double d_kw = (drawbar(0.6, 0.008 + 1e-8) - drawbar(0.6, 0.008 - 1e-8)) / 2e-8;
+  EXPECT_NEAR(sol.drawbar.v[0], d_kr, 1e-4 * (1.0 + std::abs(d_kr)));
+  EXPECT_NEAR(sol.drawbar.v[1], d_kw, 1e-4 * (1.0 + std::abs(d_kw)));
+  EXPECT_GT(std::abs(d_kw), 100.0);  // K_w matters: not a vacuous comparison
+}
