@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -22,15 +23,18 @@
 #include <thread>
 
 #include "app/command.h"
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
+#include "core/simulation/flying_rover.h"
 #include "core/simulation/rocker_bogie.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "importers/atomic_file.h"
 #include "importers/campaign_file.h"
 #include "importers/hdf5_log.h"
 #include "importers/mapping.h"
+#include "importers/rover_file.h"
 #include "importers/scenario_file.h"
 #include "views/x_display.h"
 
@@ -149,6 +153,12 @@ class ItemList {
       }
     }
     for (std::size_t k = 0; k < e.effects.size(); ++k) check_effects(e, k);
+    check_steering_manoeuvre(e);
+    // The manoeuvre's options name the run (a sweep of slip angles is one run each); the rate does not.
+    const std::pair<const char*, const std::optional<double>*> manoeuvre[] = {
+        {"--turn-radius", &e.turn_radius},
+        {"--slip-angle", &e.slip_angle_deg},
+        {"--slip-angle-from", &e.slip_angle_from}};
     for (const unsigned seed : e.seeds) {
       for (const auto& effects : e.effects) {
         std::string name = label + "-seed" + std::to_string(seed);
@@ -161,6 +171,11 @@ class ItemList {
         args.push_back("--seed");
         args.push_back(std::to_string(seed));
         if (e.rate) args.insert(args.end(), {"--rate", short_number(*e.rate)});
+        for (const auto& [option, value] : manoeuvre) {
+          if (!*value) continue;
+          name += "-" + std::string(option + 2) + short_number(**value);
+          args.insert(args.end(), {option, short_number(**value)});
+        }
         if (e.duration) args.insert(args.end(), {"--duration", short_number(*e.duration)});
         json fx = json::object();
         for (const auto& [effect, value] : effects) {
@@ -227,6 +242,28 @@ class ItemList {
       }
       return 0;
     });
+  }
+
+  // The values of turn_radius, slip_angle_deg and slip_angle_from, checked as
+  // `roverlab scenario` checks its options: by the simulator, on the scenario
+  // with its default rover (each field alone, so the message names the right one).
+  void check_steering_manoeuvre(const io::CampaignSimulations& e) {
+    if (!e.turn_radius && !e.slip_angle_deg && !e.slip_angle_from) return;
+    const io::RoverDescription d = io::find_rover(kFlyingRoverDefaultRover, resource_subfolders("rovers"));
+    if (!d.dh) throw InputError(d.file, "rover '" + d.name + "' is not described by a DH table");
+    const simulation::FlyingRoverScenario base = simulation::flying_rover_scenario(e.scenario, *d.dh);
+    const auto check = [&](const char* field, const std::optional<double>& value, auto set) {
+      if (!value) return;
+      about_field(e.where + "." + field, [&] {
+        simulation::FlyingRoverScenario s = base;
+        set(s, *value);
+        simulation::check_steering_manoeuvre(s);
+        return 0;
+      });
+    };
+    check("turn_radius", e.turn_radius, [](auto& s, double v) { s.turn_radius = v; });
+    check("slip_angle_deg", e.slip_angle_deg, [](auto& s, double v) { s.slip_angle = v * M_PI / 180.0; });
+    check("slip_angle_from", e.slip_angle_from, [](auto& s, double v) { s.slip_angle_from = v; });
   }
 
   std::string file_;

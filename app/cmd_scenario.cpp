@@ -42,7 +42,7 @@ int run_scenario_skid_steer(const SkidSteerScenarioOptions& o) {
 
 struct FlyingRoverOptions {
   std::string scenario;
-  std::string rover = "exomars_bb2";
+  std::string rover = kFlyingRoverDefaultRover;
   unsigned seed = 1;
   double rate = 1000.0;
   double slip_angle_deg = 0.0;
@@ -90,22 +90,21 @@ int run_scenario_flying_rover(const FlyingRoverOptions& o) {
   return kSuccess;
 }
 
-struct FlyingScenario {
-  const char* name;
-  const char* help;
-};
-
-const FlyingScenario kFlyingScenarios[] = {
-    {"fl-bogie-rotation",
-     "Flying ExoMars BB2, front-left bogie turning 0.06 rad/s for 10 s, 3 cm/s forward (seed 000 section 6.3)"},
-    {"rear-bogie-rotation",
-     "Flying ExoMars BB2, rear bogie turning 0.06 rad/s for 10 s, 3 cm/s forward (seed 000 section 6.4)"},
-    {"bump-crossing",
-     "Flying ExoMars BB2: bogie motion of the left wheels crossing an 8 cm bump, all wheels steering (RoverLab)"},
-    {"flat-turn",
-     "Flying ExoMars BB2 on flat ground turning about a centre 1 m to its left at 3 cm/s, wheels steered along their "
-     "travel; --slip-angle makes them slide (RoverLab, issue 33)"},
-};
+// The help line of each of core's flying-rover scenarios; the scenarios
+// themselves (and so the commands) are simulation::flying_rover_scenarios(),
+// the list campaign files read too.
+std::string flying_scenario_help(const std::string& name) {
+  if (name == "fl-bogie-rotation")
+    return "Flying ExoMars BB2, front-left bogie turning 0.06 rad/s for 10 s, 3 cm/s forward (seed 000 section 6.3)";
+  if (name == "rear-bogie-rotation")
+    return "Flying ExoMars BB2, rear bogie turning 0.06 rad/s for 10 s, 3 cm/s forward (seed 000 section 6.4)";
+  if (name == "bump-crossing")
+    return "Flying ExoMars BB2: bogie motion of the left wheels crossing an 8 cm bump, all wheels steering (RoverLab)";
+  if (name == "flat-turn")
+    return "Flying ExoMars BB2 on flat ground turning about a centre 1 m to its left at 3 cm/s, wheels steered along "
+           "their travel; --slip-angle makes them slide (RoverLab, issue 33)";
+  return "Flying-rover scenario " + name + " (core/simulation/flying_rover.h)";
+}
 
 }  // namespace
 
@@ -127,11 +126,11 @@ Commands make_scenario_commands() {
         cmd.add_option("--output,-o", o.output, "OUT.h5")->required();
       },
       run_scenario_skid_steer));
-  for (const auto& s : kFlyingScenarios) {
+  for (const auto& name : simulation::flying_rover_scenarios()) {
     FlyingRoverOptions defaults;
-    defaults.scenario = s.name;
+    defaults.scenario = name;
     commands.push_back(make_command<FlyingRoverOptions>(
-        std::string("scenario ") + s.name, s.help,
+        "scenario " + name, flying_scenario_help(name),
         [](CLI::App& cmd, FlyingRoverOptions& o) {
           cmd.add_option("--seed", o.seed, "Noise seed")->capture_default_str();
           cmd.add_option("--rate", o.rate, "Sample rate, Hz")->capture_default_str();

@@ -13,6 +13,9 @@
 
 namespace roverlab::app {
 
+// The rover `roverlab scenario FLYING-ROVER-SCENARIO` simulates without --rover (a campaign's runs too).
+inline constexpr const char* kFlyingRoverDefaultRover = "exomars_bb2";
+
 // "\r<label> NN %" on stderr while work goes on, when stderr is a terminal;
 // cleared when the line goes out of scope. callback() is empty otherwise, so
 // batch runs and tests see no progress output.

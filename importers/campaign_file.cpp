@@ -7,6 +7,7 @@
 #include <initializer_list>
 
 #include "core/common/error.h"
+#include "core/simulation/flying_rover.h"
 #include "importers/json_resource.h"
 
 namespace roverlab::io {
@@ -113,9 +114,43 @@ CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
   return logs;
 }
 
+// The options of `roverlab scenario FLYING-ROVER-SCENARIO`, as campaign fields.
+// Their bounds are checked by the caller (see campaign_file.h).
+struct FlyingRoverField {
+  const char* name;
+  std::optional<double> CampaignSimulations::*value;
+};
+const FlyingRoverField kFlyingRoverFields[] = {{"turn_radius", &CampaignSimulations::turn_radius},
+                                               {"slip_angle_deg", &CampaignSimulations::slip_angle_deg},
+                                               {"slip_angle_from", &CampaignSimulations::slip_angle_from}};
+
+bool is_flying_rover_scenario(const std::string& name) {
+  const std::vector<std::string> flying = simulation::flying_rover_scenarios();
+  return std::find(flying.begin(), flying.end(), name) != flying.end();
+}
+
+// rate, turn_radius, slip_angle_deg, slip_angle_from: a flying-rover scenario's, refused elsewhere.
+void read_flying_rover_options(const JsonNode& entry, CampaignSimulations& s) {
+  const bool flying = s.command == "scenario" && is_flying_rover_scenario(s.scenario);
+  const auto refuse = [&](const char* field) {
+    if (s.command == "scenario") entry.fail(field, s.scenario + " has no " + field + " option");
+    entry.fail(field, std::string("only flying-rover scenarios take a ") + field);
+  };
+  if (entry.has("rate")) {
+    if (!flying) refuse("rate");
+    s.rate = required_number_in(entry, "rate", 10, 10000);
+  }
+  for (const auto& f : kFlyingRoverFields) {
+    if (!entry.has(f.name)) continue;
+    if (!flying) refuse(f.name);
+    s.*f.value = required_number(entry, f.name);
+  }
+}
+
 CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base) {
   if (!entry.value().is_object()) entry.fail("expected an object with \"scenario\" or \"simulate\"");
-  require_known_fields(entry, {"scenario", "simulate", "seeds", "effects", "rate", "duration"});
+  require_known_fields(entry, {"scenario", "simulate", "seeds", "effects", "rate", "turn_radius", "slip_angle_deg",
+                               "slip_angle_from", "duration"});
   CampaignSimulations s;
   s.where = entry.where();
   const bool scenario = entry.has("scenario"), simulate = entry.has("simulate");
@@ -130,10 +165,6 @@ CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base
       for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
       entry.fail("scenario", "unknown scenario '" + s.scenario + "' (" + list + ")");
     }
-    if (entry.has("rate")) {
-      if (s.scenario == "skid-steer-slip") entry.fail("rate", "skid-steer-slip has no rate option");
-      s.rate = required_number_in(entry, "rate", 10, 10000);
-    }
     if (entry.has("duration")) entry.fail("duration", "only \"simulate\" runs take a duration");
   } else {
     s.command = "simulate";
@@ -143,8 +174,8 @@ CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base
       s.duration = required_number_in(entry, "duration", 0, 100000);
       if (!(*s.duration > 0)) entry.fail("duration", "must be positive");
     }
-    if (entry.has("rate")) entry.fail("rate", "only flying-rover scenarios take a rate");
   }
+  read_flying_rover_options(entry, s);
   s.seeds = read_seeds(entry);
   s.effects = read_effects(entry);
   return s;
@@ -153,8 +184,11 @@ CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base
 }  // namespace
 
 const std::vector<std::string>& campaign_scenario_names() {
-  static const std::vector<std::string> names = {"skid-steer-slip", "fl-bogie-rotation", "rear-bogie-rotation",
-                                                 "bump-crossing"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out = {"skid-steer-slip"};
+    for (const auto& name : simulation::flying_rover_scenarios()) out.push_back(name);
+    return out;
+  }();
   return names;
 }
 

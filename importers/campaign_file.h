@@ -26,6 +26,9 @@ struct CampaignSimulations {
   std::vector<unsigned> seeds;
   std::vector<std::map<std::string, double>> effects;  // at least one set (the empty set: no effect)
   std::optional<double> rate;                          // Hz, flying-rover scenarios
+  std::optional<double> turn_radius;                   // m, flying-rover scenarios (--turn-radius)
+  std::optional<double> slip_angle_deg;                // deg, flying-rover scenarios (--slip-angle)
+  std::optional<double> slip_angle_from;               // s, flying-rover scenarios (--slip-angle-from)
   std::optional<double> duration;                      // s, simulate
   std::string where;                                   // "simulations[0]"
 };
@@ -37,13 +40,17 @@ struct CampaignFile {
   std::vector<CampaignSimulations> simulations;
 };
 
-// The scenarios `roverlab scenario NAME` writes.
+// The scenarios `roverlab scenario NAME` writes: skid-steer-slip and core's
+// flying-rover scenarios (simulation::flying_rover_scenarios(), the list the
+// command registers), so a new scenario needs no edit here.
 const std::vector<std::string>& campaign_scenario_names();
 
 // Reads and checks a campaign file: format and version, field types, numeric
-// ranges (seeds 0..2^31-1, at most 10000 runs), scenario names. Effect names
-// and values are checked by the caller, which knows the simulators. Throws
-// InputError naming the file and the field.
+// ranges (seeds 0..2^31-1, at most 10000 runs), scenario names, and which
+// options a scenario takes. Effect names and values, and the steering
+// manoeuvre's values (turn_radius, slip_angle_deg, slip_angle_from: their
+// bounds depend on the scenario's duration), are checked by the caller, which
+// knows the simulators. Throws InputError naming the file and the field.
 CampaignFile read_campaign_file(const std::string& path);
 
 }  // namespace roverlab::io

@@ -95,8 +95,9 @@ FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinemat
       qd.assign(nq, 0.0);
     };
   } else {
-    throw DataError("unknown scenario '" + name +
-                    "' (fl-bogie-rotation, rear-bogie-rotation, bump-crossing, flat-turn)");
+    std::string known;
+    for (const auto& n : flying_rover_scenarios()) known += (known.empty() ? "" : ", ") + n;
+    throw DataError("unknown scenario '" + name + "' (" + known + ")");
   }
   return s;
 }

@@ -48,6 +48,8 @@ struct FlyingRoverScenario {
 // bump-crossing: see above. Throws DataError for another name or a rover
 // without the joints the scenario moves.
 FlyingRoverScenario flying_rover_scenario(const std::string& name, const kinematics::RoverModel& rover);
+// The names flying_rover_scenario() knows: the one list `roverlab scenario`
+// registers its commands from and campaign files check their scenarios against.
 std::vector<std::string> flying_rover_scenarios();
 
 // Checks turn_radius, slip_angle and slip_angle_from; throws DataError naming the bad one.

@@ -55,12 +55,13 @@ CommandResult campaign(const std::string& args) { return run_command(kExe + " ca
 
 TEST(Campaign, ACampaignFileIsCheckedFieldByField) {
   TempDir dir;
-  const auto check = [&](const std::string& text, const std::string& field) {
+  const auto check = [&](const std::string& text, const std::string& field, const std::string& why = "") {
     write_text(dir.file("c.json"), text);
     const CommandResult r = campaign(quote(dir.file("c.json")) + " -o " + quote(dir.file("out")));
     EXPECT_EQ(r.exit_code, 3) << text << "\n" << r.err;
     EXPECT_NE(r.err.find("c.json"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(field), std::string::npos) << "expected " << field << " in: " << r.err;
+    EXPECT_NE(r.err.find(why), std::string::npos) << "expected " << why << " in: " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   };
   check(R"({"format": "roverlab-soil", "version": 1})", "roverlab-campaign");
@@ -79,6 +80,24 @@ TEST(Campaign, ACampaignFileIsCheckedFieldByField) {
   check(R"({"format": "roverlab-campaign", "version": 1, "simulations": [{"scenario": "fl-bogie-rotation",
         "rate": 5}]})",
         "simulations[0].rate");
+  // The steering manoeuvre's options (issue 33): the bounds of `roverlab scenario`'s --turn-radius (|R| >= 1 m),
+  // --slip-angle (+-45 deg) and --slip-angle-from (within the run: flat-turn lasts 30 s), and only for the
+  // flying-rover scenarios.
+  const std::string flat_turn = R"({"format": "roverlab-campaign", "version": 1, "simulations": [{"scenario": )"
+                                R"("flat-turn", "seeds": [1], )";
+  check(flat_turn + R"("turn_radius": 0.5}]})", "simulations[0].turn_radius", "at least 1 m");
+  check(flat_turn + R"("turn_radius": -0.9}]})", "simulations[0].turn_radius", "at least 1 m");
+  check(flat_turn + R"("slip_angle_deg": 46}]})", "simulations[0].slip_angle_deg", "+-45 deg");
+  check(flat_turn + R"("slip_angle_deg": "2"}]})", "simulations[0].slip_angle_deg", "expected a number");
+  check(flat_turn + R"("slip_angle_deg": 2, "slip_angle_from": 30}]})", "simulations[0].slip_angle_from",
+        "within the run");
+  check(flat_turn + R"("slip_angle_from": -1}]})", "simulations[0].slip_angle_from", "within the run");
+  check(R"({"format": "roverlab-campaign", "version": 1, "simulations": [{"scenario": "skid-steer-slip",
+        "slip_angle_deg": 2}]})",
+        "simulations[0].slip_angle_deg", "skid-steer-slip has no slip_angle_deg option");
+  check(R"({"format": "roverlab-campaign", "version": 1, "simulations": [{"simulate": "flat_60s",
+        "turn_radius": 2}]})",
+        "simulations[0].turn_radius", "only flying-rover scenarios take a turn_radius");
   check(R"({"format": "roverlab-campaign", "version": 1, "logs": [{"file": "nowhere.mat"}]})", "logs[0].file");
   check(R"({"format": "roverlab-campaign", "version": 1, "logs": [{"folder": "."}], "mapping": "x"})", "mapping");
   EXPECT_FALSE(fs::exists(dir.path() / "out"));
@@ -134,6 +153,78 @@ TEST(Campaign, ADryRunListsWhatWouldRunAndRunsNothing) {
   }
   EXPECT_NE(all.find("skid-steer-slip-seed1-left-radius-scale1.05-slip0"), std::string::npos) << all;
   EXPECT_FALSE(fs::exists(dir.path() / "out" / "runs"));
+}
+
+// flat-turn and the steering manoeuvre (issue 33): two slip angles of one
+// seed are two runs, each named by and run with its options; bump-crossing
+// (45 s) takes a slip angle from 40 s that flat-turn (30 s) would refuse.
+std::string manoeuvre_campaign() {
+  return R"({"format": "roverlab-campaign", "version": 1, "name": "slip-angle",
+  "simulations": [
+    {"scenario": "flat-turn", "seeds": [1], "rate": 20, "turn_radius": 1.5, "slip_angle_deg": 2, "slip_angle_from": 10},
+    {"scenario": "flat-turn", "seeds": [1], "rate": 20, "turn_radius": -2, "slip_angle_deg": -3},
+    {"scenario": "bump-crossing", "seeds": [1], "rate": 20, "slip_angle_deg": 1, "slip_angle_from": 40}]})";
+}
+
+TEST(Campaign, AFlatTurnCampaignGivesEachRunItsManoeuvre) {
+  if (!have_snakemake()) GTEST_SKIP() << "snakemake is not installed (scripts/install-deps installs it)";
+  TempDir dir;
+  write_text(dir.file("c.json"), manoeuvre_campaign());
+  const CommandResult r = campaign(quote(dir.file("c.json")) + " -o " + quote(dir.file("out")) + " --dry-run");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const json items = read_json(dir.path() / "out" / "items.json").at("items");
+  const std::map<std::string, std::vector<std::string>> expected = {
+      {"flat-turn-seed1-turn-radius1.5-slip-angle2-slip-angle-from10",
+       {"scenario", "flat-turn", "--seed", "1", "--rate", "20", "--turn-radius", "1.5", "--slip-angle", "2",
+        "--slip-angle-from", "10", "-o", "{output}"}},
+      {"flat-turn-seed1-turn-radius-2-slip-angle-3",
+       {"scenario", "flat-turn", "--seed", "1", "--rate", "20", "--turn-radius", "-2", "--slip-angle", "-3", "-o",
+        "{output}"}},
+      {"bump-crossing-seed1-slip-angle1-slip-angle-from40",
+       {"scenario", "bump-crossing", "--seed", "1", "--rate", "20", "--slip-angle", "1", "--slip-angle-from", "40",
+        "-o", "{output}"}}};
+  ASSERT_EQ(items.size(), expected.size()) << items.dump(1);
+  for (const auto& [name, args] : expected) {
+    ASSERT_TRUE(items.contains(name)) << name << " in " << items.dump(1);
+    EXPECT_EQ(items.at(name).at("args").get<std::vector<std::string>>(), args) << name;
+    EXPECT_NE((r.out + r.err).find("runs/" + name + "/log.h5"), std::string::npos) << name;
+  }
+}
+
+// The campaign's log is the manoeuvre it asked for: the truth the scenario
+// records (turn radius, slip angle, its start) and the wheels' true side-slip
+// angle, 0 before 10 s and 2 deg = 0.0349 rad after.
+TEST(Campaign, AFlatTurnRunSimulatesTheSlipAngleItWasGiven) {
+  if (!have_snakemake()) GTEST_SKIP() << "snakemake is not installed (scripts/install-deps installs it)";
+  TempDir dir;
+  write_text(dir.file("c.json"), R"({"format": "roverlab-campaign", "version": 1, "simulations": [{"scenario": )"
+                                 R"("flat-turn", "rate": 20, "turn_radius": 1.5, "slip_angle_deg": 2, )"
+                                 R"("slip_angle_from": 10}]})");
+  const fs::path out = dir.path() / "out";
+  const CommandResult r = campaign(quote(dir.file("c.json")) + " -o " + quote(out.string()) + " --cores 2");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const fs::path run = out / "runs" / "flat-turn-seed1-turn-radius1.5-slip-angle2-slip-angle-from10";
+  const std::string command = read_json(run / "run.json").at("commands").at(0).get<std::string>();
+  EXPECT_NE(command.find("--turn-radius 1.5 --slip-angle 2 --slip-angle-from 10"), std::string::npos) << command;
+  const CommandResult info = run_command(kExe + " info --json " + quote((run / "log.h5").string()));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const json log = json::parse(info.out);
+  const json& truth = log.at("metadata").at("extra");
+  EXPECT_DOUBLE_EQ(std::stod(truth.at("truth/turn_radius_m").get<std::string>()), 1.5);
+  EXPECT_DOUBLE_EQ(std::stod(truth.at("truth/slip_angle_deg").get<std::string>()), 2.0);
+  EXPECT_DOUBLE_EQ(std::stod(truth.at("truth/slip_angle_from_s").get<std::string>()), 10.0);
+  int wheels = 0;
+  for (const auto& stream : log.at("streams")) {
+    if (stream.at("name") != "truth/wheels") continue;
+    for (const auto& channel : stream.at("channels")) {
+      if (channel.at("name").get<std::string>().rfind("side_slip_", 0) != 0) continue;
+      EXPECT_NEAR(channel.at("min").get<double>(), 0.0, 1e-9) << channel.dump();
+      EXPECT_NEAR(channel.at("max").get<double>(), 2.0 * M_PI / 180.0, 1e-6) << channel.dump();
+      ++wheels;
+    }
+  }
+  EXPECT_EQ(wheels, 6) << info.out.substr(0, 2000);
+  EXPECT_TRUE(fs::exists(run / "report" / "metrics.json"));
 }
 
 class CampaignRun : public ::testing::Test {

@@ -191,7 +191,8 @@ TEST(Mutants, OfACampaignRunsDocumentsAreReportedOrRefusedInOneLine) {
 // Campaign files as `roverlab campaign FILE -o DIR -n` reads them: every
 // field of docs/campaigns.md (a folder and a file of logs, a mapping,
 // flying-rover and skid-steer scenarios with seed lists and ranges, a rate,
-// simulate runs with a duration and effect sets), and the two bundled
+// a steering manoeuvre with a slip angle, simulate runs with a duration and
+// effect sets), and the two bundled
 // campaign files without paths. RoverLab reads and checks the whole file and
 // writes DIR/items.json before Snakemake starts; a stub `snakemake` that
 // does nothing stands in for it (the workflow engine is not under test, and
@@ -217,6 +218,8 @@ TEST(Mutants, OfCampaignFilesArePlannedOrRefusedInOneLine) {
     {"scenario": "skid-steer-slip", "seeds": {"first": 1, "count": 4},
      "effects": [{"slip": 0}, {"slip": 0, "left-radius-scale": 1.05}]},
     {"scenario": "fl-bogie-rotation", "seeds": [1, 2, 3], "rate": 200},
+    {"scenario": "flat-turn", "seeds": [1], "rate": 200, "turn_radius": 1.5, "slip_angle_deg": 2,
+     "slip_angle_from": 10},
     {"simulate": "flat_60s", "seeds": [1], "duration": 20, "effects": [{}, {"soil-strength": 0.8}]}
   ]
 }
