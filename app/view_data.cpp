@@ -155,7 +155,8 @@ views::TractionSurfaceData lateral_surface_of(const ViewInput& in, const std::op
   SurfaceFit fit;
   if (soil_name) {
     // The slip's reading (model.h): travel when a point read longitudinally
-    // would slide sideways at over 10 times its rim speed, as the study rules.
+    // would slide sideways at over 10 times its rim speed. A rule of thumb
+    // (the study fits both readings instead): the title says which it drew.
     ModelOptions m;
     m.kind = ModelKind::ishigami;
     for (const auto& p : in.wheel_points) {

@@ -859,22 +859,14 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
   if (lateral && o.baseline.kind == ModelKind::wong_reece) o.baseline.kind = ModelKind::ishigami;
   const bool at_angle = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.slip_angle != 0.0; });
   if (!at_angle) return SingleWheelStudy(soil, points, o).run();
-  // How the slip is read (SlipDefinition, model.h): given; forced by a point
-  // that read longitudinally would slide sideways at over 10 times its rim
-  // speed; the longitudinal one when the readings differ by < 0.01 in slip;
-  // else the reading whose final model has the lower BIC (the whole study
-  // under each: a hidden effect can mimic the other reading in the baseline).
+  // How the slip is read (SlipDefinition, model.h): given; the longitudinal
+  // one when the readings differ by < 0.01 in slip at every point; else the
+  // whole study under each (a hidden effect can mimic the other reading in
+  // the baseline), keeping the one whose model carries more measurements,
+  // then the one whose final model has the lower BIC.
   std::string why = "given";
   double largest = 0.0;
-  for (const auto& p : points) {
-    largest = std::max(largest, (1.0 - p.slip) * (1.0 - std::cos(p.slip_angle)));
-    if (!o.slip_definition && (1.0 - p.slip) * std::abs(std::tan(p.slip_angle)) > 10.0) {
-      o.slip_definition = SlipDefinition::travel;
-      why = fmt("line %.0f", p.source_line) + fmt(": slip %.3g", p.slip) +
-            fmt(" at %.3g deg", p.slip_angle * 180 / kPi) +
-            " read as 1 - v_x / (r w) would slide sideways at over 10 times the rim speed";
-    }
-  }
+  for (const auto& p : points) largest = std::max(largest, (1.0 - p.slip) * (1.0 - std::cos(p.slip_angle)));
   if (!o.slip_definition && largest < 0.01) {
     o.slip_definition = SlipDefinition::longitudinal;
     why = fmt("at these slip angles the two readings differ by at most %.3g in slip", largest);
@@ -891,11 +883,22 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     o.baseline.slip_definition = SlipDefinition::travel;
     if (progress) o.progress = [&](double f) { progress(0.5 + 0.5 * f); };
     DiscrepancyReport as_travel = SingleWheelStudy(soil, points, o).run();
-    const bool travel = final_bic(as_travel) < final_bic(as_longitudinal);
-    const double chosen = final_bic(travel ? as_travel : as_longitudinal);
-    const double other = final_bic(travel ? as_longitudinal : as_travel);
-    why = "the final model's BIC " + fmt("%.1f", chosen) + " read as " + (travel ? "travel" : "longitudinal") +
-          " slip, " + fmt("%.1f", other) + " as " + (travel ? "longitudinal" : "travel");
+    const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
+    const bool travel = lost_travel != lost_longitudinal ? lost_travel < lost_longitudinal
+                                                         : final_bic(as_travel) < final_bic(as_longitudinal);
+    const char* chosen = travel ? "travel" : "longitudinal";
+    const char* other = travel ? "longitudinal" : "travel";
+    if (lost_travel != lost_longitudinal) {
+      why = std::string("read as ") + other + " slip the model cannot carry the load of " +
+            fmt("%.0f", static_cast<double>(std::max(lost_travel, lost_longitudinal))) + " measurements, read as " +
+            chosen + " of " + fmt("%.0f", static_cast<double>(std::min(lost_travel, lost_longitudinal)));
+    } else {
+      const double gap = std::abs(final_bic(as_travel) - final_bic(as_longitudinal));
+      why = std::string("each reading's final model fitted: BIC lower by ") + fmt("%.1f", gap) + " read as " + chosen +
+            " slip (" + (travel ? as_travel : as_longitudinal).final_model + ") than as " + other + " (" +
+            (travel ? as_longitudinal : as_travel).final_model + ")" +
+            (gap < 10.0 ? "; the data barely tell them apart: give --slip-definition if the testbed's is known" : "");
+    }
     o.baseline.slip_definition = travel ? SlipDefinition::travel : SlipDefinition::longitudinal;
     r = std::move(travel ? as_travel : as_longitudinal);
   }

@@ -199,7 +199,12 @@ SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, doub
   const bool travel = options.slip_definition == SlipDefinition::travel;
   const double s_x = travel ? 1.0 - (1.0 - slip) * std::cos(slip_angle) : slip;
   const double v_y = travel ? (1.0 - slip) * std::sin(slip_angle) : 0.0;
-  auto lateral_ratio = [&](double s_used) { return travel ? v_y : (1.0 - s_used) * std::tan(slip_angle); };
+  // Driving, (1 - s_x) tan(beta) = v_y / (r w) exactly; v_y stays finite at
+  // 90 deg. Skidding (s_x < 0, only below 60 deg) mirrors the slip as the
+  // longitudinal reading does, so a travel slip is its velocity's
+  // longitudinal slip there too.
+  const bool lateral_of_travel = travel && s_x >= 0.0;
+  auto lateral_ratio = [&](double s_used) { return lateral_of_travel ? v_y : (1.0 - s_used) * std::tan(slip_angle); };
   const double s = std::abs(s_x);
   const Solved main = solve(soil, wheel, options, lateral, s, lateral_ratio(s), load);
   t.status = main.status;

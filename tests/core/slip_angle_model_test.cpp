@@ -256,6 +256,12 @@ TEST(SlipAngleModel, ATravelSlipIsTheLongitudinalSlipOfItsVelocity) {
   EXPECT_NEAR(t.resistive_torque, l.resistive_torque, 1e-7);
   EXPECT_NEAR(t.sinkage, l.sinkage, 1e-9);
   EXPECT_GT(std::abs(t.lateral_force - at(0.2, 30.0, longitudinal).lateral_force), 1.0);  // the readings differ
+  // Skidding too: s = -0.5 at 30 deg is s_x = 1 - 1.5 x 0.8660254 = -0.29903811.
+  const auto skid = at(-0.5, 30.0, travel), skid_x = at(-0.29903811, 30.0, longitudinal);
+  ASSERT_TRUE(skid.ok() && skid_x.ok());
+  EXPECT_NEAR(skid.drawbar_pull, skid_x.drawbar_pull, 1e-6);
+  EXPECT_NEAR(skid.lateral_force, skid_x.lateral_force, 1e-6);
+  EXPECT_NEAR(skid.resistive_torque, skid_x.resistive_torque, 1e-7);
   // Sideways at 90 deg: the travel reading's v_y / (r w) = 0.7 is the
   // longitudinal reading's (1 - s_x) tan(beta) at 89.99 deg.
   const auto side = at(0.3, 90.0, travel);
