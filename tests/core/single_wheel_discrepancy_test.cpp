@@ -643,6 +643,20 @@ TEST(SlipDefinition, ATravelSlipFileIsReadAsTravelSlip) {
   EXPECT_GT(wrong_fy, 3.0 * right_fy);
 }
 
+// Longitudinal (Ishigami) slip with a wheel dragged almost sideways (87 deg
+// at s = 0.1: read longitudinally it slides at 17 times its rim speed). A
+// rule "that can only be a travel slip" read it as travel and claimed three
+// causes; fitting both readings keeps the longitudinal one and no cause.
+TEST(SlipDefinition, AWheelDraggedSidewaysAtALongitudinalSlipIsNotReadAsTravel) {
+  const auto bed = lateral_testbed(6, 1.0, SlipDefinition::longitudinal, {0.0, 30.0, 60.0, 87.0});
+  Soil soil = test::ding_tyii();
+  soil.lateral_shear_modulus = bed.k_y;  // the testbed's soil: nothing hidden but the reading
+  const auto r = analysis::study_single_wheel(soil, bed.points);
+  EXPECT_EQ(r.slip_definition, "longitudinal") << r.slip_definition_reason;
+  EXPECT_TRUE(r.selection.empty()) << r.verdict;
+  for (const auto& w : r.per_wheel) EXPECT_LT(w.model_rmse, w.quantity == Quantity::sinkage ? 8e-4 : 0.8) << w.wheel;
+}
+
 // Straight-driving data: the lateral candidates do not apply.
 TEST(LateralCandidates, NeedPointsAtASlipAngle) {
   const auto points = testbed(pick_effect(1, true), 1, analysis::DiscrepancyOptions{}.sigma);

@@ -5,6 +5,7 @@
 #include <ceres/jet.h>
 
 #include <cmath>
+#include <string>
 
 #include "core/terramechanics/model.h"
 #include "core/terramechanics/model_impl.h"
@@ -14,6 +15,24 @@ using namespace roverlab::terramechanics;
 using roverlab::test::ding_tyii;
 using roverlab::test::kapvik_wheel;
 using roverlab::test::lunar_nominal;
+
+namespace {
+
+// One row of an independent reference script (500-point midpoint rule) on
+// the Ding wheel: sinkage to 1e-9 m, DP to 1e-6 N, torque to 1e-7 N m.
+void expect_reference_row(ModelOptions o, double load, double slip, double sinkage, double drawbar, double torque,
+                          const std::string& label) {
+  o.integration = Integration::riemann;
+  o.riemann_points = 500;
+  const Wheel ding{0.15735, 0.165, 0, 0.0};
+  const Traction t = evaluate(ding_tyii(), ding, load, slip, o);
+  ASSERT_TRUE(t.ok()) << label;
+  EXPECT_NEAR(t.sinkage, sinkage, 1e-9) << label;
+  EXPECT_NEAR(t.drawbar_pull, drawbar, 1e-6) << label;
+  EXPECT_NEAR(t.resistive_torque, torque, 1e-7) << label;
+}
+
+}  // namespace
 
 TEST(Soil, WongConstantsFromBekkerModuliMatchTable22) {
   // Eq. 2.12-2.13 with the Kapvik width: Table 2.2 gives k1 = 12.0 kPa, k2 = 1845.3 kPa/m.
@@ -253,15 +272,11 @@ TEST(Extensions, RearAngleAndSlipShearModulusMatchAnIndependentCalculation) {
   const Wheel ding{0.15735, 0.165, 0, 0.0};
   for (const Row& r : rows) {
     ModelOptions o;
-    o.integration = Integration::riemann;
-    o.riemann_points = 500;
     o.extensions.rear_angle_ratio = r.kappa;
     o.extensions.shear_modulus_slip = r.k_s;
-    const Traction t = evaluate(ding_tyii(), ding, r.load, r.slip, o);
-    ASSERT_TRUE(t.ok());
-    EXPECT_NEAR(t.sinkage, r.sinkage, 1e-9) << r.load << " N, s " << r.slip << ", kappa " << r.kappa;
-    EXPECT_NEAR(t.drawbar_pull, r.drawbar, 1e-6) << r.load << " N, s " << r.slip << ", kappa " << r.kappa;
-    EXPECT_NEAR(t.resistive_torque, r.torque, 1e-7) << r.load << " N, s " << r.slip << ", kappa " << r.kappa;
+    expect_reference_row(
+        o, r.load, r.slip, r.sinkage, r.drawbar, r.torque,
+        std::to_string(r.load) + " N, s " + std::to_string(r.slip) + ", kappa " + std::to_string(r.kappa));
   }
   // The rear contact carries part of the load behind the bottom: less sinkage
   // and more pull at the same slip (row 2 against row 1); a stiffer shear
@@ -331,17 +346,12 @@ TEST(ShearPeak, TheWheelMatchesAnIndependentCalculationAndIsOffByDefault) {
   const Wheel ding{0.15735, 0.165, 0, 0.0};
   for (const Row& r : rows) {
     ModelOptions o;
-    o.integration = Integration::riemann;
-    o.riemann_points = 500;
     o.extensions.shear_peak = true;
     o.extensions.shear_residual_ratio = r.k_r;
     o.extensions.shear_peak_displacement = r.k_w;
     o.extensions.shear_modulus_slip = r.k_s;
-    const Traction t = evaluate(ding_tyii(), ding, r.load, r.slip, o);
-    ASSERT_TRUE(t.ok());
-    EXPECT_NEAR(t.sinkage, r.sinkage, 1e-9) << r.load << " N, s " << r.slip << ", K_r " << r.k_r;
-    EXPECT_NEAR(t.drawbar_pull, r.drawbar, 1e-6) << r.load << " N, s " << r.slip << ", K_r " << r.k_r;
-    EXPECT_NEAR(t.resistive_torque, r.torque, 1e-7) << r.load << " N, s " << r.slip << ", K_r " << r.k_r;
+    expect_reference_row(o, r.load, r.slip, r.sinkage, r.drawbar, r.torque,
+                         std::to_string(r.load) + " N, s " + std::to_string(r.slip) + ", K_r " + std::to_string(r.k_r));
   }
   // Switched off, its parameters change nothing: the baseline bit for bit.
   ModelOptions off;
