@@ -14,23 +14,27 @@ namespace {
 std::size_t lags_needed(const ResidualGroup& g) { return g.integrated ? 1U : 0U; }
 
 // Visits each residual of a group that has the lags it needs, with its
-// (differenced) value and its predecessor's: f(x, previous). The first of a
-// segment has the predecessor 0, so that its innovation is its whole value:
-// an autocorrelation near 1 cannot make a level offset within a block free.
+// (differenced) value, its predecessor's and the ordinal of its segment
+// within the group: f(x, previous, segment). The first of a segment has the
+// predecessor 0, so that its innovation is its whole value: an
+// autocorrelation near 1 cannot make a level offset within a block free.
 template <typename F>
 void for_each_usable(const ResidualGroup& g, const std::vector<char>& start, std::size_t begin, const double* in,
                      std::size_t stride, F&& f) {
   const std::size_t need = lags_needed(g);
-  std::size_t pos = 0;
+  std::size_t pos = 0, segment = 0;
   for (std::size_t i = 0; i < g.size; ++i, ++pos) {
     const std::size_t at = begin + i;
-    if (i == 0 || (!start.empty() && start[at] != 0)) pos = 0;
+    if (i == 0 || (!start.empty() && start[at] != 0)) {
+      if (i > 0) ++segment;
+      pos = 0;
+    }
     if (pos < need) continue;
     auto value = [&](std::size_t k) { return in[k * stride]; };
     const double x = g.integrated ? value(at) - value(at - 1) : value(at);
     double prev = 0;
     if (g.autocorrelated && pos > need) prev = g.integrated ? value(at - 1) - value(at - 2) : value(at - 1);
-    f(x, prev);
+    f(x, prev, segment);
   }
 }
 
@@ -51,7 +55,7 @@ std::size_t GroupedLikelihood::effective_count() const {
   std::size_t n = 0, begin = 0;
   std::vector<double> zeros(size_, 0.0);
   for (const auto& g : groups_) {
-    for_each_usable(g, start_, begin, zeros.data(), 1, [&](double, double) { ++n; });
+    for_each_usable(g, start_, begin, zeros.data(), 1, [&](double, double, std::size_t) { ++n; });
     begin += g.size;
   }
   return n;
@@ -64,7 +68,7 @@ LikelihoodProfile GroupedLikelihood::profile(const std::vector<double>& r) const
   for (const auto& g : groups_) {
     double sxx = 0, sxp = 0, spp = 0;
     std::size_t n = 0;
-    for_each_usable(g, start_, begin, r.data(), 1, [&](double x, double prev) {
+    for_each_usable(g, start_, begin, r.data(), 1, [&](double x, double prev, std::size_t) {
       sxx += x * x;
       sxp += x * prev;
       spp += prev * prev;
@@ -90,7 +94,7 @@ LikelihoodProfile GroupedLikelihood::fit_weights(const std::vector<double>& r) c
   for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
     double s = 0;
     std::size_t n = 0;
-    for_each_usable(groups_[gi], start_, begin, r.data(), 1, [&](double x, double) {
+    for_each_usable(groups_[gi], start_, begin, r.data(), 1, [&](double x, double, std::size_t) {
       s += x * x;
       ++n;
     });
@@ -106,7 +110,7 @@ void GroupedLikelihood::whiten(const LikelihoodProfile& at, const double* in, do
   for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
     const double rho = at.groups[gi].rho, scale = at.groups[gi].scale;
     for_each_usable(groups_[gi], start_, begin, in, stride,
-                    [&](double x, double prev) { out[j++] = (x - rho * prev) / scale; });
+                    [&](double x, double prev, std::size_t) { out[j++] = (x - rho * prev) / scale; });
     begin += groups_[gi].size;
   }
 }
@@ -114,18 +118,11 @@ void GroupedLikelihood::whiten(const LikelihoodProfile& at, const double* in, do
 std::vector<std::size_t> GroupedLikelihood::segments() const {
   std::vector<std::size_t> out;
   out.reserve(effective_count());
+  const std::vector<double> zeros(size_, 0.0);
   std::size_t begin = 0;
   for (const auto& g : groups_) {
-    // for_each_usable visits in order; count the segment starts it passes.
-    std::size_t segment = 0;
-    const std::size_t need = lags_needed(g);
-    std::size_t pos = 0;
-    for (std::size_t i = 0; i < g.size; ++i, ++pos) {
-      const std::size_t at = begin + i;
-      if (i > 0 && !start_.empty() && start_[at] != 0) ++segment;
-      if (i == 0 || (!start_.empty() && start_[at] != 0)) pos = 0;
-      if (pos >= need) out.push_back(segment);
-    }
+    for_each_usable(g, start_, begin, zeros.data(), 1,
+                    [&](double, double, std::size_t segment) { out.push_back(segment); });
     begin += g.size;
   }
   return out;
