@@ -78,6 +78,14 @@ T peaked_shear(const T& x, const T& residual_ratio) {
   return (residual_ratio + (kE / (kE - 1.0) - residual_ratio) * exp(1.0 - x)) * (1.0 - exp(-x));
 }
 
+// The shear stress's share of the strength c + sigma tan phi at x = j / K:
+// 1 - exp(-x) (Eq. 2.19; Ishigami 2007 Eq. 5 and 7), or the peaked curve
+// with residual ratio K_r when the extension is on (K is then K_w).
+template <typename T>
+T shear_fraction(bool peak, const T& x, const T& residual_ratio) {
+  return peak ? peaked_shear(x, residual_ratio) : 1.0 - exp(-x);
+}
+
 // Stress integrals for entry angle theta0 and slip s >= 0.
 template <typename T>
 Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, const T& theta0) {
@@ -127,19 +135,15 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   // the bottom dead centre (Wong & Reece 1967; Ishigami et al. 2007 Eq. 6).
   const T theta_r = -p.rear_angle_ratio * theta0;
   // Slip-dependent shear deformation modulus K = K_0 (1 + k_s s) (Ding et al. 2015, doi:10.1002/rob.21533).
-  const T shear_modulus = p.shear_modulus * (1.0 + p.shear_modulus_slip * s);
-  const bool peak = o.extensions.shear_peak;  // the hump curve's K_w takes K's place
-  const T peak_displacement = p.shear_peak_displacement * (1.0 + p.shear_modulus_slip * s);
+  // The hump curve's K_w takes K_0's place.
+  const bool peak = o.extensions.shear_peak;
+  const T shear_modulus = (peak ? p.shear_peak_displacement : p.shear_modulus) * (1.0 + p.shear_modulus_slip * s);
   auto sample = [&](const T& th, T& sigma, T& tau) {
     // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front).
     const T th_eq = th >= theta_m ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
     sigma = modulus * power(T(r / b) * (cos(th_eq) - cos0), n);
-    const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - sin(th)));  // Eq. 2.18
-    if (peak) {
-      tau = (c + sigma * tan_phi) * peaked_shear(j / peak_displacement, p.shear_residual_ratio);  // Wong, ch. 2
-    } else {
-      tau = (c + sigma * tan_phi) * (1.0 - exp(-j / shear_modulus));  // Eq. 2.19
-    }
+    const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - sin(th)));                                // Eq. 2.18
+    tau = (c + sigma * tan_phi) * shear_fraction(peak, j / shear_modulus, p.shear_residual_ratio);  // Eq. 2.19
   };
   T i_sigma_cos(0.0), i_sigma_sin(0.0), i_tau_cos(0.0), i_tau_sin(0.0), i_tau(0.0);
   auto add = [&](const T& th, const T& weight) {

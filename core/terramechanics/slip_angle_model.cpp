@@ -65,11 +65,8 @@ Setup setup(const Soil& soil, const Wheel& w, const Extensions& e, double s) {
   return u;
 }
 
-// The shear stress's share of the strength c + sigma tan phi at x = j / k:
-// 1 - exp(-x) (Eq. 5 and 7), or the peaked curve (Wong; model.h).
-double shear_fraction(const Setup& u, double x) {
-  return u.peak ? detail::peaked_shear(x, u.shear_residual_ratio) : 1.0 - std::exp(-x);
-}
+// The shear stress's share of the strength at x = j / k (model_impl.h).
+double shear_fraction(const Setup& u, double x) { return detail::shear_fraction(u.peak, x, u.shear_residual_ratio); }
 
 struct Integrals {
   double normal = 0.0, drawbar = 0.0, torque = 0.0, lateral_shear = 0.0, sidewall = 0.0;
