@@ -154,11 +154,6 @@ class ItemList {
     }
     for (std::size_t k = 0; k < e.effects.size(); ++k) check_effects(e, k);
     check_steering_manoeuvre(e);
-    // The manoeuvre's options name the run (a sweep of slip angles is one run each); the rate does not.
-    const std::pair<const char*, const std::optional<double>*> manoeuvre[] = {
-        {"--turn-radius", &e.turn_radius},
-        {"--slip-angle", &e.slip_angle_deg},
-        {"--slip-angle-from", &e.slip_angle_from}};
     for (const unsigned seed : e.seeds) {
       for (const auto& effects : e.effects) {
         std::string name = label + "-seed" + std::to_string(seed);
@@ -171,10 +166,12 @@ class ItemList {
         args.push_back("--seed");
         args.push_back(std::to_string(seed));
         if (e.rate) args.insert(args.end(), {"--rate", short_number(*e.rate)});
-        for (const auto& [option, value] : manoeuvre) {
-          if (!*value) continue;
-          name += "-" + std::string(option + 2) + short_number(**value);
-          args.insert(args.end(), {option, short_number(**value)});
+        // The manoeuvre's options name the run (a sweep of slip angles is one run each); the rate does not.
+        for (const auto& f : io::kFlyingRoverFields) {
+          const std::optional<double>& value = e.*f.value;
+          if (!value) continue;
+          name += "-" + std::string(f.option + 2) + short_number(*value);
+          args.insert(args.end(), {f.option, short_number(*value)});
         }
         if (e.duration) args.insert(args.end(), {"--duration", short_number(*e.duration)});
         json fx = json::object();

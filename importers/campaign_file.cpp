@@ -114,16 +114,6 @@ CampaignLogs read_logs(const JsonNode& entry, const fs::path& base) {
   return logs;
 }
 
-// The options of `roverlab scenario FLYING-ROVER-SCENARIO`, as campaign fields.
-// Their bounds are checked by the caller (see campaign_file.h).
-struct FlyingRoverField {
-  const char* name;
-  std::optional<double> CampaignSimulations::*value;
-};
-const FlyingRoverField kFlyingRoverFields[] = {{"turn_radius", &CampaignSimulations::turn_radius},
-                                               {"slip_angle_deg", &CampaignSimulations::slip_angle_deg},
-                                               {"slip_angle_from", &CampaignSimulations::slip_angle_from}};
-
 bool is_flying_rover_scenario(const std::string& name) {
   const std::vector<std::string> flying = simulation::flying_rover_scenarios();
   return std::find(flying.begin(), flying.end(), name) != flying.end();

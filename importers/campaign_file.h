@@ -45,6 +45,18 @@ struct CampaignFile {
 // command registers), so a new scenario needs no edit here.
 const std::vector<std::string>& campaign_scenario_names();
 
+// The steering manoeuvre's fields of a flying-rover entry: the campaign
+// field, the `roverlab scenario` option it becomes, and where it is read to.
+struct FlyingRoverField {
+  const char* name;    // "turn_radius"
+  const char* option;  // "--turn-radius"
+  std::optional<double> CampaignSimulations::*value;
+};
+inline constexpr FlyingRoverField kFlyingRoverFields[] = {
+    {"turn_radius", "--turn-radius", &CampaignSimulations::turn_radius},
+    {"slip_angle_deg", "--slip-angle", &CampaignSimulations::slip_angle_deg},
+    {"slip_angle_from", "--slip-angle-from", &CampaignSimulations::slip_angle_from}};
+
 // Reads and checks a campaign file: format and version, field types, numeric
 // ranges (seeds 0..2^31-1, at most 10000 runs), scenario names, and which
 // options a scenario takes. Effect names and values, and the steering
