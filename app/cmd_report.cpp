@@ -26,7 +26,7 @@
 #include "app/report_pdf.h"
 #include "app/resources.h"
 #include "app/views_input.h"
-#include "core/analysis/run_overview.h"
+#include "core/log/run_overview.h"
 #include "core/common/error.h"
 #include "importers/atomic_file.h"
 #include "importers/mapping.h"

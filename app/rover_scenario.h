@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "core/analysis/rover_discrepancy.h"
+#include "core/discrepancy/rover/study.h"
 #include "importers/scenario_file.h"
 
 namespace roverlab::app {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/views_input.h"
-#include "core/estimation/skid_steer_odometry.h"
+#include "core/models/skid_steer_odometry.h"
 #include "core/terramechanics/traction_surface.h"
 #include "views/view.h"
 

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <string>
 
-#include "core/estimation/contact_angle.h"
-#include "core/estimation/contact_model_selection.h"
+#include "core/estimation/contact_angle/contact_angle.h"
+#include "core/estimation/contact_angle/model_selection.h"
 #include "core/simulation/flying_rover.h"
 #include "importers/hdf5_log.h"
 #include "importers/log_file.h"

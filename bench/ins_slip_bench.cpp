@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/analysis/odometry_discrepancy.h"
-#include "core/estimation/ins_slip.h"
+#include "core/discrepancy/odometry/study.h"
+#include "core/estimation/ins_slip/ins_slip.h"
 #include "importers/log_file.h"
 #include "importers/mapping.h"
 

@@ -2,7 +2,7 @@
 // rocker-bogie log: target at most 20 s on one core (docs/performance.md).
 #include <benchmark/benchmark.h>
 
-#include "core/analysis/rover_discrepancy.h"
+#include "core/discrepancy/rover/study.h"
 #include "importers/soil_file.h"
 
 using namespace roverlab;

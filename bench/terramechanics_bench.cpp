@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "core/analysis/single_wheel_discrepancy.h"
+#include "core/discrepancy/single_wheel/study.h"
 #include "core/terramechanics/model.h"
 #include "core/terramechanics/traction_surface.h"
 #include "importers/soil_file.h"

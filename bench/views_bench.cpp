@@ -12,7 +12,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/estimation/ins_slip.h"
+#include "core/estimation/ins_slip/ins_slip.h"
 #include "importers/log_file.h"
 #include "importers/mapping.h"
 #include "views/offscreen.h"

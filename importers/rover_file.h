@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/estimation/skid_steer_odometry.h"
+#include "core/models/skid_steer_odometry.h"
 #include "core/kinematics/rover_model.h"
 
 namespace roverlab::io {

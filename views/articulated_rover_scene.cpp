@@ -24,7 +24,7 @@
 #include <limits>
 
 #include "core/common/error.h"
-#include "core/estimation/contact_model_selection.h"
+#include "core/estimation/contact_angle/model_selection.h"
 #include "views/contact_angle_scene.h"
 #include "views/vtk_parts.h"
 

@@ -17,7 +17,7 @@
 #include <cstdio>
 
 #include "core/common/error.h"
-#include "core/estimation/contact_model_selection.h"
+#include "core/estimation/contact_angle/model_selection.h"
 #include "views/vtk_parts.h"
 
 namespace roverlab::views {

@@ -25,7 +25,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "core/estimation/slip.h"
+#include "core/models/slip.h"
 #include "core/log/stream.h"
 #include "views/rover_scene.h"
 #include "views/vtk_parts.h"

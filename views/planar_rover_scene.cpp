@@ -22,7 +22,7 @@
 #include <map>
 
 #include "core/common/error.h"
-#include "core/estimation/slip.h"
+#include "core/models/slip.h"
 #include "views/contact_angle_scene.h"
 #include "views/rover_scene.h"
 #include "views/vtk_parts.h"

@@ -21,7 +21,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/estimation/slip.h"
+#include "core/models/slip.h"
 #include "core/log/stream.h"
 #include "views/articulated_rover_scene.h"
 #include "views/planar_rover_scene.h"

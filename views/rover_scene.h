@@ -12,7 +12,7 @@
 #include <vtkSmartPointer.h>
 #include <Eigen/Core>
 
-#include "core/estimation/skid_steer_odometry.h"
+#include "core/models/skid_steer_odometry.h"
 #include "core/log/log.h"
 #include "views/view.h"
 

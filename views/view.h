@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/estimation/skid_steer_odometry.h"
+#include "core/models/skid_steer_odometry.h"
 #include "core/kinematics/rover_model.h"
 #include "core/log/log.h"
 #include "views/traction_surface_scene.h"

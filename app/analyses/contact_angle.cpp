@@ -12,8 +12,8 @@
 #include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
-#include "core/estimation/contact_angle.h"
-#include "core/estimation/contact_model_selection.h"
+#include "core/estimation/contact_angle/contact_angle.h"
+#include "core/estimation/contact_angle/model_selection.h"
 #include "importers/rover_file.h"
 
 namespace roverlab::app {

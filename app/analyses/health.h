@@ -1,5 +1,5 @@
 #pragma once
-// An estimator's health (core/estimation/filter_health.h) in its result
+// An estimator's health (core/filters/filter_health.h) in its result
 // document, its printed text and its report section: the same `health`
 // object for `estimate X --json`, the report's metrics.json and the GUI.
 
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/analysis.h"
-#include "core/estimation/filter_health.h"
+#include "core/filters/filter_health.h"
 
 namespace roverlab::app {
 

@@ -7,7 +7,7 @@
 #include "app/analyses/health.h"
 #include "app/analysis.h"
 #include "app/command_support.h"
-#include "core/estimation/ins_slip.h"
+#include "core/estimation/ins_slip/ins_slip.h"
 
 namespace roverlab::app {
 

@@ -8,8 +8,8 @@
 #include "app/analysis.h"
 #include "app/command_support.h"
 #include "app/report_plot.h"
-#include "core/analysis/likelihood.h"
-#include "core/analysis/odometry_discrepancy.h"
+#include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/odometry/study.h"
 
 namespace roverlab::app {
 

@@ -12,8 +12,8 @@
 #include "app/commands.h"
 #include "app/report_plot.h"
 #include "app/rover_scenario.h"
-#include "core/analysis/likelihood.h"
-#include "core/analysis/rover_discrepancy.h"
+#include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/rover/study.h"
 #include "core/common/error.h"
 
 namespace roverlab::app {

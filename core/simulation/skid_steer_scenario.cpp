@@ -5,8 +5,8 @@
 #include <random>
 
 #include "core/common/error.h"
-#include "core/estimation/ins.h"
-#include "core/estimation/slip.h"
+#include "core/models/ins.h"
+#include "core/models/slip.h"
 
 namespace roverlab::simulation {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/estimation/skid_steer_odometry.h"
+#include "core/models/skid_steer_odometry.h"
 #include "core/log/log.h"
 
 namespace roverlab::simulation {

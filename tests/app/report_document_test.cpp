@@ -17,7 +17,7 @@
 #include "app/analysis.h"
 #include "app/command_support.h"
 #include "app/log_input.h"
-#include "core/analysis/likelihood.h"
+#include "core/discrepancy/likelihood.h"
 #include "test_support.h"
 #include "views/timeseries_chart.h"
 

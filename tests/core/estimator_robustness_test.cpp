@@ -14,9 +14,9 @@
 #include <ostream>
 #include <string>
 
-#include "core/estimation/contact_angle.h"
-#include "core/estimation/filter_health.h"
-#include "core/estimation/ins_slip.h"
+#include "core/estimation/contact_angle/contact_angle.h"
+#include "core/filters/filter_health.h"
+#include "core/estimation/ins_slip/ins_slip.h"
 #include "core/simulation/flying_rover.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "importers/mapping.h"

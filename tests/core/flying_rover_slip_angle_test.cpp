@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/common/error.h"
-#include "core/estimation/contact_angle.h"
-#include "core/estimation/contact_model_selection.h"
+#include "core/estimation/contact_angle/contact_angle.h"
+#include "core/estimation/contact_angle/model_selection.h"
 #include "core/simulation/flying_rover.h"
 #include "importers/rover_file.h"
 

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <random>
 
-#include "core/analysis/ins_metrics.h"
-#include "core/estimation/ins_slip.h"
-#include "core/estimation/ins_slip_estimator.h"
-#include "core/estimation/ins_slip_models.h"
-#include "core/estimation/reference_track.h"
-#include "core/estimation/skid_steer_odometry.h"
-#include "core/estimation/slip.h"
+#include "core/estimation/ins_slip/metrics.h"
+#include "core/estimation/ins_slip/ins_slip.h"
+#include "core/estimation/ins_slip/estimator.h"
+#include "core/estimation/ins_slip/models.h"
+#include "core/models/reference_track.h"
+#include "core/models/skid_steer_odometry.h"
+#include "core/models/slip.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "importers/mapping.h"
 #include "importers/matlab_importer.h"

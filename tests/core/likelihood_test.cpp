@@ -1,6 +1,6 @@
 // The discrepancy studies' likelihood (issue 29): per-group noise scale and
 // lag-1 autocorrelation profiled out, increments for integrated groups.
-#include "core/analysis/likelihood.h"
+#include "core/discrepancy/likelihood.h"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/analysis/odometry_candidates.h"
-#include "core/analysis/odometry_discrepancy.h"
+#include "core/discrepancy/odometry/candidates.h"
+#include "core/discrepancy/odometry/study.h"
 #include "core/common/error.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "tests/support/calibration_seeds.h"

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/analysis/rover_candidates.h"
-#include "core/analysis/rover_discrepancy.h"
+#include "core/discrepancy/rover/candidates.h"
+#include "core/discrepancy/rover/study.h"
 #include "core/common/error.h"
 #include "core/simulation/random_effects.h"
 #include "core/simulation/sensor_effects.h"

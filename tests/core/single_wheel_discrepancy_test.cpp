@@ -10,8 +10,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "core/analysis/single_wheel_candidates.h"
-#include "core/analysis/single_wheel_discrepancy.h"
+#include "core/discrepancy/single_wheel/candidates.h"
+#include "core/discrepancy/single_wheel/study.h"
 #include "core/common/error.h"
 #include "core/terramechanics/slip_angle_model.h"
 #include "importers/wheel_test_csv.h"

@@ -1,0 +1,12 @@
+#include "core/discrepancy/rover/candidates.h"
+
+namespace roverlab::analysis {
+
+std::unique_ptr<RoverCandidate> make_wheel_radius_rover_candidate() {
+  return fixed_rover_candidate(
+      "wheel radius",
+      "the wheels roll on another radius than the nominal one (controller and encoders assume the nominal)", true,
+      {{"wheel-radius-scale", "1", 1.0, 0.8, 1.25, 0.002}});
+}
+
+}  // namespace roverlab::analysis

@@ -1,0 +1,299 @@
+// The rover discrepancy study's forward selection and verdict.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+
+#include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/rover/candidates.h"
+#include "core/discrepancy/rover/study.h"
+#include "core/discrepancy/rover/fit.h"
+#include "core/discrepancy/rover/prediction.h"
+#include "core/common/error.h"
+
+namespace roverlab::analysis::rover {
+
+namespace {
+
+std::vector<RoverParameterFit> fits_of(const std::vector<FitParameter>& p, std::size_t from) {
+  std::vector<RoverParameterFit> out;
+  for (std::size_t j = from; j < p.size(); ++j) {
+    const RoverCandidateParameter& sp = p[j].spec;
+    const double span = 1e-6 * (sp.upper - sp.lower);
+    const bool at_bound = sp.fitted && (p[j].value <= sp.lower + span || p[j].value >= sp.upper - span);
+    out.push_back({sp.effect, sp.unit, p[j].value, p[j].sigma, at_bound});
+  }
+  return out;
+}
+
+struct Trial {
+  FitOutcome fit;
+  double screened_fit = 0;  // -2 ln L the linearised fit predicts
+  double delta_bic = 0;
+  bool significant = false;
+  bool screened = false;  // judged by its linearised fit alone
+  int simulations = 0;
+  bool applies = false;
+  JacobianMemo jacobian;  // the screen's, carried into the fit
+};
+
+struct Round {
+  std::vector<Trial> trials;  // one per candidate
+  int best = -1;
+};
+
+// The most candidates a round fits after screening; the best screen is always among them.
+constexpr std::size_t kMaxFitsPerRound = 3;
+
+// The candidate's own parameters (those after the chain) moved to their
+// grids' best, the chain held where it is: the chain is at its optimum and a
+// grid would only move it off it.
+void grid_start_candidate(Predictor& pr, std::vector<FitParameter>& parameters, std::size_t chain) {
+  std::vector<char> was(parameters.size());
+  for (std::size_t j = 0; j < chain; ++j) {
+    was[j] = parameters[j].free ? 1 : 0;
+    parameters[j].free = false;
+  }
+  grid_start(pr, parameters);
+  for (std::size_t j = 0; j < chain; ++j) parameters[j].free = was[j] != 0;
+}
+
+// -2 ln L on the fit blocks at these values; NaN where the simulator refuses them.
+double score_or_nan(Predictor& pr, const std::vector<FitParameter>& parameters) {
+  try {
+    const std::vector<double> r = pr.residuals(effects_of(pr.scenario_effects(), parameters), Part::fit);
+    return pr.likelihood(Part::fit).minus_two_log_l(r);
+  } catch (const DataError&) {
+    return NAN;
+  }
+}
+
+// One round of forward selection: every unused candidate on top of the
+// chain, the chain's parameters free beside the candidate's (a cause the
+// chain has absorbed, e.g. a force offset taken up by a force scale fitted
+// alone, seeds 104 and 393, only shows when the chain can move back: with the
+// chain held its screen was worse than nothing). The chain is at its joint
+// optimum, so the gain is the candidate's: BIC counts its parameters only.
+// Each is screened by one Gauss-Newton step; those whose screen could be
+// significant are fitted, best screen first, at most kMaxFitsPerRound of
+// them, skipping a screen that promises under a tenth of the best fit's gain;
+// the candidate with the best evidence is always fitted, never screened out.
+Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>>& candidates,
+                const std::vector<bool>& used, const RoverResidualFeatures& f, const std::vector<FitParameter>& chain,
+                const Score& current, double min_delta_bic, bool with_sigmas) {
+  const double ln_n = std::log(static_cast<double>(pr.likelihood(Part::fit).effective_count()));
+  Round round;
+  round.trials.resize(candidates.size());
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const std::vector<RoverCandidateParameter> specs = candidates[i]->parameters(f);
+    if (used[i] || specs.empty()) continue;
+    Trial& t = round.trials[i];
+    t.applies = true;
+    t.fit.parameters = chain;
+    for (auto& p : t.fit.parameters) p.free = true;
+    for (const auto& sp : specs) t.fit.parameters.push_back({sp, sp.start, 0.0, true});
+    const int sims = pr.simulations();
+    if (std::any_of(specs.begin(), specs.end(), [](const RoverCandidateParameter& sp) { return sp.grid_screen; }))
+      grid_start_candidate(pr, t.fit.parameters, chain.size());
+    t.screened_fit = linearised_fit(pr, t.fit.parameters, current.weights, t.jacobian);
+    // The linear model misjudges a response that curves: suite seed 428's
+    // slip-sinkage of 0.45 was screened at delta BIC -3,747 from n1 = 0 and
+    // never fitted, though the step landed at 0.47. The step is simulated too
+    // and the better of the two counts (one simulation for a physical cause).
+    t.screened_fit = std::min(t.screened_fit, score_or_nan(pr, t.fit.parameters));
+    t.simulations = pr.simulations() - sims;
+    t.screened = true;
+    t.fit.score = current;
+    t.fit.score.fit = t.screened_fit;
+    for (auto& p : t.fit.parameters) p.sigma = NAN;  // a screen gives no sigma
+    t.delta_bic = t.screened_fit - current.fit + static_cast<double>(specs.size()) * ln_n;
+    if (t.delta_bic < -min_delta_bic) order.push_back(i);
+  }
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return round.trials[a].screened_fit < round.trials[b].screened_fit; });
+  if (order.size() > kMaxFitsPerRound) order.resize(kMaxFitsPerRound);
+  double best_gain = 0;  // the largest fall of -2 ln L a fit of this round reached
+  for (std::size_t i : order) {
+    Trial& t = round.trials[i];
+    // A screen that promises under a tenth of what the best fit so far gained
+    // is not fitted (the best screen always is: it comes first).
+    if (current.fit - t.screened_fit < 0.1 * best_gain) continue;
+    const int sims = pr.simulations();
+    const auto k = static_cast<double>(t.fit.parameters.size() - chain.size());
+    // The screen's optimum is the fit's start, or the best of a grid where a parameter has one.
+    grid_start_candidate(pr, t.fit.parameters, chain.size());
+    t.fit = fit_parameters(pr, t.fit.parameters, current.weights, with_sigmas, &t.jacobian);
+    t.simulations += pr.simulations() - sims;
+    t.screened = false;
+    t.delta_bic = t.fit.score.fit - current.fit + k * ln_n;
+    t.significant = t.delta_bic < -min_delta_bic && t.fit.score.test < current.test;
+    best_gain = std::max(best_gain, current.fit - t.fit.score.fit);
+    if (t.significant &&
+        (round.best < 0 || t.delta_bic < round.trials[static_cast<std::size_t>(round.best)].delta_bic)) {
+      round.best = static_cast<int>(i);
+    }
+  }
+  return round;
+}
+
+// The backward half of stepwise selection: a step whose effect, taken out of
+// the final chain (set back to neutral, nothing refitted), raises -2 ln L by
+// less than its BIC penalty plus min_delta_bic was absorbed by the steps
+// after it (e.g. a slip-sinkage refitted to 0.0004 beside grousers): it is
+// dropped and said so in the verdict. One simulation a step.
+void drop_absorbed_steps(Predictor& pr, const RoverStudyOptions& o, double ln_n, RoverDiscrepancyReport& r,
+                         std::vector<FitParameter>& chain, Score& current) {
+  if (r.selection.size() < 2) return;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < r.selection.size();) {
+    const std::size_t k = r.selection[i].parameters.size();
+    std::vector<FitParameter> without = chain;
+    without.erase(without.begin() + static_cast<std::ptrdiff_t>(at),
+                  without.begin() + static_cast<std::ptrdiff_t>(at + k));
+    const Score s = score(pr, effects_of(pr.scenario_effects(), without));
+    if (s.fit - current.fit - static_cast<double>(k) * ln_n > o.min_delta_bic || r.selection.size() < 2) {
+      at += k;
+      ++i;
+      continue;
+    }
+    r.dropped.push_back(r.selection[i].name);
+    r.selection.erase(r.selection.begin() + static_cast<std::ptrdiff_t>(i));
+    chain = std::move(without);
+    current = s;
+  }
+}
+
+}  // namespace
+
+// Forward selection (issue 13 item 4): each round fits every unused
+// candidate jointly with the chain, takes the one with the lowest BIC when it
+// improves BIC by more than min_delta_bic and the held-out likelihood rises;
+// its joint fit is the new chain. BIC is
+// -2 ln L of the study's likelihood (likelihood.h) + k ln n.
+void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStudyOptions& o, RoverDiscrepancyReport& r,
+                   std::vector<FitParameter>& chain) {
+  const auto candidates = rover_candidates();
+  const double ln_n = std::log(static_cast<double>(pr.likelihood(Part::fit).effective_count()));
+  Score current = score(pr, pr.scenario_effects());  // the nominal model
+  r.baseline_bic = current.fit;
+  r.baseline_held_out = current.held_out;
+  std::vector<bool> used(candidates.size(), false);
+  for (int round = 0; round < o.max_causes; ++round) {
+    if (o.progress) o.progress(static_cast<double>(round) / static_cast<double>(o.max_causes + 1));
+    // Sigmas for the first round's table; the chain's once, at its end.
+    Round rd = run_round(pr, candidates, used, f, chain, current, o.min_delta_bic, round == 0);
+    if (round == 0) {
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const Trial& t = rd.trials[i];
+        if (!t.applies) continue;
+        r.candidates.push_back({candidates[i]->name(), candidates[i]->cause(), fits_of(t.fit.parameters, chain.size()),
+                                t.fit.score.fit, t.delta_bic, t.fit.score.held_out, t.significant, t.simulations,
+                                t.screened});
+      }
+    }
+    if (rd.best < 0) break;
+    const auto b = static_cast<std::size_t>(rd.best);
+    used[b] = true;
+    // The trial fitted the whole chain with the new cause (run_round): it is the joint refit.
+    const FitOutcome& joint = rd.trials[b].fit;
+    const std::size_t k = joint.parameters.size() - chain.size();
+    const double delta_bic = joint.score.fit - current.fit + static_cast<double>(k) * ln_n;
+    chain = joint.parameters;
+    current = joint.score;
+    r.selection.push_back(
+        {candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic, current.held_out});
+  }
+  const bool refitted = r.selection.size() > 1;
+  drop_absorbed_steps(pr, o, ln_n, r, chain, current);
+  if (refitted) set_sigmas(pr, chain, current.fit);
+  // Every step's parameters as the final joint refit left them (not as its own round did).
+  std::size_t at = 0;
+  for (auto& step : r.selection) {
+    const std::size_t k = step.parameters.size();
+    step.parameters =
+        fits_of(std::vector<FitParameter>(chain.begin(), chain.begin() + static_cast<std::ptrdiff_t>(at + k)), at);
+    at += k;
+  }
+  r.final_held_out = current.held_out;
+}
+
+void write_verdict(RoverDiscrepancyReport& r) {
+  const RoverChannelResiduals* worst = nullptr;
+  for (const auto& c : r.channels) {
+    if (worst == nullptr || c.rmse / c.sigma > worst->rmse / worst->sigma) worst = &c;
+  }
+  char buf[600];
+  std::string failed;
+  for (const auto& c : r.checks) failed += c.consistent ? "" : (failed.empty() ? "" : "; ") + c.name;
+  if (worst == nullptr || worst->rmse / worst->sigma < 1.5) {
+    // "Agrees" only when the study's own checks hold too.
+    r.what_is_wrong = failed.empty() ? "The simulation agrees with every measured channel within its noise."
+                                     : "Every measured channel is within the simulation's noise, yet these checks "
+                                       "fail: " +
+                                           failed + ".";
+  } else {
+    std::snprintf(
+        buf, sizeof buf,
+        "The simulation disagrees most on %s/%s: RMSE %.3g %s (%.3g noise sigmas), bias %.3g %s, drift %.3g %s "
+        "per 100 s (t = %.3g).",
+        worst->stream.c_str(), worst->channel.c_str(), worst->rmse, worst->unit.c_str(), worst->rmse / worst->sigma,
+        worst->bias, worst->unit.c_str(), worst->drift, worst->unit.c_str(), worst->t_drift);
+    r.what_is_wrong = buf;
+  }
+  // A stuck rover first: what the channels say about rolling is then little.
+  if (r.slip_regime.stuck) {
+    r.what_is_wrong = r.slip_regime.text + " The run describes a stuck rover, not a rolling one. " + r.what_is_wrong;
+  }
+  if (r.selection.empty()) {
+    r.verdict = worst != nullptr && worst->rmse / worst->sigma >= 1.5
+                    ? "Unexplained: no candidate lowers BIC by more than 10 with a smaller held-out error."
+                    : "No cause: no candidate lowers BIC by more than 10 with a smaller held-out error.";
+    return;
+  }
+  std::string v = r.selection.size() == 1 ? "Cause: " : "Causes, in order: ";
+  for (std::size_t i = 0; i < r.selection.size(); ++i) {
+    const auto& s = r.selection[i];
+    v += (i > 0 ? "; then " : "") + s.name + " (";
+    for (std::size_t j = 0; j < s.parameters.size(); ++j) {
+      const auto& p = s.parameters[j];
+      v += (j > 0 ? ", " : "") + p.effect + " = " + format_estimate(p.value, p.sigma, p.unit) +
+           (p.at_bound ? ", at its bound" : "");
+    }
+    v += "; delta BIC " + format_delta_bic(s.delta_bic) + ")";
+  }
+  const double change = 100 * (1 - r.final_held_out / r.baseline_held_out);
+  std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% %s).", r.baseline_held_out,
+                r.final_held_out, std::abs(change), change >= 0 ? "lower" : "higher");
+  v += buf;
+  for (const auto& d : r.dropped) v += " Dropped " + d + ": the causes named after it explain what it did.";
+  // A cause that explains the log leaves noise on every channel; a channel
+  // still well above it means a cause is missing, and the sigmas above were
+  // computed as if the model were complete (seed 104: a force scale 319 sigma
+  // off beside an unnamed force offset).
+  const RoverChannelResiduals* left = nullptr;
+  for (const auto& c : r.channels) {
+    if (left == nullptr || c.held_out_sigmas_after > left->held_out_sigmas_after) left = &c;
+  }
+  r.incomplete = left != nullptr && left->held_out_sigmas_after > kIncompleteSigmas;
+  if (r.incomplete) {
+    std::snprintf(buf, sizeof buf,
+                  " The model is incomplete: the named causes leave %s/%s at %.3g noise sigmas on the test blocks "
+                  "(about 1 when the model is right), so a cause is missing and the +-1 sigma above, which assume "
+                  "a complete model, are not confidence intervals: the values may be off by many of them.",
+                  left->stream.c_str(), left->channel.c_str(), left->held_out_sigmas_after);
+    v += buf;
+  }
+  // A cause that explains the log leaves noise: a residual of a few sigmas means the model is still wrong.
+  if (r.final_held_out > 3) {
+    std::snprintf(buf, sizeof buf,
+                  " The simulation still disagrees by %.3g noise sigmas on the test blocks: the scenario may not be "
+                  "this run's model, or the cause is none of the candidates.",
+                  r.final_held_out);
+    v += buf;
+  }
+  r.verdict = v;
+}
+
+}  // namespace roverlab::analysis::rover

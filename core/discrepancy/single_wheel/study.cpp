@@ -1,0 +1,910 @@
+#include "core/discrepancy/single_wheel/study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/single_wheel/candidates.h"
+#include "core/common/error.h"
+
+namespace roverlab::analysis {
+
+using namespace roverlab::terramechanics;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Line {
+  double slope = 0.0, t = 0.0;
+};
+
+// Least-squares slope of y on x with its t statistic.
+Line regress(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = x.size();
+  if (n < 3) return {};
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    mx += x[i];
+    my += y[i];
+  }
+  mx /= static_cast<double>(n);
+  my /= static_cast<double>(n);
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  if (sxx <= 1e-12 * static_cast<double>(n) * (1.0 + mx * mx)) return {};  // x does not vary: no trend
+  Line l;
+  l.slope = sxy / sxx;
+  double sse = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = y[i] - my - l.slope * (x[i] - mx);
+    sse += e * e;
+  }
+  const double se = std::sqrt(sse / static_cast<double>(n - 2) / sxx);
+  l.t = se > 0.0 ? l.slope / se : (l.slope != 0.0 ? std::copysign(1e9, l.slope) : 0.0);
+  return l;
+}
+
+// RMS residual in the stated measurement sigmas (the fits may weight by others).
+double score_of(const std::vector<PointResidual>& residuals, const MeasurementSigma& sigma) {
+  double rss = 0.0;
+  std::size_t m = 0;
+  for (const auto& r : residuals) {
+    const double z = (r.predicted - r.measured) / sigma.of(r.quantity);
+    if (!std::isfinite(z)) continue;
+    rss += z * z;
+    ++m;
+  }
+  return m > 0 ? std::sqrt(rss / static_cast<double>(m)) : NAN;
+}
+
+std::string fmt(const char* format, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+// A value in the unit users read: mm for sinkage.
+std::string show(Quantity q, double v) {
+  if (q == Quantity::sinkage) return fmt("%.2f", v * 1000.0) + " mm";
+  if (q == Quantity::torque) return fmt("%.2f", v) + " N m";
+  return fmt("%.2f", v) + " N";
+}
+
+std::string words(Quantity q) {
+  switch (q) {
+    case Quantity::drawbar_pull:
+      return "drawbar pull";
+    case Quantity::torque:
+      return "torque";
+    case Quantity::sinkage:
+      return "sinkage";
+    case Quantity::lateral_force:
+      return "lateral force";
+  }
+  return "?";
+}
+
+// BIC with each measured quantity's own residual variance profiled out
+// (likelihood.h): sum_q m_q ln(RSS_q / m_q) + k ln m, so that a quantity no
+// candidate explains (drawbar pull) cannot set the scale against which
+// another quantity's cause (sinkage) is judged. The floor is 1e-6 of the
+// quantity's stated measurement sigma (an exact fit is not a -inf).
+// Residuals in the stated sigmas: every model in the same unit.
+double bic_of(const std::vector<PointResidual>& residuals, std::size_t k, const MeasurementSigma& stated) {
+  std::vector<ResidualGroup> groups;
+  std::vector<double> z;
+  for (Quantity q : kQuantities) {
+    ResidualGroup g{words(q), 0, false, 1e-6, false};
+    for (const auto& r : residuals) {
+      if (r.quantity != q) continue;
+      const double v = (r.predicted - r.measured) / stated.of(q);
+      if (!std::isfinite(v)) continue;
+      z.push_back(v);
+      ++g.size;
+    }
+    if (g.size > 0) groups.push_back(g);
+  }
+  if (z.empty()) return NAN;
+  const GroupedLikelihood l(std::move(groups));
+  return l.minus_two_log_l(z) + static_cast<double>(k) * std::log(static_cast<double>(z.size()));
+}
+
+// Each quantity's sigma for a fit that starts from a model: its residuals'
+// RMS there, never below the stated measurement sigma (the profiled noise
+// scale of likelihood.h), so that a quantity the model misses by far does
+// not outweigh the others in the fit.
+MeasurementSigma profiled_sigma(const std::vector<PointResidual>& residuals, const MeasurementSigma& stated) {
+  MeasurementSigma out = stated;
+  for (Quantity q : kQuantities) {
+    double sq = 0;
+    std::size_t m = 0;
+    for (const auto& r : residuals) {
+      if (r.quantity != q || !std::isfinite(r.predicted)) continue;
+      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
+      ++m;
+    }
+    if (m == 0) continue;
+    out.at(q) = std::max(std::sqrt(sq / static_cast<double>(m)), stated.of(q));
+  }
+  return out;
+}
+
+double rmse_of(const std::vector<QuantityResiduals>& stats, Quantity q) {
+  for (const auto& s : stats) {
+    if (s.quantity == q) return s.rmse;
+  }
+  return NAN;
+}
+
+}  // namespace
+
+std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidual>& residuals,
+                                                   const std::vector<WheelTestPoint>& points) {
+  std::vector<QuantityResiduals> out;
+  for (Quantity q : kQuantities) {
+    std::vector<double> e, slip, load, beta;
+    for (const auto& r : residuals) {
+      if (r.quantity != q || !std::isfinite(r.predicted)) continue;
+      e.push_back(r.predicted - r.measured);
+      slip.push_back(points[r.point].slip);
+      load.push_back(points[r.point].load);
+      beta.push_back(points[r.point].slip_angle);
+    }
+    if (e.empty()) continue;
+    QuantityResiduals s;
+    s.quantity = q;
+    s.count = e.size();
+    for (double v : e) {
+      s.bias += v;
+      s.rmse += v * v;
+    }
+    s.bias /= static_cast<double>(e.size());
+    s.rmse = std::sqrt(s.rmse / static_cast<double>(e.size()));
+    const auto m = static_cast<double>(e.size());
+    const double sd = m > 1 ? std::sqrt(std::max(s.rmse * s.rmse - s.bias * s.bias, 0.0) * m / (m - 1)) : 0.0;
+    s.t_bias = sd > 0 ? s.bias / (sd / std::sqrt(m)) : 0.0;
+    const Line ls = regress(slip, e), ll = regress(load, e);
+    s.slope_vs_slip = ls.slope;
+    s.t_slip = ls.t;
+    s.slope_vs_load = ll.slope;
+    s.t_load = ll.t;
+    const Line lb = regress(beta, e);
+    s.slope_vs_slip_angle = lb.slope;
+    s.t_slip_angle = lb.t;
+    out.push_back(s);
+  }
+  return out;
+}
+
+namespace {
+
+// The study's steps: the baseline's residuals, each candidate's fit and
+// held-out score, the winner, and the sentences on what is wrong and why.
+class SingleWheelStudy {
+ public:
+  SingleWheelStudy(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& options)
+      : soil_(soil), points_(points), o_(options) {}
+  DiscrepancyReport run();
+
+ private:
+  void find_quantities();
+  void score_baseline();
+  CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set,
+                          const CandidateResult* start_from = nullptr, bool with_held_out = true) const;
+  void select_forward();
+  void check_points_can_tell_candidates_apart() const;
+  std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit,
+                                      const std::vector<const SingleWheelCandidate*>& set) const;
+  void choose_best();
+  void write_what_is_wrong();
+  void find_partial();
+  void write_verdict();
+  void judge_quantities();
+  void score_per_wheel();
+  std::string wheel_name(const WheelTestPoint& p) const;
+  void write_no_significant_verdict();
+  void write_chain_verdict();
+  std::string cause_sentence(const std::string& lead, const CandidateResult& c, const std::string& end) const;
+  bool held_out_gain(const std::vector<double>& rmse, const std::vector<double>& than) const;
+  std::size_t fold_count() const {
+    const std::size_t n = points_.size();
+    return n <= o_.max_leave_one_out_points ? n : n <= o_.large_points ? o_.folds : std::min(o_.folds, o_.large_folds);
+  }
+  void assign_folds();
+
+  const Soil& soil_;
+  const std::vector<WheelTestPoint>& points_;
+  const DiscrepancyOptions& o_;
+  MeasurementSigma weights_;  // the fits' per-quantity sigmas: the baseline's profiled scales
+  bool any_grousers_ = false;
+  std::vector<std::unique_ptr<SingleWheelCandidate>> candidates_;
+  DiscrepancyReport report_;
+  std::vector<std::size_t> fold_of_;  // held-out fold of each point
+  std::size_t folds_ = 0;
+};
+
+DiscrepancyReport SingleWheelStudy::run() {
+  if (points_.empty()) throw DataError("no single-wheel points");
+  report_.points = points_.size();
+  report_.baseline_model = o_.baseline.kind == ModelKind::ishigami ? "Ishigami (slip angle)" : "Wong-Reece";
+  check_points_can_tell_candidates_apart();
+  assign_folds();
+  find_quantities();
+  score_baseline();
+  any_grousers_ = std::any_of(points_.begin(), points_.end(),
+                              [](const auto& p) { return p.wheel.grouser_count > 0 && p.wheel.grouser_height > 0.0; });
+  candidates_ = single_wheel_candidates();
+  // Progress: the candidates alone are about half the work, the selection the rest.
+  const auto done = [&](double fraction) {
+    if (o_.progress) o_.progress(fraction);
+  };
+  for (const auto& candidate : candidates_) {
+    report_.candidates.push_back(fit_set({candidate.get()}));
+    done(0.5 * static_cast<double>(report_.candidates.size()) / static_cast<double>(candidates_.size()));
+  }
+  choose_best();
+  report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
+  select_forward();
+  report_.significant = !report_.selection.empty();
+  write_what_is_wrong();
+  find_partial();
+  write_verdict();
+  judge_quantities();
+  score_per_wheel();
+  done(1.0);
+  return std::move(report_);
+}
+
+// A candidate fitted and held out needs a few points, at two slips at least:
+// with one slip no trend with slip exists and the extensions cannot be told
+// apart.
+void SingleWheelStudy::check_points_can_tell_candidates_apart() const {
+  constexpr std::size_t kMinimum = 4;
+  if (points_.size() < kMinimum) {
+    throw DataError("a discrepancy study needs at least " + std::to_string(kMinimum) +
+                    " points, to fit a candidate and hold points out (the file has " + std::to_string(points_.size()) +
+                    ")");
+  }
+  // Points at a slip angle (or with a lateral force) are predicted by the
+  // slip-angle model (study_single_wheel sets it): two slip angles 1 deg
+  // apart tell the candidates apart as well as two slips do.
+  const auto [lo, hi] =
+      std::minmax_element(points_.begin(), points_.end(), [](const auto& a, const auto& b) { return a.slip < b.slip; });
+  const auto [blo, bhi] = std::minmax_element(points_.begin(), points_.end(),
+                                              [](const auto& a, const auto& b) { return a.slip_angle < b.slip_angle; });
+  if (hi->slip - lo->slip < 0.01 && bhi->slip_angle - blo->slip_angle < kPi / 180.0) {
+    throw DataError("every point is at slip " + fmt("%.3g", lo->slip) +
+                    "; a discrepancy study needs points at two slips at least, 0.01 apart (or at two slip angles)");
+  }
+}
+
+// The held-out folds: point j in fold j mod folds, or one fold per wheel
+// label or per slip value (grouped: a wheel or a slip the fit never saw).
+void SingleWheelStudy::assign_folds() {
+  const std::size_t n = points_.size();
+  fold_of_.assign(n, 0);
+  if (!o_.leave_one_out) {
+    report_.held_out_method = "in-sample";
+    return;
+  }
+  if (o_.hold_out == HoldOut::points) {
+    folds_ = fold_count();
+    for (std::size_t j = 0; j < n; ++j) fold_of_[j] = j % folds_;
+    report_.held_out_method = n <= o_.max_leave_one_out_points ? "leave-one-out" : std::to_string(folds_) + "-fold";
+    return;
+  }
+  const bool by_wheel = o_.hold_out == HoldOut::wheel;
+  std::vector<std::string> keys;
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto& w = points_[j].wheel;  // a wheel: its label and its geometry
+    const std::string key = by_wheel ? points_[j].wheel_label + fmt("|%.6g", w.radius) + fmt("|%.6g", w.width) +
+                                           fmt("|%.6g", w.grouser_count * w.grouser_height)
+                                     : fmt("%.6g", points_[j].slip);
+    auto at = std::find(keys.begin(), keys.end(), key);
+    if (at == keys.end()) at = keys.insert(keys.end(), key);
+    fold_of_[j] = static_cast<std::size_t>(at - keys.begin());
+  }
+  folds_ = keys.size();
+  if (folds_ < 2) {
+    throw DataError(std::string("holding out by ") + (by_wheel ? "wheel needs two wheels" : "slip needs two slips") +
+                    " at least (the points have one)");
+  }
+  report_.held_out_method = by_wheel ? "leave-one-wheel-out" : "leave-one-slip-out";
+}
+
+std::string SingleWheelStudy::wheel_name(const WheelTestPoint& p) const {
+  if (!p.wheel_label.empty()) return p.wheel_label;
+  return "r " + fmt("%.4g", p.wheel.radius) + " m, b " + fmt("%.4g", p.wheel.width) + " m" +
+         (p.wheel.grouser_count > 0 ? ", " + std::to_string(p.wheel.grouser_count) + " grousers" : std::string());
+}
+
+// Per wheel and quantity: the baseline's RMSE and the final model's held-out
+// RMSE (the figures a wheel's own reference model is compared with).
+void SingleWheelStudy::score_per_wheel() {
+  IdentificationOptions base;
+  base.model = o_.baseline;
+  base.sigma = o_.sigma;
+  const std::vector<PointResidual> baseline = identify_soil(soil_, points_, base).residuals;
+  const bool chain = !report_.selection.empty() && !report_.selection.back().held_out.empty();
+  report_.final_model = chain ? report_.selection.back().name : "baseline";
+  const std::vector<PointResidual>& model = chain ? report_.selection.back().held_out : baseline;
+  std::vector<std::string> wheels;
+  for (const auto& p : points_) {
+    if (std::find(wheels.begin(), wheels.end(), wheel_name(p)) == wheels.end()) wheels.push_back(wheel_name(p));
+  }
+  const auto rmse = [&](const std::vector<PointResidual>& rs, const std::string& wheel, Quantity q, std::size_t& n) {
+    double sq = 0.0;
+    n = 0;
+    for (const auto& r : rs) {
+      if (r.quantity != q || !std::isfinite(r.predicted) || wheel_name(points_[r.point]) != wheel) continue;
+      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
+      ++n;
+    }
+    return n > 0 ? std::sqrt(sq / static_cast<double>(n)) : NAN;
+  };
+  for (const auto& wheel : wheels) {
+    for (Quantity q : report_.quantities) {
+      WheelHeldOut w;
+      w.wheel = wheel;
+      w.quantity = q;
+      w.baseline_rmse = rmse(baseline, wheel, q, w.count);
+      std::size_t m = 0;
+      w.model_rmse = rmse(model, wheel, q, m);
+      if (w.count > 0) report_.per_wheel.push_back(w);
+    }
+  }
+}
+
+void SingleWheelStudy::find_quantities() {
+  for (Quantity q : kQuantities) {
+    if (std::any_of(points_.begin(), points_.end(), [&](const auto& p) { return p.measured(q).has_value(); })) {
+      report_.quantities.push_back(q);
+    }
+  }
+  if (report_.quantities.empty()) throw DataError("no measured drawbar pull, torque, sinkage or lateral force");
+}
+
+void SingleWheelStudy::score_baseline() {
+  IdentificationOptions base;
+  base.model = o_.baseline;
+  base.sigma = o_.sigma;
+  const IdentificationResult baseline = identify_soil(soil_, points_, base);  // nothing free: predictions
+  report_.baseline = residual_statistics(baseline.residuals, points_);
+  report_.baseline_score = score_of(baseline.residuals, o_.sigma);
+  report_.baseline_bic = bic_of(baseline.residuals, 0, o_.sigma);
+  weights_ = profiled_sigma(baseline.residuals, o_.sigma);
+  report_.measurements = baseline.measurements;
+  for (const auto& r : baseline.residuals) report_.unsupported += std::isfinite(r.predicted) ? 0 : 1;
+  for (Quantity q : report_.quantities) report_.baseline_held_out_rmse.push_back(rmse_of(report_.baseline, q));
+}
+
+// Fits the candidates' parameters together on all points (started from
+// `start`, a previous fit's soil and extensions, when given), then scores the
+// extended model on held-out points.
+CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCandidate*>& set,
+                                          const CandidateResult* start_from, bool with_held_out) const {
+  CandidateResult c;
+  for (const auto* candidate : set) {
+    c.name += (c.name.empty() ? "" : " + ") + std::string(candidate->name());
+    c.cause += (c.cause.empty() ? "" : "; ") + std::string(candidate->cause());
+    if (candidate->needs_grousers() && !any_grousers_) {
+      c.applicable = false;
+      c.not_applicable_because = "no wheel in the data has grousers";
+      return c;
+    }
+    if (candidate->needs_lateral_force() && o_.baseline.kind != ModelKind::ishigami) {
+      c.applicable = false;
+      c.not_applicable_because = "no point has a slip angle or a measured lateral force";
+      return c;
+    }
+  }
+  IdentificationOptions io;
+  io.model = o_.baseline;
+  io.sigma = start_from != nullptr ? profiled_sigma(start_from->fit.residuals, o_.sigma) : weights_;
+  Soil start = soil_;
+  if (start_from != nullptr) {
+    start = start_from->fit.soil;
+    io.model.extensions = start_from->fit.extensions;
+  }
+  for (const auto* candidate : set) {
+    candidate->configure(io.model.extensions);
+    for (const auto& entry : candidate->parameters()) {
+      const Parameter parameter = entry.first;
+      const double value = entry.second;
+      if (std::find(io.free.begin(), io.free.end(), parameter) != io.free.end()) continue;
+      io.free.push_back(parameter);
+      const bool fitted_before =
+          start_from != nullptr && std::any_of(start_from->fit.parameters.begin(), start_from->fit.parameters.end(),
+                                               [&](const auto& e) { return e.parameter == parameter; });
+      if (value >= 0.0 && !fitted_before) set_parameter(start, io.model.extensions, parameter, value);
+    }
+  }
+  // A step of forward selection is first judged by its BIC alone: at most
+  // 10 steps, no covariance; the step that passes is fitted again in full.
+  if (!with_held_out) {
+    io.max_iterations = 10;
+    io.covariance = false;
+  }
+  c.fit = identify_soil(start, points_, io);
+  if (with_held_out) {
+    // Second pass at the solution's own per-quantity scales (the profile
+    // likelihood's weights there): its sigmas are in the right units.
+    io.sigma = profiled_sigma(c.fit.residuals, o_.sigma);
+    io.model.extensions = c.fit.extensions;
+    c.fit = identify_soil(c.fit.soil, points_, io);
+  }
+  c.in_sample = residual_statistics(c.fit.residuals, points_);
+  c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
+  c.delta_bic = c.bic - report_.baseline_bic;
+  if (!with_held_out) return c;  // held_out_rmse empty: no held-out test passes
+  const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit, set) : c.fit.residuals;
+  const auto held_stats = residual_statistics(predicted, points_);
+  for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
+  c.held_out_score = score_of(predicted, o_.sigma);
+  c.held_out = predicted;
+  return c;
+}
+
+// Several causes at once: the candidate with the best BIC first, then each
+// of the others refitted on top of the chain; a step is kept while it lowers
+// BIC by more than the threshold and the held-out error falls. A first step
+// too weak alone is kept when it and the best second step together pass
+// against the baseline (two causes that hide each other).
+void SingleWheelStudy::select_forward() {
+  std::vector<std::size_t> chain;
+  const CandidateResult* at = nullptr;  // the chain's fit
+  double bic = report_.baseline_bic;
+  const std::vector<double>* held_rmse = &report_.baseline_held_out_rmse;
+  auto passes = [&](const CandidateResult& c, double than_bic) {
+    return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < o_.bic_threshold &&
+           held_out_gain(c.held_out_rmse, *held_rmse);
+  };
+  // Steps are fitted without their held-out scores (ten refits each), which
+  // are computed only for the step whose BIC passes.
+  const auto with_held_out = [&](CandidateResult& fit, const std::vector<const SingleWheelCandidate*>& set,
+                                 const CandidateResult* from) {
+    if (fit.held_out_rmse.empty() && fit.applicable && std::isfinite(fit.bic) && fit.bic - bic < o_.bic_threshold)
+      fit = fit_set(set, from, true);
+  };
+  while (chain.size() < candidates_.size()) {
+    // Best next step by BIC.
+    int best = -1;
+    CandidateResult best_fit;
+    std::vector<const SingleWheelCandidate*> best_set;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+      if (std::find(chain.begin(), chain.end(), i) != chain.end() || !report_.candidates[i].applicable) continue;
+      std::vector<const SingleWheelCandidate*> set;
+      set.reserve(chain.size() + 1);
+      for (std::size_t j : chain) set.push_back(candidates_[j].get());
+      set.push_back(candidates_[i].get());
+      CandidateResult fit = chain.empty() ? report_.candidates[i] : fit_set(set, at, false);
+      if (best < 0 || fit.bic < best_fit.bic) {
+        best = static_cast<int>(i);
+        best_fit = std::move(fit);
+        best_set = set;
+      }
+    }
+    if (best < 0) break;
+    with_held_out(best_fit, best_set, at);
+    if (passes(best_fit, bic)) {
+      chain.push_back(static_cast<std::size_t>(best));
+    } else if (chain.empty()) {
+      // Look one step further: the weak first step with its best partner.
+      CandidateResult pair_fit;
+      int partner = -1;
+      for (std::size_t i = 0; i < candidates_.size(); ++i) {
+        if (static_cast<int>(i) == best || !report_.candidates[i].applicable) continue;
+        CandidateResult fit = fit_set({candidates_[static_cast<std::size_t>(best)].get(), candidates_[i].get()},
+                                      &report_.candidates[static_cast<std::size_t>(best)], false);
+        if (partner < 0 || fit.bic < pair_fit.bic) {
+          partner = static_cast<int>(i);
+          pair_fit = std::move(fit);
+        }
+      }
+      if (partner >= 0) {
+        with_held_out(
+            pair_fit,
+            {candidates_[static_cast<std::size_t>(best)].get(), candidates_[static_cast<std::size_t>(partner)].get()},
+            &report_.candidates[static_cast<std::size_t>(best)]);
+      }
+      report_.best_pair = pair_fit;
+      if (partner < 0 || !passes(pair_fit, bic)) break;
+      chain = {static_cast<std::size_t>(best), static_cast<std::size_t>(partner)};
+      best_fit = std::move(pair_fit);
+    } else {
+      break;
+    }
+    bic = best_fit.bic;
+    report_.selection.push_back(std::move(best_fit));
+    at = &report_.selection.back();
+    held_rmse = &at->held_out_rmse;
+    if (o_.progress) {
+      o_.progress(0.5 + 0.45 * static_cast<double>(chain.size()) / static_cast<double>(candidates_.size()));
+    }
+  }
+}
+
+// The held-out test of a step, per quantity (a quantity no candidate
+// explains must not hide another's cause): some quantity's held-out RMSE
+// falls by min_held_out_gain at least, and the held-out likelihood with a
+// noise scale per quantity, sum_q m_q ln(RMSE_q^2), falls.
+bool SingleWheelStudy::held_out_gain(const std::vector<double>& rmse, const std::vector<double>& than) const {
+  bool one_falls = false;
+  double log_ratio = 0;
+  for (std::size_t i = 0; i < report_.quantities.size() && i < rmse.size() && i < than.size(); ++i) {
+    if (!std::isfinite(rmse[i]) || !std::isfinite(than[i]) || !(than[i] > 0) || !(rmse[i] > 0)) continue;
+    one_falls = one_falls || rmse[i] < (1.0 - o_.min_held_out_gain) * than[i];
+    double m = 0;
+    for (const auto& s : report_.baseline) m += s.quantity == report_.quantities[i] ? static_cast<double>(s.count) : 0;
+    log_ratio += m * std::log(rmse[i] * rmse[i] / (than[i] * than[i]));
+  }
+  return one_falls && log_ratio < 0;
+}
+
+// Held out: refit without each fold of points (one point each up to
+// max_leave_one_out_points), predict the fold.
+std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOptions& io, const IdentificationResult& fit,
+                                                      const std::vector<const SingleWheelCandidate*>& set) const {
+  const std::size_t n = points_.size();
+  const std::size_t folds = folds_;
+  std::vector<PointResidual> out;
+  IdentificationOptions refit = io;
+  refit.model.extensions = fit.extensions;
+  refit.covariance = false;
+  refit.tolerance = 1e-6;  // started at the fit on all points: a few steps away
+  // ... or a long way along a valley the data hardly determine, where further
+  // steps barely change the held-out predictions: at most 5 steps.
+  refit.max_iterations = 5;
+  Soil from = fit.soil;
+  if (o_.hold_out != HoldOut::points) {
+    // A wheel or a slip the fit never saw: each fold is fitted afresh from the
+    // nominal soil and the candidates' start values, so that a parameter the
+    // other folds cannot determine (grousers without a grousered wheel) does
+    // not keep the value the held-out fold gave it.
+    from = soil_;
+    refit.model.extensions = o_.baseline.extensions;
+    for (const auto* candidate : set) {
+      candidate->configure(refit.model.extensions);
+      for (const auto& [parameter, value] : candidate->parameters()) {
+        if (value >= 0.0) set_parameter(from, refit.model.extensions, parameter, value);
+      }
+    }
+    refit.tolerance = io.tolerance;
+    refit.max_iterations = 100;
+  }
+  for (std::size_t fold = 0; fold < folds; ++fold) {
+    std::vector<WheelTestPoint> train, test;
+    std::vector<std::size_t> test_index;
+    train.reserve(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (fold_of_[j] == fold) {
+        test.push_back(points_[j]);
+        test_index.push_back(j);
+      } else {
+        train.push_back(points_[j]);
+      }
+    }
+    const IdentificationResult f = identify_soil(from, train, refit);
+    IdentificationOptions predict_only;
+    predict_only.model = refit.model;
+    predict_only.model.extensions = f.extensions;
+    predict_only.sigma = o_.sigma;
+    const IdentificationResult pred = identify_soil(f.soil, test, predict_only);
+    for (auto r : pred.residuals) {
+      r.point = test_index[r.point];
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+
+// The winner: lowest BIC among applicable candidates; significant when its
+// BIC gain and its held-out gain are both large enough.
+void SingleWheelStudy::choose_best() {
+  double best_bic = INFINITY;
+  for (std::size_t i = 0; i < report_.candidates.size(); ++i) {
+    const auto& c = report_.candidates[i];
+    if (!c.applicable || !std::isfinite(c.bic)) continue;
+    if (c.bic < best_bic) {
+      best_bic = c.bic;
+      report_.best = static_cast<int>(i);
+    }
+  }
+  if (report_.best >= 0) {
+    const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
+    report_.significant =
+        c.delta_bic < o_.bic_threshold && held_out_gain(c.held_out_rmse, report_.baseline_held_out_rmse);
+  }
+}
+
+// What the baseline gets wrong, in one sentence.
+void SingleWheelStudy::write_what_is_wrong() {
+  const QuantityResiduals* worst = nullptr;
+  for (const auto& s : report_.baseline) {
+    if (worst == nullptr || s.rmse / o_.sigma.of(s.quantity) > worst->rmse / o_.sigma.of(worst->quantity)) {
+      worst = &s;
+    }
+  }
+  if (report_.baseline_score <= 1.5) {
+    report_.what_is_wrong = "The baseline " + report_.baseline_model +
+                            " model fits every measured quantity within about its measurement error (RMS " +
+                            fmt("%.2f", report_.baseline_score) + " sigma).";
+    return;
+  }
+  std::string s = "The baseline " + report_.baseline_model + " model " +
+                  std::string(worst->bias > 0 ? "over-predicts " : "under-predicts ") + words(worst->quantity) +
+                  " by " + show(worst->quantity, std::abs(worst->bias)) + " on average (RMSE " +
+                  show(worst->quantity, worst->rmse) + ")";
+  if (std::abs(worst->t_slip) >= 3.0) {
+    s += ", and the error " + std::string(worst->slope_vs_slip * worst->bias > 0 ? "grows" : "changes") +
+         " with slip (" + (worst->slope_vs_slip > 0 ? "+" : "-") +
+         show(worst->quantity, std::abs(worst->slope_vs_slip)) + " per unit slip)";
+  } else if (std::abs(worst->t_slip_angle) >= 3.0) {
+    s += ", and the error changes with slip angle (" + std::string(worst->slope_vs_slip_angle > 0 ? "+" : "-") +
+         show(worst->quantity, std::abs(worst->slope_vs_slip_angle) * kPi / 18.0) + " per 10 deg)";
+  } else if (std::abs(worst->t_load) >= 3.0) {
+    s += ", and the error changes with load (" + std::string(worst->slope_vs_load > 0 ? "+" : "-") +
+         show(worst->quantity, std::abs(worst->slope_vs_load) * 100.0) + " per 100 N)";
+  }
+  // Other quantities with a strong slip trend (|t| >= 5) are named too.
+  for (const auto& o : report_.baseline) {
+    if (&o == worst || std::abs(o.t_slip) < 5.0) continue;
+    s += "; its " + words(o.quantity) + " error trends with slip (" + (o.slope_vs_slip > 0 ? "+" : "-") +
+         show(o.quantity, std::abs(o.slope_vs_slip)) + " per unit slip, t = " + fmt("%.1f", o.t_slip) +
+         (o.slope_vs_slip < 0 ? ": measured " + words(o.quantity) + " grows faster with slip than predicted"
+                              : ": predicted " + words(o.quantity) + " grows faster with slip than measured") +
+         ")";
+  }
+  report_.what_is_wrong = s + ".";
+}
+
+// Per quantity: the candidate that best predicts it on held-out points, when
+// it cuts that quantity's held-out RMSE by at least 30 %.
+void SingleWheelStudy::find_partial() {
+  for (std::size_t qi = 0; qi < report_.quantities.size(); ++qi) {
+    int best_q = -1;
+    for (std::size_t i = 0; i < report_.candidates.size(); ++i) {
+      const auto& c = report_.candidates[i];
+      if (!c.applicable || !std::isfinite(c.held_out_rmse[qi])) continue;
+      if (best_q < 0 || c.held_out_rmse[qi] < report_.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi]) {
+        best_q = static_cast<int>(i);
+      }
+    }
+    if (best_q >= 0 && report_.candidates[static_cast<std::size_t>(best_q)].held_out_rmse[qi] <
+                           0.7 * report_.baseline_held_out_rmse[qi]) {
+      report_.partial.emplace_back(report_.quantities[qi], best_q);
+    }
+  }
+}
+
+void SingleWheelStudy::write_verdict() {
+  if (report_.best < 0) {
+    report_.verdict = "No candidate could be fitted.";
+    return;
+  }
+  if (report_.selection.size() >= 2 ||
+      (!report_.selection.empty() && report_.selection.back().name.find(" + ") != std::string::npos)) {
+    write_chain_verdict();
+    return;
+  }
+  if (!report_.significant) {
+    write_no_significant_verdict();
+    return;
+  }
+  report_.verdict = cause_sentence("Cause: ", report_.selection.back(), ".");
+}
+
+// The named cause(s), fitted parameters, held-out gain and BIC change, in words.
+std::string SingleWheelStudy::cause_sentence(const std::string& lead, const CandidateResult& c,
+                                             const std::string& end) const {
+  std::string v = lead + c.name + " (" + c.cause + "),";
+  for (const auto& p : c.fit.parameters) {
+    v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) +
+         (std::isfinite(p.sigma) ? " +- " + fmt("%.2g", p.sigma) : std::string(" (no sigma)")) + ";";
+  }
+  v += " held-out RMSE";
+  for (std::size_t i = 0; i < report_.quantities.size(); ++i) {
+    v += std::string(i ? "," : "") + " " + words(report_.quantities[i]) + " " +
+         show(report_.quantities[i], report_.baseline_held_out_rmse[i]) + " -> " +
+         show(report_.quantities[i], c.held_out_rmse[i]);
+  }
+  return v + "; delta BIC " + format_delta_bic(c.delta_bic) + end;
+}
+
+// Several causes: the chain, its parameters and its gain over the baseline.
+void SingleWheelStudy::write_chain_verdict() {
+  report_.verdict = cause_sentence("Causes (forward selection): ", report_.selection.back(), " against the baseline.");
+}
+
+// Per quantity: significant when |t| >= 3 for the baseline's bias or either
+// trend it prints; explained by the selection step that cut its held-out
+// RMSE by 30 % or more. Appended to the verdict, which therefore never
+// calls "not significant" a quantity whose printed t says otherwise.
+void SingleWheelStudy::judge_quantities() {
+  std::string all;
+  for (std::size_t qi = 0; qi < report_.quantities.size(); ++qi) {
+    const Quantity q = report_.quantities[qi];
+    QuantityVerdict v;
+    v.quantity = q;
+    v.held_out_before = report_.baseline_held_out_rmse[qi];
+    std::string why;
+    for (const auto& b : report_.baseline) {
+      if (b.quantity != q) continue;
+      const std::pair<const char*, double> ts[] = {
+          {"bias", b.t_bias}, {"slip trend", b.t_slip}, {"load trend", b.t_load}, {"slip-angle trend", b.t_slip_angle}};
+      for (const auto& [name, t] : ts) {
+        if (std::abs(t) < 3.0) continue;
+        v.significant = true;
+        why += std::string(why.empty() ? "" : ", ") + name + " t = " + fmt("%.1f", t);
+      }
+    }
+    double before = v.held_out_before;
+    for (const auto& step : report_.selection) {  // each step's gain on this quantity
+      const double after = step.held_out_rmse[qi];
+      if (after <= 0.7 * before && v.explained_by.empty()) {
+        const auto plus = step.name.rfind(" + ");
+        v.explained_by = plus == std::string::npos ? step.name : step.name.substr(plus + 3);
+        v.explained_by_chain = step.name;
+        v.held_out_step_before = before;
+        v.held_out_after = after;
+      }
+      before = after;
+    }
+    int best = -1;
+    for (std::size_t i = 0; i < report_.candidates.size(); ++i) {
+      const auto& c = report_.candidates[i];
+      if (c.applicable && std::isfinite(c.held_out_rmse[qi]) &&
+          (best < 0 || c.held_out_rmse[qi] < report_.candidates[static_cast<std::size_t>(best)].held_out_rmse[qi]))
+        best = static_cast<int>(i);
+    }
+    const CandidateResult* bc = best >= 0 ? &report_.candidates[static_cast<std::size_t>(best)] : nullptr;
+    if (bc != nullptr) v.best_candidate = bc->name;
+    if (v.explained_by.empty() && bc != nullptr) v.held_out_after = bc->held_out_rmse[qi];
+    std::string t = words(q) + ": ";
+    // The cut the step made, and what the whole chain so far makes of the baseline.
+    const std::string step_cut =
+        v.explained_by_chain == v.explained_by
+            ? " cuts its held-out RMSE " + show(q, v.held_out_before) + " -> " + show(q, v.held_out_after)
+            : ", added to the chain (" + v.explained_by_chain + "), cuts its held-out RMSE " +
+                  show(q, v.held_out_step_before) + " -> " + show(q, v.held_out_after) + " (baseline " +
+                  show(q, v.held_out_before) + ")";
+    if (!v.significant && !v.explained_by.empty()) {
+      t += "no bias or trend with slip or load with |t| >= 3, yet " + v.explained_by + step_cut;
+    } else if (!v.significant) {
+      t += "no significant discrepancy (|t| < 3 for its bias and its trends with slip and load)";
+    } else if (!v.explained_by.empty()) {
+      t += "significant (" + why + "), explained by " + v.explained_by + " (which" + step_cut + ")";
+    } else if (bc != nullptr && v.held_out_after <= 0.7 * v.held_out_before) {
+      t += "significant (" + why + "); " + bc->name + " alone cuts its held-out RMSE " + show(q, v.held_out_before) +
+           " -> " + show(q, v.held_out_after) + ", but the evidence over all quantities is not decisive (delta BIC " +
+           format_delta_bic(bc->delta_bic) + ")";
+    } else {
+      t += "significant (" + why + "), and no candidate explains it" +
+           (bc != nullptr ? " (best held out: " + bc->name + ", " + show(q, v.held_out_before) + " -> " +
+                                show(q, v.held_out_after) + ")"
+                          : std::string());
+    }
+    // A chain explains it but no candidate alone cuts it by 30 %: say so, with the best single figure.
+    if (!v.explained_by.empty() && bc != nullptr && bc->held_out_rmse[qi] > 0.7 * v.held_out_before) {
+      t += ", but alone no candidate cuts it by 30 % (best " + bc->name + ": " + show(q, v.held_out_before) + " -> " +
+           show(q, bc->held_out_rmse[qi]) + ", " +
+           fmt("%+.0f", 100.0 * (bc->held_out_rmse[qi] / v.held_out_before - 1.0)) + " %)";
+    }
+    v.sentence = t;
+    all += (all.empty() ? " Per quantity: " : "; ") + t;
+    report_.quantity_verdicts.push_back(std::move(v));
+  }
+  report_.verdict += all + (all.empty() ? "" : ".");
+}
+
+void SingleWheelStudy::write_no_significant_verdict() {
+  const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
+  const bool any = std::any_of(report_.baseline.begin(), report_.baseline.end(), [](const QuantityResiduals& b) {
+    return std::abs(b.t_bias) >= 3.0 || std::abs(b.t_slip) >= 3.0 || std::abs(b.t_load) >= 3.0 ||
+           std::abs(b.t_slip_angle) >= 3.0;
+  });
+  report_.verdict = std::string(any ? "No cause is decisive" : "No significant discrepancy") +
+                    ": the best candidate, " + c.name + ", changes BIC by " + format_delta_bic(c.delta_bic) +
+                    " (needs < " + fmt("%.0f", o_.bic_threshold) + ") and the held-out error from " +
+                    fmt("%.2f", report_.baseline_score) + " to " + fmt("%.2f", c.held_out_score) + " sigma";
+  for (const auto& [q, index] : report_.partial) {
+    const std::size_t qi = static_cast<std::size_t>(std::find(report_.quantities.begin(), report_.quantities.end(), q) -
+                                                    report_.quantities.begin());
+    const auto& pc = report_.candidates[static_cast<std::size_t>(index)];
+    report_.verdict += "; for " + words(q) + " alone, " + pc.name + " cuts the held-out RMSE from " +
+                       show(q, report_.baseline_held_out_rmse[qi]) + " to " + show(q, pc.held_out_rmse[qi]);
+  }
+  if (report_.best_pair && report_.best_pair->applicable) {
+    report_.verdict +=
+        "; together, " + report_.best_pair->name + " change BIC by " + format_delta_bic(report_.best_pair->delta_bic) +
+        (report_.best_pair->held_out_rmse.empty()
+             ? std::string()
+             : " and the held-out error to " + fmt("%.2f", report_.best_pair->held_out_score) + " sigma") +
+        ": not significant either";
+  }
+  report_.verdict += ".";
+}
+
+}  // namespace
+
+HoldOut parse_hold_out(const std::string& text) {
+  if (text == "points") return HoldOut::points;
+  if (text == "wheel") return HoldOut::wheel;
+  if (text == "slip") return HoldOut::slip;
+  throw DataError("unknown hold-out '" + text + "' (points, wheel, slip)");
+}
+
+namespace {
+
+// The BIC of a study's final model (its forward selection's last step, else
+// the baseline).
+double final_bic(const DiscrepancyReport& r) { return r.selection.empty() ? r.baseline_bic : r.selection.back().bic; }
+
+}  // namespace
+
+DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
+                                     const DiscrepancyOptions& options) {
+  // A wheel at a slip angle, or a measured lateral force: the baseline is the
+  // slip-angle model (Ishigami et al. 2007; Wong-Reece at beta = 0).
+  DiscrepancyOptions o = options;
+  const bool lateral = std::any_of(points.begin(), points.end(), [](const WheelTestPoint& p) {
+    return p.slip_angle != 0.0 || p.lateral_force.has_value();
+  });
+  if (lateral && o.baseline.kind == ModelKind::wong_reece) o.baseline.kind = ModelKind::ishigami;
+  const bool at_angle = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.slip_angle != 0.0; });
+  if (!at_angle) return SingleWheelStudy(soil, points, o).run();
+  // How the slip is read (SlipDefinition, model.h): given; the longitudinal
+  // one when the readings differ by < 0.01 in slip at every point; else the
+  // whole study under each (a hidden effect can mimic the other reading in
+  // the baseline), keeping the one whose model carries more measurements,
+  // then the one whose final model has the lower BIC.
+  std::string why = "given";
+  double largest = 0.0;
+  for (const auto& p : points) largest = std::max(largest, (1.0 - p.slip) * (1.0 - std::cos(p.slip_angle)));
+  if (!o.slip_definition && largest < 0.01) {
+    o.slip_definition = SlipDefinition::longitudinal;
+    why = fmt("at these slip angles the two readings differ by at most %.3g in slip", largest);
+  }
+  DiscrepancyReport r;
+  if (o.slip_definition) {
+    o.baseline.slip_definition = *o.slip_definition;
+    r = SingleWheelStudy(soil, points, o).run();
+  } else {
+    const auto progress = options.progress;
+    o.baseline.slip_definition = SlipDefinition::longitudinal;
+    if (progress) o.progress = [&](double f) { progress(0.5 * f); };
+    DiscrepancyReport as_longitudinal = SingleWheelStudy(soil, points, o).run();
+    o.baseline.slip_definition = SlipDefinition::travel;
+    if (progress) o.progress = [&](double f) { progress(0.5 + 0.5 * f); };
+    DiscrepancyReport as_travel = SingleWheelStudy(soil, points, o).run();
+    const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
+    const bool travel = lost_travel != lost_longitudinal ? lost_travel < lost_longitudinal
+                                                         : final_bic(as_travel) < final_bic(as_longitudinal);
+    const char* chosen = travel ? "travel" : "longitudinal";
+    const char* other = travel ? "longitudinal" : "travel";
+    if (lost_travel != lost_longitudinal) {
+      why = std::string("read as ") + other + " slip the model cannot carry the load of " +
+            fmt("%.0f", static_cast<double>(std::max(lost_travel, lost_longitudinal))) + " measurements, read as " +
+            chosen + " of " + fmt("%.0f", static_cast<double>(std::min(lost_travel, lost_longitudinal)));
+    } else {
+      const double gap = std::abs(final_bic(as_travel) - final_bic(as_longitudinal));
+      why = std::string("each reading's final model fitted: BIC lower by ") + fmt("%.1f", gap) + " read as " + chosen +
+            " slip (" + (travel ? as_travel : as_longitudinal).final_model + ") than as " + other + " (" +
+            (travel ? as_longitudinal : as_travel).final_model + ")" +
+            (gap < 10.0 ? "; the data barely tell them apart: give --slip-definition if the testbed's is known" : "");
+    }
+    o.baseline.slip_definition = travel ? SlipDefinition::travel : SlipDefinition::longitudinal;
+    r = std::move(travel ? as_travel : as_longitudinal);
+  }
+  r.slip_definition = to_string(o.baseline.slip_definition);
+  r.slip_definition_reason = why;
+  return r;
+}
+
+}  // namespace roverlab::analysis
