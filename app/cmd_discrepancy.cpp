@@ -11,9 +11,9 @@
 #include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
+#include "core/common/error.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/single_wheel/study.h"
-#include "core/common/error.h"
 #include "importers/soil_file.h"
 #include "importers/wheel_test_csv.h"
 

@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "core/estimation/net_traction/surface.h"
 #include "core/estimation/net_traction/net_traction.h"
+#include "core/estimation/net_traction/surface.h"
 #include "core/simulation/rocker_bogie.h"
 #include "importers/soil_file.h"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/models/skid_steer_odometry.h"
 #include "core/kinematics/rover_model.h"
+#include "core/models/skid_steer_odometry.h"
 
 namespace roverlab::io {
 

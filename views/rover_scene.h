@@ -12,8 +12,8 @@
 #include <vtkSmartPointer.h>
 #include <Eigen/Core>
 
-#include "core/models/skid_steer_odometry.h"
 #include "core/log/log.h"
+#include "core/models/skid_steer_odometry.h"
 #include "views/view.h"
 
 class vtkPolyData;

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/models/skid_steer_odometry.h"
 #include "core/kinematics/rover_model.h"
 #include "core/log/log.h"
+#include "core/models/skid_steer_odometry.h"
 #include "views/traction_surface_scene.h"
 
 class vtkRenderWindow;

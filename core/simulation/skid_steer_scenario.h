@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/models/skid_steer_odometry.h"
 #include "core/log/log.h"
+#include "core/models/skid_steer_odometry.h"
 
 namespace roverlab::simulation {
 

@@ -9,13 +9,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/estimation/contact_angle/estimate_errors.h"
 #include "core/common/error.h"
 #include "core/estimation/contact_angle/contact_angle.h"
+#include "core/estimation/contact_angle/estimate_errors.h"
 #include "core/estimation/contact_angle/estimator.h"
 #include "core/estimation/contact_angle/model.h"
-#include "core/estimation/contact_angle/two_filter.h"
 #include "core/estimation/contact_angle/model_selection.h"
+#include "core/estimation/contact_angle/two_filter.h"
 #include "core/kinematics/rover_model.h"
 #include "core/simulation/flying_rover.h"
 #include "importers/rover_file.h"

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "core/estimation/contact_angle/contact_angle.h"
-#include "core/filters/filter_health.h"
 #include "core/estimation/ins_slip/ins_slip.h"
+#include "core/filters/filter_health.h"
 #include "core/simulation/flying_rover.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "importers/mapping.h"

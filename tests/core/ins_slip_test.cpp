@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
-#include "core/estimation/ins_slip/metrics.h"
-#include "core/estimation/ins_slip/ins_slip.h"
 #include "core/estimation/ins_slip/estimator.h"
+#include "core/estimation/ins_slip/ins_slip.h"
+#include "core/estimation/ins_slip/metrics.h"
 #include "core/estimation/ins_slip/models.h"
 #include "core/models/reference_track.h"
 #include "core/models/skid_steer_odometry.h"

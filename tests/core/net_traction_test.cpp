@@ -14,10 +14,10 @@
 
 #include <Eigen/Dense>
 
-#include "core/estimation/net_traction/surface.h"
 #include "core/common/error.h"
-#include "core/filters/fixed_unscented_filter.h"
 #include "core/estimation/net_traction/net_traction.h"
+#include "core/estimation/net_traction/surface.h"
+#include "core/filters/fixed_unscented_filter.h"
 #include "core/filters/nonlinear_filter.h"
 #include "core/simulation/rocker_bogie.h"
 #include "core/simulation/rocker_bogie_dynamics.h"

@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/common/error.h"
 #include "core/discrepancy/odometry/candidates.h"
 #include "core/discrepancy/odometry/study.h"
-#include "core/common/error.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "tests/support/calibration_seeds.h"
 

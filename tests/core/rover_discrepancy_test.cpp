@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/common/error.h"
 #include "core/discrepancy/rover/candidates.h"
 #include "core/discrepancy/rover/study.h"
-#include "core/common/error.h"
 #include "core/simulation/random_effects.h"
 #include "core/simulation/sensor_effects.h"
 #include "importers/soil_file.h"

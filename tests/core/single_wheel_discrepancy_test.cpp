@@ -10,9 +10,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/common/error.h"
 #include "core/discrepancy/single_wheel/candidates.h"
 #include "core/discrepancy/single_wheel/study.h"
-#include "core/common/error.h"
 #include "core/terramechanics/slip_angle_model.h"
 #include "importers/wheel_test_csv.h"
 #include "terramechanics_soils.h"

@@ -9,9 +9,9 @@
 
 #include <Eigen/Dense>
 
+#include "core/common/error.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/odometry/candidates.h"
-#include "core/common/error.h"
 #include "core/models/reference_track.h"
 
 namespace roverlab::analysis {

@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/models/skid_steer_odometry.h"
 #include "core/log/log.h"
+#include "core/models/skid_steer_odometry.h"
 
 namespace roverlab::analysis {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/discrepancy/rover/study.h"
 #include "core/discrepancy/rover/prediction.h"
+#include "core/discrepancy/rover/study.h"
 
 namespace roverlab::analysis::rover {
 

@@ -5,12 +5,12 @@
 #include <limits>
 #include <memory>
 
+#include "core/common/error.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/rover/candidates.h"
-#include "core/discrepancy/rover/study.h"
 #include "core/discrepancy/rover/fit.h"
 #include "core/discrepancy/rover/prediction.h"
-#include "core/common/error.h"
+#include "core/discrepancy/rover/study.h"
 
 namespace roverlab::analysis::rover {
 

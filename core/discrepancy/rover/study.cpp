@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/common/error.h"
 #include "core/discrepancy/rover/candidates.h"
 #include "core/discrepancy/rover/fit.h"
 #include "core/discrepancy/rover/prediction.h"
-#include "core/common/error.h"
 
 namespace roverlab::analysis {
 

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <exception>
 
-#include "core/estimation/net_traction/surface.h"
 #include "core/discrepancy/rover/study.h"
 #include "core/estimation/net_traction/net_traction.h"
+#include "core/estimation/net_traction/surface.h"
 #include "core/simulation/rocker_bogie_dynamics.h"
 
 namespace roverlab::analysis::rover {

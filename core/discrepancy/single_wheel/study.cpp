@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/common/error.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/single_wheel/candidates.h"
-#include "core/common/error.h"
 
 namespace roverlab::analysis {
 

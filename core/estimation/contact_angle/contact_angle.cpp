@@ -2,8 +2,8 @@
 
 #include <utility>
 
-#include "core/estimation/contact_angle/estimate_errors.h"
 #include "core/common/error.h"
+#include "core/estimation/contact_angle/estimate_errors.h"
 #include "core/estimation/contact_angle/estimator.h"
 #include "core/estimation/contact_angle/two_filter.h"
 

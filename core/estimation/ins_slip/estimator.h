@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "core/estimation/ins_slip/ins_slip.h"
 #include "core/estimation/ins_slip/filter.h"
+#include "core/estimation/ins_slip/ins_slip.h"
 #include "core/models/reference_track.h"
 
 namespace roverlab::estimation {

@@ -14,10 +14,10 @@
 
 #include "core/estimation/ins_slip/metrics.h"
 #include "core/filters/filter_health.h"
+#include "core/log/log.h"
 #include "core/models/ins.h"
 #include "core/models/skid_steer_odometry.h"
 #include "core/models/slip.h"
-#include "core/log/log.h"
 
 namespace roverlab::estimation {
 

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "core/models/slip.h"
 #include "core/log/log.h"
+#include "core/models/slip.h"
 
 namespace roverlab::analysis {
 

@@ -16,8 +16,8 @@
 
 #include <Eigen/Core>
 
-#include "core/filters/fixed_unscented_filter.h"
 #include "core/estimation/net_traction/models.h"
+#include "core/filters/fixed_unscented_filter.h"
 #include "core/log/log.h"
 
 namespace roverlab::estimation {
