@@ -102,111 +102,19 @@ class FixedUnscentedFilter {
                       const Measurement& r, const Measurement& y) {
     nis = 0;
     rejected = false;
-    const double L = 2.0 * NX + NW + nrn + NY;
-    const double lambda = alpha * alpha * (L + kappa) - L;
-    const double c = std::sqrt(L + lambda);
-    wi_ = 0.5 / (L + lambda);
-    W2_ = lambda / (L + lambda) + (1.0 - alpha * alpha + beta) + 2.0 * L * wi_ - 2.0;
-    if (diagonal_only) {
-      if (!(P.diagonal().array() > 0.0).all()) return false;
-      S_ = (c * P.diagonal().cwiseSqrt()).asDiagonal();
-    } else {
-      llt_x_.compute(P);
-      if (llt_x_.info() != Eigen::Success) return false;
-      S_ = c * llt_x_.matrixL().toDenseMatrix();
-    }
-    bool noises_positive = (q.array() > 0.0).all() && (qn.array() > 0.0).all() && (r.array() > 0.0).all();
-    for (int j = 0; j < nrn; ++j) noises_positive = noises_positive && rn[j] > 0.0;
-    if (!noises_positive) return false;
+    if (!augmented_factor(2.0 * NX + NW + nrn + NY)) return false;
+    if (!noises_positive(q, qn, rn, nrn, r)) return false;
     m.f(x, -1, 0.0, X0_);
     m.h(X0_, Y0_);
-    State sx = State::Zero();
+    sx_.setZero();
     sy_.setZero();
     Pxx_.setZero();
     Pyy_.setZero();
     Pxy_.setZero();
-    State xp, ex;
-    Measurement hy, ey;
-    int ix[NX], iy[NY], changed[NX];
-    // One point through f (deviation ex) and h (deviation ey).
-    auto add_state_point = [&]() {
-      ex = xp - X0_;
-      int nxc = 0;
-      for (int k = 0; k < NX; ++k) {
-        if (ex(k) != 0.0) changed[nxc++] = k;
-      }
-      m.h_moved(xp, changed, nxc, hy);
-      ey = hy - Y0_;
-      const int nyc = nonzeros(ey, iy);
-      sx += ex;
-      sy_ += ey;
-      for (int a = 0; a < nxc; ++a) {
-        ix[a] = changed[a];
-        const double ea = ex(ix[a]);
-        if (diagonal_only) {
-          Pxx_(ix[a], ix[a]) += ea * ea;
-        } else {
-          for (int b = 0; b <= a; ++b) Pxx_(ix[a], ix[b]) += ea * ex(ix[b]);
-        }
-        for (int b = 0; b < nyc; ++b) Pxy_(ix[a], iy[b]) += ea * ey(iy[b]);
-      }
-      add_lower(ey, iy, nyc, Pyy_);
-    };
-    for (int d = 0; d < NX; ++d) {  // along the state
-      for (int k = 0; k < 2; ++k) {
-        m.f(k == 0 ? State(x + S_.col(d)) : State(x - S_.col(d)), -1, 0.0, xp);
-        add_state_point();
-      }
-    }
-    for (int j = 0; j < NW; ++j) {  // along the non-additive process noises
-      for (int k = 0; k < 2; ++k) {
-        m.f(x, j, (k == 0 ? c : -c) * std::sqrt(qn(j)), xp);
-        add_state_point();
-      }
-    }
-    // Along the additive process noises: X0 +- delta_j e_j through h only;
-    // Pxy gains delta_j (ey+ - ey-)^T, Pxx q (a pair adds 2 wi delta^2 = q_j).
-    Eigen::Matrix<double, NX, NY> Pxy_additive;
-    for (int j = 0; j < NX; ++j) {
-      const double delta = c * std::sqrt(q(j));
-      Measurement pair = Measurement::Zero();
-      for (int k = 0; k < 2; ++k) {
-        xp = X0_;
-        xp(j) += k == 0 ? delta : -delta;
-        changed[0] = j;
-        m.h_moved(xp, changed, 1, hy);
-        ey = hy - Y0_;
-        sy_ += ey;
-        add_lower(ey, iy, nonzeros(ey, iy), Pyy_);
-        pair += k == 0 ? ey : Measurement(-ey);
-      }
-      Pxy_additive.row(j) = (c * wi_ * std::sqrt(q(j))) * pair.transpose();
-    }
-    for (int j = 0; j < nrn; ++j) {  // along the non-additive measurement noises: h only
-      for (int k = 0; k < 2; ++k) {
-        m.h_noise(j, (k == 0 ? c : -c) * std::sqrt(rn[j]), hy);
-        ey = hy - Y0_;
-        sy_ += ey;
-        add_lower(ey, iy, nonzeros(ey, iy), Pyy_);
-      }
-    }
-    // Means X0 + wi sum ex, Y0 + wi sum ey; covariances wi sum e e^T + (W - 2) s s^T.
-    sx *= wi_;
-    sy_ *= wi_;
-    Pxx_ *= wi_;
-    Pyy_ *= wi_;
-    Pxy_ *= wi_;
-    Pxy_ += Pxy_additive;
-    Pxy_.noalias() += W2_ * sx * sy_.transpose();
-    Pyy_.noalias() += W2_ * sy_ * sy_.transpose();
-    x = X0_ + sx;
-    if (diagonal_only) {
-      P = (Pxx_.diagonal() + W2_ * sx.cwiseAbs2() + q).asDiagonal();
-    } else {
-      Pxx_.noalias() += W2_ * sx * sx.transpose();
-      P = Pxx_.template selfadjointView<Eigen::Lower>();
-      P.diagonal() += q;
-    }
+    spread_state_points(m, qn);
+    spread_additive_process_noises(m, q);
+    spread_measurement_noises(m, rn, nrn);
+    combine_augmented(q);
     return correct(r, y);
   }
 
@@ -352,7 +260,140 @@ class FixedUnscentedFilter {
     return true;
   }
 
-  double wi_ = 0, W2_ = 0;
+  // step_augmented's steps. The scaled factor c sqrt(P) (or its diagonal)
+  // and the weights of the augmented state's 2L + 1 points (Eq. 2.18).
+  bool augmented_factor(double L) {
+    const double lambda = alpha * alpha * (L + kappa) - L;
+    c_ = std::sqrt(L + lambda);
+    wi_ = 0.5 / (L + lambda);
+    W2_ = lambda / (L + lambda) + (1.0 - alpha * alpha + beta) + 2.0 * L * wi_ - 2.0;
+    if (diagonal_only) {
+      if (!(P.diagonal().array() > 0.0).all()) return false;
+      S_ = (c_ * P.diagonal().cwiseSqrt()).asDiagonal();
+      return true;
+    }
+    llt_x_.compute(P);
+    if (llt_x_.info() != Eigen::Success) return false;
+    S_ = c_ * llt_x_.matrixL().toDenseMatrix();
+    return true;
+  }
+
+  template <int NW>
+  static bool noises_positive(const State& q, const Eigen::Matrix<double, NW, 1>& qn, const double* rn, int nrn,
+                              const Measurement& r) {
+    bool positive = (q.array() > 0.0).all() && (qn.array() > 0.0).all() && (r.array() > 0.0).all();
+    for (int j = 0; j < nrn; ++j) positive = positive && rn[j] > 0.0;
+    return positive;
+  }
+
+  // One point xp_ through h (deviations ex_ from X0_, ey_ from Y0_), summed
+  // where they are nonzero (a point moves a few states, a few measurements).
+  template <class Model>
+  void add_state_point(Model& m) {
+    ex_ = xp_ - X0_;
+    int nxc = 0;
+    for (int k = 0; k < NX; ++k) {
+      if (ex_(k) != 0.0) changed_[nxc++] = k;
+    }
+    m.h_moved(xp_, changed_.data(), nxc, hy_);
+    ey_ = hy_ - Y0_;
+    const int nyc = nonzeros(ey_, iy_.data());
+    sx_ += ex_;
+    sy_ += ey_;
+    for (int a = 0; a < nxc; ++a) {
+      const int ia = changed_[static_cast<std::size_t>(a)];
+      const double ea = ex_(ia);
+      if (diagonal_only) {
+        Pxx_(ia, ia) += ea * ea;
+      } else {
+        for (int b = 0; b <= a; ++b)
+          Pxx_(ia, changed_[static_cast<std::size_t>(b)]) += ea * ex_(changed_[static_cast<std::size_t>(b)]);
+      }
+      for (int b = 0; b < nyc; ++b)
+        Pxy_(ia, iy_[static_cast<std::size_t>(b)]) += ea * ey_(iy_[static_cast<std::size_t>(b)]);
+    }
+    add_lower(ey_, iy_.data(), nyc, Pyy_);
+  }
+
+  // The points along the state and along the non-additive process noises,
+  // through f and h.
+  template <int NW, class Model>
+  void spread_state_points(Model& m, const Eigen::Matrix<double, NW, 1>& qn) {
+    for (int d = 0; d < NX; ++d) {
+      for (int k = 0; k < 2; ++k) {
+        m.f(k == 0 ? State(x + S_.col(d)) : State(x - S_.col(d)), -1, 0.0, xp_);
+        add_state_point(m);
+      }
+    }
+    for (int j = 0; j < NW; ++j) {
+      for (int k = 0; k < 2; ++k) {
+        m.f(x, j, (k == 0 ? c_ : -c_) * std::sqrt(qn(j)), xp_);
+        add_state_point(m);
+      }
+    }
+  }
+
+  // Along the additive process noises: X0 +- delta_j e_j through h only;
+  // Pxy gains delta_j (ey+ - ey-)^T, Pxx q (a pair adds 2 wi delta^2 = q_j).
+  template <class Model>
+  void spread_additive_process_noises(Model& m, const State& q) {
+    for (int j = 0; j < NX; ++j) {
+      const double delta = c_ * std::sqrt(q(j));
+      Measurement pair = Measurement::Zero();
+      for (int k = 0; k < 2; ++k) {
+        xp_ = X0_;
+        xp_(j) += k == 0 ? delta : -delta;
+        changed_[0] = j;
+        m.h_moved(xp_, changed_.data(), 1, hy_);
+        ey_ = hy_ - Y0_;
+        sy_ += ey_;
+        add_lower(ey_, iy_.data(), nonzeros(ey_, iy_.data()), Pyy_);
+        pair += k == 0 ? ey_ : Measurement(-ey_);
+      }
+      Pxy_additive_.row(j) = (c_ * wi_ * std::sqrt(q(j))) * pair.transpose();
+    }
+  }
+
+  // Along the non-additive measurement noises: h only.
+  template <class Model>
+  void spread_measurement_noises(Model& m, const double* rn, int nrn) {
+    for (int j = 0; j < nrn; ++j) {
+      for (int k = 0; k < 2; ++k) {
+        m.h_noise(j, (k == 0 ? c_ : -c_) * std::sqrt(rn[j]), hy_);
+        ey_ = hy_ - Y0_;
+        sy_ += ey_;
+        add_lower(ey_, iy_.data(), nonzeros(ey_, iy_.data()), Pyy_);
+      }
+    }
+  }
+
+  // Means X0 + wi sum ex, Y0 + wi sum ey; covariances wi sum e e^T + (W - 2) s s^T.
+  void combine_augmented(const State& q) {
+    sx_ *= wi_;
+    sy_ *= wi_;
+    Pxx_ *= wi_;
+    Pyy_ *= wi_;
+    Pxy_ *= wi_;
+    Pxy_ += Pxy_additive_;
+    Pxy_.noalias() += W2_ * sx_ * sy_.transpose();
+    Pyy_.noalias() += W2_ * sy_ * sy_.transpose();
+    x = X0_ + sx_;
+    if (diagonal_only) {
+      P = (Pxx_.diagonal() + W2_ * sx_.cwiseAbs2() + q).asDiagonal();
+    } else {
+      Pxx_.noalias() += W2_ * sx_ * sx_.transpose();
+      P = Pxx_.template selfadjointView<Eigen::Lower>();
+      P.diagonal() += q;
+    }
+  }
+
+  double wi_ = 0, W2_ = 0, c_ = 0;
+  // step_augmented's point in work and its deviations.
+  State sx_ = State::Zero(), xp_ = State::Zero(), ex_ = State::Zero();
+  Measurement hy_ = Measurement::Zero(), ey_ = Measurement::Zero();
+  std::array<int, NX> changed_{};
+  std::array<int, NY> iy_{};
+  Eigen::Matrix<double, NX, NY> Pxy_additive_ = Eigen::Matrix<double, NX, NY>::Zero();
   Eigen::LLT<Covariance> llt_x_;
   Eigen::LLT<MeasurementCovariance> llt_y_;
   Covariance S_ = Covariance::Zero(), Pxx_ = Covariance::Zero();

@@ -86,6 +86,41 @@ T shear_fraction(bool peak, const T& x, const T& residual_ratio) {
   return peak ? peaked_shear(x, residual_ratio) : 1.0 - exp(-x);
 }
 
+// Bekker's stress integrals (Eq. 2.1-2.7, seed 003) for entry angle theta0.
+template <typename T>
+Integrals<T> bekker_integrals(const Wheel& w, const ModelOptions& o, const T& c, const T& tan_phi, const T& kc,
+                              const T& kphi, const T& n, const T& theta0) {
+  const double r = w.radius, b = w.width;
+  const T cos0 = cos(theta0);
+  Integrals<T> out{T(0.0), T(0.0), T(0.0), T(0.0)};
+  const T modulus = kc / b + kphi;
+  auto sample = [&](const T& th, T& sigma, T& tau) {
+    sigma = modulus * power(T(r) * (cos(th) - cos0), n);  // Eq. 2.1, seed 003
+    tau = c + sigma * tan_phi;                            // Eq. 2.4
+  };
+  auto add = [&](const T& th, const T& weight) {
+    T sigma, tau;
+    sample(th, sigma, tau);
+    out.normal += weight * sigma * cos(th);                     // Eq. 2.5
+    out.drawbar += weight * (tau * cos(th) - sigma * sin(th));  // Eq. 2.6
+    out.torque += weight * tau;                                 // Eq. 2.7
+    out.resistance += weight * sigma * sin(th);
+  };
+  if (o.integration == Integration::simpson) {
+    const T h = theta0 / 4.0;  // composite Simpson, two panels (five points)
+    const double wts[5] = {1, 4, 2, 4, 1};
+    for (int k = 0; k < 5; ++k) add(h * double(k), h / 3.0 * wts[k]);
+  } else {
+    const T h = theta0 / double(o.riemann_points);
+    for (int k = 0; k < o.riemann_points; ++k) add(h * (k + 0.5), h);
+  }
+  out.normal *= b * r;
+  out.drawbar *= b * r;
+  out.torque *= b * r * r;
+  out.resistance *= b * r;
+  return out;
+}
+
 // Stress integrals for entry angle theta0 and slip s >= 0.
 template <typename T>
 Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, const T& theta0) {
@@ -99,34 +134,7 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   const T cos0 = cos(theta0), sin0 = sin(theta0);
   Integrals<T> out{T(0.0), T(0.0), T(0.0), T(0.0)};
 
-  if (o.kind == ModelKind::bekker) {
-    const T modulus = kc / b + kphi;
-    auto sample = [&](const T& th, T& sigma, T& tau) {
-      sigma = modulus * power(T(r) * (cos(th) - cos0), n);  // Eq. 2.1, seed 003
-      tau = c + sigma * tan_phi;                            // Eq. 2.4
-    };
-    auto add = [&](const T& th, const T& weight) {
-      T sigma, tau;
-      sample(th, sigma, tau);
-      out.normal += weight * sigma * cos(th);                     // Eq. 2.5
-      out.drawbar += weight * (tau * cos(th) - sigma * sin(th));  // Eq. 2.6
-      out.torque += weight * tau;                                 // Eq. 2.7
-      out.resistance += weight * sigma * sin(th);
-    };
-    if (o.integration == Integration::simpson) {
-      const T h = theta0 / 4.0;  // composite Simpson, two panels (five points)
-      const double wts[5] = {1, 4, 2, 4, 1};
-      for (int k = 0; k < 5; ++k) add(h * double(k), h / 3.0 * wts[k]);
-    } else {
-      const T h = theta0 / double(o.riemann_points);
-      for (int k = 0; k < o.riemann_points; ++k) add(h * (k + 0.5), h);
-    }
-    out.normal *= b * r;
-    out.drawbar *= b * r;
-    out.torque *= b * r * r;
-    out.resistance *= b * r;
-    return out;
-  }
+  if (o.kind == ModelKind::bekker) return bekker_integrals(w, o, c, tan_phi, kc, kphi, n, theta0);
 
   // Wong-Reece.
   const T modulus = (kc + kphi * b) * pow(T(b), n - 1.0);  // k1 + k2 b, Eq. 2.12-2.13
@@ -204,49 +212,47 @@ double value_of(const J& x) {
   return x.a;
 }
 
-// Entry angle theta0 from vertical equilibrium (Eq. 2.24) and the traction
-// at slip s >= 0. The root is bracketed in (0, pi/2] and found by secant
-// steps on log(normal force) against log(theta0), which is nearly linear,
-// safeguarded by bisection. For Jets, one Newton step from the converged
-// root carries d theta0 / d parameters (implicit function theorem).
+// The parameters' values (a Jet's real parts).
 template <typename T>
-Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load) {
-  Solution<T> out;
-  Params<double> pv;
+Params<double> value_params(const Params<T>& p) {
   if constexpr (std::is_same_v<T, double>) {
-    pv = p;
+    return p;
   } else {
-    pv = Params<double>{value_of(p.n),
-                        value_of(p.cohesion),
-                        value_of(p.tan_phi),
-                        value_of(p.shear_modulus),
-                        value_of(p.kc),
-                        value_of(p.kphi),
-                        value_of(p.c1),
-                        value_of(p.c2),
-                        value_of(p.density),
-                        value_of(p.slip_sinkage_n1),
-                        value_of(p.grouser_effectiveness),
-                        value_of(p.bulldozing_scale),
-                        value_of(p.soil_strength),
-                        value_of(p.shear_modulus_slip),
-                        value_of(p.rear_angle_ratio),
-                        value_of(p.shear_residual_ratio),
-                        value_of(p.shear_peak_displacement)};
+    return Params<double>{value_of(p.n),
+                          value_of(p.cohesion),
+                          value_of(p.tan_phi),
+                          value_of(p.shear_modulus),
+                          value_of(p.kc),
+                          value_of(p.kphi),
+                          value_of(p.c1),
+                          value_of(p.c2),
+                          value_of(p.density),
+                          value_of(p.slip_sinkage_n1),
+                          value_of(p.grouser_effectiveness),
+                          value_of(p.bulldozing_scale),
+                          value_of(p.soil_strength),
+                          value_of(p.shear_modulus_slip),
+                          value_of(p.rear_angle_ratio),
+                          value_of(p.shear_residual_ratio),
+                          value_of(p.shear_peak_displacement)};
   }
-  auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
+}
+
+// The entry angle whose normal force is `load` (Eq. 2.24), bracketed in
+// (0, pi/2] and found by secant steps on log(normal force) against
+// log(theta0), which is nearly linear, safeguarded by bisection; n the
+// sinkage exponent. False when even pi/2 does not carry the load.
+template <class Normal>
+bool entry_angle_root(const Normal& normal, double load, double n, double& root) {
   double hi = kPi / 2.0;
   double n_hi = normal(hi);
-  if (!(n_hi >= load)) {
-    out.status = TractionStatus::unsupported_load;
-    return out;
-  }
-  double lo = 0.0, n_lo = 0.0;
+  if (!(n_hi >= load)) return false;
+  double lo = 0.0;
   // Start from the small-angle power law N ~ theta^(2n+1) through (hi, n_hi).
-  const double exponent0 = 2.0 * value_of(pv.n) + 1.0;
+  const double exponent0 = 2.0 * n + 1.0;
   double th = hi * std::pow(load / n_hi, 1.0 / exponent0);
   double prev_th = hi, prev_n = n_hi;
-  double root = th;
+  root = th;
   for (int it = 0; it < 60; ++it) {
     if (!(th > lo && th < hi)) th = 0.5 * (lo + hi);
     const double nv = normal(th);
@@ -254,7 +260,6 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
     if (std::abs(nv - load) <= 1e-10 * load || hi - lo < 1e-13) break;
     if (nv < load) {
       lo = th;
-      n_lo = nv;
     } else {
       hi = th;
       n_hi = nv;
@@ -270,7 +275,24 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
     prev_n = nv;
     th = next;
   }
-  (void)n_lo;
+  return true;
+}
+
+// Entry angle theta0 from vertical equilibrium (Eq. 2.24) and the traction
+// at slip s >= 0. The root is bracketed in (0, pi/2] and found by secant
+// steps on log(normal force) against log(theta0), which is nearly linear,
+// safeguarded by bisection. For Jets, one Newton step from the converged
+// root carries d theta0 / d parameters (implicit function theorem).
+template <typename T>
+Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load) {
+  Solution<T> out;
+  const Params<double> pv = value_params(p);
+  auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
+  double root = 0.0;
+  if (!entry_angle_root(normal, load, value_of(pv.n), root)) {
+    out.status = TractionStatus::unsupported_load;
+    return out;
+  }
   T theta0 = T(root);
   if constexpr (!std::is_same_v<T, double>) {
     const double h = 1e-7 * std::max(root, 1e-3);

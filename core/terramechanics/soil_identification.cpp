@@ -344,86 +344,102 @@ bool finite_jacobian(ceres::Problem& problem) {
 
 }  // namespace
 
-IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTestPoint>& points,
-                                   const IdentificationOptions& options) {
-  IdentificationResult result;
-  result.soil = soil;
-  result.extensions = options.model.extensions;
+namespace {
+
+// One residual block per point with a measured quantity (Ceres's examples).
+void add_point_residuals(ceres::Problem& problem, const Soil& soil, const std::vector<WheelTestPoint>& points,
+                         const IdentificationOptions& options, std::vector<double>& x) {
+  const std::size_t k = options.free.size();
+  for (const auto& point : points) {
+    const int m = measured_count(point, options.model);
+    if (m == 0) continue;
+    ceres::DynamicCostFunction* cost = nullptr;
+    if (options.model.kind == ModelKind::ishigami) {
+      cost = new ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>(
+          new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma});
+    } else {
+      cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
+          new PointCost{&soil, &options.model, &point, &options.free, options.sigma});
+    }
+    cost->AddParameterBlock(static_cast<int>(k));
+    cost->SetNumResiduals(m);
+    ceres::LossFunction* loss = options.huber_sigmas > 0.0 ? new ceres::HuberLoss(options.huber_sigmas) : nullptr;
+    problem.AddResidualBlock(cost, loss, x.data());
+  }
+  if (problem.NumResidualBlocks() == 0) throw DataError("no measured quantities to fit");
+  for (std::size_t i = 0; i < k; ++i) {
+    const Bounds b = default_bounds(options.free[i]);
+    problem.SetParameterLowerBound(x.data(), static_cast<int>(i), b.lower);
+    problem.SetParameterUpperBound(x.data(), static_cast<int>(i), b.upper);
+  }
+}
+
+// The free parameters' covariance (k x k, row-major; NaN where Ceres cannot
+// give it), result.covariance_ok saying whether it could.
+std::vector<double> parameter_covariance(ceres::Problem& problem, std::vector<double>& x,
+                                         const IdentificationOptions& options, IdentificationResult& result) {
+  const std::size_t k = options.free.size();
+  std::vector<double> cov(k * k, NAN);
+  if (options.covariance && finite_jacobian(problem)) {
+    ceres::Covariance::Options co;
+    co.algorithm_type = ceres::DENSE_SVD;
+    co.null_space_rank = 0;
+    ceres::Covariance covariance(co);
+    std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
+    result.covariance_ok =
+        covariance.Compute(blocks, &problem) && covariance.GetCovarianceBlock(x.data(), x.data(), cov.data());
+  }
+  return cov;
+}
+
+// Solves for the free parameters within their bounds and records them, with
+// their sigmas and correlations, in result.
+void fit_free_parameters(const Soil& soil, const std::vector<WheelTestPoint>& points,
+                         const IdentificationOptions& options, IdentificationResult& result) {
   const std::size_t k = options.free.size();
   std::vector<double> x(k);
   for (std::size_t i = 0; i < k; ++i) x[i] = get_parameter(soil, result.extensions, options.free[i]);
+  ceres::Problem problem;
+  add_point_residuals(problem, soil, points, options, x);
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = options.max_iterations;
+  so.function_tolerance = options.tolerance;
+  so.parameter_tolerance = options.tolerance;
+  so.logging_type = ceres::SILENT;
+  so.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.message = summary.message;
 
-  if (k > 0) {
-    ceres::Problem problem;
-    for (const auto& point : points) {
-      const int m = measured_count(point, options.model);
-      if (m == 0) continue;
-      ceres::DynamicCostFunction* cost = nullptr;
-      if (options.model.kind == ModelKind::ishigami) {
-        cost = new ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>(
-            new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma});
-      } else {
-        cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
-            new PointCost{&soil, &options.model, &point, &options.free, options.sigma});
-      }
-      cost->AddParameterBlock(static_cast<int>(k));
-      cost->SetNumResiduals(m);
-      ceres::LossFunction* loss = options.huber_sigmas > 0.0 ? new ceres::HuberLoss(options.huber_sigmas) : nullptr;
-      problem.AddResidualBlock(cost, loss, x.data());
-    }
-    if (problem.NumResidualBlocks() == 0) throw DataError("no measured quantities to fit");
-    for (std::size_t i = 0; i < k; ++i) {
-      const Bounds b = default_bounds(options.free[i]);
-      problem.SetParameterLowerBound(x.data(), static_cast<int>(i), b.lower);
-      problem.SetParameterUpperBound(x.data(), static_cast<int>(i), b.upper);
-    }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = options.max_iterations;
-    so.function_tolerance = options.tolerance;
-    so.parameter_tolerance = options.tolerance;
-    so.logging_type = ceres::SILENT;
-    so.minimizer_progress_to_stdout = false;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    result.converged = summary.termination_type == ceres::CONVERGENCE;
-    result.message = summary.message;
-
-    std::vector<double> cov(k * k, NAN);
-    if (options.covariance && finite_jacobian(problem)) {
-      ceres::Covariance::Options co;
-      co.algorithm_type = ceres::DENSE_SVD;
-      co.null_space_rank = 0;
-      ceres::Covariance covariance(co);
-      std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
-      result.covariance_ok =
-          covariance.Compute(blocks, &problem) && covariance.GetCovarianceBlock(x.data(), x.data(), cov.data());
-    }
-    for (std::size_t i = 0; i < k; ++i) {
-      EstimatedParameter e;
-      e.parameter = options.free[i];
-      e.value = x[i];
-      e.bounds = default_bounds(options.free[i]);
-      const double span = e.bounds.upper - e.bounds.lower;
-      e.at_bound = x[i] <= e.bounds.lower + 1e-9 * span || x[i] >= e.bounds.upper - 1e-9 * span;
-      e.sigma = result.covariance_ok ? std::sqrt(std::max(cov[i * k + i], 0.0)) : NAN;
-      result.parameters.push_back(e);
-      set_parameter(result.soil, result.extensions, options.free[i], x[i]);
-    }
-    if (result.covariance_ok) {
-      result.correlation.assign(k * k, NAN);
-      for (std::size_t i = 0; i < k; ++i) {
-        for (std::size_t j = 0; j < k; ++j) {
-          const double d = std::sqrt(cov[i * k + i] * cov[j * k + j]);
-          result.correlation[i * k + j] = d > 0.0 ? cov[i * k + j] / d : NAN;
-        }
-      }
-    }
-  } else {
-    result.converged = true;
-    result.covariance_ok = true;
+  const std::vector<double> cov = parameter_covariance(problem, x, options, result);
+  for (std::size_t i = 0; i < k; ++i) {
+    EstimatedParameter e;
+    e.parameter = options.free[i];
+    e.value = x[i];
+    e.bounds = default_bounds(options.free[i]);
+    const double span = e.bounds.upper - e.bounds.lower;
+    e.at_bound = x[i] <= e.bounds.lower + 1e-9 * span || x[i] >= e.bounds.upper - 1e-9 * span;
+    e.sigma = result.covariance_ok ? std::sqrt(std::max(cov[i * k + i], 0.0)) : NAN;
+    result.parameters.push_back(e);
+    set_parameter(result.soil, result.extensions, options.free[i], x[i]);
   }
+  if (result.covariance_ok) {
+    result.correlation.assign(k * k, NAN);
+    for (std::size_t i = 0; i < k; ++i) {
+      for (std::size_t j = 0; j < k; ++j) {
+        const double d = std::sqrt(cov[i * k + i] * cov[j * k + j]);
+        result.correlation[i * k + j] = d > 0.0 ? cov[i * k + j] / d : NAN;
+      }
+    }
+  }
+}
 
+// Every measured quantity's residual under the fitted model, their chi^2;
+// scatter larger than the claimed sigmas widens the parameter sigmas.
+void score_points(const std::vector<WheelTestPoint>& points, const IdentificationOptions& options,
+                  IdentificationResult& result) {
   ModelOptions fitted = options.model;
   fitted.extensions = result.extensions;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -443,13 +459,29 @@ IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTest
       result.residuals.push_back(r);
     }
   }
-  // Scatter larger than the claimed sigmas widens the parameter sigmas.
+  const std::size_t k = options.free.size();
   if (result.measurements > k && k > 0) {
     const double reduced = result.chi2 / static_cast<double>(result.measurements - k);
     if (reduced > 1.0) {
       for (auto& e : result.parameters) e.sigma *= std::sqrt(reduced);
     }
   }
+}
+
+}  // namespace
+
+IdentificationResult identify_soil(const Soil& soil, const std::vector<WheelTestPoint>& points,
+                                   const IdentificationOptions& options) {
+  IdentificationResult result;
+  result.soil = soil;
+  result.extensions = options.model.extensions;
+  if (options.free.empty()) {
+    result.converged = true;
+    result.covariance_ok = true;
+  } else {
+    fit_free_parameters(soil, points, options, result);
+  }
+  score_points(points, options, result);
   return result;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/common/error.h"
+#include "core/estimation/ins_slip/streams.h"
 #include "core/log/time_checks.h"
 
 namespace roverlab::estimation {
@@ -210,7 +211,7 @@ log::Log InsSlipEstimator::run() {
 
 void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& track) const {
   const auto& t = *in_.time;
-  log::Stream pose("estimate/ins/pose", t);
+  log::Stream pose(ins_streams::kPose, t);
   pose.add_channel("roll", "rad", track.roll);
   pose.add_channel("pitch", "rad", track.pitch);
   pose.add_channel("yaw", "rad", track.yaw, "heading, clockwise from north");
@@ -222,7 +223,7 @@ void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& tra
   pose.add_channel("bridged", "bool", std::move(bridged),
                    "1 where the IMU sample was rejected or missing: prediction from the last usable one");
   out.add_stream(std::move(pose));
-  log::Stream vel("estimate/ins/velocity", t);
+  log::Stream vel(ins_streams::kVelocity, t);
   vel.add_channel("north", "m/s", track.vn);
   vel.add_channel("east", "m/s", track.ve);
   vel.add_channel("down", "m/s", track.vd);
@@ -230,14 +231,14 @@ void InsSlipEstimator::add_navigation_streams(log::Log& out, const InsTrack& tra
   vel.add_channel("lateral", "m/s", track.vy, "body y");
   vel.add_channel("vertical", "m/s", track.vz, "body z (down)");
   out.add_stream(std::move(vel));
-  log::Stream b("estimate/ins/bias", t);
+  log::Stream b(ins_streams::kBias, t);
   const char* names_b[6] = {"accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"};
   for (int k = 0; k < 6; ++k)
     b.add_channel(names_b[k], k < 3 ? "m/s^2" : "rad/s", track.bias[static_cast<std::size_t>(k)]);
   out.add_stream(std::move(b));
   std::vector<double> still(in_.size());
   for (std::size_t i = 0; i < still.size(); ++i) still[i] = in_.standstill[i] ? 1.0 : 0.0;
-  log::Stream st("estimate/ins/standstill", t);
+  log::Stream st(ins_streams::kStandstill, t);
   st.add_channel("standstill", "bool", still, "1 where ZUPT/ZARU applied");
   out.add_stream(std::move(st));
 }
@@ -310,7 +311,7 @@ void InsSlipEstimator::add_reference_slip(SlipColumns& c, double tk, double whee
 
 void InsSlipEstimator::add_slip_stream(log::Log& out, const InsTrack& detector) const {
   SlipColumns c = slip_columns(detector);
-  log::Stream slip("estimate/ins/slip", std::move(c.time));
+  log::Stream slip(ins_streams::kSlip, std::move(c.time));
   slip.add_channel("slip_ratio", "1", std::move(c.slip),
                    "Eq. 1: INS forward speed against wheel speed (NaN: too slow to tell)");
   slip.add_channel("slip_class", "1", std::move(c.slip_class), "0 none, 1 low, 2 medium, 3 high, 4 extreme");
@@ -332,6 +333,46 @@ namespace {
 constexpr double kWalkWindow = 4.0;  // s
 // Vibration: deviation from a centred moving mean over this span.
 constexpr double kVibrationSpan = 0.2;  // s
+
+// Gravity in body axes for the drive [a, b): the summed specific force over
+// up to 2 s of standstill before it, else after it; count the samples.
+template <class Input>
+Eigen::Vector3d standstill_force(const Input& in, std::size_t a, std::size_t b, std::size_t& count) {
+  const auto& t = *in.time;
+  const std::size_t n = in.size();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (std::size_t i = a; i-- > 0 && in.standstill[i] != 0 && t[a] - t[i] < 2.0;) {
+    g += in.force(i);
+    ++count;
+  }
+  if (count == 0) {
+    for (std::size_t i = b; i < n && in.standstill[i] != 0 && t[i] - t[b] < 2.0; ++i) {
+      g += in.force(i);
+      ++count;
+    }
+  }
+  return g;
+}
+
+// The specific force along g minus |g| integrated over windows of
+// kWalkWindow in the drive [a, b): each window adds dv^2 / its length.
+template <class Input>
+void add_vertical_walk(const Input& in, std::size_t a, std::size_t b, const Eigen::Vector3d& g, double& walk,
+                       std::size_t& windows) {
+  const auto& t = *in.time;
+  const double g_norm = g.norm();
+  const Eigen::Vector3d up = g / g_norm;
+  double dv = 0, start = t[a];
+  for (std::size_t i = a + 1; i < b; ++i) {
+    dv += (in.force(i - 1).dot(up) - g_norm) * (t[i] - t[i - 1]);
+    if (t[i] - start >= kWalkWindow) {
+      walk += dv * dv / (t[i] - start);
+      ++windows;
+      dv = 0;
+      start = t[i];
+    }
+  }
+}
 }  // namespace
 
 // Vertical velocity random walk while moving: the specific force along the
@@ -362,19 +403,8 @@ ImuVibration InsSlipEstimator::vibration() const {
     }
     std::size_t b = a;
     while (b < n && in_.standstill[b] == 0) ++b;
-    // Gravity in body axes: the mean force over up to 2 s of standstill before the drive, else after it.
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
     std::size_t count = 0;
-    for (std::size_t i = a; i-- > 0 && in_.standstill[i] != 0 && t[a] - t[i] < 2.0;) {
-      g += in_.force(i);
-      ++count;
-    }
-    if (count == 0) {
-      for (std::size_t i = b; i < n && in_.standstill[i] != 0 && t[i] - t[b] < 2.0; ++i) {
-        g += in_.force(i);
-        ++count;
-      }
-    }
+    Eigen::Vector3d g = standstill_force(in_, a, b, count);
     if (t[b - 1] - t[a] > v.longest_drive) {
       v.longest_drive = t[b - 1] - t[a];
       bridge = a > 0 && b < n;  // a ZUPT at both ends
@@ -386,21 +416,7 @@ ImuVibration InsSlipEstimator::vibration() const {
       if (speed >= o_.min_slip_speed) speeds.push_back(speed);
     }
     moving += b - a;
-    if (count > 0) {
-      g /= static_cast<double>(count);
-      const double g_norm = g.norm();
-      const Eigen::Vector3d up = g / g_norm;
-      double dv = 0, start = t[a];
-      for (std::size_t i = a + 1; i < b; ++i) {
-        dv += (in_.force(i - 1).dot(up) - g_norm) * (t[i] - t[i - 1]);
-        if (t[i] - start >= kWalkWindow) {
-          walk += dv * dv / (t[i] - start);
-          ++windows;
-          dv = 0;
-          start = t[i];
-        }
-      }
-    }
+    if (count > 0) add_vertical_walk(in_, a, b, g / static_cast<double>(count), walk, windows);
     a = b;
   }
   if (moving == 0) return v;
@@ -425,7 +441,7 @@ ImuVibration InsSlipEstimator::vibration() const {
 void InsSlipEstimator::add_odometry_stream(log::Log& out) const {
   const OdometryTrack odo =
       dead_reckon(in_.wheel_rates, o_.rover, OdometryCorrections{}, in_.east0, in_.north0, in_.heading0);
-  log::Stream p("estimate/odometry/pose", odo.time);
+  log::Stream p(ins_streams::kOdometryPose, odo.time);
   p.add_channel("east", "m", odo.east);
   p.add_channel("north", "m", odo.north);
   p.add_channel("heading", "rad", odo.heading, "clockwise from north, from the wheel rate difference");
