@@ -26,13 +26,15 @@
 #include "app/report_pdf.h"
 #include "app/resources.h"
 #include "app/views_input.h"
-#include "core/log/run_overview.h"
 #include "core/common/error.h"
+#include "core/log/run_overview.h"
 #include "importers/atomic_file.h"
 #include "importers/mapping.h"
 #include "importers/soil_file.h"
 
 #include "app/view_data.h"
+#include "core/discrepancy/rover/streams.h"
+#include "core/estimation/ins_slip/streams.h"
 #include "views/timeseries_chart.h"
 #include "views/view.h"
 #include "views/x_display.h"
@@ -138,7 +140,7 @@ class ReportWriter {
   // The run in one line: the rover, how long, how far (and along which pose
   // source), where (the first GPS fix, else the local frame).
   void run_overview() {
-    const analysis::RunOverview r = analysis::overview_of(in_.log);
+    const analysis::RunOverview r = analysis::overview_of(in_.log, estimation::ins_streams::kPoseSources);
     std::string where = "local frame (no GPS fix)";
     if (r.has_gps_fix) {
       char at[96];
@@ -329,7 +331,7 @@ class ReportWriter {
     std::vector<std::pair<double, std::string>> ranked;
     for (const auto& c : run->document.at("channels")) {
       const std::string stream = c.at("stream").get<std::string>(), channel = c.at("channel").get<std::string>();
-      const log::Stream* residual = in_.log.find_stream("estimate/rover_discrepancy/residual_nominal/" + stream);
+      const log::Stream* residual = in_.log.find_stream(analysis::rover_streams::kResidualNominal + stream);
       if (residual == nullptr || residual->find_channel(channel) == nullptr) continue;
       const double sigmas = c.at("rmse").get<double>() / std::max(c.at("sigma").get<double>(), 1e-300);
       ranked.emplace_back(sigmas, stream + ":" + channel);
@@ -341,8 +343,8 @@ class ReportWriter {
     std::string names;
     for (std::size_t k = 0; k < ranked.size() && k < 2; ++k) {
       const std::string& measured = ranked[k].second;
-      *o.channel_spec += std::string(k ? "," : "") + "estimate/rover_discrepancy/residual_nominal/" + measured +
-                         ",estimate/rover_discrepancy/residual_with_causes/" + measured;
+      *o.channel_spec += std::string(k ? "," : "") + analysis::rover_streams::kResidualNominal + measured + "," +
+                         analysis::rover_streams::kResidualWithCauses + measured;
       names += (k ? " and " : "") + measured + " (RMSE " + num(ranked[k].first, "%.3g") + " noise sigmas)";
     }
     image("disagreement.png",
@@ -352,14 +354,15 @@ class ReportWriter {
   }
 
   void slip_plot(const views::View& plots, int h) {
-    const log::Stream* slip = in_.log.find_stream("estimate/ins/slip");
+    const log::Stream* slip = in_.log.find_stream(estimation::ins_streams::kSlip);
     if (slip == nullptr || slip->find_channel("reference_slip") == nullptr) return;
     // Not twice: the default plot may be this very pair (views::default_channels).
     for (const auto& c : views::default_channels(in_.log)) {
-      if (c.stream == "estimate/ins/slip" && c.channel == "reference_slip") return;
+      if (c.stream == estimation::ins_streams::kSlip && c.channel == "reference_slip") return;
     }
     ViewOptions o;
-    o.channel_spec = "estimate/ins/slip:slip_ratio,estimate/ins/slip:reference_slip";
+    o.channel_spec = std::string(estimation::ins_streams::kSlip) + ":slip_ratio," + estimation::ins_streams::kSlip +
+                     ":reference_slip";
     image("slip.png", "Slip ratio: INS estimate and reference", render_view(in_, plots, o, w_, h));
   }
 

@@ -25,6 +25,7 @@
 
 #include "core/common/error.h"
 #include "core/estimation/contact_angle/model_selection.h"
+#include "core/estimation/contact_angle/streams.h"
 #include "views/contact_angle_scene.h"
 #include "views/vtk_parts.h"
 
@@ -105,9 +106,9 @@ ArticulatedRoverScene::ArticulatedRoverScene(const log::Log& lg, kinematics::Rov
   if (!missing.empty()) throw DataError(missing);
   Parts& p = *parts_;
   p.joints = lg.find_stream("joints");
-  p.estimate_stream = lg.find_stream("estimate/contact/wheels");
+  p.estimate_stream = lg.find_stream(estimation::contact_streams::kWheels);
   p.truth_stream = lg.find_stream("truth/wheels");
-  for (const char* source : {"truth/body", "estimate/contact/body"}) {
+  for (const char* source : {"truth/body", estimation::contact_streams::kBody}) {
     const log::Stream* s = lg.find_stream(source);
     if (p.attitude == nullptr && s != nullptr && s->find_channel("pitch") != nullptr) p.attitude = s;
   }

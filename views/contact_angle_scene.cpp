@@ -18,6 +18,7 @@
 
 #include "core/common/error.h"
 #include "core/estimation/contact_angle/model_selection.h"
+#include "core/estimation/contact_angle/streams.h"
 #include "views/vtk_parts.h"
 
 namespace roverlab::views {
@@ -64,7 +65,7 @@ void add_wheel_outlines(vtkRenderer* r) {
 }  // namespace
 
 std::string contact_angle_needs(const log::Log& lg) {
-  const log::Stream* estimate = lg.find_stream("estimate/contact/wheels");
+  const log::Stream* estimate = lg.find_stream(estimation::contact_streams::kWheels);
   if (estimate == nullptr) {
     return "no contact-angle estimates (stream estimate/contact/wheels): run `roverlab estimate contact-angle` "
            "(the log needs imu, joints and wheels of a DH rover)";
@@ -95,7 +96,7 @@ ContactAngleScene::ContactAngleScene(const log::Log& lg) {
   if (!missing.empty()) throw DataError(missing);
   parts_ = std::make_unique<Parts>();
   Parts& p = *parts_;
-  p.estimate = lg.find_stream("estimate/contact/wheels");
+  p.estimate = lg.find_stream(estimation::contact_streams::kWheels);
   p.reference = lg.find_stream("truth/wheels");
   for (const auto& c : p.estimate->channels()) {
     if (c.name.rfind("contact_angle_", 0) == 0) wheels_.push_back(c.name.substr(14));
@@ -219,7 +220,7 @@ class ContactAnglesView : public View {
   std::string needs(const SceneInput& in) const override { return contact_angle_needs(*in.log); }
   // Without the estimator's streams and without what it needs, no analysis can feed the view.
   std::string needs_before_estimates(const log::Log& lg) const override {
-    if (lg.find_stream("estimate/contact/wheels") != nullptr) return {};
+    if (lg.find_stream(estimation::contact_streams::kWheels) != nullptr) return {};
     for (const char* s : {"imu", "joints", "wheels"}) {
       if (lg.find_stream(s) == nullptr) return contact_angle_needs(lg);
     }

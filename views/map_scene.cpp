@@ -25,8 +25,9 @@
 #include <cstdio>
 #include <limits>
 
-#include "core/models/slip.h"
+#include "core/estimation/ins_slip/streams.h"
 #include "core/log/stream.h"
+#include "core/models/slip.h"
 #include "views/rover_scene.h"
 #include "views/vtk_parts.h"
 
@@ -46,10 +47,10 @@ const log::Stream* planar_truth(const log::Log& lg) {
 }
 
 std::string label_of(const std::string& source) {
-  if (source == "estimate/ins/pose") return "INS estimate";
+  if (source == estimation::ins_streams::kPose) return "INS estimate";
   if (source == "truth/motion") return "simulated truth";
   if (source == "truth/pose") return "simulated truth (planar, x east)";
-  if (source == "estimate/odometry/pose") return "wheel odometry";
+  if (source == estimation::ins_streams::kOdometryPose) return "wheel odometry";
   if (source == "gps") return "GPS";
   return source;
 }
@@ -149,10 +150,10 @@ struct MapScene::Parts {
 };
 
 Eigen::Vector3d MapScene::track_colour(const std::string& source) {
-  if (source == "estimate/ins/pose") return {0.12, 0.35, 0.85};
+  if (source == estimation::ins_streams::kPose) return {0.12, 0.35, 0.85};
   if (source == "truth/motion" || source == "truth/pose") return {0.1, 0.6, 0.2};
   // Purple, not the rover view's orange: orange is a slip class here.
-  if (source == "estimate/odometry/pose") return {0.55, 0.2, 0.75};
+  if (source == estimation::ins_streams::kOdometryPose) return {0.55, 0.2, 0.75};
   return {0.15, 0.15, 0.15};  // gps
 }
 
@@ -237,7 +238,7 @@ void MapScene::add_tracks() {
 // estimate's classes, else the simulated truth's slip (seed 002's classes).
 void MapScene::add_slip(const log::Log& lg) {
   if (tracks_.empty()) return;
-  const log::Stream* s = lg.find_stream("estimate/ins/slip");
+  const log::Stream* s = lg.find_stream(estimation::ins_streams::kSlip);
   const char* channel = "slip_class";
   if (s == nullptr || s->find_channel(channel) == nullptr) {
     s = lg.find_stream("truth/slip");

@@ -22,6 +22,7 @@
 #include <map>
 
 #include "core/common/error.h"
+#include "core/estimation/net_traction/streams.h"
 #include "core/models/slip.h"
 #include "views/contact_angle_scene.h"
 #include "views/rover_scene.h"
@@ -76,7 +77,7 @@ PlanarRoverScene::PlanarRoverScene(const log::Log& lg) {
   Parts& p = *parts_;
   p.pose = lg.find_stream("truth/pose");
   p.wheels = lg.find_stream("truth/wheels");
-  p.estimates = lg.find_stream("estimate/net_traction/wheels");
+  p.estimates = lg.find_stream(estimation::net_traction_streams::kWheels);
   if (p.estimates == nullptr)
     notes_.emplace_back(
         "no net-traction estimate in the log: run `roverlab estimate net-traction` to draw the estimated contact "

@@ -21,8 +21,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/models/slip.h"
+#include "core/estimation/ins_slip/streams.h"
 #include "core/log/stream.h"
+#include "core/models/slip.h"
 #include "views/articulated_rover_scene.h"
 #include "views/planar_rover_scene.h"
 #include "views/vtk_parts.h"
@@ -125,9 +126,9 @@ void place(RoverModel& m, const PoseTrack::Pose& q, double z, double speed) {
 }
 
 Eigen::Vector3d track_colour(const std::string& source) {
-  if (source == "estimate/ins/pose") return {0.12, 0.35, 0.85};
+  if (source == estimation::ins_streams::kPose) return {0.12, 0.35, 0.85};
   if (source == "truth/motion") return {0.1, 0.6, 0.2};
-  if (source == "estimate/odometry/pose") return {0.95, 0.55, 0.1};
+  if (source == estimation::ins_streams::kOdometryPose) return {0.95, 0.55, 0.1};
   return {0.15, 0.15, 0.15};  // gps
 }
 
@@ -154,9 +155,9 @@ struct PoseSource {
   const char* yaw;
   bool attitude;
 };
-constexpr PoseSource kPoseSources[] = {{"estimate/ins/pose", "yaw", true},
+constexpr PoseSource kPoseSources[] = {{estimation::ins_streams::kPose, "yaw", true},
                                        {"truth/motion", "yaw", false},
-                                       {"estimate/odometry/pose", "heading", false},
+                                       {estimation::ins_streams::kOdometryPose, "heading", false},
                                        {"gps", nullptr, false}};
 
 const log::Stream* pose_stream(const log::Log& lg, const PoseSource& source) {
@@ -271,11 +272,11 @@ void RoverScene::read_log(const log::Log& lg) {
     pose_source_ = tracks_.front().source;
     start_ = tracks_.front().time.front();
     end_ = tracks_.front().time.back();
-    if (pose_source_ == "gps" || pose_source_ == "estimate/odometry/pose") {
+    if (pose_source_ == "gps" || pose_source_ == estimation::ins_streams::kOdometryPose) {
       notes_.emplace_back("no attitude: roll and pitch are drawn level (run `roverlab estimate ins-slip`)");
     }
   }
-  p.slip = lg.find_stream("estimate/ins/slip");
+  p.slip = lg.find_stream(estimation::ins_streams::kSlip);
   if (p.slip != nullptr && p.slip->find_channel("slip_class") == nullptr) p.slip = nullptr;
   p.truth_slip = lg.find_stream("truth/slip");
   if (p.truth_slip != nullptr && p.truth_slip->find_channel("slip_ratio") == nullptr) p.truth_slip = nullptr;

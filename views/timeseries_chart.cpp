@@ -26,6 +26,7 @@
 #include <limits>
 
 #include "core/common/error.h"
+#include "core/log/conventions.h"
 #include "views/display_series.h"
 
 namespace roverlab::views {
@@ -86,7 +87,7 @@ std::vector<ChannelRef> estimate_against_truth(const log::Log& lg) {
   static const std::vector<std::string> order = {"contact_angle", "drawbar_pull", "slip", "normal_load", ""};
   for (const auto& quantity : order) {
     for (const auto& e : lg.streams()) {
-      if (!starts_with(e.name(), "estimate/") || e.size() < 2) continue;
+      if (!starts_with(e.name(), log::kEstimatePrefix) || e.size() < 2) continue;
       for (const auto& c : e.channels()) {
         if (c.name.find("_sigma") != std::string::npos || !starts_with(c.name, quantity.c_str())) continue;
         for (const auto& t : lg.streams()) {
@@ -104,7 +105,7 @@ std::vector<ChannelRef> estimate_against_truth(const log::Log& lg) {
 // (estimate/ins/slip: slip_ratio and reference_slip).
 std::vector<ChannelRef> estimate_against_reference(const log::Log& lg) {
   for (const auto& e : lg.streams()) {
-    if (!starts_with(e.name(), "estimate/") || e.size() < 2) continue;
+    if (!starts_with(e.name(), log::kEstimatePrefix) || e.size() < 2) continue;
     for (const auto& c : e.channels()) {
       if (!starts_with(c.name, "reference_")) continue;
       const std::string quantity = c.name.substr(10);
@@ -191,7 +192,7 @@ std::vector<ChannelRef> moving_channels(const log::Log& lg) {
   };
   std::vector<Scored> scored;
   for (const auto& s : lg.streams()) {
-    if (starts_with(s.name(), "estimate/") || s.size() < 2) continue;
+    if (starts_with(s.name(), log::kEstimatePrefix) || s.size() < 2) continue;
     for (const auto& c : s.channels()) {
       const Movement m = movement_of(s, c);
       if (is_rate(c.unit) && m.share >= std::max(0.1, 2 * m.noise_share)) {

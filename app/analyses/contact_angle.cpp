@@ -14,6 +14,7 @@
 #include "core/common/error.h"
 #include "core/estimation/contact_angle/contact_angle.h"
 #include "core/estimation/contact_angle/model_selection.h"
+#include "core/estimation/contact_angle/streams.h"
 #include "importers/rover_file.h"
 
 namespace roverlab::app {
@@ -98,7 +99,7 @@ class ContactAngleAnalysis : public Analysis {
     return "";
   }
   bool runs_on_open(const log::Log& lg) const override {
-    if (!missing(lg).empty() || lg.find_stream("estimate/contact/wheels") != nullptr) return false;
+    if (!missing(lg).empty() || lg.find_stream(estimation::contact_streams::kWheels) != nullptr) return false;
     try {
       return rover_description(lg, "").dh.has_value();
     } catch (const InputError&) {

@@ -8,6 +8,7 @@
 #include "app/analysis.h"
 #include "app/command_support.h"
 #include "core/estimation/ins_slip/ins_slip.h"
+#include "core/estimation/ins_slip/streams.h"
 
 namespace roverlab::app {
 
@@ -124,7 +125,7 @@ class InsSlipAnalysis : public Analysis {
     return "";
   }
   bool runs_on_open(const log::Log& lg) const override {
-    return missing(lg).empty() && lg.find_stream("estimate/ins/pose") == nullptr;
+    return missing(lg).empty() && lg.find_stream(estimation::ins_streams::kPose) == nullptr;
   }
 
   void declare(CLI::App& cmd) override {

@@ -12,9 +12,10 @@
 #include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
-#include "core/estimation/net_traction/surface.h"
 #include "core/common/error.h"
 #include "core/estimation/net_traction/net_traction.h"
+#include "core/estimation/net_traction/streams.h"
+#include "core/estimation/net_traction/surface.h"
 #include "importers/rover_file.h"
 #include "importers/soil_file.h"
 #include "views/traction_surface_scene.h"
@@ -129,7 +130,7 @@ class NetTractionAnalysis : public Analysis {
     return "";
   }
   bool runs_on_open(const log::Log& lg) const override {
-    return missing(lg).empty() && lg.find_stream("estimate/net_traction/wheels") == nullptr;
+    return missing(lg).empty() && lg.find_stream(estimation::net_traction_streams::kWheels) == nullptr;
   }
 
   void declare(CLI::App& cmd) override {

@@ -24,6 +24,7 @@ Analyses all_analyses() {
   Analyses all;
 #define ROVERLAB_ANALYSIS(name) all.push_back(make_##name##_analysis());
 #include "app/analyses/analyses.def"
+#include "core/log/conventions.h"
 #undef ROVERLAB_ANALYSIS
   return all;
 }
@@ -95,7 +96,7 @@ std::string program_identity() {
 std::string log_fingerprint(const log::Log& lg) {
   std::uint64_t h = fnv1a(lg.metadata.rover_id, 14695981039346656037ULL);
   for (const auto& s : lg.streams()) {
-    if (s.name().rfind("estimate/", 0) == 0) continue;  // what analyses add, not what was measured
+    if (s.name().rfind(log::kEstimatePrefix, 0) == 0) continue;  // what analyses add, not what was measured
     h = fnv1a(s.name(), h);
     h = fnv1a(s.time().data(), s.time().size() * sizeof(double), h);
     for (const auto& c : s.channels()) {

@@ -12,9 +12,10 @@
 #include "app/commands.h"
 #include "app/report_plot.h"
 #include "app/rover_scenario.h"
-#include "core/discrepancy/likelihood.h"
-#include "core/discrepancy/rover/study.h"
 #include "core/common/error.h"
+#include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/rover/streams.h"
+#include "core/discrepancy/rover/study.h"
 
 namespace roverlab::app {
 
@@ -208,9 +209,9 @@ void add_residual_streams(const log::Log& lg, const analysis::RoverDiscrepancyRe
       before[k] = values->values[k] - c.predicted_before[k];
       after[k] = values->values[k] - c.predicted_after[k];
     }
-    stream_of("estimate/rover_discrepancy/residual_nominal/" + c.stream, c.time)
+    stream_of(analysis::rover_streams::kResidualNominal + c.stream, c.time)
         .add_channel(c.channel, c.unit, before, "measured minus the nominal simulation");
-    stream_of("estimate/rover_discrepancy/residual_with_causes/" + c.stream, c.time)
+    stream_of(analysis::rover_streams::kResidualWithCauses + c.stream, c.time)
         .add_channel(c.channel, c.unit, after, "measured minus the simulation with the named causes");
   }
   for (auto& s : streams) out.add_stream(std::move(s));
@@ -228,7 +229,7 @@ AnalysisResult RoverDiscrepancyAnalysis::run(const AnalysisInput& in) {
       about_file(in.file, [&] { return analysis::study_rover(in.log, model, options); });
   AnalysisResult out;
   out.document = document(in.file, r);
-  log::Stream st("estimate/rover_discrepancy/residuals", r.time);
+  log::Stream st(analysis::rover_streams::kResiduals, r.time);
   st.add_channel("before", "1", r.residual_before, "RMS over channels of the residual in noise sigmas, nominal model");
   st.add_channel("after", "1", r.residual_after, "the same with the named causes");
   st.add_channel("slip", "1", r.slip, "mean wheel slip from encoders and velocimeter");

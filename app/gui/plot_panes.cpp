@@ -18,6 +18,7 @@
 #include "app/gui/layout_file.h"
 #include "app/gui/main_window.h"
 #include "core/common/error.h"
+#include "core/estimation/ins_slip/streams.h"
 #include "views/timeseries_chart.h"
 #include "views/view.h"
 
@@ -152,9 +153,9 @@ void MainWindow::plot_input(const ViewTab& tab, views::SceneInput& in) const {
   for (const auto& [s, c] : tab.channels) in.channels.push_back({s, c});
   if (!in.channels.empty() || tab.added) return;
   // The Plots pane by default: the slip when estimated, or the view's defaults.
-  const log::Stream* slip = in.log->find_stream("estimate/ins/slip");
+  const log::Stream* slip = in.log->find_stream(estimation::ins_streams::kSlip);
   if (slip != nullptr && slip->find_channel("reference_slip") != nullptr) {
-    in.channels = {{"estimate/ins/slip", "slip_ratio"}, {"estimate/ins/slip", "reference_slip"}};
+    in.channels = {{estimation::ins_streams::kSlip, "slip_ratio"}, {estimation::ins_streams::kSlip, "reference_slip"}};
   }
 }
 

@@ -1,4 +1,5 @@
 #include "core/log/run_overview.h"
+#include "core/log/conventions.h"
 
 #include <cmath>
 #include <limits>
@@ -40,29 +41,14 @@ double integrated_speed(const log::Stream& s) {
   return sum;
 }
 
-struct Source {
-  const char* stream;
-  const char* a;  // the two position channels; a velocity source has "velocity_x" and no b
-  const char* b;
-  const char* method;
-};
-
-constexpr Source kSources[] = {{"truth/motion", "east", "north", "simulated truth"},
-                               {"truth/pose", "x", "z", "simulated planar truth"},
-                               {"truth/body", "velocity_x", nullptr, "simulated truth's integrated velocity"},
-                               {"gps", "east", "north", "GPS track"},
-                               {"estimate/ins/pose", "east", "north", "INS estimate"},
-                               {"estimate/odometry/pose", "east", "north", "wheel odometry"},
-                               {"odometry", "x", "y", "logged wheel odometry"}};
-
 }  // namespace
 
-RunOverview overview_of(const log::Log& lg) {
+RunOverview overview_of(const log::Log& lg, const std::vector<PoseSource>& sources) {
   RunOverview o;
   o.rover = lg.metadata.rover_id;
   double start = std::numeric_limits<double>::infinity(), end = -start;
   for (const auto& s : lg.streams()) {
-    if (starts_with(s.name(), "estimate/") || s.empty()) continue;
+    if (starts_with(s.name(), log::kEstimatePrefix) || s.empty()) continue;
     start = std::min(start, s.start_time());
     end = std::max(end, s.end_time());
   }
@@ -72,7 +58,7 @@ RunOverview overview_of(const log::Log& lg) {
     o.duration_s = end - start;
   }
   o.distance_m = NAN;
-  for (const Source& src : kSources) {
+  for (const PoseSource& src : sources) {
     const log::Stream* s = lg.find_stream(src.stream);
     if (s == nullptr || s->size() < 2 || s->find_channel(src.a) == nullptr) continue;
     if (src.b == nullptr) {

@@ -4,10 +4,20 @@
 // (the first GPS fix, else the local frame).
 
 #include <string>
+#include <vector>
 
 #include "core/log/log.h"
 
 namespace roverlab::analysis {
+
+// A stream that places the rover: two position channels (a, b), or a
+// velocity stream ("velocity_x", b null) whose speed is integrated.
+struct PoseSource {
+  const char* stream;
+  const char* a;
+  const char* b;
+  const char* method;  // in words, for the report
+};
 
 struct RunOverview {
   std::string rover;   // the log's rover id; empty when it names none
@@ -21,13 +31,11 @@ struct RunOverview {
   double start_latitude_deg = 0, start_longitude_deg = 0;
 };
 
-// The pose sources, best first: simulated truth (truth/motion east/north,
-// the planar truth/pose x/z, or truth/body velocities integrated), GPS
-// (east/north), the INS estimate, wheel odometry (estimate/odometry/pose
-// east/north, else the logged odometry x/y). The distance is the path
-// length: the sum of the horizontal steps between finite samples (the
+// The distance along the first of `sources` (best first) the log has: the
+// path length, the sum of the horizontal steps between finite samples (the
 // planar truth's steps in x and z); a velocity source, the trapezoidal
-// integral of the speed.
-RunOverview overview_of(const log::Log& log);
+// integral of the speed. The estimators' pose sources are theirs to name
+// (estimation/ins_slip/streams.h: kPoseSources).
+RunOverview overview_of(const log::Log& log, const std::vector<PoseSource>& sources);
 
 }  // namespace roverlab::analysis

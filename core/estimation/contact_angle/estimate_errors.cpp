@@ -1,4 +1,5 @@
 #include "core/estimation/contact_angle/estimate_errors.h"
+#include "core/estimation/contact_angle/streams.h"
 
 #include <algorithm>
 #include <cmath>
@@ -60,8 +61,8 @@ std::optional<estimation::StateErrors> contact_angle_errors(const log::Log& lg, 
   const log::Stream* tb = lg.find_stream("truth/body");
   const log::Stream* tw = lg.find_stream("truth/wheels");
   if (tb == nullptr || tw == nullptr) return std::nullopt;
-  const log::Stream& body = estimates.stream("estimate/contact/body");
-  const log::Stream& wheels = estimates.stream("estimate/contact/wheels");
+  const log::Stream& body = estimates.stream(estimation::contact_streams::kBody);
+  const log::Stream& wheels = estimates.stream(estimation::contact_streams::kWheels);
   // Scored only where truth exists: an empty truth stream, or one recorded
   // at other times than the estimate, scores nothing.
   if (tb->empty() || tw->empty()) return std::nullopt;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/estimation/contact_angle/streams.h"
 #include "core/log/time_checks.h"
 
 namespace roverlab::estimation {
@@ -106,9 +107,9 @@ void ContactAngleEstimator::assemble_process_noise() {
   const int nx = layout_.nx();
   qdiag_.resize(layout_.np());
   qdiag_.segment(0, 3).setConstant(o_.attitude_variance);
-  qdiag_.segment(3, 3).setConstant(o_.velocity_variance);
-  qdiag_.segment(6, 6).setConstant(o_.slip_variance);
-  if (layout_.na > 0) qdiag_.segment(12, layout_.na).setConstant(o_.angle_variance);
+  qdiag_.segment(contact::ContactLayout::kVelocity, 3).setConstant(o_.velocity_variance);
+  qdiag_.segment(contact::ContactLayout::kSlip, 6).setConstant(o_.slip_variance);
+  if (layout_.na > 0) qdiag_.segment(contact::ContactLayout::kContactAngle, layout_.na).setConstant(o_.angle_variance);
   qdiag_.segment(nx, 3) = m_.noise.accelerometer;
   qdiag_.segment(nx + 3, 3) = m_.noise.gyro;
   Q_ = qdiag_.asDiagonal();
@@ -228,9 +229,9 @@ void ContactAngleEstimator::state_bounds() {
   const int nx = layout_.nx();
   upper_ = Eigen::VectorXd::Constant(nx, NAN);
   upper_.segment(1, 2).setConstant(o_.max_angle);
-  upper_.segment(3, 3).setConstant(o_.max_speed);
-  upper_.segment(6, 6).setConstant(o_.max_slip);
-  if (layout_.na > 0) upper_.segment(12, layout_.na).setConstant(o_.max_angle);
+  upper_.segment(contact::ContactLayout::kVelocity, 3).setConstant(o_.max_speed);
+  upper_.segment(contact::ContactLayout::kSlip, 6).setConstant(o_.max_slip);
+  if (layout_.na > 0) upper_.segment(contact::ContactLayout::kContactAngle, layout_.na).setConstant(o_.max_angle);
   lower_ = -upper_;
   state_names_ = {"yaw", "pitch", "roll", "velocity x", "velocity y", "velocity z"};
   for (const char* kind : {"slip ", "contact angle ", "side-slip angle "}) {
@@ -267,9 +268,11 @@ void ContactAngleEstimator::initial_state() {
   }
   p0_.resize(nx);
   p0_.segment(0, 3).setConstant(1e-4);
-  p0_.segment(3, 3).setConstant(1e-4);
-  p0_.segment(6, 6).setConstant(o_.initial_slip_sigma * o_.initial_slip_sigma);
-  if (layout_.na > 0) p0_.segment(12, layout_.na).setConstant(o_.initial_angle_sigma * o_.initial_angle_sigma);
+  p0_.segment(contact::ContactLayout::kVelocity, 3).setConstant(1e-4);
+  p0_.segment(contact::ContactLayout::kSlip, 6).setConstant(o_.initial_slip_sigma * o_.initial_slip_sigma);
+  if (layout_.na > 0)
+    p0_.segment(contact::ContactLayout::kContactAngle, layout_.na)
+        .setConstant(o_.initial_angle_sigma * o_.initial_angle_sigma);
   // The fixed-size UKFs: closed forms along the additive noises (Eq. 4.15-4.17, 4.20), h per wheel reached.
   const Eigen::MatrixXd P0 = p0_.asDiagonal();
   auto init = [&](auto& u) {
@@ -637,8 +640,8 @@ std::vector<double> masked(const std::vector<double>& v, const std::vector<doubl
 }  // namespace
 
 std::vector<StateChannel> state_channels(const kinematics::RoverModel& m, int angle_states) {
-  const char* body = "estimate/contact/body";
-  const char* wheels = "estimate/contact/wheels";
+  const char* body = contact_streams::kBody;
+  const char* wheels = contact_streams::kWheels;
   std::vector<StateChannel> out = {{body, "velocity_x", "m/s", 3}, {body, "velocity_y", "m/s", 4},
                                    {body, "velocity_z", "m/s", 5}, {body, "yaw", "rad", 0},
                                    {body, "pitch", "rad", 1},      {body, "roll", "rad", 2}};
@@ -658,8 +661,8 @@ void ContactAngleEstimator::write_streams(log::Log& estimates) const {
   const auto& t = imu_->time();
   estimates.metadata = log_.metadata;
   estimates.metadata.extra["estimator"] = "contact-angle (seed 000)";
-  log::Stream body("estimate/contact/body", t);
-  log::Stream s("estimate/contact/wheels", t);
+  log::Stream body(contact_streams::kBody, t);
+  log::Stream s(contact_streams::kWheels, t);
   std::vector<double> trusted(diverged_.size());  // the body states are invalid only where the filter diverged
   for (std::size_t i = 0; i < trusted.size(); ++i) trusted[i] = 1.0 - diverged_[i];
   for (const StateChannel& c : state_channels(m_, layout_.na)) {

@@ -58,8 +58,9 @@ inline void ContactProcessModel::strapdown_step(double* att_v, const Inputs& in,
 
 inline WheelLinearization WheelMeasurementModel::linearize_wheel(int w, const double* x, const Inputs& in) const {
   const int na = layout_.na;
-  return contact::linearize_wheel(*m_, w, frame_, x + 3, x[6 + w], na >= 6 ? x[12 + w] : 0.0,
-                                  na >= 12 ? x[18 + w] : 0.0, in);
+  return contact::linearize_wheel(*m_, w, frame_, x + 3, x[ContactLayout::slip(w)],
+                                  na >= 6 ? x[ContactLayout::contact_angle(w)] : 0.0,
+                                  na >= 12 ? x[ContactLayout::side_slip_angle(w)] : 0.0, in);
 }
 
 inline void WheelMeasurementModel::add_noise_covariance(const WheelLinearization* lin, const Eigen::VectorXd& r,
@@ -167,7 +168,7 @@ class FastEkf {
     for (int w = 0; w < 6; ++w) {
       lin[w] = h.linearize_wheel(w, x.data(), in);
       innov.template segment<3>(3 * w) = Eigen::Vector3d(in.wheel_rate[w], 0.0, 0.0) - lin[w].value;
-      for (int p = 0; p < 3; ++p) priv[w][p] = 6 + 6 * p + w;
+      for (int p = 0; p < 3; ++p) priv[w][p] = contact::ContactLayout::wheel_state(p, w);
     }
     // P H^T and H P H^T, one wheel (three rows of H) at a time; with the
     // reset S's lower blocks straight from P11's velocity block and the
@@ -227,7 +228,15 @@ class FastEkf {
         return true;
       }
     }
-    // K from K L = W^T (backward substitution), then the Joseph form.
+    joseph(Wt, Lm, PHt, diagonal_only);
+    return true;
+  }
+
+ private:
+  // K from K L = W^T (backward substitution), then the Joseph form
+  // P - K H P - P H^T K^T + (K L)(K L)^T.
+  void joseph(const Eigen::Matrix<double, NX, NY>& Wt, const Eigen::Matrix<double, NY, NY>& Lm,
+              const Eigen::Matrix<double, NX, NY>& PHt, bool diagonal_only) {
     Eigen::Matrix<double, NX, NY> K = Wt;
     for (int c = NY - 1; c >= 0; --c) {
       for (int r = c + 1; r < NY; ++r) K.col(c) -= Lm(r, c) * K.col(r);
@@ -241,10 +250,8 @@ class FastEkf {
     P -= T + T.transpose();
     P.noalias() += V * V.transpose();
     if (diagonal_only) P = Eigen::Matrix<double, NX, 1>(P.diagonal()).asDiagonal();  // evaluated first: no aliasing
-    return true;
   }
 
- private:
   // With the reset (P12 = 0, P22 diagonal): H P H^T's lower 3 x 3 blocks,
   // H_w P_vv H_w2^T plus each private variance's P_cc h h^T on its own
   // wheel's block (the factorisation reads only these); the rest zero.
@@ -258,7 +265,7 @@ class FastEkf {
       for (int w2 = 0; w2 <= w; ++w2)
         S.template block<3, 3>(3 * w, 3 * w2).noalias() = A[w] * lin[w2].d.template leftCols<3>().transpose();
       for (int p = 0; p < npriv; ++p) {
-        const double v = P(6 + 6 * p + w, 6 + 6 * p + w);
+        const double v = P(contact::ContactLayout::wheel_state(p, w), contact::ContactLayout::wheel_state(p, w));
         S.template block<3, 3>(3 * w, 3 * w).noalias() += (v * lin[w].d.col(3 + p)) * lin[w].d.col(3 + p).transpose();
       }
     }
@@ -273,7 +280,7 @@ class FastEkf {
       PHt.template block<6, 3>(0, 3 * w).noalias() =
           P.template block<6, 3>(0, 3) * lin[w].d.template leftCols<3>().transpose();
       for (int p = 0; p < npriv; ++p) {
-        const int c = 6 + 6 * p + w;
+        const int c = contact::ContactLayout::wheel_state(p, w);
         PHt.template block<1, 3>(c, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
       }
     }
@@ -330,7 +337,7 @@ class FastEkf {
       V.template block<3, 3>(0, 3 * w) = Hw.transpose();
       hs.noalias() += Hw.transpose() * s.template segment<3>(3 * w);
       for (int p = 0; p < npriv; ++p) {
-        const int c = 6 + 6 * p + w;
+        const int c = contact::ContactLayout::wheel_state(p, w);
         V.template block<1, 3>(3 + npriv * w + p, 3 * w) = P(c, c) * lin[w].d.col(3 + p).transpose();
         x(c) += V.template block<1, 3>(3 + npriv * w + p, 3 * w).dot(s.template segment<3>(3 * w));
       }
@@ -344,7 +351,8 @@ class FastEkf {
       diag(i) -= a.dot(G * a);
     }
     for (int w = 0; w < 6; ++w) {
-      for (int p = 0; p < npriv; ++p) diag(6 + 6 * p + w) -= V.row(3 + npriv * w + p).squaredNorm();
+      for (int p = 0; p < npriv; ++p)
+        diag(contact::ContactLayout::wheel_state(p, w)) -= V.row(3 + npriv * w + p).squaredNorm();
     }
     if (!(diag.array() > 0.0).all()) return false;
     P = diag.asDiagonal();

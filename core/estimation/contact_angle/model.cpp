@@ -146,8 +146,11 @@ void ContactProcessModel::evaluate(const Eigen::VectorXd& x, const Eigen::Vector
   }
   strapdown<double>(x.data(), trig_, x.data() + 3, nz.data(), nz.data() + 3, nz.data() + nx, nz.data() + nx + 3, in,
                     g_i_, ts, y.data(), y.data() + 3);
-  for (int k = 0; k < 6; ++k) y(6 + k) = x(6 + k) * slip_keep(ts) + nz(6 + k);               // Eq. 4.15
-  for (int k = 0; k < layout_.na; ++k) y(12 + k) = x(12 + k) * angle_keep(ts) + nz(12 + k);  // Eq. 5.3-5.6
+  for (int k = 0; k < 6; ++k)
+    y(ContactLayout::slip(k)) = x(ContactLayout::slip(k)) * slip_keep(ts) + nz(ContactLayout::slip(k));  // Eq. 4.15
+  for (int k = 0; k < layout_.na; ++k)
+    y(ContactLayout::kContactAngle + k) =
+        x(ContactLayout::kContactAngle + k) * angle_keep(ts) + nz(ContactLayout::kContactAngle + k);  // Eq. 5.3-5.6
 }
 
 Linearized ContactProcessModel::linearize(const Eigen::VectorXd& x, const Inputs& in, double ts) const {
@@ -182,12 +185,12 @@ Linearized ContactProcessModel::linearize(const Eigen::VectorXd& x, const Inputs
     }
   }
   for (int k = 0; k < 6; ++k) {
-    r.dx(6 + k, 6 + k) = slip_keep(ts);
-    r.dn(6 + k, 6 + k) = 1.0;
+    r.dx(ContactLayout::slip(k), ContactLayout::slip(k)) = slip_keep(ts);
+    r.dn(ContactLayout::slip(k), ContactLayout::slip(k)) = 1.0;
   }
   for (int k = 0; k < layout_.na; ++k) {
-    r.dx(12 + k, 12 + k) = angle_keep(ts);
-    r.dn(12 + k, 12 + k) = 1.0;
+    r.dx(ContactLayout::kContactAngle + k, ContactLayout::kContactAngle + k) = angle_keep(ts);
+    r.dn(ContactLayout::kContactAngle + k, ContactLayout::kContactAngle + k) = 1.0;
   }
   return r;
 }
@@ -212,16 +215,17 @@ Linearized WheelMeasurementModel::linearize(const Eigen::VectorXd& x, const Inpu
   r.dn = Eigen::MatrixXd::Zero(ny, nm);
   for (int w = 0; w < nw; ++w) {
     const auto& c = m.wheels[static_cast<std::size_t>(w)];
-    const WheelLinearization lin = linearize_wheel_autodiff(m, w, frame_, x.data() + 3, x(6 + w),
-                                                            na >= 6 ? x(12 + w) : 0.0, na >= 12 ? x(18 + w) : 0.0, in);
+    const WheelLinearization lin = linearize_wheel_autodiff(m, w, frame_, x.data() + 3, x(ContactLayout::slip(w)),
+                                                            na >= 6 ? x(ContactLayout::contact_angle(w)) : 0.0,
+                                                            na >= 12 ? x(ContactLayout::side_slip_angle(w)) : 0.0, in);
     for (int k = 0; k < 3; ++k) {
       const int row = k * nw + w;
       r.value(row) = lin.value(k);
       r.dx.block<1, 3>(row, 3) = lin.d.block<1, 3>(k, 0);
       r.dn.block<1, 3>(row, 0) = lin.d.block<1, 3>(k, 6);
-      r.dx(row, 6 + w) = lin.d(k, 3);
-      if (na >= 6) r.dx(row, 12 + w) = lin.d(k, 4);
-      if (na >= 12) r.dx(row, 18 + w) = lin.d(k, 5);
+      r.dx(row, ContactLayout::slip(w)) = lin.d(k, 3);
+      if (na >= 6) r.dx(row, ContactLayout::contact_angle(w)) = lin.d(k, 4);
+      if (na >= 12) r.dx(row, ContactLayout::side_slip_angle(w)) = lin.d(k, 5);
       // Joint noise enters with a minus sign (Eq. 4.16: true = measured - noise).
       if (c.bogie_joint >= 0) {
         r.dn(row, 3 + nw + c.bogie_joint) = -lin.d(k, 9);
@@ -304,7 +308,8 @@ void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, cons
     moved = moved || nzq[g.joint[k]] != 0.0;
     rate_noise = rate_noise || nzqd[g.joint[k]] != 0.0;
   }
-  const double gamma = na >= 6 ? x(12 + w) : 0.0, beta = na >= 12 ? x(18 + w) : 0.0;
+  const double gamma = na >= 6 ? x(ContactLayout::contact_angle(w)) : 0.0,
+               beta = na >= 12 ? x(ContactLayout::side_slip_angle(w)) : 0.0;
   const RotationMemo& rot = rotation(w, gamma, beta);
   Eigen::Vector3d u;
   if (!moved) {  // wheel_measurement at the measured joint angles, (R_d C)^T kept: Eq. 4.8, 4.20 / Table 5.1
@@ -316,13 +321,14 @@ void WheelMeasurementModel::evaluate_wheel(int w, const Eigen::VectorXd& x, cons
     }
     u.noalias() = rot.T * wv;
     const double sc = frame_ == kinematics::WheelFrame::side_slip ? rot.cb : 1.0;
-    u.x() = sc * u.x() / ((1.0 - x(6 + w)) * m_->wheel_radius);
+    u.x() = sc * u.x() / ((1.0 - x(ContactLayout::slip(w))) * m_->wheel_radius);
   } else {  // a joint-angle noise moves the wheel: its geometry again
     double qd[kMaxJoints], qn[kMaxJoints];
     for (int k = 0; k < g.nj; ++k) qd[g.joint[k]] = in.qdot[g.joint[k]] - nzqd[g.joint[k]];
     for (int i = 0; i < nq; ++i) qn[i] = in.q[i] - nzq[i];
     const WheelGeometry moved_geometry = wheel_geometry(*m_, w, qn);
-    u = wheel_measurement(moved_geometry, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(6 + w), rot.cb, omega, qd);
+    u = wheel_measurement(moved_geometry, rot.C, frame_, m_->wheel_radius, x.data() + 3, x(ContactLayout::slip(w)),
+                          rot.cb, omega, qd);
   }
   for (int k = 0; k < 3; ++k) y(k * nw + w) = u(k) + nz(3 + 2 * nq + k * nw + w);
 }

@@ -163,8 +163,20 @@ WheelLinearization linearize_wheel(const kinematics::RoverModel& m, int wheel, k
 
 // Sizes of the state, process noise, measurement and measurement noise.
 // State: attitude (psi, theta, phi), body velocity, six slips, then na
-// angles (contact angles, then side-slip angles).
+// angles (contact angles, then side-slip angles): the indices below name it.
 struct ContactLayout {
+  static constexpr int kAttitude = 0;        // psi, theta, phi (Eq. 4.13, seed 000)
+  static constexpr int kVelocity = 3;        // body velocity (Eq. 4.14)
+  static constexpr int kSlip = 6;            // six slips (Eq. 4.15)
+  static constexpr int kContactAngle = 12;   // six contact angles (Eq. 5.3-5.4)
+  static constexpr int kSideSlipAngle = 18;  // six side-slip angles (Eq. 5.5-5.6)
+  static constexpr int kWheels = 6;
+  // Wheel w's p-th private state: its slip (p = 0), contact angle (1) and
+  // side-slip angle (2).
+  static constexpr int wheel_state(int p, int w) { return kSlip + kWheels * p + w; }
+  static constexpr int slip(int w) { return kSlip + w; }
+  static constexpr int contact_angle(int w) { return kContactAngle + w; }
+  static constexpr int side_slip_angle(int w) { return kSideSlipAngle + w; }
   int na = 0;  // angle states per wheel set: 0, 6 or 12
   int nw = 6, nq = 9;
   int nx() const { return 12 + na; }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/estimation/contact_angle/streams.h"
 #include "core/estimation/contact_angle/two_filter.h"
 
 namespace roverlab::estimation {
@@ -141,7 +142,7 @@ void label_model(log::Log& estimates, const std::string& label) {
   out.metadata = estimates.metadata;
   out.metadata.extra["contact_model"] = label;
   for (const auto& s : estimates.streams()) {
-    if (s.name() != "estimate/contact/wheels") {
+    if (s.name() != contact_streams::kWheels) {
       out.add_stream(s);
       continue;
     }

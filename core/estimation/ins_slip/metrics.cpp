@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/estimation/ins_slip/streams.h"
 #include "core/models/reference_track.h"
 
 namespace roverlab::analysis {
@@ -131,19 +132,19 @@ void slip_confusion(const log::Log& input, const log::Stream& slip, const InsRef
 }  // namespace
 
 InsSlipMetrics score_ins_slip(const log::Log& input, const log::Log& estimates, const InsReferenceStreams& reference) {
-  const log::Stream& pose = estimates.stream("estimate/ins/pose");
+  const log::Stream& pose = estimates.stream(estimation::ins_streams::kPose);
   const auto& t = pose.time();
-  const auto& standstill = values(estimates.stream("estimate/ins/standstill"), "standstill");
+  const auto& standstill = values(estimates.stream(estimation::ins_streams::kStandstill), "standstill");
   InsSlipMetrics m;
   m.duration = t.back() - t.front();
   m.standstill_fraction =
       static_cast<double>(std::count(standstill.begin(), standstill.end(), 1.0)) / static_cast<double>(t.size());
-  slip_confusion(input, estimates.stream("estimate/ins/slip"), reference, m);
+  slip_confusion(input, estimates.stream(estimation::ins_streams::kSlip), reference, m);
   ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
   estimation::smooth_reference(ref);  // velocity and distance from the smoothed track
   if (!ref.present) return m;
   m.has_reference = true;
-  score_track(ref, pose, estimates.stream("estimate/ins/velocity"), m);
+  score_track(ref, pose, estimates.stream(estimation::ins_streams::kVelocity), m);
   m.distance = estimation::distance_along(ref).back();
   m.heading_drift = heading_drift(ref, pose);
   const AlignedErrors a =
@@ -160,8 +161,8 @@ OdometryMetrics score_wheel_odometry(const log::Log& input, const log::Log& esti
   ReferenceTrack ref = estimation::reference_from_gps(input, reference.gps);
   estimation::smooth_reference(ref);  // velocity and distance from the smoothed track
   if (!ref.present) return m;
-  const auto& t = estimates.stream("estimate/ins/pose").time();
-  const log::Stream& odometry = estimates.stream("estimate/odometry/pose");
+  const auto& t = estimates.stream(estimation::ins_streams::kPose).time();
+  const log::Stream& odometry = estimates.stream(estimation::ins_streams::kOdometryPose);
   const auto &east = values(odometry, "east"), &north = values(odometry, "north");
   double so = 0;
   std::size_t count = 0;

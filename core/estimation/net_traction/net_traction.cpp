@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/estimation/net_traction/streams.h"
 #include "core/filters/filter_health.h"
 #include "core/log/time_checks.h"
 
@@ -393,7 +394,7 @@ void NetTractionEstimator::write_streams() {
     for (Eigen::Index k = 0; k < m.rows(); ++k) v[static_cast<std::size_t>(k)] = m(k, c);
     return v;
   };
-  log::Stream wheels("estimate/net_traction/wheels", result_.time);
+  log::Stream wheels(net_traction_streams::kWheels, result_.time);
   const struct {
     const char* name;
     const char* unit;
@@ -422,7 +423,7 @@ void NetTractionEstimator::write_streams() {
                        "wheel centre's x, dead-reckoned from wheel 1 at 0");
   }
   result_.estimates.add_stream(std::move(wheels));
-  log::Stream body("estimate/net_traction/body", result_.time);
+  log::Stream body(net_traction_streams::kBody, result_.time);
   const struct {
     const char* name;
     const char* unit;
