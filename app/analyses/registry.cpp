@@ -12,6 +12,7 @@
 
 #include "app/analysis.h"
 #include "app/command_support.h"
+#include "core/log/conventions.h"
 #include "importers/atomic_file.h"
 
 namespace roverlab::app {
@@ -24,7 +25,6 @@ Analyses all_analyses() {
   Analyses all;
 #define ROVERLAB_ANALYSIS(name) all.push_back(make_##name##_analysis());
 #include "app/analyses/analyses.def"
-#include "core/log/conventions.h"
 #undef ROVERLAB_ANALYSIS
   return all;
 }
