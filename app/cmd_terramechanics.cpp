@@ -605,9 +605,10 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--slip-sinkage-n1", o.slip_sinkage_n1, "n = n0 + n1 |s| (with +slip-sinkage)")
       ->capture_default_str()
       ->check(finite_in(0.0, 5.0));
-  cmd.add_option("--grouser-effectiveness", o.grouser_effectiveness, "shear radius r + lambda h (with +grousers)")
+  cmd.add_option("--grouser-effectiveness", o.grouser_effectiveness,
+                 "shear radius r + lambda h (with +grousers); rft: a scale on the grousers' height")
       ->capture_default_str()
-      ->check(finite_in(0.0, 1.0));
+      ->check(finite_in(0.0, 2.0));
   cmd.add_option("--bulldozing-scale", o.bulldozing_scale, "scale of the bulldozing resistance (with +bulldozing)")
       ->capture_default_str()
       ->check(finite_in(0.0, 100.0));
