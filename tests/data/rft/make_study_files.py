@@ -5,7 +5,8 @@ Each file: one wheel (r 62.5 mm, b 60 mm; smooth, or 12 grousers of 5 mm as
 the file states), load 20 N, slip angles 0-90 deg in steps of 15, travel slips
 -0.6..0.8, drawbar pull, lateral force, torque and sinkage from
 `roverlab terramechanics --model rft` with the truth's options, plus Gaussian
-noise of the study's stated sigmas (0.5 N, 0.5 N, 0.02 N m, 0.5 mm), seeded.
+noise of the study's stated sigmas (0.5 N, 0.5 N, 0.02 N m, 0.5 mm), seeded;
+rft_depth1_loads.csv the depth-scale case at 10, 20 and 40 N.
 
   python3 tests/data/rft/make_study_files.py ROVERLAB OUTDIR
 """
@@ -25,6 +26,8 @@ CASES = {
     "grousers_none": (True, ["--model", "rft"]),
     "grouser_height13": (True, ["--model", "rft+grousers", "--grouser-effectiveness", "1.3"]),
 }
+LOADS = {"depth1_loads": "10,20,40"}  # files at several loads (default 20 N)
+CASES["depth1_loads"] = CASES["depth1"]
 
 
 def main():
@@ -34,7 +37,7 @@ def main():
         wheel = ["--grousers", "12", "--grouser-height", "0.005"] if grousered else []
         zeta = [] if "--rft-scale" in args else ["--rft-scale", str(ZETA)]
         cmd = [exe, "terramechanics", "--soil", "dry_sand", "--radius", str(R), "--width", str(B)] + zeta + [
-               "--slip-definition", "travel", "--load", "20", "--slip", ",".join(map(str, SLIPS)),
+               "--slip-definition", "travel", "--load", LOADS.get(name, "20"), "--slip", ",".join(map(str, SLIPS)),
                "--slip-angle", ",".join(map(str, ANGLES))] + wheel + args
         rows = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout.splitlines()
         header = rows[0].split(",")
