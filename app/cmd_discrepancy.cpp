@@ -25,6 +25,7 @@ struct SingleWheelDiscrepancyOptions {
   std::string integration = "simpson";
   std::string hold_out = "points";
   std::string slip_definition = "auto";
+  std::string family = "wong";
   bool json = false;
 };
 
@@ -136,6 +137,26 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                        r.best_pair->held_out_rmse.empty() ? json(nullptr) : nullable(r.best_pair->held_out_score)}};
   }
   j["final_model"] = r.final_model;
+  j["family_choice"] = r.family_choice;
+  j["families"] = json::array();
+  for (const auto& f : r.families) {
+    json fj = {{"family", f.family},
+               {"held_out_score_sigma", nullable(f.held_out_score)},
+               {"held_out_method", f.held_out_method}};
+    json ho = json::object();
+    for (std::size_t i = 0; i < r.quantities.size() && i < f.held_out_rmse.size(); ++i) {
+      ho[to_string(r.quantities[i])] = nullable(f.held_out_rmse[i]);
+    }
+    fj["held_out_rmse"] = ho;
+    fj["parameters"] = json::array();
+    for (const auto& p : f.parameters) {
+      fj["parameters"].push_back({{"name", to_string(p.parameter)},
+                                  {"value", p.value},
+                                  {"sigma", nullable(p.sigma)},
+                                  {"at_bound", p.at_bound}});
+    }
+    j["families"].push_back(fj);
+  }
   j["per_wheel"] = json::array();
   for (const auto& w : r.per_wheel) {
     j["per_wheel"].push_back({{"wheel", w.wheel},
@@ -162,6 +183,8 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     options.baseline.integration = parse_integration(o.integration);
     options.hold_out = analysis::parse_hold_out(o.hold_out);
     if (o.slip_definition != "auto") options.slip_definition = parse_slip_definition(o.slip_definition);
+    options.compare_families = o.family == "auto";
+    if (o.family == "rft") options.baseline.kind = ModelKind::rft;
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
@@ -181,6 +204,13 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   if (!r.slip_definition.empty()) {
     std::printf("  slip at a slip angle read as %s slip (%s)\n", r.slip_definition.c_str(),
                 r.slip_definition_reason.c_str());
+  }
+  if (!r.family_choice.empty()) std::printf("  %s\n", r.family_choice.c_str());
+  for (const auto& f : r.families) {
+    for (const auto& p : f.parameters) {
+      std::printf("    %s: %s = %.4g +- %.2g%s\n", f.family.c_str(), to_string(p.parameter), p.value, p.sigma,
+                  p.at_bound ? " (at its bound)" : "");
+    }
   }
   if (r.unsupported > 0) std::printf("  %zu measurements at loads the model cannot carry (skipped)\n", r.unsupported);
   std::printf("\nbaseline residuals (predicted - measured):\n");
@@ -273,6 +303,11 @@ Commands make_single_wheel_commands() {
                        "the file's slip is read at a slip angle; auto chooses from the data")
             ->capture_default_str()
             ->check(CLI::IsMember({"auto", "longitudinal", "travel"}));
+        cmd.add_option("--family", o.family,
+                       "wong (Wong-Reece / Ishigami) | rft (resistive force theory, its material scale fitted) | "
+                       "auto (both as baselines, the one with the lower held-out error taken)")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"wong", "rft", "auto"}));
         cmd.add_flag("--json", o.json, "Print JSON");
       },
       run_discrepancy_single_wheel));

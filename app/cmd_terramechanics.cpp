@@ -30,6 +30,7 @@ struct TerramechanicsOptions {
   double radius = 0.0, width = 0.0;
   int grousers = 0;
   double grouser_height = 0.0;
+  double grouser_thickness = 0.0;
   std::vector<double> loads, slips;
   std::vector<double> slip_angles_deg;  // with these (or --model ishigami): the slip-angle model
   std::string lateral_shear = "shared";
@@ -46,6 +47,9 @@ struct TerramechanicsOptions {
   double rear_angle_ratio = 0.2;
   double shear_residual_ratio = 0.7;
   double shear_peak_displacement = 0.02;
+  double rft_scale = 0.0;  // zeta, N/m^3; 0: the soil's
+  double rft_pileup = 0.5;
+  double rft_depth_scale = 1.0;
   std::string format = "csv";
 };
 
@@ -95,9 +99,14 @@ ModelOptions model_options(const TerramechanicsOptions& o) try {
       m.extensions.shear_peak = true;
       m.extensions.shear_residual_ratio = o.shear_residual_ratio;
       m.extensions.shear_peak_displacement = o.shear_peak_displacement;
+    } else if (part == "pile-up") {
+      m.extensions.rft_pileup = o.rft_pileup;
+    } else if (part == "depth-scale") {
+      m.extensions.rft_depth_scale = o.rft_depth_scale;
     } else {
       throw DataError("unknown model extension '" + part +
-                      "' (slip-sinkage, grousers, bulldozing, slip-shear-modulus, rear-angle, shear-peak)");
+                      "' (slip-sinkage, grousers, bulldozing, slip-shear-modulus, rear-angle, shear-peak; rft: "
+                      "pile-up, depth-scale)");
     }
   }
   m.extensions.soil_strength = o.soil_strength;
@@ -117,6 +126,7 @@ Wheel wheel_of(const TerramechanicsOptions& o) {
   w.width = o.width;
   w.grouser_count = o.grousers;
   w.grouser_height = o.grouser_height;
+  w.grouser_thickness = o.grouser_thickness;
   return w;
 }
 
@@ -196,8 +206,8 @@ LateralOptions lateral_options(const TerramechanicsOptions& o) {
 
 // One row per load, slip and slip angle of the slip-angle model (Ishigami 2007).
 void print_slip_angle_rows(const TerramechanicsOptions& o, const Soil& soil, const Wheel& wheel, ModelOptions m) {
-  if (m.kind == ModelKind::bekker) throw UsageError("--slip-angle needs --model wong or ishigami (not bekker)");
-  m.kind = ModelKind::ishigami;
+  if (m.kind == ModelKind::bekker) throw UsageError("--slip-angle needs --model wong, ishigami or rft (not bekker)");
+  if (m.kind != ModelKind::rft) m.kind = ModelKind::ishigami;
   const LateralOptions lateral = lateral_options(o);
   const std::vector<double> angles = o.slip_angles_deg.empty() ? std::vector<double>{0.0} : o.slip_angles_deg;
   json rows = json::array();
@@ -247,12 +257,13 @@ void print_slip_angle_rows(const TerramechanicsOptions& o, const Soil& soil, con
 
 int run_terramechanics(const TerramechanicsOptions& o) {
   if (o.soil.empty()) throw UsageError("terramechanics: --soil is required (or use the surface / fit subcommands)");
-  const Soil soil = io::find_soil(o.soil, resource_subfolders("soils"));
+  Soil soil = io::find_soil(o.soil, resource_subfolders("soils"));
+  if (o.rft_scale > 0.0) soil.rft_scale = o.rft_scale;
   const Wheel wheel = wheel_of(o);
   const ModelOptions m = model_options(o);
   if (o.format != "csv" && o.format != "json") throw UsageError("--format must be csv or json");
   if (o.loads.empty() || o.slips.empty()) throw UsageError("give at least one --load and one --slip");
-  if (!o.slip_angles_deg.empty() || m.kind == ModelKind::ishigami) {
+  if (!o.slip_angles_deg.empty() || has_lateral_force(m.kind)) {
     print_slip_angle_rows(o, soil, wheel, m);
     return kSuccess;
   }
@@ -554,6 +565,8 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   }
   cmd.add_option("--grousers", o.grousers, "Number of grousers")->check(CLI::Range(0, 1000));
   cmd.add_option("--grouser-height", o.grouser_height, "Grouser height, m")->check(finite_in(0.0, 1.0));
+  cmd.add_option("--grouser-thickness", o.grouser_thickness, "Grouser thickness, m (the rft model's mesh)")
+      ->check(finite_in(0.0, 1.0));
   if (need_lists) {
     cmd.add_option("--load", o.loads, "Normal loads W, N (comma separated)")
         ->delimiter(',')
@@ -580,10 +593,10 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--sidewall-scale", o.sidewall_scale, "scale of the sidewall bulldozing term (0: off)")
       ->capture_default_str()
       ->check(finite_in(0.0, 100.0));
-  cmd.add_option(
-         "--model", o.model,
-         "bekker | wong | ishigami, with +slip-sinkage, +grousers, +bulldozing, +slip-shear-modulus, +rear-angle, "
-         "+shear-peak (e.g. wong+slip-sinkage)")
+  cmd.add_option("--model", o.model,
+                 "bekker | wong | ishigami | rft, with +slip-sinkage, +grousers, +bulldozing, +slip-shear-modulus, "
+                 "+rear-angle, +shear-peak (e.g. wong+slip-sinkage); rft with +grousers (height scale), +pile-up, "
+                 "+depth-scale")
       ->capture_default_str();
   cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
   cmd.add_option("--riemann-points", o.riemann_points, "Points of the Riemann sum")
@@ -592,9 +605,10 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
   cmd.add_option("--slip-sinkage-n1", o.slip_sinkage_n1, "n = n0 + n1 |s| (with +slip-sinkage)")
       ->capture_default_str()
       ->check(finite_in(0.0, 5.0));
-  cmd.add_option("--grouser-effectiveness", o.grouser_effectiveness, "shear radius r + lambda h (with +grousers)")
+  cmd.add_option("--grouser-effectiveness", o.grouser_effectiveness,
+                 "shear radius r + lambda h (with +grousers); rft: a scale on the grousers' height")
       ->capture_default_str()
-      ->check(finite_in(0.0, 1.0));
+      ->check(finite_in(0.0, 2.0));
   cmd.add_option("--bulldozing-scale", o.bulldozing_scale, "scale of the bulldozing resistance (with +bulldozing)")
       ->capture_default_str()
       ->check(finite_in(0.0, 100.0));
@@ -611,6 +625,17 @@ void add_model_options(CLI::App& cmd, TerramechanicsOptions& o, bool need_lists)
                  "K_r, residual over maximum shear stress of the peaked shear curve (with +shear-peak)")
       ->capture_default_str()
       ->check(finite_in(0.01, 1.0));
+  cmd.add_option("--rft-scale", o.rft_scale, "zeta, N/m^3, the rft model's material scale (0: the soil's)")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 1e9));
+  cmd.add_option("--pile-up", o.rft_pileup,
+                 "surface ahead of a pushing face raised by this fraction of the sinkage "
+                 "(rft, with +pile-up)")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 3.0));
+  cmd.add_option("--depth-scale", o.rft_depth_scale, "zeta (1 + k d / r) (rft, with +depth-scale)")
+      ->capture_default_str()
+      ->check(finite_in(-0.9, 20.0));
   cmd.add_option("--shear-peak-displacement", o.shear_peak_displacement,
                  "K_w, m: shear displacement of the maximum shear stress (with +shear-peak; replaces K_s)")
       ->capture_default_str()

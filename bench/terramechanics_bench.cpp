@@ -10,6 +10,7 @@
 
 #include "core/discrepancy/single_wheel/study.h"
 #include "core/terramechanics/model.h"
+#include "core/terramechanics/rft.h"
 #include "core/terramechanics/traction_surface.h"
 #include "importers/soil_file.h"
 #include "importers/wheel_test_csv.h"
@@ -53,6 +54,30 @@ void BM_WongReeceRiemann500(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_WongReeceRiemann500)->Unit(benchmark::kMicrosecond);
+
+// RFT (issue 43, item 2): one evaluation at a given load, sinkage solve
+// included, <= 1 ms with about 2,000 surface elements. Arguments: grouser
+// count (0: smooth, 1,800 elements; 12: 2,760) and pile-up on or off. Loads
+// 10..40 N, travel slips -0.9..0.9 and slip angles 0..90 deg vary each call.
+void BM_RftEvaluate(benchmark::State& state) {
+  Soil soil;
+  soil.rft_scale = 2.0e6;
+  Wheel wheel{0.0625, 0.06, static_cast<int>(state.range(0)), 0.005};
+  wheel.grouser_thickness = 0.002;
+  ModelOptions o;
+  o.kind = ModelKind::rft;
+  o.slip_definition = SlipDefinition::travel;
+  o.extensions.rft_pileup = state.range(1) != 0 ? 0.5 : 0.0;
+  state.counters["elements"] = static_cast<double>(rft_wheel_mesh(wheel).size());
+  int i = 0;
+  for (auto _ : state) {
+    const double slip = -0.9 + 0.1 * (i % 19), beta = (i % 7) * 15.0 * M_PI / 180.0;
+    const SlipAngleTraction t = evaluate_slip_angle(soil, wheel, 10.0 + (i % 31), slip, beta, o);
+    benchmark::DoNotOptimize(t);
+    ++i;
+  }
+}
+BENCHMARK(BM_RftEvaluate)->Args({0, 0})->Args({0, 1})->Args({12, 0})->Args({12, 1})->Unit(benchmark::kMicrosecond);
 
 void BM_TractionGrid100x100(benchmark::State& state) {
   const Soil soil = tyii();

@@ -35,6 +35,8 @@ terramechanics::Soil load_soil(const std::string& path) {
   s.c1 = required_number_in(j, "c1", 0.0, 1.0);
   s.c2 = required_number_in(j, "c2", -1.0, 1.0);
   s.density = j.has("density_kg_m3") ? required_number_in(j, "density_kg_m3", 100.0, 5000.0) : 1500.0;
+  // RFT material scale zeta (core/terramechanics/rft.h), optional.
+  if (j.has("rft_scale_N_m3")) s.rft_scale = required_number_in(j, "rft_scale_N_m3", 1e4, 1e8);
   return s;
 }
 

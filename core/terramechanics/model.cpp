@@ -4,6 +4,7 @@
 
 #include "core/common/error.h"
 #include "core/terramechanics/model_impl.h"
+#include "core/terramechanics/rft.h"
 
 namespace roverlab::terramechanics {
 
@@ -14,6 +15,7 @@ Traction evaluate(const Soil& soil, const Wheel& wheel, double load, double slip
     t.status = TractionStatus::invalid_input;
     return t;
   }
+  if (options.kind == ModelKind::rft) return evaluate_rft(soil, wheel, load, slip, 0.0, options);
   const auto p = detail::make_params<double>(soil, options.extensions);
   const auto s = detail::solve_any_slip(p, wheel, options, slip, load);
   t.status = s.status;
@@ -59,7 +61,8 @@ ModelKind parse_model_kind(const std::string& text) {
   if (text == "bekker") return ModelKind::bekker;
   if (text == "wong" || text == "wong-reece") return ModelKind::wong_reece;
   if (text == "ishigami") return ModelKind::ishigami;
-  throw DataError("unknown model '" + text + "' (bekker, wong, ishigami)");
+  if (text == "rft") return ModelKind::rft;
+  throw DataError("unknown model '" + text + "' (bekker, wong, ishigami, rft)");
 }
 
 const char* to_string(SlipDefinition d) { return d == SlipDefinition::travel ? "travel" : "longitudinal"; }

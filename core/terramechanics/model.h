@@ -11,7 +11,11 @@ namespace roverlab::terramechanics {
 
 // ishigami: Wong-Reece with a slip angle and the lateral force
 // (slip_angle_model.h); evaluate() gives its values at slip angle 0.
-enum class ModelKind { bekker, wong_reece, ishigami };
+// rft: granular resistive force theory on the wheel's surface mesh (rft.h),
+// at any slip angle; evaluate() gives its values at slip angle 0.
+enum class ModelKind { bekker, wong_reece, ishigami, rft };
+// The families that give a lateral force (evaluate_slip_angle).
+inline bool has_lateral_force(ModelKind k) { return k == ModelKind::ishigami || k == ModelKind::rft; }
 enum class Integration { simpson, riemann };
 
 // Extensions of the baseline model. Each is off at its neutral value.
@@ -53,6 +57,12 @@ struct Extensions {
   // Slip-angle model only: a scale on the Hegedus sidewall term (Ishigami
   // et al. 2007 Eq. 10), multiplying LateralOptions::sidewall_scale.
   double sidewall_scale = 1.0;
+  // RFT only (rft.h). Pile-up: the free surface ahead of a face that pushes
+  // sand horizontally is raised by this fraction of the sinkage (times the
+  // cosine between the face's normal and the horizontal motion); 0: flat.
+  double rft_pileup = 0.0;
+  // Depth-dependent material scale zeta (1 + k d / r), d the depth; 0: Li 2013's linear depth.
+  double rft_depth_scale = 0.0;
 };
 
 // How a measured slip is read when the wheel is at a slip angle beta (the

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/terramechanics/model_impl.h"
+#include "core/terramechanics/rft.h"
 
 namespace roverlab::terramechanics {
 
@@ -183,6 +184,7 @@ double sidewall_resistance(const Soil& soil, double soil_strength, double depth)
 
 SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, double load, double slip, double slip_angle,
                                       const ModelOptions& options, const LateralOptions& lateral) {
+  if (options.kind == ModelKind::rft) return evaluate_rft(soil, wheel, load, slip, slip_angle, options);
   SlipAngleTraction t;
   t.slip_angle = slip_angle;
   if (!std::isfinite(load) || load <= 0.0 || !std::isfinite(slip) || slip < -1.0 || slip > 1.0 ||

@@ -21,6 +21,10 @@ struct Soil {
   double c1 = 0.18;   // maximum-stress angle coefficients (Eq. 2.10)
   double c2 = 0.32;
   double density = 1500.0;  // bulk density, kg/m^3 (bulldozing only)
+  // zeta, RFT's material scale (Li et al. 2013): stress per unit depth of a
+  // horizontal plate pushed straight down, N/m^3 (1e6 = 1 N/cm^3). The RFT
+  // family fits it; this is its start.
+  double rft_scale = 1.0e6;
 };
 
 // Eq. 2.12-2.13, seed 003: Wong's pressure-sinkage constants for a wheel width.
@@ -31,7 +35,8 @@ struct Wheel {
   double radius = 0.075;  // m
   double width = 0.07;    // m
   int grouser_count = 0;
-  double grouser_height = 0.0;  // m
+  double grouser_height = 0.0;     // m
+  double grouser_thickness = 0.0;  // m (the RFT mesh; 0: thin plates)
 };
 
 }  // namespace roverlab::terramechanics

@@ -68,6 +68,10 @@ const ParameterName kParameters[] = {
     // maximum's displacement with the range of K_s.
     {Parameter::shear_residual_ratio, "shear_residual_ratio", {0.01, 1.0}},
     {Parameter::shear_peak_displacement, "shear_peak_displacement", {1e-4, 0.2}},
+    // RFT (rft.h): zeta in N/m^3 (0.01 to 100 N/cm^3), the pile-up fraction and the depth-dependent scale.
+    {Parameter::rft_scale, "rft_scale", {1e4, 1e8}},
+    {Parameter::rft_pileup, "rft_pileup", {0.0, 3.0}},
+    {Parameter::rft_depth_scale, "rft_depth_scale", {-0.9, 20.0}},
 };
 
 // Assigns one free parameter inside the model's parameter set.
@@ -125,6 +129,9 @@ void assign(detail::Params<T>& p, Parameter which, const T& v) {
       break;
     case Parameter::lateral_shear_modulus:  // the slip-angle model only (SlipAnglePointCost)
     case Parameter::sidewall_scale:
+    case Parameter::rft_scale:  // RFT only (SlipAnglePointCost)
+    case Parameter::rft_pileup:
+    case Parameter::rft_depth_scale:
       break;
   }
 }
@@ -157,7 +164,7 @@ struct PointCost {
 // The slip-angle model's values of the four quantities (NaN: not carried).
 std::array<double, 4> predict(const Soil& soil, const ModelOptions& model, const WheelTestPoint& point) {
   std::array<double, 4> out{NAN, NAN, NAN, NAN};
-  if (model.kind != ModelKind::ishigami) {
+  if (!has_lateral_force(model.kind)) {
     const Traction t = evaluate(soil, point.wheel, point.load, point.slip, model);
     if (t.ok()) out = {t.drawbar_pull, t.resistive_torque, t.sinkage, NAN};
     return out;
@@ -196,7 +203,7 @@ struct SlipAnglePointCost {
 int measured_count(const WheelTestPoint& p, const ModelOptions& model) {
   int n = 0;
   for (Quantity q : kQuantities) {
-    n += p.measured(q) && (q != Quantity::lateral_force || model.kind == ModelKind::ishigami) ? 1 : 0;
+    n += p.measured(q) && (q != Quantity::lateral_force || has_lateral_force(model.kind)) ? 1 : 0;
   }
   return n;
 }
@@ -264,6 +271,12 @@ double get_parameter(const Soil& s, const Extensions& e, Parameter p) {
       return e.shear_residual_ratio;
     case Parameter::shear_peak_displacement:
       return e.shear_peak_displacement;
+    case Parameter::rft_scale:
+      return s.rft_scale;
+    case Parameter::rft_pileup:
+      return e.rft_pileup;
+    case Parameter::rft_depth_scale:
+      return e.rft_depth_scale;
   }
   return NAN;
 }
@@ -324,6 +337,15 @@ void set_parameter(Soil& s, Extensions& e, Parameter p, double v) {
     case Parameter::shear_peak_displacement:
       e.shear_peak_displacement = v;
       break;
+    case Parameter::rft_scale:
+      s.rft_scale = v;
+      break;
+    case Parameter::rft_pileup:
+      e.rft_pileup = v;
+      break;
+    case Parameter::rft_depth_scale:
+      e.rft_depth_scale = v;
+      break;
   }
 }
 
@@ -354,7 +376,7 @@ void add_point_residuals(ceres::Problem& problem, const Soil& soil, const std::v
     const int m = measured_count(point, options.model);
     if (m == 0) continue;
     ceres::DynamicCostFunction* cost = nullptr;
-    if (options.model.kind == ModelKind::ishigami) {
+    if (has_lateral_force(options.model.kind)) {
       cost = new ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>(
           new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma});
     } else {
@@ -446,7 +468,7 @@ void score_points(const std::vector<WheelTestPoint>& points, const Identificatio
     const auto predicted = predict(result.soil, fitted, points[i]);
     for (Quantity q : kQuantities) {
       const auto m = points[i].measured(q);
-      if (!m || (q == Quantity::lateral_force && fitted.kind != ModelKind::ishigami)) continue;
+      if (!m || (q == Quantity::lateral_force && !has_lateral_force(fitted.kind))) continue;
       PointResidual r;
       r.point = i;
       r.quantity = q;

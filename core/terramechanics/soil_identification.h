@@ -26,10 +26,13 @@ enum class Parameter {
   soil_strength,
   shear_modulus_slip,
   rear_angle_ratio,
-  lateral_shear_modulus,   // k_y of the slip-angle model (Ishigami et al. 2007)
-  sidewall_scale,          // scale on its Hegedus sidewall term
-  shear_residual_ratio,    // K_r of the peaked shear curve (Wong)
-  shear_peak_displacement  // its K_w, m
+  lateral_shear_modulus,    // k_y of the slip-angle model (Ishigami et al. 2007)
+  sidewall_scale,           // scale on its Hegedus sidewall term
+  shear_residual_ratio,     // K_r of the peaked shear curve (Wong)
+  shear_peak_displacement,  // its K_w, m
+  rft_scale,                // zeta of the RFT family, N/m^3 (rft.h)
+  rft_pileup,               // its pile-up fraction
+  rft_depth_scale           // its depth-dependent scale
 };
 const char* to_string(Parameter p);
 Parameter parse_parameter(const std::string& text);  // throws DataError

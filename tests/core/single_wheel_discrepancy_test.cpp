@@ -244,7 +244,14 @@ TEST(SingleWheelCandidates, ComeFromTheRegistryInItsOrder) {
   for (const auto& c : candidates) names.push_back(c->name());
   EXPECT_EQ(names, (std::vector<std::string>{"slip-sinkage", "grousers", "bulldozing", "soil-strength",
                                              "max-stress-angle", "slip-shear-modulus", "rear-angle", "shear-peak",
-                                             "lateral-shear-modulus", "sidewall"}));
+                                             "lateral-shear-modulus", "sidewall", "pile-up", "depth-scale"}));
+  // RFT's own candidates belong to the RFT family only, grousers to both, the rest to Wong-Reece / Ishigami.
+  for (const auto& c : candidates) {
+    const std::string n = c->name();
+    const bool rft_only = n == "pile-up" || n == "depth-scale";
+    EXPECT_EQ(c->belongs_to(ModelKind::rft), rft_only || n == "grousers") << n;
+    EXPECT_EQ(c->belongs_to(ModelKind::ishigami), !rft_only) << n;
+  }
   // Only the grouser candidate needs grousers, and it switches their model on;
   // only the lateral ones need points at a slip angle.
   Extensions e;

@@ -27,6 +27,9 @@ class SingleWheelCandidate {
   virtual bool needs_lateral_force() const { return false; }
   // Switches on the model extension it stands for.
   virtual void configure(terramechanics::Extensions&) const {}
+  // Whether it extends the model family `kind` (model.h): by default the
+  // Wong-Reece / Ishigami family's extensions, not RFT's.
+  virtual bool belongs_to(terramechanics::ModelKind kind) const { return kind != terramechanics::ModelKind::rft; }
 };
 
 // One candidate of each entry in single_wheel_candidates.def, in its order.

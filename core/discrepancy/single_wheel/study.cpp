@@ -142,6 +142,18 @@ double rmse_of(const std::vector<QuantityResiduals>& stats, Quantity q) {
   return NAN;
 }
 
+// The family's name in reports.
+std::string family_name(ModelKind kind) {
+  return kind == ModelKind::rft ? "RFT" : kind == ModelKind::ishigami ? "Ishigami (slip angle)" : "Wong-Reece";
+}
+
+// What a family's baseline fits: RFT its material scale zeta (Li et al.
+// 2013), the Wong-Reece family nothing (the soil's description).
+std::vector<Parameter> family_parameters(ModelKind kind) {
+  if (kind == ModelKind::rft) return {Parameter::rft_scale};
+  return {};
+}
+
 }  // namespace
 
 std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidual>& residuals,
@@ -232,7 +244,7 @@ class SingleWheelStudy {
 DiscrepancyReport SingleWheelStudy::run() {
   if (points_.empty()) throw DataError("no single-wheel points");
   report_.points = points_.size();
-  report_.baseline_model = o_.baseline.kind == ModelKind::ishigami ? "Ishigami (slip angle)" : "Wong-Reece";
+  report_.baseline_model = family_name(o_.baseline.kind);
   check_points_can_tell_candidates_apart();
   assign_folds();
   find_quantities();
@@ -377,7 +389,7 @@ void SingleWheelStudy::score_baseline() {
   const IdentificationResult baseline = identify_soil(soil_, points_, base);  // nothing free: predictions
   report_.baseline = residual_statistics(baseline.residuals, points_);
   report_.baseline_score = score_of(baseline.residuals, o_.sigma);
-  report_.baseline_bic = bic_of(baseline.residuals, 0, o_.sigma);
+  report_.baseline_bic = bic_of(baseline.residuals, family_parameters(o_.baseline.kind).size(), o_.sigma);
   weights_ = profiled_sigma(baseline.residuals, o_.sigma);
   report_.measurements = baseline.measurements;
   for (const auto& r : baseline.residuals) report_.unsupported += std::isfinite(r.predicted) ? 0 : 1;
@@ -398,7 +410,12 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
       c.not_applicable_because = "no wheel in the data has grousers";
       return c;
     }
-    if (candidate->needs_lateral_force() && o_.baseline.kind != ModelKind::ishigami) {
+    if (!candidate->belongs_to(o_.baseline.kind)) {
+      c.applicable = false;
+      c.not_applicable_because = "not an extension of the " + family_name(o_.baseline.kind) + " family";
+      return c;
+    }
+    if (candidate->needs_lateral_force() && !has_lateral_force(o_.baseline.kind)) {
       c.applicable = false;
       c.not_applicable_because = "no point has a slip angle or a measured lateral force";
       return c;
@@ -406,6 +423,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   }
   IdentificationOptions io;
   io.model = o_.baseline;
+  io.free = family_parameters(o_.baseline.kind);  // refitted with every candidate (RFT: its material scale)
   io.sigma = start_from != nullptr ? profiled_sigma(start_from->fit.residuals, o_.sigma) : weights_;
   Soil start = soil_;
   if (start_from != nullptr) {
@@ -846,6 +864,94 @@ namespace {
 // the baseline).
 double final_bic(const DiscrepancyReport& r) { return r.selection.empty() ? r.baseline_bic : r.selection.back().bic; }
 
+// A family's baseline on all points: its parameters fitted (with their
+// sigmas) and, when it fits any, its held-out error by `folds` folds (point
+// j in fold j mod folds); nothing fitted: its in-sample error. `fitted` gets
+// the soil with the fitted values.
+FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& o,
+                               Soil& fitted) {
+  FamilyBaseline f;
+  f.family = family_name(o.baseline.kind);
+  IdentificationOptions io;
+  io.model = o.baseline;
+  io.sigma = o.sigma;
+  io.free = family_parameters(o.baseline.kind);
+  const IdentificationResult all = identify_soil(soil, points, io);
+  fitted = all.soil;
+  f.parameters = all.parameters;
+  std::vector<PointResidual> held = all.residuals;
+  f.held_out_method = "in-sample";
+  if (!io.free.empty() && o.leave_one_out) {
+    const std::size_t folds = std::min<std::size_t>(std::max<std::size_t>(o.folds, 2), points.size());
+    f.held_out_method = std::to_string(folds) + "-fold";
+    held.clear();
+    io.covariance = false;
+    for (std::size_t fold = 0; fold < folds; ++fold) {
+      std::vector<WheelTestPoint> train, test;
+      std::vector<std::size_t> index;
+      for (std::size_t j = 0; j < points.size(); ++j) {
+        (j % folds == fold ? test : train).push_back(points[j]);
+        if (j % folds == fold) index.push_back(j);
+      }
+      IdentificationOptions predict = io;
+      predict.free.clear();
+      for (auto r : identify_soil(identify_soil(soil, train, io).soil, test, predict).residuals) {
+        r.point = index[r.point];
+        held.push_back(r);
+      }
+    }
+  }
+  const auto stats = residual_statistics(held, points);
+  for (Quantity q : kQuantities) {
+    const double rmse = rmse_of(stats, q);
+    if (std::any_of(points.begin(), points.end(), [&](const auto& p) { return p.measured(q).has_value(); })) {
+      f.held_out_rmse.push_back(rmse);
+    }
+  }
+  f.held_out_score = score_of(held, o.sigma);
+  return f;
+}
+
+// The family step (issue 43): each family's baseline held out, the one with
+// the lower error taken (RFT with its fitted material scale as the study's
+// start), and a sentence saying which and by how much.
+std::string choose_family(const Soil& soil, const std::vector<WheelTestPoint>& points, DiscrepancyOptions& o,
+                          Soil& start, std::vector<FamilyBaseline>& families) {
+  DiscrepancyOptions wong = o, rft = o;
+  if (wong.baseline.kind == ModelKind::rft) wong.baseline.kind = ModelKind::ishigami;
+  rft.baseline.kind = ModelKind::rft;
+  Soil wong_soil, rft_soil;
+  families = {family_baseline(soil, points, wong, wong_soil), family_baseline(soil, points, rft, rft_soil)};
+  const bool take_rft = families[1].held_out_score < families[0].held_out_score ||
+                        (!std::isfinite(families[0].held_out_score) && std::isfinite(families[1].held_out_score));
+  o.baseline.kind = take_rft ? ModelKind::rft : wong.baseline.kind;
+  start = take_rft ? rft_soil : soil;
+  const FamilyBaseline& taken = families[take_rft ? 1 : 0];
+  const FamilyBaseline& other = families[take_rft ? 0 : 1];
+  return "baseline family " + taken.family + ": held-out RMS " + fmt("%.2f", taken.held_out_score) + " sigma (" +
+         taken.held_out_method + ") against " + other.family + "'s " + fmt("%.2f", other.held_out_score) + " sigma (" +
+         other.held_out_method + "), " + fmt("%.0f", 100.0 * (1.0 - taken.held_out_score / other.held_out_score)) +
+         " % lower";
+}
+
+// The study within one family: compared first when asked (choose_family);
+// an RFT baseline starts from its material scale fitted on all points.
+DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoint>& points, DiscrepancyOptions o) {
+  Soil start = soil;
+  std::vector<FamilyBaseline> families;
+  std::string choice;
+  if (o.compare_families) {
+    choice = choose_family(soil, points, o, start, families);
+  } else if (o.baseline.kind == ModelKind::rft) {
+    families = {family_baseline(soil, points, o, start)};
+    choice = "baseline family RFT (given), material scale fitted";
+  }
+  DiscrepancyReport r = SingleWheelStudy(start, points, o).run();
+  r.families = std::move(families);
+  r.family_choice = std::move(choice);
+  return r;
+}
+
 }  // namespace
 
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
@@ -858,7 +964,7 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
   });
   if (lateral && o.baseline.kind == ModelKind::wong_reece) o.baseline.kind = ModelKind::ishigami;
   const bool at_angle = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.slip_angle != 0.0; });
-  if (!at_angle) return SingleWheelStudy(soil, points, o).run();
+  if (!at_angle) return run_in_family(soil, points, o);
   // How the slip is read (SlipDefinition, model.h): given; the longitudinal
   // one when the readings differ by < 0.01 in slip at every point; else the
   // whole study under each (a hidden effect can mimic the other reading in
@@ -874,15 +980,15 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
   DiscrepancyReport r;
   if (o.slip_definition) {
     o.baseline.slip_definition = *o.slip_definition;
-    r = SingleWheelStudy(soil, points, o).run();
+    r = run_in_family(soil, points, o);
   } else {
     const auto progress = options.progress;
     o.baseline.slip_definition = SlipDefinition::longitudinal;
     if (progress) o.progress = [&](double f) { progress(0.5 * f); };
-    DiscrepancyReport as_longitudinal = SingleWheelStudy(soil, points, o).run();
+    DiscrepancyReport as_longitudinal = run_in_family(soil, points, o);
     o.baseline.slip_definition = SlipDefinition::travel;
     if (progress) o.progress = [&](double f) { progress(0.5 + 0.5 * f); };
-    DiscrepancyReport as_travel = SingleWheelStudy(soil, points, o).run();
+    DiscrepancyReport as_travel = run_in_family(soil, points, o);
     const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
     const bool travel = lost_travel != lost_longitudinal ? lost_travel < lost_longitudinal
                                                          : final_bic(as_travel) < final_bic(as_longitudinal);

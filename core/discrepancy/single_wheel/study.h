@@ -96,6 +96,21 @@ struct DiscrepancyOptions {
   // from the data (study_single_wheel says how).
   std::optional<terramechanics::SlipDefinition> slip_definition;
   std::function<void(double)> progress;  // fraction done; may throw to cancel
+  // The model families compared as baselines before any extension (issue
+  // 43): the Wong-Reece / Ishigami family (`baseline`) with nothing fitted,
+  // and RFT with its material scale fitted, on held-out error; the study then
+  // runs its selection within the one with the lower error. Off: `baseline`
+  // alone (an RFT baseline still has its material scale fitted).
+  bool compare_families = false;
+};
+
+// One model family as the study's baseline (compare_families).
+struct FamilyBaseline {
+  std::string family;                                          // "Wong-Reece", "Ishigami (slip angle)" or "RFT"
+  std::vector<double> held_out_rmse;                           // per quantity (order of `quantities`)
+  double held_out_score = NAN;                                 // RMS held-out residual in the stated sigmas
+  std::string held_out_method;                                 // "in-sample" (nothing fitted) or "10-fold"
+  std::vector<terramechanics::EstimatedParameter> parameters;  // fitted on all points (RFT: rft_scale)
 };
 
 struct DiscrepancyReport {
@@ -126,7 +141,9 @@ struct DiscrepancyReport {
   std::string final_model;                         // the forward selection's chain, or "baseline"
   std::vector<WheelHeldOut> per_wheel;             // per wheel and quantity, of final_model
   std::string what_is_wrong;                       // one sentence on the baseline's residuals
-  std::string verdict;  // one sentence: the cause and the gain, or "no significant discrepancy"
+  std::string verdict;                   // one sentence: the cause and the gain, or "no significant discrepancy"
+  std::vector<FamilyBaseline> families;  // the families compared (empty: not compared)
+  std::string family_choice;             // the family taken as the baseline, and by how much
 };
 
 // At a slip angle without options.slip_definition the slip's reading is

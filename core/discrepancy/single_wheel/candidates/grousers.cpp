@@ -15,6 +15,8 @@ class Grousers final : public SingleWheelCandidate {
     return {{Parameter::grouser_effectiveness, 0.5}};
   }
   bool needs_grousers() const override { return true; }
+  // Both families: RFT reads grouser_effectiveness as a scale on the grousers' height (rft.h).
+  bool belongs_to(terramechanics::ModelKind) const override { return true; }
   void configure(terramechanics::Extensions& e) const override { e.grousers = true; }
 };
 

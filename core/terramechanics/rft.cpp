@@ -1,0 +1,277 @@
+#include "core/terramechanics/rft.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace roverlab::terramechanics {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Li, Zhang, Goldman 2013 (Science 339:1408, supplementary Table S2), the
+// generic Fourier coefficients, N/cm^3 per unit zeta (alpha_z(0, pi/2) = 1).
+constexpr double kA00 = 0.206, kA10 = 0.169, kB11 = 0.212, kB01 = 0.358, kBm11 = 0.055;
+constexpr double kC11 = -0.124, kC01 = 0.253, kCm11 = 0.007, kD10 = 0.088;
+
+// alpha from cos/sin of 2 beta and of gamma (no trigonometric calls).
+Alpha alpha_of(double cos2b, double sin2b, double cosg, double sing) {
+  const double sin_p = sin2b * cosg + cos2b * sing;  // sin(2 beta + gamma)
+  const double cos_p = cos2b * cosg - sin2b * sing;  // cos(2 beta + gamma)
+  const double sin_m = cos2b * sing - sin2b * cosg;  // sin(-2 beta + gamma)
+  const double cos_m = cos2b * cosg + sin2b * sing;  // cos(-2 beta + gamma)
+  // Li 2013 Eq. S2: alpha_z = sum A cos + B sin, alpha_x = sum C cos + D sin over (m, n) in {-1, 0, 1} x {0, 1}.
+  return {kC11 * cos_p + kC01 * cosg + kCm11 * cos_m + kD10 * sin2b,
+          kA00 + kA10 * cos2b + kB11 * sin_p + kB01 * sing + kBm11 * sin_m};
+}
+
+void add_rim(std::vector<RftElement>& out, const Wheel& w, const RftResolution& res) {
+  const double r = w.radius, b = w.width, dth = kPi / res.angles, dy = b / res.across;
+  for (int i = 0; i < res.angles; ++i) {
+    const double th = -kPi / 2.0 + (i + 0.5) * dth;  // from the bottom, positive forward
+    const double s = std::sin(th), c = std::cos(th);
+    for (int k = 0; k < res.across; ++k) {
+      const double y = -b / 2.0 + (k + 0.5) * dy;
+      out.push_back({r * s, y, -r * c, s, 0.0, -c, r * dth * dy, RftPart::rim});
+    }
+  }
+}
+
+void add_sides(std::vector<RftElement>& out, const Wheel& w, const RftResolution& res) {
+  const double r = w.radius, dth = kPi / res.angles, dr = r / res.rings;
+  for (int side = -1; side <= 1; side += 2) {
+    for (int i = 0; i < res.angles; ++i) {
+      const double th = -kPi / 2.0 + (i + 0.5) * dth;
+      const double s = std::sin(th), c = std::cos(th);
+      for (int k = 0; k < res.rings; ++k) {
+        const double rho = (k + 0.5) * dr;
+        out.push_back({rho * s, side * w.width / 2.0, -rho * c, 0.0, double(side), 0.0, rho * dr * dth, RftPart::side});
+      }
+    }
+  }
+}
+
+// One grouser at angle th: front and back faces (normals along and against
+// the direction of growing th) at th +- half its thickness, and its tip.
+void add_grouser(std::vector<RftElement>& out, const Wheel& w, double height, double th, double weight,
+                 const RftResolution& res) {
+  const double r = w.radius, b = w.width, t = w.grouser_thickness;
+  const double dy = b / res.across, dh = height / res.grouser_rows;
+  const double half = t / (2.0 * r);
+  for (int face = -1; face <= 1; face += 2) {
+    const double a = th + face * half;
+    const double s = std::sin(a), c = std::cos(a);
+    for (int j = 0; j < res.grouser_rows; ++j) {
+      const double rho = r + (j + 0.5) * dh;
+      for (int k = 0; k < res.across; ++k) {
+        const double y = -b / 2.0 + (k + 0.5) * dy;
+        out.push_back({rho * s, y, -rho * c, face * c, 0.0, face * s, weight * dh * dy, RftPart::grouser});
+      }
+    }
+  }
+  if (!(t > 0.0)) return;
+  const double s = std::sin(th), c = std::cos(th), tip = r + height;
+  for (int k = 0; k < res.across; ++k) {
+    const double y = -b / 2.0 + (k + 0.5) * dy;
+    out.push_back({tip * s, y, -tip * c, s, 0.0, -c, weight * t * dy, RftPart::grouser});
+  }
+}
+
+void add_grousers(std::vector<RftElement>& out, const Wheel& w, double height, const RftResolution& res) {
+  if (w.grouser_count <= 0 || !(height > 0.0)) return;
+  const double pitch = 2.0 * kPi / w.grouser_count;
+  const int phases = std::max(1, res.grouser_phases);
+  for (int g = 0; g < w.grouser_count; ++g) {
+    for (int p = 0; p < phases; ++p) {
+      // Angle from the bottom wrapped into (-pi, pi]; the lower half only.
+      double th = std::remainder(g * pitch + (p + 0.5) * pitch / phases, 2.0 * kPi);
+      if (std::abs(th) > kPi / 2.0) continue;
+      add_grouser(out, w, height, th, 1.0 / phases, res);
+    }
+  }
+}
+
+}  // namespace
+
+Alpha generic_alpha(double beta, double gamma) {
+  return alpha_of(std::cos(2.0 * beta), std::sin(2.0 * beta), std::cos(gamma), std::sin(gamma));
+}
+
+std::vector<RftElement> rft_wheel_mesh(const Wheel& wheel, double grouser_height_scale, const RftResolution& res) {
+  std::vector<RftElement> out;
+  out.reserve(static_cast<std::size_t>(res.angles * (res.across + 2 * res.rings)) +
+              static_cast<std::size_t>(std::max(0, wheel.grouser_count) * res.grouser_phases *
+                                       (2 * res.grouser_rows + 1) * res.across));
+  add_rim(out, wheel, res);
+  add_sides(out, wheel, res);
+  add_grousers(out, wheel, grouser_height_scale * wheel.grouser_height, res);
+  return out;
+}
+
+Vec3 rft_element_stress(const RftElement& e, const Vec3& u) {
+  const double speed = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+  // Leading elements only (Li 2013): outward normal along the velocity.
+  if (!(speed > 0.0) || !(e.nx * u.x + e.ny * u.y + e.nz * u.z > 0.0)) return {0.0, 0.0, 0.0};
+  // The vertical plane of the velocity (Treers et al. 2021): r along its
+  // horizontal part (else the normal's), theta = z x r across it.
+  double hx = u.x, hy = u.y;
+  double h = std::sqrt(hx * hx + hy * hy);
+  if (h <= 1e-9 * speed) {
+    hx = e.nx;
+    hy = e.ny;
+    h = std::sqrt(hx * hx + hy * hy);
+    if (h <= 1e-12) {
+      hx = 1.0;
+      hy = 0.0;
+      h = 1.0;
+    }
+  }
+  const double rx = hx / h, ry = hy / h;
+  const double cosg = (u.x * rx + u.y * ry) / speed, sing = -u.z / speed;  // gamma below the horizontal
+  const double n_r = e.nx * rx + e.ny * ry, n_t = -e.nx * ry + e.ny * rx, n_z = e.nz;
+  const double l2 = n_r * n_r + n_z * n_z;
+  if (l2 <= 1e-24) return {0.0, 0.0, 0.0};
+  // The element's angle in that plane, tan(beta) = -n_r / n_z (Li 2013 Fig. 1).
+  const double cos2b = (n_z * n_z - n_r * n_r) / l2, sin2b = -2.0 * n_r * n_z / l2;
+  const Alpha a = alpha_of(cos2b, sin2b, cosg, sing);
+  const double l = std::sqrt(l2);
+  // In the plane, the stress on the element's projection l dA; across it,
+  // the normal pressure p = -(a . n') on the same projection along -n_theta.
+  const double f_r = -a.x * l, f_z = a.z * l;
+  const double pressure = (a.x * n_r - a.z * n_z) / l;  // per unit projected area
+  const double f_t = -pressure * l * n_t;
+  return {e.area * (f_r * rx - f_t * ry), e.area * (f_r * ry + f_t * rx), e.area * f_z};
+}
+
+WheelMotion rft_wheel_motion(double slip, double slip_angle, SlipDefinition definition) {
+  // 90 deg as the limit from below (cos beta >= 1e-6): there the rim moves in
+  // its own plane, and the front half leads as at any smaller angle.
+  const double c = std::max(std::cos(slip_angle), 1e-6), s = std::sin(slip_angle);
+  if (definition == SlipDefinition::travel) return {{(1.0 - slip) * c, (1.0 - slip) * s, 0.0}, 1.0};
+  // Longitudinal: v_x = (1 - s) r w, v_y = v_x tan(beta); scaled by cos(beta).
+  const double vx = 1.0 - slip;
+  return {{vx * c, vx * s, 0.0}, c};
+}
+
+namespace {
+
+// The mesh of the last wheel evaluated on this thread (geometry and grouser height scale).
+const std::vector<RftElement>& cached_mesh(const Wheel& w, double grouser_height_scale) {
+  struct Cache {
+    double radius = -1, width = -1, height = -1, thickness = -1;
+    int count = -1;
+    std::vector<RftElement> mesh;
+  };
+  thread_local Cache cache;
+  const double height = grouser_height_scale * w.grouser_height;
+  if (cache.radius != w.radius || cache.width != w.width || cache.height != height ||
+      cache.thickness != w.grouser_thickness || cache.count != w.grouser_count) {
+    cache =
+        Cache{w.radius, w.width, height, w.grouser_thickness, w.grouser_count, rft_wheel_mesh(w, grouser_height_scale)};
+  }
+  return cache.mesh;
+}
+
+// An element that carries stress at this motion: its force per unit depth
+// (zeta applied), height above the rim's bottom z, and the pile-up factor m:
+// its depth at sinkage s is m s - z (the surface ahead of a face that pushes
+// sand raised by a fraction of the sinkage), so it is immersed above s = z / m.
+struct Loaded {
+  const RftElement* element;
+  Vec3 force;
+  double z, m, threshold;
+};
+
+std::vector<Loaded> loaded_elements(const std::vector<RftElement>& mesh, const Wheel& w, const WheelMotion& motion,
+                                    double zeta, double pileup) {
+  std::vector<Loaded> out;
+  out.reserve(mesh.size());
+  const double omega = motion.rim_speed / w.radius;
+  for (const RftElement& e : mesh) {
+    // Rigid-body velocity of the element: v_c + omega y x p.
+    const Vec3 u{motion.centre.x + omega * e.pz, motion.centre.y, motion.centre.z - omega * e.px};
+    const Vec3 f = rft_element_stress(e, u);
+    if (f.x == 0.0 && f.y == 0.0 && f.z == 0.0) continue;
+    const double h = std::sqrt(u.x * u.x + u.y * u.y);
+    const double pushes = h > 0.0 ? std::max(0.0, (e.nx * u.x + e.ny * u.y) / h) : 0.0;
+    const double m = 1.0 + pileup * pushes;
+    const double z = e.pz + w.radius;
+    out.push_back({&e, {zeta * f.x, zeta * f.y, zeta * f.z}, z, m, z / m});
+  }
+  std::sort(out.begin(), out.end(), [](const Loaded& a, const Loaded& b) { return a.threshold < b.threshold; });
+  return out;
+}
+
+// Sinkage s from F_z(s) = W. With the depth-dependent scale zeta (1 + k d /
+// r), F_z is a quadratic in s between consecutive immersion thresholds
+// (prefix sums); the first interval where it reaches W brackets the root,
+// found there by bisection. NaN when F_z stays below W up to s = r.
+double solve_sinkage(const std::vector<Loaded>& loaded, double load, double radius, double depth_scale) {
+  const double kq = depth_scale / radius;
+  double c2 = 0.0, c1 = 0.0, c0 = 0.0;
+  for (std::size_t j = 0; j < loaded.size(); ++j) {
+    const Loaded& l = loaded[j];
+    if (l.threshold >= radius) break;
+    const double fz = l.force.z;
+    c2 += kq * fz * l.m * l.m;
+    c1 += fz * l.m - 2.0 * kq * fz * l.m * l.z;
+    c0 += -fz * l.z + kq * fz * l.z * l.z;
+    const double lo = l.threshold;
+    const double hi = j + 1 < loaded.size() ? std::min(loaded[j + 1].threshold, radius) : radius;
+    auto fz_at = [&](double s) { return (c2 * s + c1) * s + c0; };
+    if (!(hi > lo) || fz_at(hi) < load) continue;
+    double a = lo, b = hi;
+    for (int it = 0; it < 100 && b - a > 1e-14 * radius; ++it) {
+      const double mid = 0.5 * (a + b);
+      (fz_at(mid) < load ? a : b) = mid;
+    }
+    return 0.5 * (a + b);
+  }
+  return NAN;
+}
+
+}  // namespace
+
+SlipAngleTraction evaluate_rft(const Soil& soil, const Wheel& wheel, double load, double slip, double slip_angle,
+                               const ModelOptions& options) {
+  SlipAngleTraction t;
+  t.slip_angle = slip_angle;
+  const Extensions& e = options.extensions;
+  const double zeta = soil.rft_scale * e.soil_strength;
+  if (!std::isfinite(load) || load <= 0.0 || !std::isfinite(slip) || std::abs(slip) > 1.0 ||
+      !std::isfinite(slip_angle) || std::abs(slip_angle) > kPi / 2.0 || !(wheel.radius > 0.0) || !(wheel.width > 0.0) ||
+      !(zeta > 0.0) || !std::isfinite(zeta) || !(e.rft_pileup >= 0.0) || !(e.rft_depth_scale > -1.0) ||
+      !(e.grouser_effectiveness >= 0.0)) {
+    t.status = TractionStatus::invalid_input;
+    return t;
+  }
+  const auto& mesh = cached_mesh(wheel, e.grousers ? e.grouser_effectiveness : 1.0);
+  const WheelMotion motion = rft_wheel_motion(slip, slip_angle, options.slip_definition);
+  const std::vector<Loaded> loaded = loaded_elements(mesh, wheel, motion, zeta, e.rft_pileup);
+  const double s = solve_sinkage(loaded, load, wheel.radius, e.rft_depth_scale);
+  if (!std::isfinite(s)) {
+    t.status = TractionStatus::unsupported_load;
+    return t;
+  }
+  const double kq = e.rft_depth_scale / wheel.radius;
+  double resistance = 0.0;  // the resisting elements' share of -F_x
+  for (const Loaded& l : loaded) {
+    const double d = l.m * s - l.z;
+    if (!(d > 0.0)) continue;
+    const double g = d * (1.0 + kq * d);  // zeta (1 + k d / r) d
+    const Vec3 f{l.force.x * g, l.force.y * g, l.force.z * g};
+    if (f.x < 0.0) resistance -= f.x;
+    t.drawbar_pull += f.x;
+    (l.element->part == RftPart::side ? t.sidewall : t.lateral_shear) += f.y;
+    t.resistive_torque += l.element->px * f.z - l.element->pz * f.x;  // -(p x F)_y
+  }
+  t.status = TractionStatus::ok;
+  t.sinkage = s;
+  t.entry_angle = std::acos(std::clamp(1.0 - s / wheel.radius, -1.0, 1.0));
+  t.lateral_force = t.lateral_shear + t.sidewall;
+  t.motion_resistance = resistance;
+  return t;
+}
+
+}  // namespace roverlab::terramechanics
