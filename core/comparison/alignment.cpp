@@ -213,6 +213,13 @@ double find_time_offset(const log::Stream& base, const log::Stream& other, const
   return (static_cast<double>(lag) - static_cast<double>(fine.lag0) + fraction) * fine.dt;
 }
 
+PositionTrack position_track(const log::Log& log) {
+  for (const auto& p : kPositionSources) {
+    if (has_position(log, p)) return {p.stream, p.x, p.y};
+  }
+  return {};
+}
+
 std::vector<double> Alignment::other_times(const std::vector<double>& base_times) const {
   std::vector<double> out(base_times.size());
   if (by != AlignBy::distance) {
@@ -241,9 +248,9 @@ Alignment align_runs(const log::Log& base, const log::Log& other, const Alignmen
   Alignment a;
   a.by = options.by;
   if (options.by == AlignBy::time) {
-    if (options.offset_given) {
+    if (!options.find_offset) {
       a.offset_s = options.offset_s;
-      a.how = "given offset";
+      a.how = options.offset_s == 0.0 ? "the clocks as recorded" : "the given offset";
       return a;
     }
     const auto [stream, channels] = sync_channels(base, other, options.sync);

@@ -15,7 +15,7 @@ enum class AlignBy { time, motion, distance };
 
 struct AlignmentOptions {
   AlignBy by = AlignBy::time;
-  bool offset_given = false;
+  bool find_offset = false;
   double offset_s = 0;               // the other run's clock minus the baseline's (when given)
   std::vector<std::string> sync;     // "stream/channel" cross-correlated; empty: the fastest shared stream
   double max_offset_s = 30;          // search range of the cross-correlation
@@ -38,6 +38,14 @@ struct Alignment {
   // other run has not travelled that far (distance).
   std::vector<double> other_times(const std::vector<double>& base_times) const;
 };
+
+// Where a run went: the first of truth/motion (east, north), truth/pose (x, z),
+// gps, estimate/ins/pose, estimate/odometry/pose (east, north), odometry (x, y)
+// the log has; `stream` is empty when it has none.
+struct PositionTrack {
+  std::string stream, x, y;
+};
+PositionTrack position_track(const log::Log& log);
 
 // Throws DataError naming what is missing (no shared channel to correlate,
 // no position stream, a run that never moves).

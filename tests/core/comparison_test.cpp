@@ -120,6 +120,7 @@ TEST(CompareRuns, FlagsTheBiasedChannelListsTheMissingOneAndKeepsTheDifference) 
   base.add_stream(extra);
   CompareOptions options;
   options.keep_differences = true;
+  options.alignment.find_offset = true;
   const RunComparison r = compare_runs(base, run_with(b2), options);
   EXPECT_NEAR(r.alignment.offset_s, 0.5, 0.01);
   ASSERT_EQ(r.channels.size(), 2u);
@@ -162,7 +163,6 @@ TEST(CompareRuns, AlignsByMotionAndByDistance) {
   // On the distance axis half the speed reads the same positions.
   EXPECT_LT(d.channels[0].rms, 1e-3);
   options.alignment.by = AlignBy::time;
-  options.alignment.offset_given = true;
   EXPECT_GT(compare_runs(driving(0.1, 2.0), driving(0.05, 2.0), options).channels[0].rms, 0.3);
 }
 
