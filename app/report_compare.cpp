@@ -81,8 +81,10 @@ json track_map(std::ostringstream& html, const std::string& base_file, const log
     const comparison::PositionTrack p = comparison::position_track(lg);
     if (p.stream.empty()) continue;
     const log::Stream& s = lg.stream(p.stream);
-    PlotSeries line(k == 0 ? "baseline" : "run " + std::to_string(k + 1), colour(k), thinned(s.channel(p.y).values));
+    PlotSeries line(k == 0 ? "baseline (dots)" : "run " + std::to_string(k + 1), colour(k),
+                    thinned(s.channel(p.y).values));
     line.x = thinned(s.channel(p.x).values);
+    line.points = k == 0;  // a run on the same path hides the baseline's line, not its dots
     tracks.push_back({{"file", k == 0 ? base_file : runs[k - 1].file},
                       {"stream", p.stream},
                       {"x_channel", p.x},
@@ -125,11 +127,19 @@ void run_section(std::ostringstream& html, const std::string& file, std::size_t 
 
 }  // namespace
 
-void write_comparison_section(ReportSection& section, json& metrics, const std::string& base_file, const log::Log& base,
-                              const std::vector<ComparedLog>& runs) {
+void write_comparison_section(ReportSection& section, json& metrics, const std::string& base_file,
+                              const log::Log& with_estimates, const std::vector<ComparedLog>& runs) {
+  // The measured streams: the report's own analyses' estimates (estimate/) are not in the other runs.
+  log::Log base;
+  base.metadata = with_estimates.metadata;
+  for (const auto& s : with_estimates.streams()) {
+    if (s.name().rfind("estimate/", 0) != 0) base.add_stream(s);
+  }
   std::ostringstream& html = section.html;
   html << "<h2>Comparison with other runs</h2>\n<p>The baseline is this report's log; each run is aligned to it and "
-          "every channel both have is tested for a difference beyond the two runs' noise (docs/compare.md).</p>\n";
+          "every measured channel both have (not this report's estimates) is tested for a difference beyond the two "
+          "runs' "
+          "noise (docs/compare.md).</p>\n";
   json doc = {{"baseline", base_file}, {"runs", json::array()}, {"overlays", json::array()}};
   doc["map"] = track_map(html, base_file, base, runs);
   comparison::CompareOptions options;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/common/error.h"
 #include "core/log/resample.h"
@@ -48,7 +49,7 @@ struct CorrelationGrid {
   // Mean over channels and overlapping samples of a[k] b[k + lag].
   double score(std::size_t lag) const {
     const std::size_t n = std::min(a.front().size(), b.front().size() > lag ? b.front().size() - lag : 0);
-    if (n < a.front().size() / 4 || n == 0) return -INFINITY;
+    if (n < a.front().size() / 4 || n == 0) return -std::numeric_limits<double>::infinity();
     double sum = 0;
     for (std::size_t c = 0; c < a.size(); ++c) {
       const double* pa = a[c].data();
@@ -71,7 +72,7 @@ struct CorrelationGrid {
 // The lag in [lo, hi] with the highest score.
 std::size_t best_lag(const CorrelationGrid& g, std::size_t lo, std::size_t hi, double* peak) {
   std::size_t best = lo;
-  double best_score = -INFINITY;
+  double best_score = -std::numeric_limits<double>::infinity();
   for (std::size_t lag = lo; lag <= hi; ++lag) {
     const double s = g.score(lag);
     if (s > best_score) {
