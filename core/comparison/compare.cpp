@@ -61,6 +61,21 @@ class InterpolationPlan {
   std::vector<double> w_;
 };
 
+// A difference this small against the channel's size is floating-point
+// rounding (a log against itself at a sub-sample offset), never "differs".
+constexpr double kRounding = 1e-9;
+
+double rms_of(const std::vector<double>& values) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (double v : values) {
+    if (!std::isfinite(v)) continue;
+    sum += v * v;
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+}
+
 std::string path_of(const log::Stream& s, const log::Channel& c) { return s.name() + "/" + c.name; }
 
 // The median of a channel's finite values (a logged sigma); NaN when none.
@@ -181,6 +196,7 @@ class RunComparer {
         base_gain * cc.base_sigma * cc.base_sigma + other_gain * cc.other_sigma * cc.other_sigma;
     if (std::isfinite(noise_squares)) cc.beyond_noise = std::sqrt(std::max(0.0, cc.rms * cc.rms - noise_squares));
     cc.test = test_difference(d_, options_.false_alarm, options_.blocks);
+    if (!(cc.rms > kRounding * rms_of(a_))) cc.test.differs = false;  // rounding, not a measurement
     return cc;
   }
 

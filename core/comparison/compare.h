@@ -34,7 +34,7 @@ struct ChannelComparison {
   // sqrt(max(0, rms^2 - noise^2)): noise^2 is base_sigma^2 + other_sigma^2, each times the share of a white
   // noise's variance its interpolation onto the common times keeps (1 at a sample, 1/2 halfway)
   double beyond_noise = NAN;
-  DifferenceTest test;
+  DifferenceTest test;  // differs is false when rms is below 1e-9 of the baseline's RMS (rounding)
   std::string path() const { return stream + "/" + channel; }
 };
 
