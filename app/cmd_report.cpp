@@ -23,6 +23,8 @@
 #include "app/command_support.h"
 #include "app/commands.h"
 #include "app/render_view.h"
+#include "app/log_input.h"
+#include "app/report_compare.h"
 #include "app/report_pdf.h"
 #include "app/resources.h"
 #include "app/views_input.h"
@@ -58,12 +60,13 @@ struct ReportOptions {
   std::string size = "1280x800";
   std::string output;
   bool pdf = false;
+  std::vector<std::string> compare;  // runs compared with the log (report_compare.h)
 };
 
 class ReportWriter {
  public:
-  ReportWriter(const ReportOptions& o, const ViewInput& in, int w, int h)
-      : o_(o), in_(in), dir_(o.output), section_(dir_), w_(w), h_(h) {}
+  ReportWriter(const ReportOptions& o, const ViewInput& in, int w, int h, const std::vector<ComparedLog>& compared)
+      : o_(o), in_(in), dir_(o.output), section_(dir_), w_(w), h_(h), compared_(compared) {}
 
   void write() {
     head();
@@ -72,6 +75,7 @@ class ReportWriter {
       streams();
       views();
     }
+    if (!compared_.empty()) write_comparison_section(section_, metrics_, o_.file, in_.log, compared_);
     analyses();
     if (in_.is_wheel_test() || o_.soil || has_surfaces()) {
       for (const char* q : {"drawbar-pull", "torque"}) traction_surface(q);
@@ -172,6 +176,7 @@ class ReportWriter {
     if (o_.mapping) files.emplace_back("mapping", io::find_mapping(*o_.mapping, resource_subfolders("mappings")));
     std::error_code ec;
     if (o_.soil && fs::is_regular_file(*o_.soil, ec)) files.emplace_back("soil", *o_.soil);
+    for (const auto& f : o_.compare) files.emplace_back("compared run", f);
     json out = json::array();
     for (const auto& [role, path] : files) {
       const auto bytes = fs::file_size(path, ec);
@@ -209,6 +214,7 @@ class ReportWriter {
     std::string command = "roverlab report " + o_.file;
     if (o_.mapping) command += " --mapping " + *o_.mapping;
     if (o_.soil) command += " --soil " + *o_.soil;
+    for (const auto& f : o_.compare) command += " --compare " + f;
     command += " --size " + o_.size + (o_.pdf ? " --pdf" : "") + " -o " + o_.output;
     const std::time_t now = std::time(nullptr);
     char when[32] = "";
@@ -407,6 +413,7 @@ class ReportWriter {
   fs::path dir_;
   ReportSection section_;
   int w_, h_;
+  const std::vector<ComparedLog>& compared_;
   json metrics_;
   json provenance_;  // how the report was made, with the input files' SHA-256 (provenance.json)
 };
@@ -436,7 +443,10 @@ int run_report(const ReportOptions& o) {
   if (o.soil) (void)io::find_soil(*o.soil, resource_subfolders("soils"));
   ViewInputOptions vo;
   vo.analyses = all_analysis_names();
+  std::vector<ComparedLog> compared;
+  for (const auto& f : o.compare) compared.push_back({f, load_input(f, o.mapping).log});
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
+  if (!compared.empty() && in.is_wheel_test()) throw UsageError("--compare compares logs, not a single-wheel test");
   const fs::path dir(o.output);
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -444,7 +454,7 @@ int run_report(const ReportOptions& o) {
     throw InputError(o.output, "cannot create the report folder" + (ec ? ": " + ec.message() : std::string()));
   }
   views::ensure_display();
-  ReportWriter(o, in, w, h).write();
+  ReportWriter(o, in, w, h, compared).write();
   std::printf("wrote %s\n", (dir / "index.html").string().c_str());
   if (o.pdf) {
     print_report_pdf((dir / "index.html").string(), (dir / "report.pdf").string());
@@ -466,6 +476,8 @@ Commands make_report_commands() {
         cmd.add_option("--size", o.size, "WxH pixels of the 3D views")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "Report folder (created if missing)")->required();
         cmd.add_flag("--pdf", o.pdf, "Also print the report to DIR/report.pdf (A4, through headless Chromium)");
+        cmd.add_option("--compare", o.compare,
+                       "Another run's log compared with FILE (repeatable): overlays, differences, every track");
       },
       run_report));
   return commands;
