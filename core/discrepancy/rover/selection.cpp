@@ -5,12 +5,12 @@
 #include <limits>
 #include <memory>
 
+#include "core/common/error.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/rover/candidates.h"
-#include "core/discrepancy/rover/study.h"
 #include "core/discrepancy/rover/fit.h"
 #include "core/discrepancy/rover/prediction.h"
-#include "core/common/error.h"
+#include "core/discrepancy/rover/study.h"
 
 namespace roverlab::analysis::rover {
 
@@ -20,9 +20,9 @@ std::vector<RoverParameterFit> fits_of(const std::vector<FitParameter>& p, std::
   std::vector<RoverParameterFit> out;
   for (std::size_t j = from; j < p.size(); ++j) {
     const RoverCandidateParameter& sp = p[j].spec;
-    const double span = 1e-6 * (sp.upper - sp.lower);
-    const bool at_bound = sp.fitted && (p[j].value <= sp.lower + span || p[j].value >= sp.upper - span);
-    out.push_back({sp.effect, sp.unit, p[j].value, p[j].sigma, at_bound});
+    // At or within 1 % of a bound: the search stopped there, so no sigma (issue 43).
+    const bool at_bound = sp.fitted && near_bound(p[j].value, sp.lower, sp.upper);
+    out.push_back({sp.effect, sp.unit, p[j].value, at_bound ? NAN : p[j].sigma, at_bound});
   }
   return out;
 }
@@ -165,6 +165,33 @@ void drop_absorbed_steps(Predictor& pr, const RoverStudyOptions& o, double ln_n,
   }
 }
 
+// Each step's share of the held-out gain (issue 43): the final model's
+// held-out error with that step's effects set back to neutral, nothing
+// refitted, against the whole chain's gain (one simulation a step; a lone
+// step has it all). A step with a parameter at its bound, or whose share is
+// under kNegligibleGainShare, is not named as a cause.
+void weigh_steps(Predictor& pr, RoverDiscrepancyReport& r, const std::vector<FitParameter>& chain) {
+  std::size_t at = 0;
+  for (auto& step : r.selection) {
+    const std::size_t k = step.parameters.size();
+    if (r.selection.size() == 1) {
+      step.held_out_without = r.baseline_held_out;
+    } else {
+      std::vector<FitParameter> without = chain;
+      without.erase(without.begin() + static_cast<std::ptrdiff_t>(at),
+                    without.begin() + static_cast<std::ptrdiff_t>(at + k));
+      step.held_out_without = score(pr, effects_of(pr.scenario_effects(), without)).held_out;
+    }
+    at += k;
+    step.gain_share = gain_share(r.baseline_held_out, step.held_out_without, r.final_held_out);
+    const bool at_bound = std::any_of(step.parameters.begin(), step.parameters.end(),
+                                      [](const RoverParameterFit& p) { return p.at_bound; });
+    step.role = at_bound                                     ? StepRole::at_bound
+                : !(step.gain_share >= kNegligibleGainShare) ? StepRole::also_consistent
+                                                             : StepRole::cause;
+  }
+}
+
 }  // namespace
 
 // Forward selection (issue 13 item 4): each round fits every unused
@@ -217,7 +244,57 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
     at += k;
   }
   r.final_held_out = current.held_out;
+  weigh_steps(pr, r, chain);
 }
+
+namespace {
+
+std::string step_text(const RoverSelectionStep& s, bool with_bic) {
+  std::string v = s.name + " (";
+  for (std::size_t j = 0; j < s.parameters.size(); ++j) {
+    const auto& p = s.parameters[j];
+    v += (j > 0 ? ", " : "") + p.effect + " = " + format_fitted(p.value, p.sigma, p.unit, p.at_bound);
+  }
+  char buf[120];
+  if (std::isfinite(s.gain_share)) {
+    std::snprintf(buf, sizeof buf, "; %.3g %% of the held-out gain", 100 * s.gain_share);
+    v += buf;
+  }
+  return v + (with_bic ? "; delta BIC " + format_delta_bic(s.delta_bic) : "") + ")";
+}
+
+// The named causes in order, then the steps of the final model that are not
+// causes: too small a share of the held-out gain, or a parameter at its bound.
+std::string steps_text(const RoverDiscrepancyReport& r) {
+  std::string named, also, bound;
+  int causes = 0;
+  for (const auto& s : r.selection) {
+    if (s.role == StepRole::cause) {
+      named += (causes++ > 0 ? "; then " : "") + step_text(s, true);
+    } else {
+      std::string& list = s.role == StepRole::at_bound ? bound : also;
+      list += (list.empty() ? "" : "; ") + step_text(s, false);
+    }
+  }
+  std::string v = causes == 0   ? "No cause named."
+                  : causes == 1 ? "Cause: " + named + "."
+                                : "Causes, in order: " + named + ".";
+  char buf[200];
+  if (!also.empty()) {
+    std::snprintf(buf, sizeof buf,
+                  ": each takes under %.3g %% of the held-out gain, so none is named as a cause (the final model "
+                  "keeps them).",
+                  100 * kNegligibleGainShare);
+    v += " Also consistent with " + also + buf;
+  }
+  if (!bound.empty()) {
+    v += " Not a cause: " + bound +
+         ": the fit stopped at a bound of its search, a fact about the search and not about the rover.";
+  }
+  return v;
+}
+
+}  // namespace
 
 void write_verdict(RoverDiscrepancyReport& r) {
   const RoverChannelResiduals* worst = nullptr;
@@ -252,19 +329,9 @@ void write_verdict(RoverDiscrepancyReport& r) {
                     : "No cause: no candidate lowers BIC by more than 10 with a smaller held-out error.";
     return;
   }
-  std::string v = r.selection.size() == 1 ? "Cause: " : "Causes, in order: ";
-  for (std::size_t i = 0; i < r.selection.size(); ++i) {
-    const auto& s = r.selection[i];
-    v += (i > 0 ? "; then " : "") + s.name + " (";
-    for (std::size_t j = 0; j < s.parameters.size(); ++j) {
-      const auto& p = s.parameters[j];
-      v += (j > 0 ? ", " : "") + p.effect + " = " + format_estimate(p.value, p.sigma, p.unit) +
-           (p.at_bound ? ", at its bound" : "");
-    }
-    v += "; delta BIC " + format_delta_bic(s.delta_bic) + ")";
-  }
+  std::string v = steps_text(r);
   const double change = 100 * (1 - r.final_held_out / r.baseline_held_out);
-  std::snprintf(buf, sizeof buf, ". Held-out normalised error %.3g -> %.3g (%.0f %% %s).", r.baseline_held_out,
+  std::snprintf(buf, sizeof buf, " Held-out normalised error %.3g -> %.3g (%.0f %% %s).", r.baseline_held_out,
                 r.final_held_out, std::abs(change), change >= 0 ? "lower" : "higher");
   v += buf;
   for (const auto& d : r.dropped) v += " Dropped " + d + ": the causes named after it explain what it did.";

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "core/discrepancy/likelihood.h"
 #include "core/log/log.h"
 #include "core/simulation/rocker_bogie.h"
 
@@ -68,7 +69,7 @@ struct RoverChannelResiduals {
 struct RoverParameterFit {
   std::string effect, unit;
   double value = 0, sigma = 0;
-  bool at_bound = false;  // the fit stopped at a bound of the parameter: the candidate cannot explain it all
+  bool at_bound = false;  // the fit stopped at or within 1 % of a bound (near_bound): no sigma (NaN), no cause
 };
 
 struct RoverCandidateResult {
@@ -86,6 +87,11 @@ struct RoverSelectionStep {
   std::string name, cause;
   std::vector<RoverParameterFit> parameters;  // this cause's, refitted with the whole chain
   double delta_bic = 0, held_out = 0;
+  // The held-out error of the final model without this step (its effects
+  // neutral, nothing refitted), and its share of the chain's held-out gain:
+  // (without - final) / (baseline - final).
+  double held_out_without = NAN, gain_share = NAN;
+  StepRole role = StepRole::cause;
 };
 
 struct RoverRedundancyCheck {
@@ -114,7 +120,7 @@ struct RoverDiscrepancyReport {
   std::vector<RoverRedundancyCheck> checks;
   RoverSlipRegime slip_regime;
   std::vector<RoverCandidateResult> candidates;  // each alone on the baseline
-  std::vector<RoverSelectionStep> selection;     // the named causes, in order
+  std::vector<RoverSelectionStep> selection;     // the final model's steps, in order (role: named or not)
   std::vector<std::string> dropped;              // steps the later causes absorbed (backward check)
   // The named causes leave a channel more than kIncompleteSigmas noise sigmas
   // off on the test blocks: the model is incomplete and the named causes'
