@@ -244,8 +244,10 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
             {"held_out_method", r.held_out_method},
             {"duration_s", r.duration},
             {"residuals", {{"fit", r.fit_residuals}, {"test", r.test_residuals}}},
-            {"baseline", {{"bic", r.baseline_bic}, {"held_out", r.baseline_held_out}}},
+            {"baseline",
+             {{"bic", r.baseline_bic}, {"held_out", r.baseline_held_out}, {"test_minus_two_log_l", r.baseline_test}}},
             {"held_out_after", r.final_held_out},
+            {"test_minus_two_log_l_after", r.final_test},
             {"incomplete", r.incomplete},
             {"simulations", r.simulations},
             {"what_is_wrong", r.what_is_wrong},
@@ -313,6 +315,7 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
                    {"delta_bic", s.delta_bic},
                    {"held_out", s.held_out},
                    {"held_out_without", finite_or_null(s.held_out_without)},
+                   {"test_minus_two_log_l_without", finite_or_null(s.test_without)},
                    {"gain_share", finite_or_null(s.gain_share)},
                    {"role", analysis::step_role_name(s.role)}});
     if (s.role != analysis::StepRole::cause) continue;

@@ -87,10 +87,12 @@ struct RoverSelectionStep {
   std::string name, cause;
   std::vector<RoverParameterFit> parameters;  // this cause's, refitted with the whole chain
   double delta_bic = 0, held_out = 0;
-  // The held-out error of the final model without this step (its effects
-  // neutral, nothing refitted), and its share of the chain's held-out gain:
-  // (without - final) / (baseline - final).
-  double held_out_without = NAN, gain_share = NAN;
+  // The final model without this step (its effects neutral, nothing
+  // refitted): its held-out error and its -2 ln L on the test blocks; the
+  // step's share of the chain's held-out gain in that likelihood (each
+  // channel's noise scale profiled, so a cause that fixes one channel counts
+  // beside one that fixes many): (without - final) / (baseline - final).
+  double held_out_without = NAN, test_without = NAN, gain_share = NAN;
   StepRole role = StepRole::cause;
 };
 
@@ -117,6 +119,7 @@ struct RoverDiscrepancyReport {
   std::vector<RoverChannelResiduals> channels;
   double baseline_bic = 0;                           // -2 ln L of the nominal model on the fit blocks
   double baseline_held_out = 0, final_held_out = 0;  // RMS normalised residual on the test blocks
+  double baseline_test = 0, final_test = 0;          // -2 ln L on the test blocks (likelihood.h)
   std::vector<RoverRedundancyCheck> checks;
   RoverSlipRegime slip_regime;
   std::vector<RoverCandidateResult> candidates;  // each alone on the baseline
