@@ -317,6 +317,7 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
                    {"held_out_without", finite_or_null(s.held_out_without)},
                    {"test_minus_two_log_l_without", finite_or_null(s.test_without)},
                    {"gain_share", finite_or_null(s.gain_share)},
+                   {"channel_share", finite_or_null(s.channel_share)},
                    {"role", analysis::step_role_name(s.role)}});
     if (s.role != analysis::StepRole::cause) continue;
     causes += (causes.empty() ? "" : " + ") + s.name;

@@ -386,7 +386,8 @@ TEST(RoverVerdict, ASlipSinkageIsNamedAloneAndTheStepsWithoutShareAreAlsoConsist
   double shares = 0;
   for (const auto& s : r.selection) {
     ASSERT_TRUE(std::isfinite(s.gain_share)) << s.name;
-    EXPECT_EQ(s.role == analysis::StepRole::cause, s.gain_share >= analysis::kNegligibleGainShare) << s.name;
+    ASSERT_TRUE(std::isfinite(s.channel_share)) << s.name;
+    EXPECT_EQ(s.role == analysis::StepRole::cause, s.channel_share >= analysis::kNegligibleChannelShare) << s.name;
     if (s.role == analysis::StepRole::cause) shares += s.gain_share;
     if (s.role == analysis::StepRole::also_consistent) {
       EXPECT_NE(r.verdict.find("Also consistent with "), std::string::npos) << r.verdict;
