@@ -90,11 +90,12 @@ bool near_bound(double value, double lower, double upper);
 // format_estimate, or "0.3 (at its bound)" with no sigma when at_bound.
 std::string format_fitted(double value, double sigma, const std::string& unit, bool at_bound);
 
-// A step of a forward selection whose share of the held-out gain (what the
-// held-out error rises by when the step alone is taken out of the final
-// model, over the whole chain's gain) is under this is reported as "also
-// consistent with", not as a cause. Calibrated on the rover study's one- and
-// two-effect runs (docs/validation/discrepancy.md, "A cause that matters").
+// A step of the odometry or single-wheel forward selection whose share of
+// the held-out gain (the held-out error it cut against the step before, over
+// the whole chain's cut) is under this is reported as "also consistent
+// with", not as a cause. Not calibrated on simulated truth yet (the rover
+// study names a step by its share of a channel's gain instead,
+// kNegligibleChannelShare; docs/validation/discrepancy.md).
 constexpr double kNegligibleGainShare = 0.02;
 
 // What a step of a forward selection is in the verdict.
