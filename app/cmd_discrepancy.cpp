@@ -54,6 +54,18 @@ json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
   return j;
 }
 
+// The named steps of the forward selection, " + "-joined; null when none
+// (a step only "also consistent with" the data, or at its bound, is none).
+json named_causes(const analysis::DiscrepancyReport& r) {
+  std::string names;
+  for (const auto& c : r.selection) {
+    if (c.role != analysis::StepRole::cause) continue;
+    const auto plus = c.name.rfind(" + ");
+    names += (names.empty() ? "" : " + ") + (plus == std::string::npos ? c.name : c.name.substr(plus + 3));
+  }
+  return names.empty() ? json(nullptr) : json(names);
+}
+
 // The study as a JSON document (`--json`).
 json report_json(const std::string& file, const Soil& soil, const analysis::DiscrepancyReport& r) {
   json j = {
@@ -68,7 +80,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
       {"unsupported", r.unsupported},
       {"baseline", {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score}, {"bic", r.baseline_bic}}},
       {"significant", r.significant},
-      {"cause", r.selection.empty() ? json(nullptr) : json(r.selection.back().name)},
+      {"cause", named_causes(r)},
       {"what_is_wrong", r.what_is_wrong},
       {"verdict", r.verdict}};
   j["quantities"] = json::array();
@@ -118,6 +130,8 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                  {"bic", c.bic},
                  {"delta_bic", c.delta_bic},
                  {"held_out_score_sigma", c.held_out_score},
+                 {"gain_share", nullable(c.gain_share)},
+                 {"role", analysis::step_role_name(c.role)},
                  {"parameters", json::array()}};
     json ho = json::object();
     for (std::size_t i = 0; i < r.quantities.size() && i < c.held_out_rmse.size(); ++i) {
@@ -125,8 +139,10 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
     }
     step["held_out_rmse"] = ho;
     for (const auto& p : c.fit.parameters) {
-      step["parameters"].push_back(
-          {{"name", to_string(p.parameter)}, {"value", p.value}, {"sigma", nullable(p.sigma)}});
+      step["parameters"].push_back({{"name", to_string(p.parameter)},
+                                    {"value", p.value},
+                                    {"sigma", nullable(p.sigma)},
+                                    {"at_bound", p.at_bound}});
     }
     j["selection"].push_back(step);
   }
@@ -173,6 +189,11 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
 
 }  // namespace
 
+namespace {
+void print_report(const std::string& path, const Soil& soil, const analysis::DiscrepancyReport& r,
+                  const std::string& integration);
+}  // namespace
+
 int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   const io::WheelTestFile file = io::read_wheel_test_file(o.file);
   for (const auto& warning : file.warnings) std::fprintf(stderr, "warning: %s: %s\n", o.file.c_str(), warning.c_str());
@@ -182,25 +203,48 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   try {
     options.baseline.integration = parse_integration(o.integration);
     options.hold_out = analysis::parse_hold_out(o.hold_out);
-    if (o.slip_definition != "auto") options.slip_definition = parse_slip_definition(o.slip_definition);
+    // The option, else the file's own statement (a travel_slip or longitudinal_slip column).
+    const std::string stated = o.slip_definition != "auto" ? o.slip_definition : file.slip_definition;
+    if (!stated.empty()) options.slip_definition = parse_slip_definition(stated);
     options.compare_families = o.family == "auto";
     if (o.family == "rft") options.baseline.kind = ModelKind::rft;
   } catch (const DataError& e) {
     throw UsageError(e.what());
   }
-  const analysis::DiscrepancyReport r = about_file(o.file, [&] {
+  analysis::DiscrepancyReport r = about_file(o.file, [&] {
     const ProgressLine progress("single-wheel study");
     options.progress = progress.callback();
     return analysis::study_single_wheel(soil, points, options);
   });
-
-  if (o.json) {
-    std::cout << report_json(o.file, soil, r).dump(2) << "\n";
-    return kSuccess;
+  if (o.slip_definition == "auto" && !file.slip_definition.empty() && !r.slip_definition.empty()) {
+    r.slip_definition_reason = "stated by the file (its column " + file.slip_definition + "_slip)";
   }
 
-  std::printf("%s: %zu points, %zu measurements, soil %s, baseline %s (%s)\n", o.file.c_str(), r.points, r.measurements,
-              soil.name.c_str(), r.baseline_model.c_str(), o.integration.c_str());
+  if (o.json) {
+    json j = report_json(o.file, soil, r);
+    // The file does not state its slip definition and the readings differ: the other one, complete.
+    if (!r.other_reading.empty()) j["other_reading"] = report_json(o.file, soil, r.other_reading.front());
+    std::cout << j.dump(2) << "\n";
+    return kSuccess;
+  }
+  if (!r.other_reading.empty()) {
+    std::printf("%s: %s.\n\n=== Read as %s slip ===\n", o.file.c_str(), r.slip_definition_reason.c_str(),
+                r.slip_definition.c_str());
+  }
+  print_report(o.file, soil, r, o.integration);
+  for (const auto& other : r.other_reading) {
+    std::printf("\n=== Read as %s slip ===\n", other.slip_definition.c_str());
+    print_report(o.file, soil, other, o.integration);
+  }
+  return kSuccess;
+}
+
+namespace {
+
+void print_report(const std::string& path, const Soil& soil, const analysis::DiscrepancyReport& r,
+                  const std::string& integration) {
+  std::printf("%s: %zu points, %zu measurements, soil %s, baseline %s (%s)\n", path.c_str(), r.points, r.measurements,
+              soil.name.c_str(), r.baseline_model.c_str(), integration.c_str());
   if (!r.slip_definition.empty()) {
     std::printf("  slip at a slip angle read as %s slip (%s)\n", r.slip_definition.c_str(),
                 r.slip_definition_reason.c_str());
@@ -233,10 +277,12 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     for (std::size_t i = 0; i < c.fit.parameters.size(); ++i) {
       const auto& p = c.fit.parameters[i];
       char value[64];
-      if (std::isfinite(p.sigma)) {
-        std::snprintf(value, sizeof value, "%.4g +- %.2g%s", p.value, p.sigma, p.at_bound ? " (bound)" : "");
+      if (p.at_bound) {  // the search stopped at a bound: a fact about the search, no sigma
+        std::snprintf(value, sizeof value, "%.4g (at its bound)", p.value);
+      } else if (std::isfinite(p.sigma)) {
+        std::snprintf(value, sizeof value, "%.4g +- %.2g", p.value, p.sigma);
       } else {  // the data cannot pin it down: no sigma to show
-        std::snprintf(value, sizeof value, "%.4g (undetermined)%s", p.value, p.at_bound ? " (bound)" : "");
+        std::snprintf(value, sizeof value, "%.4g (undetermined)", p.value);
       }
       if (i == 0) {
         std::printf("  %-20s %-24s %22s %10s %14.3f\n", c.name.c_str(), to_string(p.parameter), value,
@@ -262,10 +308,10 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   std::printf("\n");
   if (!r.selection.empty()) {
     std::printf("\nforward selection (each step refits the chain with one more cause):\n");
-    std::printf("  %-48s %12s %14s\n", "model", "delta BIC", "held-out sigma");
+    std::printf("  %-48s %12s %14s %7s  %s\n", "model", "delta BIC", "held-out sigma", "share", "role");
     for (const auto& c : r.selection) {
-      std::printf("  %-48s %12s %14.3f\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),
-                  c.held_out_score);
+      std::printf("  %-48s %12s %14.3f %5.3g %%  %s\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),
+                  c.held_out_score, 100.0 * c.gain_share, analysis::step_role_name(c.role));
     }
   } else if (r.best_pair && r.best_pair->applicable) {
     std::printf("\nforward selection: no step passes; the best pair, %s: delta BIC %s%s\n", r.best_pair->name.c_str(),
@@ -282,8 +328,9 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
                 w.baseline_rmse * k, w.model_rmse * k, u);
   }
   std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
-  return kSuccess;
 }
+
+}  // namespace
 
 Commands make_single_wheel_commands() {
   Commands commands;
@@ -300,7 +347,8 @@ Commands make_single_wheel_commands() {
             ->capture_default_str();
         cmd.add_option("--slip-definition", o.slip_definition,
                        "auto | longitudinal (s = 1 - v_x / (r w), Ishigami 2007) | travel (s = 1 - |v| / (r w)): how "
-                       "the file's slip is read at a slip angle; auto chooses from the data")
+                       "the file's slip is read at a slip angle; auto: as the file states it (a travel_slip or "
+                       "longitudinal_slip column), else chosen from the data")
             ->capture_default_str()
             ->check(CLI::IsMember({"auto", "longitudinal", "travel"}));
         cmd.add_option("--family", o.family,

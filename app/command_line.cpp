@@ -5,6 +5,7 @@
 #include <map>
 
 #include "app/command.h"
+#include "app/command_support.h"
 #include "app/commands.h"
 #include "app/log_input.h"
 #include "core/common/error.h"
@@ -86,6 +87,10 @@ int parse_and_run(int argc, char** argv) {
   });
   bool verbose = false;
   p.cli.add_flag("--verbose", verbose, "Also show the messages of the libraries RoverLab uses (Ceres, VTK)");
+  bool progress = false;
+  p.cli.add_flag("--progress", progress,
+                 "Progress on stderr also when it is not a terminal: a line every 5 s on long work (studies, "
+                 "simulations) and one when it is done");
   RosInputOptions& ros = ros_input_options();
   p.cli
       .add_option("--ros-time", ros.time,
@@ -113,6 +118,7 @@ int parse_and_run(int argc, char** argv) {
     return kUsageError;
   }
   route_library_messages(verbose);
+  set_progress_lines(progress);
   views::route_vtk_messages(verbose);
   // The deepest command given runs (`terramechanics surface`, not `terramechanics`).
   Command* chosen = nullptr;

@@ -2,9 +2,14 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
+#include <thread>
 
 #include <QCryptographicHash>
 #include <QFile>
@@ -15,14 +20,57 @@
 
 namespace roverlab::app {
 
+namespace {
+bool g_progress_lines = false;
+}  // namespace
+
+void set_progress_lines(bool on) { g_progress_lines = on; }
+
+// Lines mode: the last fraction reported, printed every kProgressLinePeriod
+// seconds by a thread of its own until the ProgressLine goes out of scope.
+struct ProgressLine::Ticker {
+  std::atomic<double> fraction{0.0};
+  std::mutex mutex;
+  std::condition_variable wake;
+  bool stop = false;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  std::thread thread;
+
+  double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+  void run(const std::string& label) {
+    std::unique_lock<std::mutex> lock(mutex);
+    const auto period = std::chrono::duration<double>(kProgressLinePeriod);
+    while (!wake.wait_for(lock, period, [this] { return stop; })) {
+      std::fprintf(stderr, "%s: %d %% after %.0f s\n", label.c_str(), static_cast<int>(100 * fraction.load()),
+                   elapsed());
+      std::fflush(stderr);
+    }
+  }
+};
+
 ProgressLine::ProgressLine(std::string label, Style style)
-    : label_(std::move(label)), style_(style), shown_(isatty(2) != 0) {}
+    : label_(std::move(label)), style_(style), shown_(isatty(2) != 0) {
+  if (shown_ || !g_progress_lines) return;
+  ticker_ = std::make_shared<Ticker>();
+  ticker_->thread = std::thread([t = ticker_.get(), label = label_] { t->run(label); });
+}
 
 ProgressLine::~ProgressLine() {
   if (shown_) std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + 48, "");
+  if (!ticker_) return;
+  {
+    const std::lock_guard<std::mutex> lock(ticker_->mutex);
+    ticker_->stop = true;
+  }
+  ticker_->wake.notify_all();
+  ticker_->thread.join();
+  std::fprintf(stderr, "%s: done in %.1f s\n", label_.c_str(), ticker_->elapsed());
 }
 
 std::function<void(double)> ProgressLine::callback() const {
+  if (ticker_) {
+    return [t = ticker_](double f) { t->fraction.store(f); };
+  }
   if (!shown_) return {};
   if (style_ == Style::bar) {
     return [label = label_](double f) {

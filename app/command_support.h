@@ -3,6 +3,7 @@
 // is about, and writing a log with added streams (atomically, as every output).
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -17,8 +18,12 @@ namespace roverlab::app {
 inline constexpr const char* kFlyingRoverDefaultRover = "exomars_bb2";
 
 // "\r<label> NN %" on stderr while work goes on, when stderr is a terminal;
-// cleared when the line goes out of scope. callback() is empty otherwise, so
-// batch runs and tests see no progress output.
+// cleared when the line goes out of scope. When stderr is not a terminal and
+// `roverlab --progress` was given (set_progress_lines), one line
+// "<label>: NN % after T s" every kProgressLinePeriod seconds from a ticker
+// thread (a study's own callbacks may be a minute apart), and
+// "<label>: done in T s" at the end. callback() is empty otherwise, so batch
+// runs and tests see no progress output.
 class ProgressLine {
  public:
   enum class Style { percent, bar };
@@ -29,10 +34,18 @@ class ProgressLine {
   std::function<void(double)> callback() const;
 
  private:
+  struct Ticker;
   std::string label_;
   Style style_;
   bool shown_ = false;
+  std::shared_ptr<Ticker> ticker_;  // lines mode only
 };
+
+// Seconds between two progress lines when stderr is not a terminal.
+inline constexpr double kProgressLinePeriod = 5.0;
+
+// `roverlab --progress`: progress lines on stderr also when it is not a terminal.
+void set_progress_lines(bool on);
 
 // An option check: a finite number in [lo, hi] (CLI11's Range lets NaN through).
 // A bad value is a usage error (exit 2) naming the option.

@@ -1,5 +1,6 @@
 #include "importers/wheel_test_csv.h"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,47 @@ namespace roverlab::io {
 
 namespace fs = std::filesystem;
 using terramechanics::WheelTestPoint;
+
+namespace {
+
+bool says_grousers(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text.find("grouser") != std::string::npos || text.find("lugged") != std::string::npos;
+}
+
+// A wheel named or described as grousered (its label or the file's name) in
+// a file without grouser columns: the study would call grousers not
+// applicable; one line says which columns let it fit them (issue 43).
+std::string grouser_hint(const std::string& path, const std::vector<WheelTestPoint>& points) {
+  std::string named;
+  for (const auto& p : points) {
+    if (says_grousers(p.wheel_label)) {
+      named = "wheel '" + csv::shown(p.wheel_label) + "'";
+      break;
+    }
+  }
+  if (named.empty() && says_grousers(fs::path(path).filename().string())) named = "the file's name";
+  if (named.empty()) return {};
+  return named + " says grousers, but the file has no grouser columns: add grouser_count and grouser_height_m " +
+         "(per row) so the study can model them";
+}
+
+// The slip column: `slip` (how it is read at a slip angle left to the
+// study), or `travel_slip` / `longitudinal_slip`, which state it (issue 43;
+// docs/terramechanics.md). Renamed to `slip` in `column`.
+void read_slip_column(const std::string& path, std::map<std::string, std::size_t>& column, WheelTestFile& file) {
+  for (const char* definition : {"travel", "longitudinal"}) {
+    const auto it = column.find(std::string(definition) + "_slip");
+    if (it == column.end()) continue;
+    if (column.count("slip") || !file.slip_definition.empty()) {
+      throw InputError(path, "more than one slip column (slip, travel_slip, longitudinal_slip): keep one");
+    }
+    file.slip_definition = definition;
+    column["slip"] = it->second;
+  }
+}
+
+}  // namespace
 
 WheelTestFile read_wheel_test_file(const std::string& path) {
   std::ifstream in = csv::open_text_file(path);
@@ -28,6 +70,7 @@ WheelTestFile read_wheel_test_file(const std::string& path) {
     if (column.empty()) {
       for (std::size_t k = 0; k < cells.size(); ++k) column[csv::trim(cells[k])] = k;
       columns = cells.size();
+      read_slip_column(path, column, file);
       for (const char* required : {"radius_m", "width_m", "load_N", "slip"}) {
         if (column.count(required) == 0) {
           throw InputError(path, std::string("missing column '") + required +
@@ -108,6 +151,9 @@ WheelTestFile read_wheel_test_file(const std::string& path) {
   if (points.empty()) {
     throw InputError(path, file.warnings.empty() ? std::string("no data rows")
                                                  : "no usable rows; first left out: " + file.warnings.front());
+  }
+  if (column.count("grouser_count") == 0 || column.count("grouser_height_m") == 0) {
+    if (const std::string hint = grouser_hint(path, points); !hint.empty()) file.warnings.push_back(hint);
   }
   return file;
 }

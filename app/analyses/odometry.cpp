@@ -128,9 +128,13 @@ json OdometryAnalysis::candidate_json(const analysis::OdometryCandidate& c) {
              {"delta_bic", c.delta_bic},
              {"held_out_rmse_m", c.held_out_rmse},
              {"held_out_final_m", c.held_out_final},
-             {"significant", c.significant}};
+             {"significant", c.significant},
+             {"at_bound", c.at_bound},
+             {"gain_share", finite_or_null(c.gain_share)},
+             {"role", analysis::step_role_name(c.role)}};
   for (const auto& p : c.parameters) {
-    cj["parameters"].push_back({{"name", p.name}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}});
+    cj["parameters"].push_back(
+        {{"name", p.name}, {"value", p.value}, {"sigma", finite_or_null(p.sigma)}, {"at_bound", p.at_bound}});
   }
   return cj;
 }
@@ -142,7 +146,9 @@ std::string parameters_text(const json& parameters) {
     char one[80];
     const std::string name = p.at("name").get<std::string>();
     const double value = p.at("value").get<double>();
-    if (p.at("sigma").is_number()) {
+    if (p.value("at_bound", false)) {
+      std::snprintf(one, sizeof one, "%s%s %.4g (at its bound)", text.empty() ? "" : ", ", name.c_str(), value);
+    } else if (p.at("sigma").is_number()) {
       std::snprintf(one, sizeof one, "%s%.4g+-%.2g", text.empty() ? "" : " ", value, p.at("sigma").get<double>());
     } else if (name == "windows") {
       std::snprintf(one, sizeof one, "%s%d windows", text.empty() ? "" : " ", static_cast<int>(value));
@@ -161,7 +167,9 @@ std::string parameters_named(const json& parameters) {
     const std::string name = p.at("name").get<std::string>();
     const double value = p.at("value").get<double>();
     std::string one;
-    if (p.at("sigma").is_number()) {
+    if (p.value("at_bound", false)) {
+      one = name + " " + roverlab::analysis::format_fitted(value, NAN, "1", true);
+    } else if (p.at("sigma").is_number()) {
       one = name + " " + roverlab::analysis::format_estimate(value, p.at("sigma").get<double>(), "1");
     } else if (name == "windows") {
       one = std::to_string(static_cast<int>(value)) + " windows";
@@ -195,9 +203,10 @@ void OdometryAnalysis::print(const json& j, std::FILE* out) const {
   if (chain.size() >= 2) {
     std::fprintf(out, "\nforward selection (each step refitted with the ones before):\n");
     for (const auto& c : chain) {
-      std::fprintf(out, "  %-40s delta BIC %9.1f   held-out RMSE %6.2f m   final %6.2f m\n",
+      std::fprintf(out, "  %-40s delta BIC %9.1f   held-out RMSE %6.2f m   final %6.2f m   share %s (%s)\n",
                    c.at("name").get<std::string>().c_str(), num(c.at("delta_bic")), num(c.at("held_out_rmse_m")),
-                   num(c.at("held_out_final_m")));
+                   num(c.at("held_out_final_m")), ReportSection::number(c.at("gain_share"), "%.3g").c_str(),
+                   c.at("role").get<std::string>().c_str());
     }
   }
   std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());

@@ -48,8 +48,8 @@ std::string parameters_text(const json& ps, bool screened = false) {
       std::snprintf(buf, sizeof buf, "~%.4g", value);
       v = buf + std::string(p.at("unit").get<std::string>() == "1" ? "" : " " + p.at("unit").get<std::string>());
     } else {
-      v = roverlab::analysis::format_estimate(value, sigma.is_number() ? sigma.get<double>() : NAN,
-                                              p.at("unit").get<std::string>());
+      v = roverlab::analysis::format_fitted(value, sigma.is_number() ? sigma.get<double>() : NAN,
+                                            p.at("unit").get<std::string>(), p.value("at_bound", false));
     }
     t += (t.empty() ? "" : ", ") + p.at("effect").get<std::string>() + " " + v;
   }
@@ -245,8 +245,10 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
             {"held_out_method", r.held_out_method},
             {"duration_s", r.duration},
             {"residuals", {{"fit", r.fit_residuals}, {"test", r.test_residuals}}},
-            {"baseline", {{"bic", r.baseline_bic}, {"held_out", r.baseline_held_out}}},
+            {"baseline",
+             {{"bic", r.baseline_bic}, {"held_out", r.baseline_held_out}, {"test_minus_two_log_l", r.baseline_test}}},
             {"held_out_after", r.final_held_out},
+            {"test_minus_two_log_l_after", r.final_test},
             {"incomplete", r.incomplete},
             {"simulations", r.simulations},
             {"what_is_wrong", r.what_is_wrong},
@@ -303,19 +305,26 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
                      {"screened", c.screened}});
   }
   j["candidates"] = cands;
+  // Every step of the final model with its role; "causes" only the named ones.
   json sel = json::array();
   std::string causes;
+  j["causes"] = json::array();
   for (const auto& s : r.selection) {
     sel.push_back({{"name", s.name},
                    {"cause", s.cause},
                    {"parameters", parameters_json(s.parameters)},
                    {"delta_bic", s.delta_bic},
-                   {"held_out", s.held_out}});
+                   {"held_out", s.held_out},
+                   {"held_out_without", finite_or_null(s.held_out_without)},
+                   {"test_minus_two_log_l_without", finite_or_null(s.test_without)},
+                   {"gain_share", finite_or_null(s.gain_share)},
+                   {"channel_share", finite_or_null(s.channel_share)},
+                   {"role", analysis::step_role_name(s.role)}});
+    if (s.role != analysis::StepRole::cause) continue;
     causes += (causes.empty() ? "" : " + ") + s.name;
+    j["causes"].push_back(s.name);
   }
   j["selection"] = sel;
-  j["causes"] = json::array();
-  for (const auto& s : r.selection) j["causes"].push_back(s.name);
   j["causes_text"] = causes.empty() ? "none" : causes;
   // The residual before and after, decimated to at most 600 samples, for the report's plots.
   json plot = {{"time", json::array()}, {"before", json::array()}, {"after", json::array()}, {"slip", json::array()}};

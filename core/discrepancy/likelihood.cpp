@@ -158,4 +158,37 @@ std::string format_estimate(double value, double sigma, const std::string& unit)
   return buf + u;
 }
 
+bool near_bound(double value, double lower, double upper) {
+  const double range = upper - lower;
+  const auto close = [&](double bound) {
+    const double tolerance = std::max(std::min(0.01 * std::abs(bound), 0.01 * range), 1e-6 * range);
+    return std::abs(value - bound) <= tolerance;
+  };
+  return close(lower) || close(upper);
+}
+
+std::string format_fitted(double value, double sigma, const std::string& unit, bool at_bound) {
+  if (!at_bound) return format_estimate(value, sigma, unit);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4g", value);
+  return buf + (unit.empty() || unit == "1" ? std::string() : " " + unit) + " (at its bound)";
+}
+
+const char* step_role_name(StepRole role) {
+  switch (role) {
+    case StepRole::cause:
+      return "cause";
+    case StepRole::also_consistent:
+      return "also consistent";
+    case StepRole::at_bound:
+      return "at its bound";
+  }
+  return "cause";
+}
+
+double gain_share(double baseline, double without, double final_error) {
+  const double gain = baseline - final_error;
+  return gain > 0 ? (without - final_error) / gain : NAN;
+}
+
 }  // namespace roverlab::analysis

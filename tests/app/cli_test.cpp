@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -970,4 +971,26 @@ TEST(Cli, RenderDrawsTheLateralForceSurfaceOfASteeredFile) {
                                            "--slip-angle 20 --size 640x400 -o " +
                                            quote(dir.file("m.png")));
   EXPECT_EQ(model.exit_code, 0) << model.err;
+}
+
+// Issue 43: `roverlab --progress` prints progress on stderr also when it is
+// not a terminal (here a pipe): a line every kProgressLinePeriod (5 s) while
+// the study runs and one when it is done; without it, no progress at all.
+TEST(Cli, ProgressLinesWhenStderrIsNotATerminal) {
+  const std::string study = "discrepancy single-wheel " +
+                            quote(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv") +
+                            " --soil ding_tyii";
+  const auto start = std::chrono::steady_clock::now();
+  const CommandResult with = run_roverlab("--progress " + study);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_NE(with.err.find("single-wheel study: done in "), std::string::npos) << with.err;
+  EXPECT_EQ(with.err.find('\r'), std::string::npos) << "a terminal's carriage returns in a pipe";
+  // One line each full 5 s of the run (two seconds of slack for start-up).
+  std::size_t lines = 0;
+  for (std::size_t at = 0; (at = with.err.find("% after ", at)) != std::string::npos; ++at) ++lines;
+  EXPECT_GE(lines, static_cast<std::size_t>(std::max(0.0, std::floor((seconds - 2.0) / 5.0)))) << with.err;
+  const CommandResult without = run_roverlab(study);
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  EXPECT_EQ(without.err.find("single-wheel study"), std::string::npos) << without.err;
 }

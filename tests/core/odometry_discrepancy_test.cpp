@@ -138,7 +138,9 @@ TEST(OdometryDiscrepancy, ForwardSelectionKeepsTurningTrackAndPerSideScaleOnLoop
     }
     // The pair beats either alone on the held-out half.
     EXPECT_LT(r.selection[1].held_out_rmse, r.selection[0].held_out_rmse) << seed;
-    EXPECT_NE(r.verdict.find("Forward selection keeps"), std::string::npos) << r.verdict;
+    // Both are named, each with its share of the held-out gain (issue 43).
+    EXPECT_NE(r.verdict.find("Causes (forward selection)"), std::string::npos) << r.verdict;
+    for (const auto& step : r.selection) EXPECT_EQ(step.role, analysis::StepRole::cause) << step.name << r.verdict;
   }
 }
 
@@ -185,4 +187,43 @@ TEST(OdometryCalibration, FalseClaimsAreRareAndIntervalsCoverTheHiddenValue) {
   EXPECT_LE(claims, n / 20);
   ASSERT_GE(count, 3 * n * 3 / 4);
   EXPECT_GE(within2, count * 80 / 100);
+}
+
+// Issue 43: a correction whose fit stops at (or within 1 % of) a bound of its
+// search is a fact about the search: printed "at its bound" with no sigma,
+// and never the named cause. Wheels 60 % larger than nominal are beyond the
+// radius scale's 1.5.
+TEST(OdometryVerdict, ACorrectionAtItsBoundIsNotNamedAndHasNoSigma) {
+  const auto r = study("radius-scale", 1.6, 4);
+  bool any = false;
+  for (const auto& c : r.candidates) {
+    for (const auto& p : c.parameters) {
+      if (!p.at_bound) continue;
+      any = true;
+      EXPECT_TRUE(std::isnan(p.sigma)) << c.name << " " << p.name;
+      EXPECT_FALSE(c.significant) << c.name;
+    }
+  }
+  EXPECT_TRUE(any) << r.verdict;
+  if (r.best >= 0) {
+    EXPECT_TRUE(named(r).at_bound.empty()) << r.verdict;
+  }
+  for (const auto& s : r.selection) EXPECT_TRUE(s.at_bound.empty()) << s.name;
+  EXPECT_EQ(r.verdict.find("Cause: radius scale"), std::string::npos) << r.verdict;
+}
+
+// Issue 43: every step of the forward selection carries its share of the
+// held-out gain; the shares of a chain add up to the whole gain, and only a
+// step with a share of kNegligibleGainShare or more is named.
+TEST(OdometryVerdict, EachStepCarriesItsShareOfTheHeldOutGain) {
+  const auto r = study("radius-scale", 1.05, 4);
+  ASSERT_FALSE(r.selection.empty()) << r.verdict;
+  double total = 0;
+  for (const auto& s : r.selection) {
+    ASSERT_TRUE(std::isfinite(s.gain_share)) << s.name;
+    total += s.gain_share;
+    EXPECT_EQ(s.role == analysis::StepRole::cause, s.gain_share >= analysis::kNegligibleGainShare) << s.name;
+  }
+  EXPECT_NEAR(total, 1.0, 1e-9);
+  EXPECT_EQ(r.selection.front().role, analysis::StepRole::cause) << r.verdict;
 }

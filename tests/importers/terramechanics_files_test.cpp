@@ -144,3 +144,57 @@ TEST(WheelTestCsv, BadFilesNameLineAndProblem) {
     }
   }
 }
+
+// Issue 43: a wheel named grousered (its label, or the file's name) without
+// grouser columns gets one warning line naming the columns; a smooth wheel,
+// or a file with the columns, gets none.
+TEST(WheelTestCsv, AGrouseredWheelWithoutGrouserColumnsGetsAHintNamingThem) {
+  TempDir dir;
+  const std::string rows = "0.0625,0.06,20,0.2,3.1\n0.0625,0.06,20,0.4,5.2\n";
+  write_text(dir.file("a.csv"),
+             "wheel,radius_m,width_m,load_N,slip,drawbar_pull_N\n"
+             "Grousered,0.0625,0.06,20,0.2,3.1\n");
+  write_text(dir.file("wheel_grousers.csv"), "radius_m,width_m,load_N,slip,drawbar_pull_N\n" + rows);
+  write_text(dir.file("smooth.csv"),
+             "wheel,radius_m,width_m,load_N,slip,drawbar_pull_N\nsmooth,0.0625,0.06,20,0.2,3\n");
+  write_text(dir.file("grousered_with_columns.csv"),
+             "radius_m,width_m,load_N,slip,drawbar_pull_N,grouser_count,grouser_height_m\n"
+             "0.0625,0.06,20,0.2,3.1,12,0.005\n");
+  for (const char* name : {"a.csv", "wheel_grousers.csv"}) {
+    const io::WheelTestFile file = io::read_wheel_test_file(dir.file(name));
+    ASSERT_EQ(file.warnings.size(), 1u) << name;
+    EXPECT_NE(file.warnings[0].find("grouser_count"), std::string::npos) << file.warnings[0];
+    EXPECT_NE(file.warnings[0].find("grouser_height_m"), std::string::npos) << file.warnings[0];
+    EXPECT_EQ(file.warnings[0].find('\n'), std::string::npos) << file.warnings[0];
+  }
+  EXPECT_NE(io::read_wheel_test_file(dir.file("a.csv")).warnings[0].find("wheel 'Grousered'"), std::string::npos);
+  EXPECT_TRUE(io::read_wheel_test_file(dir.file("smooth.csv")).warnings.empty());
+  EXPECT_TRUE(io::read_wheel_test_file(dir.file("grousered_with_columns.csv")).warnings.empty());
+}
+
+// Issue 43: a file states its slip definition by its slip column's name
+// (travel_slip or longitudinal_slip); two files with the same header are
+// read the same way, and a file with two slip columns is refused.
+TEST(WheelTestCsv, TheSlipColumnsNameStatesItsDefinition) {
+  TempDir dir;
+  const std::string row = "0.0625,0.06,20,0.3,45,3.1\n";
+  write_text(dir.file("a.csv"), "radius_m,width_m,load_N,travel_slip,slip_angle_deg,drawbar_pull_N\n" + row);
+  write_text(dir.file("b.csv"), "radius_m,width_m,load_N,travel_slip,slip_angle_deg,drawbar_pull_N\n" + row);
+  write_text(dir.file("c.csv"), "radius_m,width_m,load_N,longitudinal_slip,slip_angle_deg,drawbar_pull_N\n" + row);
+  write_text(dir.file("d.csv"), "radius_m,width_m,load_N,slip,slip_angle_deg,drawbar_pull_N\n" + row);
+  write_text(dir.file("e.csv"), "radius_m,width_m,load_N,slip,travel_slip,drawbar_pull_N\n0.0625,0.06,20,0.3,0.3,3\n");
+  const auto a = io::read_wheel_test_file(dir.file("a.csv"));
+  EXPECT_EQ(a.slip_definition, "travel");
+  EXPECT_EQ(io::read_wheel_test_file(dir.file("b.csv")).slip_definition, a.slip_definition);
+  ASSERT_EQ(a.points.size(), 1u);
+  EXPECT_DOUBLE_EQ(a.points[0].slip, 0.3);
+  EXPECT_EQ(io::read_wheel_test_file(dir.file("c.csv")).slip_definition, "longitudinal");
+  EXPECT_EQ(io::read_wheel_test_file(dir.file("d.csv")).slip_definition, "");
+  try {
+    io::read_wheel_test_file(dir.file("e.csv"));
+    FAIL() << "two slip columns were read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("e.csv"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than one slip column"), std::string::npos) << e.what();
+  }
+}

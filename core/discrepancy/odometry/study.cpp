@@ -191,6 +191,25 @@ class ChainModel final : public OdometryCandidateModel {
   std::vector<const OdometryCandidateModel*> links_;
 };
 
+// The fitted parameters within 1 % of a bound of their search (issue 43):
+// named in cand.at_bound; a reported parameter that is one of them (or, for a
+// summary, takes the value of one) is marked and loses its sigma.
+void mark_bounds(const std::vector<CandidateParameter>& parameters, OdometryCandidate& cand) {
+  std::vector<double> values;
+  for (std::size_t i = 0; i < parameters.size() && i < cand.fitted.size(); ++i) {
+    if (!near_bound(cand.fitted[i], parameters[i].lower, parameters[i].upper)) continue;
+    cand.at_bound.push_back(parameters[i].name);
+    values.push_back(cand.fitted[i]);
+  }
+  for (auto& p : cand.parameters) {
+    const bool named = std::find(cand.at_bound.begin(), cand.at_bound.end(), p.name) != cand.at_bound.end();
+    const bool valued = std::find(values.begin(), values.end(), p.value) != values.end();
+    if (!named && !valued) continue;
+    p.at_bound = true;
+    p.sigma = NAN;
+  }
+}
+
 // The study's steps: inputs, the split, the baseline's residuals, each
 // candidate's fit and held-out score, and the verdict.
 class OdometryStudy {
@@ -210,7 +229,9 @@ class OdometryStudy {
   void residual_series();
   void select_forward();
   void write_what_is_wrong();
+  void weigh_steps();
   void write_verdict();
+  void write_chain_verdict();
 
   const log::Log& log_;
   const OdometryStudyOptions& o_;
@@ -231,6 +252,7 @@ OdometryDiscrepancyReport OdometryStudy::run() {
   choose_cause();
   residual_series();
   select_forward();
+  weigh_steps();
   write_what_is_wrong();
   write_verdict();
   return std::move(rep_);
@@ -365,10 +387,11 @@ OdometryCandidate OdometryStudy::fit_candidate(const OdometryCandidateModel& mod
   cand.delta_bic = cand.bic - rep_.baseline_bic;
   cand.parameters = model.summary(x, parameter_sigmas(problem, x, r_fit));
   cand.fitted = x;
+  mark_bounds(parameters, cand);
   const std::vector<double> r_test = track_errors(test_, ref_, o_.rover, model.held_out_corrections(x.data()));
   cand.held_out_rmse = rmse_of(r_test);
   cand.held_out_final = final_of(r_test);
-  cand.significant = cand.delta_bic < -10.0 &&
+  cand.significant = cand.at_bound.empty() && cand.delta_bic < -10.0 &&
                      cand.held_out_rmse <= (1.0 - o_.min_gain) * rep_.baseline_held_out_rmse &&
                      cand.held_out_rmse <= rep_.baseline_held_out_rmse - o_.min_improvement;
   return cand;
@@ -481,7 +504,8 @@ void OdometryStudy::select_forward() {
       links.push_back(models_[i].get());
       OdometryCandidate fit = fit_candidate(ChainModel(links));
       if (!closest || fit.held_out_rmse < closest->held_out_rmse) closest = fit;
-      const bool passes = fit.bic - at.bic < -10.0 && fit.held_out_rmse <= at.held_out_rmse - o_.min_improvement;
+      const bool passes = fit.at_bound.empty() && fit.bic - at.bic < -10.0 &&
+                          fit.held_out_rmse <= at.held_out_rmse - o_.min_improvement;
       if (passes && (next < 0 || fit.bic < next_fit.bic)) {
         next = static_cast<int>(i);
         next_fit = std::move(fit);
@@ -506,6 +530,61 @@ void OdometryStudy::write_what_is_wrong() {
   rep_.what_is_wrong = buf;
 }
 
+// "name = value, ..." of fitted parameters.
+std::string parameters_text(const std::vector<OdometryParameter>& ps) {
+  std::string text;
+  for (const auto& p : ps) {
+    char one[96];
+    std::snprintf(one, sizeof one, "%s%s = %.4g%s", text.empty() ? "" : ", ", p.name.c_str(), p.value,
+                  p.at_bound ? " (at its bound)" : "");
+    text += one;
+  }
+  return text;
+}
+
+// Each step's share of the chain's held-out gain (issue 43): the held-out
+// RMSE it cut against the step before, over the whole chain's cut; a step
+// under kNegligibleGainShare is "also consistent with", not a cause.
+void OdometryStudy::weigh_steps() {
+  if (rep_.selection.empty()) return;
+  double before = rep_.baseline_held_out_rmse;
+  const double final_rmse = rep_.selection.back().held_out_rmse;
+  for (auto& step : rep_.selection) {
+    step.gain_share = gain_share(rep_.baseline_held_out_rmse, final_rmse + before - step.held_out_rmse, final_rmse);
+    before = step.held_out_rmse;
+    step.role = !step.at_bound.empty()                       ? StepRole::at_bound
+                : !(step.gain_share >= kNegligibleGainShare) ? StepRole::also_consistent
+                                                             : StepRole::cause;
+  }
+}
+
+// Several steps: the named ones with their shares, the values of the final
+// joint fit, then the steps that are only consistent with the data.
+void OdometryStudy::write_chain_verdict() {
+  const OdometryCandidate& last = rep_.selection.back();
+  std::string named, also;
+  for (const auto& step : rep_.selection) {
+    const std::string name =
+        step.name.substr(step.name.rfind(" + ") == std::string::npos ? 0 : step.name.rfind(" + ") + 3);
+    char one[160];
+    std::snprintf(one, sizeof one, "%s (%.3g %% of the held-out gain)", name.c_str(), 100.0 * step.gain_share);
+    std::string& list = step.role == StepRole::cause ? named : also;
+    list += (list.empty() ? "" : step.role == StepRole::cause ? ", then " : "; ") + std::string(one);
+  }
+  char buf[1024];
+  std::snprintf(buf, sizeof buf,
+                "%s: %s. Fitted together on the first %.0f %% of the drive (%s), the model cuts the position RMSE on "
+                "the rest from %.2f m to %.2f m (final error %.2f m -> %.2f m), delta BIC %.0f against the baseline.",
+                named.empty() ? "No cause named" : "Causes (forward selection)", named.c_str(), 100.0 * o_.fit_fraction,
+                parameters_text(last.parameters).c_str(), rep_.baseline_held_out_rmse, last.held_out_rmse,
+                rep_.baseline_held_out_final, last.held_out_final, last.delta_bic);
+  rep_.verdict = buf;
+  if (also.empty()) return;
+  std::snprintf(buf, sizeof buf, " Also consistent with %s: under %.3g %% of the held-out gain, not named as a cause.",
+                also.c_str(), 100.0 * kNegligibleGainShare);
+  rep_.verdict += buf;
+}
+
 void OdometryStudy::write_verdict() {
   char buf[1024];
   if (rep_.best < 0) {
@@ -516,16 +595,10 @@ void OdometryStudy::write_verdict() {
     rep_.verdict = buf;
     return;
   }
-  // "name = value, ..." of fitted parameters.
-  const auto parameters_text = [](const std::vector<OdometryParameter>& ps) {
-    std::string text;
-    for (const auto& p : ps) {
-      char one[96];
-      std::snprintf(one, sizeof one, "%s%s = %.4g", text.empty() ? "" : ", ", p.name.c_str(), p.value);
-      text += one;
-    }
-    return text;
-  };
+  if (rep_.selection.size() >= 2) {
+    write_chain_verdict();
+    return;
+  }
   const auto& b = rep_.candidates[static_cast<std::size_t>(rep_.best)];
   const std::string params = parameters_text(b.parameters);
   std::snprintf(buf, sizeof buf,
@@ -542,17 +615,6 @@ void OdometryStudy::write_verdict() {
         rep_.candidates[i].held_out_rmse < rep_.candidates[static_cast<std::size_t>(second)].held_out_rmse) {
       second = static_cast<int>(i);
     }
-  }
-  if (rep_.selection.size() >= 2) {
-    const auto& c = rep_.selection.back();
-    const std::string fitted = parameters_text(c.parameters);
-    std::snprintf(buf, sizeof buf,
-                  " Forward selection keeps %zu causes together: %s (%s), held-out RMSE %.2f m (final %.2f m), "
-                  "delta BIC %.0f against the baseline.",
-                  rep_.selection.size(), c.name.c_str(), fitted.c_str(), c.held_out_rmse, c.held_out_final,
-                  c.delta_bic);
-    rep_.verdict += buf;
-    return;
   }
   if (second >= 0) {
     const auto& c = rep_.candidates[static_cast<std::size_t>(second)];

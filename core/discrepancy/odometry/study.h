@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/discrepancy/likelihood.h"
 #include "core/log/log.h"
 #include "core/models/skid_steer_odometry.h"
 
@@ -33,7 +34,8 @@ struct OdometryStudyOptions {
 
 struct OdometryParameter {
   std::string name;
-  double value = 0, sigma = 0;  // sigma from the fit's covariance (NaN when unavailable)
+  double value = 0, sigma = 0;  // sigma from the fit's covariance (NaN when unavailable or at its bound)
+  bool at_bound = false;        // within 1 % of a bound of its search (near_bound): no sigma, no cause
 };
 
 struct OdometryCandidate {
@@ -41,12 +43,19 @@ struct OdometryCandidate {
   std::string cause;  // what it would mean physically
   std::vector<OdometryParameter> parameters;  // slip episodes: summarised (count, median, max)
   int parameter_count = 0;
-  double fit_rmse = 0;            // m, on the fit part
-  double bic = 0, delta_bic = 0;  // against the baseline, on the fit part
-  double held_out_rmse = 0;       // m, on the test part
-  double held_out_final = 0;      // m, at the end of the test part
-  bool significant = false;       // delta BIC < -10 and held-out gain >= min_gain and >= min_improvement
-  std::vector<double> fitted;     // the parameters as the candidate's model takes them
+  double fit_rmse = 0;                // m, on the fit part
+  double bic = 0, delta_bic = 0;      // against the baseline, on the fit part
+  double held_out_rmse = 0;           // m, on the test part
+  double held_out_final = 0;          // m, at the end of the test part
+  bool significant = false;           // delta BIC < -10 and held-out gain >= min_gain and >= min_improvement,
+                                      // and no parameter at its bound
+  std::vector<double> fitted;         // the parameters as the candidate's model takes them
+  std::vector<std::string> at_bound;  // the fitted parameters within 1 % of a bound of their search
+  // In the forward selection: this step's share of the chain's held-out gain
+  // (the held-out RMSE it cut against the step before, over the whole chain's
+  // cut), and whether it is named (StepRole).
+  double gain_share = NAN;
+  StepRole role = StepRole::cause;
 };
 
 // The horizontal track error at each reference sample of both parts, with

@@ -196,6 +196,19 @@ std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidu
 
 namespace {
 
+// A parameter at or within 1 % of a bound of its search (issue 43) is at its
+// bound and has no sigma: the search stopped there.
+void mark_bounds(terramechanics::IdentificationResult& fit) {
+  for (auto& p : fit.parameters) {
+    p.at_bound = p.at_bound || near_bound(p.value, p.bounds.lower, p.bounds.upper);
+    if (p.at_bound) p.sigma = NAN;
+  }
+}
+
+bool any_at_bound(const CandidateResult& c) {
+  return std::any_of(c.fit.parameters.begin(), c.fit.parameters.end(), [](const auto& p) { return p.at_bound; });
+}
+
 // The study's steps: the baseline's residuals, each candidate's fit and
 // held-out score, the winner, and the sentences on what is wrong and why.
 class SingleWheelStudy {
@@ -216,6 +229,7 @@ class SingleWheelStudy {
   void choose_best();
   void write_what_is_wrong();
   void find_partial();
+  void weigh_steps();
   void write_verdict();
   void judge_quantities();
   void score_per_wheel();
@@ -263,7 +277,9 @@ DiscrepancyReport SingleWheelStudy::run() {
   choose_best();
   report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
   select_forward();
-  report_.significant = !report_.selection.empty();
+  weigh_steps();
+  report_.significant = std::any_of(report_.selection.begin(), report_.selection.end(),
+                                    [](const CandidateResult& c) { return c.role == StepRole::cause; });
   write_what_is_wrong();
   find_partial();
   write_verdict();
@@ -407,7 +423,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
     c.cause += (c.cause.empty() ? "" : "; ") + std::string(candidate->cause());
     if (candidate->needs_grousers() && !any_grousers_) {
       c.applicable = false;
-      c.not_applicable_because = "no wheel in the data has grousers";
+      c.not_applicable_because = "no wheel in the data has grousers (columns grouser_count and grouser_height_m)";
       return c;
     }
     if (!candidate->belongs_to(o_.baseline.kind)) {
@@ -457,6 +473,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
     io.model.extensions = c.fit.extensions;
     c.fit = identify_soil(c.fit.soil, points_, io);
   }
+  mark_bounds(c.fit);
   c.in_sample = residual_statistics(c.fit.residuals, points_);
   c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
   c.delta_bic = c.bic - report_.baseline_bic;
@@ -480,7 +497,7 @@ void SingleWheelStudy::select_forward() {
   double bic = report_.baseline_bic;
   const std::vector<double>* held_rmse = &report_.baseline_held_out_rmse;
   auto passes = [&](const CandidateResult& c, double than_bic) {
-    return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < o_.bic_threshold &&
+    return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < o_.bic_threshold && !any_at_bound(c) &&
            held_out_gain(c.held_out_rmse, *held_rmse);
   };
   // Steps are fitted without their held-out scores (ten refits each), which
@@ -636,8 +653,8 @@ void SingleWheelStudy::choose_best() {
   }
   if (report_.best >= 0) {
     const auto& c = report_.candidates[static_cast<std::size_t>(report_.best)];
-    report_.significant =
-        c.delta_bic < o_.bic_threshold && held_out_gain(c.held_out_rmse, report_.baseline_held_out_rmse);
+    report_.significant = c.delta_bic < o_.bic_threshold && !any_at_bound(c) &&
+                          held_out_gain(c.held_out_rmse, report_.baseline_held_out_rmse);
   }
 }
 
@@ -701,21 +718,38 @@ void SingleWheelStudy::find_partial() {
   }
 }
 
+// Each step's share of the chain's held-out gain and whether it is named
+// (issue 43): a step under kNegligibleGainShare of the gain, or that cuts no
+// quantity's held-out RMSE by 30 % against the step before (the per-quantity
+// sentences would say nothing explains it), is "also consistent with".
+void SingleWheelStudy::weigh_steps() {
+  if (report_.selection.empty()) return;
+  double before = report_.baseline_score;
+  const std::vector<double>* rmse_before = &report_.baseline_held_out_rmse;
+  const double final_score = report_.selection.back().held_out_score;
+  for (auto& step : report_.selection) {
+    step.gain_share = gain_share(report_.baseline_score, final_score + before - step.held_out_score, final_score);
+    bool cuts = false;
+    for (std::size_t qi = 0; qi < report_.quantities.size() && qi < step.held_out_rmse.size(); ++qi)
+      cuts = cuts || step.held_out_rmse[qi] <= 0.7 * (*rmse_before)[qi];
+    step.role = any_at_bound(step)                                    ? StepRole::at_bound
+                : !(step.gain_share >= kNegligibleGainShare) || !cuts ? StepRole::also_consistent
+                                                                      : StepRole::cause;
+    before = step.held_out_score;
+    rmse_before = &step.held_out_rmse;
+  }
+}
+
 void SingleWheelStudy::write_verdict() {
   if (report_.best < 0) {
     report_.verdict = "No candidate could be fitted.";
     return;
   }
-  if (report_.selection.size() >= 2 ||
-      (!report_.selection.empty() && report_.selection.back().name.find(" + ") != std::string::npos)) {
-    write_chain_verdict();
-    return;
-  }
-  if (!report_.significant) {
+  if (report_.selection.empty()) {
     write_no_significant_verdict();
     return;
   }
-  report_.verdict = cause_sentence("Cause: ", report_.selection.back(), ".");
+  write_chain_verdict();
 }
 
 // The named cause(s), fitted parameters, held-out gain and BIC change, in words.
@@ -724,7 +758,10 @@ std::string SingleWheelStudy::cause_sentence(const std::string& lead, const Cand
   std::string v = lead + c.name + " (" + c.cause + "),";
   for (const auto& p : c.fit.parameters) {
     v += " " + std::string(to_string(p.parameter)) + " = " + fmt("%.3g", p.value) +
-         (std::isfinite(p.sigma) ? " +- " + fmt("%.2g", p.sigma) : std::string(" (no sigma)")) + ";";
+         (p.at_bound               ? std::string(" (at its bound)")
+          : std::isfinite(p.sigma) ? " +- " + fmt("%.2g", p.sigma)
+                                   : std::string(" (no sigma)")) +
+         ";";
   }
   v += " held-out RMSE";
   for (std::size_t i = 0; i < report_.quantities.size(); ++i) {
@@ -735,9 +772,29 @@ std::string SingleWheelStudy::cause_sentence(const std::string& lead, const Cand
   return v + "; delta BIC " + format_delta_bic(c.delta_bic) + end;
 }
 
-// Several causes: the chain, its parameters and its gain over the baseline.
+// The named steps with their shares; the final joint fit's values and gain
+// (the model every figure is of); the steps only consistent with the data.
 void SingleWheelStudy::write_chain_verdict() {
-  report_.verdict = cause_sentence("Causes (forward selection): ", report_.selection.back(), " against the baseline.");
+  std::string named, also;
+  int causes = 0;
+  for (const auto& step : report_.selection) {
+    const auto plus = step.name.rfind(" + ");
+    const std::string one = (plus == std::string::npos ? step.name : step.name.substr(plus + 3)) + " (" +
+                            fmt("%.3g", 100.0 * step.gain_share) + " % of the held-out gain)";
+    if (step.role == StepRole::cause) {
+      named += (causes++ > 0 ? ", then " : "") + one;
+    } else {
+      also += (also.empty() ? "" : "; ") + one + (step.role == StepRole::at_bound ? ", a parameter at its bound" : "");
+    }
+  }
+  const bool chain = report_.selection.size() >= 2 || report_.selection.back().name.find(" + ") != std::string::npos;
+  const std::string lead = causes == 0   ? "No cause named; the model fitted is "
+                           : causes == 1 ? "Cause: " + named + "; the model fitted is "
+                                         : "Causes (forward selection): " + named + "; the model fitted is ";
+  report_.verdict = cause_sentence(lead, report_.selection.back(), chain ? " against the baseline." : ".");
+  if (also.empty()) return;
+  report_.verdict += " Also consistent with " + also + ": under " + fmt("%.3g", 100.0 * kNegligibleGainShare) +
+                     " % of the held-out gain, or no quantity's held-out RMSE cut by 30 %, so not named as a cause.";
 }
 
 // Per quantity: significant when |t| >= 3 for the baseline's bias or either
@@ -952,6 +1009,26 @@ DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoi
   return r;
 }
 
+// The named steps, " + "-joined, or "none".
+std::string named_chain(const DiscrepancyReport& r) {
+  std::string names;
+  for (const auto& c : r.selection) {
+    if (c.role != StepRole::cause) continue;
+    const auto plus = c.name.rfind(" + ");
+    names += (names.empty() ? "" : " + ") + (plus == std::string::npos ? c.name : c.name.substr(plus + 3));
+  }
+  return names.empty() ? "none" : names;
+}
+
+// Two readings of one file differ materially: other causes named, or final
+// held-out scores 10 % apart.
+bool readings_differ(const DiscrepancyReport& a, const DiscrepancyReport& b) {
+  const auto score = [](const DiscrepancyReport& r) {
+    return r.selection.empty() ? r.baseline_score : r.selection.back().held_out_score;
+  };
+  return named_chain(a) != named_chain(b) || std::abs(score(a) - score(b)) > 0.1 * std::min(score(a), score(b));
+}
+
 }  // namespace
 
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
@@ -968,8 +1045,9 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
   // How the slip is read (SlipDefinition, model.h): given; the longitudinal
   // one when the readings differ by < 0.01 in slip at every point; else the
   // whole study under each (a hidden effect can mimic the other reading in
-  // the baseline), keeping the one whose model carries more measurements,
-  // then the one whose final model has the lower BIC.
+  // the baseline), keeping the one whose model carries more measurements;
+  // when both carry them all and the readings differ materially, both are
+  // reported (other_reading), each complete; else the lower final BIC.
   std::string why = "given";
   double largest = 0.0;
   for (const auto& p : points) largest = std::max(largest, (1.0 - p.slip) * (1.0 - std::cos(p.slip_angle)));
@@ -990,6 +1068,17 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     if (progress) o.progress = [&](double f) { progress(0.5 + 0.5 * f); };
     DiscrepancyReport as_travel = run_in_family(soil, points, o);
     const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
+    if (lost_travel == lost_longitudinal && readings_differ(as_longitudinal, as_travel)) {
+      as_longitudinal.slip_definition = to_string(SlipDefinition::longitudinal);
+      as_travel.slip_definition = to_string(SlipDefinition::travel);
+      as_longitudinal.slip_definition_reason = as_travel.slip_definition_reason =
+          "the file does not state its slip definition and the two readings give different results (causes " +
+          named_chain(as_longitudinal) + " read as longitudinal slip, " + named_chain(as_travel) +
+          " read as travel slip): both follow, each complete; give --slip-definition, or name the file's slip "
+          "column travel_slip or longitudinal_slip";
+      as_longitudinal.other_reading.push_back(std::move(as_travel));
+      return as_longitudinal;
+    }
     const bool travel = lost_travel != lost_longitudinal ? lost_travel < lost_longitudinal
                                                          : final_bic(as_travel) < final_bic(as_longitudinal);
     const char* chosen = travel ? "travel" : "longitudinal";

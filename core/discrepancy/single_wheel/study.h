@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/discrepancy/likelihood.h"
 #include "core/terramechanics/soil_identification.h"
 
 namespace roverlab::analysis {
@@ -60,6 +61,14 @@ struct CandidateResult {
   std::vector<double> held_out_rmse;                    // per quantity (order of `quantities`), leave-one-out
   double held_out_score = 0.0;                          // RMS of held-out residuals in sigmas
   std::vector<terramechanics::PointResidual> held_out;  // each point's prediction when held out
+  // A step of the forward selection (issue 43): its share of the chain's
+  // held-out gain (the held-out score it cut against the step before, over
+  // the whole chain's cut) and whether it is named: a step under
+  // kNegligibleGainShare, or that cuts no quantity's held-out RMSE by 30 %,
+  // is "also consistent with". A parameter within 1 % of a bound
+  // (near_bound) has no sigma and keeps its candidate from being named.
+  double gain_share = NAN;
+  StepRole role = StepRole::cause;
 };
 
 // Held-out RMSE of one quantity on one wheel's points (wheel tests are
@@ -144,6 +153,12 @@ struct DiscrepancyReport {
   std::string verdict;                   // one sentence: the cause and the gain, or "no significant discrepancy"
   std::vector<FamilyBaseline> families;  // the families compared (empty: not compared)
   std::string family_choice;             // the family taken as the baseline, and by how much
+  // At a slip angle, when neither the options nor the file state how slip is
+  // defined and the two readings differ materially (named causes, or final
+  // held-out score by 10 %): this report is the longitudinal reading's and
+  // other_reading holds the travel reading's, each complete (issue 43: no
+  // choice between chains of different lengths by BIC).
+  std::vector<DiscrepancyReport> other_reading;
 };
 
 // At a slip angle without options.slip_definition the slip's reading is
