@@ -504,8 +504,10 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
                  auto shared = std::make_shared<std::unique_ptr<ViewInput>>(std::move(in));
                  return [this, shared, path] {
                    install(std::move(*shared));
-                   remember_recent(path);
-                   QSettings().setValue("files/last_dir", QFileInfo(path).absolutePath());
+                   if (keeps_settings_) {
+                     remember_recent(path);
+                     QSettings().setValue("files/last_dir", QFileInfo(path).absolutePath());
+                   }
                    setWindowTitle("RoverLab - " + QFileInfo(path).fileName());
                    emit log_loaded();
                    // Estimates arrive as new streams from the analyses that fit the log.
@@ -904,9 +906,11 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   // A running job is cancelled and waited for; its result is dropped.
   jobs_->cancel();
   jobs_->wait();
-  QSettings settings;
-  settings.setValue("window/geometry", saveGeometry());
-  settings.setValue("window/state", saveState());
+  if (keeps_settings_) {
+    QSettings settings;
+    settings.setValue("window/geometry", saveGeometry());
+    settings.setValue("window/state", saveState());
+  }
   event->accept();
 }
 
