@@ -196,6 +196,8 @@ class MainWindow : public QMainWindow {
   QComboBox* surface_soil_ = nullptr;
   QComboBox* surface_quantity_ = nullptr;
   QLabel* surface_note_ = nullptr;
+  QStackedWidget* surface_stack_ = nullptr;  // the surface's VTK widget, or in its place why there is none
+  QLabel* surface_why_ = nullptr;
   QWidget* tables_ = nullptr;  // the analyses' result tables (Analysis::tables)
   QLabel* analysis_text_ = nullptr;
   QTreeWidget* results_ = nullptr;
