@@ -7,9 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkActor2DCollection.h>
 #include <vtkChartXY.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkPlot.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
 #include <QApplication>
 #include <QDockWidget>
 #include <QElapsedTimer>
@@ -35,6 +38,7 @@
 #include "app/gui/main_window.h"
 #include "app/log_input.h"
 #include "test_support.h"
+#include "views/contact_angle_scene.h"
 #include "views/timeseries_chart.h"
 #include "views/x_display.h"
 
@@ -290,6 +294,40 @@ TEST(ReadabilityViews, APlotLegendWithNoValueAtTheCursorSaysSo) {
   EXPECT_EQ(std::count_if(labels.begin(), labels.end(), [&](const std::string& l) { return ends_with(l, value); }), 1);
   // The cursor starts mid-log, as render --help says.
   EXPECT_DOUBLE_EQ(chart.default_time(), 5.0);
+}
+
+// The contact-angle panels: a truth of -0.0001 rad reads "0.0", not "-0.0",
+// and the first panel says which arrow is which.
+TEST(ReadabilityViews, ContactAnglePanelsSayWhichArrowIsWhichAndNeverMinusZero) {
+  log::Log lg;
+  std::vector<double> t;
+  for (int i = 0; i <= 200; ++i) t.push_back(0.01 * i);
+  log::Stream est("estimate/contact/wheels", t), truth("truth/wheels", t);
+  for (const char* w : {"FL", "FR"}) {
+    est.add_channel(std::string("contact_angle_") + w, "rad", std::vector<double>(t.size(), 0.2));
+    est.add_channel(std::string("side_slip_") + w, "rad", std::vector<double>(t.size(), 0.0));
+    truth.add_channel(std::string("contact_angle_") + w, "rad", std::vector<double>(t.size(), -1e-4));
+    truth.add_channel(std::string("side_slip_") + w, "rad", std::vector<double>(t.size(), -1e-4));
+  }
+  lg.add_stream(std::move(est));
+  lg.add_stream(std::move(truth));
+  views::ContactAngleScene scene(lg);
+  scene.set_time(1.0);
+  std::vector<std::string> texts;
+  for (const auto& r : scene.renderers()) {
+    vtkActor2DCollection* actors = r->GetActors2D();
+    actors->InitTraversal();
+    while (vtkActor2D* a = actors->GetNextActor2D()) {
+      if (auto* text = vtkTextActor::SafeDownCast(a); text != nullptr && text->GetInput() != nullptr)
+        texts.emplace_back(text->GetInput());
+    }
+  }
+  ASSERT_EQ(texts.size(), 2u);
+  for (const auto& text : texts) {
+    EXPECT_EQ(text.find("-0.0"), std::string::npos) << text;
+    EXPECT_NE(text.find("contact 11.5 deg (truth 0.0)"), std::string::npos) << text;
+  }
+  EXPECT_NE(texts.front().find("arrows: blue estimate, green truth"), std::string::npos) << texts.front();
 }
 
 // `render --view timeseries` shows the time its --help promises: mid-log.
