@@ -58,7 +58,7 @@ class ReportSection {
   // Appends `table` (the very one Analysis::tables() gives the GUI) as an HTML
   // table: its title as the caption, its headings, row names and cells as
   // they are; numbers right-aligned, words left; the row a result picks in
-  // bold, a cell's shade as a tint.
+  // bold, a cell's shade as a tint; its legend in a line under it.
   void table(const ResultTable& table);
 
  private:
@@ -93,12 +93,15 @@ struct ResultTable {
   struct Cell {
     std::string text;
     double shade = 0.0;  // 0..1: how strongly the cell is tinted (a fraction)
-    bool bold = false;   // the row the result picks
+    // Bold has one meaning in every table: the row the result picks (the
+    // cause a study names), nothing else; the legend says so.
+    bool bold = false;
   };
   std::string title;                    // "What the wheel odometry gets wrong: candidate causes"
   std::vector<std::string> columns;     // headings, with units
   std::vector<std::string> row_names;   // empty: rows have no heading
   std::vector<std::vector<Cell>> rows;  // rows[i].size() == columns.size()
+  std::string legend;                   // one line under the table: what bold, the tint and the order mean
 };
 
 class Analysis {

@@ -342,8 +342,10 @@ Commands make_single_wheel_commands() {
             ->required();
         cmd.add_option("--soil", o.soil, "Soil NAME (resources/soils/NAME.json) or FILE")->required();
         cmd.add_option("--integration", o.integration, "simpson | riemann")->capture_default_str();
-        cmd.add_option("--hold-out", o.hold_out,
-                       "points | wheel | slip: what a held-out fold is (a point; every point of one wheel or one slip)")
+        cmd.add_option(
+               "--hold-out", o.hold_out,
+               "points | wheel | slip: what a held-out fold is (points: leave-one-out up to 100 points, 10 folds "
+               "above, 5 above 2000; every point of one wheel; of one slip)")
             ->capture_default_str();
         cmd.add_option("--slip-definition", o.slip_definition,
                        "auto | longitudinal (s = 1 - v_x / (r w), Ishigami 2007) | travel (s = 1 - |v| / (r w)): how "

@@ -198,14 +198,20 @@ void ContactAngleScene::show_panel(std::size_t w, std::size_t k, std::size_t kr)
   panel.truth_ss->SetVisibility(std::isfinite(bt) && std::isfinite(b));
   if (std::isfinite(bt)) aim(panel.truth_ss, 1.55, 0.2, bt, 1.0);
   char line[200];
-  const double d = 180.0 / M_PI;
+  // Degrees to one decimal, never "-0.0" (a truth of -0.01 deg reads as a sign it does not have).
+  const auto deg = [](double rad) {
+    const double v = std::round(rad * 1800.0 / M_PI) / 10.0;
+    return v == 0.0 ? 0.0 : v;
+  };
   int len = std::snprintf(line, sizeof line, "%s  contact %s", n.c_str(), std::isfinite(g) ? "" : "undefined");
-  if (std::isfinite(g)) len += std::snprintf(line + len, sizeof line - len, "%.1f deg", g * d);
-  if (std::isfinite(gt)) len += std::snprintf(line + len, sizeof line - len, " (truth %.1f)", gt * d);
-  if (std::isfinite(b)) len += std::snprintf(line + len, sizeof line - len, "\nside slip %.1f deg", b * d);
-  if (std::isfinite(b) && std::isfinite(bt)) std::snprintf(line + len, sizeof line - len, " (truth %.1f)", bt * d);
+  if (std::isfinite(g)) len += std::snprintf(line + len, sizeof line - len, "%.1f deg", deg(g));
+  if (std::isfinite(gt)) len += std::snprintf(line + len, sizeof line - len, " (truth %.1f)", deg(gt));
+  if (std::isfinite(b)) len += std::snprintf(line + len, sizeof line - len, "\nside slip %.1f deg", deg(b));
+  if (std::isfinite(b) && std::isfinite(bt)) std::snprintf(line + len, sizeof line - len, " (truth %.1f)", deg(bt));
   // The first panel names the estimates' model (chosen by the data, or set by hand and maybe rejected).
-  const std::string model = w == 0 ? estimation::model_label(*parts_->estimate) : "";
+  std::string model = w == 0 ? estimation::model_label(*parts_->estimate) : "";
+  if (w == 0 && std::isfinite(gt))
+    model += (model.empty() ? "" : "\n") + std::string("arrows: blue estimate, green truth");
   panel.text->SetInput(model.empty() ? line : (std::string(line) + "\n" + model).c_str());
 }
 

@@ -551,7 +551,8 @@ void TimeSeriesChart::set_cursor(double t) {
     if (plots_[i] == nullptr || labels_[i].empty()) continue;
     char value[40];
     std::snprintf(value, sizeof value, " = %.4g", now[i].value);
-    plots_[i]->SetLabel(labels_[i] + (std::isfinite(now[i].value) ? value : " = -"));
+    // No value (the stream has not started, has ended, or holds NaN there): said in words, not "= -".
+    plots_[i]->SetLabel(labels_[i] + (std::isfinite(now[i].value) ? value : " (no value at the cursor)"));
   }
   for (std::size_t g = 0; g < cursors_.size(); ++g) {
     auto& c = cursors_[g];

@@ -69,10 +69,10 @@ class TimeSeriesChart : public Scene {
   void set_time(double t) override { set_cursor(t); }
   double start_time() const override { return start_; }
   double end_time() const override { return end_; }
-  double default_time() const override { return start_; }
   const std::vector<ChannelRef>& channels() const { return channels_; }
   // Every curve's value at the cursor time (linear between samples, NaN
-  // outside its stream's span); each legend entry shows it ("... = 0.12").
+  // outside its stream's span); each legend entry shows it ("... = 0.12", or
+  // "(no value at the cursor)"). The cursor starts mid-log, as every view's (render --help).
   struct Reading {
     std::string stream, channel, unit;
     double value = 0;

@@ -1,6 +1,7 @@
 // `estimate ins-slip`: the error-state INS with ZUPT/ZARU/NHC pseudo-measurements
 // and slip detection of seed 002, with its metrics against GPS or truth.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -74,7 +75,55 @@ ResultTable confusion_table(const json& c, const std::string& title) {
     }
     t.rows.push_back(std::move(cells));
   }
+  t.legend =
+      "Each cell: the share of the column's reference samples classed as the row; the tint follows it; the diagonal is "
+      "each class's recall. No bold (bold marks a named cause).";
   return t;
+}
+
+// Each reference class's recall (the diagonal of the column-normalised
+// confusion) with its sample count; classes without samples left out.
+struct ClassRecall {
+  std::string name;
+  double recall = 0;
+  long samples = 0;
+};
+std::vector<ClassRecall> class_recalls(const json& c) {
+  std::vector<ClassRecall> out;
+  for (int t = 0; t < kSlipClasses; ++t) {
+    long column = 0;
+    for (int e = 0; e < kSlipClasses; ++e) column += c.at("counts").at(e).at(t).get<long>();
+    const json& f = c.at("column_normalised").at(t).at(t);
+    if (column > 0 && f.is_number()) out.push_back({class_name(t), f.get<double>(), column});
+  }
+  return out;
+}
+
+// "accuracy 76.5 % of 695 samples; weakest class high: recall 0.0 % of 1 sample"
+std::string accuracy_text(const json& c) {
+  char text[160];
+  std::snprintf(text, sizeof text, "accuracy %.1f %% of %ld samples", 100.0 * c.at("accuracy").get<double>(),
+                c.at("total").get<long>());
+  std::string out = text;
+  const std::vector<ClassRecall> recalls = class_recalls(c);
+  const auto worst = std::min_element(recalls.begin(), recalls.end(),
+                                      [](const ClassRecall& a, const ClassRecall& b) { return a.recall < b.recall; });
+  if (worst == recalls.end()) return out;
+  std::snprintf(text, sizeof text, "; weakest class %s: recall %.1f %% of %ld sample%s", worst->name.c_str(),
+                100.0 * worst->recall, worst->samples, worst->samples == 1 ? "" : "s");
+  return out + text;
+}
+
+// "recall per reference class: none 100.0 %, low 70.7 %, ..."
+std::string recalls_text(const json& c) {
+  std::string out = "recall per reference class:";
+  char text[96];
+  for (const ClassRecall& r : class_recalls(c)) {
+    std::snprintf(text, sizeof text, " %s %.1f %% (%ld),", r.name.c_str(), 100.0 * r.recall, r.samples);
+    out += text;
+  }
+  if (out.back() == ',') out.pop_back();
+  return out;
 }
 
 void print_confusion(const json& c, std::FILE* out) {
@@ -100,8 +149,7 @@ void print_confusion(const json& c, std::FILE* out) {
     for (int e = 0; e < kSlipClasses; ++e) column += c.at("counts").at(e).at(t).get<long>();
     std::fprintf(out, " %8ld", column);
   }
-  std::fprintf(out, "\n  overall accuracy %.1f %% of %ld samples\n", 100.0 * c.at("accuracy").get<double>(),
-               c.at("total").get<long>());
+  std::fprintf(out, "\n  overall %s\n  %s\n", accuracy_text(c).c_str(), recalls_text(c).c_str());
 }
 
 class InsSlipAnalysis : public Analysis {
@@ -187,14 +235,15 @@ class InsSlipAnalysis : public Analysis {
 
   void print(const json& j, std::FILE* out) const override;
   std::vector<KeyMetric> key_metrics() const override {
-    return {
-        {"ins_final_error_m", "INS final error (m)", "/ins/final_position_error_m"},
-        {"ins_position_rmse_m", "INS position RMSE (m)", "/ins/position_rmse_m"},
-        {"wheel_odometry_final_error_m", "wheel odometry final error (m)", "/wheel_odometry/final_position_error_m"},
-        {"slip_class_accuracy", "slip class accuracy", "/slip_confusion/accuracy"}};
+    return {{"ins_final_error_m", "INS final horizontal error (m)", "/ins/final_position_error_m"},
+            {"ins_position_rmse_m", "INS horizontal position RMSE (m)", "/ins/position_rmse_m"},
+            {"wheel_odometry_final_error_m", "wheel odometry final horizontal error (m)",
+             "/wheel_odometry/final_position_error_m"},
+            {"slip_class_accuracy", "slip class accuracy", "/slip_confusion/accuracy"}};
   }
   void report(const json& j, ReportSection& section) const override;
   std::vector<ResultTable> tables(const json& j) const override;
+  std::string summary(const json& j) const override;
 
  private:
   static json document(const std::string& file, const estimation::InsSlipOptions& o,
@@ -261,6 +310,26 @@ class InsSlipAnalysis : public Analysis {
 
 const char* on_off(const json& b) { return b.get<bool>() ? "on" : "off"; }
 
+// The headline: the position errors named by their frame (horizontal, with
+// the vertical RMSE beside), the slip classes' accuracy with the weakest class.
+std::string InsSlipAnalysis::summary(const json& j) const {
+  std::string out;
+  char text[256];
+  if (j.at("has_reference").get<bool>()) {
+    const json& ins = j.at("ins");
+    std::snprintf(text, sizeof text,
+                  "INS position RMSE %.2f m horizontal (%.2f m vertical), final horizontal error %.2f m; wheel "
+                  "odometry final horizontal error %.2f m",
+                  ins.at("position_rmse_m").get<double>(), ins.at("position_rmse_enu_m").at(2).get<double>(),
+                  ins.at("final_position_error_m").get<double>(),
+                  j.at("wheel_odometry").at("final_position_error_m").get<double>());
+    out = text;
+  }
+  if (j.contains("slip_confusion"))
+    out += (out.empty() ? "slip classes: " : "; slip classes: ") + accuracy_text(j.at("slip_confusion"));
+  return out.empty() ? out : out + ".";
+}
+
 std::vector<ResultTable> InsSlipAnalysis::tables(const json& j) const {
   std::vector<ResultTable> out;
   if (j.contains("slip_confusion")) out.push_back(confusion_table(j.at("slip_confusion"), "Slip classes"));
@@ -323,6 +392,7 @@ void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
         g.at("outliers_rejected").get<std::size_t>());
     std::fprintf(out, "\nposition against GPS over %.1f m of track:\n", j.at("distance_m").get<double>());
     std::fprintf(out, "  %-28s %10s %10s   %s\n", "", "final (m)", "RMSE (m)", "RMSE east / north / up (m)");
+    std::fprintf(out, "  %-28s %10s %10s\n", "", "horizontal", "horizontal");
     std::fprintf(out, "  %-28s %10.2f %10.2f   %.2f / %.2f / %.2f\n",
                  aiding ? "INS + pseudo-meas. + wheels" : "INS + pseudo-measurements",
                  ins.at("final_position_error_m").get<double>(), ins.at("position_rmse_m").get<double>(),
@@ -381,7 +451,8 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
     const json& enu = ins.at("position_rmse_enu_m");
     const json& odo = j.at("wheel_odometry");
     const json& drift = ins.at("heading_drift_rad");
-    html << "<table><tr><th></th><th>final error (m)</th><th>RMSE (m)</th><th>RMSE east / north / up (m)</th></tr>\n"
+    html << "<table><tr><th></th><th>final horizontal error (m)</th><th>horizontal RMSE (m)</th><th>RMSE east / north "
+            "/ up (m)</th></tr>\n"
          << "<tr><td style=\"text-align:left\">INS + pseudo-measurements + wheels</td><td>"
          << n(ins.at("final_position_error_m"), "%.2f") << "</td><td>" << n(ins.at("position_rmse_m"), "%.2f")
          << "</td><td>" << n(enu.at(0), "%.2f") << " / " << n(enu.at(1), "%.2f") << " / " << n(enu.at(2), "%.2f")
@@ -419,8 +490,10 @@ void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
     html << "</tr>\n";
     csv += "\n";
   }
-  html << "</table>\n<p>Accuracy " << ReportSection::number(100.0 * c.at("accuracy").get<double>(), "%.1f") << " % of "
-       << c.at("total").get<long>() << " samples.</p>\n";
+  std::string accuracy = accuracy_text(c);
+  accuracy[0] = 'A';
+  html << "</table>\n<p>" << ReportSection::escape(accuracy) << "; " << ReportSection::escape(recalls_text(c))
+       << ".</p>\n";
   s.write_csv("slip_confusion.csv", csv);
 }
 

@@ -251,6 +251,9 @@ std::vector<ResultTable> OdometryAnalysis::tables(const json& j) const {
     for (auto& cell : row) cell.bold = picked;
     t.rows.push_back(std::move(row));
   }
+  t.legend = "Bold: the cause the study names (" +
+             (j.at("cause").is_string() ? j.at("cause").get<std::string>() : std::string("none named")) +
+             "), and nothing else. Rows by evidence: the lowest delta BIC (the most the data favour) first.";
   return {t};
 }
 

@@ -237,6 +237,8 @@ void ReportSection::table(const ResultTable& t) {
     html << "</tr>\n";
   }
   html << "</table>\n";
+  if (!t.legend.empty())
+    html << "<p class=\"legend\" style=\"margin-top:-0.6em;font-size:90%;color:#444\">" << escape(t.legend) << "</p>\n";
 }
 
 std::string ReportSection::escape(const std::string& s) {

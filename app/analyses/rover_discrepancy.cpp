@@ -391,12 +391,21 @@ void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "\n%s\n", j.at("verdict").get<std::string>().c_str());
 }
 
+// A candidate's standing in words: named as the cause, significant, not significant, screened out.
+std::string candidate_status(const json& c, const std::vector<std::string>& named) {
+  if (std::find(named.begin(), named.end(), c.at("name").get<std::string>()) != named.end()) return "named cause";
+  if (c.at("screened").get<bool>()) return "screened out";
+  return c.at("significant").get<bool>() ? "significant, not named" : "not significant";
+}
+
 std::vector<ResultTable> RoverDiscrepancyAnalysis::tables(const json& j) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   ResultTable candidates;
   candidates.title = "What the simulation gets wrong: candidate causes, by evidence";
-  candidates.columns = {"candidate", "fitted (+-1 sigma)", "delta BIC", "held-out residual (noise sigmas)"};
-  candidates.rows.push_back({{"(nominal)"}, {""}, {"0"}, {n(j.at("baseline").at("held_out"), "%.3g")}});
+  candidates.columns = {"candidate", "fitted (+-1 sigma)", "delta BIC", "held-out residual (noise sigmas)", "status"};
+  candidates.rows.push_back({{"(nominal)"}, {""}, {"0"}, {n(j.at("baseline").at("held_out"), "%.3g")}, {""}});
+  std::vector<std::string> named;  // the causes the verdict names
+  for (const auto& c : j.at("causes")) named.push_back(c.get<std::string>());
   // By evidence: the lowest delta BIC (the most the data favour) first.
   std::vector<const json*> order;
   for (const auto& c : j.at("candidates")) order.push_back(&c);
@@ -410,23 +419,29 @@ std::vector<ResultTable> RoverDiscrepancyAnalysis::tables(const json& j) const {
     std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},
                                        {parameters_text(c.at("parameters"), c.at("screened").get<bool>())},
                                        {roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>())},
-                                       {n(c.at("held_out"), "%.3g")}};
-    for (auto& cell : row) cell.bold = c.at("significant").get<bool>();
+                                       {n(c.at("held_out"), "%.3g")},
+                                       {candidate_status(c, named)}};
+    const bool picked = std::find(named.begin(), named.end(), c.at("name").get<std::string>()) != named.end();
+    for (auto& cell : row) cell.bold = picked;
     candidates.rows.push_back(std::move(row));
   }
+  candidates.legend = "Bold: the cause the study names (" +
+                      (named.empty() ? std::string("none named") : j.at("causes_text").get<std::string>()) +
+                      "), and nothing else; status says which others are significant. Rows by evidence: the lowest "
+                      "delta BIC (the most the data favour) first.";
   ResultTable checks;
   checks.title = "Checks among the sensors and against the model";
-  checks.columns = {"check", "value", "expected", "unit", "verdict"};
-  // A check the data contradict is bold.
+  checks.columns = {"check", "value", "expected", "unit", "agrees", "verdict"};
+  // Bold is kept for a named cause: a check the data contradict says "no" in its own column.
   for (const auto& c : j.at("checks")) {
-    std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},
-                                       {n(c.at("value"), "%.4g")},
-                                       {n(c.at("expected"), "%.4g")},
-                                       {c.at("unit").get<std::string>()},
-                                       {c.at("verdict").get<std::string>()}};
-    for (auto& cell : row) cell.bold = !c.at("consistent").get<bool>();
-    checks.rows.push_back(std::move(row));
+    checks.rows.push_back({{c.at("name").get<std::string>()},
+                           {n(c.at("value"), "%.4g")},
+                           {n(c.at("expected"), "%.4g")},
+                           {c.at("unit").get<std::string>()},
+                           {c.at("consistent").get<bool>() ? "yes" : "no"},
+                           {c.at("verdict").get<std::string>()}});
   }
+  checks.legend = "No bold here (bold marks a named cause); agrees: no where the data contradict the check.";
   return {candidates, checks};
 }
 

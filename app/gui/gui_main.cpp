@@ -69,6 +69,7 @@ int run_gui(const GuiOptions& o) {
   gui::MainWindow window;
   if (o.screenshot) {
     window.set_quiet(true);
+    window.set_keeps_settings(false);  // a batch picture: the user's recent files and folders stay as they were
     window.resize(o.width, o.height);
   }
   if (o.layout) window.apply_layout(QString::fromStdString(*o.layout));  // it may add plot panes

@@ -219,7 +219,12 @@ void MainWindow::build_menus() {
 void MainWindow::build_streams_dock() {
   tree_ = new StreamsTree;
   tree_->setHeaderLabels({"stream / channel", "unit", "samples", "rate (Hz)"});
-  tree_->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
+  // Counts and rates always whole; a long name elided in its middle (its end tells streams apart),
+  // whole in its tooltip.
+  tree_->header()->setStretchLastSection(false);
+  tree_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
+  for (int k = 1; k < 4; ++k) tree_->header()->setSectionResizeMode(k, QHeaderView::ResizeToContents);
+  tree_->setTextElideMode(Qt::ElideMiddle);
   connect(tree_, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item, int) {
     if (item->parent() == nullptr) return;
     add_plot_channel(item->parent()->text(0), item->text(0));
@@ -325,7 +330,10 @@ QDockWidget* MainWindow::pane(const QString& title) const {
 
 QString MainWindow::pane_note(const QString& title) const {
   for (const auto& tab : view_tabs_) {
-    if (tab.dock->windowTitle() == title) return tab.page->currentWidget() == tab.why ? tab.why->text() : QString();
+    if (tab.dock->windowTitle() != title) continue;
+    if (tab.page->currentWidget() == tab.why) return tab.why->text();
+    const bool surface_why = tab.view->uses_surface_data() && surface_stack_->currentWidget() == surface_why_;
+    return surface_why ? surface_why_->text() : QString();
   }
   return {};
 }
@@ -348,7 +356,17 @@ QWidget* MainWindow::build_surface_page(QVTKOpenGLNativeWidget* widget) {
   bar->addWidget(surface_quantity_);
   bar->addWidget(surface_note_, 1);
   layout->addLayout(bar);
-  layout->addWidget(widget, 1);
+  // Nothing to draw: the reason in words, whole, where the (else black) canvas would be.
+  surface_why_ = new QLabel;
+  surface_why_->setWordWrap(true);
+  surface_why_->setAlignment(Qt::AlignCenter);
+  surface_why_->setMargin(24);
+  surface_stack_ = new QStackedWidget;
+  surface_stack_->addWidget(widget);
+  surface_stack_->addWidget(surface_why_);
+  surface_why_->setText("Nothing to show yet: open a log or a single-wheel test (File > Open).");
+  surface_stack_->setCurrentIndex(1);
+  layout->addWidget(surface_stack_, 1);
   connect(surface_soil_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { rebuild_surface(); });
   connect(surface_quantity_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { rebuild_surface(); });
   return page;
@@ -504,8 +522,10 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
                  auto shared = std::make_shared<std::unique_ptr<ViewInput>>(std::move(in));
                  return [this, shared, path] {
                    install(std::move(*shared));
-                   remember_recent(path);
-                   QSettings().setValue("files/last_dir", QFileInfo(path).absolutePath());
+                   if (keeps_settings_) {
+                     remember_recent(path);
+                     QSettings().setValue("files/last_dir", QFileInfo(path).absolutePath());
+                   }
                    setWindowTitle("RoverLab - " + QFileInfo(path).fileName());
                    emit log_loaded();
                    // Estimates arrive as new streams from the analyses that fit the log.
@@ -605,7 +625,12 @@ void MainWindow::rebuild_tree() {
   for (const auto& s : input_->log.streams()) {
     auto* item = new QTreeWidgetItem(
         tree_, {q(s.name()), "", QString::number(s.size()), QString::number(s.mean_rate_hz(), 'f', 1)});
-    for (const auto& c : s.channels()) new QTreeWidgetItem(item, {q(c.name), q(c.unit), "", ""});
+    item->setToolTip(0, q(s.name()));
+    item->setToolTip(2, QString("%1 samples").arg(s.size()));
+    for (const auto& c : s.channels()) {
+      auto* channel = new QTreeWidgetItem(item, {q(c.name), q(c.unit), "", ""});
+      channel->setToolTip(0, q(s.name() + ":" + c.name));
+    }
   }
 }
 
@@ -764,6 +789,12 @@ void MainWindow::rebuild_analysis() {
     for (const app::ResultTable& t : run.analysis->tables(run.document)) {
       tables_->layout()->addWidget(new QLabel(q(t.title)));
       tables_->layout()->addWidget(table_widget(t));
+      if (!t.legend.empty()) {  // what bold, the tint and the order mean, under the table
+        auto* legend = new QLabel(q(t.legend));
+        legend->setObjectName(q(t.title + " (legend)"));
+        legend->setWordWrap(true);
+        tables_->layout()->addWidget(legend);
+      }
     }
   }
   static_cast<QVBoxLayout*>(tables_->layout())->addStretch(1);
@@ -785,8 +816,13 @@ void MainWindow::rebuild_surface() {
     tab->scene = tab->view->build(in);
     tab->scene->attach(window);
     surface_note_->setText(QString("%1: %2 points").arg(q(in.surface->quantity)).arg(in.surface->points.size()));
+    surface_note_->setToolTip(surface_note_->text());
+    surface_stack_->setCurrentIndex(0);
   } catch (const std::exception& e) {
-    surface_note_->setText(QString("Nothing to draw: ") + e.what());
+    surface_note_->setText("nothing to draw");
+    surface_note_->setToolTip(e.what());
+    surface_why_->setText(QString("Nothing to draw in %1: %2").arg(tab->dock->windowTitle(), e.what()));
+    surface_stack_->setCurrentIndex(1);
   }
   window->Render();
 }
@@ -904,9 +940,11 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   // A running job is cancelled and waited for; its result is dropped.
   jobs_->cancel();
   jobs_->wait();
-  QSettings settings;
-  settings.setValue("window/geometry", saveGeometry());
-  settings.setValue("window/state", saveState());
+  if (keeps_settings_) {
+    QSettings settings;
+    settings.setValue("window/geometry", saveGeometry());
+    settings.setValue("window/state", saveState());
+  }
   event->accept();
 }
 

@@ -73,6 +73,9 @@ class MainWindow : public QMainWindow {
   QString last_error() const { return last_error_; }
   // Errors go to a modal dialog unless quiet (tests, screenshots): then only to last_error.
   void set_quiet(bool quiet) { quiet_ = quiet; }
+  // A batch run (--screenshot) leaves the user's settings as they were: no
+  // recent file, last folder or window arrangement is written when false.
+  void set_keeps_settings(bool keep) { keeps_settings_ = keep; }
   // Shows the pane titled `name` (in front of the panes tabbed with it); false when there is none.
   bool select_tab(const QString& name);
   // The panes' titles: one per registered view, then Analysis.
@@ -193,6 +196,8 @@ class MainWindow : public QMainWindow {
   QComboBox* surface_soil_ = nullptr;
   QComboBox* surface_quantity_ = nullptr;
   QLabel* surface_note_ = nullptr;
+  QStackedWidget* surface_stack_ = nullptr;  // the surface's VTK widget, or in its place why there is none
+  QLabel* surface_why_ = nullptr;
   QWidget* tables_ = nullptr;  // the analyses' result tables (Analysis::tables)
   QLabel* analysis_text_ = nullptr;
   QTreeWidget* results_ = nullptr;
@@ -213,6 +218,7 @@ class MainWindow : public QMainWindow {
   qint64 last_tick_ms_ = 0;
   QString last_error_;
   bool quiet_ = false;
+  bool keeps_settings_ = true;
 };
 
 }  // namespace roverlab::gui
