@@ -5,6 +5,8 @@
 #include <fstream>
 #include <map>
 #include <stdexcept>
+#include <string_view>
+#include <vector>
 
 #include "core/common/error.h"
 #include "importers/csv_text.h"
@@ -13,6 +15,39 @@ namespace roverlab::io {
 
 namespace fs = std::filesystem;
 using terramechanics::WheelTestPoint;
+
+namespace {
+
+// A measured value beyond this (N, N m, m) is no measurement in SI units: 1e300 N would print inf and nan.
+constexpr double kMaxMeasured = 1e6;
+
+// The header's columns by name: a UTF-8 byte order mark (Excel's "CSV UTF-8")
+// is not part of the first name, and a name given twice is refused.
+std::map<std::string, std::size_t> header_columns(const std::vector<std::string_view>& cells, const std::string& path) {
+  std::map<std::string, std::size_t> column;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    std::string_view cell = cells[k];
+    if (k == 0 && cell.substr(0, 3) == "\xEF\xBB\xBF") cell.remove_prefix(3);
+    const std::string name = csv::trim(cell);
+    if (!column.emplace(name, k).second) {
+      throw InputError(path, "the header names column '" + csv::shown(name) + "' twice");
+    }
+  }
+  for (const char* required : {"radius_m", "width_m", "load_N", "slip"}) {
+    if (column.count(required) == 0) {
+      throw InputError(path, std::string("missing column '") + required +
+                                 "' (a single-wheel file needs radius_m, width_m, load_N, slip)");
+    }
+  }
+  if (column.count("drawbar_pull_N") + column.count("torque_Nm") + column.count("sinkage_m") +
+          column.count("lateral_force_N") ==
+      0) {
+    throw InputError(path, "no measured column (drawbar_pull_N, torque_Nm, sinkage_m or lateral_force_N)");
+  }
+  return column;
+}
+
+}  // namespace
 
 WheelTestFile read_wheel_test_file(const std::string& path) {
   std::ifstream in = csv::open_text_file(path);
@@ -26,19 +61,8 @@ WheelTestFile read_wheel_test_file(const std::string& path) {
     const auto cells = csv::split(line);
     const std::string where = "line " + std::to_string(line_number);
     if (column.empty()) {
-      for (std::size_t k = 0; k < cells.size(); ++k) column[csv::trim(cells[k])] = k;
+      column = header_columns(cells, path);
       columns = cells.size();
-      for (const char* required : {"radius_m", "width_m", "load_N", "slip"}) {
-        if (column.count(required) == 0) {
-          throw InputError(path, std::string("missing column '") + required +
-                                     "' (a single-wheel file needs radius_m, width_m, load_N, slip)");
-        }
-      }
-      if (column.count("drawbar_pull_N") + column.count("torque_Nm") + column.count("sinkage_m") +
-              column.count("lateral_force_N") ==
-          0) {
-        throw InputError(path, "no measured column (drawbar_pull_N, torque_Nm, sinkage_m or lateral_force_N)");
-      }
       continue;
     }
     if (cells.size() != columns) {
@@ -52,6 +76,10 @@ WheelTestFile read_wheel_test_file(const std::string& path) {
       try {
         const auto v = csv::parse_number(cell);
         if (v && !std::isfinite(*v)) throw std::invalid_argument(cell);
+        if (v && std::abs(*v) > kMaxMeasured) {
+          throw InputError(path,
+                           where + ", column '" + name + "': " + csv::shown(cell) + " is beyond +-1e6 (SI units)");
+        }
         return v;
       } catch (const std::invalid_argument&) {
         throw InputError(path, where + ", column '" + name + "': cannot parse '" + cell + "' as a finite number");
