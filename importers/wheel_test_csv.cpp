@@ -76,7 +76,7 @@ WheelTestFile read_wheel_test_file(const std::string& path) {
       try {
         const auto v = csv::parse_number(cell);
         if (v && !std::isfinite(*v)) throw std::invalid_argument(cell);
-        if (v && std::abs(*v) > kMaxMeasured) {
+        if (v && std::abs(*v) > kMaxMeasured && std::string_view(name) != "grouser_count") {  // counted below
           throw InputError(path,
                            where + ", column '" + name + "': " + csv::shown(cell) + " is beyond +-1e6 (SI units)");
         }
