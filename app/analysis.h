@@ -180,13 +180,16 @@ AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input);
 // stored by another build (another candidate pool, another fix) is not reused.
 std::string program_identity();
 
-// A hash of the log's rover id and its streams outside estimate/ (names,
-// channels, times, values): two logs with the same measurements share it.
+// A hash of the log's rover id, the scenario it records (metadata "scenario",
+// "scenario_json") and its streams outside estimate/ (names, channels, times,
+// values): two logs with the same measurements share it.
 std::string log_fingerprint(const log::Log& log);
 
 // The result of `analysis` stored in `log` (estimate X -o OUT.h5) when it was
 // made from these measurements with this configuration by this program
-// (program_identity()); nullopt otherwise.
+// (program_identity()), nests at most io::kMaxJsonNesting deep and is of the
+// shape the analysis reads (its print, summary, tables and key metrics make
+// no type error); nullopt otherwise (the analysis runs again).
 // `fingerprint` gives log_fingerprint(log) (asked only when a result is stored).
 std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& log,
                                             const std::function<std::string()>& fingerprint = {});

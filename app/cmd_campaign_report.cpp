@@ -22,6 +22,7 @@
 #include "app/commands.h"
 #include "core/common/error.h"
 #include "importers/atomic_file.h"
+#include "importers/json_resource.h"
 
 namespace roverlab::app {
 
@@ -63,8 +64,12 @@ const std::vector<KeyColumn>& key_columns() {
 json read_json(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), "cannot open (is the run finished?)");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (io::json_nesting(text) > io::kMaxJsonNesting) {
+    throw InputError(path.string(), "nests deeper than " + std::to_string(io::kMaxJsonNesting) + " levels");
+  }
   try {
-    return json::parse(in);
+    return json::parse(text);
   } catch (const json::exception& e) {
     throw InputError(path.string(), std::string("not valid JSON: ") + e.what());
   }

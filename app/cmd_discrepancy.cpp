@@ -196,8 +196,17 @@ void print_report(const std::string& path, const Soil& soil, const analysis::Dis
 
 int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   const io::WheelTestFile file = io::read_wheel_test_file(o.file);
-  for (const auto& warning : file.warnings) std::fprintf(stderr, "warning: %s: %s\n", o.file.c_str(), warning.c_str());
+  for (const auto& warning : file.warnings) {
+    std::fprintf(stderr, "warning: %s: %s\n", o.file.c_str(), printable(warning, 1000).c_str());
+  }
   const auto& points = file.points;
+  // The study's time grows with its points (about 0.1 s a point on 1,000-2,000 rows, docs/robustness.md).
+  constexpr std::size_t kManyPoints = 5000;
+  if (points.size() > kManyPoints) {
+    std::fprintf(stderr,
+                 "warning: %s: %zu points: the study takes about 0.1 s a point (%.0f min); a subset is faster\n",
+                 o.file.c_str(), points.size(), 0.1 * static_cast<double>(points.size()) / 60.0);
+  }
   const Soil soil = io::find_soil(o.soil, resource_subfolders("soils"));
   analysis::DiscrepancyOptions options;
   try {
@@ -214,6 +223,7 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
   analysis::DiscrepancyReport r = about_file(o.file, [&] {
     const ProgressLine progress("single-wheel study");
     options.progress = progress.callback();
+    if (options.progress) options.progress(0.0);  // shown from the start, not after the first phase
     return analysis::study_single_wheel(soil, points, options);
   });
   if (o.slip_definition == "auto" && !file.slip_definition.empty() && !r.slip_definition.empty()) {
@@ -324,8 +334,8 @@ void print_report(const std::string& path, const Soil& soil, const analysis::Dis
   for (const auto& w : r.per_wheel) {
     const double k = w.quantity == Quantity::sinkage ? 1000.0 : 1.0;
     const char* u = w.quantity == Quantity::sinkage ? "mm" : unit_of(w.quantity);
-    std::printf("  %-20s %-14s %4zu %9.3f -> %9.3f %s\n", w.wheel.c_str(), to_string(w.quantity), w.count,
-                w.baseline_rmse * k, w.model_rmse * k, u);
+    std::printf("  %-20s %-14s %4zu %9.3f -> %9.3f %s\n", printable(w.wheel, 60).c_str(), to_string(w.quantity),
+                w.count, w.baseline_rmse * k, w.model_rmse * k, u);
   }
   std::printf("\n%s\n%s\n", r.what_is_wrong.c_str(), r.verdict.c_str());
 }

@@ -119,7 +119,7 @@ int run_info(const InfoOptions& options) {
   }
   std::cout << "streams  " << lg.streams().size() << "\n";
   for (const auto& s : lg.streams()) {
-    std::cout << "\nstream " << s.name() << ": " << s.size() << " samples";
+    std::cout << "\nstream " << printable(s.name(), 1000) << ": " << s.size() << " samples";
     if (s.size() >= 2) {
       // A time base of 1e300 s prints as such, not as 300 digits (F42).
       auto shown = [](const char* format, double v) { return std::abs(v) < 1e9 ? fmt(format, v) : fmt("%.6g", v); };
@@ -127,17 +127,19 @@ int run_info(const InfoOptions& options) {
                 << " s (t = " << shown("%.3f", s.start_time()) << " .. " << shown("%.3f", s.end_time()) << " s)";
     }
     std::cout << "\n";
+    // Names from the file (topics, JSON keys, joint names) with control characters as \xHH.
     std::size_t width = 4;
-    for (const auto& c : s.channels()) width = std::max(width, c.name.size());
+    for (const auto& c : s.channels()) width = std::max(width, printable(c.name, 1000).size());
     for (const auto& c : s.channels()) {
       const ChannelStats st = stats(c.values);
-      std::string line = "  " + c.name + std::string(width - c.name.size() + 2, ' ');
-      std::string unit = "[" + c.unit + "]";
+      const std::string name = printable(c.name, 1000);
+      std::string line = "  " + name + std::string(width - name.size() + 2, ' ');
+      std::string unit = "[" + printable(c.unit) + "]";
       unit.resize(std::max<std::size_t>(unit.size(), 10), ' ');
       line += std::isnan(st.min) ? unit + "no finite values"
                                  : unit + fmt("%12.5g", st.min) + " .. " + fmt("%-12.5g", st.max);
       if (st.missing > 0) line += " (" + std::to_string(st.missing) + " missing)";
-      if (!c.description.empty()) line += "  " + c.description;
+      if (!c.description.empty()) line += "  " + printable(c.description, 1000);
       std::cout << line << "\n";
     }
   }

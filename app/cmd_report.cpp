@@ -31,6 +31,7 @@
 #include "core/common/error.h"
 #include "core/log/run_overview.h"
 #include "importers/atomic_file.h"
+#include "importers/json_resource.h"
 #include "importers/mapping.h"
 #include "importers/soil_file.h"
 
@@ -211,11 +212,12 @@ class ReportWriter {
   // again, the program (version and build), when, the input files with their
   // SHA-256, and each analysis's settings.
   void made_with() {
-    std::string command = "roverlab report " + o_.file;
-    if (o_.mapping) command += " --mapping " + *o_.mapping;
-    if (o_.soil) command += " --soil " + *o_.soil;
-    for (const auto& f : o_.compare) command += " --compare " + f;
-    command += " --size " + o_.size + (o_.pdf ? " --pdf" : "") + " -o " + o_.output;
+    // Every word quoted for the shell: a log named "$(touch x).h5" must not run anything when pasted.
+    std::string command = "roverlab report " + shell_word(o_.file);
+    if (o_.mapping) command += " --mapping " + shell_word(*o_.mapping);
+    if (o_.soil) command += " --soil " + shell_word(*o_.soil);
+    for (const auto& f : o_.compare) command += " --compare " + shell_word(f);
+    command += " --size " + shell_word(o_.size) + (o_.pdf ? " --pdf" : "") + " -o " + shell_word(o_.output);
     const std::time_t now = std::time(nullptr);
     char when[32] = "";
     std::tm utc{};
@@ -250,7 +252,8 @@ class ReportWriter {
   std::vector<std::string> previous_files() const {
     std::vector<std::string> files;
     std::ifstream in(dir_ / "metrics.json");
-    const json old = json::parse(in, nullptr, false);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const json old = io::parse_bounded_json(text);
     if (!old.is_object() || !old.contains("files") || !old.at("files").is_array()) return files;
     for (const auto& f : old.at("files")) {
       if (f.is_string()) files.push_back(f.get<std::string>());
@@ -258,14 +261,28 @@ class ReportWriter {
     return files;
   }
 
+  // A name a report writes: its four fixed files, and images and tables named
+  // [a-z0-9_-]+ with .png or .csv. metrics.json's list is data: a name in it
+  // that is not of these (a user's thesis.tex) is never removed.
+  static bool report_file_name(const std::string& name) {
+    for (const char* fixed : {"index.html", "metrics.json", "provenance.json", "report.pdf"}) {
+      if (name == fixed) return true;
+    }
+    const std::size_t dot = name.rfind('.');
+    if (dot == std::string::npos || dot == 0) return false;
+    const std::string ext = name.substr(dot);
+    return (ext == ".png" || ext == ".csv") &&
+           std::all_of(name.begin(), name.begin() + static_cast<long>(dot),
+                       [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-'; });
+  }
+
   // A previous report's files that this one did not write again (another
   // log's surfaces and tables) are removed: the folder holds one report.
-  // Only plain file names are removed, never a path.
+  // Only names a report writes (report_file_name) are removed, never a path.
   void remove_stale(const std::vector<std::string>& previous) const {
     const std::vector<std::string>& now = section_.written();
     for (const auto& name : previous) {
-      const bool plain = !name.empty() && name.front() != '.' && name.find('/') == std::string::npos;
-      if (!plain || std::find(now.begin(), now.end(), name) != now.end()) continue;
+      if (!report_file_name(name) || std::find(now.begin(), now.end(), name) != now.end()) continue;
       std::error_code ec;
       if (fs::is_regular_file(dir_ / name, ec)) fs::remove(dir_ / name, ec);
     }

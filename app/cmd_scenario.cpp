@@ -82,8 +82,11 @@ int run_scenario_flying_rover(const FlyingRoverOptions& o) {
   io::write_hdf5_log(lg, o.output);
   std::printf("wrote %s: scenario %s, rover %s, %.0f s at %.0f Hz, seed %u", o.output.c_str(), o.scenario.c_str(),
               rover.name.c_str(), s.duration, s.rate, s.seed);
-  if (std::isfinite(s.turn_radius))
-    std::printf(", turning about %.2f m to the %s", std::abs(s.turn_radius), s.turn_radius > 0 ? "left" : "right");
+  if (std::isfinite(s.turn_radius)) {
+    // 1e300 m prints as such, not as 301 digits.
+    std::printf(std::abs(s.turn_radius) < 1e6 ? ", turning about %.2f m to the %s" : ", turning about %.6g m to the %s",
+                std::abs(s.turn_radius), s.turn_radius > 0 ? "left" : "right");
+  }
   if (s.slip_angle != 0.0) std::printf(", wheels sliding at %.2f deg", o.slip_angle_deg);
   if (s.slip_angle != 0.0 && s.slip_angle_from > 0) std::printf(" from %.1f s", s.slip_angle_from);
   std::printf("\n");
@@ -139,14 +142,17 @@ Commands make_scenario_commands() {
                          "Steering manoeuvre: the body turns about a centre M metres to its left (negative: right, "
                          "|M| >= 1), every wheel steered along its travel (Ackermann); default the scenario's: "
                          "straight, flat-turn 1 m");
-          cmd.add_option("--slip-angle", o.slip_angle_deg,
-                         "Hidden lateral effect: every wheel slides at DEG to its heading (seed 000's side-slip angle, "
-                         "positive: velocity left of the wheel plane; within +-45); straight, a crab across a side "
-                         "slope")
-              ->capture_default_str();
+          CLI::Option* slip_angle =
+              cmd.add_option(
+                     "--slip-angle", o.slip_angle_deg,
+                     "Hidden lateral effect: every wheel slides at DEG to its heading (seed 000's side-slip angle, "
+                     "positive: velocity left of the wheel plane; within +-45); straight, a crab across a side "
+                     "slope")
+                  ->capture_default_str();
           cmd.add_option("--slip-angle-from", o.slip_angle_from,
                          "The slip angle ramps in over 1 s from S seconds (0: there from the start)")
-              ->capture_default_str();
+              ->capture_default_str()
+              ->needs(slip_angle);  // without a slip angle it has no effect
           cmd.add_option("--output,-o", o.output, "OUT.h5")->required();
         },
         run_scenario_flying_rover, defaults));

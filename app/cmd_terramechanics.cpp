@@ -430,6 +430,10 @@ void check_fit_points(const std::string& file, const io::NumericTable& t) {
     if (!std::isfinite(load[i]) || !std::isfinite(slip[i])) continue;
     const std::string row = "row " + std::to_string(i + 1);
     if (!(load[i] >= 0 && load[i] <= 1e6)) throw InputError(file, row + ": load_N must be 0..1e6 N");
+    const auto* angle = t.find("slip_angle_deg");
+    if (angle != nullptr && std::abs((*angle)[i]) > 90) {
+      throw InputError(file, row + ": slip_angle_deg must be in [-90, 90]");
+    }
     if (!(std::abs(slip[i]) <= 1)) throw InputError(file, row + ": slip must be in [-1, 1]");
     for (const char* column : {"drawbar_pull_N", "resistive_torque_Nm", "torque_Nm", "lateral_force_N"}) {
       const auto* v = t.find(column);
@@ -512,7 +516,10 @@ bool fit_columns(const FitOptions& o, const io::NumericTable& t, const std::vect
 // With a slip_angle_deg column: the surfaces of each slip angle apart
 // (F_y(W, s, beta) as one surface per beta, as `surface --slip-angle`).
 int run_terramechanics_fit(const FitOptions& o) {
-  const io::NumericTable t = io::read_numeric_table(o.file, {"load_N", "slip"});
+  // Text in a measured column is an error, not a missing value (a column of "x" gave no surface silently).
+  const io::NumericTable t = io::read_numeric_table(
+      o.file, {"load_N", "slip"},
+      {"slip_angle_deg", "drawbar_pull_N", "resistive_torque_Nm", "torque_Nm", "lateral_force_N"});
   check_fit_points(o.file, t);
   json out = {{"file", o.file}};
   const auto* angle = t.find("slip_angle_deg");
@@ -521,7 +528,7 @@ int run_terramechanics_fit(const FitOptions& o) {
   if (angle == nullptr) {
     std::vector<std::size_t> rows(n);
     for (std::size_t i = 0; i < n; ++i) rows[i] = i;
-    any = fit_columns(o, t, rows, out);
+    any = about_file(o.file, [&] { return fit_columns(o, t, rows, out); });
   } else {
     std::set<double> angles;
     for (double a : *angle) {
@@ -535,7 +542,16 @@ int run_terramechanics_fit(const FitOptions& o) {
       }
       if (!o.json) std::printf("slip angle %g deg (%zu rows):\n", a, rows.size());
       json one = {{"slip_angle_deg", a}};
-      if (fit_columns(o, t, rows, one)) {
+      const bool fitted = about_file(o.file, [&] {
+        try {
+          return fit_columns(o, t, rows, one);
+        } catch (const DataError& e) {
+          char angle_text[32];
+          std::snprintf(angle_text, sizeof angle_text, "%g", a);
+          throw DataError(std::string("slip angle ") + angle_text + " deg: " + e.what());
+        }
+      });
+      if (fitted) {
         any = true;
         out["slip_angles"].push_back(one);
       }

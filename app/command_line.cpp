@@ -150,19 +150,19 @@ int run_command_line(int argc, char** argv) {
   try {
     return parse_and_run(argc, argv);
   } catch (const UsageError& e) {
-    std::cerr << "roverlab: " << e.what() << "\n";
+    std::cerr << "roverlab: " << printable(e.what(), 4000) << "\n";
     return kUsageError;
   } catch (const InputError& e) {
-    std::cerr << "roverlab: " << e.what() << "\n";
+    std::cerr << "roverlab: " << printable(e.what(), 4000) << "\n";
     return kBadInput;
   } catch (const DataError& e) {
-    std::cerr << "roverlab: " << e.what() << "\n";
+    std::cerr << "roverlab: " << printable(e.what(), 4000) << "\n";
     return kBadInput;
   } catch (const views::EnvironmentError& e) {
-    std::cerr << "roverlab: " << e.what() << "\n";
+    std::cerr << "roverlab: " << printable(e.what(), 4000) << "\n";
     return kInternalFailure;
   } catch (const std::exception& e) {
-    std::cerr << "roverlab: internal error: " << e.what() << "\n";
+    std::cerr << "roverlab: internal error: " << printable(e.what(), 4000) << "\n";
     return kInternalFailure;
   } catch (...) {
     std::cerr << "roverlab: internal error\n";

@@ -38,7 +38,12 @@ io::LoadedLog load_input(const std::string& file, const std::optional<std::strin
   if (mapping) {
     options.mapping = io::load_mapping(io::find_mapping(*mapping, resource_subfolders("mappings")));
   }
-  return io::load_log(file, options);
+  io::LoadedLog loaded = io::load_log(file, options);
+  // A range outside the file would write an empty log with exit 0.
+  if (part.time && loaded.log.total_samples() == 0) {
+    throw InputError(file, "no message in --time " + *part.time + " (seconds after the file's first message)");
+  }
+  return loaded;
 }
 
 void apply_effect_options(const std::vector<std::string>& options,

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -24,6 +25,25 @@ namespace roverlab::app {
 namespace {
 
 namespace fs = std::filesystem;
+
+// "file://" and the path with every byte but A-Z a-z 0-9 - . _ ~ / as %XX
+// (RFC 3986): a folder named "pdf%41B" or "run#3" is that folder, not "pdfAB"
+// or "run" with a fragment.
+std::string file_url(const fs::path& path) {
+  static const char* const kHex = "0123456789ABCDEF";
+  std::string url = "file://";
+  for (const char c : path.string()) {
+    const auto u = static_cast<unsigned char>(c);
+    if (std::isalnum(u) != 0 || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
+      url += c;
+    } else {
+      url += '%';
+      url += kHex[u >> 4];
+      url += kHex[u & 15];
+    }
+  }
+  return url;
+}
 
 std::string find_program(const std::string& name) {
   const char* path = std::getenv("PATH");
@@ -113,7 +133,7 @@ void print_report_pdf(const std::string& html_file, const std::string& pdf_file)
                                            "--user-data-dir=" + profile.string(),
                                            "--no-pdf-header-footer",
                                            "--print-to-pdf=" + temporary,
-                                           "file://" + page.string()};
+                                           file_url(page)};
     const int status = run_quietly(argv, std::chrono::seconds(180));
     std::error_code ignored;
     fs::remove_all(profile, ignored);

@@ -135,6 +135,10 @@ void read_flying_rover_options(const JsonNode& entry, CampaignSimulations& s) {
     if (!flying) refuse(f.name);
     s.*f.value = required_number(entry, f.name);
   }
+  // A start without a slip angle has no effect (and would name the run as if it had).
+  if (entry.has("slip_angle_from") && !entry.has("slip_angle_deg")) {
+    entry.fail("slip_angle_from", "needs slip_angle_deg: without a slip angle it has no effect");
+  }
 }
 
 CampaignSimulations read_simulations(const JsonNode& entry, const fs::path& base) {

@@ -1,7 +1,9 @@
 #include "importers/json_resource.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "core/common/error.h"
@@ -41,6 +43,34 @@ std::string short_number(double v) {
 
 }  // namespace
 
+std::size_t json_nesting(std::string_view text) {
+  std::size_t depth = 0;
+  std::size_t deepest = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;  // the escaped character
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+json parse_bounded_json(std::string_view text, std::size_t max_nesting) {
+  if (json_nesting(text) > max_nesting) return json(json::value_t::discarded);
+  return json::parse(text.begin(), text.end(), nullptr, false);
+}
+
 JsonNode::JsonNode(std::string file, const json& value, std::string where)
     : file_(std::move(file)), value_(&value), where_(std::move(where)) {}
 
@@ -61,9 +91,13 @@ void JsonNode::fail(const std::string& field, const std::string& problem) const 
 JsonResource read_json_resource(const std::string& path, const std::string& what) {
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open " + what);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (json_nesting(text) > kMaxJsonNesting) {
+    throw InputError(path, what + " nests deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+  }
   json document;
   try {
-    document = json::parse(in);
+    document = json::parse(text);
   } catch (const json::exception& e) {
     // parse_error, and out_of_range for a number beyond a double ("1E400",
     // found by fuzzing: it escaped as an internal failure).

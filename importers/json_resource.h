@@ -6,11 +6,25 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace roverlab::io {
+
+// JSON from data files (resources, stored results, campaign metrics, layouts)
+// nests at most this deep: a value nested 100,000 deep overflows the stack of
+// any recursive copy, comparison or destruction of it.
+constexpr std::size_t kMaxJsonNesting = 64;
+
+// The deepest nesting of arrays and objects in JSON text (brackets inside
+// strings do not count), found without parsing.
+std::size_t json_nesting(std::string_view text);
+
+// `text` parsed when it is valid JSON nested at most `max_nesting` deep; a
+// discarded value (is_discarded()) otherwise. Never throws.
+nlohmann::json parse_bounded_json(std::string_view text, std::size_t max_nesting = kMaxJsonNesting);
 
 // A value inside a resource file with its place in it: "" for the top level,
 // "links[2].theta" deeper down. Refers to the document of a JsonResource,

@@ -1,5 +1,7 @@
 #include "importers/mapping.h"
 
+#include <cmath>
+
 #include <set>
 
 #include "core/log/stream.h"
@@ -31,6 +33,8 @@ ChannelMapping parse_channel(const JsonNode& jc, std::set<std::string>& channel_
     c.component = jc.value().at("component").get<std::size_t>();
   }
   c.scale = optional_number(jc, "scale", 1.0);
+  // A factor of 1e308 turns every value into inf: no unit needs more than 1e6.
+  if (!(std::abs(c.scale) <= 1e6 && std::abs(c.scale) >= 1e-6)) jc.fail("scale", "must be within 1e-6 to 1e6 in size");
   return c;
 }
 

@@ -390,6 +390,12 @@ class McapReader {
 
   void read_indexed(std::vector<ChunkIndexRecord>& chunks) {
     std::sort(chunks.begin(), chunks.end(), [](const auto& a, const auto& b) { return a.offset < b.offset; });
+    // Each chunk once: indexes that point into one chunk would have it decompressed again and again.
+    for (std::size_t k = 1; k < chunks.size(); ++k) {
+      if (chunks[k].offset < chunks[k - 1].offset + chunks[k - 1].length) {
+        throw McapError{"two chunk indexes point into the chunk at offset " + std::to_string(chunks[k - 1].offset)};
+      }
+    }
     std::vector<std::uint8_t> record;
     for (const ChunkIndexRecord& chunk : chunks) {
       if (!time_overlaps(chunk.start_time, chunk.end_time)) continue;
@@ -519,6 +525,7 @@ class McapReader {
     // Schema and Channel records of later messages.
     if (indexed_ && !time_overlaps(start, end)) return;
     ++chunks_read_;
+    charge_decompressed(uncompressed_size);
     const std::vector<std::uint8_t> plain = decompress(compression, records, n, uncompressed_size);
     if (chunk_crc != 0) {
       const std::uint32_t crc = crc32_of(0, plain.data(), plain.size());
@@ -532,6 +539,21 @@ class McapReader {
                       if (op == kMessage || op == kSchema || op == kChannel) record(op, d, s, at);
                       return true;
                     });
+  }
+
+  // The bytes a file may decompress to, over all its chunks: kMaxExpansion
+  // times its size, at least kMinDecompressed (a 50 kB file of chunks of
+  // zeros would otherwise unpack hundreds of GiB).
+  void charge_decompressed(std::uint64_t bytes) {
+    constexpr std::uint64_t kMaxExpansion = 1000;
+    constexpr std::uint64_t kMinDecompressed = std::uint64_t{256} << 20;
+    const std::uint64_t budget = std::max(kMinDecompressed, kMaxExpansion * file_.size());
+    decompressed_ += std::min(bytes, budget + 1);
+    if (decompressed_ > budget) {
+      throw McapError{"its chunks decompress to more than " + std::to_string(budget) + " bytes (" +
+                      std::to_string(kMaxExpansion) + " times the file's size, at least " +
+                      std::to_string(kMinDecompressed >> 20) + " MiB: the cap on decompressed bytes)"};
+    }
   }
 
   std::size_t topic_of(std::uint16_t id, ChannelRecord& ch) {
@@ -601,6 +623,7 @@ class McapReader {
   std::map<std::uint16_t, std::uint64_t> message_counts_;  // the summary's statistics
   std::uint64_t chunks_read_ = 0;                          // chunks decompressed
   std::uint64_t chunks_seen_ = 0;                          // chunk records met on a scan
+  std::uint64_t decompressed_ = 0;                         // bytes the chunks read so far unpack to
   std::optional<std::uint64_t> statistics_start_;          // the summary's first message time
   std::optional<std::uint64_t> start_ns_;                  // the log times to read
   std::optional<std::uint64_t> end_ns_;

@@ -1,5 +1,6 @@
 #include "importers/ros1_bag_chunks.h"
 
+#include <algorithm>
 #include <climits>
 #include <cstdio>
 #include <cstring>
@@ -83,6 +84,11 @@ class IndexFile {
     BagIndex index;
     for (std::uint32_t k = 0; k < chunks; ++k) {
       if (!chunk_info(index)) return std::nullopt;
+    }
+    // A chunk info past the header's count: the count lies, and the chunks it leaves out would be dropped.
+    BagIndex more;
+    if (chunk_info(more)) {
+      throw FormatError("the file header counts " + std::to_string(chunks) + " chunks, its index lists more");
     }
     // A message record takes more than 40 bytes: counts the file could not hold are not believed.
     std::uint64_t total = 0;
@@ -191,6 +197,14 @@ void ChunkReader::load(std::uint64_t position, bool library_calls_only) {
     fail("it claims " + std::to_string(stored) + " bytes, more than the file holds");
   if (size > kMaxChunk)
     fail("it claims " + std::to_string(size) + " bytes decompressed, more than RoverLab reads (1 GiB)");
+  // Over the whole file: at most kMaxExpansion times its size (at least 256 MiB) decompressed.
+  constexpr std::uint64_t kMaxExpansion = 1000;
+  const std::uint64_t budget = std::max(std::uint64_t{256} << 20, kMaxExpansion * file_size_);
+  decompressed_ += size;
+  if (decompressed_ > budget) {
+    fail("the chunks decompress to more than " + std::to_string(budget) +
+         " bytes (1000 times the file's size, at least 256 MiB: the cap on decompressed bytes)");
+  }
   rosbag::CompressionType type = rosbag::compression::Uncompressed;
   if (compression == "bz2") {
     type = rosbag::compression::BZ2;

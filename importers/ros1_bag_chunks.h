@@ -93,6 +93,7 @@ class ChunkReader {
   std::size_t capacity_ = 0;
   std::size_t size_ = 0;
   std::size_t at_ = 0;
+  std::uint64_t decompressed_ = 0;  // over every chunk loaded
 };
 
 template <class Field>

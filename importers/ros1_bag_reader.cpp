@@ -300,10 +300,12 @@ class Ros1BagReader final : public LogReader {
     const std::uint64_t end = range.end.toNSec();
     rosbag_chunks::ChunkReader reader(path);
     rosbag_chunks::Message m;
+    std::map<std::uint32_t, std::uint64_t> read;  // messages per connection
     for (const rosbag_chunks::ChunkInfo& chunk : index->chunks) {
       if (chunk.end_ns < start || chunk.start_ns > end) continue;
       reader.load(chunk.position, library_calls_only);
       while (reader.next(m)) {
+        ++read[m.connection];
         const auto it = connections.find(m.connection);
         if (it == connections.end()) {
           throw rosbag_chunks::FormatError("a message of connection " + std::to_string(m.connection) +
@@ -315,7 +317,23 @@ class Ros1BagReader final : public LogReader {
         if (!visit(it->second, m)) return false;
       }
     }
+    if (!range.relative && !library_calls_only) check_counts(index->messages, read, connections);
     return true;
+  }
+
+  // Every chunk read: as many messages of each connection as the chunk infos count (records
+  // damaged into other kinds, or chunks the file header leaves out, would be read as fewer).
+  static void check_counts(const std::map<std::uint32_t, std::uint64_t>& counted,
+                           std::map<std::uint32_t, std::uint64_t>& read,
+                           const std::unordered_map<std::uint32_t, Connection>& connections) {
+    for (const auto& [id, n] : counted) {
+      if (read[id] >= n) continue;
+      const auto c = connections.find(id);
+      throw rosbag_chunks::FormatError("the index counts " + std::to_string(n) + " messages of connection " +
+                                       std::to_string(id) +
+                                       (c != connections.end() ? " (" + c->second.info->topic + ")" : std::string()) +
+                                       ", its chunks hold " + std::to_string(read[id]));
+    }
   }
 
   // Calls opened(the bag, the range read), then visit(message, its bytes) for

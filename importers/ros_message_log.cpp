@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <nlohmann/json.hpp>
 
@@ -71,6 +72,7 @@ struct MessageLog::Topic {
 
   std::string name;
   std::string type;
+  std::string definition;
   std::unique_ptr<Decoder> decoder;  // null for JSON messages
   std::vector<std::int64_t> time_ns;
   std::vector<std::string> channel_names;
@@ -83,17 +85,31 @@ struct MessageLog::Topic {
   std::vector<std::size_t> layout;
   DecodedMessage scratch;
   std::size_t expected = 0;  // messages the file's index announces (0: unknown)
+  std::size_t values_read = 0;
   std::int64_t first_record_ns = std::numeric_limits<std::int64_t>::max();
 
-  void relayout(const std::vector<std::string>& names) {
+  // The column of each value of a message named `names`. A name given twice
+  // (a JointState naming a joint twice, JSON keys "q/" and "q_") gets "~k",
+  // with k chosen so that it equals no other name of the message.
+  void relayout(const std::vector<std::string>& names, std::size_t max_channels) {
     layout.clear();
-    std::unordered_map<std::string, int> seen;
-    for (std::string name : names) {
-      // Two equal labels (a JointState naming a joint twice) stay apart.
-      const int copies = ++seen[name];
-      if (copies > 1) name += "~" + std::to_string(copies);
+    std::unordered_set<std::string> taken(names.begin(), names.end());
+    std::unordered_map<std::string, int> copies;
+    for (const std::string& label : names) {
+      std::string name = label;
+      int& k = copies[label];
+      if (++k > 1) {
+        do {
+          name = label + "~" + std::to_string(k++);
+        } while (taken.count(name) != 0);
+        --k;
+        taken.insert(name);
+      }
       auto it = index.find(name);
       if (it == index.end()) {
+        if (columns.size() >= max_channels) {
+          throw DataError("more than " + std::to_string(max_channels) + " channels (the cap on a topic's channels)");
+        }
         it = index.emplace(name, columns.size()).first;
         channel_names.push_back(name);
         columns.emplace_back(time_ns.size(), std::nan(""));  // earlier messages lacked it
@@ -107,18 +123,34 @@ struct MessageLog::Topic {
   }
 
   // Appends scratch: values named by the decoder, or by scratch.labels (JSON).
-  void append(std::int64_t t) {
+  void append(std::int64_t t, std::size_t max_channels) {
     const bool labels_changed = decoder ? scratch.labels_changed : scratch.labels != layout_labels;
     if (!has_layout || labels_changed || scratch.lengths != layout_lengths || scratch.values.size() != layout.size()) {
-      relayout(decoder ? decoder->value_names(scratch) : scratch.labels);
+      relayout(decoder ? decoder->value_names(scratch) : scratch.labels, max_channels);
     }
+    check_sparseness();
     time_ns.push_back(t);
-    if (layout.size() == columns.size()) {  // every channel present: the common case
+    values_read += scratch.values.size();
+    if (layout.size() == columns.size()) {  // every channel present (and each once): the common case
       for (std::size_t i = 0; i < layout.size(); ++i) columns[layout[i]].push_back(scratch.values[i]);
       return;
     }
     for (auto& c : columns) c.push_back(std::nan(""));
     for (std::size_t i = 0; i < layout.size(); ++i) columns[layout[i]].back() = scratch.values[i];
+  }
+
+  // Channels that come and go (a new joint name in every message) fill every
+  // other message with NaN: the columns may hold at most kSparseness times
+  // the values read (plus 128 MB), or memory grows as messages x channels.
+  // (A /tf topic of 50 frames sent one by one fills 1 cell in 50.)
+  void check_sparseness() const {
+    constexpr std::size_t kSparseness = 64;
+    const std::size_t cells = columns.size() * (time_ns.size() + 1);
+    if (cells > kSparseness * (values_read + scratch.values.size()) + (std::size_t{1} << 24)) {
+      throw DataError(std::to_string(columns.size()) + " channels over " + std::to_string(time_ns.size() + 1) +
+                      " messages, most of them missing from most messages (more than " + std::to_string(kSparseness) +
+                      " cells a value read)");
+    }
   }
 
   // Rows in time order, one per distinct time (the first message of a time).
@@ -144,12 +176,18 @@ MessageLog::~MessageLog() = default;
 
 std::size_t MessageLog::add_topic(const std::string& topic, const std::string& type, const std::string& definition,
                                   Dialect dialect, Encoding encoding) {
-  for (std::size_t i = 0; i < topics_.size(); ++i) {
-    if (topics_[i]->name != topic) continue;
-    if (topics_[i]->type != type) {
-      throw InputError(path_, "topic " + topic + " carries two message types, " + topics_[i]->type + " and " + type);
+  const auto known = topic_index_.find(topic);
+  if (known != topic_index_.end()) {
+    const Topic& t = *topics_[known->second];
+    if (t.type != type) {
+      throw InputError(path_, "topic " + topic + " carries two message types, " + t.type + " and " + type);
     }
-    return i;
+    // Two definitions under one name (two md5sums): each connection's messages
+    // would be decoded with the first one's fields.
+    if (t.definition != definition) {
+      throw InputError(path_, "topic " + topic + " carries two different definitions of " + type);
+    }
+    return known->second;
   }
   if (stream_name(topic).empty() || !log::is_valid_stream_name(stream_name(topic))) {
     throw InputError(path_, "topic name '" + topic + "' cannot name a stream");
@@ -163,6 +201,8 @@ std::size_t MessageLog::add_topic(const std::string& topic, const std::string& t
     }
   }
   topics_.push_back(std::make_unique<Topic>(topic, type, std::move(decoder)));
+  topics_.back()->definition = definition;
+  topic_index_.emplace(topic, topics_.size() - 1);
   return topics_.size() - 1;
 }
 
@@ -172,6 +212,8 @@ namespace {
 void flatten(const nlohmann::json& j, const std::string& name, std::size_t max_array, DecodedMessage& out,
              int depth = 0) {
   if (depth > 64) return;  // deeper values are not channels (and the stack stays bounded)
+  // Past a topic's cap on channels the message is refused anyway (relayout): no need to name them all.
+  if (out.values.size() > Limits{}.max_channels) return;
   if (j.is_number()) {
     out.values.push_back(j.get<double>());
     out.labels.push_back(name);
@@ -216,7 +258,7 @@ void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const st
     const nlohmann::json j = nlohmann::json::parse(data, data + size, nullptr, false);
     if (j.is_discarded()) throw InputError(path_, where() + "not valid JSON");
     flatten(j, "", options_.limits.max_array, t.scratch);
-    t.append(record_ns);
+    append(t, record_ns, where);
     return;
   }
   try {
@@ -225,7 +267,23 @@ void MessageLog::add_message(std::size_t topic, std::int64_t record_ns, const st
     throw InputError(path_, where() + e.what());
   }
   const bool stamped = options_.time == TimeSource::header && t.scratch.header_stamp_ns > 0;
-  t.append(stamped ? t.scratch.header_stamp_ns : record_ns);
+  append(t, stamped ? t.scratch.header_stamp_ns : record_ns, where);
+}
+
+// Topic::append with the caps: a topic's channels, the file's channels.
+template <class Where>
+void MessageLog::append(Topic& t, std::int64_t time_ns, const Where& where) {
+  const std::size_t before = t.columns.size();
+  try {
+    t.append(time_ns, options_.limits.max_channels);
+  } catch (const DataError& e) {
+    throw InputError(path_, where() + e.what());
+  }
+  channels_ += t.columns.size() - before;
+  if (channels_ > kMaxFileChannels) {
+    throw InputError(path_, where() + "more than " + std::to_string(kMaxFileChannels) +
+                                " channels in the file (the cap on a file's channels)");
+  }
 }
 
 void MessageLog::order_topics_by_first_record() {
@@ -233,6 +291,8 @@ void MessageLog::order_topics_by_first_record() {
                    [](const std::unique_ptr<Topic>& a, const std::unique_ptr<Topic>& b) {
                      return a->first_record_ns < b->first_record_ns;
                    });
+  topic_index_.clear();
+  for (std::size_t i = 0; i < topics_.size(); ++i) topic_index_.emplace(topics_[i]->name, i);
 }
 
 namespace {
@@ -297,12 +357,14 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
     if (!mapping) {
       for (Topic* t : chosen) {
         const std::vector<std::size_t> rows = t->rows();
+        const bool in_file_order =
+            rows.size() == t->time_ns.size() && std::is_sorted(t->time_ns.begin(), t->time_ns.end());
         log::Stream stream(stream_name(t->name), seconds_of(*t, rows, origin));
         for (std::size_t c = 0; c < t->columns.size(); ++c) {
           const bool seconds = t->channel_names[c] == "header.stamp";
-          // In time order with no repeated time already (the common case): moved, not copied.
-          std::vector<double> values =
-              rows.size() == t->time_ns.size() ? std::move(t->columns[c]) : picked(t->columns[c], rows);
+          // Rows 0, 1, 2, ... (in time order, no repeated time: the common case): moved, not copied.
+          // Otherwise each value goes with its own message's time.
+          std::vector<double> values = in_file_order ? std::move(t->columns[c]) : picked(t->columns[c], rows);
           stream.add_channel(t->channel_names[c], seconds ? "s" : "1", std::move(values));
         }
         out.add_stream(std::move(stream));

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/log/log.h"
@@ -79,10 +80,17 @@ class MessageLog {
   log::Stream mapped_stream(const StreamMapping& sm, const Topic& t, const std::string& label,
                             std::int64_t origin) const;
   static std::vector<double> seconds_of(const Topic& t, const std::vector<std::size_t>& rows, std::int64_t origin);
+  template <class Where>
+  void append(Topic& t, std::int64_t time_ns, const Where& where);
+
+  // The channels a whole file may make (Limits::max_channels is a topic's).
+  static constexpr std::size_t kMaxFileChannels = 200'000;
 
   std::string path_;
   MessageLogOptions options_;
   std::vector<std::unique_ptr<Topic>> topics_;
+  std::unordered_map<std::string, std::size_t> topic_index_;  // topic name -> index in topics_
+  std::size_t channels_ = 0;                                  // over every topic
   std::optional<std::int64_t> origin_ns_;
 };
 

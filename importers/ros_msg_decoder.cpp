@@ -115,6 +115,15 @@ class Decoder::Walk {
     out_.labels_changed = true;
   }
 
+  // A message of more values than a topic may have channels is refused
+  // before it is decoded whole (nested arrays multiply).
+  void check_value_count() const {
+    if (out_.values.size() > d_.limits_.max_channels) {
+      throw DecodeError("more than " + std::to_string(d_.limits_.max_channels) +
+                        " values in one message (the cap on a topic's channels)");
+    }
+  }
+
   [[noreturn]] void fail() const {
     throw DecodeError("message of " + std::to_string(size_) + " bytes is shorter than its definition (" +
                       d_.schema_.types[0].name + ") needs");
@@ -241,9 +250,13 @@ class Decoder::Walk {
     } else if (f.type == Primitive::message) {
       if (!take && d_.min_size_[f.nested] == 0) return;  // nothing to read, nothing to keep
       const bool frames = take && d_.schema_.types[f.nested].frame_field >= 0;
-      for (std::size_t i = 0; i < n; ++i) message(f.nested, take, false, frames);
+      for (std::size_t i = 0; i < n; ++i) {
+        message(f.nested, take, false, frames);
+        if (take) check_value_count();
+      }
     } else if (take) {
       for (std::size_t i = 0; i < n; ++i) out_.values.push_back(number(f.type));
+      check_value_count();
     } else if (n > 0) {
       const std::size_t bytes = n * primitive_size(f.type);  // bounded above
       align(f.type == Primitive::time || f.type == Primitive::duration ? 4 : primitive_size(f.type));

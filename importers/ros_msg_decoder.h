@@ -37,6 +37,9 @@ enum class Encoding { ros1, cdr, json };
 
 struct Limits {
   std::size_t max_array = 64;  // longer arrays are skipped whole
+  // The channels one topic may make (values of one message, names a topic
+  // collects): 64-element arrays nested four deep would make 16.7 million.
+  std::size_t max_channels = 10'000;
 };
 
 // One decoded message. The values' names depend only on `lengths` and

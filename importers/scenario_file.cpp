@@ -111,6 +111,9 @@ bool is_plain_name(const std::string& name) {
 ScenarioFile load_scenario(const std::string& path) { return read_scenario(read_json_resource(path, "scenario")); }
 
 ScenarioFile parse_scenario(const std::string& source, const std::string& text) {
+  if (json_nesting(text) > kMaxJsonNesting) {
+    throw InputError(source, "the recorded scenario nests deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+  }
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);

@@ -16,7 +16,8 @@ const std::vector<double>* NumericTable::find(const std::string& name) const {
   return it == names.end() ? nullptr : &columns[static_cast<std::size_t>(it - names.begin())];
 }
 
-NumericTable read_numeric_table(const std::string& path, const std::vector<std::string>& numeric) {
+NumericTable read_numeric_table(const std::string& path, const std::vector<std::string>& numeric,
+                                const std::vector<std::string>& numeric_if_present) {
   std::ifstream in = csv::open_text_file(path);
   NumericTable t;
   std::string line;
@@ -40,7 +41,9 @@ NumericTable read_numeric_table(const std::string& path, const std::vector<std::
     }
     for (std::size_t k = 0; k < cells.size(); ++k) {
       const std::string cell = csv::trim(cells[k]);
-      const bool must_be_number = std::find(numeric.begin(), numeric.end(), t.names[k]) != numeric.end();
+      const bool must_be_number =
+          std::find(numeric.begin(), numeric.end(), t.names[k]) != numeric.end() ||
+          std::find(numeric_if_present.begin(), numeric_if_present.end(), t.names[k]) != numeric_if_present.end();
       double v = NAN;
       try {
         v = csv::parse_number(cell).value_or(NAN);

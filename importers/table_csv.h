@@ -14,7 +14,9 @@ struct NumericTable {
 };
 
 // Throws InputError naming the file and line: ragged row, unparsable number
-// in a column listed in `numeric` (other columns may hold text).
-NumericTable read_numeric_table(const std::string& path, const std::vector<std::string>& numeric);
+// in a column listed in `numeric` or, when the file has it, in `numeric_if_present`
+// (other columns may hold text); a column of `numeric` missing.
+NumericTable read_numeric_table(const std::string& path, const std::vector<std::string>& numeric,
+                                const std::vector<std::string>& numeric_if_present = {});
 
 }  // namespace roverlab::io

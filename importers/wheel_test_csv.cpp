@@ -6,6 +6,8 @@
 #include <fstream>
 #include <map>
 #include <stdexcept>
+#include <string_view>
+#include <vector>
 
 #include "core/common/error.h"
 #include "importers/csv_text.h"
@@ -54,6 +56,25 @@ void read_slip_column(const std::string& path, std::map<std::string, std::size_t
   }
 }
 
+// A measured value beyond this (N, N m, m) is no measurement in SI units: 1e300 N would print inf and nan.
+constexpr double kMaxMeasured = 1e6;
+
+// The header's columns by name: a UTF-8 byte order mark (Excel's "CSV UTF-8")
+// is not part of the first name, and a name given twice is refused (the
+// required columns are checked once the slip column is known).
+std::map<std::string, std::size_t> header_columns(const std::vector<std::string_view>& cells, const std::string& path) {
+  std::map<std::string, std::size_t> column;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    std::string_view cell = cells[k];
+    if (k == 0 && cell.substr(0, 3) == "\xEF\xBB\xBF") cell.remove_prefix(3);
+    const std::string name = csv::trim(cell);
+    if (!column.emplace(name, k).second) {
+      throw InputError(path, "the header names column '" + csv::shown(name) + "' twice");
+    }
+  }
+  return column;
+}
+
 }  // namespace
 
 WheelTestFile read_wheel_test_file(const std::string& path) {
@@ -68,7 +89,7 @@ WheelTestFile read_wheel_test_file(const std::string& path) {
     const auto cells = csv::split(line);
     const std::string where = "line " + std::to_string(line_number);
     if (column.empty()) {
-      for (std::size_t k = 0; k < cells.size(); ++k) column[csv::trim(cells[k])] = k;
+      column = header_columns(cells, path);
       columns = cells.size();
       read_slip_column(path, column, file);
       for (const char* required : {"radius_m", "width_m", "load_N", "slip"}) {
@@ -95,6 +116,10 @@ WheelTestFile read_wheel_test_file(const std::string& path) {
       try {
         const auto v = csv::parse_number(cell);
         if (v && !std::isfinite(*v)) throw std::invalid_argument(cell);
+        if (v && std::abs(*v) > kMaxMeasured && std::string_view(name) != "grouser_count") {  // counted below
+          throw InputError(path,
+                           where + ", column '" + name + "': " + csv::shown(cell) + " is beyond +-1e6 (SI units)");
+        }
         return v;
       } catch (const std::invalid_argument&) {
         throw InputError(path, where + ", column '" + name + "': cannot parse '" + cell + "' as a finite number");

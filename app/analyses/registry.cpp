@@ -14,6 +14,7 @@
 #include "app/command_support.h"
 #include "core/log/conventions.h"
 #include "importers/atomic_file.h"
+#include "importers/json_resource.h"
 
 namespace roverlab::app {
 
@@ -95,6 +96,11 @@ std::string program_identity() {
 
 std::string log_fingerprint(const log::Log& lg) {
   std::uint64_t h = fnv1a(lg.metadata.rover_id, 14695981039346656037ULL);
+  // The metadata an analysis reads: the scenario a simulated log records (the rover study models it).
+  for (const char* key : {"scenario", "scenario_json"}) {
+    const auto it = lg.metadata.extra.find(key);
+    h = fnv1a(it == lg.metadata.extra.end() ? std::string(1, '\0') : key + ("=" + it->second), h);
+  }
   for (const auto& s : lg.streams()) {
     if (s.name().rfind(log::kEstimatePrefix, 0) == 0) continue;  // what analyses add, not what was measured
     h = fnv1a(s.name(), h);
@@ -117,17 +123,52 @@ AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input) {
   return r;
 }
 
+namespace {
+
+// The stored document is of the shape its analysis reads: its text, summary,
+// tables and key metrics are made from it without a type error (a field of
+// another type, fingerprint intact, would otherwise end as an internal error).
+bool readable_result(const Analysis& analysis, const nlohmann::json& doc) {
+  try {
+    char* buffer = nullptr;
+    std::size_t size = 0;
+    std::FILE* out = open_memstream(&buffer, &size);
+    if (out == nullptr) return false;
+    try {
+      analysis.print(doc, out);
+    } catch (...) {
+      std::fclose(out);
+      std::free(buffer);
+      throw;
+    }
+    std::fclose(out);
+    std::free(buffer);
+    (void)analysis.summary(doc);
+    (void)analysis.tables(doc);
+    for (const KeyMetric& m : analysis.key_metrics()) (void)key_metric_value(doc, m);
+    return true;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
+}  // namespace
+
 std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& lg,
                                             const std::function<std::string()>& fingerprint) {
   const auto at = lg.metadata.results.find(analysis.name());
   if (at == lg.metadata.results.end()) return std::nullopt;
-  nlohmann::json doc = nlohmann::json::parse(at->second, nullptr, false);
+  // Nested deeper than any result is (a copy of it would overflow the stack): run again.
+  nlohmann::json doc = io::parse_bounded_json(at->second);
   if (!doc.is_object() || doc.value("configuration", nlohmann::json()) != analysis.configuration() ||
       !doc.contains("input") || !doc.at("input").is_object() ||
       doc.at("input").value("program", std::string()) != program_identity() ||
       doc.at("input").value("fingerprint", std::string()) != (fingerprint ? fingerprint() : log_fingerprint(lg))) {
     return std::nullopt;
   }
+  if (!readable_result(analysis, doc)) return std::nullopt;
   return doc;
 }
 

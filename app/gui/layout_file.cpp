@@ -1,11 +1,17 @@
 #include "app/gui/layout_file.h"
 
+#include <QDataStream>
+#include <QString>
+
+#include <cstdint>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "core/common/error.h"
 #include "importers/atomic_file.h"
+#include "importers/json_resource.h"
 
 namespace roverlab::gui {
 
@@ -14,6 +20,7 @@ namespace {
 constexpr int kVersion = 2;
 constexpr std::size_t kMaxBytes = 16u << 20;  // a layout is a few kB: refuse to read a large file whole
 constexpr std::size_t kMaxPlotPanes = 32;
+constexpr std::size_t kMaxPaneChannels = 256;
 
 // "pane/timeseries" (the Plots pane) or "pane/timeseries/N" (N = 2..999, one the user added).
 bool plot_pane_name(const std::string& name) {
@@ -31,25 +38,128 @@ nlohmann::json channels_json(const std::vector<std::pair<std::string, std::strin
   return out;
 }
 
-// The {"stream", "channel"} entries that name both; others are skipped.
-std::vector<std::pair<std::string, std::string>> channels_of(const nlohmann::json& list) {
+// The {"stream", "channel"} entries that name both, each once; others are
+// skipped. More than kMaxPaneChannels distinct curves are no layout (a pane
+// listing one channel 100,000 times took gigabytes).
+std::vector<std::pair<std::string, std::string>> channels_of(const nlohmann::json& list, const std::string& path) {
   std::vector<std::pair<std::string, std::string>> out;
   if (!list.is_array()) return out;
+  std::set<std::pair<std::string, std::string>> seen;
   for (const auto& p : list) {
     if (p.is_object() && p.contains("stream") && p.contains("channel") && p.at("stream").is_string() &&
         p.at("channel").is_string() && !p.at("stream").get<std::string>().empty() &&
         !p.at("channel").get<std::string>().empty()) {
-      out.emplace_back(p.at("stream").get<std::string>(), p.at("channel").get<std::string>());
+      std::pair<std::string, std::string> channel(p.at("stream").get<std::string>(),
+                                                  p.at("channel").get<std::string>());
+      if (!seen.insert(channel).second) continue;
+      if (out.size() == kMaxPaneChannels) {
+        throw InputError(path,
+                         "a plot pane of the layout lists more than " + std::to_string(kMaxPaneChannels) + " channels");
+      }
+      out.push_back(std::move(channel));
     }
   }
   return out;
 }
+
+// QMainWindow::saveState's dock part, as Qt 5 writes it (qdockarealayout.cpp):
+// an area's info is a sequence or tab marker, an orientation and its items,
+// each a widget (name, flags, place) or a nested info. Qt reads an area's
+// index without a bound check (77 crashes it), so every index is checked here.
+class WindowStateCheck {
+ public:
+  explicit WindowStateCheck(const QByteArray& state) : in_(state) {}
+
+  bool sound() {
+    qint32 marker = 0;
+    qint32 version = 0;
+    in_ >> marker >> version;
+    if (!ok() || marker != 0xff) return false;
+    while (!in_.atEnd()) {
+      const quint8 section = byte();
+      if (section == kDockAreas) {
+        if (!dock_areas()) return false;
+      } else if (section == kFloatingTabs) {
+        qint32 rect[4];
+        in_ >> rect[0] >> rect[1] >> rect[2] >> rect[3];
+        if (!info(0)) return false;
+      } else {
+        return ok();  // the tool bars' part, which Qt checks itself
+      }
+    }
+    return ok();
+  }
+
+ private:
+  static constexpr quint8 kDockAreas = 0xfd, kFloatingTabs = 0xf9, kSequence = 0xfc, kTab = 0xfa, kWidget = 0xfb;
+  static constexpr int kMaxDepth = 16;
+  static constexpr qint32 kMaxItems = 1000;
+
+  bool ok() const { return in_.status() == QDataStream::Ok; }
+  quint8 byte() {
+    quint8 b = 0;
+    in_ >> b;
+    return b;
+  }
+
+  bool dock_areas() {
+    qint32 count = 0;
+    in_ >> count;
+    if (!ok() || count < 0 || count > 4) return false;
+    bool seen[4] = {false, false, false, false};
+    for (qint32 k = 0; k < count; ++k) {
+      qint32 area = 0;
+      qint32 size[2];
+      in_ >> area >> size[0] >> size[1];
+      if (!ok() || area < 0 || area > 3 || seen[area]) return false;
+      seen[area] = true;
+      if (!info(0)) return false;
+    }
+    qint32 rest[6];  // the central widget's size, the four corners
+    for (qint32& v : rest) in_ >> v;
+    return ok();
+  }
+
+  bool info(int depth) {
+    const quint8 marker = byte();
+    if (!ok() || depth > kMaxDepth || (marker != kSequence && marker != kTab)) return false;
+    qint32 index = 0;
+    if (marker == kTab) in_ >> index;
+    const quint8 orientation = byte();
+    qint32 count = 0;
+    in_ >> count;
+    if (!ok() || orientation < 1 || orientation > 2 || count < 0 || count > kMaxItems) return false;
+    for (qint32 k = 0; k < count; ++k) {
+      if (!item(depth)) return false;
+    }
+    return ok();
+  }
+
+  bool item(int depth) {
+    const quint8 marker = byte();
+    qint32 place[4];
+    if (marker == kWidget) {
+      QString name;
+      quint8 flags = 0;
+      in_ >> name >> flags;
+      for (qint32& v : place) in_ >> v;
+      return ok();
+    }
+    if (marker != kSequence) return false;
+    for (qint32& v : place) in_ >> v;
+    return ok() && info(depth + 1);
+  }
+
+  QDataStream in_;
+};
 
 std::string text_of(const nlohmann::json& doc, const char* key) {
   return doc.contains(key) && doc.at(key).is_string() ? doc.at(key).get<std::string>() : std::string();
 }
 
 }  // namespace
+
+bool window_state_is_sound(const QByteArray& state) { return WindowStateCheck(state).sound(); }
 
 LayoutFile read_layout(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -58,28 +168,32 @@ LayoutFile read_layout(const std::string& path) {
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   text.resize(static_cast<std::size_t>(in.gcount()));
   if (text.size() > kMaxBytes) throw InputError(path, "not a RoverLab layout (larger than 16 MB)");
-  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  const nlohmann::json doc = io::parse_bounded_json(text);
   if (!doc.is_object() || text_of(doc, "format") != "roverlab-layout") {
     throw InputError(path, "not a RoverLab layout (a JSON file of format roverlab-layout)");
   }
-  const int version =
-      doc.contains("version") && doc.at("version").is_number_integer() ? doc.at("version").get<int>() : 1;
-  if (version < 1 || version > kVersion) {
-    throw InputError(path, "layout version " + std::to_string(version) + ": this RoverLab reads versions 1 and 2");
+  // The number as written (1099511627776 is not "version 0", 4294967298 not version 2).
+  const nlohmann::json& given = doc.contains("version") ? doc.at("version") : nlohmann::json(1);
+  if (!given.is_number_integer() || given.get<std::int64_t>() < 1 || given.get<std::int64_t>() > kVersion) {
+    throw InputError(path, "layout version " + given.dump() + ": this RoverLab reads versions 1 and 2");
   }
+  const int version = static_cast<int>(given.get<std::int64_t>());
   LayoutFile layout;
   // Version 1 always held the window's state; version 2 may leave it out (a layout written by hand).
   if (version == 1 && text_of(doc, "window_state").empty()) {
     throw InputError(path, "not a RoverLab layout (a JSON file of format roverlab-layout)");
   }
   layout.window_state = QByteArray::fromBase64(QByteArray::fromStdString(text_of(doc, "window_state")));
+  if (!layout.window_state.isEmpty() && !window_state_is_sound(layout.window_state)) {
+    throw InputError(path, "the layout's window state is damaged (not as Qt writes a window's dock areas)");
+  }
   if (doc.contains("panes_in_front") && doc.at("panes_in_front").is_array()) {
     for (const auto& title : doc.at("panes_in_front")) {
       if (title.is_string()) layout.panes_in_front.push_back(title.get<std::string>());
     }
   }
   if (version == 1 || !doc.contains("plot_panes")) {  // one Plots pane
-    layout.plot_panes.push_back({"pane/timeseries", "Plots", channels_of(doc.value("plots", nlohmann::json()))});
+    layout.plot_panes.push_back({"pane/timeseries", "Plots", channels_of(doc.value("plots", nlohmann::json()), path)});
     return layout;
   }
   if (!doc.at("plot_panes").is_array()) throw InputError(path, "the layout's plot_panes is not a list");
@@ -91,7 +205,7 @@ LayoutFile read_layout(const std::string& path) {
       throw InputError(path, "a plot pane of the layout is not named pane/timeseries or pane/timeseries/N");
     }
     layout.plot_panes.push_back(
-        {text_of(p, "name"), text_of(p, "title"), channels_of(p.value("channels", nlohmann::json()))});
+        {text_of(p, "name"), text_of(p, "title"), channels_of(p.value("channels", nlohmann::json()), path)});
   }
   return layout;
 }

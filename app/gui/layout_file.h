@@ -24,6 +24,11 @@ struct LayoutFile {
   std::vector<PlotPaneLayout> plot_panes;
 };
 
+// False when `state` (QMainWindow::saveState) is not as Qt 5 writes it: its
+// dock areas' indexes, markers and counts are checked before Qt reads it
+// (Qt indexes its four dock areas with the file's number unchecked).
+bool window_state_is_sound(const QByteArray& state);
+
 // Throws InputError naming `path` when it cannot be read or is not a layout.
 LayoutFile read_layout(const std::string& path);
 // Written atomically (temp + rename), as version 2 with the first pane's

@@ -1,4 +1,5 @@
 #include "app/gui/main_window.h"
+#include "app/gui/layout_file.h"
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -114,7 +115,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), jobs_(std::make_u
   build_ui();
   QSettings settings;
   restoreGeometry(settings.value("window/geometry").toByteArray());
-  restoreState(settings.value("window/state").toByteArray());
+  const QByteArray state = settings.value("window/state").toByteArray();
+  if (window_state_is_sound(state)) restoreState(state);  // a damaged settings file must not crash the GUI
   refresh_recent_menu();
 }
 

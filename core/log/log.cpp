@@ -8,25 +8,22 @@ Stream& Log::add_stream(Stream stream) {
   if (find_stream(stream.name()) != nullptr) {
     throw DataError("stream '" + stream.name() + "' appears twice");
   }
+  index_.emplace(stream.name(), streams_.size());
   streams_.push_back(std::move(stream));
   return streams_.back();
 }
 
 Stream& Log::replace_stream(Stream stream) {
-  for (auto& s : streams_) {
-    if (s.name() == stream.name()) {
-      s = std::move(stream);
-      return s;
-    }
-  }
-  return add_stream(std::move(stream));
+  const auto it = index_.find(stream.name());
+  if (it == index_.end()) return add_stream(std::move(stream));
+  Stream& s = streams_[it->second];
+  s = std::move(stream);
+  return s;
 }
 
 const Stream* Log::find_stream(std::string_view name) const {
-  for (const auto& s : streams_) {
-    if (s.name() == name) return &s;
-  }
-  return nullptr;
+  const auto it = index_.find(std::string(name));
+  return it == index_.end() ? nullptr : &streams_[it->second];
 }
 
 const Stream& Log::stream(std::string_view name) const {
@@ -46,6 +43,7 @@ const Channel& Log::channel(std::string_view path) const {
 Log Log::slice(double t0, double t1) const {
   Log out;
   out.metadata = metadata;
+  out.index_ = index_;
   for (const auto& s : streams_) out.streams_.push_back(s.slice(t0, t1));
   return out;
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "core/log/stream.h"
@@ -48,6 +49,9 @@ class Log {
 
  private:
   std::vector<Stream> streams_;
+  // Stream index by name: a file of 65,535 topics is added and looked up in
+  // linear time, not quadratic.
+  std::unordered_map<std::string, std::size_t> index_;
 };
 
 }  // namespace roverlab::log

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <utility>
 
@@ -27,13 +28,19 @@ std::pair<double, double> bump(double t, double t0, double T, double h) {
 }  // namespace
 
 void check_steering_manoeuvre(const FlyingRoverScenario& s) {
+  // Values as given, to ten digits (45.0000001 is not "45.000000"; 1e300 not 301 digits).
+  const auto shown = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", v);
+    return std::string(text);
+  };
   if (std::isnan(s.turn_radius) || !(std::abs(s.turn_radius) >= 1.0))
-    throw DataError("turn radius " + std::to_string(s.turn_radius) + " m: |R| must be at least 1 m (or infinite)");
+    throw DataError("turn radius " + shown(s.turn_radius) + " m: |R| must be at least 1 m (or infinite)");
   if (!(std::abs(s.slip_angle) <= M_PI / 4))
-    throw DataError("slip angle " + std::to_string(s.slip_angle * 180 / M_PI) + " deg: must be within +-45 deg");
+    throw DataError("slip angle " + shown(s.slip_angle * 180 / M_PI) + " deg: must be within +-45 deg");
   if (!(s.slip_angle_from >= 0 && s.slip_angle_from < s.duration))
-    throw DataError("slip angle from " + std::to_string(s.slip_angle_from) + " s: must be within the run (0 to " +
-                    std::to_string(s.duration) + " s)");
+    throw DataError("slip angle from " + shown(s.slip_angle_from) + " s: must be within the run (0 to " +
+                    shown(s.duration) + " s)");
 }
 
 std::vector<std::string> flying_rover_scenarios() {

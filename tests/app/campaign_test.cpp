@@ -91,7 +91,10 @@ TEST(Campaign, ACampaignFileIsCheckedFieldByField) {
   check(flat_turn + R"("slip_angle_deg": "2"}]})", "simulations[0].slip_angle_deg", "expected a number");
   check(flat_turn + R"("slip_angle_deg": 2, "slip_angle_from": 30}]})", "simulations[0].slip_angle_from",
         "within the run");
-  check(flat_turn + R"("slip_angle_from": -1}]})", "simulations[0].slip_angle_from", "within the run");
+  check(flat_turn + R"("slip_angle_deg": 2, "slip_angle_from": -1}]})", "simulations[0].slip_angle_from",
+        "within the run");
+  // Without a slip angle the start has no effect (issue 47, F24).
+  check(flat_turn + R"("slip_angle_from": 10}]})", "simulations[0].slip_angle_from", "needs slip_angle_deg");
   check(R"({"format": "roverlab-campaign", "version": 1, "simulations": [{"scenario": "skid-steer-slip",
         "slip_angle_deg": 2}]})",
         "simulations[0].slip_angle_deg", "skid-steer-slip has no slip_angle_deg option");
