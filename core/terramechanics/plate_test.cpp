@@ -75,7 +75,7 @@ T model_pressure(const Shape& s, const T* x, double b, const T& z) {
   using std::pow;
   if (!(z > T(0))) return T(0);
   switch (s.model) {
-    case PressureModel::bekker:  // Eq. 2.46, Wong 2008: p = (k_c / b + k_phi) z^n
+    case PressureModel::bekker:  // Bekker (1969), Wong 2008 Ch. 2: p = (k_c / b + k_phi) z^n
       return s.separated ? (x[0] / b + x[1]) * pow(z, x[2]) : x[0] * pow(z, x[1]);
     case PressureModel::reece:  // Reece 1965: p = (c k'_c + gamma_s b k'_phi) (z / b)^n
       return s.separated ? (x[0] + b * x[1]) * pow(z / b, x[2]) : x[0] * pow(z / b, x[1]);

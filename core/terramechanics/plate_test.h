@@ -17,7 +17,7 @@ struct Plate {
   bool circular = true;
   double width = 0.1;   // m: the diameter of a circular plate
   double length = 0.1;  // m: rectangular plates only
-  // Bekker's b: the smaller side of a rectangle, the radius of a circle (Wong 2008, Sec. 2.4).
+  // Bekker's b: the smaller side of a rectangle, the radius of a circle (Wong, Theory of Ground Vehicles, 2008, Ch. 2).
   double b() const { return circular ? width / 2 : width; }
   double area() const;
 };
@@ -95,7 +95,7 @@ PlateAnalysis analyse_plate_tests(const std::vector<PlateRecord>& records, const
 // plate moving straight into the medium has gamma = pi/2 (-pi/2 with z up).
 double rft_alpha_z(double beta, double gamma);
 
-// Pressure on a plate at sinkage z (m): Bekker (Eq. 2.46 of Wong 2008),
+// Pressure on a plate at sinkage z (m): Bekker (Wong 2008, Ch. 2),
 // Reece (Reece 1965; k1 = c k'_c, k2 = gamma_s k'_phi) and RFT (Li 2013:
 // sigma_z = zeta |alpha_z(0, pi/2)| z, horizontal plate pushed down).
 double bekker_pressure(double kc, double kphi, double n, double b, double z);

@@ -15,7 +15,7 @@ namespace {
 using Pressure = std::function<double(double b, double z)>;
 
 // A simulated plate test: the plate starts 1 cm above the soil, sinks to 5 cm,
-// rises to 3 cm (elastic rebound, Wong 2008 Sec. 2.4.3: p = p_u - k_u (z_u - z)),
+// rises to 3 cm (a linear elastic rebound, as Wong 2008 Ch. 2 describes unloading: p = p_u - k_u (z_u - z)),
 // sinks again to 7 cm (reloading along the rebound line, then the virgin
 // curve) and leaves the soil. Depth exact (arm encoders), force noise sigma N.
 PlateRecord simulate(const Plate& plate, const Pressure& p, double sigma, unsigned seed) {
