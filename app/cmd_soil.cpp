@@ -238,13 +238,16 @@ void print_text(const std::vector<PlateRecord>& records, const PlateAnalysis& a)
     }
   }
   for (const auto& f : a.fits) {
-    std::printf("%s: rmse %.3g N, held-out rmse %.3g N (%zu samples)%s\n", to_string(f.model), f.rmse_N,
+    std::printf("%s: rmse %.3g N, held-out rmse %.3g N (%zu samples)%s; contact depth", to_string(f.model), f.rmse_N,
                 f.held_out_rmse_N, f.samples, f.converged ? "" : ", not converged");
+    for (double z0 : f.contact_depths) std::printf(" %.4g m", z0);
+    std::printf("\n");
     for (const auto& p : f.parameters) {
+      const std::string unit = p.unit == "1" ? "" : " " + p.unit;
       if (p.at_bound) {
-        std::printf("  %-16s %.6g %s (at its bound)\n", p.name.c_str(), p.value, p.unit.c_str());
+        std::printf("  %-16s %.6g%s (at its bound)\n", p.name.c_str(), p.value, unit.c_str());
       } else {
-        std::printf("  %-16s %.6g +- %.3g %s\n", p.name.c_str(), p.value, p.sigma, p.unit.c_str());
+        std::printf("  %-16s %.6g +- %.3g%s\n", p.name.c_str(), p.value, p.sigma, unit.c_str());
       }
     }
     if (!f.note.empty()) std::printf("  %s\n", f.note.c_str());

@@ -472,7 +472,10 @@ PressureSinkageFit fit_relation(const std::vector<PlateRecord>& records, const s
   }
   out.held_out_rmse_N = count > 0 ? std::sqrt(sum / static_cast<double>(count)) : NAN;
   if (!shape.separated && shape.model != PressureModel::rft) {
-    out.note = "one plate size: k_c and k_phi cannot be told apart; the lumped modulus k_eq holds for this b only";
+    out.note = shape.model == PressureModel::bekker
+                   ? "one plate size: k_c and k_phi cannot be told apart; k_eq = k_c / b + k_phi holds for this b only"
+                   : "one plate size: k'_c and k'_phi cannot be told apart; k_eq = c k'_c + gamma b k'_phi holds for "
+                     "this b only";
   }
   return out;
 }
