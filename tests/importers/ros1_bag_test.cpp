@@ -343,6 +343,48 @@ TEST(Ros1Bag, StandardMessagesGetTheirUnits) {
   EXPECT_FALSE(io::ros::standard_unit("geometry_msgs/Wrench", "wrench.force.x").has_value());
 }
 
+// The shipped wheel-rig mapping (issue 44): a wrench above the wheel, the
+// wheel's joint and the carriage's twist become forces, wheels and carriage.
+TEST(Ros1Bag, TheWheelRigMappingReadsARigsBag) {
+  TempDir dir;
+  const std::string path = dir.file("rig.bag");
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    for (int i = 0; i < 20; ++i) {
+      geometry_msgs::WrenchStamped w;
+      w.wrench.force.x = value(i, 1);
+      w.wrench.force.y = value(i, 2);
+      w.wrench.force.z = value(i, 3);
+      w.wrench.torque.y = value(i, 4);
+      bag.write("/wheel/wrench", at(0.05 * i), w);
+      sensor_msgs::JointState js;
+      js.name = {"wheel"};
+      js.position = {value(i, 5)};
+      js.velocity = {value(i, 6)};
+      bag.write("/joint_states", at(0.05 * i), js);
+      geometry_msgs::TwistStamped tw;
+      tw.twist.linear.x = value(i, 7);
+      bag.write("/carriage/twist", at(0.05 * i), tw);
+    }
+  }
+  io::LoadOptions o;
+  o.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/ros_wheel_rig.json");
+  const log::Log lg = io::load_log(path, o).log;
+  const log::Stream& forces = lg.stream("forces");
+  ASSERT_EQ(forces.size(), 20U);
+  EXPECT_EQ(forces.channel("drawbar_pull").unit, "N");
+  EXPECT_EQ(forces.channel("resistive_torque").unit, "N*m");
+  EXPECT_EQ(lg.stream("wheels").channel("rate").unit, "rad/s");
+  EXPECT_EQ(lg.stream("carriage").channel("speed").unit, "m/s");
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_EQ(forces.channel("drawbar_pull").values[i], value(i, 1));
+    EXPECT_EQ(forces.channel("normal_load").values[i], value(i, 3));
+    EXPECT_EQ(forces.channel("resistive_torque").values[i], value(i, 4));
+    EXPECT_EQ(lg.stream("wheels").channel("angle").values[i], value(i, 5));
+    EXPECT_EQ(lg.stream("carriage").channel("speed").values[i], value(i, 7));
+  }
+}
+
 TEST(Ros1Bag, AMappingNamesTopicsAsRoverStreamsWithUnits) {
   TempDir dir;
   const std::string bag_path = dir.file("imu.bag");
