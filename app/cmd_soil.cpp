@@ -42,6 +42,7 @@ struct PlateOptions {
   std::string arm, joints = "joint_states";
   double diameter = 0, width = 0, length = 0;
   bool invert_force = false;
+  bool invert_depth = false;
 };
 
 using nlohmann::json;
@@ -126,7 +127,7 @@ PlateRecord record_of_log(const std::string& file, const PlateOptions& o) {
   r.name = file;
   r.plate = plate;
   for (std::size_t i = 0; i < force.first.size(); ++i) {
-    const double z = interpolate(depth.first, depth.second, force.first[i]);
+    const double z = interpolate(depth.first, depth.second, force.first[i]) * (o.invert_depth ? -1.0 : 1.0);
     const double f = force.second[i] * (o.invert_force ? -1.0 : 1.0);
     if (!std::isfinite(z) || !std::isfinite(f)) continue;
     r.depth.push_back(z);
@@ -326,6 +327,7 @@ Commands make_soil_commands() {
         cmd.add_option("--arm", o.arm, "Arm NAME|FILE (resources/arms): depth from its joint angles");
         cmd.add_option("--joints", o.joints, "Stream of the arm's joint angles")->capture_default_str();
         cmd.add_flag("--invert-force", o.invert_force, "The force channel is positive pulling (a wrench's z down)");
+        cmd.add_flag("--invert-depth", o.invert_depth, "The --depth channel is a height (positive up)");
         cmd.add_option("--plate-diameter", o.diameter, "Circular plate of a log, m")->check(finite_in(1e-3, 10.0));
         cmd.add_option("--plate-width", o.width, "Rectangular plate of a log, m")->check(finite_in(1e-3, 10.0));
         cmd.add_option("--plate-length", o.length, "Rectangular plate of a log, m")->check(finite_in(1e-3, 10.0));

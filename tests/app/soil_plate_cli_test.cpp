@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/JointState.h>
@@ -204,4 +205,45 @@ TEST(SoilPlateCli, ARobotArmBagGivesTheDepthOfAnIndependentForwardKinematicsScri
   EXPECT_EQ(row, angles.size());
   std::printf("largest depth difference from the Python forward kinematics: %.3g m over %zu samples\n", worst, row);
   EXPECT_LT(worst, 1e-9);
+}
+
+// A linear stage instead of an arm, read without a mapping: its height on
+// /stage/pose (z up, so --invert-depth), the force on /data.
+TEST(SoilPlateCli, ALinearStagesHeightIsTheDepthOfAnUnmappedBag) {
+  TempDir dir;
+  const std::string bag_path = dir.file("stage.bag");
+  const terramechanics::Plate plate{true, 0.2, 0.2};
+  {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Write);
+    const ros::Time start(1700000000, 0);
+    for (int i = 0; i < 400; ++i) {
+      const double height = 0.30 - 1.5e-4 * i;  // the soil at 0.29 m
+      const ros::Time t = start + ros::Duration(0.01 * i);
+      geometry_msgs::PoseStamped p;
+      p.header.stamp = t;
+      p.pose.position.z = height;
+      bag.write("/stage/pose", t, p);
+      geometry_msgs::WrenchStamped w;
+      w.header.stamp = t;
+      w.wrench.force.z = plate.area() * terramechanics::bekker_pressure(kKc, kKphi, kN, plate.b(), 0.29 - height) +
+                         0.3 * std::cos(2.3 * i);
+      bag.write("/data", t, w);
+    }
+  }
+  const CommandResult r = run_roverlab(
+      "soil plate " + quote(bag_path) +
+      " --force data/wrench.force.z --depth stage/pose/pose.position.z --invert-depth --plate-diameter 0.2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json doc = json::parse(r.out);
+  const json& bekker = *fit_of(doc, "bekker");
+  EXPECT_NEAR(parameter(bekker, "n"), kN, 0.01);
+  EXPECT_NEAR(parameter(bekker, "k_eq"), kKc / 0.1 + kKphi, 0.02 * (kKc / 0.1 + kKphi));
+  // Depth is minus the height: the soil surface at -0.29 m.
+  EXPECT_NEAR(bekker.at("contact_depths_m")[0].get<double>(), -0.29, 2e-4);
+  const CommandResult bad = run_roverlab("soil plate " + quote(bag_path) +
+                                         " --force data/wrench.force.q --depth stage/pose/pose.position.z "
+                                         "--plate-diameter 0.2");
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_NE(bad.err.find("stage.bag"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("wrench.force.q"), std::string::npos) << bad.err;
 }
