@@ -8,6 +8,7 @@
 #include <set>
 
 #include "app/analysis.h"
+#include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
@@ -250,6 +251,29 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   return d;
 }
 
+namespace {
+
+// --x and --y, one channel each (or the channels given).
+std::vector<views::ChannelRef> channel_pair(const ViewInput& in, const ViewOptions& o) {
+  if (!o.x_channel && !o.y_channel) return o.channels;
+  if (!o.x_channel || !o.y_channel)
+    throw UsageError(std::string(o.x_channel ? "--y" : "--x") +
+                     ": missing (a scatter plot needs --x STREAM:CH and --y STREAM:CH)");
+  std::vector<views::ChannelRef> pair;
+  for (const auto& [option, spec] : {std::pair{"--x", *o.x_channel}, std::pair{"--y", *o.y_channel}}) {
+    if (spec.find(':') == std::string::npos || spec.find(',') != std::string::npos)
+      throw UsageError(std::string(option) + " " + spec + ": expected one STREAM:CHANNEL");
+    try {
+      pair.push_back(views::parse_channels(in.log, spec).at(0));
+    } catch (const DataError& e) {
+      throw InputError(in.file, std::string(option) + ": " + e.what());
+    }
+  }
+  return pair;
+}
+
+}  // namespace
+
 views::SceneInput scene_input(const ViewInput& in, const views::View& view, const ViewOptions& o) {
   if (in.is_wheel_test() && !view.uses_surface_data()) {
     throw InputError(in.file, "single-wheel test points are not a log: no " + view.name() + " view");
@@ -271,6 +295,7 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
       throw InputError(in.file, e.what());
     }
   }
+  if (view.plots_channel_pair()) s.channels = channel_pair(in, o);
   const std::string missing = view.needs(s);
   if (!missing.empty()) throw InputError(in.file, missing);
   return s;
