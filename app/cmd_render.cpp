@@ -105,7 +105,9 @@ Commands make_render_commands() {
             ->capture_default_str()
             ->check(CLI::IsMember({"drawbar-pull", "torque", "lateral-force"}));
         cmd.add_option("--slip-angle", o.slip_angle_deg,
-                       surfaces + " of lateral-force: slip angle, deg (default: the largest in the file, else 10)")
+                       surfaces +
+                           ": slip angle, deg (lateral-force default: the largest in the file, else 10; "
+                           "drawbar-pull, torque: the file's nearest 0)")
             ->check(finite_in(-90.0, 90.0));
         cmd.add_option("--size", o.size, "WxH pixels")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "OUT.png")->required();
