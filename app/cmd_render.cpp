@@ -27,6 +27,7 @@ struct RenderOptions {
   std::string view = views::all_views().front()->name();
   std::optional<double> time;
   std::optional<std::string> channels;
+  std::optional<std::string> x_channel, y_channel;
   std::optional<std::string> soil;
   std::string quantity = "drawbar-pull";
   std::optional<double> slip_angle_deg;
@@ -47,6 +48,9 @@ int run_render(const RenderOptions& o) {
   const auto [w, h] = parse_size(o.size);
   const views::View* view = views::find_view(o.view);
   if (view == nullptr) throw UsageError("--view " + o.view + ": expected " + views::view_names());
+  if ((o.x_channel || o.y_channel) && !view->plots_channel_pair())
+    throw UsageError(std::string(o.x_channel ? "--x" : "--y") + ": only for the " +
+                     views_that(&views::View::plots_channel_pair) + " view");
   if (fs::path(o.output).extension() != ".png") throw UsageError("--output " + o.output + ": must end in .png");
   ViewInputOptions vo;
   if (view->draws_estimates()) vo.analyses = all_analysis_names(&Analysis::adds_streams);  // the estimators
@@ -61,6 +65,8 @@ int run_render(const RenderOptions& o) {
   ViewOptions options;
   options.time = o.time;
   options.channel_spec = o.channels;
+  options.x_channel = o.x_channel;
+  options.y_channel = o.y_channel;
   options.soil = o.soil;
   options.quantity = o.quantity;
   options.slip_angle_deg = o.slip_angle_deg;
@@ -91,12 +97,17 @@ Commands make_render_commands() {
         const std::string plots = views_that(&views::View::uses_channels);
         const std::string surfaces = views_that(&views::View::uses_surface_data);
         cmd.add_option("--channels", o.channels, plots + ": stream:channel,... (a stream alone: all its channels)");
+        const std::string pairs = views_that(&views::View::plots_channel_pair);
+        cmd.add_option("--x", o.x_channel, pairs + ": the horizontal axis's STREAM:CHANNEL");
+        cmd.add_option("--y", o.y_channel, pairs + ": the vertical axis's STREAM:CHANNEL");
         cmd.add_option("--soil", o.soil, surfaces + ": draw the Wong-Reece model surface of soil NAME|FILE");
         cmd.add_option("--quantity", o.quantity, surfaces + ": drawbar-pull | torque | lateral-force")
             ->capture_default_str()
             ->check(CLI::IsMember({"drawbar-pull", "torque", "lateral-force"}));
         cmd.add_option("--slip-angle", o.slip_angle_deg,
-                       surfaces + " of lateral-force: slip angle, deg (default: the largest in the file, else 10)")
+                       surfaces +
+                           ": slip angle, deg (lateral-force default: the largest in the file, else 10; "
+                           "drawbar-pull, torque: the file's nearest 0)")
             ->check(finite_in(-90.0, 90.0));
         cmd.add_option("--size", o.size, "WxH pixels")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "OUT.png")->required();

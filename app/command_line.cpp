@@ -43,6 +43,7 @@ const std::map<std::string, std::string>& command_groups() {
       {"estimate", "Run an estimator over a log"},
       {"discrepancy", "Where a model disagrees with measured data, why, and what an extended model gains"},
       {"scenario", "Write a simulated log with truth streams"},
+      {"soil", "Soil parameters from lab tests (plate sinkage)"},
   };
   return groups;
 }

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "app/analysis.h"
+#include "app/commands.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
@@ -67,7 +68,7 @@ std::string estimates_without_result(const ViewInput& in) {
 }
 
 // A soil model's surface over load (half the points' lowest to 1.5 x their
-// highest; 10-200 N without points) and slip 0-1: `value` on a 40 x 40 grid
+// highest; 10-200 N without points) and d's slip range: `value` on a 40 x 40 grid
 // (nullopt where the model has no answer), fitted at order 4 as in seed 003
 // Appendix A. Sets d's load range and `fit`; returns the soil's name.
 std::string model_surface(const ViewInput& in, const std::string& soil_name, double load_lo, double load_hi,
@@ -83,7 +84,8 @@ std::string model_surface(const ViewInput& in, const std::string& soil_name, dou
   std::vector<SurfaceSample> grid;
   for (int i = 0; i < 40; ++i) {
     for (int k = 0; k < 40; ++k) {
-      const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0, s = k / 39.0;
+      const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0;
+      const double s = d.slip_min + (d.slip_max - d.slip_min) * k / 39.0;
       if (const std::optional<double> v = value(soil, wheel, W, s)) grid.push_back({W, s, *v});
     }
   }
@@ -109,6 +111,43 @@ std::string degrees_text(double deg) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", std::round(deg * 100.0) / 100.0);
   return text;
+}
+
+// The slip axis holds every point: 0..1 and the points' slips beyond it
+// (braking, s < 0, included).
+void span_slips(views::TractionSurfaceData& d) {
+  d.slip_min = 0.0;
+  d.slip_max = 1.0;
+  for (const auto& p : d.points) {
+    d.slip_min = std::min(d.slip_min, p.slip);
+    d.slip_max = std::max(d.slip_max, p.slip);
+  }
+}
+
+// The slip angles (deg, to 0.01) of the points with a value of `has`.
+template <typename Has>
+std::set<double> slip_angles_deg(const ViewInput& in, Has has) {
+  std::set<double> angles;
+  for (const auto& p : in.wheel_points) {
+    if (has(p)) angles.insert(std::round(p.slip_angle * 180.0 / M_PI * 100.0) / 100.0);
+  }
+  return angles;
+}
+
+// The slip angle (deg) a drawbar-pull or torque surface of single-wheel
+// points is drawn at: the asked one, else the one nearest 0 the points have.
+template <typename Has>
+double longitudinal_slip_angle_deg(const ViewInput& in, Has has, std::optional<double> asked_deg) {
+  const std::set<double> angles = slip_angles_deg(in, has);
+  if (asked_deg) {
+    if (angles.empty() || angles.count(std::round(*asked_deg * 100.0) / 100.0) > 0) return *asked_deg;
+    std::string have;
+    for (double a : angles) have += (have.empty() ? "" : ", ") + degrees_text(a);
+    throw InputError(in.file, "no points at slip angle " + degrees_text(*asked_deg) +
+                                  " deg (the file has slip angles " + have + " deg)");
+  }
+  if (angles.empty()) return 0.0;
+  return *std::min_element(angles.begin(), angles.end(), [](double a, double b) { return std::abs(a) < std::abs(b); });
 }
 
 // The slip angle (rad) the lateral-force surface is drawn at: the asked one,
@@ -151,6 +190,7 @@ views::TractionSurfaceData lateral_surface_of(const ViewInput& in, const std::op
     throw InputError(in.file, "a lateral-force surface needs a single-wheel CSV with lateral_force_N or --soil NAME");
   }
   group_by_wheel(labels, d);
+  span_slips(d);
   const double lo = loads.empty() ? NAN : *loads.begin(), hi = loads.empty() ? NAN : *loads.rbegin();
   SurfaceFit fit;
   if (soil_name) {
@@ -215,9 +255,12 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   std::set<double> loads;
   std::vector<std::string> labels;
   double load_lo = std::numeric_limits<double>::infinity(), load_hi = -load_lo;
+  const auto has = [dp](const WheelTestPoint& p) { return (dp ? p.drawbar_pull : p.torque).has_value(); };
+  const double beta_deg = longitudinal_slip_angle_deg(in, has, slip_angle_deg);
+  const std::string at = "slip angle " + degrees_text(beta_deg) + " deg";
   for (const auto& p : in.wheel_points) {
     const auto v = dp ? p.drawbar_pull : p.torque;
-    if (!v) continue;
+    if (!v || std::abs(p.slip_angle * 180.0 / M_PI - beta_deg) > 0.005) continue;
     d.points.push_back({p.load, p.slip, *v});
     labels.push_back(p.wheel_label);
     loads.insert(p.load);
@@ -228,16 +271,20 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
     throw InputError(in.file, std::string("no ") + (dp ? "drawbar_pull_N" : "torque_Nm") + " values");
   }
   group_by_wheel(labels, d);
+  span_slips(d);
   SurfaceFit fit;
   if (soil_name) {
-    // The model surface: Wong-Reece on a grid, fitted as in seed 003 Appendix A.
+    // The model surface: Wong-Reece on a grid, fitted as in seed 003 Appendix A (at a slip angle: Ishigami 2007).
+    const double beta = beta_deg * M_PI / 180.0;
     const std::string soil = model_surface(
         in, *soil_name, load_lo, load_hi, d, fit, [&](const Soil& so, const Wheel& w, double W, double sl) {
-          const Traction t = evaluate(so, w, W, sl, ModelOptions{});
+          const Traction t =
+              beta == 0.0 ? evaluate(so, w, W, sl, ModelOptions{}) : evaluate_slip_angle(so, w, W, sl, beta);
           return t.ok() ? std::optional<double>(dp ? t.drawbar_pull : t.resistive_torque) : std::nullopt;
         });
-    d.quantity += " (" + soil + " model)";
+    d.quantity += " (" + soil + " model" + (in.is_wheel_test() || beta != 0.0 ? ", " + at : "") + ")";
   } else {
+    if (in.is_wheel_test()) d.quantity += " (fitted to the points at " + at + ")";
     if (loads.size() < 2) {
       throw InputError(in.file, "all points are at one load: give --soil NAME to draw the model surface through them");
     }
@@ -249,6 +296,29 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   if (fit_out) *fit_out = fit;
   return d;
 }
+
+namespace {
+
+// --x and --y, one channel each (or the channels given).
+std::vector<views::ChannelRef> channel_pair(const ViewInput& in, const ViewOptions& o) {
+  if (!o.x_channel && !o.y_channel) return o.channels;
+  if (!o.x_channel || !o.y_channel)
+    throw UsageError(std::string(o.x_channel ? "--y" : "--x") +
+                     ": missing (a scatter plot needs --x STREAM:CH and --y STREAM:CH)");
+  std::vector<views::ChannelRef> pair;
+  for (const auto& [option, spec] : {std::pair{"--x", *o.x_channel}, std::pair{"--y", *o.y_channel}}) {
+    if (spec.find(':') == std::string::npos || spec.find(',') != std::string::npos)
+      throw UsageError(std::string(option) + " " + spec + ": expected one STREAM:CHANNEL");
+    try {
+      pair.push_back(views::parse_channels(in.log, spec).at(0));
+    } catch (const DataError& e) {
+      throw InputError(in.file, std::string(option) + ": " + e.what());
+    }
+  }
+  return pair;
+}
+
+}  // namespace
 
 views::SceneInput scene_input(const ViewInput& in, const views::View& view, const ViewOptions& o) {
   if (in.is_wheel_test() && !view.uses_surface_data()) {
@@ -271,6 +341,7 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
       throw InputError(in.file, e.what());
     }
   }
+  if (view.plots_channel_pair()) s.channels = channel_pair(in, o);
   const std::string missing = view.needs(s);
   if (!missing.empty()) throw InputError(in.file, missing);
   return s;

@@ -44,6 +44,7 @@ struct ViewOptions {
   std::string quantity = "drawbar-pull";
   std::optional<double> slip_angle_deg;  // the lateral-force surface's slip angle
   std::optional<double> time;
+  std::optional<std::string> x_channel, y_channel;  // "stream:channel" each, for a view that plots_channel_pair()
 };
 
 // The input `view` is built from on `in`. Throws InputError naming the file

@@ -14,6 +14,7 @@
 
 #include "core/common/error.h"
 #include "core/log/units.h"
+#include "importers/ros_standard_units.h"
 
 namespace roverlab::io::ros {
 
@@ -361,11 +362,18 @@ log::Log MessageLog::build(const std::optional<Mapping>& mapping) {
             rows.size() == t->time_ns.size() && std::is_sorted(t->time_ns.begin(), t->time_ns.end());
         log::Stream stream(stream_name(t->name), seconds_of(*t, rows, origin));
         for (std::size_t c = 0; c < t->columns.size(); ++c) {
+          // A standard message's fields in their REP 103 units (NavSatFix degrees to rad), others "1".
           const bool seconds = t->channel_names[c] == "header.stamp";
+          const StandardUnit unit = seconds
+                                        ? StandardUnit{"s", 1.0}
+                                        : standard_unit(t->type, t->channel_names[c]).value_or(StandardUnit{"1", 1.0});
           // Rows 0, 1, 2, ... (in time order, no repeated time: the common case): moved, not copied.
           // Otherwise each value goes with its own message's time.
           std::vector<double> values = in_file_order ? std::move(t->columns[c]) : picked(t->columns[c], rows);
-          stream.add_channel(t->channel_names[c], seconds ? "s" : "1", std::move(values));
+          if (unit.factor != 1.0) {
+            for (double& v : values) v *= unit.factor;
+          }
+          stream.add_channel(t->channel_names[c], unit.unit, std::move(values));
         }
         out.add_stream(std::move(stream));
       }

@@ -330,7 +330,9 @@ namespace {
 
 // The quantity a channel holds: its name without an axis or wheel suffix,
 // in words ("specific_force_x" -> "specific force", "angle_FL" -> "angle").
+// A field path of a ROS message ("position.robot_joint") is a name, kept as it is.
 std::string quantity_of(std::string name) {
+  if (name.find('.') != std::string::npos) return name;
   const auto cut = name.rfind('_');
   if (cut != std::string::npos) {
     const std::string tail = name.substr(cut + 1);

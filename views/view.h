@@ -85,6 +85,9 @@ class View {
   virtual bool uses_surface_data() const { return false; }
   // True when the view plots SceneInput::channels.
   virtual bool uses_channels() const { return false; }
+  // True when the view plots one channel against another: SceneInput::channels
+  // holds x then y (`render --x --y`); the report has no pair to choose and leaves it out.
+  virtual bool plots_channel_pair() const { return false; }
   // True when the view draws estimates the app's analyses add to a log (the
   // app runs those that can run before building it).
   virtual bool draws_estimates() const { return false; }

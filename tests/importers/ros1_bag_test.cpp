@@ -25,6 +25,7 @@
 #include "core/common/error.h"
 #include "importers/log_file.h"
 #include "importers/ros_msg_decoder.h"
+#include "importers/ros_standard_units.h"
 #include "kapvik_ros_log.h"
 #include "raw_ros_message.h"
 #include "test_support.h"
@@ -281,7 +282,7 @@ TEST(Ros1Bag, EveryMappedMessageTypeDecodes) {
   write_rover_bag(path);
   const log::Log lg = io::load_log(path).log;
   for (int i = 0; i < 10; ++i) {
-    EXPECT_EQ(lg.stream("navsat/fix").channel("latitude").values[i], 39.6 + value(i, 0) * 1e-5);
+    EXPECT_EQ(lg.stream("navsat/fix").channel("latitude").values[i], (39.6 + value(i, 0) * 1e-5) * (M_PI / 180.0));
     EXPECT_EQ(lg.stream("navsat/fix").channel("altitude").values[i], value(i, 2));
     EXPECT_EQ(lg.stream("navsat/fix").channel("status.status").values[i], 2.0);
     EXPECT_EQ(lg.stream("navsat/fix").channel("position_covariance_type").values[i], 1.0);
@@ -305,6 +306,83 @@ TEST(Ros1Bag, EveryMappedMessageTypeDecodes) {
   EXPECT_EQ(small.stream("tf").channels().size(), 0U);
   EXPECT_EQ(small.stream("tf").size(), 10U);
   EXPECT_EQ(small.stream("odom").channel("pose.pose.position.x").values[3], value(3, 7));
+}
+
+// Standard messages get their REP 103 units without a mapping (issue 44): forces in N and joint angles in rad
+// no longer share one unitless axis.
+TEST(Ros1Bag, StandardMessagesGetTheirUnits) {
+  TempDir dir;
+  const std::string path = dir.file("rover.bag");
+  write_rover_bag(path);
+  const log::Log lg = io::load_log(path).log;
+  const auto unit = [&](const char* stream, const char* channel) { return lg.stream(stream).channel(channel).unit; };
+  EXPECT_EQ(unit("wheel_fl/wrench", "wrench.force.x"), "N");
+  EXPECT_EQ(unit("wheel_fl/wrench", "wrench.torque.z"), "N*m");
+  EXPECT_EQ(unit("cmd_vel", "twist.linear.x"), "m/s");
+  EXPECT_EQ(unit("cmd_vel", "twist.angular.z"), "rad/s");
+  EXPECT_EQ(unit("odom", "pose.pose.position.x"), "m");
+  EXPECT_EQ(unit("odom", "pose.pose.orientation.yaw"), "rad");
+  EXPECT_EQ(unit("odom", "pose.pose.orientation.w"), "1");  // a quaternion part
+  EXPECT_EQ(unit("odom", "twist.twist.linear.x"), "m/s");
+  EXPECT_EQ(unit("odom", "pose.covariance.35"), "1");
+  EXPECT_EQ(unit("tf", "transforms.mast.transform.translation.x"), "m");
+  EXPECT_EQ(unit("tf", "transforms.mast.transform.rotation.yaw"), "rad");
+  EXPECT_EQ(unit("tf", "transforms.mast.header.stamp"), "s");
+  EXPECT_EQ(unit("navsat/fix", "latitude"), "rad");
+  EXPECT_EQ(unit("navsat/fix", "altitude"), "m");
+  EXPECT_EQ(unit("navsat/fix", "position_covariance.0"), "m^2");
+  EXPECT_EQ(unit("navsat/fix", "status.status"), "1");
+  EXPECT_EQ(unit("imu/data", "angular_velocity.x"), "rad/s");
+  EXPECT_EQ(unit("imu/data", "linear_acceleration.z"), "m/s^2");
+  EXPECT_EQ(unit("joint_states", "position.front_left_wheel"), "rad");
+  EXPECT_EQ(unit("joint_states", "effort.front_left_wheel"), "N*m");
+  // ROS 2 type names and the untyped Vector3.
+  EXPECT_EQ(io::ros::standard_unit("geometry_msgs/msg/PoseStamped", "pose.position.z")->unit, "m");
+  EXPECT_EQ(io::ros::standard_unit("sensor_msgs/JointState", "velocity.elbow_joint")->unit, "rad/s");
+  EXPECT_FALSE(io::ros::standard_unit("geometry_msgs/Vector3Stamped", "vector.x").has_value());
+  EXPECT_FALSE(io::ros::standard_unit("geometry_msgs/Wrench", "wrench.force.x").has_value());
+}
+
+// The shipped wheel-rig mapping (issue 44): a wrench above the wheel, the
+// wheel's joint and the carriage's twist become forces, wheels and carriage.
+TEST(Ros1Bag, TheWheelRigMappingReadsARigsBag) {
+  TempDir dir;
+  const std::string path = dir.file("rig.bag");
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    for (int i = 0; i < 20; ++i) {
+      geometry_msgs::WrenchStamped w;
+      w.wrench.force.x = value(i, 1);
+      w.wrench.force.y = value(i, 2);
+      w.wrench.force.z = value(i, 3);
+      w.wrench.torque.y = value(i, 4);
+      bag.write("/wheel/wrench", at(0.05 * i), w);
+      sensor_msgs::JointState js;
+      js.name = {"wheel"};
+      js.position = {value(i, 5)};
+      js.velocity = {value(i, 6)};
+      bag.write("/joint_states", at(0.05 * i), js);
+      geometry_msgs::TwistStamped tw;
+      tw.twist.linear.x = value(i, 7);
+      bag.write("/carriage/twist", at(0.05 * i), tw);
+    }
+  }
+  io::LoadOptions o;
+  o.mapping = io::load_mapping(std::string(ROVERLAB_RESOURCES_DIR) + "/mappings/ros_wheel_rig.json");
+  const log::Log lg = io::load_log(path, o).log;
+  const log::Stream& forces = lg.stream("forces");
+  ASSERT_EQ(forces.size(), 20U);
+  EXPECT_EQ(forces.channel("drawbar_pull").unit, "N");
+  EXPECT_EQ(forces.channel("resistive_torque").unit, "N*m");
+  EXPECT_EQ(lg.stream("wheels").channel("rate").unit, "rad/s");
+  EXPECT_EQ(lg.stream("carriage").channel("speed").unit, "m/s");
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_EQ(forces.channel("drawbar_pull").values[i], value(i, 1));
+    EXPECT_EQ(forces.channel("normal_load").values[i], value(i, 3));
+    EXPECT_EQ(forces.channel("resistive_torque").values[i], value(i, 4));
+    EXPECT_EQ(lg.stream("wheels").channel("angle").values[i], value(i, 5));
+    EXPECT_EQ(lg.stream("carriage").channel("speed").values[i], value(i, 7));
+  }
 }
 
 TEST(Ros1Bag, AMappingNamesTopicsAsRoverStreamsWithUnits) {
@@ -478,12 +556,17 @@ TEST(Ros1Bag, ChannelsEqualWhatPythonRosbagDecodes) {
   std::size_t compared = 0;
   for (const auto& [topic, columns] : fields.items()) {
     const log::Stream& s = lg.stream(topic.substr(1));
+    const std::string& type_and_count = lg.metadata.extra.at("topic " + topic);
+    const std::string type = type_and_count.substr(0, type_and_count.find(','));
     for (const auto& [name, values] : columns.items()) {
       const log::Channel* c = s.find_channel(name);
       ASSERT_NE(c, nullptr) << topic << " " << name;
       ASSERT_EQ(c->values.size(), values.size()) << topic << " " << name;
+      // NavSatFix's degrees come in rad (the standard units, issue 44).
+      const auto unit = io::ros::standard_unit(type, name);
+      const double factor = unit ? unit->factor : 1.0;
       for (std::size_t i = 0; i < values.size(); ++i) {
-        EXPECT_EQ(c->values[i], values[i].get<double>()) << topic << " " << name << " [" << i << "]";
+        EXPECT_EQ(c->values[i], values[i].get<double>() * factor) << topic << " " << name << " [" << i << "]";
         ++compared;
       }
     }

@@ -89,6 +89,17 @@ TEST(TimeSeriesChart, ValueAxesNameTheirQuantityAndUnit) {
   EXPECT_EQ(chart.chart(2)->GetAxis(vtkAxis::LEFT)->GetTitle(), "slip ratio, reference slip");
 }
 
+// Issue 44: a ROS field path keeps its underscores ("position.robot joint" named no joint).
+TEST(TimeSeriesChart, RosFieldPathsKeepTheirUnderscores) {
+  log::Log lg;
+  const std::vector<double> t = times(1.0, 0.1);
+  log::Stream joints("joint_states", t);
+  joints.add_channel("position.robot_joint", "rad", t);
+  lg.add_stream(std::move(joints));
+  views::TimeSeriesChart chart(lg, {{"joint_states", "position.robot_joint"}});
+  EXPECT_EQ(chart.y_title(0), "position.robot_joint (rad)");
+}
+
 TEST(TimeSeriesChart, ItsViewResetsItWithOtherChannelsInTheSameContextView) {
   const log::Log lg = step();
   const views::View* plots = nullptr;
