@@ -1,4 +1,5 @@
 #include "app/report_compare.h"
+#include "core/log/conventions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -133,7 +134,7 @@ void write_comparison_section(ReportSection& section, json& metrics, const std::
   log::Log base;
   base.metadata = with_estimates.metadata;
   for (const auto& s : with_estimates.streams()) {
-    if (s.name().rfind("estimate/", 0) != 0) base.add_stream(s);
+    if (s.name().rfind(log::kEstimatePrefix, 0) != 0) base.add_stream(s);
   }
   std::ostringstream& html = section.html;
   html << "<h2>Comparison with other runs</h2>\n<p>The baseline is this report's log; each run is aligned to it and "

@@ -28,8 +28,8 @@ endforeach()
 # discrepancy/rover and discrepancy/odometry, ...) do not include each other,
 # and a parent folder does not include its children. No folder holds more
 # than 20 files.
-set(core_ranks common=0 log=1 comparison=2 kinematics=2 terramechanics=2 filters=3 models=3
-    simulation=4 estimation=5 discrepancy=6)
+set(core_ranks common=0 log=1 kinematics=2 terramechanics=2 filters=3 models=3
+    simulation=4 estimation=5 comparison=6 discrepancy=7)
 function(core_rank folder out)
   set(rank "")
   foreach(entry IN LISTS core_ranks)

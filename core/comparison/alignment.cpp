@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "core/common/error.h"
+#include "core/estimation/ins_slip/streams.h"
+#include "core/log/conventions.h"
 #include "core/log/resample.h"
 
 namespace roverlab::comparison {
@@ -127,21 +129,16 @@ std::vector<double> travelled(const log::Stream& s, const std::string& x, const 
   return out;
 }
 
-struct PositionSource {
-  const char* stream;
-  const char* x;
-  const char* y;
-};
-constexpr PositionSource kPositionSources[] = {{"truth/motion", "east", "north"},
-                                               {"truth/pose", "x", "z"},
-                                               {"gps", "east", "north"},
-                                               {"estimate/ins/pose", "east", "north"},
-                                               {"estimate/odometry/pose", "east", "north"},
-                                               {"odometry", "x", "y"}};
+// A pose source with two position channels (the log's and the estimators'
+// pose sources, best first: estimation/ins_slip/streams.h); a velocity
+// source (b null) places no run.
+using PositionSource = analysis::PoseSource;
+const auto& kPositionSources = estimation::ins_streams::kPoseSources;
 
 bool has_position(const log::Log& lg, const PositionSource& p) {
   const log::Stream* s = lg.find_stream(p.stream);
-  return s != nullptr && s->size() >= 2 && s->find_channel(p.x) != nullptr && s->find_channel(p.y) != nullptr;
+  return p.b != nullptr && s != nullptr && s->size() >= 2 && s->find_channel(p.a) != nullptr &&
+         s->find_channel(p.b) != nullptr;
 }
 
 const PositionSource& shared_position_source(const log::Log& base, const log::Log& other) {
@@ -172,8 +169,8 @@ std::pair<std::string, std::vector<std::string>> sync_channels(const log::Log& b
   double best_rate = 0;
   for (const auto& s : base.streams()) {
     const log::Stream* o = other.find_stream(s.name());
-    if (o == nullptr || s.size() < 8 || o->size() < 8 || s.name().rfind("truth/", 0) == 0 ||
-        s.name().rfind("estimate/", 0) == 0 || s.mean_rate_hz() <= best_rate) {
+    if (o == nullptr || s.size() < 8 || o->size() < 8 || s.name().rfind(log::kTruthPrefix, 0) == 0 ||
+        s.name().rfind(log::kEstimatePrefix, 0) == 0 || s.mean_rate_hz() <= best_rate) {
       continue;
     }
     std::vector<std::string> shared;
@@ -216,7 +213,7 @@ double find_time_offset(const log::Stream& base, const log::Stream& other, const
 
 PositionTrack position_track(const log::Log& log) {
   for (const auto& p : kPositionSources) {
-    if (has_position(log, p)) return {p.stream, p.x, p.y};
+    if (has_position(log, p)) return {p.stream, p.a, p.b};
   }
   return {};
 }
@@ -265,16 +262,16 @@ Alignment align_runs(const log::Log& base, const log::Log& other, const Alignmen
   const log::Stream& sb = base.stream(p.stream);
   const log::Stream& so = other.stream(p.stream);
   if (options.by == AlignBy::motion) {
-    a.base_event_s = motion_start(sb, p.x, p.y, options.motion_threshold_m);
-    a.other_event_s = motion_start(so, p.x, p.y, options.motion_threshold_m);
+    a.base_event_s = motion_start(sb, p.a, p.b, options.motion_threshold_m);
+    a.other_event_s = motion_start(so, p.a, p.b, options.motion_threshold_m);
     a.offset_s = a.other_event_s - a.base_event_s;
     a.how = "start of motion on " + a.position_source;
     return a;
   }
   a.base_time = sb.time();
-  a.base_distance = travelled(sb, p.x, p.y);
+  a.base_distance = travelled(sb, p.a, p.b);
   a.other_time = so.time();
-  a.other_distance = travelled(so, p.x, p.y);
+  a.other_distance = travelled(so, p.a, p.b);
   a.how = "distance travelled on " + a.position_source;
   return a;
 }
