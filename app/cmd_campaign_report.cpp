@@ -346,8 +346,9 @@ class CampaignReportWriter {
       }
       html_ << "</tr>\n";
     }
-    html_ << "</table></div>\n<p>" << confusion_.at("named_as_expected").get<int>() << " of "
-          << confusion_.at("scored_runs").get<int>()
+    html_ << "</table></div>\n<p class=\"legend\">Bold: the cell where the named cause is the expected one "
+             "(the same meaning as in the studies' tables: bold is the cause named).</p>\n<p>"
+          << confusion_.at("named_as_expected").get<int>() << " of " << confusion_.at("scored_runs").get<int>()
           << " runs whose injected effect has one right answer (column \"expected\") had it named. Without "
              "slip=0 the drive has slip episodes, whose steady slip looks like a smaller wheel radius.</p>\n";
   }

@@ -296,6 +296,8 @@ void expect_table_matches_runs(const fs::path& out) {
   const json& confusion = report.at("confusion");
   EXPECT_EQ(confusion.at("injected").size(), 3U) << confusion.dump();
   EXPECT_NE(html.find("id=\"confusion\""), std::string::npos);
+  // Bold has one meaning, said under the table (issue 48).
+  EXPECT_NE(html.find("Bold: the cell where the named cause is the expected one"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "report" / "hist_ins_final_error_m.svg"));
 }
 
