@@ -232,7 +232,11 @@ void MainWindow::build_streams_dock() {
     add_plot_channel(item->parent()->text(0), item->text(0));
     if (plot_target_ < view_tabs_.size()) show_pane(view_tabs_[plot_target_].page);
   });
-  auto* dock = new QDockWidget("Streams (double-click a channel, or drag it onto the plots)");
+  // The title stays short enough for the dock's width; how to use the tree
+  // is its header's tooltip and the status bar's hint (issue 48).
+  tree_->headerItem()->setToolTip(0, "Double-click a channel, or drag it onto the plots");
+  tree_->setStatusTip("Double-click a channel, or drag it onto the plots");
+  auto* dock = new QDockWidget("Streams");
   dock->setObjectName("streams");
   dock->setWidget(tree_);
   addDockWidget(Qt::LeftDockWidgetArea, dock);

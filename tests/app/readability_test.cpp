@@ -253,6 +253,11 @@ TEST_F(Readability, TheStreamsPaneShowsWholeCountsAndElidesNamesWithATooltip) {
     }
   }
   EXPECT_TRUE(long_name);  // the estimate/rover_discrepancy/... names do not fit the column: elided, with tooltip
+  // The dock's title is not cut off: it fits the dock, and the usage hint is the header's tooltip.
+  const auto* dock = qobject_cast<const QDockWidget*>(tree->parentWidget());
+  ASSERT_NE(dock, nullptr);
+  EXPECT_LE(QFontMetrics(dock->font()).horizontalAdvance(dock->windowTitle()), dock->width());
+  EXPECT_FALSE(tree->headerItem()->toolTip(0).isEmpty());
 }
 
 // A legend entry with no value at the cursor says so in words, never "= -".
