@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/analysis.h"
 #include "app/command.h"
 #include "app/command_support.h"
 #include "app/commands.h"
@@ -33,8 +34,6 @@ using nlohmann::json;
 using namespace roverlab::terramechanics;
 
 namespace {
-
-json nullable(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
   json j = json::object();
@@ -89,8 +88,8 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                                {"significant", v.significant},
                                {"explained_by", v.explained_by.empty() ? json(nullptr) : json(v.explained_by)},
                                {"best_candidate", v.best_candidate},
-                               {"held_out_rmse_before", nullable(v.held_out_before)},
-                               {"held_out_rmse_after", nullable(v.held_out_after)},
+                               {"held_out_rmse_before", finite_or_null(v.held_out_before)},
+                               {"held_out_rmse_after", finite_or_null(v.held_out_after)},
                                {"sentence", v.sentence}});
   }
   j["partial"] = json::array();
@@ -108,7 +107,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
       for (const auto& p : c.fit.parameters) {
         cj["parameters"].push_back({{"name", to_string(p.parameter)},
                                     {"value", p.value},
-                                    {"sigma", nullable(p.sigma)},
+                                    {"sigma", finite_or_null(p.sigma)},
                                     {"at_bound", p.at_bound}});
       }
       cj["bic"] = c.bic;
@@ -117,7 +116,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
       cj["held_out_score_sigma"] = c.held_out_score;
       json ho = json::object(), base = json::object();
       for (std::size_t i = 0; i < r.quantities.size(); ++i) {
-        ho[to_string(r.quantities[i])] = nullable(c.held_out_rmse[i]);
+        ho[to_string(r.quantities[i])] = finite_or_null(c.held_out_rmse[i]);
       }
       cj["held_out_rmse"] = ho;
     }
@@ -130,45 +129,46 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
                  {"bic", c.bic},
                  {"delta_bic", c.delta_bic},
                  {"held_out_score_sigma", c.held_out_score},
-                 {"gain_share", nullable(c.gain_share)},
+                 {"gain_share", finite_or_null(c.gain_share)},
                  {"role", analysis::step_role_name(c.role)},
                  {"parameters", json::array()}};
     json ho = json::object();
     for (std::size_t i = 0; i < r.quantities.size() && i < c.held_out_rmse.size(); ++i) {
-      ho[to_string(r.quantities[i])] = nullable(c.held_out_rmse[i]);
+      ho[to_string(r.quantities[i])] = finite_or_null(c.held_out_rmse[i]);
     }
     step["held_out_rmse"] = ho;
     for (const auto& p : c.fit.parameters) {
       step["parameters"].push_back({{"name", to_string(p.parameter)},
                                     {"value", p.value},
-                                    {"sigma", nullable(p.sigma)},
+                                    {"sigma", finite_or_null(p.sigma)},
                                     {"at_bound", p.at_bound}});
     }
     j["selection"].push_back(step);
   }
   if (r.best_pair) {
-    j["best_pair"] = {{"model", r.best_pair->name},
-                      {"delta_bic", nullable(r.best_pair->delta_bic)},
-                      {"held_out_score_sigma",
-                       r.best_pair->held_out_rmse.empty() ? json(nullptr) : nullable(r.best_pair->held_out_score)}};
+    j["best_pair"] = {
+        {"model", r.best_pair->name},
+        {"delta_bic", finite_or_null(r.best_pair->delta_bic)},
+        {"held_out_score_sigma",
+         r.best_pair->held_out_rmse.empty() ? json(nullptr) : finite_or_null(r.best_pair->held_out_score)}};
   }
   j["final_model"] = r.final_model;
   j["family_choice"] = r.family_choice;
   j["families"] = json::array();
   for (const auto& f : r.families) {
     json fj = {{"family", f.family},
-               {"held_out_score_sigma", nullable(f.held_out_score)},
+               {"held_out_score_sigma", finite_or_null(f.held_out_score)},
                {"held_out_method", f.held_out_method}};
     json ho = json::object();
     for (std::size_t i = 0; i < r.quantities.size() && i < f.held_out_rmse.size(); ++i) {
-      ho[to_string(r.quantities[i])] = nullable(f.held_out_rmse[i]);
+      ho[to_string(r.quantities[i])] = finite_or_null(f.held_out_rmse[i]);
     }
     fj["held_out_rmse"] = ho;
     fj["parameters"] = json::array();
     for (const auto& p : f.parameters) {
       fj["parameters"].push_back({{"name", to_string(p.parameter)},
                                   {"value", p.value},
-                                  {"sigma", nullable(p.sigma)},
+                                  {"sigma", finite_or_null(p.sigma)},
                                   {"at_bound", p.at_bound}});
     }
     j["families"].push_back(fj);
@@ -178,8 +178,8 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
     j["per_wheel"].push_back({{"wheel", w.wheel},
                               {"quantity", to_string(w.quantity)},
                               {"count", w.count},
-                              {"baseline_rmse", nullable(w.baseline_rmse)},
-                              {"held_out_rmse", nullable(w.model_rmse)}});
+                              {"baseline_rmse", finite_or_null(w.baseline_rmse)},
+                              {"held_out_rmse", finite_or_null(w.model_rmse)}});
   }
   json base = json::object();
   for (std::size_t i = 0; i < r.quantities.size(); ++i) base[to_string(r.quantities[i])] = r.baseline_held_out_rmse[i];
