@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/models/skid_steer_odometry.h"
 #include "core/kinematics/rover_model.h"
 #include "core/log/log.h"
+#include "core/models/skid_steer_odometry.h"
 #include "views/traction_surface_scene.h"
 
 class vtkRenderWindow;
@@ -85,9 +85,10 @@ class View {
   virtual bool uses_surface_data() const { return false; }
   // True when the view plots SceneInput::channels.
   virtual bool uses_channels() const { return false; }
-  // True when the view draws estimates the app's analyses add to a log (the
-  // app runs those that can run before building it).
-  virtual bool draws_estimates() const { return false; }
+  // The estimate streams it draws (name prefixes, e.g. "estimate/ins/"): the
+  // app runs, before building it, the analyses that add one of them and can
+  // run (app::Analysis::estimate_streams()), and no other.
+  virtual std::vector<std::string> estimates_drawn() const { return {}; }
   // What the log lacks that no analysis can add (its measured streams),
   // checked before any analysis runs: empty when the view may be fed.
   virtual std::string needs_before_estimates(const log::Log& log) const {

@@ -12,9 +12,9 @@
 #include "app/command_support.h"
 #include "app/commands.h"
 #include "app/resources.h"
-#include "core/estimation/net_traction/surface.h"
 #include "core/common/error.h"
 #include "core/estimation/net_traction/net_traction.h"
+#include "core/estimation/net_traction/surface.h"
 #include "importers/rover_file.h"
 #include "importers/soil_file.h"
 #include "views/traction_surface_scene.h"
@@ -151,6 +151,7 @@ class NetTractionAnalysis : public Analysis {
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "eq-5.66", "shape"}));
   }
+  std::vector<std::string> estimate_streams() const override { return {"estimate/net_traction/"}; }
   json configuration() const override {
     return {{"force_sensors", force_sensors_ ? json(*force_sensors_) : json(nullptr)},
             {"order", order_},
