@@ -61,6 +61,7 @@ nlohmann::json rover_scenario_content(const std::optional<std::string>& given,
     throw UsageError(file + ": the log names no scenario; give --scenario");
   }
   nlohmann::json content = nlohmann::json::parse(sc.document);
+  content.erase("name");  // the words that name it, not what it is
   content.erase("description");
   return content;
 }

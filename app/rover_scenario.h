@@ -27,7 +27,7 @@ analysis::RoverScenarioModel load_logs_rover_scenario(const std::map<std::string
 
 // What a scenario is, rather than the words that named it: the scenario
 // `given` (a NAME or FILE.json) or else the one the log's metadata records or
-// names, as its JSON content without its description. Two runs modelled on
+// names, as its JSON content without its name and description. Two runs modelled on
 // the same scenario, named or inferred, give the same value. Throws
 // InputError (or UsageError when the log names none) as the loaders above.
 nlohmann::json rover_scenario_content(const std::optional<std::string>& given,
