@@ -114,6 +114,9 @@ class Analysis {
   virtual std::string log_help() const = 0;  // what the LOG argument must hold
   // Whether it adds streams to the log (and so takes -o OUT.h5).
   virtual bool adds_streams() const { return true; }
+  // The names (prefixes) of the estimate streams it adds: a view that draws
+  // none of them does not run it (views::View::estimates_drawn()).
+  virtual std::vector<std::string> estimate_streams() const { return {}; }
   // Empty when the analysis can run on `log`, else what the log lacks.
   virtual std::string missing(const log::Log& log) const = 0;
   // Whether the GUI and the report run it on this log by themselves.
@@ -125,6 +128,15 @@ class Analysis {
   // The settings it runs with (its options' values), as run_analysis() puts
   // them in the result document under "configuration".
   virtual nlohmann::json configuration() const = 0;
+  // The settings as they resolve on `log`: what its result depends on, with a
+  // setting that names something (a scenario) replaced by what it names (the
+  // scenario's content), so that a name given and the same one the log
+  // records compare equal. A stored result is reused when these match.
+  // Throws InputError when a name cannot be resolved.
+  virtual nlohmann::json resolved_configuration(const log::Log& log) const {
+    (void)log;
+    return configuration();
+  }
   // Throws UsageError for option values that make no sense, before any log is read.
   virtual void check_options() const {}
   // Throws DataError for what the log lacks, UsageError for bad options.
@@ -172,7 +184,8 @@ using Analyses = std::vector<std::unique_ptr<Analysis>>;
 // Runs `analysis` on `input.log` the one way every entry point does: the
 // result document gains "configuration" (Analysis::configuration()) and
 // "input" (the fingerprint of the log's measured streams, log_fingerprint(),
-// and the program that ran it, program_identity()).
+// the program that ran it, program_identity(), and the settings resolved on
+// the log, Analysis::resolved_configuration()).
 // A DataError becomes an InputError naming input.file.
 AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input);
 
@@ -186,10 +199,12 @@ std::string program_identity();
 std::string log_fingerprint(const log::Log& log);
 
 // The result of `analysis` stored in `log` (estimate X -o OUT.h5) when it was
-// made from these measurements with this configuration by this program
+// made from these measurements with these settings, compared as resolved on
+// the log (Analysis::resolved_configuration()), by this program
 // (program_identity()), nests at most io::kMaxJsonNesting deep and is of the
 // shape the analysis reads (its print, summary, tables and key metrics make
-// no type error); nullopt otherwise (the analysis runs again).
+// no type error); nullopt otherwise (the analysis runs again; also when a
+// setting cannot be resolved).
 // `fingerprint` gives log_fingerprint(log) (asked only when a result is stored).
 std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log::Log& log,
                                             const std::function<std::string()>& fingerprint = {});

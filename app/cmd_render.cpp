@@ -44,6 +44,19 @@ std::string views_that(bool (views::View::*uses)() const) {
   return out;
 }
 
+// The analyses that add a stream `view` draws (one's name prefix starts the other's).
+std::vector<std::string> analyses_drawn_by(const views::View& view) {
+  const std::vector<std::string> drawn = view.estimates_drawn();
+  return all_analysis_names([&](const Analysis& a) {
+    for (const std::string& added : a.estimate_streams()) {
+      for (const std::string& d : drawn) {
+        if (added.rfind(d, 0) == 0 || d.rfind(added, 0) == 0) return true;
+      }
+    }
+    return false;
+  });
+}
+
 int run_render(const RenderOptions& o) {
   const auto [w, h] = parse_size(o.size);
   const views::View* view = views::find_view(o.view);
@@ -53,8 +66,8 @@ int run_render(const RenderOptions& o) {
                      views_that(&views::View::plots_channel_pair) + " view");
   if (fs::path(o.output).extension() != ".png") throw UsageError("--output " + o.output + ": must end in .png");
   ViewInputOptions vo;
-  if (view->draws_estimates()) vo.analyses = all_analysis_names(&Analysis::adds_streams);  // the estimators
-  if (view->uses_surface_data() && !o.soil)                                                // a rover's own surfaces
+  vo.analyses = analyses_drawn_by(*view);    // the estimators whose streams it draws, no study it does not
+  if (view->uses_surface_data() && !o.soil)  // a rover's own surfaces
     vo.analyses = all_analysis_names(&Analysis::draws_traction_surfaces);
   // Refused before any analysis runs: a time outside the log.
   vo.check_log = [&o, view](const log::Log& lg) {

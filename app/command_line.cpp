@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <map>
+#include <optional>
+#include <stdexcept>
 
 #include "app/command.h"
 #include "app/command_support.h"
@@ -10,6 +12,7 @@
 #include "app/log_input.h"
 #include "core/common/error.h"
 #include "core/common/library_messages.h"
+#include "core/common/thread_pool.h"
 #include "views/offscreen.h"
 #include "views/x_display.h"
 
@@ -103,7 +106,13 @@ int parse_and_run(int argc, char** argv) {
                   "ROS bags and MCAP files: arrays of up to N elements become channels, longer ones are "
                   "skipped (default 64)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1} << 20));
-  p.cli.fallthrough();  // --verbose (and --ros-*) also after the subcommand's name
+  std::optional<std::size_t> threads;
+  p.cli
+      .add_option("--threads", threads,
+                  "Threads a study's independent parts run on (default: the machine's, or ROVERLAB_THREADS); "
+                  "the results are the same on any number")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{4096}));
+  p.cli.fallthrough();  // --verbose (and --ros-*, --threads) also after the subcommand's name
   Commands commands = all_commands();
   for (auto& c : commands) p.add(*c);
   try {
@@ -121,6 +130,11 @@ int parse_and_run(int argc, char** argv) {
   route_library_messages(verbose);
   set_progress_lines(progress);
   views::route_vtk_messages(verbose);
+  try {
+    set_thread_count(threads ? *threads : default_thread_count());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   // The deepest command given runs (`terramechanics surface`, not `terramechanics`).
   Command* chosen = nullptr;
   std::size_t depth = 0;

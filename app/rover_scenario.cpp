@@ -46,6 +46,26 @@ analysis::RoverScenarioModel load_logs_rover_scenario(const std::map<std::string
   return load_rover_scenario(io::find_scenario_named(named->second, resource_subfolders("scenarios"), file));
 }
 
+nlohmann::json rover_scenario_content(const std::optional<std::string>& given,
+                                      const std::map<std::string, std::string>& metadata, const std::string& file) {
+  io::ScenarioFile sc;
+  const auto recorded = metadata.find("scenario_json");
+  const auto named = metadata.find("scenario");
+  if (given) {
+    sc = io::find_scenario(*given, resource_subfolders("scenarios"));
+  } else if (recorded != metadata.end()) {
+    sc = io::parse_scenario(file + " (metadata scenario_json)", recorded->second);
+  } else if (named != metadata.end() && !named->second.empty()) {
+    sc = io::find_scenario_named(named->second, resource_subfolders("scenarios"), file);
+  } else {
+    throw UsageError(file + ": the log names no scenario; give --scenario");
+  }
+  nlohmann::json content = nlohmann::json::parse(sc.document);
+  content.erase("name");  // the words that name it, not what it is
+  content.erase("description");
+  return content;
+}
+
 analysis::RoverScenarioModel load_rover_scenario(const io::ScenarioFile& sc,
                                                  const std::optional<std::string>& traction_option) {
   analysis::RoverScenarioModel model;

@@ -4,6 +4,7 @@
 // scenario's own effects. Shared by `simulate` and `discrepancy rover`.
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -23,5 +24,13 @@ analysis::RoverScenarioModel load_rover_scenario(const io::ScenarioFile& scenari
 // metadata names (a plain name, never a path). Throws InputError naming `file`.
 analysis::RoverScenarioModel load_logs_rover_scenario(const std::map<std::string, std::string>& metadata,
                                                       const std::string& file);
+
+// What a scenario is, rather than the words that named it: the scenario
+// `given` (a NAME or FILE.json) or else the one the log's metadata records or
+// names, as its JSON content without its name and description. Two runs modelled on
+// the same scenario, named or inferred, give the same value. Throws
+// InputError (or UsageError when the log names none) as the loaders above.
+nlohmann::json rover_scenario_content(const std::optional<std::string>& given,
+                                      const std::map<std::string, std::string>& metadata, const std::string& file);
 
 }  // namespace roverlab::app

@@ -458,7 +458,10 @@ class RoverView : public View {
     return articulated(in) ? std::string() : pose_track_needs(*in.log);
   }
   bool trackball_camera() const override { return true; }
-  bool draws_estimates() const override { return true; }
+  // Pose and slip (skid-steer), contact angles (articulated), net traction (planar).
+  std::vector<std::string> estimates_drawn() const override {
+    return {"estimate/ins/", "estimate/odometry/", "estimate/contact/", "estimate/net_traction/"};
+  }
 
  protected:
   std::unique_ptr<Scene> make_scene(const SceneInput& in) const override {

@@ -88,9 +88,10 @@ class View {
   // True when the view plots one channel against another: SceneInput::channels
   // holds x then y (`render --x --y`); the report has no pair to choose and leaves it out.
   virtual bool plots_channel_pair() const { return false; }
-  // True when the view draws estimates the app's analyses add to a log (the
-  // app runs those that can run before building it).
-  virtual bool draws_estimates() const { return false; }
+  // The estimate streams it draws (name prefixes, e.g. "estimate/ins/"): the
+  // app runs, before building it, the analyses that add one of them and can
+  // run (app::Analysis::estimate_streams()), and no other.
+  virtual std::vector<std::string> estimates_drawn() const { return {}; }
   // What the log lacks that no analysis can add (its measured streams),
   // checked before any analysis runs: empty when the view may be fed.
   virtual std::string needs_before_estimates(const log::Log& log) const {

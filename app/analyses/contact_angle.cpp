@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 
 #include "app/analyses/health.h"
@@ -127,6 +128,16 @@ class ContactAngleAnalysis : public Analysis {
             {"angle_variance", value(angle_variance_)},
             {"joint_rate_window_s", joint_rate_window_}};
   }
+  // The rover file --rover names or the log's rover id resolves to, whichever named it.
+  json resolved_configuration(const log::Log& lg) const override {
+    json settings = configuration();
+    std::error_code ec;
+    const std::string file = rover_description(lg, "the log").file;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(file, ec);
+    settings["rover"] = ec ? file : canonical.string();
+    return settings;
+  }
+  std::vector<std::string> estimate_streams() const override { return {"estimate/contact/"}; }
   void check_options() const override { (void)options(); }
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;

@@ -119,7 +119,10 @@ std::string log_fingerprint(const log::Log& lg) {
 AnalysisResult run_analysis(Analysis& analysis, const AnalysisInput& input) {
   AnalysisResult r = about_file(input.file, [&] { return analysis.run(input); });
   r.document["configuration"] = analysis.configuration();
-  r.document["input"] = {{"fingerprint", log_fingerprint(input.log)}, {"program", program_identity()}};
+  r.document["input"] = {
+      {"fingerprint", log_fingerprint(input.log)},
+      {"program", program_identity()},
+      {"settings", about_file(input.file, [&] { return analysis.resolved_configuration(input.log); })}};
   return r;
 }
 
@@ -162,10 +165,17 @@ std::optional<nlohmann::json> stored_result(const Analysis& analysis, const log:
   if (at == lg.metadata.results.end()) return std::nullopt;
   // Nested deeper than any result is (a copy of it would overflow the stack): run again.
   nlohmann::json doc = io::parse_bounded_json(at->second);
-  if (!doc.is_object() || doc.value("configuration", nlohmann::json()) != analysis.configuration() ||
-      !doc.contains("input") || !doc.at("input").is_object() ||
-      doc.at("input").value("program", std::string()) != program_identity() ||
-      doc.at("input").value("fingerprint", std::string()) != (fingerprint ? fingerprint() : log_fingerprint(lg))) {
+  if (!doc.is_object() || !doc.contains("input") || !doc.at("input").is_object()) return std::nullopt;
+  const nlohmann::json& input = doc.at("input");
+  if (input.value("program", std::string()) != program_identity()) return std::nullopt;
+  nlohmann::json settings;
+  try {
+    settings = analysis.resolved_configuration(lg);
+  } catch (const std::exception&) {
+    return std::nullopt;  // running it says what is wrong
+  }
+  if (input.value("settings", nlohmann::json()) != settings ||
+      input.value("fingerprint", std::string()) != (fingerprint ? fingerprint() : log_fingerprint(lg))) {
     return std::nullopt;
   }
   if (!readable_result(analysis, doc)) return std::nullopt;

@@ -124,6 +124,11 @@ class RoverDiscrepancyAnalysis : public Analysis {
   json configuration() const override {
     return {{"scenario", scenario_ ? json(*scenario_) : json(nullptr)}, {"block_s", block_}};
   }
+  // The scenario's content, whether --scenario named it or the log records it.
+  json resolved_configuration(const log::Log& lg) const override {
+    return {{"scenario", rover_scenario_content(scenario_, lg.metadata.extra, "the log")}, {"block_s", block_}};
+  }
+  std::vector<std::string> estimate_streams() const override { return {"estimate/rover_discrepancy/"}; }
   void check_options() const override {
     if (scenario_ && scenario_->empty()) throw UsageError("--scenario: the scenario's name is empty");
   }

@@ -2,11 +2,29 @@
 
 #include <QtConcurrent/QtConcurrent>
 
+#include <cerrno>
 #include <exception>
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 namespace roverlab::gui {
 
+namespace {
+
+// Raises the calling thread's nice value to at least `nice` (Linux: per thread).
+void run_nicer(int nice) {
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  errno = 0;
+  const int now = getpriority(PRIO_PROCESS, tid);
+  if (errno == 0 && now < nice) setpriority(PRIO_PROCESS, tid, nice);
+}
+
+}  // namespace
+
 JobRunner::JobRunner(QObject* parent) : QObject(parent) {
+  pool_.setMaxThreadCount(1);
   connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, &JobRunner::on_finished);
   poll_.setInterval(50);
   connect(&poll_, &QTimer::timeout, this, [this] { emit progress(progress_.load()); });
@@ -25,7 +43,8 @@ bool JobRunner::start(const QString& title, Work work) {
   progress_.store(0.0);
   cancel_.store(false);
   JobControl control(&progress_, &cancel_);
-  watcher_.setFuture(QtConcurrent::run([work = std::move(work), control]() -> Outcome {
+  watcher_.setFuture(QtConcurrent::run(&pool_, [work = std::move(work), control]() -> Outcome {
+    run_nicer(kJobNice);
     Outcome o;
     try {
       o.apply = work(control);

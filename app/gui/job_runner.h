@@ -1,12 +1,15 @@
 #pragma once
 // Background jobs for the GUI: one job at a time runs on a worker thread
-// (QtConcurrent), reports progress through an atomic the GUI polls, and can
-// be cancelled. The job's result is a continuation run on the GUI thread,
+// (QtConcurrent, on the runner's own pool of one thread, at a lower priority
+// than the GUI's: nice +kJobNice, so a busy machine takes its share from the
+// job, not from the event loop), reports progress through an atomic the GUI
+// polls, and can be cancelled. The job's result is a continuation run on the GUI thread,
 // so results (new streams, metrics) arrive without locking the model.
 
 #include <QFutureWatcher>
 #include <QObject>
 #include <QString>
+#include <QThreadPool>
 #include <QTimer>
 
 #include <atomic>
@@ -36,6 +39,9 @@ class JobControl {
 class JobRunner : public QObject {
   Q_OBJECT
  public:
+  // How much nicer than the GUI thread a job's thread runs (threads it starts inherit it).
+  static constexpr int kJobNice = 10;
+
   // Runs on the worker; returns what to do on the GUI thread with the result.
   using Work = std::function<std::function<void()>(const JobControl&)>;
 
@@ -63,6 +69,7 @@ class JobRunner : public QObject {
   };
   void on_finished();
 
+  QThreadPool pool_;  // one thread, niced once: no other QtConcurrent work runs on it
   QFutureWatcher<Outcome> watcher_;
   QTimer poll_;
   std::atomic<double> progress_{0.0};

@@ -2,15 +2,21 @@
 // and the text, the report and --json all read the one result document.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include <CLI/CLI.hpp>
 
 #include "app/analysis.h"
+#include "app/resources.h"
+#include "app/rover_scenario.h"
+#include "core/simulation/rocker_bogie.h"
 #include "core/simulation/skid_steer_scenario.h"
+#include "importers/scenario_file.h"
 
 namespace roverlab {
 namespace {
@@ -148,6 +154,64 @@ TEST(AnalysisRegistry, AStoredResultIsReusedOnlyForTheSameMeasurementsAndSetting
   // A damaged stored document: run again.
   stored.metadata.results["ins-slip"] = "{not json";
   EXPECT_FALSE(app::stored_result(*ins, stored).has_value());
+}
+
+// A 20 s flat run simulated from scenario NAME, its metadata as `simulate` writes it.
+log::Log simulated_from(const std::string& name) {
+  analysis::RoverScenarioModel model = app::load_rover_scenario(name);
+  model.run.duration = 20;
+  simulation::RockerBogieResult r = simulation::simulate_rocker_bogie(model.geometry, model.parameters, model.run);
+  r.log.metadata.extra["scenario"] = name;
+  r.log.metadata.extra["scenario_json"] = io::find_scenario(name, app::resource_subfolders("scenarios")).document;
+  return std::move(r.log);
+}
+
+// The rover study with its options (empty: the scenario the log records).
+std::unique_ptr<app::Analysis> rover_study(const std::string& options) {
+  std::unique_ptr<app::Analysis> a = app::make_analysis("rover-discrepancy");
+  CLI::App cmd;
+  a->declare(cmd);
+  cmd.parse(options, false);
+  return a;
+}
+
+// Issue 46: settings are compared as they resolve, not as they were typed:
+// a result stored by `discrepancy rover LOG --scenario flat_60s -o` is reused
+// when the scenario is inferred from the log, and the other way round; a
+// scenario file with the same content under another name and description is
+// the same scenario; one with another speed is not.
+TEST(AnalysisRegistry, AStoredResultIsReusedWhetherItsScenarioIsNamedOrInferred) {
+  const log::Log measured = simulated_from("flat_60s");
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("roverlab_reuse_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  nlohmann::json content = nlohmann::json::parse(measured.metadata.extra.at("scenario_json"));
+  content["name"] = "flat_again";
+  content["description"] = "the same run, named otherwise";
+  const std::string same = (dir / "flat_again.json").string(), faster = (dir / "faster.json").string();
+  std::ofstream(same) << content.dump(2);
+  content["desired_speed_mps"] = 0.03;
+  std::ofstream(faster) << content.dump(2);
+
+  const std::vector<std::string> forms = {"", "--scenario flat_60s"};
+  for (const std::string& stored_by : forms) {
+    std::unique_ptr<app::Analysis> writer = rover_study(stored_by);
+    app::AnalysisResult r = app::run_analysis(*writer, {measured, "run.h5", {}});
+    log::Log stored = measured;
+    app::store_result(*writer, r.document, stored);
+    for (const std::string& read_by : forms) {
+      const std::optional<nlohmann::json> again = app::stored_result(*rover_study(read_by), stored);
+      ASSERT_TRUE(again.has_value()) << "stored with '" << stored_by << "', read with '" << read_by << "'";
+      EXPECT_EQ(app::without_run_details(*again), app::without_run_details(r.document));
+    }
+    EXPECT_TRUE(app::stored_result(*rover_study("--scenario " + same), stored).has_value()) << stored_by;
+    EXPECT_FALSE(app::stored_result(*rover_study("--scenario " + faster), stored).has_value()) << stored_by;
+    EXPECT_FALSE(app::stored_result(*rover_study("--scenario rolling_200s"), stored).has_value()) << stored_by;
+    EXPECT_FALSE(app::stored_result(*rover_study("--scenario flat_60s --block 2"), stored).has_value()) << stored_by;
+    // A scenario that cannot be found: not reused (running it says why), never thrown here.
+    EXPECT_FALSE(app::stored_result(*rover_study("--scenario no_such_scenario"), stored).has_value()) << stored_by;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -25,8 +25,10 @@
 #include <QTimer>
 #include <QTreeWidget>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <set>
 #include <thread>
@@ -122,12 +124,41 @@ TEST(Gui, OpenTheBundledLogScrubTheTimelineAndSeeTheRoverMove) {
   w.close();
 }
 
+namespace {
+
+// The longest gap, ms, between the ticks of a 10 ms timer that scrubs the
+// timeline (a render on every tick) until `done` holds (or timeout_ms pass);
+// `ticks` counts them.
+qint64 longest_gap_while_scrubbing(gui::MainWindow& w, const std::function<bool()>& done, int timeout_ms, int& ticks) {
+  QElapsedTimer clock;
+  clock.start();
+  qint64 last = clock.elapsed(), worst = 0;
+  ticks = 0;
+  QTimer tick;
+  tick.setInterval(10);
+  QObject::connect(&tick, &QTimer::timeout, [&] {
+    const qint64 now = clock.elapsed();
+    worst = std::max(worst, now - last);
+    last = now;
+    ++ticks;
+    w.set_time(w.start_time() + std::fmod(0.05 * ticks, w.end_time() - w.start_time()));
+  });
+  tick.start();
+  wait_until(done, timeout_ms);
+  tick.stop();
+  return worst;
+}
+
+}  // namespace
+
+// Issue 46: what the job adds to the GUI thread's longest stall, measured
+// against the same scrubbing with no job in the same run (the machine's load
+// stalls both alike; the job runs niced, JobRunner::kJobNice). On a quiet
+// machine a rover frame under Xvfb (llvmpipe, 1024x640) takes about 25 ms and
+// the limit is 100 ms; under load it is twice the idle stall plus 50 ms.
 TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   gui::MainWindow w;
   w.set_quiet(true);
-  // Under Xvfb every frame is drawn in software (llvmpipe): at 1024x640 a
-  // rover frame takes about 25 ms, so the 100 ms budget measures the job's
-  // effect, not the software rasteriser's.
   w.resize(1024, 640);
   w.show();
   w.open_file(kPathfinder);
@@ -140,10 +171,10 @@ TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   double last_progress = 0.0;
   QObject::connect(&w.jobs(), &gui::JobRunner::progress, [&](double f) { last_progress = std::max(last_progress, f); });
   ASSERT_TRUE(w.jobs().start("load test", [lg, &runs](const gui::JobControl& c) -> std::function<void()> {
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < 3; ++k) {
       estimation::InsSlipOptions o;
       o.progress = [&](double f) {
-        c.report((k + f) / 6.0);
+        c.report((k + f) / 3.0);
         c.check();
       };
       estimation::run_ins_slip(*lg, o);
@@ -151,27 +182,26 @@ TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
     }
     return [] {};
   }));
-  QElapsedTimer clock;
-  clock.start();
-  qint64 last = clock.elapsed(), worst = 0;
+  QElapsedTimer job_time;
+  job_time.start();
   int ticks = 0;
-  QTimer tick;
-  tick.setInterval(10);
-  QObject::connect(&tick, &QTimer::timeout, [&] {
-    const qint64 now = clock.elapsed();
-    worst = std::max(worst, now - last);
-    last = now;
-    ++ticks;
-    w.set_time(w.start_time() + std::fmod(0.05 * ticks, w.end_time() - w.start_time()));
-  });
-  tick.start();
-  ASSERT_TRUE(wait_idle(w, 120000));
-  tick.stop();
-  EXPECT_EQ(runs.load(), 6);
+  const qint64 worst = longest_gap_while_scrubbing(
+      w, [&] { return !w.busy(); }, 120000, ticks);
+  const int job_ms = static_cast<int>(job_time.elapsed());
+  ASSERT_FALSE(w.busy());
+  EXPECT_EQ(runs.load(), 3);
   EXPECT_GT(ticks, 20);
-  EXPECT_LT(worst, 100) << "longest gap between 10 ms ticks, ms";
   EXPECT_GT(last_progress, 0.5);
+  // The same scrubbing for as long again (the longest gap grows with the
+  // time watched), no job.
+  int idle_ticks = 0;
+  const qint64 idle = longest_gap_while_scrubbing(
+      w, [] { return false; }, std::clamp(job_ms, 1000, 60000), idle_ticks);
+  EXPECT_GT(idle_ticks, 20);
+  const qint64 limit = std::max<qint64>(100, 2 * idle + 50);
+  EXPECT_LT(worst, limit) << "longest gap between 10 ms ticks with the job, ms; without: " << idle << " ms";
   RecordProperty("longest_event_loop_gap_ms", static_cast<int>(worst));
+  RecordProperty("longest_idle_gap_ms", static_cast<int>(idle));
 }
 
 TEST(Gui, ClosingTheWindowWhileAJobRunsCancelsIt) {

@@ -102,17 +102,7 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
   if (it != cache_.end()) {
     cache_order_.erase(std::find(cache_order_.begin(), cache_order_.end(), key));
     cache_order_.push_back(key);
-    return it->second;
-  }
-  // The least recently used runs go first, within about 256 MB (a fit's
-  // second pass and the sigmas' profile come back to the runs of its first:
-  // clearing all 17 at once made the README's study simulate 13 of its 53
-  // runs twice; issue 34, N8).
-  const double run_bytes = 8.0 * double(simulation::kSensorChannels + 6) * double(channels_.front().time.size());
-  const std::size_t keep = std::clamp<std::size_t>(static_cast<std::size_t>(256e6 / std::max(run_bytes, 1.0)), 4, 64);
-  while (cache_.size() >= keep) {
-    cache_.erase(cache_order_.front());
-    cache_order_.pop_front();
+    return *it->second;
   }
   simulation::RockerBogieRun run = model_.run;
   run.duration = channels_.front().time.back();
@@ -133,8 +123,37 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
     s.torque[i] = r.log.stream("commands").channel("wheel_torque_" + std::to_string(i + 1)).values;
   }
   s.front_x = r.log.stream("truth/wheels").channel("centre_x_1").values;
+  auto stored = std::make_shared<const Simulated>(std::move(s));
+  remember(key, stored);
+  return *stored;
+}
+
+// The least recently used runs go first, within about 256 MB (a fit's
+// second pass and the sigmas' profile come back to the runs of its first:
+// clearing all 17 at once made the README's study simulate 13 of its 53
+// runs twice; issue 34, N8).
+void Predictor::remember(const Key& key, std::shared_ptr<const Simulated> run) {
+  const double run_bytes = 8.0 * double(simulation::kSensorChannels + 6) * double(channels_.front().time.size());
+  const std::size_t keep = std::clamp<std::size_t>(static_cast<std::size_t>(256e6 / std::max(run_bytes, 1.0)), 4, 64);
+  while (cache_.size() >= keep) {
+    cache_.erase(cache_order_.front());
+    cache_order_.pop_front();
+  }
   cache_order_.push_back(key);
-  return cache_.emplace(key, std::move(s)).first->second;
+  cache_.emplace(key, std::move(run));
+}
+
+Predictor Predictor::fork() const {
+  Predictor copy = *this;
+  copy.simulations_ = 0;
+  return copy;
+}
+
+void Predictor::absorb(const Predictor& other) {
+  for (const Key& key : other.cache_order_) {
+    if (cache_.count(key) == 0) remember(key, other.cache_.at(key));
+  }
+  simulations_ += other.simulations_;
 }
 
 std::array<std::vector<double>, kChannels> Predictor::predict(const simulation::RockerBogieEffects& fx) {

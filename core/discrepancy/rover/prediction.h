@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <deque>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,14 @@ class Predictor {
   // The scenario's own effects: part of the model, the start of every trial.
   const simulation::RockerBogieEffects& scenario_effects() const { return model_.run.effects; }
   int simulations() const { return simulations_; }
+  // A copy for one independent part of the study (a candidate's trial, run
+  // on its own thread): it shares the runs simulated so far (read-only) and
+  // counts only its own simulations.
+  Predictor fork() const;
+  // Takes the runs `other` (a fork) simulated that this one lacks, in their
+  // order, and counts its simulations: forks absorbed in a fixed order leave
+  // the same cache on any number of threads.
+  void absorb(const Predictor& other);
 
   // The simulation under `effects` (physical part cached).
   const Simulated& simulate(const simulation::RockerBogieEffects& effects);
@@ -68,7 +77,9 @@ class Predictor {
   std::vector<MeasuredChannel> channels_;
   double duration_ = 0;
   int simulations_ = 0;
-  std::map<std::array<double, 6>, Simulated> cache_;
+  using Key = std::array<double, 6>;
+  void remember(const Key& key, std::shared_ptr<const Simulated> run);
+  std::map<Key, std::shared_ptr<const Simulated>> cache_;
   std::deque<std::array<double, 6>> cache_order_;  // least recently used first
   std::map<Part, GroupedLikelihood> likelihoods_;
 };

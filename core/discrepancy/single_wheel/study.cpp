@@ -1,11 +1,13 @@
 #include "core/discrepancy/single_wheel/study.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "core/common/error.h"
+#include "core/common/thread_pool.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/single_wheel/candidates.h"
 
@@ -270,10 +272,12 @@ DiscrepancyReport SingleWheelStudy::run() {
   const auto done = [&](double fraction) {
     if (o_.progress) o_.progress(fraction);
   };
-  for (const auto& candidate : candidates_) {
-    report_.candidates.push_back(fit_set({candidate.get()}));
-    done(0.5 * static_cast<double>(report_.candidates.size()) / static_cast<double>(candidates_.size()));
-  }
+  // The screen: each candidate fitted alone, in parallel (core/common/thread_pool.h).
+  std::vector<CandidateResult> screened(candidates_.size());
+  shared_thread_pool().for_each_index(candidates_.size(),
+                                      [&](std::size_t i) { screened[i] = fit_set({candidates_[i].get()}); });
+  for (auto& c : screened) report_.candidates.push_back(std::move(c));
+  done(0.5);
   choose_best();
   report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
   select_forward();
@@ -512,17 +516,27 @@ void SingleWheelStudy::select_forward() {
     int best = -1;
     CandidateResult best_fit;
     std::vector<const SingleWheelCandidate*> best_set;
+    std::vector<std::size_t> open;
+    std::vector<std::vector<const SingleWheelCandidate*>> sets;
     for (std::size_t i = 0; i < candidates_.size(); ++i) {
       if (std::find(chain.begin(), chain.end(), i) != chain.end() || !report_.candidates[i].applicable) continue;
       std::vector<const SingleWheelCandidate*> set;
       set.reserve(chain.size() + 1);
       for (std::size_t j : chain) set.push_back(candidates_[j].get());
       set.push_back(candidates_[i].get());
-      CandidateResult fit = chain.empty() ? report_.candidates[i] : fit_set(set, at, false);
-      if (best < 0 || fit.bic < best_fit.bic) {
-        best = static_cast<int>(i);
-        best_fit = std::move(fit);
-        best_set = set;
+      open.push_back(i);
+      sets.push_back(std::move(set));
+    }
+    // The steps fitted in parallel, then compared in candidate order.
+    std::vector<CandidateResult> fits(open.size());
+    shared_thread_pool().for_each_index(open.size(), [&](std::size_t k) {
+      fits[k] = chain.empty() ? report_.candidates[open[k]] : fit_set(sets[k], at, false);
+    });
+    for (std::size_t k = 0; k < open.size(); ++k) {
+      if (best < 0 || fits[k].bic < best_fit.bic) {
+        best = static_cast<int>(open[k]);
+        best_fit = std::move(fits[k]);
+        best_set = sets[k];
       }
     }
     if (best < 0) break;
@@ -533,13 +547,20 @@ void SingleWheelStudy::select_forward() {
       // Look one step further: the weak first step with its best partner.
       CandidateResult pair_fit;
       int partner = -1;
+      std::vector<std::size_t> partners;
       for (std::size_t i = 0; i < candidates_.size(); ++i) {
-        if (static_cast<int>(i) == best || !report_.candidates[i].applicable) continue;
-        CandidateResult fit = fit_set({candidates_[static_cast<std::size_t>(best)].get(), candidates_[i].get()},
-                                      &report_.candidates[static_cast<std::size_t>(best)], false);
-        if (partner < 0 || fit.bic < pair_fit.bic) {
-          partner = static_cast<int>(i);
-          pair_fit = std::move(fit);
+        if (static_cast<int>(i) != best && report_.candidates[i].applicable) partners.push_back(i);
+      }
+      // The pairs fitted in parallel, then compared in candidate order.
+      std::vector<CandidateResult> pair_fits(partners.size());
+      shared_thread_pool().for_each_index(partners.size(), [&](std::size_t k) {
+        pair_fits[k] = fit_set({candidates_[static_cast<std::size_t>(best)].get(), candidates_[partners[k]].get()},
+                               &report_.candidates[static_cast<std::size_t>(best)], false);
+      });
+      for (std::size_t k = 0; k < partners.size(); ++k) {
+        if (partner < 0 || pair_fits[k].bic < pair_fit.bic) {
+          partner = static_cast<int>(partners[k]);
+          pair_fit = std::move(pair_fits[k]);
         }
       }
       if (partner >= 0) {
@@ -613,7 +634,9 @@ std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOption
     refit.tolerance = io.tolerance;
     refit.max_iterations = 100;
   }
-  for (std::size_t fold = 0; fold < folds; ++fold) {
+  // The folds refitted in parallel, their residuals joined in fold order.
+  std::vector<std::vector<PointResidual>> per_fold(folds);
+  shared_thread_pool().for_each_index(folds, [&](std::size_t fold) {
     std::vector<WheelTestPoint> train, test;
     std::vector<std::size_t> test_index;
     train.reserve(n);
@@ -633,9 +656,10 @@ std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOption
     const IdentificationResult pred = identify_soil(f.soil, test, predict_only);
     for (auto r : pred.residuals) {
       r.point = test_index[r.point];
-      out.push_back(r);
+      per_fold[fold].push_back(r);
     }
-  }
+  });
+  for (const auto& f : per_fold) out.insert(out.end(), f.begin(), f.end());
   return out;
 }
 
@@ -1060,13 +1084,27 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     o.baseline.slip_definition = *o.slip_definition;
     r = run_in_family(soil, points, o);
   } else {
+    // The two readings side by side: the travel one on the pool, the
+    // longitudinal one here, reporting progress (a cancel stops both).
     const auto progress = options.progress;
-    o.baseline.slip_definition = SlipDefinition::longitudinal;
-    if (progress) o.progress = [&](double f) { progress(0.5 * f); };
-    DiscrepancyReport as_longitudinal = run_in_family(soil, points, o);
-    o.baseline.slip_definition = SlipDefinition::travel;
-    if (progress) o.progress = [&](double f) { progress(0.5 + 0.5 * f); };
-    DiscrepancyReport as_travel = run_in_family(soil, points, o);
+    std::atomic<bool> stop{false};
+    DiscrepancyOptions longitudinal = o, travel_reading = o;
+    longitudinal.baseline.slip_definition = SlipDefinition::longitudinal;
+    if (progress) longitudinal.progress = progress;
+    travel_reading.baseline.slip_definition = SlipDefinition::travel;
+    travel_reading.progress = [&](double) {
+      if (stop.load()) throw DataError("cancelled");
+    };
+    DiscrepancyReport as_longitudinal, as_travel;
+    shared_thread_pool().run_beside([&] { as_travel = run_in_family(soil, points, travel_reading); },
+                                    [&] {
+                                      try {
+                                        as_longitudinal = run_in_family(soil, points, longitudinal);
+                                      } catch (...) {
+                                        stop = true;
+                                        throw;
+                                      }
+                                    });
     const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
     if (lost_travel == lost_longitudinal && readings_differ(as_longitudinal, as_travel)) {
       as_longitudinal.slip_definition = to_string(SlipDefinition::longitudinal);
