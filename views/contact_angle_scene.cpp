@@ -222,7 +222,7 @@ class ContactAnglesView : public View {
   std::string name() const override { return "contact-angles"; }
   std::string title() const override { return "Contact angles"; }
   std::string heading() const override { return "Contact and side-slip angles"; }
-  std::vector<std::string> estimates_drawn() const override { return {"estimate/contact/"}; }
+  std::vector<std::string> estimates_drawn() const override { return {estimation::contact_streams::kPrefix}; }
   std::string needs(const SceneInput& in) const override { return contact_angle_needs(*in.log); }
   // Without the estimator's streams and without what it needs, no analysis can feed the view.
   std::string needs_before_estimates(const log::Log& lg) const override {

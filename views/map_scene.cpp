@@ -511,7 +511,9 @@ class MapView : public View {
   std::string title() const override { return "Map"; }
   std::string heading() const override { return "Map: where the rover went, every pose source, north up"; }
   std::string needs(const SceneInput& in) const override { return map_needs(*in.log); }
-  std::vector<std::string> estimates_drawn() const override { return {"estimate/ins/", "estimate/odometry/"}; }
+  std::vector<std::string> estimates_drawn() const override {
+    return {estimation::ins_streams::kPrefix, estimation::ins_streams::kOdometryPrefix};
+  }
 
  protected:
   std::unique_ptr<Scene> make_scene(const SceneInput& in) const override { return std::make_unique<MapScene>(*in.log); }

@@ -1,4 +1,6 @@
 #include "views/rover_scene.h"
+#include "core/estimation/contact_angle/streams.h"
+#include "core/estimation/net_traction/streams.h"
 
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
@@ -460,7 +462,8 @@ class RoverView : public View {
   bool trackball_camera() const override { return true; }
   // Pose and slip (skid-steer), contact angles (articulated), net traction (planar).
   std::vector<std::string> estimates_drawn() const override {
-    return {"estimate/ins/", "estimate/odometry/", "estimate/contact/", "estimate/net_traction/"};
+    return {estimation::ins_streams::kPrefix, estimation::ins_streams::kOdometryPrefix,
+            estimation::contact_streams::kPrefix, estimation::net_traction_streams::kPrefix};
   }
 
  protected:

@@ -137,7 +137,7 @@ class ContactAngleAnalysis : public Analysis {
     settings["rover"] = ec ? file : canonical.string();
     return settings;
   }
-  std::vector<std::string> estimate_streams() const override { return {"estimate/contact/"}; }
+  std::vector<std::string> estimate_streams() const override { return {estimation::contact_streams::kPrefix}; }
   void check_options() const override { (void)options(); }
   AnalysisResult run(const AnalysisInput& in) override;
   void print(const json& j, std::FILE* out) const override;

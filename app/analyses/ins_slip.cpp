@@ -202,7 +202,9 @@ class InsSlipAnalysis : public Analysis {
         ->check(finite_in(1e-4, 10.0));
   }
 
-  std::vector<std::string> estimate_streams() const override { return {"estimate/ins/", "estimate/odometry/"}; }
+  std::vector<std::string> estimate_streams() const override {
+    return {estimation::ins_streams::kPrefix, estimation::ins_streams::kOdometryPrefix};
+  }
   json configuration() const override {
     return {{"zupt", !no_zupt_},
             {"zaru", !no_zaru_},

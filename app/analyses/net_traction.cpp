@@ -152,7 +152,7 @@ class NetTractionAnalysis : public Analysis {
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "eq-5.66", "shape"}));
   }
-  std::vector<std::string> estimate_streams() const override { return {"estimate/net_traction/"}; }
+  std::vector<std::string> estimate_streams() const override { return {estimation::net_traction_streams::kPrefix}; }
   json configuration() const override {
     return {{"force_sensors", force_sensors_ ? json(*force_sensors_) : json(nullptr)},
             {"order", order_},

@@ -128,7 +128,7 @@ class RoverDiscrepancyAnalysis : public Analysis {
   json resolved_configuration(const log::Log& lg) const override {
     return {{"scenario", rover_scenario_content(scenario_, lg.metadata.extra, "the log")}, {"block_s", block_}};
   }
-  std::vector<std::string> estimate_streams() const override { return {"estimate/rover_discrepancy/"}; }
+  std::vector<std::string> estimate_streams() const override { return {analysis::rover_streams::kPrefix}; }
   void check_options() const override {
     if (scenario_ && scenario_->empty()) throw UsageError("--scenario: the scenario's name is empty");
   }

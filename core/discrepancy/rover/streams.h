@@ -4,6 +4,7 @@
 
 namespace roverlab::analysis::rover_streams {
 
+inline constexpr char kPrefix[] = "estimate/rover_discrepancy/";  // every stream it writes
 // Prefixes: one stream per measured stream, the measured stream's name appended.
 inline constexpr char kResidualNominal[] = "estimate/rover_discrepancy/residual_nominal/";
 inline constexpr char kResidualWithCauses[] = "estimate/rover_discrepancy/residual_with_causes/";

@@ -8,6 +8,8 @@
 
 namespace roverlab::estimation::ins_streams {
 
+inline constexpr char kPrefix[] = "estimate/ins/";               // the INS streams
+inline constexpr char kOdometryPrefix[] = "estimate/odometry/";  // the odometry written beside them
 inline constexpr char kPose[] = "estimate/ins/pose";
 inline constexpr char kVelocity[] = "estimate/ins/velocity";
 inline constexpr char kBias[] = "estimate/ins/bias";

@@ -4,6 +4,7 @@
 
 namespace roverlab::estimation::net_traction_streams {
 
+inline constexpr char kPrefix[] = "estimate/net_traction/";  // every stream it writes
 inline constexpr char kWheels[] = "estimate/net_traction/wheels";
 inline constexpr char kBody[] = "estimate/net_traction/body";
 
