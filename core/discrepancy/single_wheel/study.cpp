@@ -225,6 +225,11 @@ class SingleWheelStudy {
   CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set,
                           const CandidateResult* start_from = nullptr, bool with_held_out = true) const;
   void select_forward();
+  // select_forward's steps: the best next step after `chain` (fitted from
+  // `at`) by BIC, -1 when none is open; the best partner of a weak first step.
+  int best_next_step(const std::vector<std::size_t>& chain, const CandidateResult* at, CandidateResult& best_fit,
+                     std::vector<const SingleWheelCandidate*>& best_set) const;
+  int best_partner(int first, CandidateResult& pair_fit) const;
   void check_points_can_tell_candidates_apart() const;
   std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit,
                                       const std::vector<const SingleWheelCandidate*>& set) const;
@@ -495,6 +500,57 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
 // BIC by more than the threshold and the held-out error falls. A first step
 // too weak alone is kept when it and the best second step together pass
 // against the baseline (two causes that hide each other).
+int SingleWheelStudy::best_next_step(const std::vector<std::size_t>& chain, const CandidateResult* at,
+                                     CandidateResult& best_fit,
+                                     std::vector<const SingleWheelCandidate*>& best_set) const {
+  int best = -1;
+  std::vector<std::size_t> open;
+  std::vector<std::vector<const SingleWheelCandidate*>> sets;
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    if (std::find(chain.begin(), chain.end(), i) != chain.end() || !report_.candidates[i].applicable) continue;
+    std::vector<const SingleWheelCandidate*> set;
+    set.reserve(chain.size() + 1);
+    for (std::size_t j : chain) set.push_back(candidates_[j].get());
+    set.push_back(candidates_[i].get());
+    open.push_back(i);
+    sets.push_back(std::move(set));
+  }
+  // The steps fitted in parallel, then compared in candidate order.
+  std::vector<CandidateResult> fits(open.size());
+  shared_thread_pool().for_each_index(open.size(), [&](std::size_t k) {
+    fits[k] = chain.empty() ? report_.candidates[open[k]] : fit_set(sets[k], at, false);
+  });
+  for (std::size_t k = 0; k < open.size(); ++k) {
+    if (best < 0 || fits[k].bic < best_fit.bic) {
+      best = static_cast<int>(open[k]);
+      best_fit = std::move(fits[k]);
+      best_set = sets[k];
+    }
+  }
+  return best;
+}
+
+int SingleWheelStudy::best_partner(int first, CandidateResult& pair_fit) const {
+  const auto best = static_cast<std::size_t>(first);
+  int partner = -1;
+  std::vector<std::size_t> partners;
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    if (i != best && report_.candidates[i].applicable) partners.push_back(i);
+  }
+  // The pairs fitted in parallel, then compared in candidate order.
+  std::vector<CandidateResult> pair_fits(partners.size());
+  shared_thread_pool().for_each_index(partners.size(), [&](std::size_t k) {
+    pair_fits[k] = fit_set({candidates_[best].get(), candidates_[partners[k]].get()}, &report_.candidates[best], false);
+  });
+  for (std::size_t k = 0; k < partners.size(); ++k) {
+    if (partner < 0 || pair_fits[k].bic < pair_fit.bic) {
+      partner = static_cast<int>(partners[k]);
+      pair_fit = std::move(pair_fits[k]);
+    }
+  }
+  return partner;
+}
+
 void SingleWheelStudy::select_forward() {
   std::vector<std::size_t> chain;
   const CandidateResult* at = nullptr;  // the chain's fit
@@ -512,33 +568,9 @@ void SingleWheelStudy::select_forward() {
       fit = fit_set(set, from, true);
   };
   while (chain.size() < candidates_.size()) {
-    // Best next step by BIC.
-    int best = -1;
     CandidateResult best_fit;
     std::vector<const SingleWheelCandidate*> best_set;
-    std::vector<std::size_t> open;
-    std::vector<std::vector<const SingleWheelCandidate*>> sets;
-    for (std::size_t i = 0; i < candidates_.size(); ++i) {
-      if (std::find(chain.begin(), chain.end(), i) != chain.end() || !report_.candidates[i].applicable) continue;
-      std::vector<const SingleWheelCandidate*> set;
-      set.reserve(chain.size() + 1);
-      for (std::size_t j : chain) set.push_back(candidates_[j].get());
-      set.push_back(candidates_[i].get());
-      open.push_back(i);
-      sets.push_back(std::move(set));
-    }
-    // The steps fitted in parallel, then compared in candidate order.
-    std::vector<CandidateResult> fits(open.size());
-    shared_thread_pool().for_each_index(open.size(), [&](std::size_t k) {
-      fits[k] = chain.empty() ? report_.candidates[open[k]] : fit_set(sets[k], at, false);
-    });
-    for (std::size_t k = 0; k < open.size(); ++k) {
-      if (best < 0 || fits[k].bic < best_fit.bic) {
-        best = static_cast<int>(open[k]);
-        best_fit = std::move(fits[k]);
-        best_set = sets[k];
-      }
-    }
+    const int best = best_next_step(chain, at, best_fit, best_set);
     if (best < 0) break;
     with_held_out(best_fit, best_set, at);
     if (passes(best_fit, bic)) {
@@ -546,23 +578,7 @@ void SingleWheelStudy::select_forward() {
     } else if (chain.empty()) {
       // Look one step further: the weak first step with its best partner.
       CandidateResult pair_fit;
-      int partner = -1;
-      std::vector<std::size_t> partners;
-      for (std::size_t i = 0; i < candidates_.size(); ++i) {
-        if (static_cast<int>(i) != best && report_.candidates[i].applicable) partners.push_back(i);
-      }
-      // The pairs fitted in parallel, then compared in candidate order.
-      std::vector<CandidateResult> pair_fits(partners.size());
-      shared_thread_pool().for_each_index(partners.size(), [&](std::size_t k) {
-        pair_fits[k] = fit_set({candidates_[static_cast<std::size_t>(best)].get(), candidates_[partners[k]].get()},
-                               &report_.candidates[static_cast<std::size_t>(best)], false);
-      });
-      for (std::size_t k = 0; k < partners.size(); ++k) {
-        if (partner < 0 || pair_fits[k].bic < pair_fit.bic) {
-          partner = static_cast<int>(partners[k]);
-          pair_fit = std::move(pair_fits[k]);
-        }
-      }
+      const int partner = best_partner(best, pair_fit);
       if (partner >= 0) {
         with_held_out(
             pair_fit,
@@ -1055,6 +1071,25 @@ bool readings_differ(const DiscrepancyReport& a, const DiscrepancyReport& b) {
 
 }  // namespace
 
+// Why the study took the reading it took (travel when `travel`): the
+// measurements the other reading cannot carry, else the two final BICs.
+std::string reading_reason(const DiscrepancyReport& as_travel, const DiscrepancyReport& as_longitudinal, bool travel) {
+  const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
+  const char* chosen = travel ? "travel" : "longitudinal";
+  const char* other = travel ? "longitudinal" : "travel";
+  if (lost_travel != lost_longitudinal) {
+    return std::string("read as ") + other + " slip the model cannot carry the load of " +
+           fmt("%.0f", static_cast<double>(std::max(lost_travel, lost_longitudinal))) + " measurements, read as " +
+           chosen + " of " + fmt("%.0f", static_cast<double>(std::min(lost_travel, lost_longitudinal)));
+  } else {
+    const double gap = std::abs(final_bic(as_travel) - final_bic(as_longitudinal));
+    return std::string("each reading's final model fitted: BIC lower by ") + fmt("%.1f", gap) + " read as " + chosen +
+           " slip (" + (travel ? as_travel : as_longitudinal).final_model + ") than as " + other + " (" +
+           (travel ? as_longitudinal : as_travel).final_model + ")" +
+           (gap < 10.0 ? "; the data barely tell them apart: give --slip-definition if the testbed's is known" : "");
+  }
+}
+
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
                                      const DiscrepancyOptions& options) {
   // A wheel at a slip angle, or a measured lateral force: the baseline is the
@@ -1119,19 +1154,7 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     }
     const bool travel = lost_travel != lost_longitudinal ? lost_travel < lost_longitudinal
                                                          : final_bic(as_travel) < final_bic(as_longitudinal);
-    const char* chosen = travel ? "travel" : "longitudinal";
-    const char* other = travel ? "longitudinal" : "travel";
-    if (lost_travel != lost_longitudinal) {
-      why = std::string("read as ") + other + " slip the model cannot carry the load of " +
-            fmt("%.0f", static_cast<double>(std::max(lost_travel, lost_longitudinal))) + " measurements, read as " +
-            chosen + " of " + fmt("%.0f", static_cast<double>(std::min(lost_travel, lost_longitudinal)));
-    } else {
-      const double gap = std::abs(final_bic(as_travel) - final_bic(as_longitudinal));
-      why = std::string("each reading's final model fitted: BIC lower by ") + fmt("%.1f", gap) + " read as " + chosen +
-            " slip (" + (travel ? as_travel : as_longitudinal).final_model + ") than as " + other + " (" +
-            (travel ? as_longitudinal : as_travel).final_model + ")" +
-            (gap < 10.0 ? "; the data barely tell them apart: give --slip-definition if the testbed's is known" : "");
-    }
+    why = reading_reason(as_travel, as_longitudinal, travel);
     o.baseline.slip_definition = travel ? SlipDefinition::travel : SlipDefinition::longitudinal;
     r = std::move(travel ? as_travel : as_longitudinal);
   }
