@@ -1069,8 +1069,6 @@ bool readings_differ(const DiscrepancyReport& a, const DiscrepancyReport& b) {
   return named_chain(a) != named_chain(b) || std::abs(score(a) - score(b)) > 0.1 * std::min(score(a), score(b));
 }
 
-}  // namespace
-
 // Why the study took the reading it took (travel when `travel`): the
 // measurements the other reading cannot carry, else the two final BICs.
 std::string reading_reason(const DiscrepancyReport& as_travel, const DiscrepancyReport& as_longitudinal, bool travel) {
@@ -1089,6 +1087,8 @@ std::string reading_reason(const DiscrepancyReport& as_travel, const Discrepancy
            (gap < 10.0 ? "; the data barely tell them apart: give --slip-definition if the testbed's is known" : "");
   }
 }
+
+}  // namespace
 
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
                                      const DiscrepancyOptions& options) {
