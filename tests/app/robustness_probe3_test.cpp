@@ -21,6 +21,7 @@
 #include "importers/mapping.h"
 #include "importers/wheel_test_csv.h"
 #include "test_support.h"
+#include "tests/support/hdf5_edit.h"
 
 namespace roverlab {
 namespace {
@@ -28,6 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::CommandResult;
 using test::quote;
+using test::set_metadata;
 using test::TempDir;
 
 const std::string kExe = ROVERLAB_EXE;
@@ -264,21 +266,6 @@ void write_string_dataset(hid_t file, const std::string& path, const std::string
   H5Dclose(ds);
   H5Sclose(space);
   H5Tclose(type);
-}
-
-void set_metadata(hid_t file, const std::string& key, const std::string& value) {
-  const hid_t g = H5Gopen2(file, "/metadata", H5P_DEFAULT);
-  ASSERT_GE(g, 0);
-  if (H5Aexists(g, key.c_str()) > 0) H5Adelete(g, key.c_str());
-  const hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, value.size());
-  const hid_t space = H5Screate(H5S_SCALAR);
-  const hid_t a = H5Acreate2(g, key.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
-  ASSERT_GE(H5Awrite(a, type, value.data()), 0);
-  H5Aclose(a);
-  H5Sclose(space);
-  H5Tclose(type);
-  H5Gclose(g);
 }
 
 template <class Edit>

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "tests/support/hdf5_edit.h"
 
 namespace roverlab {
 namespace {
@@ -22,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::CommandResult;
 using test::quote;
+using test::set_metadata;
 using test::TempDir;
 
 const std::string kExe = ROVERLAB_EXE;
@@ -127,21 +129,6 @@ void cut_stream(hid_t file, const std::string& stream, hsize_t samples) {
     ASSERT_GE(H5Dset_extent(ds, &samples), 0) << path;
     H5Dclose(ds);
   }
-}
-
-void set_metadata(hid_t file, const std::string& key, const std::string& value) {
-  const hid_t g = H5Gopen2(file, "/metadata", H5P_DEFAULT);
-  ASSERT_GE(g, 0);
-  if (H5Aexists(g, key.c_str()) > 0) H5Adelete(g, key.c_str());
-  const hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, value.size());
-  const hid_t space = H5Screate(H5S_SCALAR);
-  const hid_t a = H5Acreate2(g, key.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
-  ASSERT_GE(H5Awrite(a, type, value.data()), 0);
-  H5Aclose(a);
-  H5Sclose(space);
-  H5Tclose(type);
-  H5Gclose(g);
 }
 
 void delete_metadata(hid_t file, const std::string& key) {
