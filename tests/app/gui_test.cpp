@@ -44,6 +44,7 @@
 #include "importers/hdf5_log.h"
 #include "importers/rover_file.h"
 #include "test_support.h"
+#include "tests/support/gui_main.h"
 #include "views/rover_scene.h"
 #include "views/timeseries_chart.h"
 #include "views/x_display.h"
@@ -260,22 +261,7 @@ TEST(Gui, ACorruptFileGivesAOneLineErrorDialogAndTheSessionStaysUsable) {
   EXPECT_NE(w.input()->log.find_stream("imu"), nullptr);
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  // gtest_discover_tests lists the tests without a display.
-  for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]).rfind("--gtest_list_tests", 0) == 0) return RUN_ALL_TESTS();
-  }
-  views::ensure_display();
-  QStandardPaths::setTestModeEnabled(true);  // QSettings away from the user's
-  // No multisampling: under Xvfb every sample is drawn in software.
-  vtkOpenGLRenderWindow::SetGlobalMaximumNumberOfMultiSamples(0);
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
-  QApplication app(argc, argv);
-  QApplication::setOrganizationName("RoverLabTest");
-  QApplication::setApplicationName("RoverLabTest");
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return roverlab::test::run_gui_tests(argc, argv); }
 
 TEST(Gui, TheContactAngleModelIsNamedAndTheAnalysisMenuSwitchesIt) {
   // A flying-rover FL-bogie log (100 Hz): opened, the estimator runs with

@@ -38,6 +38,7 @@
 #include "app/gui/main_window.h"
 #include "app/log_input.h"
 #include "test_support.h"
+#include "tests/support/gui_main.h"
 #include "views/contact_angle_scene.h"
 #include "views/timeseries_chart.h"
 #include "views/x_display.h"
@@ -403,18 +404,4 @@ TEST(ReadabilityViews, AHeadlessScreenshotLeavesTheUsersSettingsFileAsItWas) {
   EXPECT_FALSE(std::filesystem::exists(settings));
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  // gtest_discover_tests lists the tests without a display.
-  for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]).rfind("--gtest_list_tests", 0) == 0) return RUN_ALL_TESTS();
-  }
-  views::ensure_display();
-  QStandardPaths::setTestModeEnabled(true);  // QSettings away from the user's
-  vtkOpenGLRenderWindow::SetGlobalMaximumNumberOfMultiSamples(0);
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
-  QApplication app(argc, argv);
-  QApplication::setOrganizationName("RoverLabTest");
-  QApplication::setApplicationName("RoverLabTest");
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return roverlab::test::run_gui_tests(argc, argv); }
