@@ -56,17 +56,6 @@ namespace {
 
 const QString kPathfinder = QString(ROVERLAB_TEST_DATA) + "/test17run.mat";
 
-bool wait_until(const std::function<bool()>& done, int timeout_ms) {
-  QElapsedTimer clock;
-  clock.start();
-  while (!done()) {
-    if (clock.elapsed() > timeout_ms) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(2);
-  }
-  return true;
-}
-
 bool wait_idle(gui::MainWindow& w, int timeout_ms = 60000) {
   return wait_until([&] { return !w.busy(); }, timeout_ms);
 }

@@ -54,17 +54,6 @@ const std::string kPathfinder = kData + "/test17run.mat";
 
 CommandResult run_roverlab(const std::string& args) { return run_command(quote(kExe) + " " + args); }
 
-bool wait_until(const std::function<bool()>& done, int timeout_ms) {
-  QElapsedTimer clock;
-  clock.start();
-  while (!done()) {
-    if (clock.elapsed() > timeout_ms) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(2);
-  }
-  return true;
-}
-
 nlohmann::json json_of(const std::string& args) {
   const CommandResult r = run_roverlab(args + " --json");
   EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;

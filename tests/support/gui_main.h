@@ -1,5 +1,6 @@
 #pragma once
-// The main() of the tests that open RoverLab's Qt windows: a display (a
+// What the tests that open RoverLab's Qt windows share: waiting on the
+// event loop, and their main(): a display (a
 // private Xvfb when none is set), QSettings away from the user's, no
 // multisampling (under Xvfb every sample is drawn in software), VTK's
 // OpenGL format before the QApplication.
@@ -9,13 +10,28 @@
 #include <vtkOpenGLRenderWindow.h>
 
 #include <QApplication>
+#include <QElapsedTimer>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
+#include <QThread>
+#include <functional>
 #include <string>
 
 #include "views/x_display.h"
 
 namespace roverlab::test {
+
+// Processes Qt events until done() holds; false after timeout_ms.
+inline bool wait_until(const std::function<bool()>& done, int timeout_ms) {
+  QElapsedTimer clock;
+  clock.start();
+  while (!done()) {
+    if (clock.elapsed() > timeout_ms) return false;
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    QThread::msleep(2);
+  }
+  return true;
+}
 
 inline int run_gui_tests(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
