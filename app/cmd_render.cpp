@@ -33,6 +33,7 @@ struct RenderOptions {
   std::optional<double> slip_angle_deg;
   std::string size = "1280x800";
   std::string output;
+  std::vector<std::string> compare;  // other runs, for the views that compare_runs()
 };
 
 // The names of the views for which `uses` holds, e.g. "a | b".
@@ -74,7 +75,11 @@ int run_render(const RenderOptions& o) {
     check_time_in_log(lg, o.time);
     if (const std::string lacks = view->needs_before_estimates(lg); !lacks.empty()) throw InputError(o.file, lacks);
   };
+  if (!o.compare.empty() && !view->compares_runs())
+    throw UsageError("--compare: only for the " + views_that(&views::View::compares_runs) + " view");
   const ViewInput in = load_view_input(o.file, o.mapping, vo);
+  std::vector<ViewInput> others;  // the measured streams only: no analysis runs on them
+  for (const std::string& f : o.compare) others.push_back(load_view_input(f, o.mapping));
   ViewOptions options;
   options.time = o.time;
   options.channel_spec = o.channels;
@@ -84,6 +89,7 @@ int run_render(const RenderOptions& o) {
   options.quantity = o.quantity;
   options.slip_angle_deg = o.slip_angle_deg;
   // What the view needs is checked before the display server starts.
+  for (const ViewInput& other : others) options.compared.emplace_back(fs::path(other.file).stem().string(), &other.log);
   const views::SceneInput input = scene_input(in, *view, options);
   views::ensure_display();
   const Rendered r = render_view(*view, input, w, h);
@@ -122,6 +128,8 @@ Commands make_render_commands() {
                            ": slip angle, deg (lateral-force default: the largest in the file, else 10; "
                            "drawbar-pull, torque: the file's nearest 0)")
             ->check(finite_in(-90.0, 90.0));
+        cmd.add_option("--compare", o.compare,
+                       views_that(&views::View::compares_runs) + ": another run (log) drawn against FILE; repeatable");
         cmd.add_option("--size", o.size, "WxH pixels")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "OUT.png")->required();
       },

@@ -325,7 +325,7 @@ class ReportWriter {
   // after the plots.
   void views() {
     for (const auto& view : views::all_views()) {
-      if (view->uses_surface_data() || view->plots_channel_pair()) continue;
+      if (view->uses_surface_data() || view->plots_channel_pair() || view->compares_runs()) continue;
       const int h = static_cast<int>(h_ * view->report_height());
       Rendered r;
       try {

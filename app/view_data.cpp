@@ -342,6 +342,7 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
     }
   }
   if (view.plots_channel_pair()) s.channels = channel_pair(in, o);
+  if (view.compares_runs()) s.compared = o.compared;
   const std::string missing = view.needs(s);
   if (!missing.empty()) throw InputError(in.file, missing);
   return s;

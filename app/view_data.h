@@ -45,6 +45,8 @@ struct ViewOptions {
   std::optional<double> slip_angle_deg;  // the lateral-force surface's slip angle
   std::optional<double> time;
   std::optional<std::string> x_channel, y_channel;  // "stream:channel" each, for a view that plots_channel_pair()
+  std::vector<std::pair<std::string, const log::Log*>>
+      compared;  // other runs (name, log), for a view that compares_runs()
 };
 
 // The input `view` is built from on `in`. Throws InputError naming the file

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/kinematics/rover_model.h"
@@ -34,6 +35,8 @@ struct SceneInput {
   estimation::SkidSteerGeometry rover;                // the rover drawn (skid-steer views)
   std::optional<kinematics::RoverModel> articulated;  // the rover drawn when it has a DH description
   std::optional<double> time;                         // shown first; default: the scene's default_time()
+  std::vector<std::pair<std::string, const log::Log*>>
+      compared;  // other runs against `log` (name, log): compares_runs()
 };
 
 // A built view: its renderers (or context view) attach to a render window;
@@ -83,6 +86,8 @@ class View {
   bool reset(Scene& scene, const SceneInput& input) const;
   // True when the view draws SceneInput::surface rather than the log.
   virtual bool uses_surface_data() const { return false; }
+  // True when the view draws SceneInput::compared against the log (`render --compare`).
+  virtual bool compares_runs() const { return false; }
   // True when the view plots SceneInput::channels.
   virtual bool uses_channels() const { return false; }
   // True when the view plots one channel against another: SceneInput::channels
