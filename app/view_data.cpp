@@ -333,7 +333,7 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
     s.rover = rover_geometry(in.log);
     s.articulated = rover_kinematics(in.log);
   }
-  if (view.uses_channels()) {
+  if (view.uses_channels() || view.compares_runs()) {
     s.channels = o.channels;
     try {
       if (o.channel_spec) s.channels = views::parse_channels(in.log, *o.channel_spec);

@@ -325,8 +325,7 @@ class CompareView : public View {
   std::string name() const override { return "compare"; }
   std::string title() const override { return "Compare runs"; }
   std::string heading() const override { return "The runs overlaid, and each one's difference from the baseline"; }
-  bool compares_runs() const override { return true; }
-  bool uses_channels() const override { return true; }
+  bool compares_runs() const override { return true; }  // and plots SceneInput::channels (not a plot pane)
   std::string needs(const SceneInput& in) const override {
     if (in.log == nullptr) return "needs a log";
     if (in.compared.empty()) return "needs another run to compare with (render --compare FILE, File > Compare with...)";

@@ -96,6 +96,24 @@ class StreamsTree : public QTreeWidget {
   }
 };
 
+// Loads FILE; a MATLAB file without a mapping with the first known mapping that reads it.
+std::unique_ptr<ViewInput> load_input(const std::string& file, const std::optional<std::string>& map) {
+  const app::ViewInputOptions o;
+  if (std::filesystem::path(file).extension() != ".mat" || map)
+    return std::make_unique<ViewInput>(app::load_view_input(file, map, o));
+  std::string errors;
+  for (const auto& name : io::list_mappings(app::resource_subfolders("mappings"))) {
+    try {
+      auto in = std::make_unique<ViewInput>(app::load_view_input(file, name, o));
+      in->notes.push_back("mapping " + name);
+      return in;
+    } catch (const std::exception& e) {
+      errors = e.what();
+    }
+  }
+  throw InputError(file, "no known mapping reads this MATLAB file (" + errors + ")");
+}
+
 std::vector<std::string> soil_names() {
   std::vector<std::string> names;
   for (const auto& folder : app::resource_subfolders("soils")) {
@@ -135,6 +153,13 @@ template <typename T>
 T* MainWindow::scene_as() const {
   for (const auto& tab : view_tabs_) {
     if (auto* s = dynamic_cast<T*>(tab.scene.get())) return s;
+  }
+  return nullptr;
+}
+
+views::Scene* MainWindow::pane_scene(const QString& title) const {
+  for (const auto& tab : view_tabs_) {
+    if (tab.dock->windowTitle() == title) return tab.scene.get();
   }
   return nullptr;
 }
@@ -188,6 +213,19 @@ void MainWindow::build_menus() {
                                      "Rover logs (*.h5 *.hdf5 *.mat *.csv *.bag *.mcap);;All files (*)");
     if (!path.isEmpty()) open_file(path);
   });
+  QAction* compare = file->addAction("&Compare with...");
+  compare->setStatusTip("Open another run of the traverse and draw it against this log (Compare panes)");
+  connect(compare, &QAction::triggered, this, [this] {
+    if (!input_ || input_->is_wheel_test()) {
+      show_error("Open a log first: another run is compared with it.");
+      return;
+    }
+    QSettings settings;
+    const QString path = QFileDialog::getOpenFileName(this, "Compare with another run",
+                                                      settings.value("files/last_dir").toString(),
+                                                      "Rover logs (*.h5 *.hdf5 *.mat *.csv *.bag *.mcap);;All files (*)");
+    if (!path.isEmpty()) compare_with(path);
+  });
   recent_menu_ = file->addMenu("Open &recent");
   file->addSeparator();
   QAction* quit = file->addAction("&Quit");
@@ -229,6 +267,15 @@ void MainWindow::build_streams_dock() {
   tree_->setTextElideMode(Qt::ElideMiddle);
   connect(tree_, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item, int) {
     if (item->parent() == nullptr) return;
+    if (item->parent()->parent() != nullptr) {  // a compared run's channel: drawn against the log's in Compare
+      ViewTab* compare = tab_where(&views::View::compares_runs);
+      if (compare == nullptr) return;
+      const std::size_t target = plot_target_;  // the log's channels still go to the plot pane
+      add_plot_channels(*compare, {{item->parent()->text(0).toStdString(), item->text(0).toStdString()}});
+      plot_target_ = target;
+      show_pane(compare->page);
+      return;
+    }
     add_plot_channel(item->parent()->text(0), item->text(0));
     if (plot_target_ < view_tabs_.size()) show_pane(view_tabs_[plot_target_].page);
   });
@@ -503,25 +550,7 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
   if (mapping) map = mapping->toStdString();
   jobs_->start("loading " + QFileInfo(path).fileName(),
                [this, file, map, path](const JobControl& c) -> std::function<void()> {
-                 app::ViewInputOptions o;
-                 std::unique_ptr<ViewInput> in;
-                 const bool mat = std::filesystem::path(file).extension() == ".mat";
-                 if (mat && !map) {
-                   // A MATLAB file needs a mapping: the first known one that reads it.
-                   std::string errors;
-                   for (const auto& name : io::list_mappings(app::resource_subfolders("mappings"))) {
-                     try {
-                       in = std::make_unique<ViewInput>(app::load_view_input(file, name, o));
-                       in->notes.push_back("mapping " + name);
-                       break;
-                     } catch (const std::exception& e) {
-                       errors = e.what();
-                     }
-                   }
-                   if (!in) throw InputError(file, "no known mapping reads this MATLAB file (" + errors + ")");
-                 } else {
-                   in = std::make_unique<ViewInput>(app::load_view_input(file, map, o));
-                 }
+                 std::unique_ptr<ViewInput> in = load_input(file, map);
                  // Results stored with the log (estimate X -o) are shown, not computed again.
                  for (auto& an : app::all_analyses()) app::reuse_stored_result(*in, std::move(an));
                  c.check();
@@ -547,6 +576,39 @@ void MainWindow::open_file(const QString& path, const std::optional<QString>& ma
                        run_analyses(names, false);
                      });
                    }
+                 };
+               });
+}
+
+void MainWindow::compare_with(const QString& path, const std::optional<QString>& mapping) {
+  if (jobs_->busy()) {
+    show_error("A job is running (" + jobs_->title() + "): wait for it or cancel it first.");
+    return;
+  }
+  if (!input_ || input_->is_wheel_test()) {
+    show_error("Open a log first: another run is compared with it.");
+    return;
+  }
+  const std::string file = path.toStdString();
+  std::optional<std::string> map;
+  if (mapping) map = mapping->toStdString();
+  jobs_->start("loading " + QFileInfo(path).fileName() + " to compare",
+               [this, file, map](const JobControl& c) -> std::function<void()> {
+                 auto shared = std::make_shared<std::unique_ptr<ViewInput>>(load_input(file, map));
+                 c.check();
+                 if ((*shared)->is_wheel_test()) throw InputError(file, "single-wheel test points are not a run");
+                 return [this, shared, file] {
+                   compared_.push_back({std::filesystem::path(file).stem().string(), std::move(*shared)});
+                   const double t = time_;
+                   rebuild_tree();
+                   QWidget* shown = nullptr;
+                   for (auto& tab : view_tabs_) {
+                     if (tab.view->compares_runs() && rebuild_view(tab) && shown == nullptr) shown = tab.page;
+                     if (tab.view->compares_runs()) tab.stale = true;
+                   }
+                   if (shown != nullptr) show_pane(shown);
+                   status_->setText(q("Comparing " + input_->file + " (baseline) with " + file + "."));
+                   set_time(t);
                  };
                });
 }
@@ -605,6 +667,7 @@ void MainWindow::install(std::unique_ptr<ViewInput> in) {
     tab.scene.reset();
   }
   input_ = std::move(in);
+  compared_.clear();  // runs compared with the log before
   const QString missing = plot_layout_channels();
   rebuild_tree();
   rebuild_views();
@@ -636,6 +699,22 @@ void MainWindow::rebuild_tree() {
     for (const auto& c : s.channels()) {
       auto* channel = new QTreeWidgetItem(item, {q(c.name), q(c.unit), "", ""});
       channel->setToolTip(0, q(s.name() + ":" + c.name));
+    }
+  }
+  // Each compared run under its own name: its channels go to the Compare pane (double-click), not dragged.
+  for (const auto& run : compared_) {
+    auto* top = new QTreeWidgetItem(tree_, {q(run.name + " (compared)"), "", "", ""});
+    top->setToolTip(0, q(run.input->file + ": compared with the log (File > Compare with...)"));
+    top->setFlags(top->flags() & ~Qt::ItemIsDragEnabled);
+    for (const auto& s : run.input->log.streams()) {
+      auto* item = new QTreeWidgetItem(
+          top, {q(s.name()), "", QString::number(s.size()), QString::number(s.mean_rate_hz(), 'f', 1)});
+      item->setFlags(item->flags() & ~Qt::ItemIsDragEnabled);
+      for (const auto& c : s.channels()) {
+        auto* channel = new QTreeWidgetItem(item, {q(c.name), q(c.unit), "", ""});
+        channel->setFlags(channel->flags() & ~Qt::ItemIsDragEnabled);
+        channel->setToolTip(0, q(run.name + ": " + s.name() + ":" + c.name + " (double-click: compare it)"));
+      }
     }
   }
 }
@@ -681,12 +760,25 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   in.log = &lg;
   in.rover = app::rover_geometry(lg);
   in.articulated = app::rover_kinematics(lg);
-  if (tab.view->uses_channels()) plot_input(tab, in);
+  if (tab.view->compares_runs()) {  // the channels picked for it, else its own choice
+    for (const auto& [s, c] : tab.channels) in.channels.push_back({s, c});
+    for (const auto& run : compared_) in.compared.emplace_back(run.name, &run.input->log);
+  } else if (tab.view->uses_channels()) {
+    plot_input(tab, in);
+  }
   vtkRenderWindow* window = tab.widget->renderWindow();
   const bool was = tab.available;
   const std::string title = tab.dock->windowTitle().toStdString();
   // A plot pane the user added plots what is dropped on it, nothing before.
-  const std::string missing = tab.added && in.channels.empty() ? empty_plot_note(tab) : tab.view->needs(in);
+  std::string missing = tab.added && in.channels.empty() ? empty_plot_note(tab) : tab.view->needs(in);
+  std::unique_ptr<views::Scene> compared;  // runs that cannot be aligned, or a channel one run lacks: said in the pane
+  if (missing.empty() && tab.view->compares_runs()) {
+    try {
+      compared = tab.view->build(in);
+    } catch (const DataError& e) {
+      missing = e.what();
+    }
+  }
   tab.available = missing.empty();
   // A view the log cannot feed says why, in words, where its picture would be.
   tab.why->setText(q("Nothing to show in " + title + ": " + missing));
@@ -700,7 +792,7 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   }
   if (!tab.scene || !tab.view->reset(*tab.scene, in)) {
     if (tab.scene) tab.scene->detach(window);
-    tab.scene = tab.view->build(in);
+    tab.scene = compared ? std::move(compared) : tab.view->build(in);
     tab.scene->attach(window);
   }
   if (auto* plots = dynamic_cast<views::TimeSeriesChart*>(tab.scene.get())) {  // zoom linked across plot panes

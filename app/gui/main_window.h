@@ -54,6 +54,16 @@ class MainWindow : public QMainWindow {
   // afterwards runs every registered analysis that can run on the log.
   void open_file(const QString& path, const std::optional<QString>& mapping = std::nullopt);
 
+  // Opens FILE as another run to compare with the log (File > Compare with...):
+  // its streams in the tree under its own name, the views that compare runs
+  // (views::View::compares_runs) drawing it against the log on the log's
+  // timeline. Opening a log drops the runs compared with the one before.
+  void compare_with(const QString& path, const std::optional<QString>& mapping = std::nullopt);
+  // How many runs are compared with the log.
+  std::size_t compared_count() const { return compared_.size(); }
+  // The scene of the pane titled `title` (nullptr when it has none).
+  views::Scene* pane_scene(const QString& title) const;
+
   JobRunner& jobs() { return *jobs_; }
   // A job runs or is about to start (the estimator follows a load).
   bool busy() const { return jobs_->busy() || estimator_pending_; }
@@ -188,6 +198,11 @@ class MainWindow : public QMainWindow {
 
   std::unique_ptr<JobRunner> jobs_;
   std::unique_ptr<ViewInput> input_;
+  struct ComparedRun {
+    std::string name;  // the file's name without its folder and extension
+    std::unique_ptr<ViewInput> input;
+  };
+  std::vector<ComparedRun> compared_;
   std::vector<ViewTab> view_tabs_;
   std::size_t plot_target_ = 0;  // the plot pane a double-clicked channel goes to (view_tabs_ index)
   QDockWidget* analysis_dock_ = nullptr;

@@ -189,7 +189,7 @@ void MainWindow::add_plot_channels(ViewTab& tab, const std::vector<std::pair<std
   plot_target_ = static_cast<std::size_t>(&tab - view_tabs_.data());
   if (!added) return;
   rebuild_view(tab);
-  tab.scene->set_time(time_);
+  if (tab.scene) tab.scene->set_time(time_);  // none when the pane cannot draw them (it says why)
   tab.stale = true;
   render_views();
 }
