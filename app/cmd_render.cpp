@@ -128,9 +128,11 @@ Commands make_render_commands() {
                            ": slip angle, deg (lateral-force default: the largest in the file, else 10; "
                            "drawbar-pull, torque: the file's nearest 0)")
             ->check(finite_in(-90.0, 90.0));
-        cmd.add_option("--compare", o.compare,
-                       views_that(&views::View::compares_runs) + ": another run (log) drawn against FILE, aligned by the clocks as recorded; repeatable (--channels: "
-                           "those drawn, default: those that differ most)");
+        cmd.add_option(
+            "--compare", o.compare,
+            views_that(&views::View::compares_runs) +
+                ": another run (log) drawn against FILE, aligned by the clocks as recorded; repeatable (--channels: "
+                "those drawn, default: those that differ most)");
         cmd.add_option("--size", o.size, "WxH pixels")->capture_default_str();
         cmd.add_option("--output,-o", o.output, "OUT.png")->required();
       },

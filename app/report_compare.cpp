@@ -62,10 +62,17 @@ json overlay(std::ostringstream& html, const log::Log& base, const comparison::R
   PlotSeries b("run", colour(1), drawn["run"].get<std::vector<double>>());
   PlotSeries diff("run - baseline", "#333", drawn["difference"].get<std::vector<double>>());
   a.x = b.x = diff.x = drawn["time"].get<std::vector<double>>();
+  // The +-2 sigma band of the two streams' noise the difference would stay in without one.
+  const double band = 2.0 * std::hypot(c.base_sigma, c.other_sigma);
+  drawn["noise_band"] = band;
+  const std::vector<double> ends = {diff.x.empty() ? 0.0 : diff.x.front(), diff.x.empty() ? 0.0 : diff.x.back()};
+  PlotSeries noise("+-2 sigma noise", "#999", {band, band, NAN, -band, -band});  // NaN: two lines
+  noise.x = {ends[0], ends[1], ends[1], ends[0], ends[1]};
   const std::string unit = " (" + c.unit + ")";
   PlotSpec values(c.path(), "baseline time (s)", c.channel + unit, {a, b});
   PlotSpec below(c.path() + ": difference" + (c.test.differs ? " (differs)" : " (within noise)"), "baseline time (s)",
                  "difference" + unit, {diff});
+  if (std::isfinite(band)) below.series.insert(below.series.begin(), noise);
   values.css_class = below.css_class = "plot compare";
   html << "<div class=\"overlay\">" << plot_svg(values) << "<br>" << plot_svg(below) << "</div>\n";
   return drawn;

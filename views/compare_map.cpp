@@ -96,7 +96,7 @@ void CompareMap::add_track(const std::string& name, const log::Log& lg, const co
   dot->SetInputData(t.marker, 0, 1);
   dot->SetColor(rgb[0], rgb[1], rgb[2], 255);
   dot->SetMarkerStyle(vtkPlotPoints::CIRCLE);
-  dot->SetMarkerSize(14.0f);
+  dot->SetMarkerSize(k == 0 ? 22.0f : 12.0f);  // a run where the baseline is leaves its marker a ring
   dot->SetLegendVisibility(false);
   tracks_.push_back(std::move(t));
 }

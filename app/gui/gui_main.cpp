@@ -30,8 +30,9 @@ struct GuiOptions {
   std::optional<std::string> mapping;
   std::optional<std::string> screenshot;  // save the window as PNG and exit
   std::optional<double> time;
-  std::optional<std::string> tab;     // a pane's title: Rover, Map, Plots, Traction surface, Analysis
-  std::optional<std::string> layout;  // a layout file (View > Save layout) applied before FILE opens
+  std::optional<std::string> tab;      // a pane's title: Rover, Map, Plots, Traction surface, Analysis
+  std::optional<std::string> layout;   // a layout file (View > Save layout) applied before FILE opens
+  std::optional<std::string> compare;  // another run compared with FILE once it is open (File > Compare with...)
   int width = 1400, height = 900;
 };
 
@@ -82,6 +83,16 @@ int run_gui(const GuiOptions& o) {
     window.open_file(QString::fromStdString(*o.file),
                      o.mapping ? std::optional<QString>(QString::fromStdString(*o.mapping)) : std::nullopt);
   }
+  if (o.compare && o.file) {  // once FILE is open and its analyses are done
+    auto* later = new QTimer(&window);
+    QObject::connect(later, &QTimer::timeout, &window, [&window, later, &o] {
+      if (!window.last_error().isEmpty()) later->stop();
+      if (!window.has_log() || window.busy()) return;
+      later->stop();
+      window.compare_with(QString::fromStdString(*o.compare));
+    });
+    later->start(100);
+  }
   if (o.screenshot) {
     // Poll until the load and the estimator are done, then take the picture.
     auto* poll = new QTimer(&window);
@@ -94,7 +105,7 @@ int run_gui(const GuiOptions& o) {
         app.quit();
         return;
       }
-      const bool ready = !o.file || (window.has_log() && !window.busy());
+      const bool ready = !o.file || (window.has_log() && !window.busy() && (!o.compare || window.compared_count() > 0));
       if (!ready && waited < 120000) return;
       poll->stop();
       if (o.tab) window.select_tab(QString::fromStdString(*o.tab));
@@ -135,6 +146,8 @@ Commands make_gui_commands() {
                        "Save the window as PNG once FILE is loaded and analysed, then exit");
         cmd.add_option("--time,-t", o.time, "With --screenshot: the timeline's time, s")->check(finite_in(-1e12, 1e12));
         cmd.add_option("--tab", o.tab, "With --screenshot: the pane in front (Rover | Map | Plots | ... | Analysis)");
+        cmd.add_option("--compare", o.compare,
+                       "Another run of the traverse, compared with FILE (File > Compare with...)");
         cmd.add_option("--layout", o.layout, "A layout FILE (View > Save layout): panes and plotted channels");
         // As render --size: a window larger than 8192 pixels cannot be grabbed.
         cmd.add_option("--width", o.width, "Window width, 16..8192")

@@ -221,9 +221,9 @@ void MainWindow::build_menus() {
       return;
     }
     QSettings settings;
-    const QString path = QFileDialog::getOpenFileName(this, "Compare with another run",
-                                                      settings.value("files/last_dir").toString(),
-                                                      "Rover logs (*.h5 *.hdf5 *.mat *.csv *.bag *.mcap);;All files (*)");
+    const QString path =
+        QFileDialog::getOpenFileName(this, "Compare with another run", settings.value("files/last_dir").toString(),
+                                     "Rover logs (*.h5 *.hdf5 *.mat *.csv *.bag *.mcap);;All files (*)");
     if (!path.isEmpty()) compare_with(path);
   });
   recent_menu_ = file->addMenu("Open &recent");
