@@ -14,10 +14,12 @@
 #include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "app/analysis.h"
+#include "app/campaign_compare.h"
 #include "app/command.h"
 #include "app/commands.h"
 #include "core/common/error.h"
@@ -34,6 +36,7 @@ using nlohmann::json;
 struct CampaignReportOptions {
   std::vector<std::string> runs;
   std::string output;
+  std::optional<std::string> baseline;  // the run the others are compared with (default: the first)
 };
 
 // The table's columns: every registered analysis's key metrics
@@ -279,6 +282,10 @@ class CampaignReportWriter {
     html_ << "<h2>Runs</h2>\n<div class=\"wide\"><table "
              "id=\"runs\"><tr><th>run</th><th>kind</th><th>scenario</th><th>seed</th>"
              "<th>injected effects</th>";
+    if (!runs_.empty() && runs_.front().contains("comparison")) {  // beside the run, before the metrics
+      html_ << "<th>differs from the baseline run ("
+            << esc(runs_.front().at("comparison").at("baseline").get<std::string>()) << ")</th>";
+    }
     for (const auto& m : key_columns()) html_ << "<th>" << esc(m.title) << "</th>";
     html_ << "</tr>\n";
     for (const auto& r : runs_) {
@@ -288,10 +295,22 @@ class CampaignReportWriter {
             << "</td><td class=\"t\">" << (r.at("scenario").is_string() ? esc(r.at("scenario").get<std::string>()) : "")
             << "</td><td>" << (r.at("seed").is_number() ? std::to_string(r.at("seed").get<std::uint64_t>()) : "")
             << "</td><td class=\"t\">" << esc(effects_text(r.at("effects"))) << "</td>";
+      if (r.contains("comparison")) html_ << comparison_cell(r.at("comparison"));
       for (const auto& m : key_columns()) html_ << cell(r.at("metrics").at(m.key));
       html_ << "</tr>\n";
     }
     html_ << "</table></div>\n";
+  }
+
+  // The run against the baseline: a link to its comparison page, and the channels that differ.
+  static std::string comparison_cell(const json& c) {
+    if (c.contains("note")) return "<td class=\"t note\">" + esc(c.at("note").get<std::string>()) + "</td>";
+    if (!c.contains("page")) return "<td class=\"t\">(the baseline)</td>";
+    const json& differing = c.at("differing");
+    std::string text = std::to_string(differing.size()) + " of " + std::to_string(c.at("channels").get<std::size_t>());
+    for (std::size_t k = 0; k < differing.size(); ++k) text += (k ? ", " : ": ") + differing[k].get<std::string>();
+    return "<td class=\"t\" style=\"min-width:24em\"><a class=\"comparison\" href=\"" +
+           esc(c.at("page").get<std::string>()) + "\">" + esc(text) + "</a></td>";
   }
 
   // A metric cell as the HTML shows it: 4 significant digits, an en dash when absent.
@@ -388,7 +407,8 @@ void check_campaign_report_folder(const std::string& output) {
     const std::string name = entry.path().filename().string();
     const bool histogram = name.rfind("hist_", 0) == 0 && entry.path().extension() == ".svg";
     ours = ours && entry.is_regular_file() &&
-           (name == "index.html" || name == "campaign.csv" || name == "campaign.json" || histogram);
+           (name == "index.html" || name == "campaign.csv" || name == "campaign.json" || histogram ||
+            is_comparison_page(name));
   }
   std::ifstream index(dir / "index.html");
   const std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
@@ -410,10 +430,22 @@ int run_campaign_report(const CampaignReportOptions& o) {
     }
     runs.push_back(std::move(row));
   }
+  std::vector<CampaignRunLog> logs;
+  std::size_t baseline = 0;
+  for (std::size_t k = 0; k < o.runs.size(); ++k) {
+    logs.push_back({runs[k].at("name").get<std::string>(), fs::path(o.runs[k]) / "log.h5"});
+    if (o.baseline && logs.back().name == *o.baseline) baseline = k;
+  }
+  if (o.baseline && logs[baseline].name != *o.baseline)
+    throw UsageError("--baseline " + *o.baseline + ": no run of that name");
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec || !fs::is_directory(out)) {
     throw InputError(o.output, "cannot create the report folder" + (ec ? ": " + ec.message() : std::string()));
+  }
+  if (logs.size() > 1) {  // each run against the baseline run, linked from its row
+    const json compared = compare_with_baseline(logs, baseline, out);
+    for (std::size_t k = 0; k < logs.size(); ++k) runs[k]["comparison"] = compared[k];
   }
   CampaignReportWriter(out, std::move(runs)).write();
   std::printf("wrote %s: %zu runs\n", (out / "index.html").c_str(), o.runs.size());
@@ -431,6 +463,8 @@ Commands make_campaign_report_commands() {
       [](CLI::App& cmd, CampaignReportOptions& o) {
         cmd.add_option("RUN_DIRS", o.runs, "Run folders (runs/NAME: run.json and report/metrics.json)")->required();
         cmd.add_option("--output,-o", o.output, "Report folder (created if missing)")->required();
+        cmd.add_option("--baseline", o.baseline,
+                       "The run NAME every other run's log is compared with (default: the first run given)");
       },
       run_campaign_report));
   return commands;
