@@ -30,11 +30,11 @@ std::string page_of(const std::string& run, const std::string& baseline, const c
     << "<table><tr><th>channel</th><th>unit</th><th>bias</th><th>RMS difference</th><th>beyond noise</th>"
     << "<th>p</th><th>differs</th></tr>\n";
   for (const auto& c : r.channels) {
-    h << "<tr" << (c.test.differs ? " class=\"differs\"" : "") << "><td class=\"t\">" << esc(c.path())
+    h << "<tr" << (c.differs ? " class=\"differs\"" : "") << "><td class=\"t\">" << esc(c.path())
       << "</td><td class=\"t\">" << esc(c.unit) << "</td><td>" << ReportSection::number(c.bias, "%.4g") << "</td><td>"
       << ReportSection::number(c.rms, "%.4g") << "</td><td>" << ReportSection::number(c.beyond_noise, "%.4g")
       << "</td><td>" << ReportSection::number(c.test.p_value, "%.3g") << "</td><td class=\"t\">"
-      << (c.test.differs ? "yes" : "no") << "</td></tr>\n";
+      << (c.differs ? "yes" : "no") << "</td></tr>\n";
   }
   h << "</table>\n";
   const auto list = [&h](const char* what, const std::vector<std::string>& paths) {
@@ -84,7 +84,7 @@ json compare_with_baseline(const std::vector<CampaignRunLog>& runs, std::size_t 
       entry["false_alarm"] = r.false_alarm;
       entry["differing"] = json::array();
       for (const auto& c : r.channels) {
-        if (c.test.differs) entry["differing"].push_back(c.path());
+        if (c.differs) entry["differing"].push_back(c.path());
       }
     } catch (const DataError& e) {  // no shared channel, nothing to align by: said in the table
       entry["note"] = std::string("not compared: ") + e.what();

@@ -73,12 +73,12 @@ void print_comparison(const std::string& file, const comparison::RunComparison& 
   for (const auto& c : r.channels) {
     std::printf("  %-40s %-7s %11.4g %11.4g %11.4g %11.4g %11.4g %8.2g %s\n", printable(c.path()).c_str(),
                 c.unit.c_str(), c.bias, c.rms, c.base_sigma, c.other_sigma, c.beyond_noise, c.test.p_value,
-                c.test.differs ? "DIFFERS" : "no");
+                c.differs ? "DIFFERS" : "no");
   }
   if (r.differing() > 0) {
     std::printf("  differ:");
     for (const auto& c : r.channels) {
-      if (c.test.differs) std::printf(" %s", printable(c.path()).c_str());
+      if (c.differs) std::printf(" %s", printable(c.path()).c_str());
     }
     std::printf("\n");
   }

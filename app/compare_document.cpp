@@ -53,7 +53,14 @@ json channel_json(const comparison::ChannelComparison& c) {
           {"statistic", number(c.test.statistic)},
           {"threshold", number(c.test.threshold)},
           {"p_value", number(c.test.p_value)},
-          {"differs", c.test.differs}};
+          {"oscillation",
+           {{"segments", c.oscillation.segments},
+            {"statistic", number(c.oscillation.statistic)},
+            {"threshold", number(c.oscillation.threshold)},
+            {"p_value", number(c.oscillation.p_value)},
+            {"cycles_per_sample", number(c.oscillation.peak_cycles_per_sample)},
+            {"differs", c.oscillation.differs}}},
+          {"differs", c.differs}};
 }
 
 }  // namespace
@@ -68,7 +75,7 @@ json comparison_json(const std::string& file, const comparison::RunComparison& r
             {"not_compared", r.not_compared}};
   for (const auto& c : r.channels) {
     j["channels"].push_back(channel_json(c));
-    if (c.test.differs) j["differing"].push_back(c.path());
+    if (c.differs) j["differing"].push_back(c.path());
   }
   return j;
 }

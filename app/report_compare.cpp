@@ -37,7 +37,7 @@ std::vector<const comparison::ChannelComparison*> drawn_channels(const compariso
   std::vector<const comparison::ChannelComparison*> order;
   for (const auto& c : r.channels) order.push_back(&c);
   std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) {
-    if (a->test.differs != b->test.differs) return a->test.differs;
+    if (a->differs != b->differs) return a->differs;
     return a->test.statistic > b->test.statistic;
   });
   if (order.size() > kMaxOverlays) order.resize(kMaxOverlays);
@@ -70,7 +70,7 @@ json overlay(std::ostringstream& html, const log::Log& base, const comparison::R
   noise.x = {ends[0], ends[1], ends[1], ends[0], ends[1]};
   const std::string unit = " (" + c.unit + ")";
   PlotSpec values(c.path(), "baseline time (s)", c.channel + unit, {a, b});
-  PlotSpec below(c.path() + ": difference" + (c.test.differs ? " (differs)" : " (within noise)"), "baseline time (s)",
+  PlotSpec below(c.path() + ": difference" + (c.differs ? " (differs)" : " (within noise)"), "baseline time (s)",
                  "difference" + unit, {diff});
   if (std::isfinite(band)) below.series.insert(below.series.begin(), noise);
   values.css_class = below.css_class = "plot compare";
@@ -123,7 +123,7 @@ void run_section(std::ostringstream& html, const std::string& file, std::size_t 
   if (r.differing() > 0) {
     html << ":";
     for (const auto& c : r.channels) {
-      if (c.test.differs) html << " " << esc(c.path());
+      if (c.differs) html << " " << esc(c.path());
     }
   }
   html << ".</p>\n";

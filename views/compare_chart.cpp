@@ -77,7 +77,7 @@ std::vector<ChannelRef> differing_channels(const std::vector<comparison::RunComp
   std::vector<std::pair<double, ChannelRef>> ranked;  // (-(differs + strength), channel)
   for (const auto& r : runs) {
     for (const auto& c : r.channels) {
-      const double score = (c.test.differs ? 1e6 : 0.0) + strength(c);
+      const double score = (c.differs ? 1e6 : 0.0) + strength(c);
       const auto it = std::find_if(ranked.begin(), ranked.end(), [&](const auto& e) {
         return e.second.stream == c.stream && e.second.channel == c.channel;
       });
@@ -274,7 +274,7 @@ void CompareChart::add_differences(std::size_t k) {
     p->SetWidth(1.5);
     const auto& cc = channel_comparison(r, k);
     p->SetLabel(runs_[r].name + " - baseline (shaded: +-2 sigma noise)");
-    title += std::string(r ? "; " : ": ") + runs_[r].name + (cc.test.differs ? " differs" : " within noise");
+    title += std::string(r ? "; " : ": ") + runs_[r].name + (cc.differs ? " differs" : " within noise");
   }
   c->GetAxis(vtkAxis::LEFT)
       ->SetTitle("difference (" + base_->stream(channels_[k].stream).channel(channels_[k].channel).unit + ")");

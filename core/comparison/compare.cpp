@@ -195,8 +195,11 @@ class RunComparer {
     const double noise_squares =
         base_gain * cc.base_sigma * cc.base_sigma + other_gain * cc.other_sigma * cc.other_sigma;
     if (std::isfinite(noise_squares)) cc.beyond_noise = std::sqrt(std::max(0.0, cc.rms * cc.rms - noise_squares));
-    cc.test = test_difference(d_, options_.false_alarm, options_.blocks);
-    if (!(cc.rms > kRounding * rms_of(a_))) cc.test.differs = false;  // rounding, not a measurement
+    // Two tests, each at half the false-alarm rate (Bonferroni): the block F test sees a bias or a drift, the
+    // periodogram test a periodic part that averages out within half a block (issue 45).
+    cc.test = test_difference(d_, options_.false_alarm / 2, options_.blocks);
+    cc.oscillation = test_oscillation(d_, options_.false_alarm / 2);
+    cc.differs = (cc.test.differs || cc.oscillation.differs) && cc.rms > kRounding * rms_of(a_);  // else rounding
     return cc;
   }
 
@@ -211,7 +214,7 @@ class RunComparer {
 
 std::size_t RunComparison::differing() const {
   return static_cast<std::size_t>(
-      std::count_if(channels.begin(), channels.end(), [](const ChannelComparison& c) { return c.test.differs; }));
+      std::count_if(channels.begin(), channels.end(), [](const ChannelComparison& c) { return c.differs; }));
 }
 
 RunComparison compare_runs(const log::Log& base, const log::Log& other, const CompareOptions& options) {

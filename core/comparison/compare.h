@@ -2,7 +2,8 @@
 // Two runs side by side (issue 45): the other run aligned to the baseline,
 // both resampled onto the baseline's time base stream by stream, and for
 // each channel both have: bias, RMS difference, the part of it beyond the
-// two streams' noise, and whether it differs (difference_test.h) at a
+// two streams' noise, and whether it differs (difference_test.h for a bias
+// or drift, oscillation_test.h for a periodic part, Bonferroni) at a
 // stated false-alarm rate. Channels only one run has are listed.
 
 #include <cmath>
@@ -12,6 +13,7 @@
 
 #include "core/comparison/alignment.h"
 #include "core/comparison/difference_test.h"
+#include "core/comparison/oscillation_test.h"
 #include "core/log/log.h"
 
 namespace roverlab::comparison {
@@ -34,7 +36,9 @@ struct ChannelComparison {
   // sqrt(max(0, rms^2 - noise^2)): noise^2 is base_sigma^2 + other_sigma^2, each times the share of a white
   // noise's variance its interpolation onto the common times keeps (1 at a sample, 1/2 halfway)
   double beyond_noise = NAN;
-  DifferenceTest test;  // differs is false when rms is below 1e-9 of the baseline's RMS (rounding)
+  DifferenceTest test;          // the block F test of a bias or drift, at half the false-alarm rate
+  OscillationTest oscillation;  // the periodogram test of a periodic part, at the other half
+  bool differs = false;         // either test; false when rms is below 1e-9 of the baseline's RMS (rounding)
   std::string path() const { return stream + "/" + channel; }
 };
 

@@ -108,7 +108,7 @@ TEST(CompareGui, TheSecondRunsTracksAndDifferenceCurveAreDrawn) {
     mean += d / static_cast<double>(diff->GetNumberOfRows());
   }
   EXPECT_NEAR(mean, 0.5, 0.1);
-  EXPECT_TRUE(chart->channel_comparison(0, 0).test.differs);
+  EXPECT_TRUE(chart->channel_comparison(0, 0).differs);
   EXPECT_GT(chart->band_half_width(0, 0), 0.0);
   EXPECT_LT(chart->band_half_width(0, 0), 0.4);
   EXPECT_NEAR(chart->difference_at_cursor(0, 0), fb.value_at(channel, 12.0) - fa.value_at(channel, 12.0), 1e-9);
@@ -124,7 +124,7 @@ TEST(CompareGui, TheSecondRunsTracksAndDifferenceCurveAreDrawn) {
   ASSERT_NE(chart, nullptr);
   ASSERT_EQ(chart->channels().size(), 1u);
   EXPECT_EQ(chart->channels().front().channel, imu->child(0)->text(0).toStdString());
-  EXPECT_FALSE(chart->channel_comparison(0, 0).test.differs);  // the IMU is not what the offset drives
+  EXPECT_FALSE(chart->channel_comparison(0, 0).differs);  // the IMU is not what the offset drives
   w.close();
 }
 
