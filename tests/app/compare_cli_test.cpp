@@ -200,3 +200,40 @@ TEST(CompareCli, BadInputIsOneLineNamingTheFileOrOption) {
 }
 
 }  // namespace
+
+// `render A --compare B`: the compare, compare-map and ghost-rover views as PNGs; --compare with a view that
+// does not compare runs, a compare view without --compare and a missing run are one line each.
+TEST(CompareRender, DrawsTheComparisonViewsAndRefusesWhatTheyCannotDraw) {
+  TempDir dir;
+  const std::string a = simulate(dir, 1, "", 20), c = simulate(dir, 3, "force-offset=0.5", 20);
+  for (const char* view : {"compare", "compare-map"}) {
+    const std::string png = dir.file(std::string(view) + ".png");
+    const CommandResult r =
+        run_roverlab("render " + quote(a) + " --compare " + quote(c) + " --view " + view + " -o " + quote(png));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(png)) << view;
+    if (std::string(view) == "compare") {  // the channels the offset drives are drawn and said to differ
+      EXPECT_NE(r.out.find("run3 aligned by the clocks as recorded"), std::string::npos) << r.out;
+      EXPECT_NE(r.out.find("6 of "), std::string::npos) << r.out;
+    }
+  }
+  const CommandResult other = run_roverlab("render " + quote(a) + " --compare " + quote(c) + " --view timeseries -o " +
+                                           quote(dir.file("t.png")));
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("--compare: only for the compare | compare-map | ghost-rover view"), std::string::npos)
+      << other.err;
+  const CommandResult alone = run_roverlab("render " + quote(a) + " --view compare -o " + quote(dir.file("c.png")));
+  EXPECT_EQ(alone.exit_code, 3);
+  EXPECT_NE(alone.err.find("needs another run to compare with"), std::string::npos) << alone.err;
+  const std::string missing = dir.file("missing.h5");
+  const CommandResult absent = run_roverlab("render " + quote(a) + " --compare " + quote(missing) +
+                                            " --view compare -o " + quote(dir.file("m.png")));
+  EXPECT_EQ(absent.exit_code, 3);
+  EXPECT_NE(absent.err.find(missing), std::string::npos) << absent.err;
+  // The rover of a planar simulation has no ghost: said in one line.
+  const CommandResult ghost = run_roverlab("render " + quote(a) + " --compare " + quote(c) + " --view ghost-rover -o " +
+                                           quote(dir.file("g.png")));
+  EXPECT_EQ(ghost.exit_code, 3);
+  EXPECT_EQ(std::count(ghost.err.begin(), ghost.err.end(), '\n'), 1) << ghost.err;
+  EXPECT_EQ(files_in(dir.path()), 4u);  // the two runs and the two pictures
+}
