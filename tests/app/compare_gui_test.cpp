@@ -30,7 +30,7 @@ using namespace roverlab::test;
 namespace {
 
 std::string simulate(const TempDir& dir, unsigned seed, const std::string& effect) {
-  const std::string out = dir.file("run" + std::to_string(seed) + ".h5");
+  std::string out = dir.file("run" + std::to_string(seed) + ".h5");
   const CommandResult r =
       run_command(quote(ROVERLAB_EXE) + " simulate flat_60s --duration 20 --seed " + std::to_string(seed) +
                   (effect.empty() ? "" : " --effect " + effect) + " -o " + quote(out));
