@@ -69,7 +69,7 @@ TEST(CompareCli, FindsTheWvuLogsShiftAndListsTheDroppedGps) {
 }
 
 std::string simulate(const TempDir& dir, unsigned seed, const std::string& effect = "", int duration = 60) {
-  const std::string out = dir.file("run" + std::to_string(seed) + ".h5");
+  std::string out = dir.file("run" + std::to_string(seed) + ".h5");
   const CommandResult r =
       run_roverlab("simulate flat_60s --seed " + std::to_string(seed) + " --duration " + std::to_string(duration) +
                    (effect.empty() ? "" : " --effect " + effect) + " -o " + quote(out));
