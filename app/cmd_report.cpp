@@ -76,7 +76,10 @@ class ReportWriter {
       streams();
       views();
     }
-    if (!compared_.empty()) write_comparison_section(section_, metrics_, o_.file, in_.log, compared_);
+    if (!compared_.empty()) {
+      write_comparison_section(section_, metrics_, o_.file, in_.log, compared_);
+      compared_views();
+    }
     analyses();
     if (in_.is_wheel_test() || o_.soil || has_surfaces()) {
       for (const char* q : {"drawbar-pull", "torque"}) traction_surface(q);
@@ -341,6 +344,29 @@ class ReportWriter {
         disagreement_plot(*view, h);
         slip_plot(*view, h);
       }
+    }
+  }
+
+  // The views that draw the compared runs against the log (every track with a marker on each, the ghost
+  // rover, the overlays of all runs in one picture), at the views' own time.
+  void compared_views() {
+    ViewOptions o;
+    for (const auto& c : compared_) o.compared.emplace_back(fs::path(c.file).stem().string(), &c.log);
+    for (const auto& view : views::all_views()) {
+      if (!view->compares_runs()) continue;
+      Rendered r;
+      try {
+        r = render_view(in_, *view, o, w_, static_cast<int>(h_ * view->report_height()));
+      } catch (const InputError& e) {
+        html() << "<p class=\"note\">No " << view->name() << " view: " << esc(e.problem()) << "</p>\n";
+        continue;
+      } catch (const DataError& e) {
+        html() << "<p class=\"note\">No " << view->name() << " view: " << esc(e.what()) << "</p>\n";
+        continue;
+      }
+      std::string file = view->name();
+      std::replace(file.begin(), file.end(), '-', '_');
+      image(file + ".png", view->heading(), r);
     }
   }
 

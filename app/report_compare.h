@@ -1,8 +1,9 @@
 #pragma once
 // The report's comparison section (`report A --compare B [--compare C]`): each
 // run against the report's log as `roverlab compare` gives it (docs/compare.md),
-// the channels that differ drawn over each other with their difference below,
-// and the map with every run's track. metrics.json gets the comparison
+// the channels that differ drawn over each other with their difference below
+// (and the +-2 sigma noise band), and the map with every run's track. The
+// report then draws the views that compare runs (cmd_report.cpp). metrics.json gets the comparison
 // documents and the values drawn.
 
 #include <string>

@@ -237,3 +237,19 @@ TEST(CompareRender, DrawsTheComparisonViewsAndRefusesWhatTheyCannotDraw) {
   EXPECT_EQ(std::count(ghost.err.begin(), ghost.err.end(), '\n'), 1) << ghost.err;
   EXPECT_EQ(files_in(dir.path()), 4u);  // the two runs and the two pictures
 }
+
+// `report A --compare B` draws the views that compare runs as pictures too (the overlays of every run, every
+// track with a marker on each), and says in one line why a view cannot draw them (no ghost of a planar rover).
+TEST(CompareReport, DrawsTheViewsThatCompareRuns) {
+  TempDir dir;
+  const std::string a = simulate(dir, 1, "", 20), c = simulate(dir, 3, "force-offset=0.5", 20);
+  const std::string out = dir.file("report");
+  const CommandResult r = run_roverlab("report " + quote(a) + " --compare " + quote(c) + " -o " + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = read_text(out + "/index.html");
+  for (const char* png : {"compare.png", "compare_map.png"}) {
+    EXPECT_TRUE(fs::exists(out + "/" + png)) << png;
+    EXPECT_NE(html.find(std::string("<img src=\"") + png + "\""), std::string::npos) << png;
+  }
+  EXPECT_NE(html.find("No ghost-rover view: "), std::string::npos);
+}
