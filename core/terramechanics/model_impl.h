@@ -146,18 +146,21 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   // The hump curve's K_w takes K_0's place.
   const bool peak = o.extensions.shear_peak;
   const T shear_modulus = (peak ? p.shear_peak_displacement : p.shear_modulus) * (1.0 + p.shear_modulus_slip * s);
-  auto sample = [&](const T& th, T& sigma, T& tau) {
-    // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front).
-    const T th_eq = th >= theta_m ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
-    sigma = modulus * power(T(r / b) * (cos(th_eq) - cos0), n);
-    const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - sin(th)));                                // Eq. 2.18
+  // sigma and tau at angle th, whose cosine and sine are ct and st.
+  auto sample = [&](const T& th, const T& ct, const T& st, T& sigma, T& tau) {
+    // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front);
+    // in the front zone th_eq is th, whose cosine is known.
+    const bool front_zone = th >= theta_m;
+    const T th_eq = front_zone ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
+    sigma = modulus * power(T(r / b) * ((front_zone ? ct : T(cos(th_eq))) - cos0), n);
+    const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - st));                                     // Eq. 2.18
     tau = (c + sigma * tan_phi) * shear_fraction(peak, j / shear_modulus, p.shear_residual_ratio);  // Eq. 2.19
   };
   T i_sigma_cos(0.0), i_sigma_sin(0.0), i_tau_cos(0.0), i_tau_sin(0.0), i_tau(0.0);
   auto add = [&](const T& th, const T& weight) {
-    T sigma, tau;
-    sample(th, sigma, tau);
     const T ct = cos(th), st = sin(th);
+    T sigma, tau;
+    sample(th, ct, st, sigma, tau);
     i_sigma_cos += weight * sigma * ct;
     i_sigma_sin += weight * sigma * st;
     i_tau_cos += weight * tau * ct;

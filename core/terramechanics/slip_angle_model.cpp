@@ -21,20 +21,21 @@ struct Node {
 // The quadrature of the Wong-Reece model (model_impl.h): Simpson on the two
 // zones (Eq. 2.25, seed 003) or the midpoint Riemann sum.
 // The contact runs from the rear angle theta_r <= 0 to theta0.
-std::vector<Node> nodes(const ModelOptions& o, double theta0, double theta_m, double theta_r) {
+// Written into `out` (cleared; its capacity kept across a solve's calls).
+void nodes(const ModelOptions& o, double theta0, double theta_m, double theta_r, std::vector<Node>& out) {
+  out.clear();
   if (o.integration == Integration::simpson) {
     const double front = (theta0 - theta_m) / 6.0, rear = (theta_m - theta_r) / 6.0;
-    return {{theta0, front},
-            {0.5 * (theta0 + theta_m), 4.0 * front},
-            {theta_m, front + rear},
-            {0.5 * (theta_m + theta_r), 4.0 * rear},
-            {theta_r, rear}};
+    out.push_back({theta0, front});
+    out.push_back({0.5 * (theta0 + theta_m), 4.0 * front});
+    out.push_back({theta_m, front + rear});
+    out.push_back({0.5 * (theta_m + theta_r), 4.0 * rear});
+    out.push_back({theta_r, rear});
+    return;
   }
-  std::vector<Node> out;
   out.reserve(static_cast<std::size_t>(o.riemann_points));
   const double h = (theta0 - theta_r) / o.riemann_points;
   for (int k = 0; k < o.riemann_points; ++k) out.push_back({theta_r + h * (k + 0.5), h});
-  return out;
 }
 
 // The soil's values after the soil-strength factor, and the wheel's shear radius.
@@ -73,33 +74,47 @@ struct Integrals {
   double normal = 0.0, drawbar = 0.0, torque = 0.0, lateral_shear = 0.0, sidewall = 0.0;
 };
 
-double sidewall_per_length(double c, double tan_phi, double gamma, double h) {
-  if (!(h > 0.0)) return 0.0;
+// Hegedus's bulldozing coefficients of a soil: they depend on phi only, so
+// the stress integral computes them once, not at every node.
+struct SidewallCoefficients {
+  double d1 = 0.0, d2 = 0.0;
+};
+
+SidewallCoefficients sidewall_coefficients(double tan_phi) {
   const double phi = std::atan(tan_phi);
   const double xc = kPi / 4.0 - phi / 2.0;  // destructive angle X_c = 45 deg - phi / 2 (Hegedus)
   const double cot_xc = 1.0 / std::tan(xc);
-  const double d1 = cot_xc + std::tan(xc + phi);         // D_1(X_c), Ishigami 2007 Eq. 10
-  const double d2 = cot_xc + cot_xc * cot_xc * tan_phi;  // D_2(X_c) = cot X_c + cot^2 X_c / cot phi
-  return d1 * (c * h + d2 * gamma * h * h / 2.0);        // R_b, Eq. 10 (gamma: weight density, see docs)
+  return {cot_xc + std::tan(xc + phi),          // D_1(X_c), Ishigami 2007 Eq. 10
+          cot_xc + cot_xc * cot_xc * tan_phi};  // D_2(X_c) = cot X_c + cot^2 X_c / cot phi
+}
+
+double sidewall_per_length(const SidewallCoefficients& k, double c, double gamma, double h) {
+  if (!(h > 0.0)) return 0.0;
+  return k.d1 * (c * h + k.d2 * gamma * h * h / 2.0);  // R_b, Eq. 10 (gamma: weight density, see docs)
 }
 
 // Stress integrals at entry angle theta0, longitudinal slip s in [0, 1] and
 // lateral velocity ratio lateral = v_y / (r w) (Ishigami: (1 - s) tan beta).
 Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions& lat, double s, double lateral,
-                    double theta0, double c1, double c2) {
+                    double theta0, double c1, double c2, std::vector<Node>& buffer) {
   const double theta_m = theta0 * (c1 + c2 * s);  // Eq. 2.10, seed 003; Eq. 4, Ishigami 2007
   const double cos0 = std::cos(theta0), sin0 = std::sin(theta0);
   Integrals in;
   double i_sigma_cos = 0, i_sigma_sin = 0, i_tau_cos = 0, i_tau_sin = 0, i_tau = 0, i_tau_y = 0, i_side = 0;
   const double theta_r = -u.rear_angle_ratio * theta0;  // rear angle (model.h)
-  for (const Node& node : nodes(o, theta0, theta_m, theta_r)) {
+  const SidewallCoefficients side = sidewall_coefficients(u.tan_phi);
+  nodes(o, theta0, theta_m, theta_r, buffer);
+  for (const Node& node : buffer) {
     const double th = node.theta;
     // Eq. 2.11 and 2.14, seed 003 (Eq. 3 of Ishigami 2007 with Wong's moduli).
-    const double th_eq = th >= theta_m ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
-    const double sigma = u.modulus * detail::power(u.r / u.b * (std::cos(th_eq) - cos0), u.n);
+    // In the front zone th_eq is th, whose cosine is ct.
+    const double ct = std::cos(th), st = std::sin(th);
+    const bool front_zone = th >= theta_m;
+    const double th_eq = front_zone ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
+    const double sigma = u.modulus * detail::power(u.r / u.b * ((front_zone ? ct : std::cos(th_eq)) - cos0), u.n);
     const double strength = u.c + sigma * u.tan_phi;
-    const double j_x = u.rs * ((theta0 - th) - (1.0 - s) * (sin0 - std::sin(th)));  // Eq. 6
-    const double j_y = u.rs * lateral * (theta0 - th);  // Eq. 8: r (1 - s)(theta0 - theta) tan(beta)
+    const double j_x = u.rs * ((theta0 - th) - (1.0 - s) * (sin0 - st));  // Eq. 6
+    const double j_y = u.rs * lateral * (theta0 - th);                    // Eq. 8: r (1 - s)(theta0 - theta) tan(beta)
     double tau_x = 0.0, tau_y = 0.0;
     if (lat.shear == LateralShear::independent) {
       tau_x = strength * shear_fraction(u, j_x / u.k_x);                                // Eq. 5
@@ -113,7 +128,6 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
         tau_y = tau * uy / big_j;
       }
     }
-    const double ct = std::cos(th), st = std::sin(th);
     i_sigma_cos += node.weight * sigma * ct;
     i_sigma_sin += node.weight * sigma * st;
     i_tau_cos += node.weight * tau_x * ct;
@@ -121,7 +135,7 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
     i_tau += node.weight * tau_x;
     i_tau_y += node.weight * tau_y;
     const double h = u.r * (ct - cos0);  // depth of the sidewall point, Eq. 10
-    i_side += node.weight * sidewall_per_length(u.c, u.tan_phi, u.gamma, h) * (u.r - h * ct);
+    i_side += node.weight * sidewall_per_length(side, u.c, u.gamma, h) * (u.r - h * ct);
   }
   in.normal = u.b * (u.r * i_sigma_cos + u.rs * i_tau_sin);      // Eq. 11 (Eq. 2.20, seed 003)
   in.drawbar = u.b * (u.rs * i_tau_cos - u.r * i_sigma_sin);     // Eq. 9 (Eq. 2.21)
@@ -144,7 +158,8 @@ struct Solved {
 Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const LateralOptions& lat, double s,
              double lateral, double load) {
   const Setup u = setup(soil, w, o.extensions, s);
-  auto at = [&](double th) { return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2); };
+  std::vector<Node> buffer;
+  auto at = [&](double th) { return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2, buffer); };
   Solved out;
   double lo = 0.0, hi = kPi / 2.0;
   const double n_hi = at(hi).normal;
@@ -178,8 +193,9 @@ double lateral_shear_modulus(const Soil& soil) {
 }
 
 double sidewall_resistance(const Soil& soil, double soil_strength, double depth) {
-  return sidewall_per_length(soil_strength * soil.cohesion, soil_strength * std::tan(soil.friction_angle),
-                             soil.density * kGravity, depth);
+  const double tan_phi = soil_strength * std::tan(soil.friction_angle);
+  return sidewall_per_length(sidewall_coefficients(tan_phi), soil_strength * soil.cohesion, soil.density * kGravity,
+                             depth);
 }
 
 SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, double load, double slip, double slip_angle,
