@@ -8,6 +8,7 @@
 
 #include "app/analysis.h"
 #include "app/commands.h"
+#include "app/lab_figures.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
@@ -310,7 +311,7 @@ std::vector<views::ChannelRef> channel_pair(const ViewInput& in, const ViewOptio
 }  // namespace
 
 views::SceneInput scene_input(const ViewInput& in, const views::View& view, const ViewOptions& o) {
-  if (in.is_wheel_test() && !view.uses_surface_data()) {
+  if (in.is_wheel_test() && !view.uses_surface_data() && !view.uses_lab_figures()) {
     throw InputError(in.file, "single-wheel test points are not a log: no " + view.name() + " view");
   }
   views::SceneInput s;
@@ -318,6 +319,8 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
   s.time = o.time;
   if (view.uses_surface_data()) {
     s.surface = traction_surface_of(in, o.quantity, o.soil, nullptr, o.slip_angle_deg);
+  } else if (view.uses_lab_figures()) {
+    s.lab = lab_figures_of(in, o.soil);
   } else {
     s.rover = rover_geometry(in.log);
     s.articulated = rover_kinematics(in.log);
