@@ -26,6 +26,7 @@
 #include "app/render_view.h"
 #include "app/report_compare.h"
 #include "app/report_pdf.h"
+#include "app/report_single_wheel.h"
 #include "app/resources.h"
 #include "app/views_input.h"
 #include "core/common/error.h"
@@ -71,6 +72,8 @@ class ReportWriter {
 
   void write() {
     head();
+    if (in_.is_wheel_test())
+      write_single_wheel_section(section_, dir_, metrics_, in_, o_.soil, w_, h_);  // its verdict first
     summary();
     if (!in_.is_wheel_test()) {
       streams();
@@ -124,7 +127,7 @@ class ReportWriter {
   // was not run and why.
   void summary() {
     html() << "<h2>Summary</h2>\n";
-    run_overview();
+    if (!in_.is_wheel_test()) run_overview();  // a single-wheel test is described by its own section
     html() << "<ul>\n";
     json lines = json::array();
     for (const auto& run : in_.analyses) {
@@ -325,7 +328,7 @@ class ReportWriter {
   // after the plots.
   void views() {
     for (const auto& view : views::all_views()) {
-      if (view->uses_surface_data() || view->plots_channel_pair()) continue;
+      if (view->uses_surface_data() || view->plots_channel_pair() || view->uses_lab_figures()) continue;
       const int h = static_cast<int>(h_ * view->report_height());
       Rendered r;
       try {
