@@ -482,6 +482,15 @@ PressureSinkageFit fit_relation(const std::vector<PlateRecord>& records, const s
 
 }  // namespace
 
+double fitted_force(const PressureSinkageFit& fit, const Plate& plate, double contact_depth, double depth) {
+  const Shape shape{fit.model, fit.sizes_separated};
+  std::array<double, 3> x{};
+  if (fit.parameters.size() < static_cast<std::size_t>(shape.size())) return NAN;
+  for (int j = 0; j < shape.size(); ++j)
+    x[static_cast<std::size_t>(j)] = fit.parameters[static_cast<std::size_t>(j)].value;
+  return plate.area() * model_pressure(shape, x.data(), plate.b(), depth - contact_depth);
+}
+
 PlateAnalysis analyse_plate_tests(const std::vector<PlateRecord>& records, const PlateFitOptions& options) {
   if (records.empty()) throw DataError("no plate test to fit");
   PlateAnalysis a;

@@ -86,6 +86,11 @@ struct PlateAnalysis {
   std::vector<PressureSinkageFit> fits;  // bekker, reece, rft
 };
 
+// The force (N) a fitted relation gives `plate` at `depth` (m) in a record
+// whose fitted contact depth is `contact_depth` (0 above it): the curve a
+// view draws through the record's samples.
+double fitted_force(const PressureSinkageFit& fit, const Plate& plate, double contact_depth, double depth);
+
 // Throws DataError naming the problem (no record, a record without contact).
 PlateAnalysis analyse_plate_tests(const std::vector<PlateRecord>& records, const PlateFitOptions& options);
 
