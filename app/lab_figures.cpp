@@ -8,6 +8,7 @@
 #include <set>
 #include <utility>
 
+#include "app/command_support.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "importers/soil_file.h"
@@ -296,10 +297,90 @@ views::LabFigures single_wheel_figures(const std::vector<WheelTestPoint>& points
   return f;
 }
 
+namespace {
+
+const char* fit_name(terramechanics::PressureModel m) {
+  return m == terramechanics::PressureModel::bekker  ? "Bekker"
+         : m == terramechanics::PressureModel::reece ? "Reece"
+                                                     : "RFT";
+}
+
+// One record: its samples (the fitted virgin loading apart from the rest
+// after contact) and each fitted relation's force over its depths.
+views::Panel plate_panel(const terramechanics::PlateRecord& rec, const terramechanics::PlateAnalysis& a,
+                         std::size_t r) {
+  views::Panel panel;
+  const terramechanics::Plate& plate = rec.plate;
+  panel.title = plate.circular ? "plate of diameter " + number(plate.width * 1000.0, "%.4g") + " mm"
+                               : "plate " + number(plate.width * 1000.0, "%.4g") + " x " +
+                                     number(plate.length * 1000.0, "%.4g") + " mm";
+  views::PanelSeries virgin, other;
+  virgin.group = 0;
+  other.group = 1;
+  std::vector<bool> fitted(rec.depth.size(), false);
+  for (std::size_t i : a.records[r].virgin) fitted[i] = true;
+  for (std::size_t i = 0; i < rec.depth.size(); ++i) {
+    views::PanelSeries& s = fitted[i] ? virgin : other;
+    s.x.push_back(rec.depth[i] * 1000.0);
+    s.y.push_back(rec.force[i]);
+  }
+  panel.series.push_back(std::move(other));
+  panel.series.push_back(std::move(virgin));
+  const auto [lo, hi] = std::minmax_element(rec.depth.begin(), rec.depth.end());
+  for (std::size_t k = 0; k < a.fits.size(); ++k) {
+    const terramechanics::PressureSinkageFit& fit = a.fits[k];
+    views::PanelSeries curve;
+    curve.group = static_cast<int>(k) + 2;
+    const double z0 = r < fit.contact_depths.size() ? fit.contact_depths[r] : 0.0;
+    for (int j = 0; j <= 100; ++j) {
+      const double z = *lo + (*hi - *lo) * j / 100.0;
+      curve.curve_x.push_back(z * 1000.0);
+      curve.curve_y.push_back(terramechanics::fitted_force(fit, plate, z0, z));
+    }
+    panel.series.push_back(std::move(curve));
+  }
+  return panel;
+}
+
+views::PanelFigure plate_figure(const std::vector<terramechanics::PlateRecord>& records) {
+  using terramechanics::PlateAnalysis;
+  const PlateAnalysis a = terramechanics::analyse_plate_tests(records, terramechanics::PlateFitOptions{});
+  views::PanelFigure f;
+  f.x_title = "depth (mm)";
+  f.group_names = {"virgin loading (fitted)", "unloading, reloading, approach"};
+  std::string fits;
+  for (const auto& fit : a.fits) {
+    f.group_names.push_back(std::string(fit_name(fit.model)) + " (held out " + number(fit.held_out_rmse_N, "%.3g") +
+                            " N)");
+    fits += (fits.empty() ? "" : ", ") + std::string(fit_name(fit.model));
+  }
+  f.caption =
+      "Lines: " + fits + " fitted to the virgin loading samples (soil plate); key: held-out RMSE.\n" +
+      (a.plate_sizes.size() < 2 ? "One plate size: Bekker's k_c and k_phi are not separated (one lumped modulus)."
+                                : std::to_string(a.plate_sizes.size()) + " plate sizes.");
+  views::PanelRow row;
+  row.y_title = "force (N)";
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    row.panels.push_back(plate_panel(records[r], a, r));
+  }
+  f.rows.push_back(std::move(row));
+  return f;
+}
+
+}  // namespace
+
 views::LabFigures lab_figures_of(const ViewInput& in, const std::optional<std::string>& soil_name) {
+  if (in.is_plate_test()) {
+    views::LabFigures f;
+    f.force_depth = about_file(in.file, [&] { return plate_figure(in.plate_records); });
+    f.why_not = "a plate test, not a single-wheel test table";
+    return f;
+  }
   if (!in.is_wheel_test()) {
     views::LabFigures f;
-    f.why_not = "not a single-wheel test table (load_N, slip and drawbar_pull_N or lateral_force_N columns)";
+    f.why_not =
+        "not a single-wheel test table (load_N, slip and drawbar_pull_N or lateral_force_N columns) nor a "
+        "plate test (depth_m, force_N)";
     return f;
   }
   const terramechanics::Soil soil = io::find_soil(soil_name.value_or("dry_sand"), resource_subfolders("soils"));

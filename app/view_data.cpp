@@ -314,6 +314,9 @@ views::SceneInput scene_input(const ViewInput& in, const views::View& view, cons
   if (in.is_wheel_test() && !view.uses_surface_data() && !view.uses_lab_figures()) {
     throw InputError(in.file, "single-wheel test points are not a log: no " + view.name() + " view");
   }
+  if (in.is_plate_test() && !view.uses_lab_figures()) {
+    throw InputError(in.file, "plate test samples are not a log: no " + view.name() + " view");
+  }
   views::SceneInput s;
   s.log = &in.log;
   s.time = o.time;

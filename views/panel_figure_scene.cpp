@@ -116,18 +116,21 @@ vtkSmartPointer<vtkTable> table_of(const std::vector<std::pair<const char*, std:
   return table;
 }
 
-vtkSmartPointer<vtkTextActor> text_actor(const std::string& text, int size, const unsigned char rgb[3], bool bold) {
+// A text at (x, y) pixels from the point at `across` of the viewport's width on its top edge.
+vtkSmartPointer<vtkTextActor> text_actor(const std::string& text, int size, const unsigned char rgb[3], bool bold,
+                                         double across, double x, double y) {
   auto t = vtkSmartPointer<vtkTextActor>::New();
   t->SetInput(text.c_str());
   t->GetTextProperty()->SetFontSize(size);
   t->GetTextProperty()->SetColor(rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
   t->GetTextProperty()->SetBold(bold ? 1 : 0);
-  // Placed in pixels from the viewport's top left corner, whatever its height.
+  // Placed in pixels from a point of the viewport's top edge, whatever its size.
   vtkNew<vtkCoordinate> top_left;
   top_left->SetCoordinateSystemToNormalizedViewport();
-  top_left->SetValue(0.0, 1.0);
+  top_left->SetValue(across, 1.0);
   t->GetPositionCoordinate()->SetCoordinateSystemToViewport();
   t->GetPositionCoordinate()->SetReferenceCoordinate(top_left);
+  t->SetPosition(x, y);
   return t;
 }
 
@@ -184,14 +187,6 @@ class PanelFigureScene : public Scene {
     if (view_->GetRenderWindow() == window) window->RemoveRenderer(view_->GetRenderer());
   }
   // The key's entries side by side, spaced for a window `pixels` wide.
-  void fit_width(int pixels) override {
-    double x = 12.0;
-    for (std::size_t i = 1; i < texts_.size(); ++i) {
-      texts_[i]->SetPosition(x, -68.0);
-      x += (static_cast<double>(std::string(texts_[i]->GetInput()).size()) + 3.0) * 8.5;
-      if (x > pixels - 60) break;  // more groups than the line holds: the rest unnamed
-    }
-  }
   bool follows_time() const override { return false; }
   void set_time(double /*t*/) override {}
   double start_time() const override { return 0.0; }
@@ -246,7 +241,7 @@ class PanelFigureScene : public Scene {
       vtkPlot* line = ch->AddPlot(vtkChart::LINE);
       line->SetInputData(table_of({{"x", x}, {"y", y}}), 0, 1);
       line->SetColor(rgb[0], rgb[1], rgb[2], 255);
-      line->SetWidth(2.0);
+      line->SetWidth(2.5);
     }
     if (s.x.empty()) return;
     vtkPlot* points = ch->AddPlot(vtkChart::POINTS);
@@ -254,24 +249,27 @@ class PanelFigureScene : public Scene {
     points->SetColor(rgb[0], rgb[1], rgb[2], 255);
     if (auto* p = vtkPlotPoints::SafeDownCast(points)) {
       p->SetMarkerStyle(vtkPlotPoints::CIRCLE);
-      p->SetMarkerSize(7.0F);
+      p->SetMarkerSize(s.x.size() > 200 ? 3.5F : 7.0F);  // dense records: the curves stay visible
     }
   }
 
-  // The caption on top, the key below it: each group's name in its colour.
+  // The caption on top, the key below it: each group's name in its colour,
+  // the line shared equally among them (12 pt when there are more than three).
   void add_key(const PanelFigure& figure) {
     const unsigned char dark[3] = {30, 30, 30};
-    texts_.push_back(text_actor(figure.caption, 14, dark, false));
-    texts_.back()->SetPosition(12.0, -44.0);  // two lines
-    for (std::size_t g = 0; g < figure.group_names.size(); ++g) {
+    texts_.push_back(text_actor(figure.caption, 14, dark, false, 0.0, 12.0, -44.0));  // two lines
+    const std::size_t n = figure.group_names.size();
+    for (std::size_t g = 0; g < n; ++g) {
       unsigned char rgb[3];
       group_colour(static_cast<int>(g), rgb);
-      texts_.push_back(text_actor("\xe2\x97\x8f " + figure.group_names[g], 14, rgb, true));
+      texts_.push_back(text_actor(figure.group_names[g], n > 3 ? 12 : 14, rgb, true,
+                                  static_cast<double>(g) / static_cast<double>(std::max<std::size_t>(n, 3)), 12.0,
+                                  -68.0));
     }
     for (const auto& t : texts_) view_->GetRenderer()->AddActor2D(t);
-    fit_width(1280);
   }
 
+ private:
   std::string x_title_;
   vtkSmartPointer<vtkContextView> view_;
   std::vector<vtkSmartPointer<vtkTextActor>> texts_;
