@@ -25,8 +25,8 @@
 #include "app/log_input.h"
 #include "app/render_view.h"
 #include "app/report_compare.h"
+#include "app/report_lab_test.h"
 #include "app/report_pdf.h"
-#include "app/report_single_wheel.h"
 #include "app/resources.h"
 #include "app/views_input.h"
 #include "core/common/error.h"
@@ -72,10 +72,9 @@ class ReportWriter {
 
   void write() {
     head();
-    if (in_.is_wheel_test())
-      write_single_wheel_section(section_, dir_, metrics_, in_, o_.soil, w_, h_);  // its verdict first
+    write_lab_test_section(section_, dir_, metrics_, in_, o_.soil, w_, h_);  // a single-wheel or plate test's
     summary();
-    if (!in_.is_wheel_test()) {
+    if (!in_.is_wheel_test() && !in_.is_plate_test()) {
       streams();
       views();
     }
@@ -127,7 +126,7 @@ class ReportWriter {
   // was not run and why.
   void summary() {
     html() << "<h2>Summary</h2>\n";
-    if (!in_.is_wheel_test()) run_overview();  // a single-wheel test is described by its own section
+    if (!in_.is_wheel_test() && !in_.is_plate_test()) run_overview();  // a lab test is described by its own section
     html() << "<ul>\n";
     json lines = json::array();
     for (const auto& run : in_.analyses) {

@@ -1,4 +1,4 @@
-#include "app/report_single_wheel.h"
+#include "app/report_lab_test.h"
 
 #include <algorithm>
 #include <cmath>
@@ -134,10 +134,8 @@ void image(ReportSection& section, const std::filesystem::path& folder, const vi
   for (const auto& n : r.notes) section.html << "<p class=\"note\">" << esc(n) << "</p>\n";
 }
 
-}  // namespace
-
-void write_single_wheel_section(ReportSection& section, const std::filesystem::path& folder, json& metrics,
-                                const ViewInput& in, const std::optional<std::string>& soil_name, int w, int h) {
+void single_wheel_section(ReportSection& section, const std::filesystem::path& folder, json& metrics,
+                          const ViewInput& in, const std::optional<std::string>& soil_name, int w, int h) {
   const terramechanics::Soil soil = io::find_soil(soil_name.value_or("dry_sand"), resource_subfolders("soils"));
   const analysis::DiscrepancyReport r = run_study(in, soil);
   const SingleWheelModel final_model = final_single_wheel_model(soil, in.wheel_points, r);
@@ -180,6 +178,59 @@ void write_single_wheel_section(ReportSection& section, const std::filesystem::p
                              {"curves", final_model.name},
                              {"held_out_method", r.held_out_method},
                              {"held_out_rmse", errors}};
+}
+
+// The plate test: its relations fitted (as `soil plate` fits them) with their parameters, and its force against depth.
+void plate_section(ReportSection& section, const std::filesystem::path& folder, json& metrics, const ViewInput& in,
+                   int w, int h) {
+  const terramechanics::PlateAnalysis a = about_file(in.file, [&] {
+    return terramechanics::analyse_plate_tests(in.plate_records, terramechanics::PlateFitOptions{});
+  });
+  const terramechanics::PlateRecord& rec = in.plate_records.front();
+  auto& html = section.html;
+  html << "<h2>Plate test</h2>\n<p class=\"run\"><b>The test</b>: a "
+       << (rec.plate.circular ? "circular" : "rectangular") << " plate, b = " << num(rec.plate.b() * 1000.0, "%.4g")
+       << " mm; " << rec.depth.size() << " samples, " << a.records.front().virgin.size()
+       << " of them virgin loading (fitted); force noise " << num(a.records.front().force_noise) << " N.</p>\n";
+  html << "<table><caption>Pressure-sinkage relations (soil plate)</caption><tr><th>relation</th><th>parameters "
+          "(+-1 sigma)</th><th>RMSE</th><th>held-out RMSE</th></tr>\n";
+  json fits = json::array();
+  for (const auto& f : a.fits) {
+    std::string params;
+    json pj = json::object();
+    for (const auto& p : f.parameters) {
+      params +=
+          (params.empty() ? "" : "; ") + p.name + " = " + num(p.value, "%.4g") +
+          (std::isfinite(p.sigma) ? " +- " + num(p.sigma, "%.2g") : std::string(p.at_bound ? " (at its bound)" : "")) +
+          " " + p.unit;
+      pj[p.name] = {{"value", p.value}, {"sigma", finite_or_null(p.sigma)}, {"unit", p.unit}};
+    }
+    html << "<tr><td style=\"text-align:left\">" << terramechanics::to_string(f.model)
+         << "</td><td style=\"text-align:left\">" << esc(params) << "</td><td>" << num(f.rmse_N) << " N</td><td>"
+         << num(f.held_out_rmse_N) << " N</td></tr>\n";
+    fits.push_back({{"relation", terramechanics::to_string(f.model)},
+                    {"parameters", pj},
+                    {"rmse_N", f.rmse_N},
+                    {"held_out_rmse_N", f.held_out_rmse_N},
+                    {"note", f.note}});
+  }
+  html << "</table>\n";
+  for (const auto& f : a.fits) {
+    if (!f.note.empty())
+      html << "<p class=\"note\">" << terramechanics::to_string(f.model) << ": " << esc(f.note) << "</p>\n";
+  }
+  views::SceneInput input;
+  input.lab = lab_figures_of(in, std::nullopt);
+  if (const views::View* view = views::find_view("force-depth")) image(section, folder, *view, input, w, h);
+  metrics["plate_test"] = {{"plate_b_m", rec.plate.b()}, {"samples", rec.depth.size()}, {"fits", fits}};
+}
+
+}  // namespace
+
+void write_lab_test_section(ReportSection& section, const std::filesystem::path& folder, json& metrics,
+                            const ViewInput& in, const std::optional<std::string>& soil, int w, int h) {
+  if (in.is_wheel_test()) single_wheel_section(section, folder, metrics, in, soil, w, h);
+  if (in.is_plate_test()) plate_section(section, folder, metrics, in, w, h);
 }
 
 }  // namespace roverlab::app
