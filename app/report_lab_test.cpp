@@ -202,7 +202,7 @@ void plate_section(ReportSection& section, const std::filesystem::path& folder, 
       params +=
           (params.empty() ? "" : "; ") + p.name + " = " + num(p.value, "%.4g") +
           (std::isfinite(p.sigma) ? " +- " + num(p.sigma, "%.2g") : std::string(p.at_bound ? " (at its bound)" : "")) +
-          " " + p.unit;
+          (p.unit == "1" ? std::string() : " " + p.unit);
       pj[p.name] = {{"value", p.value}, {"sigma", finite_or_null(p.sigma)}, {"unit", p.unit}};
     }
     html << "<tr><td style=\"text-align:left\">" << terramechanics::to_string(f.model)
