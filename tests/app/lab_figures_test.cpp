@@ -5,6 +5,7 @@
 // axes; and the study's final model, when given, drawn instead of the baseline.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -190,4 +191,53 @@ TEST(LabFigures, ALogHasNoneAndTheViewsSayWhy) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("not a single-wheel test table"), std::string::npos) << e.what();
   }
+}
+
+// A plate pushed 4 cm into a Bekker soil and withdrawn (no noise): its force
+// against depth in mm, the virgin loading apart, and the three fitted curves,
+// Bekker's through the truth.
+TEST(LabFigures, PlateForceAgainstDepthHoldsTheSamplesAndTheFittedCurves) {
+  TempDir dir;
+  const std::string csv = dir.file("plate.csv");
+  const double b = 0.05, area = M_PI * 0.1 * 0.1 / 4;
+  std::string rows = "# plate_diameter_m: 0.1\ndepth_m,force_N\n";
+  std::size_t loading = 0;
+  const auto force = [&](double z) {
+    return z > 0 ? area * terramechanics::bekker_pressure(15600, 2.4e6, 1.1, b, z) : 0.0;
+  };
+  for (int i = -50; i <= 200; ++i) {  // down to 40 mm
+    const double z = i * 2e-4;
+    rows += std::to_string(z) + "," + std::to_string(force(z) + 0.3 * ((i % 3) - 1)) + "\n";
+    loading += z > 0 ? 1 : 0;
+  }
+  for (int i = 199; i >= 150; --i) rows += std::to_string(i * 2e-4) + ",0\n";  // lifted off: no force
+  write_text(csv, rows);
+  const app::ViewInput in = app::load_view_input(csv, std::nullopt, {});
+  ASSERT_TRUE(in.is_plate_test());
+  const views::LabFigures f = app::lab_figures_of(in, std::nullopt);
+  ASSERT_TRUE(f.force_depth);
+  EXPECT_FALSE(f.slip_panels);
+  const views::PanelFigure& p = *f.force_depth;
+  EXPECT_EQ(p.x_title, "depth (mm)");
+  ASSERT_EQ(p.rows.size(), 1u);
+  EXPECT_EQ(p.rows[0].y_title, "force (N)");
+  ASSERT_EQ(p.rows[0].panels.size(), 1u);
+  const views::Panel& panel = p.rows[0].panels[0];
+  EXPECT_EQ(panel.title, "plate of diameter 100 mm");
+  ASSERT_EQ(panel.series.size(), 5u);  // the other samples, the virgin loading, Bekker, Reece, RFT
+  EXPECT_EQ(panel.series[0].x.size() + panel.series[1].x.size(), 251u + 50u);
+  EXPECT_NEAR(static_cast<double>(panel.series[1].x.size()), static_cast<double>(loading), 5.0);
+  EXPECT_NEAR(*std::max_element(panel.series[1].x.begin(), panel.series[1].x.end()), 40.0, 0.25);  // in mm
+  ASSERT_EQ(p.group_names.size(), 5u);
+  EXPECT_EQ(p.group_names[2].rfind("Bekker", 0), 0u);
+  const views::PanelSeries& bekker = panel.series[2];
+  EXPECT_EQ(bekker.group, 2);
+  ASSERT_FALSE(bekker.curve_x.empty());
+  for (std::size_t i = 0; i < bekker.curve_x.size(); ++i) {
+    if (bekker.curve_x[i] > 1.0) EXPECT_NEAR(bekker.curve_y[i], force(bekker.curve_x[i] / 1000.0), 2.0);
+  }
+  const views::PanelRanges r = views::panel_ranges(p);
+  EXPECT_LT(r.x_min, -10.0);
+  EXPECT_GT(r.x_max, 40.0);
+  EXPECT_GT(r.y_max[0], force(0.04));
 }
