@@ -25,6 +25,7 @@
 #include "app/log_input.h"
 #include "app/render_view.h"
 #include "app/report_compare.h"
+#include "app/report_lab_test.h"
 #include "app/report_pdf.h"
 #include "app/resources.h"
 #include "app/views_input.h"
@@ -71,8 +72,9 @@ class ReportWriter {
 
   void write() {
     head();
+    write_lab_test_section(section_, dir_, metrics_, in_, o_.soil, w_, h_);  // a single-wheel or plate test's
     summary();
-    if (!in_.is_wheel_test()) {
+    if (!in_.is_wheel_test() && !in_.is_plate_test()) {
       streams();
       views();
     }
@@ -127,7 +129,7 @@ class ReportWriter {
   // was not run and why.
   void summary() {
     html() << "<h2>Summary</h2>\n";
-    run_overview();
+    if (!in_.is_wheel_test() && !in_.is_plate_test()) run_overview();  // a lab test is described by its own section
     html() << "<ul>\n";
     json lines = json::array();
     for (const auto& run : in_.analyses) {
@@ -328,7 +330,8 @@ class ReportWriter {
   // after the plots.
   void views() {
     for (const auto& view : views::all_views()) {
-      if (view->uses_surface_data() || view->plots_channel_pair() || view->compares_runs()) continue;
+      if (view->uses_surface_data() || view->plots_channel_pair() || view->compares_runs() || view->uses_lab_figures())
+        continue;
       const int h = static_cast<int>(h_ * view->report_height());
       Rendered r;
       try {

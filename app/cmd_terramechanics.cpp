@@ -18,6 +18,7 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
+#include "core/terramechanics/model_grid.h"
 #include "core/terramechanics/slip_angle_model.h"
 #include "core/terramechanics/traction_surface.h"
 #include "importers/soil_file.h"
@@ -309,39 +310,23 @@ struct GridSurfaces {
 
 GridSurfaces grid_surfaces(const SurfaceOptions& o, const Soil& soil, const Wheel& wheel, const ModelOptions& m,
                            std::optional<double> slip_angle_deg) {
-  std::vector<SurfaceSample> dp, tau, fy;
-  GridSurfaces out;
+  GridModel model{soil, wheel, m, slip_angle_deg ? lateral_options(o.model) : LateralOptions{}};
+  const GridRange range{o.load_min, o.load_max, o.slip_min, o.slip_max, o.grid, o.grid};
   const bool show_progress = isatty(2);
-  const LateralOptions lateral = slip_angle_deg ? lateral_options(o.model) : LateralOptions{};
-  for (int i = 0; i < o.grid; ++i) {
-    const double load = o.load_min + (o.load_max - o.load_min) * i / (o.grid - 1);
-    for (int k = 0; k < o.grid; ++k) {
-      const double slip = o.slip_min + (o.slip_max - o.slip_min) * k / (o.grid - 1);
-      Traction t;
-      double lateral_force = 0.0;
-      if (slip_angle_deg) {
-        const SlipAngleTraction st =
-            evaluate_slip_angle(soil, wheel, load, slip, *slip_angle_deg * M_PI / 180.0, m, lateral);
-        t = st;
-        lateral_force = st.lateral_force;
-      } else {
-        t = evaluate(soil, wheel, load, slip, m);
-      }
-      if (!t.ok()) {
-        ++out.unsupported;
-        continue;
-      }
-      dp.push_back({load, slip, t.drawbar_pull});
-      tau.push_back({load, slip, t.resistive_torque});
-      fy.push_back({load, slip, lateral_force});
-    }
-    if (show_progress) std::fprintf(stderr, "\rgrid %3d %%", (i + 1) * 100 / o.grid);
-  }
+  const ModelGrid g =
+      model_grid(model, range, slip_angle_deg ? std::optional(*slip_angle_deg * M_PI / 180.0) : std::nullopt,
+                 [show_progress](int i, int rows) {
+                   if (show_progress) std::fprintf(stderr, "\rgrid %3d %%", (i + 1) * 100 / rows);
+                 });
   if (show_progress) std::fprintf(stderr, "\r          \r");
-  if (dp.size() < 30) throw DataError("fewer than 30 supported grid points: the soil cannot carry these loads");
-  out.drawbar = fit_with(dp, o.order);
-  out.torque = fit_with(tau, o.order);
-  if (slip_angle_deg) out.lateral = fit_with(fy, o.order);
+  if (g.drawbar_pull.size() < 30) {
+    throw DataError("fewer than 30 supported grid points: the soil cannot carry these loads");
+  }
+  GridSurfaces out;
+  out.unsupported = g.unsupported;
+  out.drawbar = fit_with(g.drawbar_pull, o.order);
+  out.torque = fit_with(g.resistive_torque, o.order);
+  if (slip_angle_deg) out.lateral = fit_with(g.lateral_force, o.order);
   return out;
 }
 

@@ -3,15 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <set>
 
 #include "app/analysis.h"
 #include "app/commands.h"
+#include "app/lab_figures.h"
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "core/terramechanics/model.h"
+#include "core/terramechanics/model_grid.h"
 #include "core/terramechanics/slip_angle_model.h"
 #include "importers/rover_file.h"
 #include "importers/soil_file.h"
@@ -68,31 +69,27 @@ std::string estimates_without_result(const ViewInput& in) {
 }
 
 // A soil model's surface over load (half the points' lowest to 1.5 x their
-// highest; 10-200 N without points) and d's slip range: `value` on a 40 x 40 grid
-// (nullopt where the model has no answer), fitted at order 4 as in seed 003
-// Appendix A. Sets d's load range and `fit`; returns the soil's name.
+// highest; 10-200 N without points) and d's slip range: the model's
+// `value` on a 40 x 40 grid (core/terramechanics/model_grid.h), fitted at
+// order 4 as in seed 003 Appendix A. Sets d's load range and `fit`; returns the soil's name.
 std::string model_surface(const ViewInput& in, const std::string& soil_name, double load_lo, double load_hi,
                           views::TractionSurfaceData& d, terramechanics::SurfaceFit& fit,
-                          const std::function<std::optional<double>(
-                              const terramechanics::Soil&, const terramechanics::Wheel&, double, double)>& value) {
+                          const terramechanics::ModelOptions& options, std::optional<double> slip_angle,
+                          std::vector<terramechanics::SurfaceSample> terramechanics::ModelGrid::*value) {
   using namespace terramechanics;
-  const Soil soil = io::find_soil(soil_name, resource_subfolders("soils"));
-  Wheel wheel{0.075, 0.07, 0, 0.0};  // Kapvik's wheel when no points say otherwise
-  if (!in.wheel_points.empty()) wheel = in.wheel_points.front().wheel;
+  GridModel model;
+  model.soil = io::find_soil(soil_name, resource_subfolders("soils"));
+  model.wheel = Wheel{0.075, 0.07, 0, 0.0};  // Kapvik's wheel when no points say otherwise
+  if (!in.wheel_points.empty()) model.wheel = in.wheel_points.front().wheel;
+  model.options = options;
   d.load_min = std::isfinite(load_lo) ? 0.5 * load_lo : 10.0;
   d.load_max = std::isfinite(load_hi) ? 1.5 * load_hi : 200.0;
-  std::vector<SurfaceSample> grid;
-  for (int i = 0; i < 40; ++i) {
-    for (int k = 0; k < 40; ++k) {
-      const double W = d.load_min + (d.load_max - d.load_min) * i / 39.0;
-      const double s = d.slip_min + (d.slip_max - d.slip_min) * k / 39.0;
-      if (const std::optional<double> v = value(soil, wheel, W, s)) grid.push_back({W, s, *v});
-    }
-  }
-  if (grid.size() < 30) throw InputError(in.file, "soil " + soil.name + " cannot carry these loads");
+  const GridRange range{d.load_min, d.load_max, d.slip_min, d.slip_max, 40, 40};
+  const std::vector<SurfaceSample> grid = model_grid(model, range, slip_angle).*value;
+  if (grid.size() < 30) throw InputError(in.file, "soil " + model.soil.name + " cannot carry these loads");
   fit.surface = fit_surface(grid, 4);
   fit.error = fit_error(fit.surface, grid);
-  return soil.name;
+  return model.soil.name;
 }
 
 // Groups 1.. by the points' wheel label, in order of first appearance, named in the view's key.
@@ -202,11 +199,7 @@ views::TractionSurfaceData lateral_surface_of(const ViewInput& in, const std::op
     for (const auto& p : in.wheel_points) {
       if ((1.0 - p.slip) * std::abs(std::tan(p.slip_angle)) > 10.0) m.slip_definition = SlipDefinition::travel;
     }
-    const std::string soil =
-        model_surface(in, *soil_name, lo, hi, d, fit, [&](const Soil& so, const Wheel& w, double W, double sl) {
-          const SlipAngleTraction t = evaluate_slip_angle(so, w, W, sl, beta, m);
-          return t.ok() ? std::optional<double>(t.lateral_force) : std::nullopt;
-        });
+    const std::string soil = model_surface(in, *soil_name, lo, hi, d, fit, m, beta, &ModelGrid::lateral_force);
     d.quantity = "lateral force F_y (" + soil + " model, " + at + ", " + to_string(m.slip_definition) + " slip)";
   } else {
     if (loads.size() < 2) {
@@ -276,12 +269,9 @@ views::TractionSurfaceData traction_surface_of(const ViewInput& in, const std::s
   if (soil_name) {
     // The model surface: Wong-Reece on a grid, fitted as in seed 003 Appendix A (at a slip angle: Ishigami 2007).
     const double beta = beta_deg * M_PI / 180.0;
-    const std::string soil = model_surface(
-        in, *soil_name, load_lo, load_hi, d, fit, [&](const Soil& so, const Wheel& w, double W, double sl) {
-          const Traction t =
-              beta == 0.0 ? evaluate(so, w, W, sl, ModelOptions{}) : evaluate_slip_angle(so, w, W, sl, beta);
-          return t.ok() ? std::optional<double>(dp ? t.drawbar_pull : t.resistive_torque) : std::nullopt;
-        });
+    const std::string soil = model_surface(in, *soil_name, load_lo, load_hi, d, fit, ModelOptions{},
+                                           beta == 0.0 ? std::nullopt : std::optional(beta),
+                                           dp ? &ModelGrid::drawbar_pull : &ModelGrid::resistive_torque);
     d.quantity += " (" + soil + " model" + (in.is_wheel_test() || beta != 0.0 ? ", " + at : "") + ")";
   } else {
     if (in.is_wheel_test()) d.quantity += " (fitted to the points at " + at + ")";
@@ -321,14 +311,19 @@ std::vector<views::ChannelRef> channel_pair(const ViewInput& in, const ViewOptio
 }  // namespace
 
 views::SceneInput scene_input(const ViewInput& in, const views::View& view, const ViewOptions& o) {
-  if (in.is_wheel_test() && !view.uses_surface_data()) {
+  if (in.is_wheel_test() && !view.uses_surface_data() && !view.uses_lab_figures()) {
     throw InputError(in.file, "single-wheel test points are not a log: no " + view.name() + " view");
+  }
+  if (in.is_plate_test() && !view.uses_lab_figures()) {
+    throw InputError(in.file, "plate test samples are not a log: no " + view.name() + " view");
   }
   views::SceneInput s;
   s.log = &in.log;
   s.time = o.time;
   if (view.uses_surface_data()) {
     s.surface = traction_surface_of(in, o.quantity, o.soil, nullptr, o.slip_angle_deg);
+  } else if (view.uses_lab_figures()) {
+    s.lab = lab_figures_of(in, o.soil);
   } else {
     s.rover = rover_geometry(in.log);
     s.articulated = rover_kinematics(in.log);

@@ -11,21 +11,32 @@
 #include "app/resources.h"
 #include "core/common/error.h"
 #include "importers/csv_text.h"
+#include "importers/plate_test_csv.h"
 #include "importers/wheel_test_csv.h"
 
 namespace roverlab::app {
 
 namespace {
 
-bool looks_like_wheel_test_csv(const std::string& file) {
+// The CSV's header line (its first content line); empty when `file` is not a regular .csv file.
+std::string csv_header(const std::string& file) {
   std::error_code ec;
   // Not a regular file: load_log says why (a pipe would block here).
-  if (std::filesystem::path(file).extension() != ".csv" || !std::filesystem::is_regular_file(file, ec)) return false;
+  if (std::filesystem::path(file).extension() != ".csv" || !std::filesystem::is_regular_file(file, ec)) return {};
   std::ifstream in = io::csv::open_text_file(file);
   std::string header;
   int line_number = 0;
-  if (!io::csv::next_content_line(in, header, line_number, file)) return false;
+  if (!io::csv::next_content_line(in, header, line_number, file)) return {};
+  return header;
+}
+
+bool looks_like_wheel_test_csv(const std::string& header) {
   return header.find("load_N") != std::string::npos && header.find("slip") != std::string::npos;
+}
+
+// A plate test (docs/plate-tests.md): depth_m and force_N columns.
+bool looks_like_plate_test_csv(const std::string& header) {
+  return header.find("depth_m") != std::string::npos && header.find("force_N") != std::string::npos;
 }
 
 }  // namespace
@@ -83,7 +94,13 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
                           const ViewInputOptions& o) {
   ViewInput in;
   in.file = file;
-  if (looks_like_wheel_test_csv(file)) {
+  const std::string header = csv_header(file);
+  if (looks_like_plate_test_csv(header)) {
+    in.plate_records.push_back(io::read_plate_test_csv(file));
+    in.notes.push_back("plate test samples: " + std::to_string(in.plate_records.front().depth.size()));
+    return in;
+  }
+  if (looks_like_wheel_test_csv(header)) {
     io::WheelTestFile read = io::read_wheel_test_file(file);
     in.wheel_points = std::move(read.points);
     in.notes.push_back("single-wheel test points: " + std::to_string(in.wheel_points.size()));

@@ -13,6 +13,7 @@
 
 #include "app/analysis.h"
 #include "core/log/log.h"
+#include "core/terramechanics/plate_test.h"
 #include "core/terramechanics/wheel_test.h"
 
 namespace roverlab::app {
@@ -30,8 +31,10 @@ struct ViewInput {
   log::Log log;
   std::vector<AnalysisRun> analyses;                         // results of the analyses run here, in registry order
   std::vector<terramechanics::WheelTestPoint> wheel_points;  // single-wheel CSV input
+  std::vector<terramechanics::PlateRecord> plate_records;    // plate test CSV input (depth_m, force_N)
   std::vector<std::string> notes;                            // what was computed or is missing, one line each
   bool is_wheel_test() const { return !wheel_points.empty(); }
+  bool is_plate_test() const { return !plate_records.empty(); }
   // The result document of analysis `name`, nullptr when it has not run.
   const nlohmann::json* result(const std::string& name) const;
   // Adds (or replaces) a result and the streams the log does not have yet.

@@ -16,6 +16,7 @@
 #include "core/kinematics/rover_model.h"
 #include "core/log/log.h"
 #include "core/models/skid_steer_odometry.h"
+#include "views/panel_figure.h"
 #include "views/traction_surface_scene.h"
 
 class vtkRenderWindow;
@@ -36,7 +37,8 @@ struct SceneInput {
   std::optional<kinematics::RoverModel> articulated;  // the rover drawn when it has a DH description
   std::optional<double> time;                         // shown first; default: the scene's default_time()
   std::vector<std::pair<std::string, const log::Log*>>
-      compared;  // other runs against `log` (name, log): compares_runs()
+      compared;                   // other runs against `log` (name, log): compares_runs()
+  std::optional<LabFigures> lab;  // views that use_lab_figures(): built by the app
 };
 
 // A built view: its renderers (or context view) attach to a render window;
@@ -88,6 +90,8 @@ class View {
   virtual bool uses_surface_data() const { return false; }
   // True when the view draws SceneInput::compared against the log (`render --compare`).
   virtual bool compares_runs() const { return false; }
+  // True when the view draws one of SceneInput::lab's figures (a lab test file, not a log).
+  virtual bool uses_lab_figures() const { return false; }
   // True when the view plots SceneInput::channels.
   virtual bool uses_channels() const { return false; }
   // True when the view plots one channel against another: SceneInput::channels

@@ -48,6 +48,7 @@
 #include <filesystem>
 
 #include "app/analysis.h"
+#include "app/lab_figures.h"
 #include "app/resources.h"
 #include "app/view_data.h"
 #include "core/common/error.h"
@@ -723,6 +724,10 @@ QWidget* MainWindow::rebuild_views() {
   if (!input_ || input_->is_wheel_test()) {
     for (auto& tab : view_tabs_) {
       if (tab.view->uses_surface_data()) continue;
+      if (input_ && tab.view->uses_lab_figures()) {  // a single-wheel file's own views
+        rebuild_view(tab);
+        continue;
+      }
       tab.why->setText(q("Nothing to show: " + (input_ ? input_->file : std::string("no log")) +
                          " is a single-wheel test table, drawn in the Traction surface pane."));
       tab.page->setCurrentWidget(tab.why);
@@ -766,6 +771,7 @@ bool MainWindow::rebuild_view(ViewTab& tab) {
   } else if (tab.view->uses_channels()) {
     plot_input(tab, in);
   }
+  if (tab.view->uses_lab_figures()) in.lab = app::lab_figures_of(*input_, std::nullopt);  // the file's baseline
   vtkRenderWindow* window = tab.widget->renderWindow();
   const bool was = tab.available;
   const std::string title = tab.dock->windowTitle().toStdString();

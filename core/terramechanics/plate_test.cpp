@@ -10,6 +10,7 @@
 #include <ceres/ceres.h>
 
 #include "core/common/error.h"
+#include "core/terramechanics/rft.h"
 
 namespace roverlab::terramechanics {
 
@@ -48,20 +49,13 @@ const PlateParameter* PressureSinkageFit::find(const std::string& name) const {
   return nullptr;
 }
 
-// Li, Zhang, Goldman (2013), Eq. S2 and Table S2 (generic coefficients).
-double rft_alpha_z(double beta, double gamma) {
-  constexpr double A00 = 0.206, A10 = 0.169, B01 = 0.358, B11 = 0.212, Bm11 = 0.055;
-  return A00 + A10 * std::cos(2 * beta) + B01 * std::sin(gamma) + B11 * std::sin(2 * beta + gamma) +
-         Bm11 * std::sin(-2 * beta + gamma);
-}
-
 namespace {
 
 constexpr double kPaPerNcm3 = 1e6;    // 1 N/cm^3 = 1e6 N/m^3: alpha z in Pa for z in m
 constexpr double kDepthScale = 1e-3;  // contact depths fitted in mm
 
 // |alpha_z| of a horizontal plate moving straight down, N/cm^3 per unit zeta.
-double rft_plate_alpha() { return std::abs(rft_alpha_z(0.0, M_PI / 2)); }
+double rft_plate_alpha() { return std::abs(generic_alpha(0.0, M_PI / 2).z); }  // Li 2013 Eq. S2, Table S2
 
 // Which relation and how many of its moduli the plate sizes can tell apart.
 struct Shape {
@@ -481,6 +475,15 @@ PressureSinkageFit fit_relation(const std::vector<PlateRecord>& records, const s
 }
 
 }  // namespace
+
+double fitted_force(const PressureSinkageFit& fit, const Plate& plate, double contact_depth, double depth) {
+  const Shape shape{fit.model, fit.sizes_separated};
+  std::array<double, 3> x{};
+  if (fit.parameters.size() < static_cast<std::size_t>(shape.size())) return NAN;
+  for (int j = 0; j < shape.size(); ++j)
+    x[static_cast<std::size_t>(j)] = fit.parameters[static_cast<std::size_t>(j)].value;
+  return plate.area() * model_pressure(shape, x.data(), plate.b(), depth - contact_depth);
+}
 
 PlateAnalysis analyse_plate_tests(const std::vector<PlateRecord>& records, const PlateFitOptions& options) {
   if (records.empty()) throw DataError("no plate test to fit");

@@ -86,18 +86,18 @@ struct PlateAnalysis {
   std::vector<PressureSinkageFit> fits;  // bekker, reece, rft
 };
 
+// The force (N) a fitted relation gives `plate` at `depth` (m) in a record
+// whose fitted contact depth is `contact_depth` (0 above it): the curve a
+// view draws through the record's samples.
+double fitted_force(const PressureSinkageFit& fit, const Plate& plate, double contact_depth, double depth);
+
 // Throws DataError naming the problem (no record, a record without contact).
 PlateAnalysis analyse_plate_tests(const std::vector<PlateRecord>& records, const PlateFitOptions& options);
 
-// RFT stress coefficient alpha_z(beta, gamma) of Li, Zhang, Goldman (2013),
-// Science 339:1408, Eq. S2 with its generic coefficients (Table S2), N/cm^3
-// per unit of the material scale zeta. gamma in Li's sign convention, where a
-// plate moving straight into the medium has gamma = pi/2 (-pi/2 with z up).
-double rft_alpha_z(double beta, double gamma);
-
 // Pressure on a plate at sinkage z (m): Bekker (Wong 2008, Ch. 2),
 // Reece (Reece 1965; k1 = c k'_c, k2 = gamma_s k'_phi) and RFT (Li 2013:
-// sigma_z = zeta |alpha_z(0, pi/2)| z, horizontal plate pushed down).
+// sigma_z = zeta |alpha_z(0, pi/2)| z, horizontal plate pushed down, alpha_z
+// the RFT family's own generic coefficient, rft.h generic_alpha).
 double bekker_pressure(double kc, double kphi, double n, double b, double z);
 double reece_pressure(double k1, double k2, double n, double b, double z);
 double rft_pressure(double zeta, double z);

@@ -302,6 +302,15 @@ TEST(Report, SingleWheelReportHasBothSurfacesAndTheirCoefficients) {
   const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
   EXPECT_EQ(metrics.at("traction_surface_drawbar-pull").at("coefficients").size(), 15u);  // order 4
   EXPECT_LT(metrics.at("traction_surface_drawbar-pull").at("fit_rmse").get<double>(), 1.0);
+  // Issue 44: the single-wheel study's verdict opens it, the test (not a rover) is described, its panels drawn.
+  EXPECT_FALSE(metrics.at("single_wheel").at("verdict").get<std::string>().empty());
+  EXPECT_EQ(metrics.at("single_wheel").at("test").at("rows").get<int>(), 12);
+  const std::string html = read_text(folder + "/index.html");
+  EXPECT_LT(html.find("Verdict of the single-wheel study"), html.find("<h2>Summary"));
+  EXPECT_NE(html.find("12 rows at loads 80 N"), std::string::npos);
+  EXPECT_EQ(html.find("rover unnamed"), std::string::npos);
+  EXPECT_TRUE(fs::exists(folder + "/slip_panels.png"));
+  EXPECT_TRUE(fs::exists(folder + "/slip_angle_residuals.png"));
 }
 
 TEST(Render, ContactAnglesPointWhereTheWheelsMove) {

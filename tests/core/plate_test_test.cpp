@@ -7,6 +7,7 @@
 
 #include "core/common/error.h"
 #include "core/terramechanics/plate_test.h"
+#include "core/terramechanics/rft.h"
 
 using namespace roverlab::terramechanics;
 
@@ -72,8 +73,9 @@ constexpr int kSeeds = 100;
 TEST(PlateTest, RftPlateCoefficientIsLisGenericIntrusionValue) {
   // Table S2 of Li et al. (2013): a horizontal plate moving down feels the sum
   // of A00, A10, B01, B11, B-11; moving up, A00 + A10 - B01 - B11 - B-11.
-  EXPECT_NEAR(rft_alpha_z(0.0, M_PI / 2), 1.000, 1e-12);
-  EXPECT_NEAR(rft_alpha_z(0.0, -M_PI / 2), -0.250, 1e-12);
+  // The plate's coefficient is the RFT wheel model's own (rft.h), not a copy.
+  EXPECT_NEAR(generic_alpha(0.0, M_PI / 2).z, 1.000, 1e-12);
+  EXPECT_NEAR(generic_alpha(0.0, -M_PI / 2).z, -0.250, 1e-12);
   EXPECT_NEAR(rft_pressure(0.3, 0.02), 0.3 * 1e6 * 0.02, 1e-6);
 }
 
@@ -203,4 +205,31 @@ TEST(PlateTest, ARecordThatNeverTouchesIsADataErrorNamingIt) {
   } catch (const roverlab::DataError& e) {
     EXPECT_NE(std::string(e.what()).find("air.csv"), std::string::npos) << e.what();
   }
+}
+
+// The fitted curve a view draws (fitted_force) is the fit's own prediction:
+// on the virgin loading samples it leaves residuals of the noise, the fit's RMSE.
+TEST(PlateTest, FittedForceIsTheFitsPredictionOnItsSamples) {
+  const Pressure truth = [](double b, double z) { return bekker_pressure(15600, 2.4e6, 1.1, b, z); };
+  PlateFitOptions o;
+  o.folds = 0;
+  const std::vector<PlateRecord> records = {simulate(circle(0.1), truth, 5.0, 7), simulate(circle(0.2), truth, 5.0, 8)};
+  const auto a = analyse_plate_tests(records, o);
+  for (const PressureSinkageFit& f : a.fits) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t r = 0; r < records.size(); ++r) {
+      for (std::size_t i : a.records[r].virgin) {
+        const double e =
+            records[r].force[i] - fitted_force(f, records[r].plate, f.contact_depths[r], records[r].depth[i]);
+        sum += e * e;
+        ++n;
+      }
+      EXPECT_EQ(fitted_force(f, records[r].plate, f.contact_depths[r], f.contact_depths[r] - 0.01),
+                0.0);  // above the soil
+    }
+    ASSERT_EQ(n, f.samples) << to_string(f.model);
+    EXPECT_NEAR(std::sqrt(sum / static_cast<double>(n)), f.rmse_N, 1e-6 * f.rmse_N + 1e-9) << to_string(f.model);
+  }
+  EXPECT_LT(a.fits[0].rmse_N, 6.0);  // Bekker: the noise (5 N)
 }

@@ -1,0 +1,390 @@
+#include "app/lab_figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "app/command_support.h"
+#include "app/resources.h"
+#include "core/common/error.h"
+#include "importers/soil_file.h"
+
+namespace roverlab::app {
+
+using terramechanics::PointResidual;
+using terramechanics::Quantity;
+using terramechanics::WheelTestPoint;
+
+namespace {
+
+constexpr int kCurvePoints = 61;
+
+std::string number(double v, const char* format = "%g") {
+  char text[48];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+double degrees(double rad) { return std::round(rad * 180.0 / M_PI * 100.0) / 100.0; }
+
+// The model's value of `q` (NaN where it cannot carry the load).
+double value_of(const terramechanics::SlipAngleTraction& t, Quantity q) {
+  if (!t.ok()) return NAN;
+  switch (q) {
+    case Quantity::drawbar_pull:
+      return t.drawbar_pull;
+    case Quantity::torque:
+      return t.resistive_torque;
+    case Quantity::sinkage:
+      return t.sinkage;
+    case Quantity::lateral_force:
+      return t.lateral_force;
+  }
+  return NAN;
+}
+
+terramechanics::SlipAngleTraction predict(const SingleWheelModel& m, const WheelTestPoint& p) {
+  terramechanics::GridModel model = m.model;
+  model.wheel = p.wheel;
+  return terramechanics::model_at(model, p.load, p.slip, m.at_slip_angle ? std::optional(p.slip_angle) : std::nullopt);
+}
+
+// Each measured quantity of each point against the model (nothing fitted: held out by construction).
+std::vector<PointResidual> residuals_of(const SingleWheelModel& m, const std::vector<WheelTestPoint>& points) {
+  const terramechanics::MeasurementSigma sigma;
+  std::vector<PointResidual> out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const terramechanics::SlipAngleTraction t = predict(m, points[i]);
+    for (Quantity q : terramechanics::kQuantities) {
+      if (const auto measured = points[i].measured(q)) out.push_back({i, q, *measured, value_of(t, q), sigma.of(q)});
+    }
+  }
+  return out;
+}
+
+// Sum of squared residuals in sigmas (a point the model cannot carry counts 100 sigma^2).
+double score(const std::vector<PointResidual>& residuals) {
+  double sum = 0.0;
+  for (const auto& r : residuals) {
+    const double z = (r.predicted - r.measured) / r.sigma;
+    sum += std::isfinite(z) ? z * z : 100.0;
+  }
+  return sum;
+}
+
+const char* quantity_words(Quantity q) { return q == Quantity::drawbar_pull ? "drawbar pull" : "lateral force"; }
+
+// The points' groups: one per wheel and load (0.1 N), in order of first appearance.
+struct Groups {
+  std::vector<int> of_point;
+  std::vector<std::string> names;
+  std::vector<std::size_t> first_point;  // a point of each group (its wheel and load)
+};
+
+Groups groups_of(const std::vector<WheelTestPoint>& points) {
+  Groups g;
+  std::map<std::pair<std::string, long>, int> index;
+  std::set<std::string> labels;
+  for (const auto& p : points) labels.insert(p.wheel_label);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto key = std::make_pair(points[i].wheel_label, std::lround(points[i].load * 10.0));
+    auto it = index.find(key);
+    if (it == index.end()) {
+      it = index.emplace(key, static_cast<int>(g.names.size())).first;
+      const std::string load = number(points[i].load, "%.3g") + " N";
+      const std::string label = points[i].wheel_label.empty() ? "wheel" : points[i].wheel_label;
+      g.names.push_back(labels.size() > 1 || !points[i].wheel_label.empty() ? label + ", " + load : load);
+      g.first_point.push_back(i);
+    }
+    g.of_point.push_back(it->second);
+  }
+  return g;
+}
+
+// The slip angles (deg, to 0.01) of the points measuring `q`.
+std::set<double> angles_measuring(const std::vector<WheelTestPoint>& points, Quantity q) {
+  std::set<double> angles;
+  for (const auto& p : points) {
+    if (p.measured(q)) angles.insert(degrees(p.slip_angle));
+  }
+  return angles;
+}
+
+// One row of the slip panels: `q` against slip, a panel per slip angle, each
+// group's points and the model's curve at its wheel and load, +-2 sigma around it.
+views::PanelRow slip_row(const std::vector<WheelTestPoint>& points, const SingleWheelModel& m, const Groups& groups,
+                         Quantity q, double band) {
+  views::PanelRow row;
+  row.y_title = std::string(quantity_words(q)) + " (N)";
+  double slip_lo = 1.0, slip_hi = -1.0;
+  for (const auto& p : points) {
+    slip_lo = std::min(slip_lo, p.slip);
+    slip_hi = std::max(slip_hi, p.slip);
+  }
+  for (double angle : angles_measuring(points, q)) {
+    views::Panel panel;
+    panel.title = "slip angle " + number(angle) + " deg";
+    for (std::size_t g = 0; g < groups.names.size(); ++g) {
+      views::PanelSeries s;
+      s.group = static_cast<int>(g);
+      s.band = band;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const auto v = points[i].measured(q);
+        if (!v || groups.of_point[i] != s.group || degrees(points[i].slip_angle) != angle) continue;
+        s.x.push_back(points[i].slip);
+        s.y.push_back(*v);
+      }
+      if (s.x.empty()) continue;
+      terramechanics::GridModel model = m.model;
+      const WheelTestPoint& at = points[groups.first_point[g]];
+      model.wheel = at.wheel;
+      const double beta = angle * M_PI / 180.0;
+      const terramechanics::ModelCurve c = terramechanics::model_curve(
+          model, at.load, m.at_slip_angle ? std::optional(beta) : std::nullopt, slip_lo, slip_hi, kCurvePoints);
+      s.curve_x = c.slip;
+      for (const auto& t : c.traction) s.curve_y.push_back(value_of(t, q));
+      panel.series.push_back(std::move(s));
+    }
+    row.panels.push_back(std::move(panel));
+  }
+  return row;
+}
+
+// One row of the residuals figure: measured - predicted of `q` against slip
+// angle, per group, over a zero line with its +-2 sigma band.
+views::PanelRow residual_row(const std::vector<WheelTestPoint>& points, const SingleWheelModel& m, const Groups& groups,
+                             Quantity q, double band) {
+  views::Panel panel;
+  panel.title = quantity_words(q);
+  std::vector<views::PanelSeries> by_group(groups.names.size());
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& r : m.held_out) {
+    if (r.quantity != q || r.point >= points.size() || !std::isfinite(r.predicted)) continue;
+    const double angle = degrees(points[r.point].slip_angle);
+    views::PanelSeries& s = by_group[static_cast<std::size_t>(groups.of_point[r.point])];
+    s.group = groups.of_point[r.point];
+    s.x.push_back(angle);
+    s.y.push_back(r.measured - r.predicted);
+    lo = std::min(lo, angle);
+    hi = std::max(hi, angle);
+  }
+  views::PanelSeries zero;
+  zero.group = -1;  // grey
+  zero.band = band;
+  for (int k = 0; k <= 10; ++k) {
+    zero.curve_x.push_back(lo + (hi - lo) * k / 10.0);
+    zero.curve_y.push_back(0.0);
+  }
+  if (lo <= hi) panel.series.push_back(zero);
+  for (auto& s : by_group) {
+    if (!s.x.empty()) panel.series.push_back(std::move(s));
+  }
+  views::PanelRow row;
+  row.y_title = "measured - predicted (N)";
+  row.panels.push_back(std::move(panel));
+  return row;
+}
+
+std::string band_text(Quantity q, double band) {
+  return std::string(quantity_words(q)) + (std::isfinite(band) ? " +-" + number(band, "%.2g") + " N" : " (none)");
+}
+
+}  // namespace
+
+double rms_residual(const std::vector<PointResidual>& residuals, Quantity q) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const auto& r : residuals) {
+    if (r.quantity != q || !std::isfinite(r.predicted) || !std::isfinite(r.measured)) continue;
+    sum += (r.measured - r.predicted) * (r.measured - r.predicted);
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : NAN;
+}
+
+SingleWheelModel baseline_single_wheel_model(const terramechanics::Soil& soil,
+                                             const std::vector<WheelTestPoint>& points) {
+  using terramechanics::ModelKind;
+  using terramechanics::SlipDefinition;
+  const bool at_angle = std::any_of(points.begin(), points.end(),
+                                    [](const WheelTestPoint& p) { return p.slip_angle != 0.0 || p.lateral_force; });
+  SingleWheelModel best;
+  double best_score = std::numeric_limits<double>::infinity();
+  for (SlipDefinition d : {SlipDefinition::longitudinal, SlipDefinition::travel}) {
+    if (!at_angle && d == SlipDefinition::travel) continue;  // no slip angle: the two readings agree
+    SingleWheelModel m;
+    m.model.soil = soil;
+    m.model.options.kind = at_angle ? ModelKind::ishigami : ModelKind::wong_reece;
+    m.model.options.slip_definition = d;
+    m.at_slip_angle = at_angle;
+    m.held_out = residuals_of(m, points);
+    m.held_out_method = "nothing fitted";
+    m.name = std::string("baseline ") + (at_angle ? "Ishigami (slip angle)" : "Wong-Reece") + " on " + soil.name;
+    if (at_angle) m.name += std::string(", ") + terramechanics::to_string(d) + " slip";
+    if (const double s = score(m.held_out); s < best_score) {
+      best_score = s;
+      best = std::move(m);
+    }
+  }
+  if (at_angle) best.name += " (the reading nearer the points)";
+  return best;
+}
+
+SingleWheelModel final_single_wheel_model(const terramechanics::Soil& soil, const std::vector<WheelTestPoint>& points,
+                                          const analysis::DiscrepancyReport& r) {
+  using terramechanics::ModelKind;
+  SingleWheelModel m;
+  m.model.soil = soil;
+  m.model.options.kind = r.baseline_model == "RFT"                     ? ModelKind::rft
+                         : r.baseline_model == "Ishigami (slip angle)" ? ModelKind::ishigami
+                                                                       : ModelKind::wong_reece;
+  if (!r.slip_definition.empty()) {
+    m.model.options.slip_definition = terramechanics::parse_slip_definition(r.slip_definition);
+  }
+  m.at_slip_angle = m.model.options.kind != ModelKind::wong_reece;
+  const std::string reading = r.slip_definition.empty() ? "" : ", " + r.slip_definition + " slip";
+  for (const auto& c : r.selection) {
+    if (c.name != r.final_model) continue;
+    m.model.soil = c.fit.soil;
+    m.model.options.extensions = c.fit.extensions;
+    m.held_out = c.held_out;
+    m.held_out_method = r.held_out_method;
+    m.name = "the study's final model, " + r.baseline_model + " + " + c.name + " on " + soil.name + reading;
+    return m;
+  }
+  m.held_out = residuals_of(m, points);
+  m.held_out_method = "nothing fitted";
+  m.name = "the study's final model, the baseline " + r.baseline_model + " on " + soil.name + reading;
+  return m;
+}
+
+views::LabFigures single_wheel_figures(const std::vector<WheelTestPoint>& points, const SingleWheelModel& m) {
+  views::LabFigures f;
+  const Groups groups = groups_of(points);
+  views::PanelFigure panels, residuals;
+  std::string bands;
+  for (Quantity q : {Quantity::drawbar_pull, Quantity::lateral_force}) {
+    if (angles_measuring(points, q).empty()) continue;
+    const double band = 2.0 * rms_residual(m.held_out, q);
+    panels.rows.push_back(slip_row(points, m, groups, q, band));
+    residuals.rows.push_back(residual_row(points, m, groups, q, band));
+    bands += (bands.empty() ? "" : ", ") + band_text(q, band);
+  }
+  if (panels.rows.empty()) {
+    f.why_not = "the file has no drawbar_pull_N or lateral_force_N values";
+    return f;
+  }
+  const std::string method =
+      m.held_out_method == "nothing fitted" ? "nothing fitted, so all held out" : m.held_out_method + " held out";
+  panels.caption =
+      "Lines: " + m.name + ".\nShaded: +-2 sigma of its held-out residuals (" + method + "): " + bands + ".";
+  panels.x_title = "slip";
+  residuals.caption = "Measured - predicted by " + m.name + ".\nGrey: +-2 sigma of the held-out residuals (" + method +
+                      "): " + bands + ".";
+  residuals.x_title = "slip angle (deg)";
+  panels.group_names = residuals.group_names = groups.names;
+  std::size_t uncarried = 0;
+  for (const auto& r : m.held_out) uncarried += std::isfinite(r.predicted) ? 0 : 1;
+  if (uncarried > 0) {
+    residuals.notes.push_back(std::to_string(uncarried) + " measurements the model cannot carry are left out");
+  }
+  f.slip_panels = std::move(panels);
+  f.residuals = std::move(residuals);
+  return f;
+}
+
+namespace {
+
+const char* fit_name(terramechanics::PressureModel m) {
+  return m == terramechanics::PressureModel::bekker  ? "Bekker"
+         : m == terramechanics::PressureModel::reece ? "Reece"
+                                                     : "RFT";
+}
+
+// One record: its samples (the fitted virgin loading apart from the rest
+// after contact) and each fitted relation's force over its depths.
+views::Panel plate_panel(const terramechanics::PlateRecord& rec, const terramechanics::PlateAnalysis& a,
+                         std::size_t r) {
+  views::Panel panel;
+  const terramechanics::Plate& plate = rec.plate;
+  panel.title = plate.circular ? "plate of diameter " + number(plate.width * 1000.0, "%.4g") + " mm"
+                               : "plate " + number(plate.width * 1000.0, "%.4g") + " x " +
+                                     number(plate.length * 1000.0, "%.4g") + " mm";
+  views::PanelSeries virgin, other;
+  virgin.group = 0;
+  other.group = 1;
+  std::vector<bool> fitted(rec.depth.size(), false);
+  for (std::size_t i : a.records[r].virgin) fitted[i] = true;
+  for (std::size_t i = 0; i < rec.depth.size(); ++i) {
+    views::PanelSeries& s = fitted[i] ? virgin : other;
+    s.x.push_back(rec.depth[i] * 1000.0);
+    s.y.push_back(rec.force[i]);
+  }
+  panel.series.push_back(std::move(other));
+  panel.series.push_back(std::move(virgin));
+  const auto [lo, hi] = std::minmax_element(rec.depth.begin(), rec.depth.end());
+  for (std::size_t k = 0; k < a.fits.size(); ++k) {
+    const terramechanics::PressureSinkageFit& fit = a.fits[k];
+    views::PanelSeries curve;
+    curve.group = static_cast<int>(k) + 2;
+    const double z0 = r < fit.contact_depths.size() ? fit.contact_depths[r] : 0.0;
+    for (int j = 0; j <= 100; ++j) {
+      const double z = *lo + (*hi - *lo) * j / 100.0;
+      curve.curve_x.push_back(z * 1000.0);
+      curve.curve_y.push_back(terramechanics::fitted_force(fit, plate, z0, z));
+    }
+    panel.series.push_back(std::move(curve));
+  }
+  return panel;
+}
+
+views::PanelFigure plate_figure(const std::vector<terramechanics::PlateRecord>& records) {
+  using terramechanics::PlateAnalysis;
+  const PlateAnalysis a = terramechanics::analyse_plate_tests(records, terramechanics::PlateFitOptions{});
+  views::PanelFigure f;
+  f.x_title = "depth (mm)";
+  f.group_names = {"virgin loading (fitted)", "unloading, reloading, approach"};
+  std::string fits;
+  for (const auto& fit : a.fits) {
+    f.group_names.push_back(std::string(fit_name(fit.model)) + " (held out " + number(fit.held_out_rmse_N, "%.3g") +
+                            " N)");
+    fits += (fits.empty() ? "" : ", ") + std::string(fit_name(fit.model));
+  }
+  f.caption =
+      "Lines: " + fits + " fitted to the virgin loading samples (soil plate); key: held-out RMSE.\n" +
+      (a.plate_sizes.size() < 2 ? "One plate size: Bekker's k_c and k_phi are not separated (one lumped modulus)."
+                                : std::to_string(a.plate_sizes.size()) + " plate sizes.");
+  views::PanelRow row;
+  row.y_title = "force (N)";
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    row.panels.push_back(plate_panel(records[r], a, r));
+  }
+  f.rows.push_back(std::move(row));
+  return f;
+}
+
+}  // namespace
+
+views::LabFigures lab_figures_of(const ViewInput& in, const std::optional<std::string>& soil_name) {
+  if (in.is_plate_test()) {
+    views::LabFigures f;
+    f.force_depth = about_file(in.file, [&] { return plate_figure(in.plate_records); });
+    f.why_not = "a plate test, not a single-wheel test table";
+    return f;
+  }
+  if (!in.is_wheel_test()) {
+    views::LabFigures f;
+    f.why_not =
+        "not a single-wheel test table (load_N, slip and drawbar_pull_N or lateral_force_N columns) nor a "
+        "plate test (depth_m, force_N)";
+    return f;
+  }
+  const terramechanics::Soil soil = io::find_soil(soil_name.value_or("dry_sand"), resource_subfolders("soils"));
+  return single_wheel_figures(in.wheel_points, baseline_single_wheel_model(soil, in.wheel_points));
+}
+
+}  // namespace roverlab::app
