@@ -12,6 +12,7 @@
 #include "core/common/error.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/odometry/candidates.h"
+#include "core/discrepancy/study.h"
 #include "core/models/reference_track.h"
 
 namespace roverlab::analysis {
@@ -66,11 +67,8 @@ std::vector<double> track_errors(const Part& p, const ReferenceTrack& ref, const
   return r;
 }
 
-double rmse_of(const std::vector<double>& r) {
-  double s = 0.0;
-  for (double x : r) s += x * x;
-  return r.empty() ? 0.0 : std::sqrt(2.0 * s / static_cast<double>(r.size()));  // horizontal
-}
+// The RMS horizontal error of (east, north) residual pairs.
+double horizontal_rmse(const std::vector<double>& r) { return rmse(r, 2.0); }
 
 double final_of(const std::vector<double>& r) {
   return r.size() < 2 ? 0.0 : std::hypot(r[r.size() - 2], r[r.size() - 1]);
@@ -318,8 +316,8 @@ void OdometryStudy::split() {
 void OdometryStudy::score_baseline() {
   const std::vector<double> base_fit = track_errors(fit_, ref_, o_.rover, {});
   const std::vector<double> base_test = track_errors(test_, ref_, o_.rover, {});
-  rep_.baseline_fit_rmse = rmse_of(base_fit);
-  rep_.baseline_held_out_rmse = rmse_of(base_test);
+  rep_.baseline_fit_rmse = horizontal_rmse(base_fit);
+  rep_.baseline_held_out_rmse = horizontal_rmse(base_test);
   rep_.baseline_held_out_final = final_of(base_test);
   rep_.baseline_bic = bic(base_fit, 0);
   describe_baseline(base_fit);
@@ -382,14 +380,14 @@ OdometryCandidate OdometryStudy::fit_candidate(const OdometryCandidateModel& mod
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   const std::vector<double> r_fit = track_errors(fit_, ref_, o_.rover, model.corrections(x.data()));
-  cand.fit_rmse = rmse_of(r_fit);
+  cand.fit_rmse = horizontal_rmse(r_fit);
   cand.bic = bic(r_fit, k);
   cand.delta_bic = cand.bic - rep_.baseline_bic;
   cand.parameters = model.summary(x, parameter_sigmas(problem, x, r_fit));
   cand.fitted = x;
   mark_bounds(parameters, cand);
   const std::vector<double> r_test = track_errors(test_, ref_, o_.rover, model.held_out_corrections(x.data()));
-  cand.held_out_rmse = rmse_of(r_test);
+  cand.held_out_rmse = horizontal_rmse(r_test);
   cand.held_out_final = final_of(r_test);
   cand.significant = cand.at_bound.empty() && cand.delta_bic < -10.0 &&
                      cand.held_out_rmse <= (1.0 - o_.min_gain) * rep_.baseline_held_out_rmse &&
