@@ -45,4 +45,26 @@ double rmse(const std::vector<double>& e, double per_point) {
   return e.empty() ? NAN : std::sqrt(per_point * s / static_cast<double>(e.size()));
 }
 
+const char* step_role_name(StepRole role) {
+  switch (role) {
+    case StepRole::cause:
+      return "cause";
+    case StepRole::also_consistent:
+      return "also consistent";
+    case StepRole::at_bound:
+      return "at its bound";
+  }
+  return "cause";
+}
+
+double gain_share(double baseline, double without, double final_error) {
+  const double gain = baseline - final_error;
+  return gain > 0 ? (without - final_error) / gain : NAN;
+}
+
+StepRole step_role(bool at_bound, double share, double negligible, bool cuts) {
+  if (at_bound) return StepRole::at_bound;
+  return !(share >= negligible) || !cuts ? StepRole::also_consistent : StepRole::cause;
+}
+
 }  // namespace roverlab::analysis

@@ -2,12 +2,43 @@
 
 // What every discrepancy study computes the same way (single_wheel/,
 // odometry/, rover/): the trend of a residual against an explanatory
-// variable and the root-mean-square of residuals. One definition each, so
-// that the three studies' tables mean the same thing by the same word.
+// variable (the residual diagnostics), the root-mean-square of residuals
+// (held-out scoring), and what a step of the forward selection is in the
+// verdict. One definition each, so that the three studies' tables mean the
+// same thing by the same word.
 
 #include <vector>
 
 namespace roverlab::analysis {
+
+// A step of the odometry or single-wheel forward selection whose share of
+// the held-out gain (the held-out error it cut against the step before, over
+// the whole chain's cut) is under this is reported as "also consistent
+// with", not as a cause. Not calibrated on simulated truth yet (the rover
+// study names a step by its share of a channel's gain instead,
+// kNegligibleChannelShare; docs/validation/discrepancy.md).
+constexpr double kNegligibleGainShare = 0.02;
+
+// What a step of a forward selection is in the verdict.
+enum class StepRole {
+  cause,            // named as a cause
+  also_consistent,  // its share of the held-out gain is under kNegligibleGainShare
+  at_bound          // a parameter at its bound: a fact about the search, not a cause
+};
+
+// "cause", "also consistent", "at its bound" (the JSON documents' words).
+const char* step_role_name(StepRole role);
+
+// Share of the held-out gain: (without - final) / (baseline - final); NaN
+// when the chain gains nothing.
+double gain_share(double baseline, double without, double final_error);
+
+// The verdict's rule for a selected step, the same in every study: a step
+// with a parameter at its bound is never a cause; a step whose share of the
+// gain (the whole held-out gain, or, in the rover study, a channel's) is not
+// at least `negligible`, or (single wheel) that cuts no quantity's held-out
+// error to 0.7 of the step before, is only consistent with the data.
+StepRole step_role(bool at_bound, double share, double negligible, bool cuts = true);
 
 // A least-squares slope of y on x with its t statistic.
 struct Trend {

@@ -550,9 +550,7 @@ void OdometryStudy::weigh_steps() {
   for (auto& step : rep_.selection) {
     step.gain_share = gain_share(rep_.baseline_held_out_rmse, final_rmse + before - step.held_out_rmse, final_rmse);
     before = step.held_out_rmse;
-    step.role = !step.at_bound.empty()                       ? StepRole::at_bound
-                : !(step.gain_share >= kNegligibleGainShare) ? StepRole::also_consistent
-                                                             : StepRole::cause;
+    step.role = step_role(!step.at_bound.empty(), step.gain_share, kNegligibleGainShare);
   }
 }
 

@@ -740,9 +740,7 @@ void SingleWheelStudy::weigh_steps() {
     bool cuts = false;
     for (std::size_t qi = 0; qi < report_.quantities.size() && qi < step.held_out_rmse.size(); ++qi)
       cuts = cuts || step.held_out_rmse[qi] <= 0.7 * (*rmse_before)[qi];
-    step.role = any_at_bound(step)                                    ? StepRole::at_bound
-                : !(step.gain_share >= kNegligibleGainShare) || !cuts ? StepRole::also_consistent
-                                                                      : StepRole::cause;
+    step.role = step_role(any_at_bound(step), step.gain_share, kNegligibleGainShare, cuts);
     before = step.held_out_score;
     rmse_before = &step.held_out_rmse;
   }
