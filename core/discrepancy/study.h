@@ -7,7 +7,10 @@
 // verdict. One definition each, so that the three studies' tables mean the
 // same thing by the same word.
 
+#include <cstddef>
 #include <vector>
+
+#include "core/common/thread_pool.h"
 
 namespace roverlab::analysis {
 
@@ -39,6 +42,17 @@ double gain_share(double baseline, double without, double final_error);
 // at least `negligible`, or (single wheel) that cuts no quantity's held-out
 // error to 0.7 of the step before, is only consistent with the data.
 StepRole step_role(bool at_bound, double share, double negligible, bool cuts = true);
+
+// The candidate screen: candidate i fitted alone by fit(i) for i < count, in
+// parallel on the shared thread pool (core/common/thread_pool.h), results
+// in candidate order; each fit independent of the others, so the results
+// are the same on any number of threads. Rethrows the lowest index's error.
+template <class Result, class Fit>
+std::vector<Result> screen_candidates(std::size_t count, const Fit& fit) {
+  std::vector<Result> out(count);
+  shared_thread_pool().for_each_index(count, [&](std::size_t i) { out[i] = fit(i); });
+  return out;
+}
 
 // A least-squares slope of y on x with its t statistic.
 struct Trend {

@@ -246,7 +246,9 @@ OdometryDiscrepancyReport OdometryStudy::run() {
   score_baseline();
   const OdometryCandidateContext context{fit_.wheels, test_.wheels.time.size(), o_};
   models_ = odometry_candidates(context);
-  for (const auto& model : models_) rep_.candidates.push_back(fit_candidate(*model));
+  // The screen: each candidate fitted alone, in parallel.
+  rep_.candidates =
+      screen_candidates<OdometryCandidate>(models_.size(), [&](std::size_t i) { return fit_candidate(*models_[i]); });
   choose_cause();
   residual_series();
   select_forward();

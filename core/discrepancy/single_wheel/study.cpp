@@ -246,10 +246,9 @@ DiscrepancyReport SingleWheelStudy::run() {
     if (o_.progress) o_.progress(fraction);
   };
   // The screen: each candidate fitted alone, in parallel (core/common/thread_pool.h).
-  std::vector<CandidateResult> screened(candidates_.size());
-  shared_thread_pool().for_each_index(candidates_.size(),
-                                      [&](std::size_t i) { screened[i] = fit_set({candidates_[i].get()}); });
-  for (auto& c : screened) report_.candidates.push_back(std::move(c));
+  for (auto& c : screen_candidates<CandidateResult>(candidates_.size(),
+                                                    [&](std::size_t i) { return fit_set({candidates_[i].get()}); }))
+    report_.candidates.push_back(std::move(c));
   done(0.5);
   choose_best();
   report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
