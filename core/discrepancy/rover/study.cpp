@@ -177,11 +177,10 @@ void held_out_sigmas(RoverDiscrepancyReport& r, Predictor& pr, const std::vector
   std::size_t j = 0;
   for (std::size_t c = 0; c < l.groups().size() && c < r.channels.size(); ++c) {
     const std::size_t n = counts.groups[c].used;
-    double sq = 0;
-    for (std::size_t k = 0; k < n; ++k) sq += w[j + k] * w[j + k];
+    const auto from = w.begin() + static_cast<std::ptrdiff_t>(j);
     j += n;
     (after ? r.channels[c].held_out_sigmas_after : r.channels[c].held_out_sigmas_before) =
-        n > 0 ? std::sqrt(sq / static_cast<double>(n)) : NAN;
+        rmse(std::vector<double>(from, from + static_cast<std::ptrdiff_t>(n)));
   }
 }
 

@@ -92,15 +92,12 @@ double bic_of(const std::vector<PointResidual>& residuals, std::size_t k, const 
 MeasurementSigma profiled_sigma(const std::vector<PointResidual>& residuals, const MeasurementSigma& stated) {
   MeasurementSigma out = stated;
   for (Quantity q : kQuantities) {
-    double sq = 0;
-    std::size_t m = 0;
+    std::vector<double> e;
     for (const auto& r : residuals) {
-      if (r.quantity != q || !std::isfinite(r.predicted)) continue;
-      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
-      ++m;
+      if (r.quantity == q && std::isfinite(r.predicted)) e.push_back(r.predicted - r.measured);
     }
-    if (m == 0) continue;
-    out.at(q) = std::max(std::sqrt(sq / static_cast<double>(m)), stated.of(q));
+    if (e.empty()) continue;
+    out.at(q) = std::max(rmse(e), stated.of(q));
   }
   return out;
 }
@@ -342,24 +339,24 @@ void SingleWheelStudy::score_per_wheel() {
   for (const auto& p : points_) {
     if (std::find(wheels.begin(), wheels.end(), wheel_name(p)) == wheels.end()) wheels.push_back(wheel_name(p));
   }
-  const auto rmse = [&](const std::vector<PointResidual>& rs, const std::string& wheel, Quantity q, std::size_t& n) {
-    double sq = 0.0;
-    n = 0;
+  const auto wheel_rmse = [&](const std::vector<PointResidual>& rs, const std::string& wheel, Quantity q,
+                              std::size_t& n) {
+    std::vector<double> e;
     for (const auto& r : rs) {
-      if (r.quantity != q || !std::isfinite(r.predicted) || wheel_name(points_[r.point]) != wheel) continue;
-      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
-      ++n;
+      if (r.quantity == q && std::isfinite(r.predicted) && wheel_name(points_[r.point]) == wheel)
+        e.push_back(r.predicted - r.measured);
     }
-    return n > 0 ? std::sqrt(sq / static_cast<double>(n)) : NAN;
+    n = e.size();
+    return rmse(e);
   };
   for (const auto& wheel : wheels) {
     for (Quantity q : report_.quantities) {
       WheelHeldOut w;
       w.wheel = wheel;
       w.quantity = q;
-      w.baseline_rmse = rmse(baseline, wheel, q, w.count);
+      w.baseline_rmse = wheel_rmse(baseline, wheel, q, w.count);
       std::size_t m = 0;
-      w.model_rmse = rmse(model, wheel, q, m);
+      w.model_rmse = wheel_rmse(model, wheel, q, m);
       if (w.count > 0) report_.per_wheel.push_back(w);
     }
   }
