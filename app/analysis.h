@@ -104,6 +104,17 @@ struct ResultTable {
   std::string legend;                   // one line under the table: what bold, the tint and the order mean
 };
 
+// A chart of log channels an analysis asks the report to draw with the
+// channel plots (the rover study: where the simulation disagrees most),
+// built by the analysis from its own result document.
+struct ReportPlot {
+  std::string file;          // "disagreement.png", in the report's folder
+  std::string heading;       // the figure's caption
+  std::string channel_spec;  // the channels drawn, as `render --channels` takes them
+  int rows = 1;              // its height in chart heights
+  std::string note;          // one plain-text line under it
+};
+
 class Analysis {
  public:
   virtual ~Analysis() = default;
@@ -170,6 +181,11 @@ class Analysis {
   // The tables of its result the GUI shows; none by default.
   virtual std::vector<ResultTable> tables(const nlohmann::json& document) const {
     (void)document;
+    return {};
+  }
+  // The charts of the log it asks the report to draw; none by default.
+  virtual std::vector<ReportPlot> report_plots(const nlohmann::json& document, const log::Log& log) const {
+    (void)document, (void)log;
     return {};
   }
   // Its columns in a campaign's table of runs.

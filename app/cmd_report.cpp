@@ -37,7 +37,6 @@
 #include "importers/soil_file.h"
 
 #include "app/view_data.h"
-#include "core/discrepancy/rover/streams.h"
 #include "core/estimation/ins_slip/streams.h"
 #include "views/timeseries_chart.h"
 #include "views/view.h"
@@ -344,7 +343,7 @@ class ReportWriter {
       std::replace(file.begin(), file.end(), '-', '_');
       image(file + ".png", view->heading(), r);
       if (view->uses_channels()) {
-        disagreement_plot(*view, h);
+        analysis_plots(*view, h);
         slip_plot(*view, h);
       }
     }
@@ -373,36 +372,17 @@ class ReportWriter {
     }
   }
 
-  // The two channels where the rover simulation disagrees most with the
-  // measurement (RMSE in noise sigmas): measured minus simulated, nominal and
-  // with the named causes.
-  void disagreement_plot(const views::View& plots, int h) {
-    const auto run = std::find_if(in_.analyses.begin(), in_.analyses.end(),
-                                  [](const AnalysisRun& a) { return a.name == "rover-discrepancy"; });
-    if (run == in_.analyses.end() || !run->document.contains("channels")) return;
-    std::vector<std::pair<double, std::string>> ranked;
-    for (const auto& c : run->document.at("channels")) {
-      const std::string stream = c.at("stream").get<std::string>(), channel = c.at("channel").get<std::string>();
-      const log::Stream* residual = in_.log.find_stream(analysis::rover_streams::kResidualNominal + stream);
-      if (residual == nullptr || residual->find_channel(channel) == nullptr) continue;
-      const double sigmas = c.at("rmse").get<double>() / std::max(c.at("sigma").get<double>(), 1e-300);
-      ranked.emplace_back(sigmas, stream + ":" + channel);
+  // The charts each analysis asks for (Analysis::report_plots), drawn by the
+  // channel-plot view.
+  void analysis_plots(const views::View& plots, int h) {
+    for (const AnalysisRun& run : in_.analyses) {
+      for (const ReportPlot& p : run.analysis->report_plots(run.document, in_.log)) {
+        ViewOptions o;
+        o.channel_spec = p.channel_spec;
+        image(p.file, p.heading, render_view(in_, plots, o, w_, h * p.rows));
+        html() << "<p class=\"note\">" << esc(p.note) << "</p>\n";
+      }
     }
-    if (ranked.empty()) return;
-    std::sort(ranked.begin(), ranked.end(), std::greater<>());
-    ViewOptions o;
-    o.channel_spec = "";
-    std::string names;
-    for (std::size_t k = 0; k < ranked.size() && k < 2; ++k) {
-      const std::string& measured = ranked[k].second;
-      *o.channel_spec += std::string(k ? "," : "") + analysis::rover_streams::kResidualNominal + measured + "," +
-                         analysis::rover_streams::kResidualWithCauses + measured;
-      names += (k ? " and " : "") + measured + " (RMSE " + num(ranked[k].first, "%.3g") + " noise sigmas)";
-    }
-    image("disagreement.png",
-          "Where the simulation disagrees most: measured minus simulated, nominal and with the causes",
-          render_view(in_, plots, o, w_, h * static_cast<int>(std::min<std::size_t>(ranked.size(), 2))));
-    html() << "<p class=\"note\">The channels with the largest RMSE in noise sigmas: " << esc(names) << ".</p>\n";
   }
 
   void slip_plot(const views::View& plots, int h) {

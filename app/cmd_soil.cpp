@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/analysis.h"
 #include "app/command.h"
 #include "app/command_support.h"
 #include "app/commands.h"
@@ -145,7 +146,7 @@ json parameter_json(const PlateParameter& p) {
   return {{"name", p.name},
           {"unit", p.unit},
           {"value", p.value},
-          {"sigma", std::isfinite(p.sigma) ? json(p.sigma) : json(nullptr)},
+          {"sigma", finite_or_null(p.sigma)},
           {"at_bound", p.at_bound}};
 }
 

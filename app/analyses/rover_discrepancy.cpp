@@ -4,8 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "app/analysis.h"
 #include "app/command_support.h"
@@ -136,6 +140,7 @@ class RoverDiscrepancyAnalysis : public Analysis {
   void print(const json& j, std::FILE* out) const override;
   void report(const json& j, ReportSection& section) const override;
   std::vector<ResultTable> tables(const json& j) const override;
+  std::vector<ReportPlot> report_plots(const json& j, const log::Log& lg) const override;
   std::string summary(const json& j) const override {
     const json& regime = j.at("slip_regime");
     const std::string what = j.at("what_is_wrong").get<std::string>() + " " + j.at("verdict").get<std::string>();
@@ -495,6 +500,37 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
 }
 
 }  // namespace
+
+// The two channels where the simulation disagrees most with the measurement
+// (RMSE in noise sigmas): measured minus simulated, nominal and with the
+// named causes, for the channels whose residual streams the log holds.
+std::vector<ReportPlot> RoverDiscrepancyAnalysis::report_plots(const json& j, const log::Log& lg) const {
+  if (!j.contains("channels")) return {};
+  std::vector<std::pair<double, std::string>> ranked;
+  for (const auto& c : j.at("channels")) {
+    const std::string stream = c.at("stream").get<std::string>(), channel = c.at("channel").get<std::string>();
+    const log::Stream* residual = lg.find_stream(analysis::rover_streams::kResidualNominal + stream);
+    if (residual == nullptr || residual->find_channel(channel) == nullptr) continue;
+    const double sigmas = c.at("rmse").get<double>() / std::max(c.at("sigma").get<double>(), 1e-300);
+    ranked.emplace_back(sigmas, stream + ":" + channel);
+  }
+  if (ranked.empty()) return {};
+  std::sort(ranked.begin(), ranked.end(), std::greater<>());
+  ReportPlot p;
+  p.file = "disagreement.png";
+  p.heading = "Where the simulation disagrees most: measured minus simulated, nominal and with the causes";
+  p.rows = static_cast<int>(std::min<std::size_t>(ranked.size(), 2));
+  std::string names;
+  for (std::size_t k = 0; k < ranked.size() && k < 2; ++k) {
+    const std::string& measured = ranked[k].second;
+    p.channel_spec += std::string(k ? "," : "") + analysis::rover_streams::kResidualNominal + measured + "," +
+                      analysis::rover_streams::kResidualWithCauses + measured;
+    names +=
+        (k ? " and " : "") + measured + " (RMSE " + ReportSection::number(ranked[k].first, "%.3g") + " noise sigmas)";
+  }
+  p.note = "The channels with the largest RMSE in noise sigmas: " + names + ".";
+  return {p};
+}
 
 std::unique_ptr<Analysis> make_rover_discrepancy_analysis() { return std::make_unique<RoverDiscrepancyAnalysis>(); }
 

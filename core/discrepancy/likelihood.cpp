@@ -174,21 +174,4 @@ std::string format_fitted(double value, double sigma, const std::string& unit, b
   return buf + (unit.empty() || unit == "1" ? std::string() : " " + unit) + " (at its bound)";
 }
 
-const char* step_role_name(StepRole role) {
-  switch (role) {
-    case StepRole::cause:
-      return "cause";
-    case StepRole::also_consistent:
-      return "also consistent";
-    case StepRole::at_bound:
-      return "at its bound";
-  }
-  return "cause";
-}
-
-double gain_share(double baseline, double without, double final_error) {
-  const double gain = baseline - final_error;
-  return gain > 0 ? (without - final_error) / gain : NAN;
-}
-
 }  // namespace roverlab::analysis

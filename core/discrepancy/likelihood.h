@@ -90,26 +90,4 @@ bool near_bound(double value, double lower, double upper);
 // format_estimate, or "0.3 (at its bound)" with no sigma when at_bound.
 std::string format_fitted(double value, double sigma, const std::string& unit, bool at_bound);
 
-// A step of the odometry or single-wheel forward selection whose share of
-// the held-out gain (the held-out error it cut against the step before, over
-// the whole chain's cut) is under this is reported as "also consistent
-// with", not as a cause. Not calibrated on simulated truth yet (the rover
-// study names a step by its share of a channel's gain instead,
-// kNegligibleChannelShare; docs/validation/discrepancy.md).
-constexpr double kNegligibleGainShare = 0.02;
-
-// What a step of a forward selection is in the verdict.
-enum class StepRole {
-  cause,            // named as a cause
-  also_consistent,  // its share of the held-out gain is under kNegligibleGainShare
-  at_bound          // a parameter at its bound: a fact about the search, not a cause
-};
-
-// "cause", "also consistent", "at its bound" (the JSON documents' words).
-const char* step_role_name(StepRole role);
-
-// Share of the held-out gain: (without - final) / (baseline - final); NaN
-// when the chain gains nothing.
-double gain_share(double baseline, double without, double final_error);
-
 }  // namespace roverlab::analysis

@@ -12,6 +12,7 @@
 #include "core/common/error.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/odometry/candidates.h"
+#include "core/discrepancy/study.h"
 #include "core/models/reference_track.h"
 
 namespace roverlab::analysis {
@@ -66,11 +67,8 @@ std::vector<double> track_errors(const Part& p, const ReferenceTrack& ref, const
   return r;
 }
 
-double rmse_of(const std::vector<double>& r) {
-  double s = 0.0;
-  for (double x : r) s += x * x;
-  return r.empty() ? 0.0 : std::sqrt(2.0 * s / static_cast<double>(r.size()));  // horizontal
-}
+// The RMS horizontal error of (east, north) residual pairs.
+double horizontal_rmse(const std::vector<double>& r) { return rmse(r, 2.0); }
 
 double final_of(const std::vector<double>& r) {
   return r.size() < 2 ? 0.0 : std::hypot(r[r.size() - 2], r[r.size() - 1]);
@@ -248,7 +246,9 @@ OdometryDiscrepancyReport OdometryStudy::run() {
   score_baseline();
   const OdometryCandidateContext context{fit_.wheels, test_.wheels.time.size(), o_};
   models_ = odometry_candidates(context);
-  for (const auto& model : models_) rep_.candidates.push_back(fit_candidate(*model));
+  // The screen: each candidate fitted alone, in parallel.
+  rep_.candidates =
+      screen_candidates<OdometryCandidate>(models_.size(), [&](std::size_t i) { return fit_candidate(*models_[i]); });
   choose_cause();
   residual_series();
   select_forward();
@@ -318,8 +318,8 @@ void OdometryStudy::split() {
 void OdometryStudy::score_baseline() {
   const std::vector<double> base_fit = track_errors(fit_, ref_, o_.rover, {});
   const std::vector<double> base_test = track_errors(test_, ref_, o_.rover, {});
-  rep_.baseline_fit_rmse = rmse_of(base_fit);
-  rep_.baseline_held_out_rmse = rmse_of(base_test);
+  rep_.baseline_fit_rmse = horizontal_rmse(base_fit);
+  rep_.baseline_held_out_rmse = horizontal_rmse(base_test);
   rep_.baseline_held_out_final = final_of(base_test);
   rep_.baseline_bic = bic(base_fit, 0);
   describe_baseline(base_fit);
@@ -382,14 +382,14 @@ OdometryCandidate OdometryStudy::fit_candidate(const OdometryCandidateModel& mod
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   const std::vector<double> r_fit = track_errors(fit_, ref_, o_.rover, model.corrections(x.data()));
-  cand.fit_rmse = rmse_of(r_fit);
+  cand.fit_rmse = horizontal_rmse(r_fit);
   cand.bic = bic(r_fit, k);
   cand.delta_bic = cand.bic - rep_.baseline_bic;
   cand.parameters = model.summary(x, parameter_sigmas(problem, x, r_fit));
   cand.fitted = x;
   mark_bounds(parameters, cand);
   const std::vector<double> r_test = track_errors(test_, ref_, o_.rover, model.held_out_corrections(x.data()));
-  cand.held_out_rmse = rmse_of(r_test);
+  cand.held_out_rmse = horizontal_rmse(r_test);
   cand.held_out_final = final_of(r_test);
   cand.significant = cand.at_bound.empty() && cand.delta_bic < -10.0 &&
                      cand.held_out_rmse <= (1.0 - o_.min_gain) * rep_.baseline_held_out_rmse &&
@@ -552,9 +552,7 @@ void OdometryStudy::weigh_steps() {
   for (auto& step : rep_.selection) {
     step.gain_share = gain_share(rep_.baseline_held_out_rmse, final_rmse + before - step.held_out_rmse, final_rmse);
     before = step.held_out_rmse;
-    step.role = !step.at_bound.empty()                       ? StepRole::at_bound
-                : !(step.gain_share >= kNegligibleGainShare) ? StepRole::also_consistent
-                                                             : StepRole::cause;
+    step.role = step_role(!step.at_bound.empty(), step.gain_share, kNegligibleGainShare);
   }
 }
 

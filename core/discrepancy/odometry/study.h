@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/study.h"
 #include "core/log/log.h"
 #include "core/models/skid_steer_odometry.h"
 

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "core/common/error.h"
+#include "core/discrepancy/study.h"
 
 namespace roverlab::analysis::rover {
 
@@ -199,9 +200,7 @@ Score score(Predictor& pr, const simulation::RockerBogieEffects& effects) {
   s.test = lt.minus_two_log_l(test);
   std::vector<double> w(lt.effective_count());
   lt.whiten(yardstick(lt), test.data(), w.data());
-  double sq = 0;
-  for (double v : w) sq += v * v;
-  s.held_out = w.empty() ? NAN : std::sqrt(sq / static_cast<double>(w.size()));
+  s.held_out = rmse(w);
   return s;
 }
 

@@ -296,9 +296,7 @@ void weigh_steps(Predictor& pr, RoverDiscrepancyReport& r, const std::vector<Fit
     step.channel_share = largest_channel_share(base, final_model, w);
     const bool at_bound = std::any_of(step.parameters.begin(), step.parameters.end(),
                                       [](const RoverParameterFit& p) { return p.at_bound; });
-    step.role = at_bound                                           ? StepRole::at_bound
-                : !(step.channel_share >= kNegligibleChannelShare) ? StepRole::also_consistent
-                                                                   : StepRole::cause;
+    step.role = step_role(at_bound, step.channel_share, kNegligibleChannelShare);
   }
 }
 

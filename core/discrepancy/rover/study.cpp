@@ -8,6 +8,7 @@
 #include "core/discrepancy/rover/candidates.h"
 #include "core/discrepancy/rover/fit.h"
 #include "core/discrepancy/rover/prediction.h"
+#include "core/discrepancy/study.h"
 
 namespace roverlab::analysis {
 
@@ -49,33 +50,6 @@ void set_noise(std::vector<MeasuredChannel>& channels, const Prediction& p) {
     m.resolution = noise_floor(m.unit);
     m.sigma = std::max(1.4826 * median(d) / std::sqrt(2.0), m.resolution);
   }
-}
-
-struct Ols {
-  double slope = 0, t = 0;
-};
-
-// Least-squares slope of y on x (finite pairs) and its t statistic.
-Ols regress(const std::vector<double>& x, const std::vector<double>& y) {
-  double n = 0, sx = 0, sy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    if (!std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
-    n += 1;
-    sx += x[k];
-    sy += y[k];
-  }
-  if (n < 3) return {NAN, NAN};
-  const double mx = sx / n, my = sy / n;
-  double sxx = 0, sxy = 0, syy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    if (!std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
-    sxx += (x[k] - mx) * (x[k] - mx);
-    sxy += (x[k] - mx) * (y[k] - my);
-    syy += (y[k] - my) * (y[k] - my);
-  }
-  if (!(sxx > 0)) return {NAN, NAN};
-  const double b = sxy / sxx, s2 = std::max(syy - b * sxy, 0.0) / (n - 2);
-  return {b, s2 > 0 ? b / std::sqrt(s2 / sxx) : NAN};
 }
 
 // Mean wheel slip from the sensors alone: 1 - v / (r w), w the wheels' mean
@@ -153,11 +127,10 @@ void channel_statistics(RoverDiscrepancyReport& r, const std::vector<MeasuredCha
     s.sigma = m.sigma;
     std::vector<double> res(m.values.size()), t100(m.values.size()), x(m.values.size()), sl(m.values.size(), NAN),
         load(m.values.size(), NAN);
-    double sum = 0, sq = 0;
+    double sum = 0;
     for (std::size_t k = 0; k < res.size(); ++k) {
       res[k] = m.values[k] - p[c][k];
       sum += res[k];
-      sq += res[k] * res[k];
       t100[k] = m.time[k] / 100.0;
       x[k] = log::interpolate_linear(base.sensors.time, base.front_x, m.time[k]);
       if (slip.size() == res.size()) sl[k] = slip[k];
@@ -165,8 +138,8 @@ void channel_statistics(RoverDiscrepancyReport& r, const std::vector<MeasuredCha
     }
     const auto n = static_cast<double>(res.size());
     s.bias = sum / n;
-    s.rmse = std::sqrt(sq / n);
-    const Ols dt = regress(t100, res), ds = regress(sl, res), dx = regress(x, res), dl = regress(load, res);
+    s.rmse = rmse(res);
+    const Trend dt = regress(t100, res), ds = regress(sl, res), dx = regress(x, res), dl = regress(load, res);
     s.drift = dt.slope;
     s.t_drift = dt.t;
     s.slope_vs_slip = ds.slope;
@@ -182,14 +155,11 @@ void channel_statistics(RoverDiscrepancyReport& r, const std::vector<MeasuredCha
 // Held-out RMSE per channel, in the channel's unit.
 void held_out_rmse(RoverDiscrepancyReport& r, const std::vector<MeasuredChannel>& ch, const Prediction& p, bool after) {
   for (std::size_t c = 0; c < kChannels; ++c) {
-    double sq = 0, n = 0;
+    std::vector<double> e;
     for (std::size_t k = 0; k < ch[c].values.size(); ++k) {
-      if (ch[c].fit[k] != 0) continue;
-      const double e = ch[c].values[k] - p[c][k];
-      sq += e * e;
-      n += 1;
+      if (ch[c].fit[k] == 0) e.push_back(ch[c].values[k] - p[c][k]);
     }
-    (after ? r.channels[c].held_out_rmse_after : r.channels[c].held_out_rmse_before) = n > 0 ? std::sqrt(sq / n) : NAN;
+    (after ? r.channels[c].held_out_rmse_after : r.channels[c].held_out_rmse_before) = rmse(e);
   }
 }
 
@@ -207,11 +177,10 @@ void held_out_sigmas(RoverDiscrepancyReport& r, Predictor& pr, const std::vector
   std::size_t j = 0;
   for (std::size_t c = 0; c < l.groups().size() && c < r.channels.size(); ++c) {
     const std::size_t n = counts.groups[c].used;
-    double sq = 0;
-    for (std::size_t k = 0; k < n; ++k) sq += w[j + k] * w[j + k];
+    const auto from = w.begin() + static_cast<std::ptrdiff_t>(j);
     j += n;
     (after ? r.channels[c].held_out_sigmas_after : r.channels[c].held_out_sigmas_before) =
-        n > 0 ? std::sqrt(sq / static_cast<double>(n)) : NAN;
+        rmse(std::vector<double>(from, from + static_cast<std::ptrdiff_t>(n)));
   }
 }
 

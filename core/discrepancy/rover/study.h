@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/study.h"
 #include "core/log/log.h"
 #include "core/simulation/rocker_bogie.h"
 

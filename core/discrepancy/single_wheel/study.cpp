@@ -10,6 +10,7 @@
 #include "core/common/thread_pool.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/single_wheel/candidates.h"
+#include "core/discrepancy/study.h"
 
 namespace roverlab::analysis {
 
@@ -18,39 +19,6 @@ using namespace roverlab::terramechanics;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-struct Line {
-  double slope = 0.0, t = 0.0;
-};
-
-// Least-squares slope of y on x with its t statistic.
-Line regress(const std::vector<double>& x, const std::vector<double>& y) {
-  const std::size_t n = x.size();
-  if (n < 3) return {};
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    mx += x[i];
-    my += y[i];
-  }
-  mx /= static_cast<double>(n);
-  my /= static_cast<double>(n);
-  double sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sxx += (x[i] - mx) * (x[i] - mx);
-    sxy += (x[i] - mx) * (y[i] - my);
-  }
-  if (sxx <= 1e-12 * static_cast<double>(n) * (1.0 + mx * mx)) return {};  // x does not vary: no trend
-  Line l;
-  l.slope = sxy / sxx;
-  double sse = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double e = y[i] - my - l.slope * (x[i] - mx);
-    sse += e * e;
-  }
-  const double se = std::sqrt(sse / static_cast<double>(n - 2) / sxx);
-  l.t = se > 0.0 ? l.slope / se : (l.slope != 0.0 ? std::copysign(1e9, l.slope) : 0.0);
-  return l;
-}
 
 // RMS residual in the stated measurement sigmas (the fits may weight by others).
 double score_of(const std::vector<PointResidual>& residuals, const MeasurementSigma& sigma) {
@@ -124,20 +92,18 @@ double bic_of(const std::vector<PointResidual>& residuals, std::size_t k, const 
 MeasurementSigma profiled_sigma(const std::vector<PointResidual>& residuals, const MeasurementSigma& stated) {
   MeasurementSigma out = stated;
   for (Quantity q : kQuantities) {
-    double sq = 0;
-    std::size_t m = 0;
+    std::vector<double> e;
     for (const auto& r : residuals) {
-      if (r.quantity != q || !std::isfinite(r.predicted)) continue;
-      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
-      ++m;
+      if (r.quantity == q && std::isfinite(r.predicted)) e.push_back(r.predicted - r.measured);
     }
-    if (m == 0) continue;
-    out.at(q) = std::max(std::sqrt(sq / static_cast<double>(m)), stated.of(q));
+    if (e.empty()) continue;
+    out.at(q) = std::max(rmse(e), stated.of(q));
   }
   return out;
 }
 
-double rmse_of(const std::vector<QuantityResiduals>& stats, Quantity q) {
+// Quantity q's RMSE among a study's residual statistics; NaN if it has none.
+double quantity_rmse(const std::vector<QuantityResiduals>& stats, Quantity q) {
   for (const auto& s : stats) {
     if (s.quantity == q) return s.rmse;
   }
@@ -174,23 +140,22 @@ std::vector<QuantityResiduals> residual_statistics(const std::vector<PointResidu
     QuantityResiduals s;
     s.quantity = q;
     s.count = e.size();
-    for (double v : e) {
-      s.bias += v;
-      s.rmse += v * v;
-    }
+    for (double v : e) s.bias += v;
     s.bias /= static_cast<double>(e.size());
-    s.rmse = std::sqrt(s.rmse / static_cast<double>(e.size()));
+    s.rmse = rmse(e);
     const auto m = static_cast<double>(e.size());
     const double sd = m > 1 ? std::sqrt(std::max(s.rmse * s.rmse - s.bias * s.bias, 0.0) * m / (m - 1)) : 0.0;
     s.t_bias = sd > 0 ? s.bias / (sd / std::sqrt(m)) : 0.0;
-    const Line ls = regress(slip, e), ll = regress(load, e);
-    s.slope_vs_slip = ls.slope;
-    s.t_slip = ls.t;
-    s.slope_vs_load = ll.slope;
-    s.t_load = ll.t;
-    const Line lb = regress(beta, e);
-    s.slope_vs_slip_angle = lb.slope;
-    s.t_slip_angle = lb.t;
+    // The single-wheel tables read "no measurable trend" (e.g. no slip angle
+    // in the file) as a zero slope with t = 0.
+    const auto or_zero = [](double v) { return std::isnan(v) ? 0.0 : v; };
+    const Trend ls = regress(slip, e), ll = regress(load, e), lb = regress(beta, e);
+    s.slope_vs_slip = or_zero(ls.slope);
+    s.t_slip = or_zero(ls.t);
+    s.slope_vs_load = or_zero(ll.slope);
+    s.t_load = or_zero(ll.t);
+    s.slope_vs_slip_angle = or_zero(lb.slope);
+    s.t_slip_angle = or_zero(lb.t);
     out.push_back(s);
   }
   return out;
@@ -278,10 +243,9 @@ DiscrepancyReport SingleWheelStudy::run() {
     if (o_.progress) o_.progress(fraction);
   };
   // The screen: each candidate fitted alone, in parallel (core/common/thread_pool.h).
-  std::vector<CandidateResult> screened(candidates_.size());
-  shared_thread_pool().for_each_index(candidates_.size(),
-                                      [&](std::size_t i) { screened[i] = fit_set({candidates_[i].get()}); });
-  for (auto& c : screened) report_.candidates.push_back(std::move(c));
+  for (auto& c : screen_candidates<CandidateResult>(candidates_.size(),
+                                                    [&](std::size_t i) { return fit_set({candidates_[i].get()}); }))
+    report_.candidates.push_back(std::move(c));
   done(0.5);
   choose_best();
   report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
@@ -375,24 +339,24 @@ void SingleWheelStudy::score_per_wheel() {
   for (const auto& p : points_) {
     if (std::find(wheels.begin(), wheels.end(), wheel_name(p)) == wheels.end()) wheels.push_back(wheel_name(p));
   }
-  const auto rmse = [&](const std::vector<PointResidual>& rs, const std::string& wheel, Quantity q, std::size_t& n) {
-    double sq = 0.0;
-    n = 0;
+  const auto wheel_rmse = [&](const std::vector<PointResidual>& rs, const std::string& wheel, Quantity q,
+                              std::size_t& n) {
+    std::vector<double> e;
     for (const auto& r : rs) {
-      if (r.quantity != q || !std::isfinite(r.predicted) || wheel_name(points_[r.point]) != wheel) continue;
-      sq += (r.predicted - r.measured) * (r.predicted - r.measured);
-      ++n;
+      if (r.quantity == q && std::isfinite(r.predicted) && wheel_name(points_[r.point]) == wheel)
+        e.push_back(r.predicted - r.measured);
     }
-    return n > 0 ? std::sqrt(sq / static_cast<double>(n)) : NAN;
+    n = e.size();
+    return rmse(e);
   };
   for (const auto& wheel : wheels) {
     for (Quantity q : report_.quantities) {
       WheelHeldOut w;
       w.wheel = wheel;
       w.quantity = q;
-      w.baseline_rmse = rmse(baseline, wheel, q, w.count);
+      w.baseline_rmse = wheel_rmse(baseline, wheel, q, w.count);
       std::size_t m = 0;
-      w.model_rmse = rmse(model, wheel, q, m);
+      w.model_rmse = wheel_rmse(model, wheel, q, m);
       if (w.count > 0) report_.per_wheel.push_back(w);
     }
   }
@@ -418,7 +382,7 @@ void SingleWheelStudy::score_baseline() {
   weights_ = profiled_sigma(baseline.residuals, o_.sigma);
   report_.measurements = baseline.measurements;
   for (const auto& r : baseline.residuals) report_.unsupported += std::isfinite(r.predicted) ? 0 : 1;
-  for (Quantity q : report_.quantities) report_.baseline_held_out_rmse.push_back(rmse_of(report_.baseline, q));
+  for (Quantity q : report_.quantities) report_.baseline_held_out_rmse.push_back(quantity_rmse(report_.baseline, q));
 }
 
 // Fits the candidates' parameters together on all points (started from
@@ -489,7 +453,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   if (!with_held_out) return c;  // held_out_rmse empty: no held-out test passes
   const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit, set) : c.fit.residuals;
   const auto held_stats = residual_statistics(predicted, points_);
-  for (Quantity q : report_.quantities) c.held_out_rmse.push_back(rmse_of(held_stats, q));
+  for (Quantity q : report_.quantities) c.held_out_rmse.push_back(quantity_rmse(held_stats, q));
   c.held_out_score = score_of(predicted, o_.sigma);
   c.held_out = predicted;
   return c;
@@ -772,9 +736,7 @@ void SingleWheelStudy::weigh_steps() {
     bool cuts = false;
     for (std::size_t qi = 0; qi < report_.quantities.size() && qi < step.held_out_rmse.size(); ++qi)
       cuts = cuts || step.held_out_rmse[qi] <= 0.7 * (*rmse_before)[qi];
-    step.role = any_at_bound(step)                                    ? StepRole::at_bound
-                : !(step.gain_share >= kNegligibleGainShare) || !cuts ? StepRole::also_consistent
-                                                                      : StepRole::cause;
+    step.role = step_role(any_at_bound(step), step.gain_share, kNegligibleGainShare, cuts);
     before = step.held_out_score;
     rmse_before = &step.held_out_rmse;
   }
@@ -1000,9 +962,9 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
   }
   const auto stats = residual_statistics(held, points);
   for (Quantity q : kQuantities) {
-    const double rmse = rmse_of(stats, q);
+    const double held_out = quantity_rmse(stats, q);
     if (std::any_of(points.begin(), points.end(), [&](const auto& p) { return p.measured(q).has_value(); })) {
-      f.held_out_rmse.push_back(rmse);
+      f.held_out_rmse.push_back(held_out);
     }
   }
   f.held_out_score = score_of(held, o.sigma);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/discrepancy/likelihood.h"
+#include "core/discrepancy/study.h"
 #include "core/terramechanics/soil_identification.h"
 
 namespace roverlab::analysis {
