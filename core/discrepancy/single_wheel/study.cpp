@@ -1074,7 +1074,7 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
   for (const auto& p : points) largest = std::max(largest, (1.0 - p.slip) * (1.0 - std::cos(p.slip_angle)));
   if (!o.slip_definition && largest < 0.01) {
     o.slip_definition = SlipDefinition::longitudinal;
-    why = fmt("at these slip angles the two readings differ by at most %.3g in slip", largest);
+    why = "at these slip angles the two readings differ by at most " + fmt("%.3g", largest) + " in slip";
   }
   DiscrepancyReport r;
   if (o.slip_definition) {
