@@ -6,7 +6,10 @@ For each soil of the table (resources/soils/*.json, which carry Setterfield
 Vehicles Table 2.3), simulate the plate tests a lab would run: two rectangular
 plates (5 x 20 cm and 10 x 20 cm), the plate starting 1 cm above the surface,
 loading to 5 cm sinkage, a short elastic unloading, 0.25 mm depth steps and
-Gaussian force noise of 1.5 % of each record's peak from a fixed seed. The
+Gaussian force noise from a fixed seed: one load cell for both plates, its
+noise 1.5 % of the mean of the two plates' peak forces (about 2 % of the small
+plate's peak, 1 % of the large one's); `--noise per-plate` gives each record
+1.5 % of its own peak (two load cells) instead. The
 pressure is computed here from Bekker's equation, independently of the C++:
 
     p = (k_c / b + k_phi) z^n        (seed 003 Eq. 2.10; b the plate's smaller side)
@@ -72,8 +75,18 @@ def source_of(name, soil):
     return "Wong, Table 2.3"
 
 
-def plate_record(soil, width, length, rng):
-    """(depth_m, force_N) rows: approach, loading, unloading."""
+def peak_force(soil, width, length):
+    return width * length * (soil["kc"] / width + soil["kphi"]) * MAX_SINKAGE ** soil["n"]
+
+
+def noise_sd(soil, width, length, mode):
+    if mode == "per-plate":
+        return NOISE * peak_force(soil, width, length)
+    return NOISE * sum(peak_force(soil, w, l) for w, l in PLATES) / len(PLATES)
+
+
+def plate_record(soil, width, length, rng, sd):
+    """(depth_m, force_N) rows: approach, loading, unloading; noise sd in N."""
     keq = soil["kc"] / width + soil["kphi"]
     area = width * length
     deepest = START_ABOVE + MAX_SINKAGE
@@ -82,14 +95,14 @@ def plate_record(soil, width, length, rng):
     while k * STEP <= deepest + 1e-12:
         depths.append(k * STEP)
         k += 1
-    peak = area * keq * MAX_SINKAGE ** soil["n"]
+    peak = peak_force(soil, width, length)
     forces = [area * keq * max(d - START_ABOVE, 0.0) ** soil["n"] for d in depths]
     k = 1
     while k * STEP <= UNLOAD + 1e-12:
         depths.append(deepest - k * STEP)
         forces.append(peak * (1.0 - k * STEP / UNLOAD))
         k += 1
-    return [(d, f + rng.gauss(0.0, NOISE * peak)) for d, f in zip(depths, forces)]
+    return [(d, f + rng.gauss(0.0, sd)) for d, f in zip(depths, forces)]
 
 
 def write_csv(path, width, length, rows):
@@ -102,13 +115,14 @@ def write_csv(path, width, length, rows):
     os.replace(tmp, path)
 
 
-def fit_soil(exe, name, soil, seed, workdir):
+def fit_soil(exe, name, soil, seed, workdir, mode):
     """Returns {param: (value, sigma)} or an error string."""
     files = []
     for i, (width, length) in enumerate(PLATES):
         rng = random.Random(1000003 * seed + 101 * SOILS.index(name) + i)
         path = os.path.join(workdir, f"{name}_{int(round(width * 100))}cm_s{seed}.csv")
-        write_csv(path, width, length, plate_record(soil, width, length, rng))
+        rows = plate_record(soil, width, length, rng, noise_sd(soil, width, length, mode))
+        write_csv(path, width, length, rows)
         files.append(path)
     run = subprocess.run([exe, "soil", "plate", *files, "--json"], capture_output=True,
                          text=True, timeout=60, check=False)
@@ -132,15 +146,15 @@ def fmt(x):
     return f"{x:.4g}"
 
 
-def table(exe, seed, workdir):
-    print(f"Noise seed {seed}; k_c in kPa/m^(n-1), k_phi in kPa/m^n; fitted +- 1 sigma")
+def table(exe, seed, workdir, mode):
+    print(f"Noise seed {seed} ({mode} noise); k_c in kPa/m^(n-1), k_phi in kPa/m^n; fitted +- 1 sigma")
     print("| soil | source | published k_c, k_phi, n | fitted k_c | fitted k_phi | fitted n"
           " | within 2 sigma |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
     ok = True
     for name in SOILS:
         soil = load_soil(name)
-        fit = fit_soil(exe, name, soil, seed, workdir)
+        fit = fit_soil(exe, name, soil, seed, workdir, mode)
         pub = f"{fmt(soil['kc'] / 1e3)}, {fmt(soil['kphi'] / 1e3)}, {fmt(soil['n'])}"
         if isinstance(fit, str):
             print(f"| {name} | {source_of(name, soil)} | {pub} | FAILED: {fit} | | | no |")
@@ -159,8 +173,8 @@ def table(exe, seed, workdir):
     return ok
 
 
-def coverage(exe, seeds, workdir):
-    print(f"Coverage over noise seeds 1..{seeds}: truth within 2 sigma (nominal 95.4 %)")
+def coverage(exe, seeds, workdir, mode):
+    print(f"Coverage over noise seeds 1..{seeds} ({mode} noise): truth within 2 sigma (nominal 95.4 %)")
     print("| soil | k_c | k_phi | n | failed fits |")
     print("| --- | --- | --- | --- | --- |")
     worst = 1.0
@@ -170,7 +184,7 @@ def coverage(exe, seeds, workdir):
         hits = {p: 0 for p in PARAMS}
         failed = 0
         for seed in range(1, seeds + 1):
-            fit = fit_soil(exe, name, soil, seed, workdir)
+            fit = fit_soil(exe, name, soil, seed, workdir, mode)
             if isinstance(fit, str):
                 failed += 1
                 continue
@@ -190,14 +204,16 @@ def main():
     ap.add_argument("--check", action="store_true", help="exit 1 on a failed fit or a miss")
     ap.add_argument("--seed", type=int, default=1, help="noise seed of the table (default 1)")
     ap.add_argument("--seeds", type=int, default=0, help="coverage over noise seeds 1..N")
+    ap.add_argument("--noise", choices=["one-cell", "per-plate"], default="one-cell",
+                    help="one load cell for both plates (default) or one per plate")
     args = ap.parse_args()
     if not os.access(args.roverlab, os.X_OK):
         sys.exit(f"published_table.py: --roverlab {args.roverlab}: not an executable")
     with tempfile.TemporaryDirectory(prefix="plate_table_") as workdir:
         if args.seeds > 0:
-            ok = coverage(args.roverlab, args.seeds, workdir)
+            ok = coverage(args.roverlab, args.seeds, workdir, args.noise)
         else:
-            ok = table(args.roverlab, args.seed, workdir)
+            ok = table(args.roverlab, args.seed, workdir, args.noise)
     if args.check and not ok:
         print("published_table.py: FAILED", file=sys.stderr)
         return 1
