@@ -127,8 +127,11 @@ def fit_soil(exe, name, soil, seed, workdir, mode):
         rows = plate_record(soil, width, length, rng, noise_sd(soil, width, length, mode))
         write_csv(path, width, length, rows)
         files.append(path)
-    run = subprocess.run([exe, "soil", "plate", *files, "--json"], capture_output=True,
-                         text=True, timeout=60, check=False)
+    try:
+        run = subprocess.run([exe, "soil", "plate", *files, "--json"], capture_output=True,
+                             text=True, timeout=60, check=False)
+    except (OSError, subprocess.TimeoutExpired) as err:
+        return f"cannot run {exe}: {err}"
     if run.returncode != 0:
         return f"roverlab exit {run.returncode}: {run.stderr.strip()}"
     out = json.loads(run.stdout)
