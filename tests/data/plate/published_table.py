@@ -153,7 +153,8 @@ def fmt(x):
 
 
 def table(exe, seed, workdir, mode):
-    print(f"Noise seed {seed} ({mode} noise); k_c in kPa/m^(n-1), k_phi in kPa/m^n; fitted +- 1 sigma")
+    print(f"Noise seed {seed} ({mode} noise); k_c in kPa/m^(n-1), k_phi in kPa/m^n;"
+          " fitted +- 1 sigma")
     print("| soil | source | published k_c, k_phi, n | fitted k_c | fitted k_phi | fitted n"
           " | within 2 sigma |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
@@ -180,7 +181,8 @@ def table(exe, seed, workdir, mode):
 
 
 def coverage(exe, seeds, workdir, mode):
-    print(f"Coverage over noise seeds 1..{seeds} ({mode} noise): truth within 2 sigma (nominal 95.4 %)")
+    print(f"Coverage over noise seeds 1..{seeds} ({mode} noise):"
+          " truth within 2 sigma (nominal 95.4 %)")
     print("| soil | k_c | k_phi | n | failed fits |")
     print("| --- | --- | --- | --- | --- |")
     worst = 1.0
