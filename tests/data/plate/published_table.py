@@ -25,7 +25,8 @@ Check: ... --check    exits 1 if a fit fails or any parameter misses 2 sigma
                       a seed that passes; the coverage below is the claim)
 Coverage: ... --seeds 200   fits every soil over noise seeds 1..200 and prints
                       how often each parameter lies within 2 sigma; with
-                      --check, exits 1 if a coverage is below 88 %.
+                      --check, exits 1 if the coverage of all parameters together
+                      is below 90 % or one parameter's below 70 %.
 Plain Python 3, no packages.
 """
 import argparse
@@ -187,6 +188,7 @@ def coverage(exe, seeds, workdir, mode):
     print("| --- | --- | --- | --- | --- |")
     worst = 1.0
     failed_any = False
+    pooled = 0
     for name in SOILS:
         soil = load_soil(name)
         hits = {p: 0 for p in PARAMS}
@@ -198,12 +200,17 @@ def coverage(exe, seeds, workdir, mode):
                 continue
             for p in PARAMS:
                 hits[p] += within(soil[p], fit[p])
+        pooled += sum(hits.values())
         worst = min(worst, *(hits[p] / seeds for p in PARAMS))
         failed_any = failed_any or failed > 0
         print(f"| {name} | " + " | ".join(f"{hits[p]}/{seeds}" for p in PARAMS) +
               f" | {failed} |")
-    print(f"lowest coverage {100 * worst:.1f} %")
-    return worst >= 0.88 and not failed_any
+    share = pooled / (seeds * len(SOILS) * len(PARAMS))
+    print(f"all parameters together {100 * share:.1f} %, lowest one {100 * worst:.1f} %")
+    # Pooled over the 18 parameters (a per-parameter bar at 10 seeds would
+    # fail one of 18 by chance most of the time); a lowest one under 70 %
+    # is a sigma that is wrong, not chance.
+    return share >= 0.90 and worst >= 0.70 and not failed_any
 
 
 def main():
