@@ -1165,6 +1165,40 @@ std::string reading_reason(const DiscrepancyReport& as_travel, const Discrepancy
   }
 }
 
+// The two readings side by side: the travel one on the pool, the
+// longitudinal one here; the progress is their mean, reported by either (one
+// at a time; the one done first would leave it standing), and a cancel stops both.
+void run_both_readings(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& o,
+                       DiscrepancyReport& as_longitudinal, DiscrepancyReport& as_travel) {
+  const auto& progress = o.progress;
+  std::atomic<bool> stop{false};
+  std::mutex reporting;
+  double done[2] = {0.0, 0.0};
+  const auto report = [&](int reading, double f) {
+    const std::lock_guard<std::mutex> lock(reporting);
+    done[reading] = f;
+    if (progress) progress(0.5 * (done[0] + done[1]));
+  };
+  DiscrepancyOptions longitudinal = o, travel_reading = o;
+  longitudinal.baseline.slip_definition = SlipDefinition::longitudinal;
+  longitudinal.progress = [&](double f) { report(0, f); };
+  travel_reading.baseline.slip_definition = SlipDefinition::travel;
+  travel_reading.progress = [&](double f) {
+    if (stop.load()) throw DataError("cancelled");
+    report(1, f);
+  };
+  shared_thread_pool().run_beside([&] { as_travel = run_in_family(soil, points, travel_reading); },
+                                  [&] {
+                                    try {
+                                      as_longitudinal = run_in_family(soil, points, longitudinal);
+                                    } catch (...) {
+                                      stop = true;
+                                      throw;
+                                    }
+                                  });
+  if (progress) progress(1.0);
+}
+
 }  // namespace
 
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
@@ -1196,38 +1230,8 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     o.baseline.slip_definition = *o.slip_definition;
     r = run_in_family(soil, points, o);
   } else {
-    // The two readings side by side: the travel one on the pool, the
-    // longitudinal one here; the progress is their mean, reported by either
-    // (one at a time; the one done first would leave it standing), and a
-    // cancel stops both.
-    const auto progress = options.progress;
-    std::atomic<bool> stop{false};
-    std::mutex reporting;
-    double done[2] = {0.0, 0.0};
-    const auto report = [&](int reading, double f) {
-      const std::lock_guard<std::mutex> lock(reporting);
-      done[reading] = f;
-      if (progress) progress(0.5 * (done[0] + done[1]));
-    };
-    DiscrepancyOptions longitudinal = o, travel_reading = o;
-    longitudinal.baseline.slip_definition = SlipDefinition::longitudinal;
-    longitudinal.progress = [&](double f) { report(0, f); };
-    travel_reading.baseline.slip_definition = SlipDefinition::travel;
-    travel_reading.progress = [&](double f) {
-      if (stop.load()) throw DataError("cancelled");
-      report(1, f);
-    };
     DiscrepancyReport as_longitudinal, as_travel;
-    shared_thread_pool().run_beside([&] { as_travel = run_in_family(soil, points, travel_reading); },
-                                    [&] {
-                                      try {
-                                        as_longitudinal = run_in_family(soil, points, longitudinal);
-                                      } catch (...) {
-                                        stop = true;
-                                        throw;
-                                      }
-                                    });
-    if (progress) progress(1.0);
+    run_both_readings(soil, points, o, as_longitudinal, as_travel);
     const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
     if (lost_travel == lost_longitudinal && readings_differ(as_longitudinal, as_travel)) {
       as_longitudinal.slip_definition = to_string(SlipDefinition::longitudinal);
