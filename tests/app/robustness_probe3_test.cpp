@@ -147,8 +147,9 @@ TEST(Probe3, StreamsAreFoundByNameInLinearTime) {
 }
 
 // An MCAP file of `topics` JSON topics /t0, /t1, ..., one message {"v": k}
-// each, unchunked and without a summary (the MCAP spec's records, little-endian).
-void write_many_topics_mcap(const std::string& path, int topics) {
+// each (or `body`), unchunked and without a summary (the MCAP spec's records,
+// little-endian).
+void write_many_topics_mcap(const std::string& path, int topics, const std::string& body = "") {
   std::string out("\x89MCAP0\r\n", 8);
   const auto u16 = [](std::string& b, std::uint16_t v) { b.append(reinterpret_cast<const char*>(&v), 2); };
   const auto u32 = [](std::string& b, std::uint32_t v) { b.append(reinterpret_cast<const char*>(&v), 4); };
@@ -179,7 +180,7 @@ void write_many_topics_mcap(const std::string& path, int topics) {
     u32(message, 0);
     u64(message, 1700000000000000000ULL + static_cast<std::uint64_t>(k) * 1000000ULL);
     u64(message, 1700000000000000000ULL + static_cast<std::uint64_t>(k) * 1000000ULL);
-    record(0x05, message + "{\"v\": " + std::to_string(k) + "}");
+    record(0x05, message + (body.empty() ? "{\"v\": " + std::to_string(k) + "}" : body));
   }
   std::string data_end;
   u32(data_end, 0);  // no data-section CRC
@@ -252,6 +253,25 @@ TEST(Probe3, ManyTopicsConvertAndReadBack) {
   H5Sclose(space);
   H5Fclose(f);
   expect_one_line(run_roverlab("info " + quote(out)), 3, out, "/metadata/extra: 'extra' is not a 1-D table");
+}
+
+// Fuzzing the MCAP reader (issue 47 item 3): a JSON message nested 100,000
+// deep was built whole before its values past depth 64 were ignored (a
+// 1 s timeout under ASan); such containers are now dropped while parsing.
+// The values within reach are read as before.
+TEST(Probe3, JsonNestedDeepIsReadToItsChannelsOnly) {
+  TempDir dir;
+  const std::string mcap = dir.file("deep.mcap");
+  write_many_topics_mcap(
+      mcap, 1,
+      "{\"a\": 1.5, \"deep\": " + std::string(100000, '[') + std::string(100000, ']') + ", \"b\": {\"c\": 2.5}}");
+  const auto start = std::chrono::steady_clock::now();
+  const log::Log lg = io::load_log(mcap).log;
+  EXPECT_LT(seconds_since(start), 5.0);
+  const log::Stream& s = lg.stream("t0");
+  ASSERT_EQ(s.channels().size(), 2U);
+  EXPECT_EQ(s.channel("a").values.at(0), 1.5);
+  EXPECT_EQ(s.channel("b.c").values.at(0), 2.5);
 }
 
 // F17: terminal escapes in topic and joint names reach the terminal as \xHH.
