@@ -20,6 +20,9 @@ namespace {
 // not mostly empty (HDF5 allocates whole chunks). Chunks above the 1 MiB chunk
 // cache are read straight into the caller's buffer.
 constexpr hsize_t kMaxChunkSamples = 262144;
+// Datasets of at most this many samples (8 kB) are compact, stored in their
+// object header: a chunked one costs a chunk index each.
+constexpr hsize_t kMaxCompactSamples = 1024;
 
 // The metadata as attributes of /metadata up to this many entries, else as
 // the one table /metadata/extra (docs/log-format.md).
@@ -49,7 +52,9 @@ void write_vector(hid_t parent, const std::string& name, const std::vector<doubl
   const hsize_t n = values.size();
   Handle space(H5Screate_simple(1, &n, nullptr));
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  if (n > 0) {
+  if (n > 0 && n <= kMaxCompactSamples) {
+    H5Pset_layout(dcpl.get(), H5D_COMPACT);  // in the object header: no chunk index to create (65,535 topics)
+  } else if (n > 0) {
     const hsize_t chunks = (n + kMaxChunkSamples - 1) / kMaxChunkSamples;
     const hsize_t chunk = (n + chunks - 1) / chunks;
     H5Pset_chunk(dcpl.get(), 1, &chunk);
