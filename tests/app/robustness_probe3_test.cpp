@@ -274,6 +274,19 @@ TEST(Probe3, JsonNestedDeepIsReadToItsChannelsOnly) {
   EXPECT_EQ(s.channel("b.c").values.at(0), 2.5);
 }
 
+// Every generator's output (issue 47 item 3): a bag whose index points past
+// its chunks crashed the reading process (SIGSEGV, about one run in five
+// under load): the crash guard's trial only walked the messages through the
+// library, the read after it decoded them too. The trial is now that read.
+TEST(Probe3, ABagIndexedPastItsChunksIsRefusedEveryTime) {
+  const std::string bag = kProbe + "indexdata_off_past.bag";
+  for (int run = 0; run < 12; ++run) {
+    const CommandResult r = run_roverlab("info " + quote(bag));
+    ASSERT_EQ(r.exit_code, 3) << "run " << run << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, "indexdata_off_past.bag")) << r.err;
+  }
+}
+
 // F17: terminal escapes in topic and joint names reach the terminal as \xHH.
 TEST(Probe3, ControlCharactersInNamesAreEscaped) {
   const CommandResult r = run_roverlab("info " + quote(kProbe + "escapes.bag"));
