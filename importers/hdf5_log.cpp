@@ -20,6 +20,15 @@ namespace {
 // not mostly empty (HDF5 allocates whole chunks). Chunks above the 1 MiB chunk
 // cache are read straight into the caller's buffer.
 constexpr hsize_t kMaxChunkSamples = 262144;
+// Datasets of at most this many samples (8 kB) are compact, stored in their
+// object header: a chunked one costs a chunk index each.
+constexpr hsize_t kMaxCompactSamples = 1024;
+
+// The metadata as attributes of /metadata up to this many entries, else as
+// the one table /metadata/extra (docs/log-format.md).
+constexpr std::size_t kMaxMetadataAttributes = 64;
+constexpr std::size_t kMaxMetadataEntries = std::size_t{1} << 20;
+constexpr const char* kMetadataTable = "extra";
 
 Handle make_group(hid_t parent, const std::string& name) {
   Handle gcpl(H5Pcreate(H5P_GROUP_CREATE));
@@ -43,7 +52,9 @@ void write_vector(hid_t parent, const std::string& name, const std::vector<doubl
   const hsize_t n = values.size();
   Handle space(H5Screate_simple(1, &n, nullptr));
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
-  if (n > 0) {
+  if (n > 0 && n <= kMaxCompactSamples) {
+    H5Pset_layout(dcpl.get(), H5D_COMPACT);  // in the object header: no chunk index to create (65,535 topics)
+  } else if (n > 0) {
     const hsize_t chunks = (n + kMaxChunkSamples - 1) / kMaxChunkSamples;
     const hsize_t chunk = (n + chunks - 1) / chunks;
     H5Pset_chunk(dcpl.get(), 1, &chunk);
@@ -96,8 +107,15 @@ void write_file(const log::LogMetadata& meta, std::initializer_list<const log::L
   h5::write_string_attribute(file.get(), "source_file", meta.source_file);
   h5::write_string_attribute(file.get(), "description", meta.description);
   Handle metadata = make_group(file.get(), "metadata");
-  for (const auto& [key, value] : meta.extra) {
-    h5::write_string_attribute(metadata.get(), key.c_str(), value);
+  if (meta.extra.size() > kMaxMetadataEntries) {
+    throw std::runtime_error(std::to_string(meta.extra.size()) + " metadata entries (at most " +
+                             std::to_string(kMaxMetadataEntries) + ")");
+  }
+  if (meta.extra.size() <= kMaxMetadataAttributes) {
+    for (const auto& [key, value] : meta.extra) h5::write_string_attribute(metadata.get(), key.c_str(), value);
+  } else {
+    // One entry per topic of a large bag: one table, written at once.
+    h5::write_string_pairs(metadata.get(), kMetadataTable, h5::StringPairs(meta.extra.begin(), meta.extra.end()));
   }
 
   if (!meta.results.empty()) {
@@ -205,6 +223,17 @@ Hdf5LogReader::Hdf5LogReader(const std::string& path) : path_(path), file_(new F
       H5Aget_name(attr.get(), key.size(), key.data());
       key.resize(static_cast<std::size_t>(len));
       metadata_.extra[key] = h5::read_string_attribute(group.get(), key.c_str()).value_or("");
+    }
+    if (h5::object_kind(group.get(), kMetadataTable) == h5::ObjectKind::dataset) {
+      try {
+        for (auto& [key, value] : h5::read_string_pairs(group.get(), kMetadataTable, kMaxMetadataEntries)) {
+          if (!metadata_.extra.emplace(key, std::move(value)).second) {
+            throw std::runtime_error("metadata key '" + key + "' is given twice");
+          }
+        }
+      } catch (const std::runtime_error& e) {
+        throw InputError(path, std::string("corrupt RoverLab log: /metadata/") + kMetadataTable + ": " + e.what());
+      }
     }
   }
   if (h5::object_kind(f, "results") == h5::ObjectKind::group) {

@@ -165,6 +165,67 @@ std::optional<std::string> read_text_dataset(hid_t group, const char* name, std:
   return buffer;
 }
 
+namespace {
+
+struct PairRecord {
+  const char* key;
+  const char* value;
+};
+
+Handle pair_type() {
+  Handle text(H5Tcopy(H5T_C_S1));
+  H5Tset_size(text.get(), H5T_VARIABLE);
+  H5Tset_cset(text.get(), H5T_CSET_UTF8);
+  Handle type(H5Tcreate(H5T_COMPOUND, sizeof(PairRecord)));
+  H5Tinsert(type.get(), "key", HOFFSET(PairRecord, key), text.get());
+  H5Tinsert(type.get(), "value", HOFFSET(PairRecord, value), text.get());
+  return type;
+}
+
+}  // namespace
+
+void write_string_pairs(hid_t group, const char* name, const StringPairs& pairs) {
+  std::vector<PairRecord> records;
+  records.reserve(pairs.size());
+  for (const auto& [key, value] : pairs) records.push_back({key.c_str(), value.c_str()});
+  const hsize_t n = records.size();
+  Handle type = pair_type();
+  Handle space(H5Screate_simple(1, &n, nullptr));
+  Handle set(H5Dcreate2(group, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (!set.valid() || (n > 0 && H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, records.data()) < 0)) {
+    throw std::runtime_error(std::string("cannot write dataset '") + name + "': " + last_error_text());
+  }
+}
+
+StringPairs read_string_pairs(hid_t group, const char* name, std::size_t max_pairs) {
+  Handle set(H5Dopen2(group, name, H5P_DEFAULT));
+  if (!set.valid()) throw std::runtime_error(std::string("cannot open '") + name + "': " + last_error_text());
+  Handle stored(H5Dget_type(set.get()));
+  const auto shape = dataset_shape(set.get());
+  if (H5Tget_class(stored.get()) != H5T_COMPOUND || H5Tget_nmembers(stored.get()) != 2 ||
+      H5Tget_member_index(stored.get(), "key") < 0 || H5Tget_member_index(stored.get(), "value") < 0 ||
+      shape.size() != 1) {
+    throw std::runtime_error(std::string("'") + name + "' is not a 1-D table of key and value strings");
+  }
+  if (shape[0] > max_pairs) {
+    throw std::runtime_error(std::string("'") + name + "' holds " + std::to_string(shape[0]) + " entries (at most " +
+                             std::to_string(max_pairs) + ")");
+  }
+  std::vector<PairRecord> records(static_cast<std::size_t>(shape[0]), PairRecord{nullptr, nullptr});
+  Handle type = pair_type();
+  if (!records.empty() && H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, records.data()) < 0) {
+    throw std::runtime_error(std::string("cannot read '") + name + "': " + last_error_text());
+  }
+  StringPairs pairs;
+  pairs.reserve(records.size());
+  for (const auto& r : records) pairs.emplace_back(r.key != nullptr ? r.key : "", r.value != nullptr ? r.value : "");
+  if (!records.empty()) {
+    Handle space(H5Dget_space(set.get()));
+    H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, records.data());
+  }
+  return pairs;
+}
+
 void write_int_attribute(hid_t object, const char* name, std::int64_t value) {
   Handle space(H5Screate(H5S_SCALAR));
   Handle attr(H5Acreate2(object, name, H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT));

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace roverlab::io::h5 {
@@ -51,6 +52,14 @@ void write_int_attribute(hid_t object, const char* name, std::int64_t value);
 // string dataset; read back when it is one of at most `max_bytes`.
 void write_text_dataset(hid_t group, const char* name, const std::string& value);
 std::optional<std::string> read_text_dataset(hid_t group, const char* name, std::size_t max_bytes);
+// Key/value text pairs as one 1-D dataset of a compound {key, value} of UTF-8
+// variable-length strings: thousands of pairs in one write (as attributes of
+// one object, libhdf5 appends each to its header in time linear in those
+// before it). Reading throws std::runtime_error when the dataset is not such a
+// table or holds more than `max_pairs`.
+using StringPairs = std::vector<std::pair<std::string, std::string>>;
+void write_string_pairs(hid_t group, const char* name, const StringPairs& pairs);
+StringPairs read_string_pairs(hid_t group, const char* name, std::size_t max_pairs);
 
 // Links of a group, in creation order when the group tracks it, else by name.
 std::vector<std::string> link_names(hid_t group);

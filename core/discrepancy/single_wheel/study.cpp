@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
+#include <thread>
 
 #include "core/common/error.h"
 #include "core/common/thread_pool.h"
@@ -19,6 +21,52 @@ using namespace roverlab::terramechanics;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+// The study's progress as the share of its fits done, so that the percentage
+// follows the work: a fit on all points (started afresh, or a selection step's
+// at most 10 iterations) is kFitUnits, a held-out fold's refit (at most 5
+// iterations from the fit on all points) one unit, each times the square of
+// the candidates fitted together (measured on 300 points: one candidate's
+// fits 0.9 s, 0.8 s and 0.32 s on one thread; three candidates' ten times that). Parts run on the pool count their
+// fits; only the thread that made the meter reports (a report may throw to cancel).
+constexpr double kFitUnits = 3.0;
+
+class WorkMeter {
+ public:
+  explicit WorkMeter(std::function<void(double)> progress)
+      : progress_(std::move(progress)), owner_(std::this_thread::get_id()) {}
+  void expect(double units) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    total_ += units;
+  }
+  // `units` more done, and what is still expected at least (the selection's
+  // steps are not known in advance: the total grows when a step outgrows it).
+  void done(double units = 1.0, double still = 0.0) {
+    double fraction = 0.0;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      done_ += units;
+      total_ = std::max(total_, done_ + still);
+      fraction = std::min(0.99, total_ > 0.0 ? done_ / total_ : 0.0);
+      if (fraction <= shown_ || std::this_thread::get_id() != owner_) return;
+      shown_ = fraction;
+    }
+    if (progress_) progress_(fraction);
+  }
+  double remaining() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return std::max(0.0, total_ - done_);
+  }
+  void finish() const {
+    if (progress_) progress_(1.0);
+  }
+
+ private:
+  std::function<void(double)> progress_;
+  std::thread::id owner_;
+  mutable std::mutex mutex_;
+  double total_ = 0.0, done_ = 0.0, shown_ = 0.0;
+};
 
 // RMS residual in the stated measurement sigmas (the fits may weight by others).
 double score_of(const std::vector<PointResidual>& residuals, const MeasurementSigma& sigma) {
@@ -180,8 +228,9 @@ bool any_at_bound(const CandidateResult& c) {
 // held-out score, the winner, and the sentences on what is wrong and why.
 class SingleWheelStudy {
  public:
-  SingleWheelStudy(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& options)
-      : soil_(soil), points_(points), o_(options) {}
+  SingleWheelStudy(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& options,
+                   WorkMeter& meter)
+      : soil_(soil), points_(points), o_(options), meter_(meter) {}
   DiscrepancyReport run();
 
  private:
@@ -215,10 +264,21 @@ class SingleWheelStudy {
     return n <= o_.max_leave_one_out_points ? n : n <= o_.large_points ? o_.folds : std::min(o_.folds, o_.large_folds);
   }
   void assign_folds();
+  // The fits of a set fitted with its held-out score: two on all points, one per fold.
+  double held_out_fits(std::size_t together = 1) const {
+    return units(together) * (2.0 * kFitUnits + (o_.leave_one_out ? static_cast<double>(folds_) : 0.0));
+  }
+  static double units(std::size_t together) { return static_cast<double>(together * together); }
+  // A set not fitted: its share of the work done at once.
+  CandidateResult not_applicable(CandidateResult c, bool with_held_out) const {
+    meter_.done(with_held_out ? held_out_fits() : kFitUnits * units(1));
+    return c;
+  }
 
   const Soil& soil_;
   const std::vector<WheelTestPoint>& points_;
   const DiscrepancyOptions& o_;
+  WorkMeter& meter_;
   MeasurementSigma weights_;  // the fits' per-quantity sigmas: the baseline's profiled scales
   bool any_grousers_ = false;
   std::vector<std::unique_ptr<SingleWheelCandidate>> candidates_;
@@ -238,15 +298,14 @@ DiscrepancyReport SingleWheelStudy::run() {
   any_grousers_ = std::any_of(points_.begin(), points_.end(),
                               [](const auto& p) { return p.wheel.grouser_count > 0 && p.wheel.grouser_height > 0.0; });
   candidates_ = single_wheel_candidates();
-  // Progress: the candidates alone are about half the work, the selection the rest.
-  const auto done = [&](double fraction) {
-    if (o_.progress) o_.progress(fraction);
-  };
   // The screen: each candidate fitted alone, in parallel (core/common/thread_pool.h).
+  // Its fits, and half a step of the selection (its steps are known only as it goes:
+  // the total grows with each step begun).
+  const auto n = static_cast<double>(candidates_.size());
+  meter_.expect(n * held_out_fits() + 0.5 * (n - 1.0) * kFitUnits * units(2));
   for (auto& c : screen_candidates<CandidateResult>(candidates_.size(),
                                                     [&](std::size_t i) { return fit_set({candidates_[i].get()}); }))
     report_.candidates.push_back(std::move(c));
-  done(0.5);
   choose_best();
   report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
   select_forward();
@@ -258,7 +317,6 @@ DiscrepancyReport SingleWheelStudy::run() {
   write_verdict();
   judge_quantities();
   score_per_wheel();
-  done(1.0);
   return std::move(report_);
 }
 
@@ -397,17 +455,17 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
     if (candidate->needs_grousers() && !any_grousers_) {
       c.applicable = false;
       c.not_applicable_because = "no wheel in the data has grousers (columns grouser_count and grouser_height_m)";
-      return c;
+      return not_applicable(std::move(c), with_held_out);
     }
     if (!candidate->belongs_to(o_.baseline.kind)) {
       c.applicable = false;
       c.not_applicable_because = "not an extension of the " + family_name(o_.baseline.kind) + " family";
-      return c;
+      return not_applicable(std::move(c), with_held_out);
     }
     if (candidate->needs_lateral_force() && !has_lateral_force(o_.baseline.kind)) {
       c.applicable = false;
       c.not_applicable_because = "no point has a slip angle or a measured lateral force";
-      return c;
+      return not_applicable(std::move(c), with_held_out);
     }
   }
   IdentificationOptions io;
@@ -439,12 +497,14 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
     io.covariance = false;
   }
   c.fit = identify_soil(start, points_, io);
+  meter_.done(kFitUnits * units(set.size()));
   if (with_held_out) {
     // Second pass at the solution's own per-quantity scales (the profile
     // likelihood's weights there): its sigmas are in the right units.
     io.sigma = profiled_sigma(c.fit.residuals, o_.sigma);
     io.model.extensions = c.fit.extensions;
     c.fit = identify_soil(c.fit.soil, points_, io);
+    meter_.done(kFitUnits * units(set.size()));
   }
   mark_bounds(c.fit);
   c.in_sample = residual_statistics(c.fit.residuals, points_);
@@ -536,6 +596,12 @@ void SingleWheelStudy::select_forward() {
     std::vector<const SingleWheelCandidate*> best_set;
     const int best = best_next_step(chain, at, best_fit, best_set);
     if (best < 0) break;
+    // The step's fits still to come: the partner search's, the next step's.
+    const auto open = static_cast<double>(std::count_if(report_.candidates.begin(), report_.candidates.end(),
+                                                        [](const CandidateResult& c) { return c.applicable; }));
+    meter_.done(0.0,
+                std::max(0.0, open - static_cast<double>(chain.size()) - 1.0) * kFitUnits * units(chain.size() + 2) +
+                    held_out_fits(chain.size() + 1));
     with_held_out(best_fit, best_set, at);
     if (passes(best_fit, bic)) {
       chain.push_back(static_cast<std::size_t>(best));
@@ -560,9 +626,6 @@ void SingleWheelStudy::select_forward() {
     report_.selection.push_back(std::move(best_fit));
     at = &report_.selection.back();
     held_rmse = &at->held_out_rmse;
-    if (o_.progress) {
-      o_.progress(0.5 + 0.45 * static_cast<double>(chain.size()) / static_cast<double>(candidates_.size()));
-    }
   }
 }
 
@@ -629,6 +692,7 @@ std::vector<PointResidual> SingleWheelStudy::held_out(const IdentificationOption
       }
     }
     const IdentificationResult f = identify_soil(from, train, refit);
+    meter_.done(units(set.size()));
     IdentificationOptions predict_only;
     predict_only.model = refit.model;
     predict_only.model.extensions = f.extensions;
@@ -928,7 +992,7 @@ double final_bic(const DiscrepancyReport& r) { return r.selection.empty() ? r.ba
 // j in fold j mod folds); nothing fitted: its in-sample error. `fitted` gets
 // the soil with the fitted values.
 FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& o,
-                               Soil& fitted) {
+                               Soil& fitted, WorkMeter& meter) {
   FamilyBaseline f;
   f.family = family_name(o.baseline.kind);
   IdentificationOptions io;
@@ -936,6 +1000,7 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
   io.sigma = o.sigma;
   io.free = family_parameters(o.baseline.kind);
   const IdentificationResult all = identify_soil(soil, points, io);
+  meter.done(kFitUnits);
   fitted = all.soil;
   f.parameters = all.parameters;
   std::vector<PointResidual> held = all.residuals;
@@ -958,6 +1023,7 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
         r.point = index[r.point];
         held.push_back(r);
       }
+      meter.done(kFitUnits);
     }
   }
   const auto stats = residual_statistics(held, points);
@@ -975,12 +1041,13 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
 // the lower error taken (RFT with its fitted material scale as the study's
 // start), and a sentence saying which and by how much.
 std::string choose_family(const Soil& soil, const std::vector<WheelTestPoint>& points, DiscrepancyOptions& o,
-                          Soil& start, std::vector<FamilyBaseline>& families) {
+                          Soil& start, std::vector<FamilyBaseline>& families, WorkMeter& meter) {
   DiscrepancyOptions wong = o, rft = o;
   if (wong.baseline.kind == ModelKind::rft) wong.baseline.kind = ModelKind::ishigami;
   rft.baseline.kind = ModelKind::rft;
   Soil wong_soil, rft_soil;
-  families = {family_baseline(soil, points, wong, wong_soil), family_baseline(soil, points, rft, rft_soil)};
+  families = {family_baseline(soil, points, wong, wong_soil, meter),
+              family_baseline(soil, points, rft, rft_soil, meter)};
   const bool take_rft = families[1].held_out_score < families[0].held_out_score ||
                         (!std::isfinite(families[0].held_out_score) && std::isfinite(families[1].held_out_score));
   o.baseline.kind = take_rft ? ModelKind::rft : wong.baseline.kind;
@@ -999,13 +1066,23 @@ DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoi
   Soil start = soil;
   std::vector<FamilyBaseline> families;
   std::string choice;
+  WorkMeter meter(o.progress);
+  // A family's baseline: one fit on all points and one afresh per fold.
+  const double family_fits =
+      kFitUnits *
+      (1.0 + (o.leave_one_out
+                  ? static_cast<double>(std::min<std::size_t>(std::max<std::size_t>(o.folds, 2), points.size()))
+                  : 0.0));
   if (o.compare_families) {
-    choice = choose_family(soil, points, o, start, families);
+    meter.expect(2.0 * family_fits);
+    choice = choose_family(soil, points, o, start, families, meter);
   } else if (o.baseline.kind == ModelKind::rft) {
-    families = {family_baseline(soil, points, o, start)};
+    meter.expect(family_fits);
+    families = {family_baseline(soil, points, o, start, meter)};
     choice = "baseline family RFT (given), material scale fitted";
   }
-  DiscrepancyReport r = SingleWheelStudy(start, points, o).run();
+  DiscrepancyReport r = SingleWheelStudy(start, points, o, meter).run();
+  meter.finish();
   r.families = std::move(families);
   r.family_choice = std::move(choice);
   return r;
@@ -1050,6 +1127,40 @@ std::string reading_reason(const DiscrepancyReport& as_travel, const Discrepancy
   }
 }
 
+// The two readings side by side: the travel one on the pool, the
+// longitudinal one here; the progress is their mean, reported by either (one
+// at a time; the one done first would leave it standing), and a cancel stops both.
+void run_both_readings(const Soil& soil, const std::vector<WheelTestPoint>& points, const DiscrepancyOptions& o,
+                       DiscrepancyReport& as_longitudinal, DiscrepancyReport& as_travel) {
+  const auto& progress = o.progress;
+  std::atomic<bool> stop{false};
+  std::mutex reporting;
+  double done[2] = {0.0, 0.0};
+  const auto report = [&](int reading, double f) {
+    const std::lock_guard<std::mutex> lock(reporting);
+    done[reading] = f;
+    if (progress) progress(0.5 * (done[0] + done[1]));
+  };
+  DiscrepancyOptions longitudinal = o, travel_reading = o;
+  longitudinal.baseline.slip_definition = SlipDefinition::longitudinal;
+  longitudinal.progress = [&](double f) { report(0, f); };
+  travel_reading.baseline.slip_definition = SlipDefinition::travel;
+  travel_reading.progress = [&](double f) {
+    if (stop.load()) throw DataError("cancelled");
+    report(1, f);
+  };
+  shared_thread_pool().run_beside([&] { as_travel = run_in_family(soil, points, travel_reading); },
+                                  [&] {
+                                    try {
+                                      as_longitudinal = run_in_family(soil, points, longitudinal);
+                                    } catch (...) {
+                                      stop = true;
+                                      throw;
+                                    }
+                                  });
+  if (progress) progress(1.0);
+}
+
 }  // namespace
 
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
@@ -1081,27 +1192,8 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
     o.baseline.slip_definition = *o.slip_definition;
     r = run_in_family(soil, points, o);
   } else {
-    // The two readings side by side: the travel one on the pool, the
-    // longitudinal one here, reporting progress (a cancel stops both).
-    const auto progress = options.progress;
-    std::atomic<bool> stop{false};
-    DiscrepancyOptions longitudinal = o, travel_reading = o;
-    longitudinal.baseline.slip_definition = SlipDefinition::longitudinal;
-    if (progress) longitudinal.progress = progress;
-    travel_reading.baseline.slip_definition = SlipDefinition::travel;
-    travel_reading.progress = [&](double) {
-      if (stop.load()) throw DataError("cancelled");
-    };
     DiscrepancyReport as_longitudinal, as_travel;
-    shared_thread_pool().run_beside([&] { as_travel = run_in_family(soil, points, travel_reading); },
-                                    [&] {
-                                      try {
-                                        as_longitudinal = run_in_family(soil, points, longitudinal);
-                                      } catch (...) {
-                                        stop = true;
-                                        throw;
-                                      }
-                                    });
+    run_both_readings(soil, points, o, as_longitudinal, as_travel);
     const std::size_t lost_travel = as_travel.unsupported, lost_longitudinal = as_longitudinal.unsupported;
     if (lost_travel == lost_longitudinal && readings_differ(as_longitudinal, as_travel)) {
       as_longitudinal.slip_definition = to_string(SlipDefinition::longitudinal);
