@@ -143,7 +143,9 @@ void delete_metadata(hid_t file, const std::string& key) {
 // larger than max_size()") or print nan sigmas with exit 0.
 TEST(NewSurfaces, AnEmptyOrOneSampleStreamIsNamedNotACrash) {
   TempDir dir;
-  const SimulatedLog log(dir, "flat.h5", 12);
+  // 25 s: 1,251 samples at 50 Hz, so the streams are chunked (the log writes datasets of at most
+  // 1,024 samples compact, which H5Dset_extent cannot cut).
+  const SimulatedLog log(dir, "flat.h5", 25);
   const std::string empty = log.copy_as(dir, "empty.h5"), one = log.copy_as(dir, "one.h5");
   edit_file(empty, [](hid_t f) { cut_stream(f, "forces", 0); });
   edit_file(one, [](hid_t f) { cut_stream(f, "forces", 1); });
