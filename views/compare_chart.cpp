@@ -24,24 +24,13 @@
 #include "core/common/error.h"
 #include "views/display_series.h"
 #include "views/timeseries_chart.h"
+#include "views/vtk_parts.h"
 
 namespace roverlab::views {
 
 namespace {
 
 constexpr std::size_t kMaxChannels = 4;  // two plots each
-
-vtkSmartPointer<vtkTable> table_of(const std::vector<std::pair<const char*, std::vector<double>>>& columns) {
-  auto table = vtkSmartPointer<vtkTable>::New();
-  for (const auto& [name, values] : columns) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-    for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
-    table->AddColumn(a);
-  }
-  return table;
-}
 
 void widen(std::pair<double, double>& range, const std::vector<double>& values) {
   for (double v : values) {

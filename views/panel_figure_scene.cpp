@@ -24,6 +24,7 @@
 
 #include "views/panel_figure.h"
 #include "views/view.h"
+#include "views/vtk_parts.h"
 
 namespace roverlab::views {
 
@@ -102,18 +103,6 @@ std::vector<std::pair<std::size_t, std::size_t>> finite_runs(const std::vector<d
     if (i > start) runs.emplace_back(start, i);
   }
   return runs;
-}
-
-vtkSmartPointer<vtkTable> table_of(const std::vector<std::pair<const char*, std::vector<double>>>& columns) {
-  auto table = vtkSmartPointer<vtkTable>::New();
-  for (const auto& [name, values] : columns) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-    for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
-    table->AddColumn(a);
-  }
-  return table;
 }
 
 // A text at (x, y) pixels from the point at `across` of the viewport's width on its top edge.

@@ -4,6 +4,7 @@
 #include <vtkAlgorithmOutput.h>
 #include <vtkArrowSource.h>
 #include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkIdList.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
@@ -12,6 +13,7 @@
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyLine.h>
 #include <vtkProperty.h>
+#include <vtkTable.h>
 #include <vtkTransform.h>
 
 #include <Eigen/Geometry>
@@ -125,6 +127,18 @@ vtkSmartPointer<vtkActor> line_actor(vtkAlgorithmOutput* port, const Eigen::Vect
   auto actor = actor_of(port, rgb);
   unlit_line(actor, width);
   return actor;
+}
+
+vtkSmartPointer<vtkTable> table_of(const std::vector<std::pair<const char*, std::vector<double>>>& columns) {
+  auto table = vtkSmartPointer<vtkTable>::New();
+  for (const auto& [name, values] : columns) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+    for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
+    table->AddColumn(a);
+  }
+  return table;
 }
 
 }  // namespace roverlab::views

@@ -4,6 +4,7 @@
 // built from points, unlit arrows, and the unlit line style the scenes draw tracks,
 // links and residuals in.
 
+#include <utility>
 #include <vector>
 
 #include <vtkSmartPointer.h>
@@ -12,6 +13,7 @@
 class vtkActor;
 class vtkAlgorithmOutput;
 class vtkPolyData;
+class vtkTable;
 
 namespace roverlab::views {
 
@@ -41,5 +43,8 @@ vtkSmartPointer<vtkPolyData> legend_swatch();
 // The polyline/mapper/actor triple: `lines` drawn unlit, `width` pixels wide.
 vtkSmartPointer<vtkActor> line_actor(vtkPolyData* lines, const Eigen::Vector3d& rgb, double width);
 vtkSmartPointer<vtkActor> line_actor(vtkAlgorithmOutput* port, const Eigen::Vector3d& rgb, double width);
+
+// A chart's table: one double column per (name, values) pair.
+vtkSmartPointer<vtkTable> table_of(const std::vector<std::pair<const char*, std::vector<double>>>& columns);
 
 }  // namespace roverlab::views
