@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
+#include <unordered_map>
 
 namespace roverlab::terramechanics {
 
@@ -156,36 +158,55 @@ WheelMotion rft_wheel_motion(double slip, double slip_angle, SlipDefinition defi
 
 namespace {
 
-// The mesh of the last wheel evaluated on this thread (geometry and grouser height scale).
-const std::vector<RftElement>& cached_mesh(const Wheel& w, double grouser_height_scale) {
-  struct Cache {
-    double radius = -1, width = -1, height = -1, thickness = -1;
-    int count = -1;
-    std::vector<RftElement> mesh;
-  };
-  thread_local Cache cache;
+// The meshes of the last wheels evaluated on this thread (geometry and
+// grouser height scale; a study's file may hold several wheels), each with a
+// generation that names it in the motion cache below.
+struct MeshCache {
+  double radius = -1, width = -1, height = -1, thickness = -1;
+  int count = -1;
+  unsigned long generation = 0;
+  std::vector<RftElement> mesh;
+};
+constexpr std::size_t kCachedMeshes = 8;
+
+const MeshCache& cached_mesh(const Wheel& w, double grouser_height_scale) {
+  thread_local std::vector<std::unique_ptr<MeshCache>> cache;
+  thread_local unsigned long generations = 0;
   const double height = grouser_height_scale * w.grouser_height;
-  if (cache.radius != w.radius || cache.width != w.width || cache.height != height ||
-      cache.thickness != w.grouser_thickness || cache.count != w.grouser_count) {
-    cache =
-        Cache{w.radius, w.width, height, w.grouser_thickness, w.grouser_count, rft_wheel_mesh(w, grouser_height_scale)};
+  for (const auto& c : cache) {
+    if (c->radius == w.radius && c->width == w.width && c->height == height &&
+        c->thickness == w.grouser_thickness && c->count == w.grouser_count) {
+      return *c;
+    }
   }
-  return cache.mesh;
+  if (cache.size() >= kCachedMeshes) cache.clear();
+  cache.push_back(std::make_unique<MeshCache>(MeshCache{w.radius, w.width, height, w.grouser_thickness,
+                                                        w.grouser_count, ++generations,
+                                                        rft_wheel_mesh(w, grouser_height_scale)}));
+  return *cache.back();
 }
 
 // An element that carries stress at this motion: its force per unit depth
-// (zeta applied), height above the rim's bottom z, and the pile-up factor m:
-// its depth at sinkage s is m s - z (the surface ahead of a face that pushes
-// sand raised by a fraction of the sinkage), so it is immersed above s = z / m.
+// and unit material scale, its height above the rim's bottom z, and how
+// squarely it pushes along its horizontal motion (0..1).
+struct Stressed {
+  const RftElement* element;
+  Vec3 force;
+  double z, pushes;
+};
+
+// ... and with a pile-up: the factor m = 1 + pile-up x pushes, its depth at
+// sinkage s being m s - z (the surface ahead of a face that pushes sand
+// raised by a fraction of the sinkage), so it is immersed above s = z / m.
 struct Loaded {
   const RftElement* element;
   Vec3 force;
   double z, m, threshold;
 };
 
-std::vector<Loaded> loaded_elements(const std::vector<RftElement>& mesh, const Wheel& w, const WheelMotion& motion,
-                                    double zeta, double pileup) {
-  std::vector<Loaded> out;
+std::vector<Stressed> stressed_elements(const std::vector<RftElement>& mesh, const Wheel& w,
+                                        const WheelMotion& motion) {
+  std::vector<Stressed> out;
   out.reserve(mesh.size());
   const double omega = motion.rim_speed / w.radius;
   for (const RftElement& e : mesh) {
@@ -195,25 +216,98 @@ std::vector<Loaded> loaded_elements(const std::vector<RftElement>& mesh, const W
     if (f.x == 0.0 && f.y == 0.0 && f.z == 0.0) continue;
     const double h = std::sqrt(u.x * u.x + u.y * u.y);
     const double pushes = h > 0.0 ? std::max(0.0, (e.nx * u.x + e.ny * u.y) / h) : 0.0;
-    const double m = 1.0 + pileup * pushes;
-    const double z = e.pz + w.radius;
-    out.push_back({&e, {zeta * f.x, zeta * f.y, zeta * f.z}, z, m, z / m});
+    out.push_back({&e, f, e.pz + w.radius, pushes});
   }
-  std::sort(out.begin(), out.end(), [](const Loaded& a, const Loaded& b) { return a.threshold < b.threshold; });
   return out;
 }
+
+// Sorted by immersion threshold (into out, reusing its storage).
+void loaded_elements(const std::vector<Stressed>& stressed, double pileup, std::vector<Loaded>& out) {
+  out.clear();
+  out.reserve(stressed.size());
+  for (const Stressed& e : stressed) {
+    const double m = 1.0 + pileup * e.pushes;
+    out.push_back({e.element, e.force, e.z, m, e.z / m});
+  }
+  std::sort(out.begin(), out.end(), [](const Loaded& a, const Loaded& b) { return a.threshold < b.threshold; });
+}
+
+// The stresses depend on the mesh and the motion, not on the load, the
+// material scale, the depth scale or the pile-up: a fit evaluates the same
+// rows again and again with other values of those. So each thread keeps the
+// stressed elements of the motions it met, and their sorted list without a
+// pile-up (up to kCachedElements in all; then it starts over; an entry of a
+// mesh no longer cached is never matched again, as its generation is gone).
+// Results are those of a fresh computation, bit for bit.
+struct MotionKey {
+  unsigned long generation;
+  double cx, cy, cz, rim, radius;
+  bool operator==(const MotionKey& o) const {
+    return generation == o.generation && cx == o.cx && cy == o.cy && cz == o.cz && rim == o.rim &&
+           radius == o.radius;
+  }
+};
+struct MotionKeyHash {
+  std::size_t operator()(const MotionKey& k) const {
+    std::size_t h = std::hash<unsigned long>()(k.generation);
+    for (const double v : {k.cx, k.cy, k.cz, k.rim, k.radius}) {
+      h ^= std::hash<double>()(v) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+    }
+    return h;
+  }
+};
+constexpr std::size_t kCachedElements = std::size_t{1} << 21;  // about 200 MB per thread at most
+
+struct MotionCache {
+  std::unordered_map<MotionKey, std::vector<Stressed>, MotionKeyHash> stressed;
+  std::unordered_map<MotionKey, std::vector<Loaded>, MotionKeyHash> sorted;  // without a pile-up
+  std::vector<Loaded> scratch;                                               // with one
+  std::size_t elements = 0;
+  void make_room(std::size_t n) {
+    if (elements + n <= kCachedElements) return;
+    stressed.clear();
+    sorted.clear();
+    elements = 0;
+  }
+};
+
+const std::vector<Loaded>& cached_loaded(const MeshCache& mesh, const Wheel& w, const WheelMotion& motion,
+                                         double pileup) {
+  thread_local MotionCache cache;
+  const MotionKey key{mesh.generation, motion.centre.x, motion.centre.y, motion.centre.z, motion.rim_speed, w.radius};
+  if (pileup == 0.0) {
+    const auto found = cache.sorted.find(key);
+    if (found != cache.sorted.end()) return found->second;
+  }
+  auto stressed = cache.stressed.find(key);
+  if (stressed == cache.stressed.end()) {
+    std::vector<Stressed> fresh = stressed_elements(mesh.mesh, w, motion);
+    cache.make_room(2 * fresh.size());
+    cache.elements += fresh.size();
+    stressed = cache.stressed.emplace(key, std::move(fresh)).first;
+  }
+  loaded_elements(stressed->second, pileup, cache.scratch);
+  if (pileup != 0.0) return cache.scratch;
+  cache.elements += cache.scratch.size();
+  return cache.sorted.emplace(key, cache.scratch).first->second;
+}
+
+}  // namespace
+
+namespace {
 
 // Sinkage s from F_z(s) = W. With the depth-dependent scale zeta (1 + k d /
 // r), F_z is a quadratic in s between consecutive immersion thresholds
 // (prefix sums); the first interval where it reaches W brackets the root,
 // found there by bisection. NaN when F_z stays below W up to s = r.
-double solve_sinkage(const std::vector<Loaded>& loaded, double load, double radius, double depth_scale) {
+double solve_sinkage(const std::vector<Loaded>& loaded, double zeta, double load, double radius,
+                     double depth_scale) {
   const double kq = depth_scale / radius;
   double c2 = 0.0, c1 = 0.0, c0 = 0.0;
   for (std::size_t j = 0; j < loaded.size(); ++j) {
     const Loaded& l = loaded[j];
     if (l.threshold >= radius) break;
-    const double fz = l.force.z;
+    const double fz = zeta * l.force.z;
     c2 += kq * fz * l.m * l.m;
     c1 += fz * l.m - 2.0 * kq * fz * l.m * l.z;
     c0 += -fz * l.z + kq * fz * l.z * l.z;
@@ -246,10 +340,10 @@ SlipAngleTraction evaluate_rft(const Soil& soil, const Wheel& wheel, double load
     t.status = TractionStatus::invalid_input;
     return t;
   }
-  const auto& mesh = cached_mesh(wheel, e.grousers ? e.grouser_effectiveness : 1.0);
+  const MeshCache& mesh = cached_mesh(wheel, e.grousers ? e.grouser_effectiveness : 1.0);
   const WheelMotion motion = rft_wheel_motion(slip, slip_angle, options.slip_definition);
-  const std::vector<Loaded> loaded = loaded_elements(mesh, wheel, motion, zeta, e.rft_pileup);
-  const double s = solve_sinkage(loaded, load, wheel.radius, e.rft_depth_scale);
+  const std::vector<Loaded>& loaded = cached_loaded(mesh, wheel, motion, e.rft_pileup);
+  const double s = solve_sinkage(loaded, zeta, load, wheel.radius, e.rft_depth_scale);
   if (!std::isfinite(s)) {
     t.status = TractionStatus::unsupported_load;
     return t;
@@ -260,7 +354,7 @@ SlipAngleTraction evaluate_rft(const Soil& soil, const Wheel& wheel, double load
     const double d = l.m * s - l.z;
     if (!(d > 0.0)) continue;
     const double g = d * (1.0 + kq * d);  // zeta (1 + k d / r) d
-    const Vec3 f{l.force.x * g, l.force.y * g, l.force.z * g};
+    const Vec3 f{zeta * l.force.x * g, zeta * l.force.y * g, zeta * l.force.z * g};
     if (f.x < 0.0) resistance -= f.x;
     t.drawbar_pull += f.x;
     (l.element->part == RftPart::side ? t.sidewall : t.lateral_shear) += f.y;

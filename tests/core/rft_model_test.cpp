@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <thread>
 
 #include "core/terramechanics/model.h"
 #include "core/terramechanics/rft.h"
@@ -196,6 +197,44 @@ TEST(RftWheel, BadInputIsAStatusNotACrash) {
   EXPECT_EQ(evaluate_slip_angle(sand(NAN), smooth(), 20.0, 0.2, 0.0, rft()).status, TractionStatus::invalid_input);
   // More than half the wheel would have to sink: unsupported, as the other families say it.
   EXPECT_EQ(evaluate_slip_angle(sand(1e4), smooth(), 500.0, 0.2, 0.0, rft()).status, TractionStatus::unsupported_load);
+}
+
+// Each thread keeps the stresses of the motions it met (rft.cpp): a point
+// evaluated after many others, other wheels, pile-ups and depth scales among
+// them, is bit for bit what a fresh thread computes for it.
+TEST(RftWheel, AnEvaluationIsTheSameAfterOthersAsOnAFreshThread) {
+  Wheel g = smooth();
+  g.grouser_count = 12;
+  g.grouser_height = 0.005;
+  ModelOptions piled = rft();
+  piled.extensions.rft_pileup = 0.4;
+  piled.extensions.rft_depth_scale = 0.3;
+  const auto point = [&](const Wheel& w, const ModelOptions& o) {
+    return evaluate_slip_angle(sand(2.3e6), w, 21.0, 0.35, deg(40.0), o);
+  };
+  SlipAngleTraction fresh[3];
+  std::thread([&] {
+    fresh[0] = point(smooth(), rft());
+    fresh[1] = point(g, rft());
+    fresh[2] = point(smooth(), piled);
+  }).join();
+  for (int i = 0; i < 400; ++i) {  // other slips, angles, loads, scales, wheels and pile-ups
+    ModelOptions o = rft(i % 3 == 0 ? SlipDefinition::longitudinal : SlipDefinition::travel);
+    o.extensions.rft_pileup = (i % 4) * 0.2;
+    const bool same_motion = i % 5 == 0;  // the points' slip and angle, read another way or with another wheel
+    (void)evaluate_slip_angle(sand(1.5e6 + 1e4 * i), i % 2 != 0 ? g : smooth(), 10.0 + i % 30,
+                              same_motion ? 0.35 : -0.9 + 0.0045 * i, deg(same_motion ? 40.0 : i % 91), o);
+  }
+  const SlipAngleTraction again[3] = {point(smooth(), rft()), point(g, rft()), point(smooth(), piled)};
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(fresh[k].ok() && again[k].ok());
+    EXPECT_EQ(again[k].drawbar_pull, fresh[k].drawbar_pull) << k;
+    EXPECT_EQ(again[k].lateral_force, fresh[k].lateral_force) << k;
+    EXPECT_EQ(again[k].resistive_torque, fresh[k].resistive_torque) << k;
+    EXPECT_EQ(again[k].sinkage, fresh[k].sinkage) << k;
+  }
+  EXPECT_NE(fresh[0].drawbar_pull, fresh[1].drawbar_pull);  // the three points differ
+  EXPECT_NE(fresh[0].sinkage, fresh[2].sinkage);
 }
 
 }  // namespace
