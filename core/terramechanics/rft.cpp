@@ -174,15 +174,14 @@ const MeshCache& cached_mesh(const Wheel& w, double grouser_height_scale) {
   thread_local unsigned long generations = 0;
   const double height = grouser_height_scale * w.grouser_height;
   for (const auto& c : cache) {
-    if (c->radius == w.radius && c->width == w.width && c->height == height &&
-        c->thickness == w.grouser_thickness && c->count == w.grouser_count) {
+    if (c->radius == w.radius && c->width == w.width && c->height == height && c->thickness == w.grouser_thickness &&
+        c->count == w.grouser_count) {
       return *c;
     }
   }
   if (cache.size() >= kCachedMeshes) cache.clear();
-  cache.push_back(std::make_unique<MeshCache>(MeshCache{w.radius, w.width, height, w.grouser_thickness,
-                                                        w.grouser_count, ++generations,
-                                                        rft_wheel_mesh(w, grouser_height_scale)}));
+  cache.push_back(std::make_unique<MeshCache>(MeshCache{w.radius, w.width, height, w.grouser_thickness, w.grouser_count,
+                                                        ++generations, rft_wheel_mesh(w, grouser_height_scale)}));
   return *cache.back();
 }
 
@@ -243,8 +242,7 @@ struct MotionKey {
   unsigned long generation;
   double cx, cy, cz, rim, radius;
   bool operator==(const MotionKey& o) const {
-    return generation == o.generation && cx == o.cx && cy == o.cy && cz == o.cz && rim == o.rim &&
-           radius == o.radius;
+    return generation == o.generation && cx == o.cx && cy == o.cy && cz == o.cz && rim == o.rim && radius == o.radius;
   }
 };
 struct MotionKeyHash {
@@ -300,8 +298,7 @@ namespace {
 // r), F_z is a quadratic in s between consecutive immersion thresholds
 // (prefix sums); the first interval where it reaches W brackets the root,
 // found there by bisection. NaN when F_z stays below W up to s = r.
-double solve_sinkage(const std::vector<Loaded>& loaded, double zeta, double load, double radius,
-                     double depth_scale) {
+double solve_sinkage(const std::vector<Loaded>& loaded, double zeta, double load, double radius, double depth_scale) {
   const double kq = depth_scale / radius;
   double c2 = 0.0, c1 = 0.0, c0 = 0.0;
   for (std::size_t j = 0; j < loaded.size(); ++j) {
