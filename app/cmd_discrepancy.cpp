@@ -26,7 +26,7 @@ struct SingleWheelDiscrepancyOptions {
   std::string integration = "simpson";
   std::string hold_out = "points";
   std::string slip_definition = "auto";
-  std::string family = "wong";
+  std::string family = "auto";
   bool json = false;
 };
 
@@ -365,7 +365,7 @@ Commands make_single_wheel_commands() {
             ->check(CLI::IsMember({"auto", "longitudinal", "travel"}));
         cmd.add_option("--family", o.family,
                        "wong (Wong-Reece / Ishigami) | rft (resistive force theory, its material scale fitted) | "
-                       "auto (both as baselines, the one with the lower held-out error taken)")
+                       "auto (both as baselines, the one with the lower held-out error taken; the default)")
             ->capture_default_str()
             ->check(CLI::IsMember({"wong", "rft", "auto"}));
         cmd.add_flag("--json", o.json, "Print JSON");

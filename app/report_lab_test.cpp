@@ -86,6 +86,7 @@ std::string numbers_text(const std::vector<double>& values, const char* unit) {
 analysis::DiscrepancyReport run_study(const ViewInput& in, const terramechanics::Soil& soil) {
   const io::WheelTestFile file = io::read_wheel_test_file(in.file);
   analysis::DiscrepancyOptions options;
+  options.compare_families = true;  // as `discrepancy single-wheel` by default: the family the data support
   if (!file.slip_definition.empty()) {
     options.slip_definition = terramechanics::parse_slip_definition(file.slip_definition);
   }

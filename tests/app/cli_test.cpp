@@ -483,7 +483,8 @@ TEST(CliDiscrepancy, SingleWheelOnTheDing2011File) {
   // Points at a slip angle (issue 33 item 3): the slip-angle model is the
   // baseline and the lateral force one of the quantities.
   write_text(steer, rows + "0.15735,0.165,80,0.3,20,5,-12,0.03\n");
-  const CommandResult steered = run_roverlab("discrepancy single-wheel " + quote(steer) + " --soil ding_tyii --json");
+  const CommandResult steered =
+      run_roverlab("discrepancy single-wheel " + quote(steer) + " --soil ding_tyii --family wong --json");
   EXPECT_EQ(steered.exit_code, 0) << steered.err;
   EXPECT_EQ(count_lines(steered.err), 1u) << steered.err;  // the warning
   const auto sdoc = nlohmann::json::parse(steered.out);

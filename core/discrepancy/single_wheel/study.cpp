@@ -287,6 +287,29 @@ class SingleWheelStudy {
   std::size_t folds_ = 0;
 };
 
+// A candidate fitted and held out needs a few points, at two slips at least:
+// with one slip no trend with slip exists and the extensions cannot be told
+// apart.
+void check_points_can_tell_candidates_apart(const std::vector<WheelTestPoint>& points) {
+  constexpr std::size_t kMinimum = 4;
+  if (points.size() < kMinimum) {
+    throw DataError("a discrepancy study needs at least " + std::to_string(kMinimum) +
+                    " points, to fit a candidate and hold points out (the file has " + std::to_string(points.size()) +
+                    ")");
+  }
+  // Points at a slip angle (or with a lateral force) are predicted by the
+  // slip-angle model (study_single_wheel sets it): two slip angles 1 deg
+  // apart tell the candidates apart as well as two slips do.
+  const auto [lo, hi] =
+      std::minmax_element(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.slip < b.slip; });
+  const auto [blo, bhi] = std::minmax_element(points.begin(), points.end(),
+                                              [](const auto& a, const auto& b) { return a.slip_angle < b.slip_angle; });
+  if (hi->slip - lo->slip < 0.01 && bhi->slip_angle - blo->slip_angle < kPi / 180.0) {
+    throw DataError("every point is at slip " + fmt("%.3g", lo->slip) +
+                    "; a discrepancy study needs points at two slips at least, 0.01 apart (or at two slip angles)");
+  }
+}
+
 DiscrepancyReport SingleWheelStudy::run() {
   if (points_.empty()) throw DataError("no single-wheel points");
   report_.points = points_.size();
@@ -320,27 +343,8 @@ DiscrepancyReport SingleWheelStudy::run() {
   return std::move(report_);
 }
 
-// A candidate fitted and held out needs a few points, at two slips at least:
-// with one slip no trend with slip exists and the extensions cannot be told
-// apart.
 void SingleWheelStudy::check_points_can_tell_candidates_apart() const {
-  constexpr std::size_t kMinimum = 4;
-  if (points_.size() < kMinimum) {
-    throw DataError("a discrepancy study needs at least " + std::to_string(kMinimum) +
-                    " points, to fit a candidate and hold points out (the file has " + std::to_string(points_.size()) +
-                    ")");
-  }
-  // Points at a slip angle (or with a lateral force) are predicted by the
-  // slip-angle model (study_single_wheel sets it): two slip angles 1 deg
-  // apart tell the candidates apart as well as two slips do.
-  const auto [lo, hi] =
-      std::minmax_element(points_.begin(), points_.end(), [](const auto& a, const auto& b) { return a.slip < b.slip; });
-  const auto [blo, bhi] = std::minmax_element(points_.begin(), points_.end(),
-                                              [](const auto& a, const auto& b) { return a.slip_angle < b.slip_angle; });
-  if (hi->slip - lo->slip < 0.01 && bhi->slip_angle - blo->slip_angle < kPi / 180.0) {
-    throw DataError("every point is at slip " + fmt("%.3g", lo->slip) +
-                    "; a discrepancy study needs points at two slips at least, 0.01 apart (or at two slip angles)");
-  }
+  roverlab::analysis::check_points_can_tell_candidates_apart(points_);
 }
 
 // The held-out folds: point j in fold j mod folds, or one fold per wheel
@@ -1067,6 +1071,7 @@ DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoi
   std::vector<FamilyBaseline> families;
   std::string choice;
   WorkMeter meter(o.progress);
+  check_points_can_tell_candidates_apart(points);  // before any family is fitted to them
   // A family's baseline: one fit on all points and one afresh per fold.
   const double family_fits =
       kFitUnits *
