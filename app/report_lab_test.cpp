@@ -118,6 +118,41 @@ void error_table(ReportSection& section, const analysis::DiscrepancyReport& r, c
   section.html << "</table>\n";
 }
 
+// The model families compared as baselines (issue 43): which the study took and by how much, each family's
+// held-out RMSE per quantity and its fitted parameters.
+void family_table(ReportSection& section, const analysis::DiscrepancyReport& r, json& out) {
+  out = json::array();
+  if (r.families.empty()) return;
+  section.html << "<table><caption>Model families as baselines: " << esc(r.family_choice)
+               << "</caption><tr><th>family</th><th>held-out RMS (sigma)</th>";
+  for (const Quantity q : r.quantities) section.html << "<th>" << esc(terramechanics::to_string(q)) << "</th>";
+  section.html << "<th>fitted</th></tr>\n";
+  for (const auto& f : r.families) {
+    section.html << "<tr><td style=\"text-align:left\">" << esc(f.family) << "</td><td>" << num(f.held_out_score)
+                 << " (" << esc(f.held_out_method) << ")</td>";
+    json rmse = json::object();
+    for (std::size_t k = 0; k < r.quantities.size(); ++k) {
+      const Quantity q = r.quantities[k];
+      const double v = k < f.held_out_rmse.size() ? f.held_out_rmse[k] : NAN;
+      const double scale = q == Quantity::sinkage ? 1000.0 : 1.0;
+      section.html << "<td>" << num(v * scale) << " " << esc(q == Quantity::sinkage ? "mm" : terramechanics::unit_of(q))
+                   << "</td>";
+      rmse[terramechanics::to_string(q)] = finite_or_null(v);
+    }
+    std::string fitted;
+    for (const auto& p : f.parameters) {
+      fitted += std::string(fitted.empty() ? "" : "; ") + terramechanics::to_string(p.parameter) + " = " +
+                num(p.value, "%.4g") + " +- " + num(p.sigma, "%.2g");
+    }
+    section.html << "<td style=\"text-align:left\">" << esc(fitted.empty() ? "nothing" : fitted) << "</td></tr>\n";
+    out.push_back({{"family", f.family},
+                   {"held_out_score_sigma", finite_or_null(f.held_out_score)},
+                   {"held_out_method", f.held_out_method},
+                   {"held_out_rmse", rmse}});
+  }
+  section.html << "</table>\n";
+}
+
 void image(ReportSection& section, const std::filesystem::path& folder, const views::View& view,
            const views::SceneInput& input, int w, int h) {
   if (!view.needs(input).empty()) {
@@ -156,6 +191,8 @@ void single_wheel_section(ReportSection& section, const std::filesystem::path& f
        << (r.slip_definition.empty() ? ""
                                      : ", " + esc(r.slip_definition) + " slip (" + esc(r.slip_definition_reason) + ")")
        << "; final model: " << esc(r.final_model) << ".</p>\n";
+  json families;
+  family_table(section, r, families);
   json errors = json::object();
   error_table(section, r, final_model, errors);
   views::SceneInput input;
@@ -174,6 +211,8 @@ void single_wheel_section(ReportSection& section, const std::filesystem::path& f
                              {"verdict", r.verdict},
                              {"what_is_wrong", r.what_is_wrong},
                              {"baseline_model", r.baseline_model},
+                             {"family_choice", r.family_choice},
+                             {"families", families},
                              {"slip_definition", r.slip_definition},
                              {"final_model", r.final_model},
                              {"curves", final_model.name},
