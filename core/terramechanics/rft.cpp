@@ -347,7 +347,11 @@ SlipAngleTraction evaluate_rft(const Soil& soil, const Wheel& wheel, double load
   }
   const double kq = e.rft_depth_scale / wheel.radius;
   double resistance = 0.0;  // the resisting elements' share of -F_x
+  // Sorted by immersion threshold: past s (with a margin far above rounding),
+  // no element is immersed.
+  const double last = s + 1e-9 * wheel.radius;
   for (const Loaded& l : loaded) {
+    if (l.threshold > last) break;
     const double d = l.m * s - l.z;
     if (!(d > 0.0)) continue;
     const double g = d * (1.0 + kq * d);  // zeta (1 + k d / r) d
