@@ -158,7 +158,9 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
   for (const auto& f : r.families) {
     json fj = {{"family", f.family},
                {"held_out_score_sigma", finite_or_null(f.held_out_score)},
-               {"held_out_method", f.held_out_method}};
+               {"held_out_method", f.held_out_method},
+               {"final_model", f.final_model},
+               {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)}};
     json ho = json::object();
     for (std::size_t i = 0; i < r.quantities.size() && i < f.held_out_rmse.size(); ++i) {
       ho[to_string(r.quantities[i])] = finite_or_null(f.held_out_rmse[i]);

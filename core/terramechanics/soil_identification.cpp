@@ -70,7 +70,8 @@ const ParameterName kParameters[] = {
     {Parameter::shear_peak_displacement, "shear_peak_displacement", {1e-4, 0.2}},
     // RFT (rft.h): zeta in N/m^3 (0.01 to 100 N/cm^3), the pile-up fraction and the depth-dependent scale.
     {Parameter::rft_scale, "rft_scale", {1e4, 1e8}},
-    {Parameter::rft_pileup, "rft_pileup", {0.0, 3.0}},
+    // Pile-up up to 10 sinkages: dragged sideways, a wheel meets |F_y| of 2-2.5 W (issue 43), which needs 2-3 here.
+    {Parameter::rft_pileup, "rft_pileup", {0.0, 10.0}},
     {Parameter::rft_depth_scale, "rft_depth_scale", {-0.9, 20.0}},
 };
 

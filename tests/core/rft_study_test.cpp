@@ -115,4 +115,29 @@ TEST(RftStudy, TheFamilyComparisonTakesRftOnRftData) {
   EXPECT_NE(r.family_choice.find("% lower"), std::string::npos) << r.family_choice;
 }
 
+// A wheel dragged sideways through sand that piles up (pile-up 2.5: |F_y|
+// near 2 W at 90 deg, as in real tests): RFT's baseline loses to Ishigami's,
+// but RFT with the pile-up wins by far once each family is extended, so the
+// family is chosen on the final models, and the pile-up is found.
+TEST(RftStudy, AFamilyWhoseBaselineLosesIsTakenWhenItsFinalModelWins) {
+  Extensions truth;
+  truth.rft_pileup = 2.5;
+  analysis::DiscrepancyOptions o = rft_study();
+  o.baseline.kind = ModelKind::wong_reece;
+  o.compare_families = true;
+  const auto r = analysis::study_single_wheel(described_sand(), rft_points(truth, 46), o);
+  ASSERT_EQ(r.families.size(), 2u);
+  EXPECT_GT(r.families[1].held_out_score, r.families[0].held_out_score) << r.family_choice;  // baselines
+  EXPECT_LT(r.families[1].final_held_out_score, 0.5 * r.families[0].final_held_out_score) << r.family_choice;
+  EXPECT_EQ(r.baseline_model, "RFT") << r.family_choice;
+  ASSERT_EQ(r.selection.size(), 1u) << r.verdict;
+  EXPECT_EQ(r.selection[0].name, "pile-up");
+  for (const auto& p : r.selection[0].fit.parameters) {
+    if (p.parameter == Parameter::rft_pileup) {
+      EXPECT_FALSE(p.at_bound);
+      EXPECT_LT(std::abs(p.value - 2.5), 2.0 * p.sigma) << p.value << " +- " << p.sigma;
+    }
+  }
+}
+
 }  // namespace

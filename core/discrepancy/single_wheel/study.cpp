@@ -1041,35 +1041,56 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
   return f;
 }
 
-// The family step (issue 43): each family's baseline held out, the one with
-// the lower error taken (RFT with its fitted material scale as the study's
-// start), and a sentence saying which and by how much.
-std::string choose_family(const Soil& soil, const std::vector<WheelTestPoint>& points, DiscrepancyOptions& o,
-                          Soil& start, std::vector<FamilyBaseline>& families, WorkMeter& meter) {
+// The held-out RMS (stated sigmas) of a study's final model: its last step's,
+// or the family's baseline's when no step passed.
+double final_score(const DiscrepancyReport& r, const FamilyBaseline& f) {
+  return r.selection.empty() ? f.held_out_score : r.selection.back().held_out_score;
+}
+
+// The family step (issue 43): each family's baseline held out, then the study
+// run within each (RFT from its material scale fitted on all points), and the
+// one whose final model has the lower held-out error taken, with a sentence
+// saying which and by how much.
+DiscrepancyReport compare_families(const Soil& soil, const std::vector<WheelTestPoint>& points,
+                                   const DiscrepancyOptions& o, WorkMeter& meter) {
   DiscrepancyOptions wong = o, rft = o;
   if (wong.baseline.kind == ModelKind::rft) wong.baseline.kind = ModelKind::ishigami;
   rft.baseline.kind = ModelKind::rft;
   Soil wong_soil, rft_soil;
-  families = {family_baseline(soil, points, wong, wong_soil, meter),
-              family_baseline(soil, points, rft, rft_soil, meter)};
-  const bool take_rft = families[1].held_out_score < families[0].held_out_score ||
-                        (!std::isfinite(families[0].held_out_score) && std::isfinite(families[1].held_out_score));
-  o.baseline.kind = take_rft ? ModelKind::rft : wong.baseline.kind;
-  start = take_rft ? rft_soil : soil;
-  const FamilyBaseline& taken = families[take_rft ? 1 : 0];
-  const FamilyBaseline& other = families[take_rft ? 0 : 1];
-  return "baseline family " + taken.family + ": held-out RMS " + fmt("%.2f", taken.held_out_score) + " sigma (" +
-         taken.held_out_method + ") against " + other.family + "'s " + fmt("%.2f", other.held_out_score) + " sigma (" +
-         other.held_out_method + "), " + fmt("%.0f", 100.0 * (1.0 - taken.held_out_score / other.held_out_score)) +
-         " % lower";
+  std::vector<FamilyBaseline> families = {family_baseline(soil, points, wong, wong_soil, meter),
+                                          family_baseline(soil, points, rft, rft_soil, meter)};
+  // The two studies side by side on the pool (each its own result).
+  DiscrepancyReport studies[2];
+  shared_thread_pool().for_each_index(2, [&](std::size_t k) {
+    studies[k] = k == 0 ? SingleWheelStudy(soil, points, wong, meter).run()
+                        : SingleWheelStudy(rft_soil, points, rft, meter).run();
+  });
+  for (int k = 0; k < 2; ++k) {
+    families[k].final_model = studies[k].final_model;
+    families[k].final_held_out_score = final_score(studies[k], families[k]);
+  }
+  const double w = families[0].final_held_out_score, r = families[1].final_held_out_score;
+  const int taken = (r < w || (!std::isfinite(w) && std::isfinite(r))) ? 1 : 0;
+  const FamilyBaseline& t = families[taken];
+  const FamilyBaseline& other = families[1 - taken];
+  const auto named = [](const FamilyBaseline& f) {
+    return f.family + (f.final_model == "baseline" ? "" : " + " + f.final_model);
+  };
+  DiscrepancyReport out = std::move(studies[taken]);
+  out.family_choice = "family " + t.family + ": its final model " + named(t) + " held out at " +
+                      fmt("%.2f", t.final_held_out_score) + " sigma against " + named(other) + "'s " +
+                      fmt("%.2f", other.final_held_out_score) + " sigma, " +
+                      fmt("%.0f", 100.0 * (1.0 - t.final_held_out_score / other.final_held_out_score)) +
+                      " % lower (as baselines: " + fmt("%.2f", t.held_out_score) + " sigma, " + t.held_out_method +
+                      ", against " + fmt("%.2f", other.held_out_score) + ", " + other.held_out_method + ")";
+  out.families = std::move(families);
+  return out;
 }
 
-// The study within one family: compared first when asked (choose_family);
-// an RFT baseline starts from its material scale fitted on all points.
+// The study within one family, or within each and the better taken
+// (compare_families); an RFT baseline starts from its material scale fitted
+// on all points.
 DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoint>& points, DiscrepancyOptions o) {
-  Soil start = soil;
-  std::vector<FamilyBaseline> families;
-  std::string choice;
   WorkMeter meter(o.progress);
   check_points_can_tell_candidates_apart(points);  // before any family is fitted to them
   // A family's baseline: one fit on all points and one afresh per fold.
@@ -1080,8 +1101,14 @@ DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoi
                   : 0.0));
   if (o.compare_families) {
     meter.expect(2.0 * family_fits);
-    choice = choose_family(soil, points, o, start, families, meter);
-  } else if (o.baseline.kind == ModelKind::rft) {
+    DiscrepancyReport r = compare_families(soil, points, o, meter);
+    meter.finish();
+    return r;
+  }
+  Soil start = soil;
+  std::vector<FamilyBaseline> families;
+  std::string choice;
+  if (o.baseline.kind == ModelKind::rft) {
     meter.expect(family_fits);
     families = {family_baseline(soil, points, o, start, meter)};
     choice = "baseline family RFT (given), material scale fitted";
