@@ -112,7 +112,11 @@ TEST(RftStudy, TheFamilyComparisonTakesRftOnRftData) {
   ASSERT_EQ(r.families.size(), 2u);
   EXPECT_EQ(r.baseline_model, "RFT") << r.family_choice;
   EXPECT_LT(r.families[1].held_out_score, r.families[0].held_out_score);
-  EXPECT_NE(r.family_choice.find("% lower"), std::string::npos) << r.family_choice;
+  // RFT's final model fits within the stated noise: Ishigami is not extended, and the sentence says so.
+  EXPECT_LE(r.families[1].final_held_out_score, 1.0);
+  EXPECT_NE(r.family_choice.find("within the stated noise, so Ishigami (slip angle) was not extended"),
+            std::string::npos)
+      << r.family_choice;
 }
 
 // A wheel dragged sideways through sand that piles up (pile-up 2.5: |F_y|
