@@ -243,7 +243,7 @@ TEST_F(ReportDocument, StudyTablesAreTheGuiTablesCellForCellSortedByEvidence) {
       const std::unique_ptr<app::Analysis> a = app::make_analysis(name);
       ASSERT_NE(a, nullptr) << name;
       if (name != "odometry" && name != "rover-discrepancy") continue;
-      const std::vector<app::ResultTable> tables = a->tables(doc);
+      const std::vector<app::ResultTable> tables = a->presentation().tables(doc);
       ASSERT_FALSE(tables.empty()) << name;
       for (const app::ResultTable& t : tables) {
         const auto cells = html_table(r.html, t.title);
