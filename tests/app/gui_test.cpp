@@ -338,7 +338,7 @@ TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
       EXPECT_EQ(nlohmann::json::diff(from_cli, app::without_run_details(*from_gui)), nlohmann::json::array())
           << name << " on " << file;
       EXPECT_TRUE(from_cli.contains("configuration")) << name;
-      // Its tables (Analysis::tables) in the Analysis pane, cell for cell.
+      // Its tables (Presentation::tables) in the Analysis pane, cell for cell.
       for (const app::ResultTable& t : a->presentation().tables(*from_gui)) {
         const auto* table = w.findChild<QTableWidget*>(QString::fromStdString(t.title));
         ASSERT_NE(table, nullptr) << t.title;
