@@ -55,7 +55,7 @@ class ReportSection {
   // printf-formatted number; an en dash for NaN, infinity and JSON null.
   static std::string number(double value, const char* format = "%.3g");
   static std::string number(const nlohmann::json& value, const char* format = "%.3g");
-  // Appends `table` (the very one Analysis::tables() gives the GUI) as an HTML
+  // Appends `table` (the very one Presentation::tables() gives the GUI) as an HTML
   // table: its title as the caption, its headings, row names and cells as
   // they are; numbers right-aligned, words left; the row a result picks in
   // bold, a cell's shade as a tint; its legend in a line under it.
@@ -76,7 +76,7 @@ struct KeyMetric {
   std::string pointer;   // JSON pointer inside the result document
   bool verdict = false;  // a string, not a number
   // The cause a study names, which a campaign scores against the effects
-  // injected into its simulated runs (Analysis::expected_cause).
+  // injected into its simulated runs (Presentation::expected_cause).
   bool cause = false;
 };
 
@@ -115,26 +115,94 @@ struct ReportPlot {
   std::string note;          // one plain-text line under it
 };
 
+// How an analysis's result is shown: as text, in the HTML report, in the
+// GUI's tables and views, at the top of the report and in a campaign's table.
+// Each member reads only the result document the analysis wrote (and, for
+// report_plots, the log), never the analysis's options.
+class Presentation {
+ public:
+  virtual ~Presentation() = default;
+  // The result as text for the command line.
+  virtual void print(const nlohmann::json& document, std::FILE* out) const = 0;
+  // The result in the HTML report.
+  virtual void report(const nlohmann::json& document, ReportSection& section) const = 0;
+  // The tables of its result the GUI shows; none by default.
+  virtual std::vector<ResultTable> tables(const nlohmann::json& document) const {
+    (void)document;
+    return {};
+  }
+  // The charts of the log it asks the report to draw; none by default.
+  virtual std::vector<ReportPlot> report_plots(const nlohmann::json& document, const log::Log& log) const {
+    (void)document, (void)log;
+    return {};
+  }
+  // True when its results hold traction surfaces (the traction-surface view
+  // draws them); traction_surface() then fills `out` from the document:
+  // drawbar pull or resistive torque. False when this document holds none.
+  virtual bool draws_traction_surfaces() const { return false; }
+  virtual bool traction_surface(const nlohmann::json& document, bool drawbar_pull,
+                                views::TractionSurfaceData& out) const {
+    (void)document, (void)drawbar_pull, (void)out;
+    return false;
+  }
+  // Its columns in a campaign's table of runs.
+  virtual std::vector<KeyMetric> key_metrics() const { return {}; }
+  // Its answer in a sentence or two, for the top of the report: by default
+  // its key metrics ("INS final error (m) 0.42; ..."); a study gives its verdict.
+  virtual std::string summary(const nlohmann::json& document) const;
+  // The cause its `cause` key metric should name for a simulated run with
+  // these injected effects ({"radius-scale": 1.03, ...}); empty: not scored.
+  virtual std::string expected_cause(const nlohmann::json& effects) const {
+    (void)effects;
+    return {};
+  }
+};
+
+// One option the GUI's Analysis menu offers as a choice (the contact-angle
+// model): its flag, the values, the menu's title.
+struct AnalysisChoice {
+  std::string option, menu;         // "--model", "Contact-angle &model"
+  std::vector<std::string> values;  // the first is the default
+};
+
+// Who an analysis is: fixed words, given when it is made.
+struct AnalysisIdentity {
+  std::string name;      // key of its result: "ins-slip"
+  std::string command;   // "estimate ins-slip"
+  std::string title;     // heading in the report and the GUI
+  std::string help;      // one line for --help
+  std::string log_help;  // what the LOG argument must hold
+  // The names (prefixes) of the estimate streams it adds to the log: a view
+  // that draws none of them does not run it (views::View::estimates_drawn());
+  // none: it adds no streams (and takes no -o OUT.h5).
+  std::vector<std::string> estimate_streams;
+  std::optional<AnalysisChoice> choice;  // offered in the GUI's Analysis menu; none by default
+};
+
+// An estimator or a study over a log, in three parts: what it needs (the
+// log's streams: missing(), runs_on_open()), what it computes (its options,
+// configuration and run(), giving the result document) and how that document
+// is shown (presentation()). Its identity is data.
 class Analysis {
  public:
+  Analysis(AnalysisIdentity identity, std::unique_ptr<const Presentation> presentation)
+      : identity_(std::move(identity)), presentation_(std::move(presentation)) {}
   virtual ~Analysis() = default;
-  virtual std::string name() const = 0;      // key of its result: "ins-slip"
-  virtual std::string command() const = 0;   // "estimate ins-slip"
-  virtual std::string title() const = 0;     // heading in the report and the GUI
-  virtual std::string help() const = 0;      // one line for --help
-  virtual std::string log_help() const = 0;  // what the LOG argument must hold
+
+  const AnalysisIdentity& identity() const { return identity_; }
+  const std::string& name() const { return identity_.name; }
   // Whether it adds streams to the log (and so takes -o OUT.h5).
-  virtual bool adds_streams() const { return true; }
-  // The names (prefixes) of the estimate streams it adds: a view that draws
-  // none of them does not run it (views::View::estimates_drawn()).
-  virtual std::vector<std::string> estimate_streams() const { return {}; }
-  // Empty when the analysis can run on `log`, else what the log lacks.
+  bool adds_streams() const { return !identity_.estimate_streams.empty(); }
+
+  // What it needs. Empty when the analysis can run on `log`, else what the log lacks.
   virtual std::string missing(const log::Log& log) const = 0;
   // Whether the GUI and the report run it on this log by themselves.
   virtual bool runs_on_open(const log::Log& log) const { return missing(log).empty(); }
-  // Options bound to members. Their defaults are the best the data support
-  // (docs/validation/) and the same on every entry point: the command line,
-  // the GUI, `render`, the report and campaigns; opting out is a flag.
+
+  // What it computes. Options bound to members. Their defaults are the best
+  // the data support (docs/validation/) and the same on every entry point:
+  // the command line, the GUI, `render`, the report and campaigns; opting
+  // out is a flag.
   virtual void declare(CLI::App& cmd) { (void)cmd; }
   // The settings it runs with (its options' values), as run_analysis() puts
   // them in the result document under "configuration".
@@ -152,47 +220,13 @@ class Analysis {
   virtual void check_options() const {}
   // Throws DataError for what the log lacks, UsageError for bad options.
   virtual AnalysisResult run(const AnalysisInput& input) = 0;
-  // The result as text for the command line.
-  virtual void print(const nlohmann::json& document, std::FILE* out) const = 0;
-  // The result in the HTML report.
-  virtual void report(const nlohmann::json& document, ReportSection& section) const = 0;
-  // True when its result holds traction surfaces (the traction-surface view
-  // draws them); traction_surface() then fills `out` from the document:
-  // drawbar pull or resistive torque. False when this document holds none.
-  virtual bool draws_traction_surfaces() const { return false; }
-  virtual bool traction_surface(const nlohmann::json& document, bool drawbar_pull,
-                                views::TractionSurfaceData& out) const {
-    (void)document, (void)drawbar_pull, (void)out;
-    return false;
-  }
-  // One option the GUI's Analysis menu offers as a choice (the contact-angle
-  // model): its flag, the values, the menu's title; none by default.
-  struct Choice {
-    std::string option, menu;         // "--model", "Contact-angle &model"
-    std::vector<std::string> values;  // the first is the default
-  };
-  virtual std::optional<Choice> choice() const { return std::nullopt; }
-  // The cause its `cause` key metric should name for a simulated run with
-  // these injected effects ({"radius-scale": 1.03, ...}); empty: not scored.
-  virtual std::string expected_cause(const nlohmann::json& effects) const {
-    (void)effects;
-    return {};
-  }
-  // The tables of its result the GUI shows; none by default.
-  virtual std::vector<ResultTable> tables(const nlohmann::json& document) const {
-    (void)document;
-    return {};
-  }
-  // The charts of the log it asks the report to draw; none by default.
-  virtual std::vector<ReportPlot> report_plots(const nlohmann::json& document, const log::Log& log) const {
-    (void)document, (void)log;
-    return {};
-  }
-  // Its columns in a campaign's table of runs.
-  virtual std::vector<KeyMetric> key_metrics() const { return {}; }
-  // Its answer in a sentence or two, for the top of the report: by default
-  // its key metrics ("INS final error (m) 0.42; ..."); a study gives its verdict.
-  virtual std::string summary(const nlohmann::json& document) const;
+
+  // How its result document is shown.
+  const Presentation& presentation() const { return *presentation_; }
+
+ private:
+  AnalysisIdentity identity_;
+  std::unique_ptr<const Presentation> presentation_;
 };
 
 using Analyses = std::vector<std::unique_ptr<Analysis>>;
@@ -232,7 +266,7 @@ void store_result(const Analysis& analysis, const nlohmann::json& document, log:
 // configuration on the same log (wall-clock times, the output file, the program that ran it), removed.
 nlohmann::json without_run_details(nlohmann::json document);
 
-// What `analysis.print(document, ...)` writes, then the settings line, as a
+// What `analysis.presentation().print(document, ...)` writes, then the settings line, as a
 // string (the GUI shows it).
 std::string printed(const Analysis& analysis, const nlohmann::json& document);
 // The document's "configuration" as one line: "settings: model auto, filter

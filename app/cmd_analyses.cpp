@@ -20,11 +20,11 @@ namespace {
 class AnalysisCommand : public Command {
  public:
   explicit AnalysisCommand(std::unique_ptr<Analysis> analysis) : analysis_(std::move(analysis)) {}
-  std::string path() const override { return analysis_->command(); }
-  std::string help() const override { return analysis_->help(); }
+  std::string path() const override { return analysis_->identity().command; }
+  std::string help() const override { return analysis_->identity().help; }
 
   void declare(CLI::App& cmd) override {
-    cmd.add_option("LOG", file_, analysis_->log_help())->required();
+    cmd.add_option("LOG", file_, analysis_->identity().log_help)->required();
     cmd.add_option("--mapping,-m", mapping_, "Mapping NAME or FILE for .mat/HDF5 input (e.g. wvu_pathfinder)");
     analysis_->declare(cmd);
     if (analysis_->adds_streams()) {
@@ -56,7 +56,7 @@ class AnalysisCommand : public Command {
       return kSuccess;
     }
     std::fflush(stdout);
-    analysis_->print(r.document, stdout);
+    analysis_->presentation().print(r.document, stdout);
     std::fputs(configuration_text(r.document).c_str(), stdout);
     if (output_) std::printf("\nwrote %s\n", output_->c_str());
     return kSuccess;

@@ -40,7 +40,7 @@ struct CampaignReportOptions {
 };
 
 // The table's columns: every registered analysis's key metrics
-// (Analysis::key_metrics), in analyses.def order.
+// (Presentation::key_metrics), in analyses.def order.
 struct KeyColumn {
   std::string key, title, analysis, pointer;
   bool verdict = false;
@@ -50,7 +50,7 @@ const std::vector<KeyColumn>& key_columns() {
   static const std::vector<KeyColumn> columns = [] {
     std::vector<KeyColumn> out;
     for (const auto& analysis : all_analyses()) {
-      for (const auto& m : analysis->key_metrics()) {
+      for (const auto& m : analysis->presentation().key_metrics()) {
         out.push_back({m.key, m.title, analysis->name(), m.pointer, m.verdict});
       }
     }
@@ -193,7 +193,7 @@ std::string histogram_svg(const std::string& title, const std::vector<double>& v
 // The first analysis (registry order) with a cause key metric, and that metric.
 std::pair<std::unique_ptr<Analysis>, KeyMetric> cause_metric() {
   for (auto& a : all_analyses()) {
-    for (const KeyMetric& m : a->key_metrics()) {
+    for (const KeyMetric& m : a->presentation().key_metrics()) {
       if (m.cause) return {std::move(a), m};
     }
   }
@@ -217,15 +217,15 @@ json confusion_table(const json& runs) {
     const std::string named = cause.is_string() ? cause.get<std::string>() : "none";
     ++counts[injected][named];
     columns.insert(named);
-    expected[injected] = study->expected_cause(r.at("effects"));
+    expected[injected] = study->presentation().expected_cause(r.at("effects"));
     if (!expected[injected].empty()) {
       ++scored;
       if (expected[injected] == named) ++as_expected;
     }
   }
-  json t = {{"study", study->title()},   {"rows", "injected effects"}, {"columns", "named cause"},
-            {"injected", json::array()}, {"named", columns},           {"counts", json::array()},
-            {"expected", json::array()}, {"scored_runs", scored},      {"named_as_expected", as_expected}};
+  json t = {{"study", study->identity().title}, {"rows", "injected effects"}, {"columns", "named cause"},
+            {"injected", json::array()},        {"named", columns},           {"counts", json::array()},
+            {"expected", json::array()},        {"scored_runs", scored},      {"named_as_expected", as_expected}};
   for (const auto& [injected, row] : counts) {
     t["injected"].push_back(injected);
     json line = json::array();

@@ -49,7 +49,7 @@ std::string views_that(bool (views::View::*uses)() const) {
 std::vector<std::string> analyses_drawn_by(const views::View& view) {
   const std::vector<std::string> drawn = view.estimates_drawn();
   return all_analysis_names([&](const Analysis& a) {
-    for (const std::string& added : a.estimate_streams()) {
+    for (const std::string& added : a.identity().estimate_streams) {
       for (const std::string& d : drawn) {
         if (added.rfind(d, 0) == 0 || d.rfind(added, 0) == 0) return true;
       }
@@ -69,7 +69,7 @@ int run_render(const RenderOptions& o) {
   ViewInputOptions vo;
   vo.analyses = analyses_drawn_by(*view);    // the estimators whose streams it draws, no study it does not
   if (view->uses_surface_data() && !o.soil)  // a rover's own surfaces
-    vo.analyses = all_analysis_names(&Analysis::draws_traction_surfaces);
+    vo.analyses = all_analysis_names([](const Analysis& a) { return a.presentation().draws_traction_surfaces(); });
   // Refused before any analysis runs: a time outside the log.
   vo.check_log = [&o, view](const log::Log& lg) {
     check_time_in_log(lg, o.time);

@@ -103,7 +103,7 @@ class ReportWriter {
   std::ostringstream& html() { return section_.html; }
   bool has_surfaces() const {
     return std::any_of(in_.analyses.begin(), in_.analyses.end(),
-                       [](const AnalysisRun& run) { return run.analysis->draws_traction_surfaces(); });
+                       [](const AnalysisRun& run) { return run.analysis->presentation().draws_traction_surfaces(); });
   }
   static std::string esc(const std::string& s) { return ReportSection::escape(s); }
   static std::string num(double v, const char* f) { return ReportSection::number(v, f); }
@@ -124,7 +124,7 @@ class ReportWriter {
         << "<h1>RoverLab report</h1>\n<p>" << esc(o_.file) << "</p>\n";
   }
 
-  // The answers first: each analysis's summary (Analysis::summary), then what
+  // The answers first: each analysis's summary (Presentation::summary), then what
   // was not run and why.
   void summary() {
     html() << "<h2>Summary</h2>\n";
@@ -133,9 +133,9 @@ class ReportWriter {
     json lines = json::array();
     for (const auto& run : in_.analyses) {
       const Analysis* a = run.analysis.get();
-      const std::string text = a->summary(run.document);
+      const std::string text = a->presentation().summary(run.document);
       if (text.empty()) continue;
-      html() << "<li><b>" << esc(a->title()) << "</b>: " << esc(text) << "</li>\n";
+      html() << "<li><b>" << esc(a->identity().title) << "</b>: " << esc(text) << "</li>\n";
       lines.push_back({{"analysis", run.name}, {"summary", text}});
     }
     html() << "</ul>\n";
@@ -372,11 +372,11 @@ class ReportWriter {
     }
   }
 
-  // The charts each analysis asks for (Analysis::report_plots), drawn by the
+  // The charts each analysis asks for (Presentation::report_plots), drawn by the
   // channel-plot view.
   void analysis_plots(const views::View& plots, int h) {
     for (const AnalysisRun& run : in_.analyses) {
-      for (const ReportPlot& p : run.analysis->report_plots(run.document, in_.log)) {
+      for (const ReportPlot& p : run.analysis->presentation().report_plots(run.document, in_.log)) {
         ViewOptions o;
         o.channel_spec = p.channel_spec;
         image(p.file, p.heading, render_view(in_, plots, o, w_, h * p.rows));
@@ -400,7 +400,7 @@ class ReportWriter {
 
   void analyses() {
     for (const auto& run : in_.analyses) {
-      run.analysis->report(run.document, section_);
+      run.analysis->presentation().report(run.document, section_);
       if (const std::string settings = configuration_text(run.document); !settings.empty())
         html() << "<p class=\"note\">" << esc(settings) << "</p>\n";
       metrics_["analyses"][run.name] = run.document;

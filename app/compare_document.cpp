@@ -2,15 +2,11 @@
 
 #include <cmath>
 
+#include "app/analysis.h"
+
 namespace roverlab::app {
 
-namespace {
-
 using nlohmann::json;
-
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-}  // namespace
 
 const char* alignment_name(comparison::AlignBy by) {
   switch (by) {
@@ -43,22 +39,22 @@ json channel_json(const comparison::ChannelComparison& c) {
           {"channel", c.channel},
           {"unit", c.unit},
           {"samples", c.samples},
-          {"bias", number(c.bias)},
-          {"rms_difference", number(c.rms)},
-          {"baseline_sigma", number(c.base_sigma)},
-          {"run_sigma", number(c.other_sigma)},
+          {"bias", finite_or_null(c.bias)},
+          {"rms_difference", finite_or_null(c.rms)},
+          {"baseline_sigma", finite_or_null(c.base_sigma)},
+          {"run_sigma", finite_or_null(c.other_sigma)},
           {"sigma_source", c.logged_sigma ? "logged" : "estimated"},
-          {"beyond_noise", number(c.beyond_noise)},
+          {"beyond_noise", finite_or_null(c.beyond_noise)},
           {"blocks", c.test.blocks},
-          {"statistic", number(c.test.statistic)},
-          {"threshold", number(c.test.threshold)},
-          {"p_value", number(c.test.p_value)},
+          {"statistic", finite_or_null(c.test.statistic)},
+          {"threshold", finite_or_null(c.test.threshold)},
+          {"p_value", finite_or_null(c.test.p_value)},
           {"oscillation",
            {{"segments", c.oscillation.segments},
-            {"statistic", number(c.oscillation.statistic)},
-            {"threshold", number(c.oscillation.threshold)},
-            {"p_value", number(c.oscillation.p_value)},
-            {"cycles_per_sample", number(c.oscillation.peak_cycles_per_sample)},
+            {"statistic", finite_or_null(c.oscillation.statistic)},
+            {"threshold", finite_or_null(c.oscillation.threshold)},
+            {"p_value", finite_or_null(c.oscillation.p_value)},
+            {"cycles_per_sample", finite_or_null(c.oscillation.peak_cycles_per_sample)},
             {"differs", c.oscillation.differs}}},
           {"differs", c.differs}};
 }

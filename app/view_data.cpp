@@ -46,7 +46,9 @@ namespace {
 bool analysis_surface(const ViewInput& in, bool dp, views::TractionSurfaceData& d,
                       terramechanics::SurfaceFit* fit_out) {
   for (const auto& run : in.analyses) {
-    if (!run.analysis->draws_traction_surfaces() || !run.analysis->traction_surface(run.document, dp, d)) continue;
+    if (!run.analysis->presentation().draws_traction_surfaces() ||
+        !run.analysis->presentation().traction_surface(run.document, dp, d))
+      continue;
     if (fit_out) {
       fit_out->surface = d.surface;
       fit_out->error = terramechanics::fit_error(d.surface, d.points);
@@ -60,9 +62,9 @@ bool analysis_surface(const ViewInput& in, bool dp, views::TractionSurfaceData& 
 // written before results were stored with it): its command, else empty.
 std::string estimates_without_result(const ViewInput& in) {
   for (const auto& a : all_analyses()) {
-    if (a->draws_traction_surfaces() && a->missing(in.log).empty() && !a->runs_on_open(in.log) &&
+    if (a->presentation().draws_traction_surfaces() && a->missing(in.log).empty() && !a->runs_on_open(in.log) &&
         in.result(a->name()) == nullptr) {
-      return a->command();
+      return a->identity().command;
     }
   }
   return {};

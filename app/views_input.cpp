@@ -56,7 +56,7 @@ const std::string& ViewInput::fingerprint() const {
 void ViewInput::add(std::shared_ptr<const Analysis> analysis, AnalysisResult r) {
   // An analysis run again (another model chosen in the GUI) replaces its streams.
   for (const auto& s : r.estimates.streams()) log.replace_stream(s);
-  std::string name = analysis->name(), title = analysis->title();
+  std::string name = analysis->name(), title = analysis->identity().title;
   AnalysisRun run{std::move(analysis), std::move(name), std::move(title), std::move(r.document)};
   for (auto& a : analyses) {
     if (a.name == run.name) {
@@ -84,7 +84,7 @@ bool reuse_stored_result(ViewInput& in, std::shared_ptr<const Analysis> analysis
   if (in.result(analysis->name()) != nullptr) return false;
   std::optional<nlohmann::json> stored = stored_result(*analysis, in.log, [&] { return in.fingerprint(); });
   if (!stored) return false;
-  const std::string command = analysis->command();
+  const std::string command = analysis->identity().command;
   in.add(std::move(analysis), AnalysisResult{{}, std::move(*stored)});
   in.notes.push_back("reused the stored result of " + command + " (same measurements and settings)");
   return true;
@@ -115,17 +115,17 @@ ViewInput load_view_input(const std::string& file, const std::optional<std::stri
     if (reuse_stored_result(in, a)) continue;
     const std::string missing = a->missing(in.log);
     if (!missing.empty()) {
-      in.notes.push_back("not run: " + a->command() + " (the log has " + missing + ")");
+      in.notes.push_back("not run: " + a->identity().command + " (the log has " + missing + ")");
       continue;
     }
     if (!a->runs_on_open(in.log)) continue;
     try {
       in.add(a, run_analysis(*a, {in.log, file, {}}));
     } catch (const InputError& e) {
-      in.notes.push_back("not run: " + a->command() + " (" + e.problem() + ")");
+      in.notes.push_back("not run: " + a->identity().command + " (" + e.problem() + ")");
       continue;
     }
-    in.notes.push_back("ran " + a->command() + " on the log: " + a->title());
+    in.notes.push_back("ran " + a->identity().command + " on the log: " + a->identity().title);
   }
   return in;
 }

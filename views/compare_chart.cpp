@@ -283,14 +283,7 @@ void CompareChart::add_cursor(vtkChartXY* c) {
 
 void CompareChart::set_time(double t) {
   cursor_ = t;
-  for (std::size_t row = 0; row < cursors_.size(); ++row) {
-    auto& c = cursors_[row];
-    c->SetValue(0, 0, t);
-    c->SetValue(1, 0, t);
-    c->SetValue(0, 1, ranges_[row].first);
-    c->SetValue(1, 1, ranges_[row].second);
-    c->Modified();
-  }
+  for (std::size_t row = 0; row < cursors_.size(); ++row) move_cursor(cursors_[row], t, ranges_[row]);
 }
 
 void CompareChart::attach(vtkRenderWindow* window) {

@@ -28,6 +28,7 @@
 #include "core/common/error.h"
 #include "core/log/conventions.h"
 #include "views/display_series.h"
+#include "views/vtk_parts.h"
 
 namespace roverlab::views {
 
@@ -430,14 +431,7 @@ void TimeSeriesChart::rebuild() {
       plots_[i] = line;
     }
     // Cursor: a vertical black line over the plot's value range.
-    auto cursor = vtkSmartPointer<vtkTable>::New();
-    vtkNew<vtkDoubleArray> ct;
-    ct->SetName("cursor time");
-    vtkNew<vtkDoubleArray> cy;
-    cy->SetName("cursor");
-    cursor->AddColumn(ct);
-    cursor->AddColumn(cy);
-    cursor->SetNumberOfRows(2);
+    auto cursor = table_of({{"cursor time", {0.0, 0.0}}, {"cursor", {0.0, 0.0}}});
     vtkPlot* cp = chart->AddPlot(vtkChart::LINE);
     cp->SetInputData(cursor, 0, 1);
     cp->SetColor(0, 0, 0, 255);
@@ -556,14 +550,7 @@ void TimeSeriesChart::set_cursor(double t) {
     // No value (the stream has not started, has ended, or holds NaN there): said in words, not "= -".
     plots_[i]->SetLabel(labels_[i] + (std::isfinite(now[i].value) ? value : " (no value at the cursor)"));
   }
-  for (std::size_t g = 0; g < cursors_.size(); ++g) {
-    auto& c = cursors_[g];
-    c->SetValue(0, 0, t);
-    c->SetValue(1, 0, t);
-    c->SetValue(0, 1, ranges_[g].first);
-    c->SetValue(1, 1, ranges_[g].second);
-    c->Modified();
-  }
+  for (std::size_t g = 0; g < cursors_.size(); ++g) move_cursor(cursors_[g], t, ranges_[g]);
 }
 
 // The band's table (time, value - sigma, value + sigma), every k-th sample in

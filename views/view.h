@@ -99,7 +99,7 @@ class View {
   virtual bool plots_channel_pair() const { return false; }
   // The estimate streams it draws (name prefixes, e.g. "estimate/ins/"): the
   // app runs, before building it, the analyses that add one of them and can
-  // run (app::Analysis::estimate_streams()), and no other.
+  // run (app::AnalysisIdentity::estimate_streams), and no other.
   virtual std::vector<std::string> estimates_drawn() const { return {}; }
   // What the log lacks that no analysis can add (its measured streams),
   // checked before any analysis runs: empty when the view may be fed.

@@ -141,4 +141,12 @@ vtkSmartPointer<vtkTable> table_of(const std::vector<std::pair<const char*, std:
   return table;
 }
 
+void move_cursor(vtkTable* cursor, double t, const std::pair<double, double>& range) {
+  cursor->SetValue(0, 0, t);
+  cursor->SetValue(1, 0, t);
+  cursor->SetValue(0, 1, range.first);
+  cursor->SetValue(1, 1, range.second);
+  cursor->Modified();
+}
+
 }  // namespace roverlab::views

@@ -47,4 +47,8 @@ vtkSmartPointer<vtkActor> line_actor(vtkAlgorithmOutput* port, const Eigen::Vect
 // A chart's table: one double column per (name, values) pair.
 vtkSmartPointer<vtkTable> table_of(const std::vector<std::pair<const char*, std::vector<double>>>& columns);
 
+// Moves a chart's cursor, a two-row table (time, value) drawn as a line, to
+// time `t`, spanning the plot's value `range` (low, high).
+void move_cursor(vtkTable* cursor, double t, const std::pair<double, double>& range);
+
 }  // namespace roverlab::views

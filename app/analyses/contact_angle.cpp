@@ -81,17 +81,28 @@ void print_rms(const json& rms, const json& wheels, const char* what, std::FILE*
   }
 }
 
+// How its result is shown.
+class ContactAnglePresentation : public Presentation {
+ public:
+  void print(const json& j, std::FILE* out) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"contact_angle_rms_deg", "contact angle RMS (deg, mean of wheels)", "/rms/contact_angle_deg"},
+            {"contact_slip_rms", "slip RMS (mean of wheels)", "/rms/slip"}};
+  }
+  void report(const json& j, ReportSection& section) const override;
+};
+
 class ContactAngleAnalysis : public Analysis {
  public:
-  std::string name() const override { return "contact-angle"; }
-  std::string command() const override { return "estimate contact-angle"; }
-  std::string title() const override { return "Contact-angle estimator (seed 000)"; }
-  std::string help() const override {
-    return "Contact angles, side slip, slip and velocity of a six-wheel DH rover with an EKF or UKF (seed 000)";
-  }
-  std::string log_help() const override {
-    return "Log with imu, joints and wheels streams (truth/ streams for errors)";
-  }
+  ContactAngleAnalysis()
+      : Analysis({"contact-angle",
+                  "estimate contact-angle",
+                  "Contact-angle estimator (seed 000)",
+                  "Contact angles, side slip, slip and velocity of a six-wheel DH rover with an EKF or UKF (seed 000)",
+                  "Log with imu, joints and wheels streams (truth/ streams for errors)",
+                  {estimation::contact_streams::kPrefix},
+                  AnalysisChoice{"--model", "Contact-angle &model", {"auto", "smooth", "c", "c+ss"}}},
+                 std::make_unique<ContactAnglePresentation>()) {}
 
   std::string missing(const log::Log& lg) const override {
     for (const char* s : {"imu", "joints", "wheels"}) {
@@ -109,9 +120,6 @@ class ContactAngleAnalysis : public Analysis {
   }
 
   void declare(CLI::App& cmd) override;
-  std::optional<Choice> choice() const override {
-    return Choice{"--model", "Contact-angle &model", {"auto", "smooth", "c", "c+ss"}};
-  }
   json configuration() const override {
     const auto value = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
     return {{"rover", rover_ ? json(*rover_) : json(nullptr)},
@@ -137,15 +145,8 @@ class ContactAngleAnalysis : public Analysis {
     settings["rover"] = ec ? file : canonical.string();
     return settings;
   }
-  std::vector<std::string> estimate_streams() const override { return {estimation::contact_streams::kPrefix}; }
   void check_options() const override { (void)options(); }
   AnalysisResult run(const AnalysisInput& in) override;
-  void print(const json& j, std::FILE* out) const override;
-  std::vector<KeyMetric> key_metrics() const override {
-    return {{"contact_angle_rms_deg", "contact angle RMS (deg, mean of wheels)", "/rms/contact_angle_deg"},
-            {"contact_slip_rms", "slip RMS (mean of wheels)", "/rms/slip"}};
-  }
-  void report(const json& j, ReportSection& section) const override;
 
  private:
   // --rover NAME|FILE, else the log's rover_id (a name only), else the ExoMars BB2.
@@ -326,7 +327,7 @@ json ContactAngleAnalysis::document(const std::string& file, const kinematics::R
   return j;
 }
 
-void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
+void ContactAnglePresentation::print(const json& j, std::FILE* out) const {
   const auto str = [&](const char* key) { return j.at(key).get<std::string>(); };
   std::fprintf(out, "%s: rover %s, model %s, %s, %s angles%s; %.1f s of log in %.2f s\n", str("file").c_str(),
                str("rover").c_str(), str("model").c_str(), str("filter").c_str(), str("angle_model").c_str(),
@@ -364,7 +365,7 @@ void ContactAngleAnalysis::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "largest cross-correlation in P at the end: %.3f\n", j.at("max_cross_correlation").get<double>());
 }
 
-void ContactAngleAnalysis::report(const json& j, ReportSection& s) const {
+void ContactAnglePresentation::report(const json& j, ReportSection& s) const {
   std::string model = j.at("model").get<std::string>();
   for (char& c : model) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   std::string filter = j.at("filter").get<std::string>();

@@ -152,15 +152,35 @@ void print_confusion(const json& c, std::FILE* out) {
   std::fprintf(out, "\n  overall %s\n  %s\n", accuracy_text(c).c_str(), recalls_text(c).c_str());
 }
 
+constexpr char kTitle[] = "INS slip detection (seed 002)";
+
+// How its result is shown.
+class InsSlipPresentation : public Presentation {
+ public:
+  void print(const json& j, std::FILE* out) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"ins_final_error_m", "INS final horizontal error (m)", "/ins/final_position_error_m"},
+            {"ins_position_rmse_m", "INS horizontal position RMSE (m)", "/ins/position_rmse_m"},
+            {"wheel_odometry_final_error_m", "wheel odometry final horizontal error (m)",
+             "/wheel_odometry/final_position_error_m"},
+            {"slip_class_accuracy", "slip class accuracy", "/slip_confusion/accuracy"}};
+  }
+  void report(const json& j, ReportSection& section) const override;
+  std::vector<ResultTable> tables(const json& j) const override;
+  std::string summary(const json& j) const override;
+};
+
 class InsSlipAnalysis : public Analysis {
  public:
-  std::string name() const override { return "ins-slip"; }
-  std::string command() const override { return "estimate ins-slip"; }
-  std::string title() const override { return "INS slip detection (seed 002)"; }
-  std::string help() const override {
-    return "Error-state INS with ZUPT/ZARU/NHC pseudo-measurements and slip detection (seed 002)";
-  }
-  std::string log_help() const override { return "Log with imu and wheels streams (gps or truth/slip for metrics)"; }
+  InsSlipAnalysis()
+      : Analysis({"ins-slip",
+                  "estimate ins-slip",
+                  kTitle,
+                  "Error-state INS with ZUPT/ZARU/NHC pseudo-measurements and slip detection (seed 002)",
+                  "Log with imu and wheels streams (gps or truth/slip for metrics)",
+                  {estimation::ins_streams::kPrefix, estimation::ins_streams::kOdometryPrefix},
+                  std::nullopt},
+                 std::make_unique<InsSlipPresentation>()) {}
 
   std::string missing(const log::Log& lg) const override {
     if (lg.find_stream("imu") == nullptr) return "no imu stream";
@@ -202,9 +222,6 @@ class InsSlipAnalysis : public Analysis {
         ->check(finite_in(1e-4, 10.0));
   }
 
-  std::vector<std::string> estimate_streams() const override {
-    return {estimation::ins_streams::kPrefix, estimation::ins_streams::kOdometryPrefix};
-  }
   json configuration() const override {
     return {{"zupt", !no_zupt_},
             {"zaru", !no_zaru_},
@@ -235,18 +252,6 @@ class InsSlipAnalysis : public Analysis {
     out.estimates = std::move(r.estimates);
     return out;
   }
-
-  void print(const json& j, std::FILE* out) const override;
-  std::vector<KeyMetric> key_metrics() const override {
-    return {{"ins_final_error_m", "INS final horizontal error (m)", "/ins/final_position_error_m"},
-            {"ins_position_rmse_m", "INS horizontal position RMSE (m)", "/ins/position_rmse_m"},
-            {"wheel_odometry_final_error_m", "wheel odometry final horizontal error (m)",
-             "/wheel_odometry/final_position_error_m"},
-            {"slip_class_accuracy", "slip class accuracy", "/slip_confusion/accuracy"}};
-  }
-  void report(const json& j, ReportSection& section) const override;
-  std::vector<ResultTable> tables(const json& j) const override;
-  std::string summary(const json& j) const override;
 
  private:
   static json document(const std::string& file, const estimation::InsSlipOptions& o,
@@ -315,7 +320,7 @@ const char* on_off(const json& b) { return b.get<bool>() ? "on" : "off"; }
 
 // The headline: the position errors named by their frame (horizontal, with
 // the vertical RMSE beside), the slip classes' accuracy with the weakest class.
-std::string InsSlipAnalysis::summary(const json& j) const {
+std::string InsSlipPresentation::summary(const json& j) const {
   std::string out;
   char text[256];
   if (j.at("has_reference").get<bool>()) {
@@ -333,7 +338,7 @@ std::string InsSlipAnalysis::summary(const json& j) const {
   return out.empty() ? out : out + ".";
 }
 
-std::vector<ResultTable> InsSlipAnalysis::tables(const json& j) const {
+std::vector<ResultTable> InsSlipPresentation::tables(const json& j) const {
   std::vector<ResultTable> out;
   if (j.contains("slip_confusion")) out.push_back(confusion_table(j.at("slip_confusion"), "Slip classes"));
   if (j.contains("slip_confusion_moving"))
@@ -361,7 +366,7 @@ void print_vibration(const json& j, std::FILE* out) {
   std::fprintf(out, "\n");
 }
 
-void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
+void InsSlipPresentation::print(const json& j, std::FILE* out) const {
   const json& u = j.at("updates");
   const bool aiding = u.at("odometry_aiding").get<bool>();
   std::fprintf(out, "%s: %.1f s of IMU data, standstill %.0f %% of it\n", j.at("file").get<std::string>().c_str(),
@@ -431,10 +436,10 @@ void InsSlipAnalysis::print(const json& j, std::FILE* out) const {
   }
 }
 
-void InsSlipAnalysis::report(const json& j, ReportSection& s) const {
+void InsSlipPresentation::report(const json& j, ReportSection& s) const {
   auto& html = s.html;
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
-  html << "<h2>" << title() << "</h2>\n";
+  html << "<h2>" << kTitle << "</h2>\n";
   report_health(j, s);
   html << "<p>" << ReportSection::escape(j.at("initial_heading").at("text").get<std::string>()) << ".</p>\n";
   if (j.contains("imu_vibration") && j.at("imu_vibration").at("detector_speed_error_mps").is_number()) {

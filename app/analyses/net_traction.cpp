@@ -108,18 +108,36 @@ json points_json(const std::vector<analysis::TractionPoint>& points) {
           {"x_m", x}};
 }
 
+// How its result is shown.
+class NetTractionPresentation : public Presentation {
+ public:
+  bool draws_traction_surfaces() const override { return true; }
+  bool traction_surface(const json& document, bool drawbar_pull, views::TractionSurfaceData& d) const override;
+  void print(const json& j, std::FILE* out) const override;
+  void report(const json& j, ReportSection& section) const override;
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"net_traction_tau_r_rms_percent", "net traction: tau_R surface RMS vs truth (%)",
+             "/summary/resistive_torque_rms_percent"},
+            {"net_traction_dp_rms_percent", "net traction: DP surface RMS vs truth (%)",
+             "/summary/drawbar_pull_rms_percent"},
+            {"net_traction_changes", "net traction: soil changes found", "/summary/change_count"},
+            {"net_traction_change_x_m", "net traction: first soil change at x (m)", "/summary/first_change_x_m"}};
+  }
+};
+
 class NetTractionAnalysis : public Analysis {
  public:
-  std::string name() const override { return "net-traction"; }
-  std::string command() const override { return "estimate net-traction"; }
-  std::string title() const override { return "Net-traction estimator (seed 003)"; }
-  std::string help() const override {
-    return "Drawbar pull, resistive torque, normal load, slip and contact angle of a planar rocker-bogie's wheels, "
-           "and its traction surfaces rebuilt from them (seed 003)";
-  }
-  std::string log_help() const override {
-    return "Planar rocker-bogie log with joints, imu, velocimeter, forces and commands streams (truth/ for errors)";
-  }
+  NetTractionAnalysis()
+      : Analysis({"net-traction",
+                  "estimate net-traction",
+                  "Net-traction estimator (seed 003)",
+                  "Drawbar pull, resistive torque, normal load, slip and contact angle of a planar rocker-bogie's "
+                  "wheels, and its traction surfaces rebuilt from them (seed 003)",
+                  "Planar rocker-bogie log with joints, imu, velocimeter, forces and commands streams (truth/ for "
+                  "errors)",
+                  {estimation::net_traction_streams::kPrefix},
+                  std::nullopt},
+                 std::make_unique<NetTractionPresentation>()) {}
 
   std::string missing(const log::Log& lg) const override {
     std::string m = estimation::net_traction_missing(lg);
@@ -152,7 +170,6 @@ class NetTractionAnalysis : public Analysis {
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "eq-5.66", "shape"}));
   }
-  std::vector<std::string> estimate_streams() const override { return {estimation::net_traction_streams::kPrefix}; }
   json configuration() const override {
     return {{"force_sensors", force_sensors_ ? json(*force_sensors_) : json(nullptr)},
             {"order", order_},
@@ -160,23 +177,11 @@ class NetTractionAnalysis : public Analysis {
             {"window_s", window_},
             {"bogie_split", bogie_split_}};
   }
-  bool draws_traction_surfaces() const override { return true; }
-  bool traction_surface(const json& document, bool drawbar_pull, views::TractionSurfaceData& d) const override;
   void check_options() const override {
     (void)order();
     if (force_sensors_) (void)sensors();
   }
   AnalysisResult run(const AnalysisInput& in) override;
-  void print(const json& j, std::FILE* out) const override;
-  void report(const json& j, ReportSection& section) const override;
-  std::vector<KeyMetric> key_metrics() const override {
-    return {{"net_traction_tau_r_rms_percent", "net traction: tau_R surface RMS vs truth (%)",
-             "/summary/resistive_torque_rms_percent"},
-            {"net_traction_dp_rms_percent", "net traction: DP surface RMS vs truth (%)",
-             "/summary/drawbar_pull_rms_percent"},
-            {"net_traction_changes", "net traction: soil changes found", "/summary/change_count"},
-            {"net_traction_change_x_m", "net traction: first soil change at x (m)", "/summary/first_change_x_m"}};
-  }
 
  private:
   static std::optional<io::RoverDescription> rover_of(const log::Log& lg, const std::string& file) {
@@ -435,7 +440,7 @@ void print_changes(const json& e, std::FILE* out) {
   }
 }
 
-void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
+void NetTractionPresentation::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "%s: rover %s, %s force sensors (streams), %.1f s of log, filters %.2f s\n",
                j.at("file").get<std::string>().c_str(), j.at("rover").get<std::string>().c_str(),
                j.at("force_sensors").get<std::string>().c_str(), j.at("seconds").get<double>(),
@@ -503,7 +508,7 @@ void NetTractionAnalysis::print(const json& j, std::FILE* out) const {
   }
 }
 
-void NetTractionAnalysis::report(const json& j, ReportSection& s) const {
+void NetTractionPresentation::report(const json& j, ReportSection& s) const {
   s.html << "<h2>Net-traction estimator (seed 003, " << ReportSection::escape(j.at("force_sensors").get<std::string>())
          << " force sensors)</h2>\n";
   for (const char* name : {"two-axis", "single-axis"}) {
@@ -564,7 +569,7 @@ terramechanics::PolynomialSurface surface_from(const json& order, const json& co
 // The rover's own traction surfaces (seed 003 section 5.7): its estimated
 // points coloured by wheel, the surface fitted to them and, with truth, the
 // true local model; those of the estimator of the log's force sensors.
-bool NetTractionAnalysis::traction_surface(const json& r, bool dp, views::TractionSurfaceData& d) const {
+bool NetTractionPresentation::traction_surface(const json& r, bool dp, views::TractionSurfaceData& d) const {
   if (!r.contains("estimators")) return false;
   const std::string sensors = r.value("force_sensors", std::string("two-axis"));
   if (!r.at("estimators").contains(sensors)) return false;

@@ -17,16 +17,35 @@ namespace {
 
 using nlohmann::json;
 
+constexpr char kTitle[] = "What the wheel odometry gets wrong";
+
+// How its result is shown.
+class OdometryPresentation : public Presentation {
+ public:
+  void print(const json& j, std::FILE* out) const override;
+  std::string summary(const json& j) const override { return j.at("verdict").get<std::string>(); }
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"odometry_held_out_rmse_m", "odometry held-out RMSE (m)", "/baseline/held_out_rmse_m"},
+            {"odometry_cause", "named cause (odometry)", "/cause", true, true}};
+  }
+  std::string expected_cause(const json& effects) const override;
+  void report(const json& j, ReportSection& section) const override;
+  std::vector<ResultTable> tables(const json& j) const override;
+};
+
 class OdometryAnalysis : public Analysis {
  public:
-  std::string name() const override { return "odometry"; }
-  std::string command() const override { return "discrepancy odometry"; }
-  std::string title() const override { return "What the wheel odometry gets wrong"; }
-  std::string help() const override {
-    return "Wheel-odometry dead reckoning against the GPS track: cause of the disagreement, fitted correction, gain";
-  }
-  std::string log_help() const override { return "Log with wheels and gps streams"; }
-  bool adds_streams() const override { return false; }
+  OdometryAnalysis()
+      : Analysis({"odometry",
+                  "discrepancy odometry",
+                  kTitle,
+                  "Wheel-odometry dead reckoning against the GPS track: cause of the disagreement, fitted correction, "
+                  "gain",
+                  "Log with wheels and gps streams",
+                  {},  // it adds no streams
+                  std::nullopt},
+                 std::make_unique<OdometryPresentation>()) {}
+
   std::string missing(const log::Log& lg) const override {
     if (lg.find_stream("wheels") == nullptr) return "no wheels stream";
     if (lg.find_stream("gps") == nullptr) return "no gps stream";
@@ -48,35 +67,29 @@ class OdometryAnalysis : public Analysis {
     out.document = document(in.file, r);
     return out;
   }
-  void print(const json& j, std::FILE* out) const override;
-  std::string summary(const json& j) const override { return j.at("verdict").get<std::string>(); }
-  std::vector<KeyMetric> key_metrics() const override {
-    return {{"odometry_held_out_rmse_m", "odometry held-out RMSE (m)", "/baseline/held_out_rmse_m"},
-            {"odometry_cause", "named cause (odometry)", "/cause", true, true}};
-  }
-  std::string expected_cause(const json& effects) const override {
-    std::vector<std::string> others;
-    for (const auto& [name, value] : effects.items()) {
-      if (name != "slip") others.push_back(name);
-    }
-    const bool firm = effects.contains("slip") && effects.at("slip") == 0;
-    if (others.empty()) return firm ? "none" : "";
-    if (others.size() > 1) return "";
-    const std::string& effect = others.front();
-    if (effect == "left-radius-scale" || effect == "right-radius-scale") return "per-side scale";
-    if (effect == "radius-scale") return "radius scale";
-    if (effect == "turning-track-factor") return "turning track";
-    if (effect == "wheel-time-offset") return "time offset";
-    return "";
-  }
-  void report(const json& j, ReportSection& section) const override;
-  std::vector<ResultTable> tables(const json& j) const override;
 
  private:
   static json document(const std::string& file, const analysis::OdometryDiscrepancyReport& r);
   static json candidate_json(const analysis::OdometryCandidate& c);
   double fit_fraction_ = 0.5;
 };
+
+// The cause the study should name for a simulated run with these injected effects.
+std::string OdometryPresentation::expected_cause(const json& effects) const {
+  std::vector<std::string> others;
+  for (const auto& [name, value] : effects.items()) {
+    if (name != "slip") others.push_back(name);
+  }
+  const bool firm = effects.contains("slip") && effects.at("slip") == 0;
+  if (others.empty()) return firm ? "none" : "";
+  if (others.size() > 1) return "";
+  const std::string& effect = others.front();
+  if (effect == "left-radius-scale" || effect == "right-radius-scale") return "per-side scale";
+  if (effect == "radius-scale") return "radius scale";
+  if (effect == "turning-track-factor") return "turning track";
+  if (effect == "wheel-time-offset") return "time offset";
+  return "";
+}
 
 json OdometryAnalysis::document(const std::string& file, const analysis::OdometryDiscrepancyReport& r) {
   json j = {{"file", file},
@@ -181,7 +194,7 @@ std::string parameters_named(const json& parameters) {
   return text;
 }
 
-void OdometryAnalysis::print(const json& j, std::FILE* out) const {
+void OdometryPresentation::print(const json& j, std::FILE* out) const {
   const auto num = [&](const json& v) { return v.get<double>(); };
   const json& b = j.at("baseline");
   std::fprintf(out, "%s: %.1f m of reference track; fit on the first %.1f m (to t = %.1f s), test on the rest\n\n",
@@ -224,7 +237,7 @@ std::vector<const json*> by_evidence(const json& candidates) {
   return order;
 }
 
-std::vector<ResultTable> OdometryAnalysis::tables(const json& j) const {
+std::vector<ResultTable> OdometryPresentation::tables(const json& j) const {
   ResultTable t;
   t.title = "What the wheel odometry gets wrong: candidate causes, by evidence";
   t.columns = {"candidate", "fitted (+-1 sigma)", "fit RMSE (m)",
@@ -301,9 +314,9 @@ void residual_plots(const json& j, ReportSection& s) {
          << plot_svg(by_time) << plot_svg(by_slip) << "\n";
 }
 
-void OdometryAnalysis::report(const json& j, ReportSection& s) const {
+void OdometryPresentation::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
-  s.html << "<h2>" << title() << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
+  s.html << "<h2>" << kTitle << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
          << "</p>\n";
   for (const ResultTable& t : tables(j)) s.table(t);
   std::string csv = "candidate,fit_rmse_m,delta_bic,held_out_rmse_m,held_out_final_m,significant\n";

@@ -138,7 +138,7 @@ bool readable_result(const Analysis& analysis, const nlohmann::json& doc) {
     std::FILE* out = open_memstream(&buffer, &size);
     if (out == nullptr) return false;
     try {
-      analysis.print(doc, out);
+      analysis.presentation().print(doc, out);
     } catch (...) {
       std::fclose(out);
       std::free(buffer);
@@ -146,9 +146,10 @@ bool readable_result(const Analysis& analysis, const nlohmann::json& doc) {
     }
     std::fclose(out);
     std::free(buffer);
-    (void)analysis.summary(doc);
-    (void)analysis.tables(doc);
-    for (const KeyMetric& m : analysis.key_metrics()) (void)key_metric_value(doc, m);
+    const Presentation& shown = analysis.presentation();
+    (void)shown.summary(doc);
+    (void)shown.tables(doc);
+    for (const KeyMetric& m : shown.key_metrics()) (void)key_metric_value(doc, m);
     return true;
   } catch (const nlohmann::json::exception&) {
     return false;
@@ -211,7 +212,7 @@ std::string printed(const Analysis& analysis, const nlohmann::json& document) {
   std::size_t size = 0;
   std::FILE* out = open_memstream(&buffer, &size);
   if (out == nullptr) return {};
-  analysis.print(document, out);
+  analysis.presentation().print(document, out);
   std::fputs(configuration_text(document).c_str(), out);
   std::fclose(out);
   std::string text(buffer, size);
@@ -236,7 +237,7 @@ nlohmann::json key_metric_value(const nlohmann::json& doc, const KeyMetric& m) {
   return nullptr;
 }
 
-std::string Analysis::summary(const nlohmann::json& document) const {
+std::string Presentation::summary(const nlohmann::json& document) const {
   std::string out;
   for (const KeyMetric& m : key_metrics()) {
     const nlohmann::json v = key_metric_value(document, m);

@@ -98,17 +98,40 @@ void residual_plots(const json& j, const std::vector<double>& t, const std::vect
          << plot_svg(by_time) << plot_svg(by_slip) << "\n";
 }
 
+constexpr char kTitle[] = "What the rover simulation gets wrong";
+
+// How its result is shown.
+class RoverDiscrepancyPresentation : public Presentation {
+ public:
+  void print(const json& j, std::FILE* out) const override;
+  void report(const json& j, ReportSection& section) const override;
+  std::vector<ResultTable> tables(const json& j) const override;
+  std::vector<ReportPlot> report_plots(const json& j, const log::Log& lg) const override;
+  std::string summary(const json& j) const override {
+    const json& regime = j.at("slip_regime");
+    const std::string what = j.at("what_is_wrong").get<std::string>() + " " + j.at("verdict").get<std::string>();
+    // A stuck rover's regime already leads what_is_wrong.
+    return regime.at("stuck").get<bool>() ? what : regime.at("text").get<std::string>() + " " + what;
+  }
+  std::vector<KeyMetric> key_metrics() const override {
+    return {{"rover_held_out_before", "rover held-out error before (sigmas)", "/baseline/held_out"},
+            {"rover_held_out_after", "rover held-out error after (sigmas)", "/held_out_after"},
+            {"rover_causes", "named causes (rover)", "/causes_text", true}};
+  }
+};
+
 class RoverDiscrepancyAnalysis : public Analysis {
  public:
-  std::string name() const override { return "rover-discrepancy"; }
-  std::string command() const override { return "discrepancy rover"; }
-  std::string title() const override { return "What the rover simulation gets wrong"; }
-  std::string help() const override {
-    return "Planar rocker-bogie log against its scenario's simulation: residuals, the cause or causes, the gain";
-  }
-  std::string log_help() const override {
-    return "Planar rocker-bogie log (joints, imu, velocimeter, forces, commands), e.g. from roverlab simulate";
-  }
+  RoverDiscrepancyAnalysis()
+      : Analysis({"rover-discrepancy",
+                  "discrepancy rover",
+                  kTitle,
+                  "Planar rocker-bogie log against its scenario's simulation: residuals, the cause or causes, the gain",
+                  "Planar rocker-bogie log (joints, imu, velocimeter, forces, commands), e.g. from roverlab simulate",
+                  {analysis::rover_streams::kPrefix},
+                  std::nullopt},
+                 std::make_unique<RoverDiscrepancyPresentation>()) {}
+
   std::string missing(const log::Log& lg) const override {
     for (const char* s : {"joints", "imu", "velocimeter", "forces", "commands"}) {
       if (lg.find_stream(s) == nullptr) return std::string("no ") + s + " stream";
@@ -132,26 +155,10 @@ class RoverDiscrepancyAnalysis : public Analysis {
   json resolved_configuration(const log::Log& lg) const override {
     return {{"scenario", rover_scenario_content(scenario_, lg.metadata.extra, "the log")}, {"block_s", block_}};
   }
-  std::vector<std::string> estimate_streams() const override { return {analysis::rover_streams::kPrefix}; }
   void check_options() const override {
     if (scenario_ && scenario_->empty()) throw UsageError("--scenario: the scenario's name is empty");
   }
   AnalysisResult run(const AnalysisInput& in) override;
-  void print(const json& j, std::FILE* out) const override;
-  void report(const json& j, ReportSection& section) const override;
-  std::vector<ResultTable> tables(const json& j) const override;
-  std::vector<ReportPlot> report_plots(const json& j, const log::Log& lg) const override;
-  std::string summary(const json& j) const override {
-    const json& regime = j.at("slip_regime");
-    const std::string what = j.at("what_is_wrong").get<std::string>() + " " + j.at("verdict").get<std::string>();
-    // A stuck rover's regime already leads what_is_wrong.
-    return regime.at("stuck").get<bool>() ? what : regime.at("text").get<std::string>() + " " + what;
-  }
-  std::vector<KeyMetric> key_metrics() const override {
-    return {{"rover_held_out_before", "rover held-out error before (sigmas)", "/baseline/held_out"},
-            {"rover_held_out_after", "rover held-out error after (sigmas)", "/held_out_after"},
-            {"rover_causes", "named causes (rover)", "/causes_text", true}};
-  }
 
  private:
   static json document(const std::string& file, const analysis::RoverDiscrepancyReport& r);
@@ -349,7 +356,7 @@ json RoverDiscrepancyAnalysis::document(const std::string& file, const analysis:
   return j;
 }
 
-void RoverDiscrepancyAnalysis::print(const json& j, std::FILE* out) const {
+void RoverDiscrepancyPresentation::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "%s against scenario %s (%.0f s); %s\n%s\n\n", j.at("file").get<std::string>().c_str(),
                j.at("scenario").get<std::string>().c_str(), j.at("duration_s").get<double>(),
                j.at("held_out_method").get<std::string>().c_str(), j.at("drive").get<std::string>().c_str());
@@ -408,7 +415,7 @@ std::string candidate_status(const json& c, const std::vector<std::string>& name
   return c.at("significant").get<bool>() ? "significant, not named" : "not significant";
 }
 
-std::vector<ResultTable> RoverDiscrepancyAnalysis::tables(const json& j) const {
+std::vector<ResultTable> RoverDiscrepancyPresentation::tables(const json& j) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
   ResultTable candidates;
   candidates.title = "What the simulation gets wrong: candidate causes, by evidence";
@@ -455,9 +462,9 @@ std::vector<ResultTable> RoverDiscrepancyAnalysis::tables(const json& j) const {
   return {candidates, checks};
 }
 
-void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
+void RoverDiscrepancyPresentation::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
-  s.html << "<h2>" << title() << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
+  s.html << "<h2>" << kTitle << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
          << "</p>\n<p>"
          << ReportSection::escape(j.at("slip_regime").at("stuck").get<bool>()
                                       ? std::string()
@@ -504,7 +511,7 @@ void RoverDiscrepancyAnalysis::report(const json& j, ReportSection& s) const {
 // The two channels where the simulation disagrees most with the measurement
 // (RMSE in noise sigmas): measured minus simulated, nominal and with the
 // named causes, for the channels whose residual streams the log holds.
-std::vector<ReportPlot> RoverDiscrepancyAnalysis::report_plots(const json& j, const log::Log& lg) const {
+std::vector<ReportPlot> RoverDiscrepancyPresentation::report_plots(const json& j, const log::Log& lg) const {
   if (!j.contains("channels")) return {};
   std::vector<std::pair<double, std::string>> ranked;
   for (const auto& c : j.at("channels")) {

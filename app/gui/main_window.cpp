@@ -234,13 +234,13 @@ void MainWindow::build_menus() {
   connect(quit, &QAction::triggered, this, &QWidget::close);
   QMenu* analysis = menuBar()->addMenu("&Analysis");
   for (const auto& a : app::all_analyses()) {
-    QAction* run = analysis->addAction("Run: " + q(a->title()));
+    QAction* run = analysis->addAction("Run: " + q(a->identity().title));
     connect(run, &QAction::triggered, this, [this, name = a->name()] { run_analyses({name}, true); });
   }
   // An analysis's choice (the contact-angle model the views show: chosen by the
   // data, the first value, or by hand); the analysis runs again with it.
   for (const auto& a : app::all_analyses()) {
-    const std::optional<app::Analysis::Choice> c = a->choice();
+    const std::optional<app::AnalysisChoice>& c = a->identity().choice;
     if (!c) continue;
     QMenu* menu = analysis->addMenu(q(c->menu));
     auto* group = new QActionGroup(this);
@@ -622,7 +622,7 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
     std::shared_ptr<app::Analysis> a = app::make_analysis(name);
     const std::string missing = a->missing(*lg);
     if (!missing.empty()) {
-      if (by_hand) show_error(q(a->title() + " cannot run on this log: " + missing + "."));
+      if (by_hand) show_error(q(a->identity().title + " cannot run on this log: " + missing + "."));
       continue;
     }
     if (const auto chosen = choices_.find(a->name()); chosen != choices_.end()) {  // chosen in the Analysis menu
@@ -633,7 +633,7 @@ void MainWindow::run_analyses(const std::vector<std::string>& names, bool by_han
     todo.push_back(std::move(a));
   }
   if (todo.empty()) return;
-  const QString title = todo.size() == 1 ? q(todo.front()->title()) : QString("%1 analyses").arg(todo.size());
+  const QString title = todo.size() == 1 ? q(todo.front()->identity().title) : QString("%1 analyses").arg(todo.size());
   const std::string file = input_->file;
   jobs_->start(title, [this, lg, todo, file](const JobControl& c) -> std::function<void()> {
     auto results = std::make_shared<std::vector<app::AnalysisResult>>();
@@ -836,7 +836,7 @@ void add_json_items(QTreeWidgetItem* parent, const nlohmann::json& v) {
   }
 }
 
-// One table of a result (Analysis::tables) as a table widget named by its title.
+// One table of a result (Presentation::tables) as a table widget named by its title.
 QWidget* table_widget(const app::ResultTable& t) {
   auto* table = new QTableWidget(static_cast<int>(t.rows.size()), static_cast<int>(t.columns.size()));
   table->setObjectName(q(t.title));
@@ -890,7 +890,7 @@ void MainWindow::rebuild_analysis() {
             q(app::printed(*run.analysis, run.document)).toHtmlEscaped() + "</pre>";
     auto* top = new QTreeWidgetItem(results_, {q(run.title), ""});
     add_json_items(top, run.document);
-    for (const app::ResultTable& t : run.analysis->tables(run.document)) {
+    for (const app::ResultTable& t : run.analysis->presentation().tables(run.document)) {
       tables_->layout()->addWidget(new QLabel(q(t.title)));
       tables_->layout()->addWidget(table_widget(t));
       if (!t.legend.empty()) {  // what bold, the tint and the order mean, under the table

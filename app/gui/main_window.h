@@ -213,7 +213,7 @@ class MainWindow : public QMainWindow {
   QLabel* surface_note_ = nullptr;
   QStackedWidget* surface_stack_ = nullptr;  // the surface's VTK widget, or in its place why there is none
   QLabel* surface_why_ = nullptr;
-  QWidget* tables_ = nullptr;  // the analyses' result tables (Analysis::tables)
+  QWidget* tables_ = nullptr;  // the analyses' result tables (Presentation::tables)
   QLabel* analysis_text_ = nullptr;
   QTreeWidget* results_ = nullptr;
   QSlider* slider_ = nullptr;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -28,9 +29,10 @@ TEST(AnalysisRegistry, EveryEntryIsWellFormedAndSaysWhatAnEmptyLogLacks) {
   const log::Log empty;
   for (const auto& a : all) {
     EXPECT_TRUE(names.insert(a->name()).second) << a->name();
-    EXPECT_TRUE(commands.insert(a->command()).second) << a->command();
-    EXPECT_TRUE(a->command().rfind("estimate ", 0) == 0 || a->command().rfind("discrepancy ", 0) == 0) << a->command();
-    EXPECT_FALSE(a->title().empty());
+    EXPECT_TRUE(commands.insert(a->identity().command).second) << a->identity().command;
+    const std::string& command = a->identity().command;
+    EXPECT_TRUE(command.rfind("estimate ", 0) == 0 || command.rfind("discrepancy ", 0) == 0) << command;
+    EXPECT_FALSE(a->identity().title.empty());
     EXPECT_FALSE(a->missing(empty).empty()) << a->name();
     EXPECT_FALSE(a->runs_on_open(empty)) << a->name();
     EXPECT_EQ(app::make_analysis(a->name())->name(), a->name());
@@ -57,14 +59,14 @@ TEST(AnalysisRegistry, TextAndReportAreWrittenFromTheResultDocument) {
   const std::filesystem::path folder = std::filesystem::temp_directory_path() / "roverlab_analysis_registry_test";
   std::filesystem::create_directories(folder);
   app::ReportSection section(folder);
-  ins->report(edited, section);
+  ins->presentation().report(edited, section);
   EXPECT_NE(section.html.str().find("Slip classes"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(folder / "slip_confusion.csv"));
   std::filesystem::remove_all(folder);
   // The GUI's tables come from the document too: each confusion cell is the
   // column-normalised fraction in per cent, tinted by it.
   edited["slip_confusion"]["column_normalised"][1][2] = 0.4321;
-  const std::vector<app::ResultTable> tables = ins->tables(edited);
+  const std::vector<app::ResultTable> tables = ins->presentation().tables(edited);
   ASSERT_FALSE(tables.empty());
   const app::ResultTable& t = tables.front();
   EXPECT_EQ(t.columns.size(), edited.at("slip_confusion").at("classes").size());
@@ -75,7 +77,36 @@ TEST(AnalysisRegistry, TextAndReportAreWrittenFromTheResultDocument) {
   nlohmann::json without = edited;
   without.erase("slip_confusion");
   without.erase("slip_confusion_moving");
-  EXPECT_TRUE(ins->tables(without).empty());
+  EXPECT_TRUE(ins->presentation().tables(without).empty());
+}
+
+// What an analysis adds and how it shows a result are stated apart from what
+// it computes: every stream a run adds lies under a prefix its identity names
+// (the views run it by those names), and its presentation gives one document
+// the same text whatever settings its analysis ran with.
+TEST(AnalysisRegistry, ItAddsOnlyTheStreamsItNamesAndShowsADocumentWhateverItsSettings) {
+  for (const auto& a : app::all_analyses()) {
+    for (const std::string& prefix : a->identity().estimate_streams)
+      EXPECT_EQ(prefix.rfind("estimate/", 0), 0u) << a->name() << ": " << prefix;
+  }
+  const log::Log lg = simulation::simulate_skid_steer(simulation::default_slip_scenario(2));
+  const std::unique_ptr<app::Analysis> ins = app::make_analysis("ins-slip");
+  const app::AnalysisResult r = ins->run({lg, "sim.h5", {}});
+  ASSERT_TRUE(ins->adds_streams());
+  ASSERT_FALSE(r.estimates.streams().empty());
+  const std::vector<std::string>& prefixes = ins->identity().estimate_streams;
+  for (const auto& s : r.estimates.streams()) {
+    EXPECT_TRUE(
+        std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return s.name().rfind(p, 0) == 0; }))
+        << s.name() << " is under none of the prefixes the analysis names";
+  }
+  const std::unique_ptr<app::Analysis> other = app::make_analysis("ins-slip");
+  CLI::App options;
+  other->declare(options);
+  options.parse("--no-zupt --no-smoother", false);
+  ASSERT_NE(other->configuration(), ins->configuration());
+  EXPECT_EQ(app::printed(*other, r.document), app::printed(*ins, r.document));
+  EXPECT_FALSE(app::make_analysis("odometry")->adds_streams());
 }
 
 // A campaign's columns come from the analyses: unique keys, and each numeric
@@ -83,7 +114,7 @@ TEST(AnalysisRegistry, TextAndReportAreWrittenFromTheResultDocument) {
 TEST(AnalysisRegistry, KeyMetricsAreUniqueAndPointIntoTheResultDocument) {
   std::set<std::string> keys;
   for (const auto& analysis : app::all_analyses()) {
-    for (const auto& m : analysis->key_metrics()) {
+    for (const auto& m : analysis->presentation().key_metrics()) {
       EXPECT_TRUE(keys.insert(m.key).second) << "key metric " << m.key << " twice";
       EXPECT_EQ(m.pointer.rfind('/', 0), 0u) << m.pointer;
       EXPECT_EQ(m.key.find("wall"), std::string::npos) << "a wall-clock key metric: " << m.key;
@@ -93,7 +124,7 @@ TEST(AnalysisRegistry, KeyMetricsAreUniqueAndPointIntoTheResultDocument) {
   const log::Log lg = simulation::simulate_skid_steer(simulation::default_slip_scenario(3));
   const std::unique_ptr<app::Analysis> ins = app::make_analysis("ins-slip");
   const app::AnalysisResult r = ins->run({lg, "sim.h5", {}});
-  for (const auto& m : ins->key_metrics()) {
+  for (const auto& m : ins->presentation().key_metrics()) {
     const nlohmann::json::json_pointer at(m.pointer);
     ASSERT_TRUE(r.document.contains(at)) << m.pointer;
     EXPECT_TRUE(r.document.at(at).is_number()) << m.pointer;

@@ -327,7 +327,7 @@ TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
     for (const auto& [name, from_report] : metrics.at("analyses").items()) {
       const std::unique_ptr<app::Analysis> a = app::make_analysis(name);
       ASSERT_NE(a, nullptr) << name;
-      const CommandResult cli = roverlab(a->command() + " " + quote(file) + " --json");
+      const CommandResult cli = roverlab(a->identity().command + " " + quote(file) + " --json");
       ASSERT_EQ(cli.exit_code, 0) << cli.err;
       const nlohmann::json from_cli = app::without_run_details(nlohmann::json::parse(cli.out));
       // The differences (JSON patch), not two whole documents, when they differ.
@@ -338,8 +338,8 @@ TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
       EXPECT_EQ(nlohmann::json::diff(from_cli, app::without_run_details(*from_gui)), nlohmann::json::array())
           << name << " on " << file;
       EXPECT_TRUE(from_cli.contains("configuration")) << name;
-      // Its tables (Analysis::tables) in the Analysis pane, cell for cell.
-      for (const app::ResultTable& t : a->tables(*from_gui)) {
+      // Its tables (Presentation::tables) in the Analysis pane, cell for cell.
+      for (const app::ResultTable& t : a->presentation().tables(*from_gui)) {
         const auto* table = w.findChild<QTableWidget*>(QString::fromStdString(t.title));
         ASSERT_NE(table, nullptr) << t.title;
         ASSERT_EQ(table->rowCount(), static_cast<int>(t.rows.size())) << t.title;

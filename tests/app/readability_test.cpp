@@ -125,7 +125,7 @@ TEST_F(Readability, BoldIsTheNamedCauseInEveryTableAndALegendSaysSo) {
       const bool is_named = std::find(named.begin(), named.end(), c.at("name")) != named.end();
       if (c.contains("significant") && c.at("significant").get<bool>() && !is_named) ++significant_not_named;
     }
-    for (const app::ResultTable& t : analysis->tables(*doc)) {
+    for (const app::ResultTable& t : analysis->presentation().tables(*doc)) {
       EXPECT_FALSE(t.legend.empty()) << t.title;
       std::string legend = t.legend;
       std::transform(legend.begin(), legend.end(), legend.begin(), [](unsigned char ch) { return std::tolower(ch); });
@@ -157,7 +157,7 @@ TEST_F(Readability, TheAnalysisPaneBoldsOnlyTheNamedCauseWithTheLegendUnderTheTa
   const auto analysis = app::make_analysis("rover-discrepancy");
   const nlohmann::json* doc = w.input()->result("rover-discrepancy");
   ASSERT_NE(doc, nullptr);
-  const app::ResultTable t = analysis->tables(*doc).front();
+  const app::ResultTable t = analysis->presentation().tables(*doc).front();
   const auto* table = w.findChild<QTableWidget*>(QString::fromStdString(t.title));
   ASSERT_NE(table, nullptr);
   int bold = 0;
@@ -182,7 +182,7 @@ TEST_F(Readability, TheAnalysisPaneBoldsOnlyTheNamedCauseWithTheLegendUnderTheTa
 // On WVU every reference "high" sample is classed "low".
 TEST_F(Readability, TheInsSummaryCarriesTheWeakestClassAndNamesItsFrame) {
   const auto analysis = app::make_analysis("ins-slip");
-  const std::string summary = analysis->summary(*ins_);
+  const std::string summary = analysis->presentation().summary(*ins_);
   // The weakest class, found here from the counts.
   const nlohmann::json& c = ins_->at("slip_confusion");
   std::string weakest;
@@ -214,7 +214,7 @@ TEST_F(Readability, TheInsSummaryCarriesTheWeakestClassAndNamesItsFrame) {
   const std::string text = app::printed(*analysis, *ins_);
   EXPECT_NE(text.find("recall per reference class: none 100.0 %"), std::string::npos) << text;
   EXPECT_NE(text.find("horizontal"), std::string::npos);
-  for (const app::KeyMetric& m : analysis->key_metrics()) {
+  for (const app::KeyMetric& m : analysis->presentation().key_metrics()) {
     if (m.pointer.find("position") != std::string::npos) {
       EXPECT_NE(m.title.find("horizontal"), std::string::npos) << m.title;
     }

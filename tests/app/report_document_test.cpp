@@ -4,7 +4,7 @@
 // streams (`convert --stream` to CSV) finds it; the provenance block gives
 // the program, the command, each analysis's settings and the inputs' SHA-256
 // (checked against `sha256sum`); the study tables are the very cells
-// Analysis::tables() gives the GUI; a raw log's default plot shows rates and
+// Presentation::tables() gives the GUI; a raw log's default plot shows rates and
 // speeds that follow the motion.
 #include <gtest/gtest.h>
 
@@ -233,7 +233,7 @@ TEST_F(ReportDocument, TheProvenanceBlockNamesTheProgramCommandSettingsAndChecks
   EXPECT_NE(std::find(files.begin(), files.end(), "provenance.json"), files.end());
 }
 
-// The study tables in the report are Analysis::tables() cell for cell (one
+// The study tables in the report are Presentation::tables() cell for cell (one
 // writer for the GUI and the report), candidates by evidence.
 TEST_F(ReportDocument, StudyTablesAreTheGuiTablesCellForCellSortedByEvidence) {
   std::size_t compared = 0;
@@ -243,7 +243,7 @@ TEST_F(ReportDocument, StudyTablesAreTheGuiTablesCellForCellSortedByEvidence) {
       const std::unique_ptr<app::Analysis> a = app::make_analysis(name);
       ASSERT_NE(a, nullptr) << name;
       if (name != "odometry" && name != "rover-discrepancy") continue;
-      const std::vector<app::ResultTable> tables = a->tables(doc);
+      const std::vector<app::ResultTable> tables = a->presentation().tables(doc);
       ASSERT_FALSE(tables.empty()) << name;
       for (const app::ResultTable& t : tables) {
         const auto cells = html_table(r.html, t.title);
