@@ -257,14 +257,16 @@ HeldOutByChannel held_out_by_channel(Predictor& pr, const std::vector<FitParamet
 constexpr double kMaterialChannelGain = 0.02;
 
 // The step's largest share of a channel's held-out gain, over the channels
-// the chain improves materially.
+// the chain improves materially; NaN when it improves none so (a lone weak
+// cause, such as a gyro bias of 0.002 rad/s on a 60 s run).
 double largest_channel_share(const HeldOutByChannel& base, const HeldOutByChannel& final_model,
                              const HeldOutByChannel& without) {
-  double largest = 0;
+  double largest = NAN;
   for (std::size_t c = 0; c < base.mean_square.size() && c < final_model.mean_square.size(); ++c) {
     const double gain = base.mean_square[c] - final_model.mean_square[c];
     if (gain < kMaterialChannelGain || c >= without.mean_square.size()) continue;
-    largest = std::max(largest, (without.mean_square[c] - final_model.mean_square[c]) / gain);
+    const double share = (without.mean_square[c] - final_model.mean_square[c]) / gain;
+    largest = std::isnan(largest) ? share : std::max(largest, share);
   }
   return largest;
 }
@@ -294,6 +296,9 @@ void weigh_steps(Predictor& pr, RoverDiscrepancyReport& r, const std::vector<Fit
     step.held_out_without = w.held_out;
     step.gain_share = gain_share(r.baseline_test, w.test, r.final_test);
     step.channel_share = largest_channel_share(base, final_model, w);
+    // No channel gains materially: the step's share of the whole held-out
+    // gain instead (a one-step chain holds all of it; docs/validation/rover-one-effect-issue43.md, A).
+    if (std::isnan(step.channel_share)) step.channel_share = step.gain_share;
     const bool at_bound = std::any_of(step.parameters.begin(), step.parameters.end(),
                                       [](const RoverParameterFit& p) { return p.at_bound; });
     step.role = step_role(at_bound, step.channel_share, kNegligibleChannelShare);
