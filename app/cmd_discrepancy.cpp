@@ -65,6 +65,32 @@ json named_causes(const analysis::DiscrepancyReport& r) {
   return names.empty() ? json(nullptr) : json(names);
 }
 
+// The model families compared (issue 43): each one's baseline and final model held out.
+json families_json(const analysis::DiscrepancyReport& r) {
+  json out = json::array();
+  for (const auto& f : r.families) {
+    json fj = {{"family", f.family},
+               {"held_out_score_sigma", finite_or_null(f.held_out_score)},
+               {"held_out_method", f.held_out_method},
+               {"final_model", f.final_model},
+               {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)}};
+    json ho = json::object();
+    for (std::size_t i = 0; i < r.quantities.size() && i < f.held_out_rmse.size(); ++i) {
+      ho[to_string(r.quantities[i])] = finite_or_null(f.held_out_rmse[i]);
+    }
+    fj["held_out_rmse"] = ho;
+    fj["parameters"] = json::array();
+    for (const auto& p : f.parameters) {
+      fj["parameters"].push_back({{"name", to_string(p.parameter)},
+                                  {"value", p.value},
+                                  {"sigma", finite_or_null(p.sigma)},
+                                  {"at_bound", p.at_bound}});
+    }
+    out.push_back(fj);
+  }
+  return out;
+}
+
 // The study as a JSON document (`--json`).
 json report_json(const std::string& file, const Soil& soil, const analysis::DiscrepancyReport& r) {
   json j = {
@@ -154,27 +180,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
   }
   j["final_model"] = r.final_model;
   j["family_choice"] = r.family_choice;
-  j["families"] = json::array();
-  for (const auto& f : r.families) {
-    json fj = {{"family", f.family},
-               {"held_out_score_sigma", finite_or_null(f.held_out_score)},
-               {"held_out_method", f.held_out_method},
-               {"final_model", f.final_model},
-               {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)}};
-    json ho = json::object();
-    for (std::size_t i = 0; i < r.quantities.size() && i < f.held_out_rmse.size(); ++i) {
-      ho[to_string(r.quantities[i])] = finite_or_null(f.held_out_rmse[i]);
-    }
-    fj["held_out_rmse"] = ho;
-    fj["parameters"] = json::array();
-    for (const auto& p : f.parameters) {
-      fj["parameters"].push_back({{"name", to_string(p.parameter)},
-                                  {"value", p.value},
-                                  {"sigma", finite_or_null(p.sigma)},
-                                  {"at_bound", p.at_bound}});
-    }
-    j["families"].push_back(fj);
-  }
+  j["families"] = families_json(r);
   j["per_wheel"] = json::array();
   for (const auto& w : r.per_wheel) {
     j["per_wheel"].push_back({{"wheel", w.wheel},

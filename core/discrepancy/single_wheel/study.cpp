@@ -1101,7 +1101,8 @@ DiscrepancyReport compare_families(const Soil& soil, const std::vector<WheelTest
 // The study within one family, or within each and the better taken
 // (compare_families); an RFT baseline starts from its material scale fitted
 // on all points.
-DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoint>& points, DiscrepancyOptions o) {
+DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoint>& points,
+                                const DiscrepancyOptions& o) {
   WorkMeter meter(o.progress);
   check_points_can_tell_candidates_apart(points);  // before any family is fitted to them
   // A family's baseline: one fit on all points and one afresh per fold.
