@@ -175,12 +175,15 @@ TEST(RftCalibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
   roverlab::test::print_step_shares("single wheel, RFT family", steps);
   // The trade-off at other thresholds, then the calibrated property at
   // kNegligibleGainShare: no hidden effect the selection took in a one-effect
-  // run falls under it, and at most a quarter of the spurious steps are
-  // named as causes.
-  for (const double threshold : {0.01, 0.05, 0.10}) roverlab::test::count_step_shares(steps, threshold);
+  // run falls under it, nor more than 1 in 20 of the second effects of
+  // two-effect runs (measured over 40 seeds: 1 of 214 single-wheel, 2 of 131
+  // odometry). Stand-ins are counted, not bounded: most take large shares
+  // (they replace a hidden effect in the chain), which no share threshold
+  // can tell from a cause (docs/validation/discrepancy.md).
+  for (const double threshold : {0.005, 0.02, 0.05, 0.10}) roverlab::test::count_step_shares(steps, threshold);
   const auto c = roverlab::test::count_step_shares(steps, analysis::kNegligibleGainShare);
   EXPECT_EQ(c.true_one_under, 0U);
-  EXPECT_LE(c.spurious_named, c.spurious / 4);
+  EXPECT_LE(c.true_two_under, c.true_two / 20);
 }
 
 }  // namespace
