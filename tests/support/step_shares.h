@@ -29,7 +29,7 @@ struct StepShare {
 // The q-quantile (0..1) of sorted values, nearest rank; NaN for none.
 inline double quantile(const std::vector<double>& sorted, double q) {
   if (sorted.empty()) return NAN;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1) + 0.5);
+  const auto k = static_cast<std::size_t>(std::lround(q * static_cast<double>(sorted.size() - 1)));
   return sorted[std::min(k, sorted.size() - 1)];
 }
 
