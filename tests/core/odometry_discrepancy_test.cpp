@@ -3,15 +3,19 @@
 // there is none.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "core/common/error.h"
 #include "core/discrepancy/odometry/candidates.h"
 #include "core/discrepancy/odometry/study.h"
 #include "core/simulation/skid_steer_scenario.h"
 #include "tests/support/calibration_seeds.h"
+#include "tests/support/step_shares.h"
 
 using namespace roverlab;
 
@@ -226,4 +230,110 @@ TEST(OdometryVerdict, EachStepCarriesItsShareOfTheHeldOutGain) {
   }
   EXPECT_NEAR(total, 1.0, 1e-9);
   EXPECT_EQ(r.selection.front().role, analysis::StepRole::cause) << r.verdict;
+}
+
+// Issue 43 item 4: the negligible-share threshold (kNegligibleGainShare)
+// calibrated on simulated truth. Drives on firm ground with one hidden
+// effect, and with two, at sizes from the pools above down to a tenth of
+// them (barely detectable): every step the forward selection takes is
+// recorded with its share of the held-out gain and its role
+// (docs/validation/discrepancy.md, "A cause that matters";
+// ROVERLAB_CALIBRATION_SEEDS runs per kind).
+namespace {
+
+struct OdometryEffect {
+  const char* effect;
+  double neutral, pool;            // the value that changes nothing; one inside the pools above
+  std::vector<const char*> names;  // the candidates whose model holds it
+};
+
+const OdometryEffect kOdometryEffects[] = {
+    {"radius-scale", 1.0, 1.05, {"radius scale", "per-side scale"}},
+    {"left-radius-scale", 1.0, 0.965, {"per-side scale"}},
+    {"turning-track-factor", 1.0, 1.75, {"turning track"}},
+    {"wheel-time-offset", 0.0, -1.0, {"time offset"}},
+};
+constexpr double kOdometrySizes[] = {1.0, 0.5, 0.25, 0.1};
+
+// The selection's steps: a step is true when its candidate holds a hidden
+// effect that no earlier step holds.
+void record_odometry_steps(const analysis::OdometryDiscrepancyReport& r, const std::string& run,
+                           const std::vector<const OdometryEffect*>& hidden, std::vector<test::StepShare>& out) {
+  std::vector<const OdometryEffect*> accounted;
+  for (const auto& s : r.selection) {
+    test::StepShare rec;
+    rec.run = run;
+    rec.step = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
+    rec.effects = static_cast<int>(hidden.size());
+    for (const OdometryEffect* h : hidden) {
+      const bool holds = std::find(h->names.begin(), h->names.end(), rec.step) != h->names.end();
+      if (!holds || std::find(accounted.begin(), accounted.end(), h) != accounted.end()) continue;
+      rec.truth = true;
+      accounted.push_back(h);
+    }
+    rec.share = s.gain_share;
+    rec.role = s.role;
+    out.push_back(rec);
+  }
+}
+
+std::string effect_text(const OdometryEffect& e, double size) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%s x%g", e.effect, size);
+  return text;
+}
+
+}  // namespace
+
+TEST(OdometryCalibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
+  const unsigned n = test::calibration_seeds(2);
+  constexpr unsigned kinds = sizeof kOdometryEffects / sizeof kOdometryEffects[0];
+  std::vector<test::StepShare> steps;
+  unsigned one_effect_runs = 0, named_alone = 0;
+  for (unsigned k = 0; k < n; ++k) {
+    for (unsigned e = 0; e < kinds; ++e) {
+      const unsigned seed = 500 + 10 * k + e;
+      const OdometryEffect& h = kOdometryEffects[e];
+      const double size = kOdometrySizes[(k + e) % 4];
+      const auto r = study(h.effect, h.neutral + size * (h.pool - h.neutral), seed);
+      record_odometry_steps(r, effect_text(h, size) + " seed " + std::to_string(seed), {&h}, steps);
+      ++one_effect_runs;
+      int causes = 0;
+      bool right = false;
+      for (const auto& s : r.selection) {
+        if (s.role != analysis::StepRole::cause) continue;
+        ++causes;
+        const std::string last = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
+        right = std::find(h.names.begin(), h.names.end(), last) != h.names.end();
+      }
+      named_alone += causes == 1 && right ? 1 : 0;
+    }
+    // Two effects: the time offset with each of the others, sizes from the pool down to a quarter.
+    for (unsigned e = 0; e + 1 < kinds; ++e) {
+      const unsigned seed = 600 + 10 * k + e;
+      const OdometryEffect &a = kOdometryEffects[e], &b = kOdometryEffects[kinds - 1];
+      const double size_a = kOdometrySizes[k % 3], size_b = kOdometrySizes[(k + e + 1) % 3];
+      simulation::SkidSteerScenario s = simulation::default_slip_scenario(seed);
+      simulation::set_effect(s, "slip", 0.0);
+      simulation::set_effect(s, a.effect, a.neutral + size_a * (a.pool - a.neutral));
+      simulation::set_effect(s, b.effect, b.neutral + size_b * (b.pool - b.neutral));
+      const auto r = analysis::study_odometry(simulation::simulate_skid_steer(s));
+      record_odometry_steps(r,
+                            effect_text(a, size_a) + " + " + effect_text(b, size_b) + " seed " + std::to_string(seed),
+                            {&a, &b}, steps);
+    }
+  }
+  test::print_step_shares("odometry", steps);
+  std::printf("one-effect runs: %u, exactly their effect named: %u\n", one_effect_runs, named_alone);
+  // The trade-off at other thresholds, then the calibrated property at
+  // kNegligibleGainShare: no hidden effect the selection took in a one-effect
+  // run falls under it, nor more than 1 in 20 of the second effects of
+  // two-effect runs (measured over 40 seeds: 1 of 214 single-wheel, 2 of 131
+  // odometry). Stand-ins are counted, not bounded: most take large shares
+  // (they replace a hidden effect in the chain), which no share threshold
+  // can tell from a cause (docs/validation/discrepancy.md).
+  for (const double threshold : {0.005, 0.02, 0.05, 0.10}) test::count_step_shares(steps, threshold);
+  const auto c = test::count_step_shares(steps, analysis::kNegligibleGainShare);
+  EXPECT_EQ(c.true_one_under, 0U);
+  EXPECT_LE(c.true_two_under, c.true_two / 20);
 }

@@ -22,6 +22,7 @@
 #include "terramechanics_soils.h"
 #include "tests/support/calibration_seeds.h"
 #include "tests/support/resampled_wheel_test.h"
+#include "tests/support/step_shares.h"
 
 using namespace roverlab;
 using namespace roverlab::terramechanics;
@@ -834,4 +835,140 @@ TEST(StudyProgress, GrowsWithTheWorkWithoutJumps) {
   EXPECT_LT(most_ahead, 0.35) << "the progress runs ahead of the time";
   std::printf("progress: %zu reports over %.1f s, largest step %.2f, behind %.2f, ahead %.2f\n", marks.size(), total,
               largest_step, most_behind, most_ahead);
+}
+
+// Issue 43 item 4: the negligible-share threshold (kNegligibleGainShare)
+// calibrated on simulated truth. Runs with one hidden effect, and with two,
+// of each of seven extensions at sizes from the tests' pools down to a tenth
+// of them (barely detectable): every step the forward selection takes is
+// recorded with its share of the held-out gain, whether it cut a quantity's
+// held-out RMSE by 30 %, and its role (docs/validation/discrepancy.md, "A
+// cause that matters"; ROVERLAB_CALIBRATION_SEEDS runs per kind).
+namespace {
+
+struct TrueEffect {
+  const char* candidate;
+  Parameter parameter;
+  double neutral;  // the value that changes nothing (NaN: the soil's own)
+  double pool;     // a value inside the hidden-effect tests' pools
+};
+
+const TrueEffect kTrueEffects[] = {
+    {"slip-sinkage", Parameter::slip_sinkage_n1, 0.0, 0.4},
+    {"grousers", Parameter::grouser_effectiveness, 0.0, 0.7},
+    {"soil-strength", Parameter::soil_strength, 1.0, 0.7},
+    {"bulldozing", Parameter::bulldozing_scale, 0.0, 2.0},
+    {"slip-shear-modulus", Parameter::shear_modulus_slip, 0.0, 2.5},
+    {"rear-angle", Parameter::rear_angle_ratio, 0.0, 0.3},
+    {"max-stress-angle", Parameter::c2, NAN, 0.05},
+};
+constexpr unsigned kTrueEffectCount = sizeof kTrueEffects / sizeof kTrueEffects[0];
+constexpr double kSizes[] = {1.0, 0.5, 0.25, 0.1};  // fraction of the way from neutral to the pool's value
+
+// The testbed's points generated with the given effects at the given sizes.
+std::vector<WheelTestPoint> effects_testbed(const std::vector<std::pair<const TrueEffect*, double>>& effects,
+                                            unsigned seed) {
+  Soil soil = test::ding_tyii();
+  ModelOptions model;
+  for (const auto& [e, size] : effects) {
+    for (const auto& c : analysis::single_wheel_candidates()) {
+      if (c->name() == std::string(e->candidate)) c->configure(model.extensions);
+    }
+    const double neutral = std::isnan(e->neutral) ? get_parameter(soil, model.extensions, e->parameter) : e->neutral;
+    set_parameter(soil, model.extensions, e->parameter, neutral + size * (e->pool - neutral));
+  }
+  const analysis::DiscrepancyOptions options;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  auto points = testbed(Hidden{}, seed, options.sigma);
+  for (auto& p : points) {
+    const Traction t = evaluate(soil, p.wheel, p.load, p.slip, model);
+    p.drawbar_pull = t.drawbar_pull + options.sigma.drawbar_pull * unit(rng);
+    p.torque = t.resistive_torque + options.sigma.torque * unit(rng);
+    p.sinkage = t.sinkage + options.sigma.sinkage * unit(rng);
+  }
+  return points;
+}
+
+// The selection's steps of one study, as the calibration records them.
+void record_steps(const analysis::DiscrepancyReport& r, const std::string& run, const std::vector<std::string>& hidden,
+                  std::vector<test::StepShare>& out) {
+  const std::vector<double>* before = &r.baseline_held_out_rmse;
+  std::vector<std::string> accounted;
+  for (const auto& s : r.selection) {
+    test::StepShare rec;
+    rec.run = run;
+    rec.step = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
+    rec.effects = static_cast<int>(hidden.size());
+    rec.truth = std::find(hidden.begin(), hidden.end(), rec.step) != hidden.end() &&
+                std::find(accounted.begin(), accounted.end(), rec.step) == accounted.end();
+    accounted.push_back(rec.step);
+    rec.share = s.gain_share;
+    rec.cuts = false;
+    for (std::size_t qi = 0; qi < s.held_out_rmse.size(); ++qi)
+      rec.cuts = rec.cuts || s.held_out_rmse[qi] <= 0.7 * (*before)[qi];
+    rec.role = s.role;
+    out.push_back(rec);
+    before = &s.held_out_rmse;
+  }
+}
+
+std::string size_text(double size) {
+  char text[16];
+  std::snprintf(text, sizeof text, "x%g", size);
+  return text;
+}
+
+}  // namespace
+
+TEST(Calibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
+  const unsigned n = test::calibration_seeds(1);
+  std::vector<test::StepShare> steps;
+  unsigned one_effect_runs = 0, named_alone = 0;
+  for (unsigned k = 0; k < n; ++k) {
+    // One effect: each of them at a size chosen by the run (all four sizes over four runs).
+    for (unsigned e = 0; e < kTrueEffectCount; ++e) {
+      const unsigned seed = 4000 + 10 * k + e;
+      const double size = kSizes[(k + e) % 4];
+      const TrueEffect& t = kTrueEffects[e];
+      const auto r = analysis::study_single_wheel(test::ding_tyii(), effects_testbed({{&t, size}}, seed));
+      record_steps(r, std::string(t.candidate) + " " + size_text(size) + " seed " + std::to_string(seed), {t.candidate},
+                   steps);
+      ++one_effect_runs;
+      int causes = 0;
+      bool right = false;
+      for (const auto& s : r.selection) {
+        if (s.role != analysis::StepRole::cause) continue;
+        ++causes;
+        right = s.name.find(t.candidate) != std::string::npos;
+      }
+      named_alone += causes == 1 && right ? 1 : 0;
+    }
+    // Two effects: pairs of different effects, sizes from the pool down to a quarter.
+    for (unsigned e = 0; e < 3; ++e) {
+      const unsigned seed = 5000 + 10 * k + e;
+      const unsigned a = (3 * k + e) % kTrueEffectCount,
+                     b = (a + 1 + (k + e) % (kTrueEffectCount - 1)) % kTrueEffectCount;
+      const double size_a = kSizes[k % 3], size_b = kSizes[(k + e) % 3];
+      const auto r = analysis::study_single_wheel(
+          test::ding_tyii(), effects_testbed({{&kTrueEffects[a], size_a}, {&kTrueEffects[b], size_b}}, seed));
+      record_steps(r,
+                   std::string(kTrueEffects[a].candidate) + " " + size_text(size_a) + " + " +
+                       kTrueEffects[b].candidate + " " + size_text(size_b) + " seed " + std::to_string(seed),
+                   {kTrueEffects[a].candidate, kTrueEffects[b].candidate}, steps);
+    }
+  }
+  test::print_step_shares("single wheel", steps);
+  std::printf("one-effect runs: %u, exactly their effect named: %u\n", one_effect_runs, named_alone);
+  // The trade-off at other thresholds, then the calibrated property at
+  // kNegligibleGainShare: no hidden effect the selection took in a one-effect
+  // run falls under it, nor more than 1 in 20 of the second effects of
+  // two-effect runs (measured over 40 seeds: 1 of 214 single-wheel, 2 of 131
+  // odometry). Stand-ins are counted, not bounded: most take large shares
+  // (they replace a hidden effect in the chain), which no share threshold
+  // can tell from a cause (docs/validation/discrepancy.md).
+  for (const double threshold : {0.005, 0.02, 0.05, 0.10}) test::count_step_shares(steps, threshold);
+  const auto c = test::count_step_shares(steps, analysis::kNegligibleGainShare);
+  EXPECT_EQ(c.true_one_under, 0U);
+  EXPECT_LE(c.true_two_under, c.true_two / 20);
 }
