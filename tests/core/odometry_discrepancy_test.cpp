@@ -323,17 +323,7 @@ TEST(OdometryCalibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
                             {&a, &b}, steps);
     }
   }
-  test::print_step_shares("odometry", steps);
-  std::printf("one-effect runs: %u, exactly their effect named: %u\n", one_effect_runs, named_alone);
-  // The trade-off at other thresholds, then the calibrated property at
-  // kNegligibleGainShare: no hidden effect the selection took in a one-effect
-  // run falls under it, nor more than 1 in 20 of the second effects of
-  // two-effect runs (measured over 40 seeds: 1 of 214 single-wheel, 2 of 131
-  // odometry). Stand-ins are counted, not bounded: most take large shares
-  // (they replace a hidden effect in the chain), which no share threshold
-  // can tell from a cause (docs/validation/discrepancy.md).
-  for (const double threshold : {0.005, 0.02, 0.05, 0.10}) test::count_step_shares(steps, threshold);
-  const auto c = test::count_step_shares(steps, analysis::kNegligibleGainShare);
+  const auto c = test::report_step_shares("odometry", steps, one_effect_runs, named_alone);
   EXPECT_EQ(c.true_one_under, 0U);
   EXPECT_LE(c.true_two_under, c.true_two / 20);
 }

@@ -160,24 +160,7 @@ TEST(RftCalibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
   std::vector<roverlab::test::StepShare> steps;
   const auto record = [&](const analysis::DiscrepancyReport& r, const std::string& run,
                           const std::vector<std::string>& hidden) {
-    const std::vector<double>* before = &r.baseline_held_out_rmse;
-    std::vector<std::string> accounted;
-    for (const auto& s : r.selection) {
-      roverlab::test::StepShare rec;
-      rec.run = run;
-      rec.step = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
-      rec.effects = static_cast<int>(hidden.size());
-      rec.truth = std::find(hidden.begin(), hidden.end(), rec.step) != hidden.end() &&
-                  std::find(accounted.begin(), accounted.end(), rec.step) == accounted.end();
-      accounted.push_back(rec.step);
-      rec.share = s.gain_share;
-      rec.cuts = false;
-      for (std::size_t q = 0; q < s.held_out_rmse.size(); ++q)
-        rec.cuts = rec.cuts || s.held_out_rmse[q] <= 0.7 * (*before)[q];
-      rec.role = s.role;
-      steps.push_back(rec);
-      before = &s.held_out_rmse;
-    }
+    roverlab::test::record_steps(r, run, hidden, steps);
   };
   for (unsigned k = 0; k < n; ++k) {
     for (unsigned e = 0; e < 4; ++e) {

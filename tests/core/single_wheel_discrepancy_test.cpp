@@ -890,29 +890,6 @@ std::vector<WheelTestPoint> effects_testbed(const std::vector<std::pair<const Tr
   return points;
 }
 
-// The selection's steps of one study, as the calibration records them.
-void record_steps(const analysis::DiscrepancyReport& r, const std::string& run, const std::vector<std::string>& hidden,
-                  std::vector<test::StepShare>& out) {
-  const std::vector<double>* before = &r.baseline_held_out_rmse;
-  std::vector<std::string> accounted;
-  for (const auto& s : r.selection) {
-    test::StepShare rec;
-    rec.run = run;
-    rec.step = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
-    rec.effects = static_cast<int>(hidden.size());
-    rec.truth = std::find(hidden.begin(), hidden.end(), rec.step) != hidden.end() &&
-                std::find(accounted.begin(), accounted.end(), rec.step) == accounted.end();
-    accounted.push_back(rec.step);
-    rec.share = s.gain_share;
-    rec.cuts = false;
-    for (std::size_t qi = 0; qi < s.held_out_rmse.size(); ++qi)
-      rec.cuts = rec.cuts || s.held_out_rmse[qi] <= 0.7 * (*before)[qi];
-    rec.role = s.role;
-    out.push_back(rec);
-    before = &s.held_out_rmse;
-  }
-}
-
 std::string size_text(double size) {
   char text[16];
   std::snprintf(text, sizeof text, "x%g", size);
@@ -932,8 +909,8 @@ TEST(Calibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
       const double size = kSizes[(k + e) % 4];
       const TrueEffect& t = kTrueEffects[e];
       const auto r = analysis::study_single_wheel(test::ding_tyii(), effects_testbed({{&t, size}}, seed));
-      record_steps(r, std::string(t.candidate) + " " + size_text(size) + " seed " + std::to_string(seed), {t.candidate},
-                   steps);
+      test::record_steps(r, std::string(t.candidate) + " " + size_text(size) + " seed " + std::to_string(seed),
+                         {t.candidate}, steps);
       ++one_effect_runs;
       int causes = 0;
       bool right = false;
@@ -952,23 +929,13 @@ TEST(Calibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
       const double size_a = kSizes[k % 3], size_b = kSizes[(k + e) % 3];
       const auto r = analysis::study_single_wheel(
           test::ding_tyii(), effects_testbed({{&kTrueEffects[a], size_a}, {&kTrueEffects[b], size_b}}, seed));
-      record_steps(r,
-                   std::string(kTrueEffects[a].candidate) + " " + size_text(size_a) + " + " +
-                       kTrueEffects[b].candidate + " " + size_text(size_b) + " seed " + std::to_string(seed),
-                   {kTrueEffects[a].candidate, kTrueEffects[b].candidate}, steps);
+      test::record_steps(r,
+                         std::string(kTrueEffects[a].candidate) + " " + size_text(size_a) + " + " +
+                             kTrueEffects[b].candidate + " " + size_text(size_b) + " seed " + std::to_string(seed),
+                         {kTrueEffects[a].candidate, kTrueEffects[b].candidate}, steps);
     }
   }
-  test::print_step_shares("single wheel", steps);
-  std::printf("one-effect runs: %u, exactly their effect named: %u\n", one_effect_runs, named_alone);
-  // The trade-off at other thresholds, then the calibrated property at
-  // kNegligibleGainShare: no hidden effect the selection took in a one-effect
-  // run falls under it, nor more than 1 in 20 of the second effects of
-  // two-effect runs (measured over 40 seeds: 1 of 214 single-wheel, 2 of 131
-  // odometry). Stand-ins are counted, not bounded: most take large shares
-  // (they replace a hidden effect in the chain), which no share threshold
-  // can tell from a cause (docs/validation/discrepancy.md).
-  for (const double threshold : {0.005, 0.02, 0.05, 0.10}) test::count_step_shares(steps, threshold);
-  const auto c = test::count_step_shares(steps, analysis::kNegligibleGainShare);
+  const auto c = test::report_step_shares("single wheel", steps, one_effect_runs, named_alone);
   EXPECT_EQ(c.true_one_under, 0U);
   EXPECT_LE(c.true_two_under, c.true_two / 20);
 }
