@@ -130,8 +130,9 @@ void family_table(ReportSection& section, const analysis::DiscrepancyReport& r, 
   section.html << "<th>fitted</th></tr>\n";
   for (const auto& f : r.families) {
     section.html << "<tr><td style=\"text-align:left\">" << esc(f.family) << "</td><td style=\"text-align:left\">"
-                 << esc(f.final_model) << "</td><td>" << num(f.final_held_out_score) << "</td><td>"
-                 << num(f.held_out_score) << " (" << esc(f.held_out_method) << ")</td>";
+                 << esc(f.final_model.empty() ? "not extended (the other family fits within the noise)" : f.final_model)
+                 << "</td><td>" << num(f.final_held_out_score) << "</td><td>" << num(f.held_out_score) << " ("
+                 << esc(f.held_out_method) << ")</td>";
     json rmse = json::object();
     for (std::size_t k = 0; k < r.quantities.size(); ++k) {
       const Quantity q = r.quantities[k];
