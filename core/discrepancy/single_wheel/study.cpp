@@ -1087,8 +1087,9 @@ DiscrepancyReport compare_families(const Soil& soil, const std::vector<WheelTest
                                 ", against " + fmt("%.2f", other.held_out_score) + ", " + other.held_out_method;
   DiscrepancyReport out = std::move(studies[taken]);
   out.family_choice = both ? "family " + t.family + ": its final model " + named(t) + " held out at " +
-                                 fmt("%.2f", t.final_held_out_score) + " sigma against " + named(other) + "'s " +
-                                 fmt("%.2f", other.final_held_out_score) + " sigma, " +
+                                 fmt("%.2f", t.final_held_out_score) + " sigma against " + named(other) +
+                                 (named(other).back() == 's' ? "' " : "'s ") + fmt("%.2f", other.final_held_out_score) +
+                                 " sigma, " +
                                  fmt("%.0f", 100.0 * (1.0 - t.final_held_out_score / other.final_held_out_score)) +
                                  " % lower (" + baselines + ")"
                            : "family " + t.family + ": its final model " + named(t) + " held out at " +
