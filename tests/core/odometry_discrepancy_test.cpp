@@ -263,7 +263,7 @@ void record_odometry_steps(const analysis::OdometryDiscrepancyReport& r, const s
   for (const auto& s : r.selection) {
     test::StepShare rec;
     rec.run = run;
-    rec.step = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
+    rec.step = test::last_step(s.name);
     rec.effects = static_cast<int>(hidden.size());
     for (const OdometryEffect* h : hidden) {
       const bool holds = std::find(h->names.begin(), h->names.end(), rec.step) != h->names.end();
@@ -298,15 +298,10 @@ TEST(OdometryCalibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
       const auto r = study(h.effect, h.neutral + size * (h.pool - h.neutral), seed);
       record_odometry_steps(r, effect_text(h, size) + " seed " + std::to_string(seed), {&h}, steps);
       ++one_effect_runs;
-      int causes = 0;
-      bool right = false;
-      for (const auto& s : r.selection) {
-        if (s.role != analysis::StepRole::cause) continue;
-        ++causes;
-        const std::string last = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
-        right = std::find(h.names.begin(), h.names.end(), last) != h.names.end();
-      }
-      named_alone += causes == 1 && right ? 1 : 0;
+      const auto its_step = [&](const std::string& name) {
+        return std::find(h.names.begin(), h.names.end(), test::last_step(name)) != h.names.end();
+      };
+      named_alone += test::names_exactly(r, its_step) ? 1 : 0;
     }
     // Two effects: the time offset with each of the others, sizes from the pool down to a quarter.
     for (unsigned e = 0; e + 1 < kinds; ++e) {

@@ -785,7 +785,7 @@ TEST(SingleWheelVerdict, ANamedStepCarriesItsShareAndExplainsAQuantity) {
     for (const auto& s : r.selection) {
       if (s.role != analysis::StepRole::cause) continue;
       EXPECT_GE(s.gain_share, analysis::kNegligibleGainShare) << s.name;
-      const std::string last = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
+      const std::string last = test::last_step(s.name);
       const bool explains = std::any_of(r.quantity_verdicts.begin(), r.quantity_verdicts.end(),
                                         [&](const analysis::QuantityVerdict& v) { return v.explained_by == last; });
       EXPECT_TRUE(explains) << last << ": " << r.verdict;
@@ -912,14 +912,8 @@ TEST(Calibration, NegligibleShareSeparatesHiddenEffectsFromStandIns) {
       test::record_steps(r, std::string(t.candidate) + " " + size_text(size) + " seed " + std::to_string(seed),
                          {t.candidate}, steps);
       ++one_effect_runs;
-      int causes = 0;
-      bool right = false;
-      for (const auto& s : r.selection) {
-        if (s.role != analysis::StepRole::cause) continue;
-        ++causes;
-        right = s.name.find(t.candidate) != std::string::npos;
-      }
-      named_alone += causes == 1 && right ? 1 : 0;
+      const auto its_step = [&](const std::string& name) { return name.find(t.candidate) != std::string::npos; };
+      named_alone += test::names_exactly(r, its_step) ? 1 : 0;
     }
     // Two effects: pairs of different effects, sizes from the pool down to a quarter.
     for (unsigned e = 0; e < 3; ++e) {

@@ -26,6 +26,26 @@ struct StepShare {
   analysis::StepRole role = analysis::StepRole::cause;
 };
 
+// The step a chain's name ends with: "slip-sinkage + grousers" -> "grousers".
+inline std::string last_step(const std::string& chain) {
+  const auto plus = chain.rfind(" + ");
+  return plus == std::string::npos ? chain : chain.substr(plus + 3);
+}
+
+// Whether a study names exactly one cause, and that step's chain name
+// matches (match(name) true).
+template <class Report, class Match>
+bool names_exactly(const Report& r, Match match) {
+  int causes = 0;
+  bool right = false;
+  for (const auto& s : r.selection) {
+    if (s.role != analysis::StepRole::cause) continue;
+    ++causes;
+    right = match(s.name);
+  }
+  return causes == 1 && right;
+}
+
 // The q-quantile (0..1) of sorted values, nearest rank; NaN for none.
 inline double quantile(const std::vector<double>& sorted, double q) {
   if (sorted.empty()) return NAN;
@@ -96,7 +116,7 @@ void record_steps(const Report& r, const std::string& run, const std::vector<std
   for (const auto& s : r.selection) {
     StepShare rec;
     rec.run = run;
-    rec.step = s.name.substr(s.name.rfind(" + ") == std::string::npos ? 0 : s.name.rfind(" + ") + 3);
+    rec.step = last_step(s.name);
     rec.effects = static_cast<int>(hidden.size());
     rec.truth = std::find(hidden.begin(), hidden.end(), rec.step) != hidden.end() &&
                 std::find(accounted.begin(), accounted.end(), rec.step) == accounted.end();
