@@ -11,8 +11,9 @@ Used by docs/terramechanics.md ("Model families") and docs/performance.md
   python3 tests/data/rft/make_slip_angle_files.py ROVERLAB OUTDIR
 """
 import random
-import subprocess
 import sys
+
+from make_study_files import B, R, noisy_rows  # the same wheel, noise and columns
 
 SLIPS = [round(-1 + 0.07 * i, 3) for i in range(28)]
 ANGLES = [0, 15, 30, 45, 60, 75, 90]
@@ -31,22 +32,11 @@ def main():
     exe, out = sys.argv[1], sys.argv[2]
     for name, (grousered, args) in CASES.items():
         rng = random.Random(name)
-        cmd = [exe, "terramechanics", "--soil", "dry_sand", "--radius", "0.0625", "--width", "0.06",
+        cmd = [exe, "terramechanics", "--soil", "dry_sand", "--radius", str(R), "--width", str(B),
                "--rft-scale", "2e6", "--slip-definition", "travel", "--load", "20",
                "--slip", ",".join(map(str, SLIPS)), "--slip-angle", ",".join(map(str, ANGLES))]
         cmd += (GROUSERS if grousered else []) + args
-        rows = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout.splitlines()
-        header = rows[0].split(",")
-        lines = []
-        for line in rows[1:]:
-            r = dict(zip(header, line.split(",")))
-            if r["status"] != "ok":
-                continue
-            lines.append("%s,%d,%g,0.0625,0.06,%s,%s,%s,%.4f,%.4f,%.5f,%.6f\n" % (
-                "grousered" if grousered else "smooth", 12 if grousered else 0, 0.005 if grousered else 0.0,
-                r["load_N"], r["slip"], r["slip_angle_deg"],
-                float(r["drawbar_pull_N"]) + rng.gauss(0, 0.5), float(r["lateral_force_N"]) + rng.gauss(0, 0.5),
-                float(r["resistive_torque_Nm"]) + rng.gauss(0, 0.02), float(r["sinkage_m"]) + rng.gauss(0, 0.0005)))
+        lines = noisy_rows(cmd, grousered, rng)
         for suffix, slip in (("", "travel_slip"), ("_unstated", "slip")):
             with open("%s/slip_angle_%s%s.csv" % (out, name, suffix), "w") as f:
                 f.write("wheel,grouser_count,grouser_height_m,radius_m,width_m,load_N,%s,slip_angle_deg,"

@@ -30,6 +30,25 @@ LOADS = {"depth1_loads": "10,20,40"}  # files at several loads (default 20 N)
 CASES["depth1_loads"] = CASES["depth1"]
 
 
+def noisy_rows(cmd, grousered, rng):
+    """The rows `roverlab terramechanics` (cmd) computes, status ok, as CSV lines
+    (wheel, grousers, radius, width, load, slip, slip angle, then drawbar pull,
+    lateral force, torque and sinkage with the study's stated noise)."""
+    rows = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout.splitlines()
+    header = rows[0].split(",")
+    lines = []
+    for line in rows[1:]:
+        r = dict(zip(header, line.split(",")))
+        if r["status"] != "ok":
+            continue
+        lines.append("%s,%d,%g,%g,%g,%s,%s,%s,%.4f,%.4f,%.5f,%.6f\n" % (
+            "grousered" if grousered else "smooth", 12 if grousered else 0, 0.005 if grousered else 0.0,
+            R, B, r["load_N"], r["slip"], r["slip_angle_deg"],
+            float(r["drawbar_pull_N"]) + rng.gauss(0, 0.5), float(r["lateral_force_N"]) + rng.gauss(0, 0.5),
+            float(r["resistive_torque_Nm"]) + rng.gauss(0, 0.02), float(r["sinkage_m"]) + rng.gauss(0, 0.0005)))
+    return lines
+
+
 def main():
     exe, out = sys.argv[1], sys.argv[2]
     for name, (grousered, args) in CASES.items():
@@ -39,22 +58,10 @@ def main():
         cmd = [exe, "terramechanics", "--soil", "dry_sand", "--radius", str(R), "--width", str(B)] + zeta + [
                "--slip-definition", "travel", "--load", LOADS.get(name, "20"), "--slip", ",".join(map(str, SLIPS)),
                "--slip-angle", ",".join(map(str, ANGLES))] + wheel + args
-        rows = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout.splitlines()
-        header = rows[0].split(",")
         with open("%s/rft_%s.csv" % (out, name), "w") as f:
             f.write("wheel,grouser_count,grouser_height_m,radius_m,width_m,load_N,slip,slip_angle_deg,"
                     "drawbar_pull_N,lateral_force_N,torque_Nm,sinkage_m\n")
-            for line in rows[1:]:
-                r = dict(zip(header, line.split(",")))
-                if r["status"] != "ok":
-                    continue
-                f.write("%s,%d,%g,%g,%g,%s,%s,%s,%.4f,%.4f,%.5f,%.6f\n" % (
-                    "grousered" if grousered else "smooth", 12 if grousered else 0, 0.005 if grousered else 0.0,
-                    R, B, r["load_N"], r["slip"], r["slip_angle_deg"],
-                    float(r["drawbar_pull_N"]) + rng.gauss(0, 0.5), float(r["lateral_force_N"]) + rng.gauss(0, 0.5),
-                    float(r["resistive_torque_Nm"]) + rng.gauss(0, 0.02),
-                    float(r["sinkage_m"]) + rng.gauss(0, 0.0005)))
-
+            f.writelines(noisy_rows(cmd, grousered, rng))
 
 if __name__ == "__main__":
     main()
