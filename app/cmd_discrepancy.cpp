@@ -270,8 +270,8 @@ void print_report(const std::string& path, const Soil& soil, const analysis::Dis
   if (!r.family_choice.empty()) std::printf("  %s\n", r.family_choice.c_str());
   for (const auto& f : r.families) {
     for (const auto& p : f.parameters) {
-      std::printf("    %s: %s = %.4g +- %.2g%s\n", f.family.c_str(), to_string(p.parameter), p.value, p.sigma,
-                  p.at_bound ? " (at its bound)" : "");
+      std::printf("    %s: %s = %s\n", f.family.c_str(), to_string(p.parameter),
+                  analysis::format_fitted(p.value, p.sigma, "1", p.at_bound).c_str());
     }
   }
   if (r.unsupported > 0) std::printf("  %zu measurements at loads the model cannot carry (skipped)\n", r.unsupported);

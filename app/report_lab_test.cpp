@@ -10,6 +10,7 @@
 #include "app/render_view.h"
 #include "app/resources.h"
 #include "core/common/error.h"
+#include "core/discrepancy/likelihood.h"
 #include "importers/soil_file.h"
 #include "importers/wheel_test_csv.h"
 
@@ -97,6 +98,11 @@ analysis::DiscrepancyReport run_study(const ViewInput& in, const terramechanics:
   });
 }
 
+// An error of quantity q as the tables show it: sinkage in mm, the others in their units.
+std::string shown(Quantity q, double v) {
+  return q == Quantity::sinkage ? num(v * 1000.0) + " mm" : num(v) + " " + terramechanics::unit_of(q);
+}
+
 // The held-out RMSE per measured quantity: the baseline's and the final model's.
 void error_table(ReportSection& section, const analysis::DiscrepancyReport& r, const SingleWheelModel& final_model,
                  json& out) {
@@ -106,11 +112,8 @@ void error_table(ReportSection& section, const analysis::DiscrepancyReport& r, c
     const Quantity q = r.quantities[k];
     const double before = k < r.baseline_held_out_rmse.size() ? r.baseline_held_out_rmse[k] : NAN;
     const double after = rms_residual(final_model.held_out, q);
-    const double scale = q == Quantity::sinkage ? 1000.0 : 1.0;
-    const std::string unit = q == Quantity::sinkage ? "mm" : terramechanics::unit_of(q);
     section.html << "<tr><td style=\"text-align:left\">" << esc(terramechanics::to_string(q)) << "</td><td>"
-                 << num(before * scale) << " " << esc(unit) << "</td><td>" << num(after * scale) << " " << esc(unit)
-                 << "</td></tr>\n";
+                 << esc(shown(q, before)) << "</td><td>" << esc(shown(q, after)) << "</td></tr>\n";
     out[terramechanics::to_string(q)] = {{"baseline", finite_or_null(before)},
                                          {"final_model", finite_or_null(after)},
                                          {"unit", terramechanics::unit_of(q)}};
@@ -137,15 +140,13 @@ void family_table(ReportSection& section, const analysis::DiscrepancyReport& r, 
     for (std::size_t k = 0; k < r.quantities.size(); ++k) {
       const Quantity q = r.quantities[k];
       const double v = k < f.held_out_rmse.size() ? f.held_out_rmse[k] : NAN;
-      const double scale = q == Quantity::sinkage ? 1000.0 : 1.0;
-      section.html << "<td>" << num(v * scale) << " " << esc(q == Quantity::sinkage ? "mm" : terramechanics::unit_of(q))
-                   << "</td>";
+      section.html << "<td>" << esc(shown(q, v)) << "</td>";
       rmse[terramechanics::to_string(q)] = finite_or_null(v);
     }
     std::string fitted;
     for (const auto& p : f.parameters) {
       fitted += std::string(fitted.empty() ? "" : "; ") + terramechanics::to_string(p.parameter) + " = " +
-                num(p.value, "%.4g") + " +- " + num(p.sigma, "%.2g");
+                analysis::format_fitted(p.value, p.sigma, "1", p.at_bound);
     }
     section.html << "<td style=\"text-align:left\">" << esc(fitted.empty() ? "nothing" : fitted) << "</td></tr>\n";
     out.push_back({{"family", f.family},
