@@ -254,7 +254,7 @@ struct MotionKeyHash {
     return h;
   }
 };
-constexpr std::size_t kCachedElements = std::size_t{1} << 21;  // about 200 MB per thread at most
+constexpr std::size_t kCachedElements = std::size_t{1} << 21;  // about 110 MB per thread at most
 
 struct MotionCache {
   std::unordered_map<MotionKey, std::vector<Stressed>, MotionKeyHash> stressed;
@@ -280,19 +280,16 @@ const std::vector<Loaded>& cached_loaded(const MeshCache& mesh, const Wheel& w, 
   auto stressed = cache.stressed.find(key);
   if (stressed == cache.stressed.end()) {
     std::vector<Stressed> fresh = stressed_elements(mesh.mesh, w, motion);
-    cache.make_room(2 * fresh.size());
+    cache.make_room(fresh.size());
     cache.elements += fresh.size();
     stressed = cache.stressed.emplace(key, std::move(fresh)).first;
   }
   loaded_elements(stressed->second, pileup, cache.scratch);
   if (pileup != 0.0) return cache.scratch;
+  cache.make_room(cache.scratch.size());
   cache.elements += cache.scratch.size();
   return cache.sorted.emplace(key, cache.scratch).first->second;
 }
-
-}  // namespace
-
-namespace {
 
 // Sinkage s from F_z(s) = W. With the depth-dependent scale zeta (1 + k d /
 // r), F_z is a quadratic in s between consecutive immersion thresholds

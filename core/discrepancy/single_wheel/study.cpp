@@ -244,7 +244,6 @@ class SingleWheelStudy {
   int best_next_step(const std::vector<std::size_t>& chain, const CandidateResult* at, CandidateResult& best_fit,
                      std::vector<const SingleWheelCandidate*>& best_set) const;
   int best_partner(int first, CandidateResult& pair_fit) const;
-  void check_points_can_tell_candidates_apart() const;
   std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit,
                                       const std::vector<const SingleWheelCandidate*>& set) const;
   void choose_best();
@@ -313,8 +312,7 @@ void check_points_can_tell_candidates_apart(const std::vector<WheelTestPoint>& p
 DiscrepancyReport SingleWheelStudy::run() {
   if (points_.empty()) throw DataError("no single-wheel points");
   report_.points = points_.size();
-  report_.baseline_model = family_name(o_.baseline.kind);
-  check_points_can_tell_candidates_apart();
+  report_.baseline_model = family_name(o_.baseline.kind);  // its points checked by run_in_family
   assign_folds();
   find_quantities();
   score_baseline();
@@ -341,10 +339,6 @@ DiscrepancyReport SingleWheelStudy::run() {
   judge_quantities();
   score_per_wheel();
   return std::move(report_);
-}
-
-void SingleWheelStudy::check_points_can_tell_candidates_apart() const {
-  roverlab::analysis::check_points_can_tell_candidates_apart(points_);
 }
 
 // The held-out folds: point j in fold j mod folds, or one fold per wheel
@@ -1086,15 +1080,13 @@ DiscrepancyReport compare_families(const Soil& soil, const std::vector<WheelTest
   const std::string baselines = "as baselines: " + fmt("%.2f", t.held_out_score) + " sigma, " + t.held_out_method +
                                 ", against " + fmt("%.2f", other.held_out_score) + ", " + other.held_out_method;
   DiscrepancyReport out = std::move(studies[taken]);
-  out.family_choice = both ? "family " + t.family + ": its final model " + named(t) + " held out at " +
-                                 fmt("%.2f", t.final_held_out_score) + " sigma against " + named(other) +
-                                 (named(other).back() == 's' ? "' " : "'s ") + fmt("%.2f", other.final_held_out_score) +
-                                 " sigma, " +
-                                 fmt("%.0f", 100.0 * (1.0 - t.final_held_out_score / other.final_held_out_score)) +
-                                 " % lower (" + baselines + ")"
-                           : "family " + t.family + ": its final model " + named(t) + " held out at " +
-                                 fmt("%.2f", t.final_held_out_score) + " sigma, within the stated noise, so " +
-                                 other.family + " was not extended (" + baselines + ")";
+  const std::string how = both ? " against " + named(other) + (named(other).back() == 's' ? "' " : "'s ") +
+                                     fmt("%.2f", other.final_held_out_score) + " sigma, " +
+                                     fmt("%.0f", 100.0 * (1.0 - t.final_held_out_score / other.final_held_out_score)) +
+                                     " % lower ("
+                               : ", within the stated noise, so " + other.family + " was not extended (";
+  out.family_choice = "family " + t.family + ": its final model " + named(t) + " held out at " +
+                      fmt("%.2f", t.final_held_out_score) + " sigma" + how + baselines + ")";
   out.families = std::move(families);
   return out;
 }
