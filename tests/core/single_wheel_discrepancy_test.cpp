@@ -640,6 +640,10 @@ TEST(SlipDefinition, ATravelSlipFileIsReadAsTravelSlip) {
   for (const auto* reading : {&r, &travel}) {
     EXPECT_NE(reading->slip_definition_reason.find("does not state its slip definition"), std::string::npos)
         << reading->slip_definition_reason;
+    // Each reading's causes and final held-out score are given, to weigh.
+    for (const char* part : {"read as longitudinal slip: causes ", "read as travel slip: causes ", " sigma"}) {
+      EXPECT_NE(reading->slip_definition_reason.find(part), std::string::npos) << reading->slip_definition_reason;
+    }
     EXPECT_FALSE(reading->verdict.empty());
     EXPECT_FALSE(reading->per_wheel.empty());
   }

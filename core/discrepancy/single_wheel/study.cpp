@@ -1136,13 +1136,31 @@ std::string named_chain(const DiscrepancyReport& r) {
   return names.empty() ? "none" : names;
 }
 
+// A reading's final held-out score (stated sigmas; the baseline's when no step passed).
+double reading_score(const DiscrepancyReport& r) {
+  return r.selection.empty() ? r.baseline_score : r.selection.back().held_out_score;
+}
+
 // Two readings of one file differ materially: other causes named, or final
 // held-out scores 10 % apart.
 bool readings_differ(const DiscrepancyReport& a, const DiscrepancyReport& b) {
-  const auto score = [](const DiscrepancyReport& r) {
-    return r.selection.empty() ? r.baseline_score : r.selection.back().held_out_score;
-  };
-  return named_chain(a) != named_chain(b) || std::abs(score(a) - score(b)) > 0.1 * std::min(score(a), score(b));
+  return named_chain(a) != named_chain(b) ||
+         std::abs(reading_score(a) - reading_score(b)) > 0.1 * std::min(reading_score(a), reading_score(b));
+}
+
+// What the two readings give, for the sentence that prints both: each
+// reading's causes and final held-out score, and which one alone fits within
+// the stated noise (a fact to weigh, not a choice: both are printed).
+std::string readings_compared(const DiscrepancyReport& as_longitudinal, const DiscrepancyReport& as_travel) {
+  const double l = reading_score(as_longitudinal), t = reading_score(as_travel);
+  std::string s = "read as longitudinal slip: causes " + named_chain(as_longitudinal) + ", final model held out at " +
+                  fmt("%.2f", l) + " sigma; read as travel slip: causes " + named_chain(as_travel) + ", " +
+                  fmt("%.2f", t) + " sigma";
+  if ((l <= kWithinTheNoise) != (t <= kWithinTheNoise)) {
+    s += std::string("; only the ") + (t <= kWithinTheNoise ? "travel" : "longitudinal") +
+         " reading's final model fits within the stated noise";
+  }
+  return s;
 }
 
 // Why the study took the reading it took (travel when `travel`): the
@@ -1236,10 +1254,10 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
       as_longitudinal.slip_definition = to_string(SlipDefinition::longitudinal);
       as_travel.slip_definition = to_string(SlipDefinition::travel);
       as_longitudinal.slip_definition_reason = as_travel.slip_definition_reason =
-          "the file does not state its slip definition and the two readings give different results (causes " +
-          named_chain(as_longitudinal) + " read as longitudinal slip, " + named_chain(as_travel) +
-          " read as travel slip): both follow, each complete; give --slip-definition, or name the file's slip "
-          "column travel_slip or longitudinal_slip";
+          "the file does not state its slip definition and the two readings give different results (" +
+          readings_compared(as_longitudinal, as_travel) +
+          "): both follow, each complete; give --slip-definition, or name the file's slip column travel_slip or "
+          "longitudinal_slip";
       as_longitudinal.other_reading.push_back(std::move(as_travel));
       return as_longitudinal;
     }
