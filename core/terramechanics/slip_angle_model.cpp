@@ -95,14 +95,16 @@ double sidewall_per_length(const SidewallCoefficients& k, double c, double gamma
 
 // Stress integrals at entry angle theta0, longitudinal slip s in [0, 1] and
 // lateral velocity ratio lateral = v_y / (r w) (Ishigami: (1 - s) tan beta).
+// With normal_only, only the normal force (what the sinkage solve needs),
+// computed by the same operations as in the full integral.
 Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions& lat, double s, double lateral,
-                    double theta0, double c1, double c2, std::vector<Node>& buffer) {
+                    double theta0, double c1, double c2, std::vector<Node>& buffer, bool normal_only = false) {
   const double theta_m = theta0 * (c1 + c2 * s);  // Eq. 2.10, seed 003; Eq. 4, Ishigami 2007
   const double cos0 = std::cos(theta0), sin0 = std::sin(theta0);
   Integrals in;
   double i_sigma_cos = 0, i_sigma_sin = 0, i_tau_cos = 0, i_tau_sin = 0, i_tau = 0, i_tau_y = 0, i_side = 0;
   const double theta_r = -u.rear_angle_ratio * theta0;  // rear angle (model.h)
-  const SidewallCoefficients side = sidewall_coefficients(u.tan_phi);
+  const SidewallCoefficients side = normal_only ? SidewallCoefficients{} : sidewall_coefficients(u.tan_phi);
   nodes(o, theta0, theta_m, theta_r, buffer);
   for (const Node& node : buffer) {
     const double th = node.theta;
@@ -117,8 +119,10 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
     const double j_y = u.rs * lateral * (theta0 - th);                    // Eq. 8: r (1 - s)(theta0 - theta) tan(beta)
     double tau_x = 0.0, tau_y = 0.0;
     if (lat.shear == LateralShear::independent) {
-      tau_x = strength * shear_fraction(u, j_x / u.k_x);                                // Eq. 5
-      tau_y = std::copysign(strength * shear_fraction(u, std::abs(j_y) / u.k_y), j_y);  // Eq. 7
+      tau_x = strength * shear_fraction(u, j_x / u.k_x);  // Eq. 5
+      if (!normal_only) {
+        tau_y = std::copysign(strength * shear_fraction(u, std::abs(j_y) / u.k_y), j_y);  // Eq. 7
+      }
     } else {
       const double ux = j_x / u.k_x, uy = j_y / u.k_y;
       const double big_j = std::hypot(ux, uy);
@@ -129,9 +133,10 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
       }
     }
     i_sigma_cos += node.weight * sigma * ct;
+    i_tau_sin += node.weight * tau_x * st;
+    if (normal_only) continue;
     i_sigma_sin += node.weight * sigma * st;
     i_tau_cos += node.weight * tau_x * ct;
-    i_tau_sin += node.weight * tau_x * st;
     i_tau += node.weight * tau_x;
     i_tau_y += node.weight * tau_y;
     const double h = u.r * (ct - cos0);  // depth of the sidewall point, Eq. 10
@@ -160,15 +165,18 @@ Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const Late
   const Setup u = setup(soil, w, o.extensions, s);
   std::vector<Node> buffer;
   auto at = [&](double th) { return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2, buffer); };
+  auto normal_at = [&](double th) {
+    return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2, buffer, true).normal;
+  };
   Solved out;
   double lo = 0.0, hi = kPi / 2.0;
-  const double n_hi = at(hi).normal;
+  const double n_hi = normal_at(hi);
   if (!(n_hi >= load)) return out;
   double th = hi * std::pow(load / n_hi, 1.0 / (2.0 * u.n + 1.0));  // small-angle power law
   double prev_th = hi, prev_n = n_hi, root = th;
   for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
     if (!(th > lo && th < hi)) th = 0.5 * (lo + hi);
-    const double nv = at(th).normal;
+    const double nv = normal_at(th);
     root = th;
     if (std::abs(nv - load) <= 1e-13 * load) break;
     (nv < load ? lo : hi) = th;
