@@ -200,8 +200,20 @@ struct Stressed {
 struct Loaded {
   const RftElement* element;
   Vec3 force;
-  double z, m, threshold;
+  double z, pushes, m, threshold;
 };
+
+// The order of a sorted list: by threshold, ties by the element's place in
+// its mesh. A total order, so any sort (and any history of the list) gives
+// the same sequence, and the sums over it the same bits.
+bool before(const Loaded& a, const Loaded& b) {
+  return a.threshold < b.threshold || (a.threshold == b.threshold && a.element < b.element);
+}
+
+void pile(Loaded& l, double pileup) {
+  l.m = 1.0 + pileup * l.pushes;
+  l.threshold = l.z / l.m;
+}
 
 std::vector<Stressed> stressed_elements(const std::vector<RftElement>& mesh, const Wheel& w,
                                         const WheelMotion& motion) {
@@ -220,24 +232,46 @@ std::vector<Stressed> stressed_elements(const std::vector<RftElement>& mesh, con
   return out;
 }
 
-// Sorted by immersion threshold (into out, reusing its storage).
-void loaded_elements(const std::vector<Stressed>& stressed, double pileup, std::vector<Loaded>& out) {
-  out.clear();
+// Sorted by immersion threshold.
+std::vector<Loaded> loaded_elements(const std::vector<Stressed>& stressed, double pileup) {
+  std::vector<Loaded> out;
   out.reserve(stressed.size());
   for (const Stressed& e : stressed) {
-    const double m = 1.0 + pileup * e.pushes;
-    out.push_back({e.element, e.force, e.z, m, e.z / m});
+    out.push_back({e.element, e.force, e.z, e.pushes, 0.0, 0.0});
+    pile(out.back(), pileup);
   }
-  std::sort(out.begin(), out.end(), [](const Loaded& a, const Loaded& b) { return a.threshold < b.threshold; });
+  std::sort(out.begin(), out.end(), before);
+  return out;
+}
+
+// A sorted list again at another pile-up. A fit changes the pile-up by
+// little from one evaluation to the next, so the list is nearly in order:
+// insertion sort, in time linear in the list and the elements it moves,
+// unless they are many (then a full sort). The same order either way.
+void repile(std::vector<Loaded>& list, double pileup) {
+  for (Loaded& l : list) pile(l, pileup);
+  std::size_t moves = 0;
+  const std::size_t budget = 8 * list.size();
+  for (std::size_t i = 1; i < list.size(); ++i) {
+    const Loaded l = list[i];
+    std::size_t j = i;
+    for (; j > 0 && before(l, list[j - 1]) && moves <= budget; --j, ++moves) list[j] = list[j - 1];
+    list[j] = l;
+    if (moves > budget) {
+      std::sort(list.begin(), list.end(), before);
+      return;
+    }
+  }
 }
 
 // The stresses depend on the mesh and the motion, not on the load, the
 // material scale, the depth scale or the pile-up: a fit evaluates the same
 // rows again and again with other values of those. So each thread keeps the
-// stressed elements of the motions it met, and their sorted list without a
-// pile-up (up to kCachedElements in all; then it starts over; an entry of a
-// mesh no longer cached is never matched again, as its generation is gone).
-// Results are those of a fresh computation, bit for bit.
+// stressed elements of the motions it met, their sorted list without a
+// pile-up, and their sorted list at the last pile-up asked for (up to
+// kCachedElements in all; then it starts over; an entry of a mesh no longer
+// cached is never matched again, as its generation is gone). Results are
+// those of a fresh computation, bit for bit (the sort's order is total).
 struct MotionKey {
   unsigned long generation;
   double cx, cy, cz, rim, radius;
@@ -254,20 +288,40 @@ struct MotionKeyHash {
     return h;
   }
 };
-constexpr std::size_t kCachedElements = std::size_t{1} << 21;  // about 110 MB per thread at most
+constexpr std::size_t kCachedElements = std::size_t{1} << 21;  // about 120 MB per thread at most
+
+// A motion's sorted list at the pile-up it was last asked for.
+struct Piled {
+  double pileup;
+  std::vector<Loaded> list;
+};
 
 struct MotionCache {
   std::unordered_map<MotionKey, std::vector<Stressed>, MotionKeyHash> stressed;
   std::unordered_map<MotionKey, std::vector<Loaded>, MotionKeyHash> sorted;  // without a pile-up
-  std::vector<Loaded> scratch;                                               // with one
+  std::unordered_map<MotionKey, Piled, MotionKeyHash> piled;                 // with one
   std::size_t elements = 0;
+  // Room for n more elements: when they would pass the budget, everything
+  // cached is dropped (a reference returned before is not used after).
   void make_room(std::size_t n) {
-    if (elements + n <= kCachedElements) return;
-    stressed.clear();
-    sorted.clear();
-    elements = 0;
+    if (elements + n > kCachedElements) {
+      stressed.clear();
+      sorted.clear();
+      piled.clear();
+      elements = 0;
+    }
+    elements += n;
   }
 };
+
+const std::vector<Stressed>& cached_stressed(MotionCache& cache, const MotionKey& key, const MeshCache& mesh,
+                                             const Wheel& w, const WheelMotion& motion) {
+  const auto found = cache.stressed.find(key);
+  if (found != cache.stressed.end()) return found->second;
+  std::vector<Stressed> fresh = stressed_elements(mesh.mesh, w, motion);
+  cache.make_room(fresh.size());
+  return cache.stressed.emplace(key, std::move(fresh)).first->second;
+}
 
 const std::vector<Loaded>& cached_loaded(const MeshCache& mesh, const Wheel& w, const WheelMotion& motion,
                                          double pileup) {
@@ -276,19 +330,18 @@ const std::vector<Loaded>& cached_loaded(const MeshCache& mesh, const Wheel& w, 
   if (pileup == 0.0) {
     const auto found = cache.sorted.find(key);
     if (found != cache.sorted.end()) return found->second;
+  } else {
+    const auto found = cache.piled.find(key);
+    if (found != cache.piled.end()) {
+      if (found->second.pileup != pileup) repile(found->second.list, pileup);
+      found->second.pileup = pileup;
+      return found->second.list;
+    }
   }
-  auto stressed = cache.stressed.find(key);
-  if (stressed == cache.stressed.end()) {
-    std::vector<Stressed> fresh = stressed_elements(mesh.mesh, w, motion);
-    cache.make_room(fresh.size());
-    cache.elements += fresh.size();
-    stressed = cache.stressed.emplace(key, std::move(fresh)).first;
-  }
-  loaded_elements(stressed->second, pileup, cache.scratch);
-  if (pileup != 0.0) return cache.scratch;
-  cache.make_room(cache.scratch.size());
-  cache.elements += cache.scratch.size();
-  return cache.sorted.emplace(key, cache.scratch).first->second;
+  std::vector<Loaded> list = loaded_elements(cached_stressed(cache, key, mesh, w, motion), pileup);
+  cache.make_room(list.size());  // may drop the stressed list above: the sorted one no longer needs it
+  if (pileup == 0.0) return cache.sorted.emplace(key, std::move(list)).first->second;
+  return cache.piled.emplace(key, Piled{pileup, std::move(list)}).first->second.list;
 }
 
 // Sinkage s from F_z(s) = W. With the depth-dependent scale zeta (1 + k d /

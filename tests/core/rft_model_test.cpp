@@ -225,6 +225,13 @@ TEST(RftWheel, AnEvaluationIsTheSameAfterOthersAsOnAFreshThread) {
     (void)evaluate_slip_angle(sand(1.5e6 + 1e4 * i), i % 2 != 0 ? g : smooth(), 10.0 + i % 30,
                               same_motion ? 0.35 : -0.9 + 0.0045 * i, deg(same_motion ? 40.0 : i % 91), o);
   }
+  // The piled point's motion at other pile-ups, near (a fit's steps: the
+  // cached order mended) and far (sorted afresh), last one near its own.
+  for (const double p : {0.41, 0.39, 3.0, 9.5, 0.0, 2.0, 0.4001}) {
+    ModelOptions o = piled;
+    o.extensions.rft_pileup = p;
+    (void)point(smooth(), o);
+  }
   const SlipAngleTraction again[3] = {point(smooth(), rft()), point(g, rft()), point(smooth(), piled)};
   for (int k = 0; k < 3; ++k) {
     ASSERT_TRUE(fresh[k].ok() && again[k].ok());
