@@ -73,7 +73,10 @@ json families_json(const analysis::DiscrepancyReport& r) {
                {"held_out_score_sigma", finite_or_null(f.held_out_score)},
                {"held_out_method", f.held_out_method},
                {"final_model", f.final_model},
-               {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)}};
+               {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)},
+               {"final_studied_points", f.studied_points > 0    ? f.studied_points
+                                        : f.final_model.empty() ? 0
+                                                                : r.points}};
     json ho = json::object();
     for (std::size_t i = 0; i < r.quantities.size() && i < f.held_out_rmse.size(); ++i) {
       ho[to_string(r.quantities[i])] = finite_or_null(f.held_out_rmse[i]);

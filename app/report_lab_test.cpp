@@ -133,7 +133,10 @@ void family_table(ReportSection& section, const analysis::DiscrepancyReport& r, 
   section.html << "<th>fitted</th></tr>\n";
   for (const auto& f : r.families) {
     section.html << "<tr><td style=\"text-align:left\">" << esc(f.family) << "</td><td style=\"text-align:left\">"
-                 << esc(f.final_model.empty() ? "not extended (the other family fits within the noise)" : f.final_model)
+                 << esc(f.final_model.empty()  ? "not extended (the other family fits within the noise)"
+                        : f.studied_points > 0 ? f.final_model + " (studied on " + std::to_string(f.studied_points) +
+                                                     " of the " + std::to_string(r.points) + " points)"
+                                               : f.final_model)
                  << "</td><td>" << num(f.final_held_out_score) << "</td><td>" << num(f.held_out_score) << " ("
                  << esc(f.held_out_method) << ")</td>";
     json rmse = json::object();
@@ -152,6 +155,9 @@ void family_table(ReportSection& section, const analysis::DiscrepancyReport& r, 
     out.push_back({{"family", f.family},
                    {"final_model", f.final_model},
                    {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)},
+                   {"final_studied_points", f.studied_points > 0    ? f.studied_points
+                                            : f.final_model.empty() ? 0
+                                                                    : r.points},
                    {"held_out_score_sigma", finite_or_null(f.held_out_score)},
                    {"held_out_method", f.held_out_method},
                    {"held_out_rmse", rmse}});

@@ -146,6 +146,15 @@ TEST(RftStudy, AFamilyWhoseBaselineLosesIsTakenWhenItsFinalModelWins) {
       EXPECT_LT(std::abs(p.value - 2.5), 2.0 * p.sigma) << p.value << " +- " << p.sigma;
     }
   }
+  // Screened on a subset first (family_screen_points under the file's
+  // points), the winning family still passes and is studied on all points.
+  o.family_screen_points = 20;
+  const auto screened = analysis::study_single_wheel(described_sand(), rft_points(truth, 46), o);
+  EXPECT_EQ(screened.baseline_model, "RFT") << screened.family_choice;
+  ASSERT_EQ(screened.families.size(), 2u);
+  EXPECT_EQ(screened.families[1].studied_points, 0u) << screened.family_choice;
+  EXPECT_EQ(screened.final_model, r.final_model);
+  EXPECT_EQ(screened.family_choice, r.family_choice);
 }
 
 // Issue 43 item 4: the negligible-share threshold (kNegligibleGainShare)

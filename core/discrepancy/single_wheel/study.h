@@ -114,6 +114,12 @@ struct DiscrepancyOptions {
   // a wheel dragged sideways). Off: `baseline` alone (an RFT baseline still
   // has its material scale fitted).
   bool compare_families = false;
+  // With more points than this, the family studied second is first studied
+  // on a random subset (fixed seed) of this many points, and on all of them only
+  // when its final model there holds out better than the first family's
+  // final model on all points (a screen: on long files the second family's
+  // study would cost as much as the first's). 0: no screen.
+  std::size_t family_screen_points = 400;
 };
 
 // One model family as the study's baseline (compare_families).
@@ -127,6 +133,9 @@ struct FamilyBaseline {
   // step passes) and that model's held-out RMS in the stated sigmas.
   std::string final_model;
   double final_held_out_score = NAN;
+  // Those of the study on a random subset of this many points only
+  // (family_screen_points); 0: on all points.
+  std::size_t studied_points = 0;
 };
 
 struct DiscrepancyReport {
