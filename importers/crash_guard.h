@@ -21,8 +21,10 @@ bool has_hdf5_signature(const std::string& path);
 // otherwise, whatever the trial threw (the real read here then gives the same,
 // clean error). Without a child to spare it returns at once.
 // `format` and `library` name what the message says ("ROS bag", "rosbag
-// library").
+// library"). The child may use `cpu_seconds` of CPU (0: 30 s plus 1 s per
+// MB of the file): more is a library looping on the file (InputError);
+// a child slowed by a loaded machine is not.
 void survive_crash(const std::string& path, const std::function<void()>& trial, const std::string& format = "HDF5 file",
-                   const std::string& library = "HDF5 library");
+                   const std::string& library = "HDF5 library", int cpu_seconds = 0);
 
 }  // namespace roverlab::io

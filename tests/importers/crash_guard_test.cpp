@@ -44,3 +44,28 @@ TEST(CrashGuard, AChildThatEndsItselfIsACorruptFile) {
   EXPECT_NE(e.find("/data/log.h5"), std::string::npos) << e;
   EXPECT_NE(e.find("corrupt HDF5 file: reading it ended the process (exit status 71)"), std::string::npos) << e;
 }
+
+// A library looping on a file uses CPU; a read slowed by a loaded machine
+// waits for it. The limit is on the child's CPU time: a trial that spins past
+// it is the file's fault, one that takes longer in wall-clock time without
+// using CPU is not (a 65,535-stream log was refused as "corrupt" at a load of
+// 5 when the limit was on wall-clock time).
+TEST(CrashGuard, ATrialThatLoopsIsStoppedByItsCpuTimeNotByTheClock) {
+  const auto spin = [] {
+    volatile double x = 0.0;
+    for (;;) x = x + 1.0;
+  };
+  std::string e;
+  try {
+    io::survive_crash("/data/log.h5", spin, "HDF5 file", "HDF5 library", 1);
+  } catch (const InputError& error) {
+    e = error.what();
+  }
+  EXPECT_NE(e.find("/data/log.h5"), std::string::npos) << e;
+  EXPECT_NE(e.find("corrupt HDF5 file: reading it used more than 1 s of CPU (the HDF5 library loops on it)"),
+            std::string::npos)
+      << e;
+  // 1.5 s of waiting at a limit of 1 s of CPU: not a loop.
+  EXPECT_NO_THROW(io::survive_crash(
+      "/data/log.h5", [] { usleep(1'500'000); }, "HDF5 file", "HDF5 library", 1));
+}
