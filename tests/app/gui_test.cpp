@@ -118,8 +118,23 @@ namespace {
 
 // The longest gap, ms, between the ticks of a 10 ms timer that scrubs the
 // timeline (a render on every tick) until `done` holds (or timeout_ms pass);
-// `ticks` counts them.
-qint64 longest_gap_while_scrubbing(gui::MainWindow& w, const std::function<bool()>& done, int timeout_ms, int& ticks) {
+// `ticks` counts them. Meanwhile a thread that only sleeps 10 ms at a time
+// measures its own longest gap: the machine's scheduling delay at that time,
+// which the GUI thread meets too (`scheduling`).
+qint64 longest_gap_while_scrubbing(gui::MainWindow& w, const std::function<bool()>& done, int timeout_ms, int& ticks,
+                                   qint64& scheduling) {
+  std::atomic<bool> stop{false};
+  std::atomic<qint64> probe_worst{0};
+  std::thread probe([&] {
+    auto last = std::chrono::steady_clock::now();
+    while (!stop.load()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      const auto now = std::chrono::steady_clock::now();
+      const qint64 gap = std::chrono::duration_cast<std::chrono::milliseconds>(now - last).count();
+      probe_worst = std::max(probe_worst.load(), gap);
+      last = now;
+    }
+  });
   QElapsedTimer clock;
   clock.start();
   qint64 last = clock.elapsed(), worst = 0;
@@ -136,16 +151,22 @@ qint64 longest_gap_while_scrubbing(gui::MainWindow& w, const std::function<bool(
   tick.start();
   wait_until(done, timeout_ms);
   tick.stop();
+  stop = true;
+  probe.join();
+  scheduling = probe_worst.load();
   return worst;
 }
 
 }  // namespace
 
-// Issue 46: what the job adds to the GUI thread's longest stall, measured
-// against the same scrubbing with no job in the same run (the machine's load
-// stalls both alike; the job runs niced, JobRunner::kJobNice). On a quiet
-// machine a rover frame under Xvfb (llvmpipe, 1024x640) takes about 25 ms and
-// the limit is 100 ms; under load it is twice the idle stall plus 50 ms.
+// Issue 46: what the job adds to the GUI thread's longest stall. The
+// machine's load stalls the GUI thread too, and it changes from one second to
+// the next (a build beside the test), so the stall is measured against the
+// same scrubbing with no job after the job, and against the
+// scheduling delay a sleeping thread meets while the job runs (the job runs
+// niced, JobRunner::kJobNice). On a quiet machine a rover frame under Xvfb
+// (llvmpipe, 1024x640) takes about 25 ms and the limit is 100 ms; under load
+// it is twice the larger of those plus 50 ms.
 TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   gui::MainWindow w;
   w.set_quiet(true);
@@ -175,8 +196,9 @@ TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   QElapsedTimer job_time;
   job_time.start();
   int ticks = 0;
+  qint64 scheduling = 0;
   const qint64 worst = longest_gap_while_scrubbing(
-      w, [&] { return !w.busy(); }, 120000, ticks);
+      w, [&] { return !w.busy(); }, 120000, ticks, scheduling);
   const int job_ms = static_cast<int>(job_time.elapsed());
   ASSERT_FALSE(w.busy());
   EXPECT_EQ(runs.load(), 3);
@@ -185,13 +207,16 @@ TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   // The same scrubbing for as long again (the longest gap grows with the
   // time watched), no job.
   int idle_ticks = 0;
+  qint64 idle_scheduling = 0;
   const qint64 idle = longest_gap_while_scrubbing(
-      w, [] { return false; }, std::clamp(job_ms, 1000, 60000), idle_ticks);
+      w, [] { return false; }, std::clamp(job_ms, 1000, 60000), idle_ticks, idle_scheduling);
   EXPECT_GT(idle_ticks, 20);
-  const qint64 limit = std::max<qint64>(100, 2 * idle + 50);
-  EXPECT_LT(worst, limit) << "longest gap between 10 ms ticks with the job, ms; without: " << idle << " ms";
+  const qint64 limit = std::max<qint64>(100, 2 * std::max(idle, scheduling) + 50);
+  EXPECT_LT(worst, limit) << "longest gap between 10 ms ticks with the job, ms; without: " << idle
+                          << " ms; a sleeping thread's longest gap while the job ran: " << scheduling << " ms";
   RecordProperty("longest_event_loop_gap_ms", static_cast<int>(worst));
   RecordProperty("longest_idle_gap_ms", static_cast<int>(idle));
+  RecordProperty("longest_scheduling_gap_ms", static_cast<int>(scheduling));
 }
 
 TEST(Gui, ClosingTheWindowWhileAJobRunsCancelsIt) {
