@@ -44,6 +44,7 @@ class Hdf5LogReader {
   std::vector<double> read_channel(const std::string& stream, const std::string& channel) const;
   std::vector<double> read_time(const std::string& stream) const;
   log::Stream read_stream(const std::string& stream) const;
+  log::Stream read_stream(const StreamInfo& stream) const;  // an entry of catalog()
   log::Log read_all() const;
   // Every dataset read_all reads, through the same library calls, into one
   // buffer that is then dropped: the crash guard's trial read
