@@ -118,7 +118,8 @@ int best_trial(const std::vector<std::size_t>& open, const std::vector<Trial>& t
 // final_error), where without is the held-out error of the final model
 // without that step, and its role, role(step) (step_role with the study's
 // rule: its share of the whole gain or of a channel's, its bounds, its cut).
-// Step has members gain_share and role.
+// Each hook is called once a step, in chain order, without before role, and
+// may fill in the step's own fields. Step has members gain_share and role.
 template <class Step, class Without, class Role>
 void weigh_steps(std::vector<Step>& steps, double baseline, double final_error, const Without& without,
                  const Role& role) {
