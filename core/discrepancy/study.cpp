@@ -1,6 +1,7 @@
 #include "core/discrepancy/study.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace roverlab::analysis {
 
@@ -60,6 +61,15 @@ const char* step_role_name(StepRole role) {
 double gain_share(double baseline, double without, double final_error) {
   const double gain = baseline - final_error;
   return gain > 0 ? (without - final_error) / gain : NAN;
+}
+
+double without_step(double final_error, double before, double after) { return final_error + before - after; }
+
+std::string step_share_text(const std::string& name, double share) {
+  const auto plus = name.rfind(" + ");
+  char one[64];
+  std::snprintf(one, sizeof one, " (%.3g %% of the held-out gain)", 100.0 * share);
+  return (plus == std::string::npos ? name : name.substr(plus + 3)) + one;
 }
 
 StepRole step_role(bool at_bound, double share, double negligible, bool cuts) {

@@ -7,7 +7,9 @@
 // verdict. One definition each, so that the three studies' tables mean the
 // same thing by the same word.
 
+#include <algorithm>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/common/thread_pool.h"
@@ -60,6 +62,102 @@ std::vector<Result> screen_candidates(std::size_t count, const Fit& fit) {
   shared_thread_pool().for_each_index(count, [&](std::size_t i) { out[i] = fit(i); });
   return out;
 }
+
+// The forward selection every study runs (issue 42 item 2), written once:
+// rounds while the chain holds fewer than max_steps candidates. A round tries
+// every open candidate on top of the chain, in parallel on the shared
+// thread pool (trials in candidate order, each independent of the others,
+// so the round is the same on any number of threads), asks which trial is
+// best, and stops unless the study's rule accepts it; the accepted trial
+// joins the chain. The study (its data, model and candidates) supplies:
+//   using Trial = ...;  // default-constructible
+//   bool open(const std::vector<std::size_t>& chain, std::size_t i);
+//       // candidate i (not in the chain) may be tried; called on the calling
+//       // thread in candidate order before the trials, so it may prepare one
+//   Trial trial(const std::vector<std::size_t>& chain, std::size_t i) const;
+//       // candidate i on top of the chain (called concurrently)
+//   int best(const std::vector<std::size_t>& open, std::vector<Trial>& trials);
+//       // the best trial's candidate, -1 for none (trials[i] for i in open)
+//   bool accept(const std::vector<std::size_t>& chain, std::size_t i, Trial& t);
+//       // the study's stopping rule: false ends the selection
+//   void join(std::vector<std::size_t>& chain, std::size_t i, Trial&& t);
+//       // appends i (or more) to the chain and keeps the step
+template <class Study>
+void select_forward(Study& study, std::size_t count, std::size_t max_steps, std::vector<std::size_t>& chain) {
+  using Trial = typename Study::Trial;
+  while (chain.size() < max_steps) {
+    std::vector<std::size_t> open;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (std::find(chain.begin(), chain.end(), i) == chain.end() && study.open(chain, i)) open.push_back(i);
+    }
+    if (open.empty()) return;
+    std::vector<Trial> trials(count);
+    shared_thread_pool().for_each_index(open.size(),
+                                        [&](std::size_t k) { trials[open[k]] = study.trial(chain, open[k]); });
+    const int best = study.best(open, trials);
+    if (best < 0) return;
+    const auto b = static_cast<std::size_t>(best);
+    if (!study.accept(chain, b, trials[b])) return;
+    study.join(chain, b, std::move(trials[b]));
+  }
+}
+
+// The first of the open trials that no later one beats (better(a, b): a
+// beats b), as Study::best returns it; -1 when none is open.
+template <class Trial, class Better>
+int best_trial(const std::vector<std::size_t>& open, const std::vector<Trial>& trials, const Better& better) {
+  int best = -1;
+  for (std::size_t i : open) {
+    if (best < 0 || better(trials[i], trials[static_cast<std::size_t>(best)])) best = static_cast<int>(i);
+  }
+  return best;
+}
+
+// Weighs the steps of a forward selection, in chain order (issue 43): each
+// step's share of the held-out gain, gain_share(baseline, without(step),
+// final_error), where without is the held-out error of the final model
+// without that step, and its role, role(step) (step_role with the study's
+// rule: its share of the whole gain or of a channel's, its bounds, its cut).
+// Each hook is called once a step, in chain order, without before role, and
+// may fill in the step's own fields. Step has members gain_share and role.
+template <class Step, class Without, class Role>
+void weigh_steps(std::vector<Step>& steps, double baseline, double final_error, const Without& without,
+                 const Role& role) {
+  for (auto& step : steps) {
+    step.gain_share = gain_share(baseline, without(step), final_error);
+    step.role = role(step);
+  }
+}
+
+// The held-out error of a final model without a step of a chain scored
+// step by step, nothing refitted: the final error plus what the step cut
+// (the error before it less the error after it).
+double without_step(double final_error, double before, double after);
+
+// The verdict's list of named steps (issue 43): the causes joined by `then`
+// (", then "), the others by "; " into `also`, or, when bound_apart, those
+// with a parameter at its bound into `bound`; text(step) is a step's words.
+struct StepLists {
+  std::string named, also, bound;
+  int causes = 0;
+};
+template <class Step, class Text>
+StepLists list_steps(const std::vector<Step>& steps, const Text& text, const char* then, bool bound_apart = false) {
+  StepLists out;
+  for (const auto& step : steps) {
+    if (step.role == StepRole::cause) {
+      out.named += (out.causes++ > 0 ? then : "") + text(step);
+    } else {
+      std::string& list = bound_apart && step.role == StepRole::at_bound ? out.bound : out.also;
+      list += (list.empty() ? "" : "; ") + text(step);
+    }
+  }
+  return out;
+}
+
+// "NAME (S % of the held-out gain)", NAME the last link of a joint step's
+// "a + b" name: a step of the odometry or single-wheel verdict.
+std::string step_share_text(const std::string& name, double share);
 
 // A least-squares slope of y on x with its t statistic.
 struct Trend {

@@ -226,6 +226,7 @@ class OdometryStudy {
   void choose_cause();
   void residual_series();
   void select_forward();
+  struct Steps;  // select_forward's hooks (study.h)
   void write_what_is_wrong();
   void weigh_steps();
   void write_verdict();
@@ -487,37 +488,54 @@ void OdometryStudy::residual_series() {
   out.rms_after = cause != nullptr ? rep_.candidates[static_cast<std::size_t>(rep_.best)].held_out_rmse : NAN;
 }
 
+// The forward selection's hooks (study.h, select_forward): each open
+// candidate refitted together with the chain; of the steps that lower BIC
+// by more than 10 against the chain before and the held-out RMSE by at
+// least min_improvement, the lowest BIC is kept.
+struct OdometryStudy::Steps {
+  using Trial = OdometryCandidate;
+  OdometryStudy& s;
+  std::optional<OdometryCandidate> closest;  // the round's best step by held-out RMSE, kept or not
+
+  bool open(const std::vector<std::size_t>& /*chain*/, std::size_t /*i*/) const { return true; }
+  OdometryCandidate trial(const std::vector<std::size_t>& chain, std::size_t i) const {
+    std::vector<const OdometryCandidateModel*> links;
+    links.reserve(chain.size() + 1);
+    for (std::size_t j : chain) links.push_back(s.models_[j].get());
+    links.push_back(s.models_[i].get());
+    return s.fit_candidate(ChainModel(links));
+  }
+  bool passes(const OdometryCandidate& fit) const {
+    const OdometryCandidate& at = s.rep_.selection.back();
+    return fit.at_bound.empty() && fit.bic - at.bic < -10.0 &&
+           fit.held_out_rmse <= at.held_out_rmse - s.o_.min_improvement;
+  }
+  int best(const std::vector<std::size_t>& open, const std::vector<OdometryCandidate>& trials) {
+    closest.reset();
+    for (std::size_t i : open) {
+      if (!closest || trials[i].held_out_rmse < closest->held_out_rmse) closest = trials[i];
+    }
+    return best_trial(open, trials, [&](const OdometryCandidate& a, const OdometryCandidate& b) {
+      return passes(a) && (!passes(b) || a.bic < b.bic);
+    });
+  }
+  bool accept(const std::vector<std::size_t>& /*chain*/, std::size_t /*i*/, const OdometryCandidate& t) {
+    if (passes(t)) return true;
+    s.rep_.rejected_step = std::move(closest);
+    return false;
+  }
+  void join(std::vector<std::size_t>& chain, std::size_t i, OdometryCandidate&& t) {
+    chain.push_back(i);
+    s.rep_.selection.push_back(std::move(t));
+  }
+};
+
 void OdometryStudy::select_forward() {
   if (rep_.best < 0) return;
   std::vector<std::size_t> chain{static_cast<std::size_t>(rep_.best)};
   rep_.selection.push_back(rep_.candidates[static_cast<std::size_t>(rep_.best)]);
-  while (chain.size() < models_.size()) {
-    const OdometryCandidate& at = rep_.selection.back();
-    int next = -1;
-    OdometryCandidate next_fit;
-    std::optional<OdometryCandidate> closest;  // the best step by held-out RMSE, kept or not
-    for (std::size_t i = 0; i < models_.size(); ++i) {
-      if (std::find(chain.begin(), chain.end(), i) != chain.end()) continue;
-      std::vector<const OdometryCandidateModel*> links;
-      links.reserve(chain.size() + 1);
-      for (std::size_t j : chain) links.push_back(models_[j].get());
-      links.push_back(models_[i].get());
-      OdometryCandidate fit = fit_candidate(ChainModel(links));
-      if (!closest || fit.held_out_rmse < closest->held_out_rmse) closest = fit;
-      const bool passes = fit.at_bound.empty() && fit.bic - at.bic < -10.0 &&
-                          fit.held_out_rmse <= at.held_out_rmse - o_.min_improvement;
-      if (passes && (next < 0 || fit.bic < next_fit.bic)) {
-        next = static_cast<int>(i);
-        next_fit = std::move(fit);
-      }
-    }
-    if (next < 0) {
-      rep_.rejected_step = std::move(closest);
-      break;
-    }
-    chain.push_back(static_cast<std::size_t>(next));
-    rep_.selection.push_back(std::move(next_fit));
-  }
+  Steps steps{*this, std::nullopt};
+  analysis::select_forward(steps, models_.size(), models_.size(), chain);
 }
 
 void OdometryStudy::write_what_is_wrong() {
@@ -549,26 +567,26 @@ void OdometryStudy::weigh_steps() {
   if (rep_.selection.empty()) return;
   double before = rep_.baseline_held_out_rmse;
   const double final_rmse = rep_.selection.back().held_out_rmse;
-  for (auto& step : rep_.selection) {
-    step.gain_share = gain_share(rep_.baseline_held_out_rmse, final_rmse + before - step.held_out_rmse, final_rmse);
+  const auto without = [&](const OdometryCandidate& step) {
+    const double w = without_step(final_rmse, before, step.held_out_rmse);
     before = step.held_out_rmse;
-    step.role = step_role(!step.at_bound.empty(), step.gain_share, kNegligibleGainShare);
-  }
+    return w;
+  };
+  analysis::weigh_steps(rep_.selection, rep_.baseline_held_out_rmse, final_rmse, without,
+                        [](const OdometryCandidate& step) {
+                          return step_role(!step.at_bound.empty(), step.gain_share, kNegligibleGainShare);
+                        });
 }
 
 // Several steps: the named ones with their shares, the values of the final
 // joint fit, then the steps that are only consistent with the data.
 void OdometryStudy::write_chain_verdict() {
   const OdometryCandidate& last = rep_.selection.back();
-  std::string named, also;
-  for (const auto& step : rep_.selection) {
-    const std::string name =
-        step.name.substr(step.name.rfind(" + ") == std::string::npos ? 0 : step.name.rfind(" + ") + 3);
-    char one[160];
-    std::snprintf(one, sizeof one, "%s (%.3g %% of the held-out gain)", name.c_str(), 100.0 * step.gain_share);
-    std::string& list = step.role == StepRole::cause ? named : also;
-    list += (list.empty() ? "" : step.role == StepRole::cause ? ", then " : "; ") + std::string(one);
-  }
+  const StepLists steps = list_steps(
+      rep_.selection, [](const OdometryCandidate& step) { return step_share_text(step.name, step.gain_share); },
+      ", then ");
+  const std::string& named = steps.named;
+  const std::string& also = steps.also;
   char buf[1024];
   std::snprintf(buf, sizeof buf,
                 "%s: %s. Fitted together on the first %.0f %% of the drive (%s), the model cuts the position RMSE on "

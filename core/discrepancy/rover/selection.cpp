@@ -40,11 +40,6 @@ struct Trial {
   JacobianMemo jacobian;  // the screen's, carried into the fit
 };
 
-struct Round {
-  std::vector<Trial> trials;  // one per candidate
-  int best = -1;
-};
-
 // The most candidates a round fits after screening; the best screen is always among them.
 constexpr std::size_t kMaxFitsPerRound = 3;
 
@@ -118,51 +113,42 @@ void fit_trial(Predictor& pr, const RoundSetting& s, Trial& t) {
   t.significant = t.delta_bic < -s.min_delta_bic && t.fit.score.test < s.current.test;
 }
 
-// One round of forward selection: every unused candidate on top of the
-// chain, the chain's parameters free beside the candidate's (a cause the
-// chain has absorbed, e.g. a force offset taken up by a force scale fitted
-// alone, seeds 104 and 393, only shows when the chain can move back: with the
-// chain held its screen was worse than nothing). The chain is at its joint
-// optimum, so the gain is the candidate's: BIC counts its parameters only.
-// Each is screened by one Gauss-Newton step; those whose screen could be
-// significant are fitted, best screen first, at most kMaxFitsPerRound of
-// them, skipping a screen that promises under a tenth of the best fit's gain;
-// the candidate with the best evidence is always fitted, never screened out.
-// Each trial runs on its own fork of the predictor, in parallel (the fits
-// too when there are threads for them: a fit the rule then skips is
-// dropped, its fork with it), and the forks are absorbed in candidate order,
-// so the round is the same on any number of threads.
-Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>>& candidates,
-                const std::vector<bool>& used, const RoundSetting& s) {
-  Round round;
-  round.trials.resize(candidates.size());
-  std::vector<std::unique_ptr<Predictor>> forks(candidates.size());
-  std::vector<std::size_t> open;
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (used[i] || candidates[i]->parameters(s.features).empty()) continue;
-    forks[i] = std::make_unique<Predictor>(pr.fork());
-    open.push_back(i);
-  }
-  ThreadPool& pool = shared_thread_pool();
-  pool.for_each_index(open.size(), [&](std::size_t k) {
-    screen_trial(*forks[open[k]], *candidates[open[k]], s, round.trials[open[k]]);
-  });
+// One round of forward selection (study.h, select_forward): every unused
+// candidate on top of the chain, the chain's parameters free beside the
+// candidate's (a cause the chain has absorbed, e.g. a force offset taken up
+// by a force scale fitted alone, seeds 104 and 393, only shows when the
+// chain can move back: with the chain held its screen was worse than
+// nothing). The chain is at its joint optimum, so the gain is the
+// candidate's: BIC counts its parameters only. Each is screened by one
+// Gauss-Newton step (the skeleton's trials, each on its own fork of the
+// predictor, in parallel); those whose screen could be significant are
+// fitted here, best screen first, at most kMaxFitsPerRound of them,
+// skipping a screen that promises under a tenth of the best fit's gain; the
+// candidate with the best evidence is always fitted, never screened out.
+// The fits run in parallel too when there are threads for them (a fit the
+// rule then skips is dropped, its fork with it), and the forks are absorbed
+// in candidate order, so the round is the same on any number of threads.
+// Returns the significant trial with the lowest delta BIC, -1 for none.
+int fit_round(Predictor& pr, std::vector<std::unique_ptr<Predictor>>& forks, const std::vector<std::size_t>& open,
+              std::vector<Trial>& trials, const RoundSetting& s) {
+  int best = -1;
   std::vector<std::size_t> order;
   for (std::size_t i : open) {
-    if (round.trials[i].delta_bic < -s.min_delta_bic) order.push_back(i);
+    if (trials[i].delta_bic < -s.min_delta_bic) order.push_back(i);
   }
   std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return round.trials[a].screened_fit < round.trials[b].screened_fit; });
+            [&](std::size_t a, std::size_t b) { return trials[a].screened_fit < trials[b].screened_fit; });
   if (order.size() > kMaxFitsPerRound) order.resize(kMaxFitsPerRound);
   // Each fit on a copy of its trial and fork, adopted only when the rule fits it.
   std::vector<Trial> fitted(order.size());
   std::vector<std::unique_ptr<Predictor>> fit_forks(order.size());
   const auto fit = [&](std::size_t k) {
-    fitted[k] = round.trials[order[k]];
+    fitted[k] = trials[order[k]];
     fit_forks[k] = std::make_unique<Predictor>(*forks[order[k]]);
     fit_trial(*fit_forks[k], s, fitted[k]);
   };
   std::vector<std::exception_ptr> errors(order.size());  // a fit the rule skips throws nothing
+  ThreadPool& pool = shared_thread_pool();
   if (pool.threads() > 1) {
     pool.for_each_index(order.size(), [&](std::size_t k) {
       try {
@@ -177,20 +163,18 @@ Round run_round(Predictor& pr, const std::vector<std::unique_ptr<RoverCandidate>
     const std::size_t i = order[k];
     // A screen that promises under a tenth of what the best fit so far gained
     // is not fitted (the best screen always is: it comes first).
-    if (s.current.fit - round.trials[i].screened_fit < 0.1 * best_gain) continue;
+    if (s.current.fit - trials[i].screened_fit < 0.1 * best_gain) continue;
     if (errors[k]) std::rethrow_exception(errors[k]);
     if (!fit_forks[k]) fit(k);
-    round.trials[i] = std::move(fitted[k]);
+    trials[i] = std::move(fitted[k]);
     forks[i] = std::move(fit_forks[k]);
-    const Trial& t = round.trials[i];
+    const Trial& t = trials[i];
     best_gain = std::max(best_gain, s.current.fit - t.fit.score.fit);
-    if (t.significant &&
-        (round.best < 0 || t.delta_bic < round.trials[static_cast<std::size_t>(round.best)].delta_bic)) {
-      round.best = static_cast<int>(i);
-    }
+    if (t.significant && (best < 0 || t.delta_bic < trials[static_cast<std::size_t>(best)].delta_bic))
+      best = static_cast<int>(i);
   }
   for (std::size_t i : open) pr.absorb(*forks[i]);
-  return round;
+  return best;
 }
 
 // The backward half of stepwise selection: a step whose effect, taken out of
@@ -285,25 +269,88 @@ void weigh_steps(Predictor& pr, RoverDiscrepancyReport& r, const std::vector<Fit
   const HeldOutByChannel base = held_out_by_channel(pr, {});
   const HeldOutByChannel final_model = held_out_by_channel(pr, chain);
   std::size_t at = 0;
-  for (auto& step : r.selection) {
+  const auto without = [&](RoverSelectionStep& step) {
     const std::size_t k = step.parameters.size();
-    std::vector<FitParameter> without = chain;
-    without.erase(without.begin() + static_cast<std::ptrdiff_t>(at),
-                  without.begin() + static_cast<std::ptrdiff_t>(at + k));
-    const HeldOutByChannel w = r.selection.size() == 1 ? base : held_out_by_channel(pr, without);
+    std::vector<FitParameter> rest = chain;
+    rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(at), rest.begin() + static_cast<std::ptrdiff_t>(at + k));
+    const HeldOutByChannel w = r.selection.size() == 1 ? base : held_out_by_channel(pr, rest);
     at += k;
     step.test_without = w.test;
     step.held_out_without = w.held_out;
-    step.gain_share = gain_share(r.baseline_test, w.test, r.final_test);
     step.channel_share = largest_channel_share(base, final_model, w);
+    return w.test;
+  };
+  const auto role = [](RoverSelectionStep& step) {
     // No channel gains materially: the step's share of the whole held-out
     // gain instead (a one-step chain holds all of it; docs/validation/rover-one-effect-issue43.md, A).
     if (std::isnan(step.channel_share)) step.channel_share = step.gain_share;
     const bool at_bound = std::any_of(step.parameters.begin(), step.parameters.end(),
                                       [](const RoverParameterFit& p) { return p.at_bound; });
-    step.role = step_role(at_bound, step.channel_share, kNegligibleChannelShare);
-  }
+    return step_role(at_bound, step.channel_share, kNegligibleChannelShare);
+  };
+  analysis::weigh_steps(r.selection, r.baseline_test, r.final_test, without, role);
 }
+
+// The forward selection's hooks (study.h, select_forward): the candidates
+// used and the chain's joint fit (`chain`, its parameters; `current`, its
+// score); a round is each open candidate screened on its own fork of the
+// predictor (the trials), then fit_round.
+struct CauseSteps {
+  using Trial = rover::Trial;
+  Predictor& pr;
+  const std::vector<std::unique_ptr<RoverCandidate>>& candidates;
+  const RoverResidualFeatures& f;
+  const RoverStudyOptions& o;
+  RoverDiscrepancyReport& r;
+  std::vector<FitParameter>& chain;
+  Score& current;
+  double ln_n;
+  std::vector<std::unique_ptr<Predictor>> forks;  // the round's, one per open candidate
+  bool first_round = true;
+
+  // Sigmas for the first round's table; the chain's once, at its end.
+  RoundSetting setting() const { return {f, chain, current, ln_n, o.min_delta_bic, first_round}; }
+  bool open(const std::vector<std::size_t>& /*used*/, std::size_t i) {
+    if (candidates[i]->parameters(f).empty()) return false;
+    forks[i] = std::make_unique<Predictor>(pr.fork());
+    return true;
+  }
+  Trial trial(const std::vector<std::size_t>& /*used*/, std::size_t i) const {
+    Trial t;
+    screen_trial(*forks[i], *candidates[i], setting(), t);
+    return t;
+  }
+  int best(const std::vector<std::size_t>& open, std::vector<Trial>& trials) {
+    const int b = fit_round(pr, forks, open, trials, setting());
+    forks = std::vector<std::unique_ptr<Predictor>>(candidates.size());
+    if (!first_round) return b;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const Trial& t = trials[i];
+      if (!t.applies) continue;
+      r.candidates.push_back({candidates[i]->name(), candidates[i]->cause(), fits_of(t.fit.parameters, chain.size()),
+                              t.fit.score.fit, t.delta_bic, t.fit.score.held_out, t.significant, t.simulations,
+                              t.screened});
+    }
+    return b;
+  }
+  bool accept(const std::vector<std::size_t>& /*used*/, std::size_t /*i*/, const Trial& /*t*/) const {
+    return true;  // fit_round names only a significant trial
+  }
+  void join(std::vector<std::size_t>& used, std::size_t b, Trial&& t) {
+    used.push_back(b);
+    first_round = false;
+    // The trial fitted the whole chain with the new cause (fit_round): it is the joint refit.
+    const FitOutcome& joint = t.fit;
+    const std::size_t k = joint.parameters.size() - chain.size();
+    const double delta_bic = joint.score.fit - current.fit + static_cast<double>(k) * ln_n;
+    chain = joint.parameters;
+    current = joint.score;
+    r.selection.push_back(
+        {candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic, current.held_out});
+    if (o.progress && used.size() < static_cast<std::size_t>(o.max_causes))
+      o.progress(static_cast<double>(used.size()) / static_cast<double>(o.max_causes + 1));
+  }
+};
 
 }  // namespace
 
@@ -320,33 +367,12 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
   r.baseline_bic = current.fit;
   r.baseline_held_out = current.held_out;
   r.baseline_test = current.test;
-  std::vector<bool> used(candidates.size(), false);
-  for (int round = 0; round < o.max_causes; ++round) {
-    if (o.progress) o.progress(static_cast<double>(round) / static_cast<double>(o.max_causes + 1));
-    // Sigmas for the first round's table; the chain's once, at its end.
-    const RoundSetting setting{f, chain, current, ln_n, o.min_delta_bic, round == 0};
-    Round rd = run_round(pr, candidates, used, setting);
-    if (round == 0) {
-      for (std::size_t i = 0; i < candidates.size(); ++i) {
-        const Trial& t = rd.trials[i];
-        if (!t.applies) continue;
-        r.candidates.push_back({candidates[i]->name(), candidates[i]->cause(), fits_of(t.fit.parameters, chain.size()),
-                                t.fit.score.fit, t.delta_bic, t.fit.score.held_out, t.significant, t.simulations,
-                                t.screened});
-      }
-    }
-    if (rd.best < 0) break;
-    const auto b = static_cast<std::size_t>(rd.best);
-    used[b] = true;
-    // The trial fitted the whole chain with the new cause (run_round): it is the joint refit.
-    const FitOutcome& joint = rd.trials[b].fit;
-    const std::size_t k = joint.parameters.size() - chain.size();
-    const double delta_bic = joint.score.fit - current.fit + static_cast<double>(k) * ln_n;
-    chain = joint.parameters;
-    current = joint.score;
-    r.selection.push_back(
-        {candidates[b]->name(), candidates[b]->cause(), fits_of(chain, chain.size() - k), delta_bic, current.held_out});
-  }
+  const std::size_t max_causes = o.max_causes > 0 ? static_cast<std::size_t>(o.max_causes) : 0;
+  if (o.progress && max_causes > 0) o.progress(0.0);
+  CauseSteps steps{
+      pr, candidates, f, o, r, chain, current, ln_n, std::vector<std::unique_ptr<Predictor>>(candidates.size())};
+  std::vector<std::size_t> used;
+  select_forward(steps, candidates.size(), max_causes, used);
   const bool refitted = r.selection.size() > 1;
   drop_absorbed_steps(pr, o, ln_n, r, chain, current);
   if (refitted) set_sigmas(pr, chain, current.fit);
@@ -383,16 +409,13 @@ std::string step_text(const RoverSelectionStep& s, bool with_bic) {
 // The named causes in order, then the steps of the final model that are not
 // causes: too small a share of the held-out gain, or a parameter at its bound.
 std::string steps_text(const RoverDiscrepancyReport& r) {
-  std::string named, also, bound;
-  int causes = 0;
-  for (const auto& s : r.selection) {
-    if (s.role == StepRole::cause) {
-      named += (causes++ > 0 ? "; then " : "") + step_text(s, true);
-    } else {
-      std::string& list = s.role == StepRole::at_bound ? bound : also;
-      list += (list.empty() ? "" : "; ") + step_text(s, false);
-    }
-  }
+  const StepLists steps = list_steps(
+      r.selection, [](const RoverSelectionStep& s) { return step_text(s, s.role == StepRole::cause); }, "; then ",
+      true);
+  const std::string& named = steps.named;
+  const std::string& also = steps.also;
+  const std::string& bound = steps.bound;
+  const int causes = steps.causes;
   std::string v = causes == 0   ? "No cause named."
                   : causes == 1 ? "Cause: " + named + "."
                                 : "Causes, in order: " + named + ".";

@@ -241,10 +241,8 @@ class SingleWheelStudy {
   CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set,
                           const CandidateResult* start_from = nullptr, bool with_held_out = true) const;
   void select_forward();
-  // select_forward's steps: the best next step after `chain` (fitted from
-  // `at`) by BIC, -1 when none is open; the best partner of a weak first step.
-  int best_next_step(const std::vector<std::size_t>& chain, const CandidateResult* at, CandidateResult& best_fit,
-                     std::vector<const SingleWheelCandidate*>& best_set) const;
+  struct Steps;  // select_forward's hooks (study.h)
+  // The best partner of a weak first step, by BIC.
   int best_partner(int first, CandidateResult& pair_fit) const;
   std::vector<PointResidual> held_out(const IdentificationOptions& io, const IdentificationResult& fit,
                                       const std::vector<const SingleWheelCandidate*>& set) const;
@@ -519,41 +517,6 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   return c;
 }
 
-// Several causes at once: the candidate with the best BIC first, then each
-// of the others refitted on top of the chain; a step is kept while it lowers
-// BIC by more than the threshold and the held-out error falls. A first step
-// too weak alone is kept when it and the best second step together pass
-// against the baseline (two causes that hide each other).
-int SingleWheelStudy::best_next_step(const std::vector<std::size_t>& chain, const CandidateResult* at,
-                                     CandidateResult& best_fit,
-                                     std::vector<const SingleWheelCandidate*>& best_set) const {
-  int best = -1;
-  std::vector<std::size_t> open;
-  std::vector<std::vector<const SingleWheelCandidate*>> sets;
-  for (std::size_t i = 0; i < candidates_.size(); ++i) {
-    if (std::find(chain.begin(), chain.end(), i) != chain.end() || !report_.candidates[i].applicable) continue;
-    std::vector<const SingleWheelCandidate*> set;
-    set.reserve(chain.size() + 1);
-    for (std::size_t j : chain) set.push_back(candidates_[j].get());
-    set.push_back(candidates_[i].get());
-    open.push_back(i);
-    sets.push_back(std::move(set));
-  }
-  // The steps fitted in parallel, then compared in candidate order.
-  std::vector<CandidateResult> fits(open.size());
-  shared_thread_pool().for_each_index(open.size(), [&](std::size_t k) {
-    fits[k] = chain.empty() ? report_.candidates[open[k]] : fit_set(sets[k], at, false);
-  });
-  for (std::size_t k = 0; k < open.size(); ++k) {
-    if (best < 0 || fits[k].bic < best_fit.bic) {
-      best = static_cast<int>(open[k]);
-      best_fit = std::move(fits[k]);
-      best_set = sets[k];
-    }
-  }
-  return best;
-}
-
 int SingleWheelStudy::best_partner(int first, CandidateResult& pair_fit) const {
   const auto best = static_cast<std::size_t>(first);
   int partner = -1;
@@ -575,58 +538,88 @@ int SingleWheelStudy::best_partner(int first, CandidateResult& pair_fit) const {
   return partner;
 }
 
-void SingleWheelStudy::select_forward() {
-  std::vector<std::size_t> chain;
+// Several causes at once (study.h, select_forward): the candidate with the
+// best BIC first, then each of the others refitted on top of the chain; a
+// step is kept while it lowers BIC by more than the threshold and the
+// held-out error falls. A first step too weak alone is kept when it and the
+// best second step together pass against the baseline (two causes that
+// hide each other). Steps are fitted without their held-out scores (ten
+// refits each), which are computed only for the step whose BIC passes.
+struct SingleWheelStudy::Steps {
+  using Trial = CandidateResult;
+  SingleWheelStudy& s;
   const CandidateResult* at = nullptr;  // the chain's fit
-  double bic = report_.baseline_bic;
-  const std::vector<double>* held_rmse = &report_.baseline_held_out_rmse;
-  auto passes = [&](const CandidateResult& c, double than_bic) {
-    return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < o_.bic_threshold && !any_at_bound(c) &&
-           held_out_gain(c.held_out_rmse, *held_rmse);
-  };
-  // Steps are fitted without their held-out scores (ten refits each), which
-  // are computed only for the step whose BIC passes.
-  const auto with_held_out = [&](CandidateResult& fit, const std::vector<const SingleWheelCandidate*>& set,
-                                 const CandidateResult* from) {
-    if (fit.held_out_rmse.empty() && fit.applicable && std::isfinite(fit.bic) && fit.bic - bic < o_.bic_threshold)
-      fit = fit_set(set, from, true);
-  };
-  while (chain.size() < candidates_.size()) {
-    CandidateResult best_fit;
-    std::vector<const SingleWheelCandidate*> best_set;
-    const int best = best_next_step(chain, at, best_fit, best_set);
-    if (best < 0) break;
-    // The step's fits still to come: the partner search's, the next step's.
-    const auto open = static_cast<double>(std::count_if(report_.candidates.begin(), report_.candidates.end(),
-                                                        [](const CandidateResult& c) { return c.applicable; }));
-    meter_.done(0.0,
-                std::max(0.0, open - static_cast<double>(chain.size()) - 1.0) * kFitUnits * units(chain.size() + 2) +
-                    held_out_fits(chain.size() + 1));
-    with_held_out(best_fit, best_set, at);
-    if (passes(best_fit, bic)) {
-      chain.push_back(static_cast<std::size_t>(best));
-    } else if (chain.empty()) {
-      // Look one step further: the weak first step with its best partner.
-      CandidateResult pair_fit;
-      const int partner = best_partner(best, pair_fit);
-      if (partner >= 0) {
-        with_held_out(
-            pair_fit,
-            {candidates_[static_cast<std::size_t>(best)].get(), candidates_[static_cast<std::size_t>(partner)].get()},
-            &report_.candidates[static_cast<std::size_t>(best)]);
-      }
-      report_.best_pair = pair_fit;
-      if (partner < 0 || !passes(pair_fit, bic)) break;
-      chain = {static_cast<std::size_t>(best), static_cast<std::size_t>(partner)};
-      best_fit = std::move(pair_fit);
+  double bic;
+  const std::vector<double>* held_rmse;
+  int partner = -1;  // a weak first step's partner, joining with it
+
+  std::vector<const SingleWheelCandidate*> set(const std::vector<std::size_t>& chain, std::size_t i) const {
+    std::vector<const SingleWheelCandidate*> out;
+    out.reserve(chain.size() + 1);
+    for (std::size_t j : chain) out.push_back(s.candidates_[j].get());
+    out.push_back(s.candidates_[i].get());
+    return out;
+  }
+  bool passes(const CandidateResult& c, double than_bic) const {
+    return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < s.o_.bic_threshold && !any_at_bound(c) &&
+           s.held_out_gain(c.held_out_rmse, *held_rmse);
+  }
+  void with_held_out(CandidateResult& fit, const std::vector<const SingleWheelCandidate*>& set,
+                     const CandidateResult* from) const {
+    if (fit.held_out_rmse.empty() && fit.applicable && std::isfinite(fit.bic) && fit.bic - bic < s.o_.bic_threshold)
+      fit = s.fit_set(set, from, true);
+  }
+  bool open(const std::vector<std::size_t>& /*chain*/, std::size_t i) const {
+    return s.report_.candidates[i].applicable;
+  }
+  CandidateResult trial(const std::vector<std::size_t>& chain, std::size_t i) const {
+    return chain.empty() ? s.report_.candidates[i] : s.fit_set(set(chain, i), at, false);
+  }
+  int best(const std::vector<std::size_t>& open, const std::vector<CandidateResult>& trials) const {
+    return best_trial(open, trials, [](const CandidateResult& a, const CandidateResult& b) { return a.bic < b.bic; });
+  }
+  bool accept(const std::vector<std::size_t>& chain, std::size_t best, CandidateResult& fit);
+  void join(std::vector<std::size_t>& chain, std::size_t i, CandidateResult&& fit) {
+    if (partner >= 0) {
+      chain = {i, static_cast<std::size_t>(partner)};
+      partner = -1;
     } else {
-      break;
+      chain.push_back(i);
     }
-    bic = best_fit.bic;
-    report_.selection.push_back(std::move(best_fit));
-    at = &report_.selection.back();
+    bic = fit.bic;
+    s.report_.selection.push_back(std::move(fit));
+    at = &s.report_.selection.back();
     held_rmse = &at->held_out_rmse;
   }
+};
+
+bool SingleWheelStudy::Steps::accept(const std::vector<std::size_t>& chain, std::size_t best, CandidateResult& fit) {
+  // The step's fits still to come: the partner search's, the next step's.
+  const auto open = static_cast<double>(std::count_if(s.report_.candidates.begin(), s.report_.candidates.end(),
+                                                      [](const CandidateResult& c) { return c.applicable; }));
+  s.meter_.done(0.0,
+                std::max(0.0, open - static_cast<double>(chain.size()) - 1.0) * kFitUnits * units(chain.size() + 2) +
+                    s.held_out_fits(chain.size() + 1));
+  with_held_out(fit, set(chain, best), at);
+  if (passes(fit, bic)) return true;
+  if (!chain.empty()) return false;
+  // Look one step further: the weak first step with its best partner.
+  CandidateResult pair_fit;
+  const int found = s.best_partner(static_cast<int>(best), pair_fit);
+  if (found >= 0)
+    with_held_out(pair_fit, {s.candidates_[best].get(), s.candidates_[static_cast<std::size_t>(found)].get()},
+                  &s.report_.candidates[best]);
+  s.report_.best_pair = pair_fit;
+  if (found < 0 || !passes(pair_fit, bic)) return false;
+  partner = found;
+  fit = std::move(pair_fit);
+  return true;
+}
+
+void SingleWheelStudy::select_forward() {
+  std::vector<std::size_t> chain;
+  Steps steps{*this, nullptr, report_.baseline_bic, &report_.baseline_held_out_rmse};
+  analysis::select_forward(steps, candidates_.size(), candidates_.size(), chain);
 }
 
 // The held-out test of a step, per quantity (a quantity no candidate
@@ -795,15 +788,19 @@ void SingleWheelStudy::weigh_steps() {
   double before = report_.baseline_score;
   const std::vector<double>* rmse_before = &report_.baseline_held_out_rmse;
   const double final_score = report_.selection.back().held_out_score;
-  for (auto& step : report_.selection) {
-    step.gain_share = gain_share(report_.baseline_score, final_score + before - step.held_out_score, final_score);
+  const auto without = [&](const CandidateResult& step) {
+    const double w = without_step(final_score, before, step.held_out_score);
+    before = step.held_out_score;
+    return w;
+  };
+  const auto role = [&](const CandidateResult& step) {
     bool cuts = false;
     for (std::size_t qi = 0; qi < report_.quantities.size() && qi < step.held_out_rmse.size(); ++qi)
       cuts = cuts || step.held_out_rmse[qi] <= 0.7 * (*rmse_before)[qi];
-    step.role = step_role(any_at_bound(step), step.gain_share, kNegligibleGainShare, cuts);
-    before = step.held_out_score;
     rmse_before = &step.held_out_rmse;
-  }
+    return step_role(any_at_bound(step), step.gain_share, kNegligibleGainShare, cuts);
+  };
+  analysis::weigh_steps(report_.selection, report_.baseline_score, final_score, without, role);
 }
 
 void SingleWheelStudy::write_verdict() {
@@ -841,18 +838,16 @@ std::string SingleWheelStudy::cause_sentence(const std::string& lead, const Cand
 // The named steps with their shares; the final joint fit's values and gain
 // (the model every figure is of); the steps only consistent with the data.
 void SingleWheelStudy::write_chain_verdict() {
-  std::string named, also;
-  int causes = 0;
-  for (const auto& step : report_.selection) {
-    const auto plus = step.name.rfind(" + ");
-    const std::string one = (plus == std::string::npos ? step.name : step.name.substr(plus + 3)) + " (" +
-                            fmt("%.3g", 100.0 * step.gain_share) + " % of the held-out gain)";
-    if (step.role == StepRole::cause) {
-      named += (causes++ > 0 ? ", then " : "") + one;
-    } else {
-      also += (also.empty() ? "" : "; ") + one + (step.role == StepRole::at_bound ? ", a parameter at its bound" : "");
-    }
-  }
+  const StepLists steps = list_steps(
+      report_.selection,
+      [](const CandidateResult& step) {
+        return step_share_text(step.name, step.gain_share) +
+               (step.role == StepRole::at_bound ? ", a parameter at its bound" : "");
+      },
+      ", then ");
+  const std::string& named = steps.named;
+  const std::string& also = steps.also;
+  const int causes = steps.causes;
   const bool chain = report_.selection.size() >= 2 || report_.selection.back().name.find(" + ") != std::string::npos;
   const std::string lead = causes == 0   ? "No cause named; the model fitted is "
                            : causes == 1 ? "Cause: " + named + "; the model fitted is "
