@@ -55,13 +55,8 @@ json stats_json(const std::vector<analysis::QuantityResiduals>& stats) {
 
 // The named steps of the forward selection, " + "-joined; null when none
 // (a step only "also consistent with" the data, or at its bound, is none).
-json named_causes(const analysis::DiscrepancyReport& r) {
-  std::string names;
-  for (const auto& c : r.selection) {
-    if (c.role != analysis::StepRole::cause) continue;
-    const auto plus = c.name.rfind(" + ");
-    names += (names.empty() ? "" : " + ") + (plus == std::string::npos ? c.name : c.name.substr(plus + 3));
-  }
+json cause_json(const analysis::DiscrepancyReport& r) {
+  const std::string names = analysis::named_causes(r);
   return names.empty() ? json(nullptr) : json(names);
 }
 
@@ -74,9 +69,7 @@ json families_json(const analysis::DiscrepancyReport& r) {
                {"held_out_method", f.held_out_method},
                {"final_model", f.final_model},
                {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)},
-               {"final_studied_points", f.studied_points > 0    ? f.studied_points
-                                        : f.final_model.empty() ? 0
-                                                                : r.points}};
+               {"final_studied_points", f.final_studied_points(r.points)}};
     json ho = json::object();
     for (std::size_t i = 0; i < r.quantities.size() && i < f.held_out_rmse.size(); ++i) {
       ho[to_string(r.quantities[i])] = finite_or_null(f.held_out_rmse[i]);
@@ -108,7 +101,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
       {"unsupported", r.unsupported},
       {"baseline", {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score}, {"bic", r.baseline_bic}}},
       {"significant", r.significant},
-      {"cause", named_causes(r)},
+      {"cause", cause_json(r)},
       {"what_is_wrong", r.what_is_wrong},
       {"verdict", r.verdict}};
   j["quantities"] = json::array();

@@ -155,9 +155,7 @@ void family_table(ReportSection& section, const analysis::DiscrepancyReport& r, 
     out.push_back({{"family", f.family},
                    {"final_model", f.final_model},
                    {"final_held_out_score_sigma", finite_or_null(f.final_held_out_score)},
-                   {"final_studied_points", f.studied_points > 0    ? f.studied_points
-                                            : f.final_model.empty() ? 0
-                                                                    : r.points},
+                   {"final_studied_points", f.final_studied_points(r.points)},
                    {"held_out_score_sigma", finite_or_null(f.held_out_score)},
                    {"held_out_method", f.held_out_method},
                    {"held_out_rmse", rmse}});

@@ -79,7 +79,8 @@ void survive_crash(const std::string& path, const std::function<void()>& trial, 
   }
   // A child that neither ends nor uses CPU (blocked on something) is stopped
   // after a wall-clock limit far above any load: 10 x its CPU time, at least 5 minutes.
-  const auto backstop = std::chrono::steady_clock::now() + std::chrono::seconds(std::max<rlim_t>(300, 10 * cpu));
+  const rlim_t backstop_seconds = std::max<rlim_t>(300, 10 * cpu);
+  const auto backstop = std::chrono::steady_clock::now() + std::chrono::seconds(backstop_seconds);
   int status = 0;
   rusage usage{};
   const std::string corrupt = "corrupt " + format + ": ";
@@ -91,8 +92,8 @@ void survive_crash(const std::string& path, const std::function<void()>& trial, 
       kill(child, SIGKILL);
       while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
       }
-      throw InputError(path, corrupt + "reading it did not end in " + std::to_string(std::max<rlim_t>(300, 10 * cpu)) +
-                                 " s (the " + library + " is stuck on it); the file is damaged");
+      throw InputError(path, corrupt + "reading it did not end in " + std::to_string(backstop_seconds) + " s (the " +
+                                 library + " is stuck on it); the file is damaged");
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }

@@ -65,11 +65,15 @@ double gain_share(double baseline, double without, double final_error) {
 
 double without_step(double final_error, double before, double after) { return final_error + before - after; }
 
-std::string step_share_text(const std::string& name, double share) {
+std::string last_link(const std::string& name) {
   const auto plus = name.rfind(" + ");
+  return plus == std::string::npos ? name : name.substr(plus + 3);
+}
+
+std::string step_share_text(const std::string& name, double share) {
   char one[64];
   std::snprintf(one, sizeof one, " (%.3g %% of the held-out gain)", 100.0 * share);
-  return (plus == std::string::npos ? name : name.substr(plus + 3)) + one;
+  return last_link(name) + one;
 }
 
 StepRole step_role(bool at_bound, double share, double negligible, bool cuts) {

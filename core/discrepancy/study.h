@@ -155,8 +155,12 @@ StepLists list_steps(const std::vector<Step>& steps, const Text& text, const cha
   return out;
 }
 
-// "NAME (S % of the held-out gain)", NAME the last link of a joint step's
-// "a + b" name: a step of the odometry or single-wheel verdict.
+// The last link of a joint step's "a + b" name ("b"; the name itself when
+// it has one link): the cause that step adds.
+std::string last_link(const std::string& name);
+
+// "NAME (S % of the held-out gain)", NAME the step's last_link: a step of
+// the odometry or single-wheel verdict.
 std::string step_share_text(const std::string& name, double share);
 
 // A least-squares slope of y on x with its t statistic.

@@ -884,8 +884,7 @@ void SingleWheelStudy::judge_quantities() {
     for (const auto& step : report_.selection) {  // each step's gain on this quantity
       const double after = step.held_out_rmse[qi];
       if (after <= 0.7 * before && v.explained_by.empty()) {
-        const auto plus = step.name.rfind(" + ");
-        v.explained_by = plus == std::string::npos ? step.name : step.name.substr(plus + 3);
+        v.explained_by = last_link(step.name);
         v.explained_by_chain = step.name;
         v.held_out_step_before = before;
         v.held_out_after = after;
@@ -1164,12 +1163,7 @@ DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoi
 
 // The named steps, " + "-joined, or "none".
 std::string named_chain(const DiscrepancyReport& r) {
-  std::string names;
-  for (const auto& c : r.selection) {
-    if (c.role != StepRole::cause) continue;
-    const auto plus = c.name.rfind(" + ");
-    names += (names.empty() ? "" : " + ") + (plus == std::string::npos ? c.name : c.name.substr(plus + 3));
-  }
+  const std::string names = named_causes(r);
   return names.empty() ? "none" : names;
 }
 
@@ -1249,6 +1243,14 @@ void run_both_readings(const Soil& soil, const std::vector<WheelTestPoint>& poin
 }
 
 }  // namespace
+
+std::string named_causes(const DiscrepancyReport& r) {
+  std::string names;
+  for (const auto& c : r.selection) {
+    if (c.role == StepRole::cause) names += (names.empty() ? "" : " + ") + last_link(c.name);
+  }
+  return names;
+}
 
 DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTestPoint>& points,
                                      const DiscrepancyOptions& options) {

@@ -136,6 +136,11 @@ struct FamilyBaseline {
   // Those of the study on a random subset of this many points only
   // (family_screen_points); 0: on all points.
   std::size_t studied_points = 0;
+  // The points its final model was studied on, of `all`: 0 when the family
+  // was not extended.
+  std::size_t final_studied_points(std::size_t all) const {
+    return studied_points > 0 ? studied_points : final_model.empty() ? 0 : all;
+  }
 };
 
 struct DiscrepancyReport {
@@ -176,6 +181,10 @@ struct DiscrepancyReport {
   // choice between chains of different lengths by BIC).
   std::vector<DiscrepancyReport> other_reading;
 };
+
+// The causes a study names (its steps whose role is cause), each step's
+// last_link, " + "-joined; empty when it names none.
+std::string named_causes(const DiscrepancyReport& r);
 
 // At a slip angle without options.slip_definition the slip's reading is
 // chosen from the data (report's slip_definition and its reason).
