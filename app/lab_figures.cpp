@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <set>
 #include <utility>
 
@@ -78,29 +79,106 @@ double score(const std::vector<PointResidual>& residuals) {
 
 const char* quantity_words(Quantity q) { return q == Quantity::drawbar_pull ? "drawbar pull" : "lateral force"; }
 
-// The points' groups: one per wheel and load (0.1 N), in order of first appearance.
+// A wheel tested at more loads than this (to 0.1 N) has its loads binned
+// into kLoadBins groups of about equal numbers of points: a file of jittered
+// loads would otherwise draw a curve and a key entry per row.
+constexpr std::size_t kMaxLoadsPerWheel = 6;
+constexpr std::size_t kLoadBins = 4;
+
+// The points' groups: one per wheel and load (0.1 N), or per wheel and load
+// bin, in order of first appearance.
 struct Groups {
   std::vector<int> of_point;
   std::vector<std::string> names;
-  std::vector<std::size_t> first_point;  // a point of each group (its wheel and load)
+  std::vector<std::size_t> first_point;  // a point of each group (its wheel)
+  std::vector<double> load;              // the load its curve is drawn at: its points' (median when binned)
+  std::size_t binned_wheels = 0;
 };
+
+// Each point's load bin within its wheel: -1 where the wheel's loads are few
+// enough to be shown one by one; else 0..kLoadBins-1, cut at the quantiles of
+// the wheel's loads.
+std::vector<int> load_bins(const std::vector<WheelTestPoint>& points, std::size_t& binned_wheels) {
+  std::map<std::string, std::vector<double>> loads;
+  for (const auto& p : points) loads[p.wheel_label].push_back(p.load);
+  std::map<std::string, std::vector<double>> cuts;  // the upper edges of bins 0..kLoadBins-2
+  for (auto& [label, l] : loads) {
+    std::set<long> distinct;
+    for (double v : l) distinct.insert(std::lround(v * 10.0));
+    if (distinct.size() <= kMaxLoadsPerWheel) continue;
+    std::sort(l.begin(), l.end());
+    auto& c = cuts[label];
+    for (std::size_t k = 1; k < kLoadBins; ++k) c.push_back(l[k * l.size() / kLoadBins]);
+    ++binned_wheels;
+  }
+  std::vector<int> bin(points.size(), -1);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto it = cuts.find(points[i].wheel_label);
+    if (it == cuts.end()) continue;
+    bin[i] = static_cast<int>(std::upper_bound(it->second.begin(), it->second.end(), points[i].load) -
+                              it->second.begin());
+  }
+  return bin;
+}
 
 Groups groups_of(const std::vector<WheelTestPoint>& points) {
   Groups g;
+  const std::vector<int> bin = load_bins(points, g.binned_wheels);
   std::map<std::pair<std::string, long>, int> index;
   std::set<std::string> labels;
   for (const auto& p : points) labels.insert(p.wheel_label);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto key = std::make_pair(points[i].wheel_label, std::lround(points[i].load * 10.0));
+    // A bin's key is below every load's (loads are positive).
+    const long load_key = bin[i] >= 0 ? -1 - bin[i] : std::lround(points[i].load * 10.0);
+    const auto key = std::make_pair(points[i].wheel_label, load_key);
     auto it = index.find(key);
     if (it == index.end()) {
       it = index.emplace(key, static_cast<int>(g.names.size())).first;
-      const std::string load = number(points[i].load, "%.3g") + " N";
-      const std::string label = points[i].wheel_label.empty() ? "wheel" : points[i].wheel_label;
-      g.names.push_back(labels.size() > 1 || !points[i].wheel_label.empty() ? label + ", " + load : load);
+      g.names.emplace_back();
       g.first_point.push_back(i);
+      g.load.push_back(points[i].load);
     }
     g.of_point.push_back(it->second);
+  }
+  if (g.binned_wheels > 0) {
+    // Ordered by wheel (as first seen), then by load: the bins were met in any order.
+    std::map<std::string, std::size_t> wheel_order;
+    for (const auto& p : points) wheel_order.emplace(p.wheel_label, wheel_order.size());
+    std::vector<int> order(g.names.size());
+    std::iota(order.begin(), order.end(), 0);
+    const auto rank = [&](int k) {
+      const WheelTestPoint& p = points[g.first_point[static_cast<std::size_t>(k)]];
+      const int b = bin[g.first_point[static_cast<std::size_t>(k)]];
+      return std::make_pair(wheel_order.at(p.wheel_label), b >= 0 ? static_cast<double>(b) : p.load);
+    };
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return rank(a) < rank(b); });
+    std::vector<int> new_index(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) new_index[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
+    for (int& o : g.of_point) o = new_index[static_cast<std::size_t>(o)];
+    std::vector<std::size_t> first(order.size());
+    std::vector<double> load(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      first[k] = g.first_point[static_cast<std::size_t>(order[k])];
+      load[k] = g.load[static_cast<std::size_t>(order[k])];
+    }
+    g.first_point = std::move(first);
+    g.load = std::move(load);
+  }
+  // Names: the load, or a bin's range of loads; the curve at a bin's median load.
+  for (std::size_t k = 0; k < g.names.size(); ++k) {
+    const WheelTestPoint& first = points[g.first_point[k]];
+    std::string load = number(first.load, "%.3g") + " N";
+    if (bin[g.first_point[k]] >= 0) {
+      std::vector<double> l;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        if (g.of_point[i] == static_cast<int>(k)) l.push_back(points[i].load);
+      }
+      std::sort(l.begin(), l.end());
+      g.load[k] = l[l.size() / 2];
+      load = number(l.front(), "%.3g") + "-" + number(l.back(), "%.3g") + " N";
+    }
+    const std::string label = first.wheel_label.empty() ? "wheel" : first.wheel_label;
+    g.names[k] = labels.size() > 1 || !first.wheel_label.empty() ? label + ", " + load : load;
   }
   return g;
 }
@@ -140,11 +218,10 @@ views::PanelRow slip_row(const std::vector<WheelTestPoint>& points, const Single
       }
       if (s.x.empty()) continue;
       terramechanics::GridModel model = m.model;
-      const WheelTestPoint& at = points[groups.first_point[g]];
-      model.wheel = at.wheel;
+      model.wheel = points[groups.first_point[g]].wheel;
       const double beta = angle * M_PI / 180.0;
       const terramechanics::ModelCurve c = terramechanics::model_curve(
-          model, at.load, m.at_slip_angle ? std::optional(beta) : std::nullopt, slip_lo, slip_hi, kCurvePoints);
+          model, groups.load[g], m.at_slip_angle ? std::optional(beta) : std::nullopt, slip_lo, slip_hi, kCurvePoints);
       s.curve_x = c.slip;
       for (const auto& t : c.traction) s.curve_y.push_back(value_of(t, q));
       panel.series.push_back(std::move(s));
@@ -287,6 +364,11 @@ views::LabFigures single_wheel_figures(const std::vector<WheelTestPoint>& points
                       "): " + bands + ".";
   residuals.x_title = "slip angle (deg)";
   panels.group_names = residuals.group_names = groups.names;
+  if (groups.binned_wheels > 0) {
+    panels.notes.push_back("loads binned: a wheel tested at more than " + std::to_string(kMaxLoadsPerWheel) +
+                           " loads has its points in " + std::to_string(kLoadBins) +
+                           " groups of about equal size, each line at its group's median load");
+  }
   std::size_t uncarried = 0;
   for (const auto& r : m.held_out) uncarried += std::isfinite(r.predicted) ? 0 : 1;
   if (uncarried > 0) {

@@ -77,7 +77,13 @@ TestDescription describe(const std::vector<WheelTestPoint>& points) {
   return d;
 }
 
+// The values one by one, or their range when there are more than 8 (a file
+// of jittered loads).
 std::string numbers_text(const std::vector<double>& values, const char* unit) {
+  if (values.size() > 8) {
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    return num(*lo, "%g") + " to " + num(*hi, "%g") + " " + unit + " (" + std::to_string(values.size()) + " values)";
+  }
   std::vector<std::string> items;
   items.reserve(values.size());
   for (double v : values) items.push_back(num(v, "%g"));

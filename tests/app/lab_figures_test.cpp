@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "app/lab_figures.h"
 #include "app/view_data.h"
@@ -113,6 +114,79 @@ TEST(LabFigures, SlipPanelsHoldEachAnglesPointsTheModelsCurveAndTwoSigmaOfItsRes
       }
     }
   }
+}
+
+// A wheel tested at many loads (a file of jittered loads): its points in 4
+// load bins of about equal size, each drawn at its bin's median load, named
+// by its range and ordered by load, and the figure says so; a wheel tested
+// at two loads keeps a group per load.
+TEST(LabFigures, AWheelTestedAtManyLoadsHasItsLoadsBinned) {
+  const terramechanics::GridModel m = truth(terramechanics::SlipDefinition::travel);
+  std::string rows = "wheel,radius_m,width_m,load_N,slip,drawbar_pull_N\n";
+  std::vector<double> loads;
+  for (int i = 0; i < 80; ++i) {
+    // Spread over 15-25 N in no order, to 0.1 mN as written.
+    const double load = std::round((15.0 + 10.0 * std::fmod(0.618034 * i, 1.0)) * 1e4) / 1e4;
+    const double s = -0.2 + 0.1 * (i % 8);
+    char row[160];
+    std::snprintf(row, sizeof row, "jittered,0.0625,0.06,%.4f,%g,%.12g\n", load, s,
+                  terramechanics::model_at(m, load, s, std::nullopt).drawbar_pull);
+    rows += row;
+    loads.push_back(load);
+  }
+  for (double load : {20.0, 30.0}) {
+    for (double s : {0.0, 0.3}) {
+      char row[160];
+      std::snprintf(row, sizeof row, "two_loads,0.0625,0.06,%g,%g,%.12g\n", load, s,
+                    terramechanics::model_at(m, load, s, std::nullopt).drawbar_pull);
+      rows += row;
+    }
+  }
+  TempDir dir;
+  const std::string csv = dir.file("loads.csv");
+  write_text(csv, rows);
+  const app::ViewInput in = app::load_view_input(csv, std::nullopt, {});
+  ASSERT_EQ(in.wheel_points.size(), 84u);
+  const views::LabFigures f = app::lab_figures_of(in, std::nullopt);
+  ASSERT_TRUE(f.slip_panels) << f.why_not;
+  const views::PanelFigure& p = *f.slip_panels;
+  ASSERT_EQ(p.group_names.size(), 6u);
+  EXPECT_EQ(p.group_names[4], "two_loads, 20 N");
+  EXPECT_EQ(p.group_names[5], "two_loads, 30 N");
+  ASSERT_EQ(p.notes.size(), 1u);
+  EXPECT_NE(p.notes[0].find("loads binned"), std::string::npos) << p.notes[0];
+  ASSERT_EQ(p.rows.size(), 1u);
+  ASSERT_EQ(p.rows[0].panels.size(), 1u);
+  const auto& series = p.rows[0].panels[0].series;
+  ASSERT_EQ(series.size(), 6u);
+  std::size_t drawn = 0;
+  double last_median = 0.0;
+  for (int g = 0; g < 4; ++g) {
+    const views::PanelSeries& s = series[static_cast<std::size_t>(g)];
+    EXPECT_EQ(s.group, g);
+    EXPECT_EQ(p.group_names[static_cast<std::size_t>(g)].rfind("jittered, ", 0), 0u) << p.group_names[g];
+    EXPECT_GE(s.x.size(), 18u);  // 80 points in 4 bins of about 20
+    EXPECT_LE(s.x.size(), 22u);
+    drawn += s.x.size();
+    // Which loads are in the bin: those whose drawbar pull at their slip the points show.
+    std::vector<double> in_bin;
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      for (double load : loads) {
+        if (std::abs(terramechanics::model_at(m, load, s.x[i], std::nullopt).drawbar_pull - s.y[i]) < 1e-9) {
+          in_bin.push_back(load);
+          break;
+        }
+      }
+    }
+    ASSERT_EQ(in_bin.size(), s.x.size());
+    std::sort(in_bin.begin(), in_bin.end());
+    const double median = in_bin[in_bin.size() / 2];
+    EXPECT_GT(median, last_median);  // ordered by load
+    last_median = median;
+    const auto end = terramechanics::model_at(m, median, s.curve_x.back(), std::nullopt);
+    EXPECT_NEAR(s.curve_y.back(), end.drawbar_pull, 1e-9);
+  }
+  EXPECT_EQ(drawn, 80u);
 }
 
 TEST(LabFigures, ResidualsAgainstSlipAngleAreMeasuredMinusPredictedPerPoint) {
@@ -234,7 +308,9 @@ TEST(LabFigures, PlateForceAgainstDepthHoldsTheSamplesAndTheFittedCurves) {
   EXPECT_EQ(bekker.group, 2);
   ASSERT_FALSE(bekker.curve_x.empty());
   for (std::size_t i = 0; i < bekker.curve_x.size(); ++i) {
-    if (bekker.curve_x[i] > 1.0) EXPECT_NEAR(bekker.curve_y[i], force(bekker.curve_x[i] / 1000.0), 2.0);
+    if (bekker.curve_x[i] > 1.0) {
+      EXPECT_NEAR(bekker.curve_y[i], force(bekker.curve_x[i] / 1000.0), 2.0);
+    }
   }
   const views::PanelRanges r = views::panel_ranges(p);
   EXPECT_LT(r.x_min, -10.0);

@@ -89,7 +89,9 @@ TEST(RftStudy, AHiddenPileUpIsNamedAloneWithinTwoSigma) {
       found = true;
       EXPECT_LT(std::abs(p.value - 0.5), 2.0 * p.sigma) << p.value << " +- " << p.sigma;
     }
-    if (p.parameter == Parameter::rft_scale) EXPECT_LT(std::abs(p.value - 2.0e6), 2.0 * p.sigma) << p.value;
+    if (p.parameter == Parameter::rft_scale) {
+      EXPECT_LT(std::abs(p.value - 2.0e6), 2.0 * p.sigma) << p.value;
+    }
   }
   EXPECT_TRUE(found);
   EXPECT_EQ(r.baseline_model, "RFT");
@@ -104,7 +106,9 @@ TEST(RftStudy, NoHiddenChangeNoClaimAndTheMaterialScaleIsFound) {
   EXPECT_LT(std::abs(zeta.value - 2.0e6), 2.0 * zeta.sigma) << zeta.value << " +- " << zeta.sigma;
   // Wong-Reece's candidates are not RFT's.
   for (const auto& c : r.candidates) {
-    if (c.name == "slip-sinkage") EXPECT_FALSE(c.applicable);
+    if (c.name == "slip-sinkage") {
+      EXPECT_FALSE(c.applicable);
+    }
   }
 }
 
