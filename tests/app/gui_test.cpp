@@ -29,6 +29,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <set>
 #include <thread>
@@ -116,13 +117,33 @@ TEST(Gui, OpenTheBundledLogScrubTheTimelineAndSeeTheRoverMove) {
 
 namespace {
 
-// The longest gap, ms, between the ticks of a 10 ms timer that scrubs the
-// timeline (a render on every tick) until `done` holds (or timeout_ms pass);
-// `ticks` counts them. Meanwhile a thread that only sleeps 10 ms at a time
-// measures its own longest gap: the machine's scheduling delay at that time,
-// which the GUI thread meets too (`scheduling`).
-qint64 longest_gap_while_scrubbing(gui::MainWindow& w, const std::function<bool()>& done, int timeout_ms, int& ticks,
-                                   qint64& scheduling) {
+// The time, ns, that the calling thread has waited on a run queue for a CPU
+// (the second field of /proc/thread-self/schedstat), or -1 where the kernel
+// does not say.
+long long run_queue_wait_ns() {
+  std::ifstream f("/proc/thread-self/schedstat");
+  long long on_cpu = 0, waited = -1;
+  if (!(f >> on_cpu >> waited)) return -1;
+  return waited;
+}
+
+// What the GUI thread met while a 10 ms timer scrubbed the timeline (a render
+// on every tick) until `done` held (or timeout_ms passed), ms.
+struct Scrubbing {
+  int ticks = 0;
+  qint64 longest_gap = 0;    // between two ticks, as the clock reads it
+  qint64 longest_stall = 0;  // the same less the time the thread waited for a CPU
+  qint64 scheduling = 0;     // a sleeping thread's longest gap meanwhile
+};
+
+// The longest gap between ticks is the stall a user sees, but at a load of 8
+// on 2 cores most of it is the GUI thread waiting for a CPU, which no program
+// can avoid. The stall less that wait (the run-queue time the kernel counts
+// for the thread) is what the program itself holds the event loop for:
+// rendering, waiting on the renderer and the X server, waiting on a lock. A
+// thread that only sleeps 10 ms at a time measures the machine's scheduling
+// delay meanwhile, which the renderer's threads and the X server meet too.
+Scrubbing scrub_until(gui::MainWindow& w, const std::function<bool()>& done, int timeout_ms) {
   std::atomic<bool> stop{false};
   std::atomic<qint64> probe_worst{0};
   std::thread probe([&] {
@@ -135,34 +156,40 @@ qint64 longest_gap_while_scrubbing(gui::MainWindow& w, const std::function<bool(
       last = now;
     }
   });
+  Scrubbing out;
   QElapsedTimer clock;
   clock.start();
-  qint64 last = clock.elapsed(), worst = 0;
-  ticks = 0;
+  qint64 last = clock.nsecsElapsed();
+  long long last_wait = run_queue_wait_ns();
   QTimer tick;
   tick.setInterval(10);
   QObject::connect(&tick, &QTimer::timeout, [&] {
-    const qint64 now = clock.elapsed();
-    worst = std::max(worst, now - last);
+    const qint64 now = clock.nsecsElapsed();
+    const long long wait = run_queue_wait_ns();
+    const qint64 gap = now - last;
+    const qint64 waited = (wait >= 0 && last_wait >= 0) ? std::clamp<qint64>(wait - last_wait, 0, gap) : 0;
+    out.longest_gap = std::max(out.longest_gap, gap / 1000000);
+    out.longest_stall = std::max(out.longest_stall, (gap - waited) / 1000000);
     last = now;
-    ++ticks;
-    w.set_time(w.start_time() + std::fmod(0.05 * ticks, w.end_time() - w.start_time()));
+    last_wait = wait;
+    ++out.ticks;
+    w.set_time(w.start_time() + std::fmod(0.05 * out.ticks, w.end_time() - w.start_time()));
   });
   tick.start();
   wait_until(done, timeout_ms);
   tick.stop();
   stop = true;
   probe.join();
-  scheduling = probe_worst.load();
-  return worst;
+  out.scheduling = probe_worst.load();
+  return out;
 }
 
 }  // namespace
 
-// Issue 46: what the job adds to the GUI thread's longest stall. The
-// machine's load stalls the GUI thread too, and it changes from one second to
-// the next (a build beside the test), so the stall is measured against the
-// same scrubbing with no job after the job, and against the
+// Issue 46: what the job adds to the GUI thread's longest stall, measured so
+// that the machine's load does not decide it. The stall is the gap between
+// ticks less the time the GUI thread waited for a CPU (scrub_until); it is
+// compared with the same scrubbing with no job after the job, and with the
 // scheduling delay a sleeping thread meets while the job runs (the job runs
 // niced, JobRunner::kJobNice). On a quiet machine a rover frame under Xvfb
 // (llvmpipe, 1024x640) takes about 25 ms and the limit is 100 ms; under load
@@ -195,28 +222,26 @@ TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   }));
   QElapsedTimer job_time;
   job_time.start();
-  int ticks = 0;
-  qint64 scheduling = 0;
-  const qint64 worst = longest_gap_while_scrubbing(
-      w, [&] { return !w.busy(); }, 120000, ticks, scheduling);
+  const Scrubbing with_job = scrub_until(w, [&] { return !w.busy(); }, 120000);
   const int job_ms = static_cast<int>(job_time.elapsed());
   ASSERT_FALSE(w.busy());
   EXPECT_EQ(runs.load(), 3);
-  EXPECT_GT(ticks, 20);
+  EXPECT_GT(with_job.ticks, 20);
   EXPECT_GT(last_progress, 0.5);
-  // The same scrubbing for as long again (the longest gap grows with the
+  // The same scrubbing for as long again (the longest stall grows with the
   // time watched), no job.
-  int idle_ticks = 0;
-  qint64 idle_scheduling = 0;
-  const qint64 idle = longest_gap_while_scrubbing(
-      w, [] { return false; }, std::clamp(job_ms, 1000, 60000), idle_ticks, idle_scheduling);
-  EXPECT_GT(idle_ticks, 20);
-  const qint64 limit = std::max<qint64>(100, 2 * std::max(idle, scheduling) + 50);
-  EXPECT_LT(worst, limit) << "longest gap between 10 ms ticks with the job, ms; without: " << idle
-                          << " ms; a sleeping thread's longest gap while the job ran: " << scheduling << " ms";
-  RecordProperty("longest_event_loop_gap_ms", static_cast<int>(worst));
-  RecordProperty("longest_idle_gap_ms", static_cast<int>(idle));
-  RecordProperty("longest_scheduling_gap_ms", static_cast<int>(scheduling));
+  const Scrubbing idle = scrub_until(w, [] { return false; }, std::clamp(job_ms, 1000, 60000));
+  EXPECT_GT(idle.ticks, 20);
+  const qint64 limit = std::max<qint64>(100, 2 * std::max(idle.longest_stall, with_job.scheduling) + 50);
+  EXPECT_LT(with_job.longest_stall, limit)
+      << "longest stall of the GUI thread with the job (gap between 10 ms ticks less its wait for a CPU), ms; "
+      << "without: " << idle.longest_stall << " ms; a sleeping thread's longest gap while the job ran: "
+      << with_job.scheduling << " ms; longest gaps as the clock reads them: " << with_job.longest_gap << " and "
+      << idle.longest_gap << " ms";
+  RecordProperty("longest_event_loop_stall_ms", static_cast<int>(with_job.longest_stall));
+  RecordProperty("longest_event_loop_gap_ms", static_cast<int>(with_job.longest_gap));
+  RecordProperty("longest_idle_stall_ms", static_cast<int>(idle.longest_stall));
+  RecordProperty("longest_scheduling_gap_ms", static_cast<int>(with_job.scheduling));
 }
 
 TEST(Gui, ClosingTheWindowWhileAJobRunsCancelsIt) {
