@@ -241,13 +241,20 @@ int run_discrepancy_single_wheel(const SingleWheelDiscrepancyOptions& o) {
     std::cout << j.dump(2) << "\n";
     return kSuccess;
   }
+  // Each reading's heading gives its final model's held-out score: the
+  // reading whose model does not fit is not read as if it did.
+  const auto heading = [](const analysis::DiscrepancyReport& reading) {
+    std::printf("=== Read as %s slip (final model held out at %.2f sigma) ===\n", reading.slip_definition.c_str(),
+                analysis::final_held_out_score(reading));
+  };
   if (!r.other_reading.empty()) {
-    std::printf("%s: %s.\n\n=== Read as %s slip ===\n", o.file.c_str(), r.slip_definition_reason.c_str(),
-                r.slip_definition.c_str());
+    std::printf("%s: %s.\n\n", o.file.c_str(), r.slip_definition_reason.c_str());
+    heading(r);
   }
   print_report(o.file, soil, r, o.integration);
   for (const auto& other : r.other_reading) {
-    std::printf("\n=== Read as %s slip ===\n", other.slip_definition.c_str());
+    std::printf("\n");
+    heading(other);
     print_report(o.file, soil, other, o.integration);
   }
   return kSuccess;

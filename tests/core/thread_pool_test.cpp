@@ -99,6 +99,9 @@ TEST(ThreadPool, RoverlabThreadsLimitsThePoolAndAnythingElseIsRefused) {
 
 namespace {
 
+// NaN (a sigma a screen does not give) as a number EXPECT_EQ can compare.
+double comparable(double x) { return std::isnan(x) ? 1e300 : x; }
+
 // Every number a single-wheel report holds that the screen, the folds and the
 // selection compute, in order.
 std::vector<double> numbers(const analysis::DiscrepancyReport& r) {
@@ -149,10 +152,46 @@ TEST(ThreadPool, TheSingleWheelStudyIsTheSameOnOneThreadAndOnThree) {
   EXPECT_EQ(one.verdict, three.verdict);
 }
 
-namespace {
+// The family step: the two families' baselines side by side, their folds in
+// parallel, then each family's study (on a long file the second one's on a
+// random subset first).
+TEST(ThreadPool, TheFamilyStepIsTheSameOnOneThreadAndOnThree) {
+  const auto points = test::resampled_wheel_test(
+      io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv"), 60);
+  for (const std::size_t screen : {std::size_t{0}, std::size_t{30}}) {
+    analysis::DiscrepancyOptions o;
+    o.compare_families = true;
+    o.family_screen_points = screen;
+    analysis::DiscrepancyReport one, three;
+    {
+      const Threads t(1);
+      one = analysis::study_single_wheel(test::ding_tyii(), points, o);
+    }
+    {
+      const Threads t(3);
+      three = analysis::study_single_wheel(test::ding_tyii(), points, o);
+    }
+    EXPECT_EQ(numbers(one), numbers(three));
+    EXPECT_EQ(one.family_choice, three.family_choice);
+    EXPECT_EQ(one.verdict, three.verdict);
+    ASSERT_EQ(one.families.size(), 2u);
+    ASSERT_EQ(three.families.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const auto &a = one.families[k], &b = three.families[k];
+      EXPECT_EQ(a.family, b.family);
+      EXPECT_EQ(a.held_out_score, b.held_out_score);
+      EXPECT_EQ(a.held_out_rmse, b.held_out_rmse);
+      EXPECT_EQ(comparable(a.final_held_out_score), comparable(b.final_held_out_score));
+      EXPECT_EQ(a.final_model, b.final_model);
+      EXPECT_EQ(a.studied_points, b.studied_points);
+    }
+    // Both families were studied (the first's final model is not within the noise here).
+    EXPECT_FALSE(one.families[0].final_model.empty()) << one.family_choice;
+    EXPECT_FALSE(one.families[1].final_model.empty()) << one.family_choice;
+  }
+}
 
-// NaN (a sigma a screen does not give) as a number EXPECT_EQ can compare.
-double comparable(double x) { return std::isnan(x) ? 1e300 : x; }
+namespace {
 
 std::vector<double> numbers(const analysis::RoverDiscrepancyReport& r) {
   std::vector<double> v = {r.baseline_bic, r.baseline_held_out, r.final_held_out, static_cast<double>(r.simulations)};

@@ -176,15 +176,20 @@ struct DiscrepancyReport {
   std::string family_choice;             // the family taken as the baseline, and by how much
   // At a slip angle, when neither the options nor the file state how slip is
   // defined and the two readings differ materially (named causes, or final
-  // held-out score by 10 %): this report is the longitudinal reading's and
-  // other_reading holds the travel reading's, each complete (issue 43: no
-  // choice between chains of different lengths by BIC).
+  // held-out score by 10 %): this report is the reading's whose final model
+  // holds out better (the longitudinal one on a tie) and other_reading holds
+  // the other's, each complete (issue 43: no choice between chains of
+  // different lengths by BIC).
   std::vector<DiscrepancyReport> other_reading;
 };
 
 // The causes a study names (its steps whose role is cause), each step's
 // last_link, " + "-joined; empty when it names none.
 std::string named_causes(const DiscrepancyReport& r);
+
+// The held-out RMS residual, in the stated sigmas, of a study's final model:
+// its last step's, or the baseline's (nothing fitted) when no step passed.
+double final_held_out_score(const DiscrepancyReport& r);
 
 // At a slip angle without options.slip_definition the slip's reading is
 // chosen from the data (report's slip_definition and its reason).
