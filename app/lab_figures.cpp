@@ -115,8 +115,8 @@ std::vector<int> load_bins(const std::vector<WheelTestPoint>& points, std::size_
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto it = cuts.find(points[i].wheel_label);
     if (it == cuts.end()) continue;
-    bin[i] = static_cast<int>(std::upper_bound(it->second.begin(), it->second.end(), points[i].load) -
-                              it->second.begin());
+    bin[i] =
+        static_cast<int>(std::upper_bound(it->second.begin(), it->second.end(), points[i].load) - it->second.begin());
   }
   return bin;
 }

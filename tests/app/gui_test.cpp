@@ -222,7 +222,8 @@ TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   }));
   QElapsedTimer job_time;
   job_time.start();
-  const Scrubbing with_job = scrub_until(w, [&] { return !w.busy(); }, 120000);
+  const Scrubbing with_job = scrub_until(
+      w, [&] { return !w.busy(); }, 120000);
   const int job_ms = static_cast<int>(job_time.elapsed());
   ASSERT_FALSE(w.busy());
   EXPECT_EQ(runs.load(), 3);
@@ -230,14 +231,15 @@ TEST(Gui, TheEventLoopNeverStallsWhileAJobRuns) {
   EXPECT_GT(last_progress, 0.5);
   // The same scrubbing for as long again (the longest stall grows with the
   // time watched), no job.
-  const Scrubbing idle = scrub_until(w, [] { return false; }, std::clamp(job_ms, 1000, 60000));
+  const Scrubbing idle = scrub_until(
+      w, [] { return false; }, std::clamp(job_ms, 1000, 60000));
   EXPECT_GT(idle.ticks, 20);
   const qint64 limit = std::max<qint64>(100, 2 * std::max(idle.longest_stall, with_job.scheduling) + 50);
   EXPECT_LT(with_job.longest_stall, limit)
       << "longest stall of the GUI thread with the job (gap between 10 ms ticks less its wait for a CPU), ms; "
-      << "without: " << idle.longest_stall << " ms; a sleeping thread's longest gap while the job ran: "
-      << with_job.scheduling << " ms; longest gaps as the clock reads them: " << with_job.longest_gap << " and "
-      << idle.longest_gap << " ms";
+      << "without: " << idle.longest_stall
+      << " ms; a sleeping thread's longest gap while the job ran: " << with_job.scheduling
+      << " ms; longest gaps as the clock reads them: " << with_job.longest_gap << " and " << idle.longest_gap << " ms";
   RecordProperty("longest_event_loop_stall_ms", static_cast<int>(with_job.longest_stall));
   RecordProperty("longest_event_loop_gap_ms", static_cast<int>(with_job.longest_gap));
   RecordProperty("longest_idle_stall_ms", static_cast<int>(idle.longest_stall));
@@ -413,7 +415,7 @@ TEST(Gui, EveryAnalysisGivesTheSameResultOnTheCommandLineTheReportAndTheGui) {
 namespace {
 
 std::string skid_steer_log(const TempDir& dir, const std::string& name, unsigned seed) {
-  const std::string file = dir.file(name);
+  std::string file = dir.file(name);
   io::write_hdf5_log(simulation::simulate_skid_steer(simulation::default_slip_scenario(seed)), file);
   return file;
 }

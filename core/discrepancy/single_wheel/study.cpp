@@ -1093,9 +1093,8 @@ DiscrepancyReport compare_families(const Soil& soil, const std::vector<WheelTest
   Soil start[2];
   std::vector<FamilyBaseline> families(2);
   // The two baselines side by side (the same results as one after the other).
-  shared_thread_pool().run_beside(
-      [&] { families[1] = family_baseline(soil, points, options[1], start[1], meter); },
-      [&] { families[0] = family_baseline(soil, points, options[0], start[0], meter); });
+  shared_thread_pool().run_beside([&] { families[1] = family_baseline(soil, points, options[1], start[1], meter); },
+                                  [&] { families[0] = family_baseline(soil, points, options[0], start[0], meter); });
   start[0] = soil;  // Wong-Reece / Ishigami: nothing fitted in its baseline
   const int first = families[1].held_out_score < families[0].held_out_score ? 1 : 0;
   const int second = 1 - first;
@@ -1193,8 +1192,8 @@ std::string named_chain(const DiscrepancyReport& r) {
 // Two readings of one file differ materially: other causes named, or final
 // held-out scores 10 % apart.
 bool readings_differ(const DiscrepancyReport& a, const DiscrepancyReport& b) {
-  return named_chain(a) != named_chain(b) ||
-         std::abs(final_held_out_score(a) - final_held_out_score(b)) > 0.1 * std::min(final_held_out_score(a), final_held_out_score(b));
+  return named_chain(a) != named_chain(b) || std::abs(final_held_out_score(a) - final_held_out_score(b)) >
+                                                 0.1 * std::min(final_held_out_score(a), final_held_out_score(b));
 }
 
 // What the two readings give, for the sentence that prints both: each
