@@ -232,22 +232,23 @@ views::PanelRow slip_row(const std::vector<WheelTestPoint>& points, const Single
 }
 
 // One row of the residuals figure: measured - predicted of `q` against slip
-// angle, per group, over a zero line with its +-2 sigma band.
+// angle (against slip when `by_slip`: a file at one slip angle), per group,
+// over a zero line with its +-2 sigma band.
 views::PanelRow residual_row(const std::vector<WheelTestPoint>& points, const SingleWheelModel& m, const Groups& groups,
-                             Quantity q, double band) {
+                             Quantity q, double band, bool by_slip) {
   views::Panel panel;
   panel.title = quantity_words(q);
   std::vector<views::PanelSeries> by_group(groups.names.size());
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& r : m.held_out) {
     if (r.quantity != q || r.point >= points.size() || !std::isfinite(r.predicted)) continue;
-    const double angle = degrees(points[r.point].slip_angle);
+    const double x = by_slip ? points[r.point].slip : degrees(points[r.point].slip_angle);
     views::PanelSeries& s = by_group[static_cast<std::size_t>(groups.of_point[r.point])];
     s.group = groups.of_point[r.point];
-    s.x.push_back(angle);
+    s.x.push_back(x);
     s.y.push_back(r.measured - r.predicted);
-    lo = std::min(lo, angle);
-    hi = std::max(hi, angle);
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
   }
   views::PanelSeries zero;
   zero.group = -1;  // grey
@@ -344,11 +345,16 @@ views::LabFigures single_wheel_figures(const std::vector<WheelTestPoint>& points
   const Groups groups = groups_of(points);
   views::PanelFigure panels, residuals;
   std::string bands;
+  // At one slip angle the residuals are drawn against slip: against the
+  // angle they would stand in one vertical line.
+  std::set<double> angles;
+  for (const auto& p : points) angles.insert(degrees(p.slip_angle));
+  const bool by_slip = angles.size() < 2;
   for (Quantity q : {Quantity::drawbar_pull, Quantity::lateral_force}) {
     if (angles_measuring(points, q).empty()) continue;
     const double band = 2.0 * rms_residual(m.held_out, q);
     panels.rows.push_back(slip_row(points, m, groups, q, band));
-    residuals.rows.push_back(residual_row(points, m, groups, q, band));
+    residuals.rows.push_back(residual_row(points, m, groups, q, band, by_slip));
     bands += (bands.empty() ? "" : ", ") + band_text(q, band);
   }
   if (panels.rows.empty()) {
@@ -362,7 +368,11 @@ views::LabFigures single_wheel_figures(const std::vector<WheelTestPoint>& points
   panels.x_title = "slip";
   residuals.caption = "Measured - predicted by " + m.name + ".\nGrey: +-2 sigma of the held-out residuals (" + method +
                       "): " + bands + ".";
-  residuals.x_title = "slip angle (deg)";
+  residuals.x_title = by_slip ? "slip" : "slip angle (deg)";
+  if (by_slip) {
+    residuals.notes.push_back("one slip angle (" + number(*angles.begin()) +
+                              " deg) in the file: the residuals are drawn against slip");
+  }
   panels.group_names = residuals.group_names = groups.names;
   if (groups.binned_wheels > 0) {
     panels.notes.push_back("loads binned: a wheel tested at more than " + std::to_string(kMaxLoadsPerWheel) +

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -119,7 +120,8 @@ TEST(LabFigures, SlipPanelsHoldEachAnglesPointsTheModelsCurveAndTwoSigmaOfItsRes
 // A wheel tested at many loads (a file of jittered loads): its points in 4
 // load bins of about equal size, each drawn at its bin's median load, named
 // by its range and ordered by load, and the figure says so; a wheel tested
-// at two loads keeps a group per load.
+// at two loads keeps a group per load. At one slip angle the residuals are
+// drawn against slip.
 TEST(LabFigures, AWheelTestedAtManyLoadsHasItsLoadsBinned) {
   const terramechanics::GridModel m = truth(terramechanics::SlipDefinition::travel);
   std::string rows = "wheel,radius_m,width_m,load_N,slip,drawbar_pull_N\n";
@@ -187,6 +189,14 @@ TEST(LabFigures, AWheelTestedAtManyLoadsHasItsLoadsBinned) {
     EXPECT_NEAR(s.curve_y.back(), end.drawbar_pull, 1e-9);
   }
   EXPECT_EQ(drawn, 80u);
+  // At one slip angle the residuals are drawn against slip, not in one vertical line.
+  ASSERT_TRUE(f.residuals);
+  EXPECT_EQ(f.residuals->x_title, "slip");
+  std::set<double> xs;
+  for (const auto& s : f.residuals->rows.at(0).panels.at(0).series) xs.insert(s.x.begin(), s.x.end());
+  EXPECT_EQ(xs.size(), 8u);  // the 8 slips -0.2 .. 0.5 (the two-load wheel's among them)
+  EXPECT_NEAR(*xs.begin(), -0.2, 1e-12);
+  EXPECT_NEAR(*xs.rbegin(), 0.5, 1e-12);
 }
 
 TEST(LabFigures, ResidualsAgainstSlipAngleAreMeasuredMinusPredictedPerPoint) {
