@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <set>
 #include <utility>
 
@@ -124,50 +123,33 @@ std::vector<int> load_bins(const std::vector<WheelTestPoint>& points, std::size_
 Groups groups_of(const std::vector<WheelTestPoint>& points) {
   Groups g;
   const std::vector<int> bin = load_bins(points, g.binned_wheels);
-  std::map<std::pair<std::string, long>, int> index;
-  std::set<std::string> labels;
-  for (const auto& p : points) labels.insert(p.wheel_label);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    // A bin's key is below every load's (loads are positive).
-    const long load_key = bin[i] >= 0 ? -1 - bin[i] : std::lround(points[i].load * 10.0);
-    const auto key = std::make_pair(points[i].wheel_label, load_key);
-    auto it = index.find(key);
-    if (it == index.end()) {
-      it = index.emplace(key, static_cast<int>(g.names.size())).first;
-      g.names.emplace_back();
-      g.first_point.push_back(i);
-      g.load.push_back(points[i].load);
-    }
-    g.of_point.push_back(it->second);
-  }
+  std::map<std::string, std::size_t> wheel_order;  // wheels as first seen
+  for (const auto& p : points) wheel_order.emplace(p.wheel_label, wheel_order.size());
+  // A group's key: its wheel and its load bin, or its load to 0.1 N.
+  const auto key_of = [&](std::size_t i) {
+    return std::make_pair(wheel_order.at(points[i].wheel_label),
+                          bin[i] >= 0 ? static_cast<long>(bin[i]) : std::lround(points[i].load * 10.0));
+  };
+  // Groups numbered in order of first appearance; by wheel, then by load,
+  // when a wheel's loads are binned (the bins are met in any order).
+  std::map<std::pair<std::size_t, long>, int> index;
   if (g.binned_wheels > 0) {
-    // Ordered by wheel (as first seen), then by load: the bins were met in any order.
-    std::map<std::string, std::size_t> wheel_order;
-    for (const auto& p : points) wheel_order.emplace(p.wheel_label, wheel_order.size());
-    std::vector<int> order(g.names.size());
-    std::iota(order.begin(), order.end(), 0);
-    const auto rank = [&](int k) {
-      const WheelTestPoint& p = points[g.first_point[static_cast<std::size_t>(k)]];
-      const int b = bin[g.first_point[static_cast<std::size_t>(k)]];
-      return std::make_pair(wheel_order.at(p.wheel_label), b >= 0 ? static_cast<double>(b) : p.load);
-    };
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return rank(a) < rank(b); });
-    std::vector<int> new_index(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) new_index[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
-    for (int& o : g.of_point) o = new_index[static_cast<std::size_t>(o)];
-    std::vector<std::size_t> first(order.size());
-    std::vector<double> load(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      first[k] = g.first_point[static_cast<std::size_t>(order[k])];
-      load[k] = g.load[static_cast<std::size_t>(order[k])];
-    }
-    g.first_point = std::move(first);
-    g.load = std::move(load);
+    for (std::size_t i = 0; i < points.size(); ++i) index.emplace(key_of(i), 0);
+    int k = 0;
+    for (auto& entry : index) entry.second = k++;
   }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    g.of_point.push_back(index.emplace(key_of(i), static_cast<int>(index.size())).first->second);
+  }
+  g.names.resize(index.size());
+  g.load.resize(index.size());
+  g.first_point.resize(index.size());
+  for (std::size_t i = points.size(); i-- > 0;) g.first_point[static_cast<std::size_t>(g.of_point[i])] = i;
   // Names: the load, or a bin's range of loads; the curve at a bin's median load.
   for (std::size_t k = 0; k < g.names.size(); ++k) {
     const WheelTestPoint& first = points[g.first_point[k]];
     std::string load = number(first.load, "%.3g") + " N";
+    g.load[k] = first.load;
     if (bin[g.first_point[k]] >= 0) {
       std::vector<double> l;
       for (std::size_t i = 0; i < points.size(); ++i) {
@@ -178,7 +160,7 @@ Groups groups_of(const std::vector<WheelTestPoint>& points) {
       load = number(l.front(), "%.3g") + "-" + number(l.back(), "%.3g") + " N";
     }
     const std::string label = first.wheel_label.empty() ? "wheel" : first.wheel_label;
-    g.names[k] = labels.size() > 1 || !first.wheel_label.empty() ? label + ", " + load : load;
+    g.names[k] = wheel_order.size() > 1 || !first.wheel_label.empty() ? label + ", " + load : load;
   }
   return g;
 }
