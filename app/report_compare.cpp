@@ -29,8 +29,6 @@ std::vector<double> thinned(const std::vector<double>& v) {
   return out;
 }
 
-std::string esc(const std::string& s) { return ReportSection::escape(s); }
-
 // The channels drawn: those that differ, most significant first, then the
 // largest test statistics.
 std::vector<const comparison::ChannelComparison*> drawn_channels(const comparison::RunComparison& r) {
@@ -113,7 +111,8 @@ json track_map(std::ostringstream& html, const std::string& base_file, const log
 
 void run_section(std::ostringstream& html, const std::string& file, std::size_t index,
                  const comparison::RunComparison& r) {
-  html << "<h3>Run " << index << ": " << esc(file) << "</h3>\n<p>Aligned by " << esc(r.alignment.how);
+  html << "<h3>Run " << index << ": " << ReportSection::escape(file) << "</h3>\n<p>Aligned by "
+       << ReportSection::escape(r.alignment.how);
   if (r.alignment.by != comparison::AlignBy::distance) {
     html << ", offset " << ReportSection::number(r.alignment.offset_s, "%+.4f") << " s";
   }
@@ -123,7 +122,7 @@ void run_section(std::ostringstream& html, const std::string& file, std::size_t 
   if (r.differing() > 0) {
     html << ":";
     for (const auto& c : r.channels) {
-      if (c.differs) html << " " << esc(c.path());
+      if (c.differs) html << " " << ReportSection::escape(c.path());
     }
   }
   html << ".</p>\n";

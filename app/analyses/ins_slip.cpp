@@ -152,7 +152,7 @@ void print_confusion(const json& c, std::FILE* out) {
   std::fprintf(out, "\n  overall %s\n  %s\n", accuracy_text(c).c_str(), recalls_text(c).c_str());
 }
 
-constexpr char kTitle[] = "INS slip detection (seed 002)";
+constexpr char kInsSlipTitle[] = "INS slip detection (seed 002)";
 
 // How its result is shown.
 class InsSlipPresentation : public Presentation {
@@ -175,7 +175,7 @@ class InsSlipAnalysis : public Analysis {
   InsSlipAnalysis()
       : Analysis({"ins-slip",
                   "estimate ins-slip",
-                  kTitle,
+                  kInsSlipTitle,
                   "Error-state INS with ZUPT/ZARU/NHC pseudo-measurements and slip detection (seed 002)",
                   "Log with imu and wheels streams (gps or truth/slip for metrics)",
                   {estimation::ins_streams::kPrefix, estimation::ins_streams::kOdometryPrefix},
@@ -439,7 +439,7 @@ void InsSlipPresentation::print(const json& j, std::FILE* out) const {
 void InsSlipPresentation::report(const json& j, ReportSection& s) const {
   auto& html = s.html;
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
-  html << "<h2>" << kTitle << "</h2>\n";
+  html << "<h2>" << kInsSlipTitle << "</h2>\n";
   report_health(j, s);
   html << "<p>" << ReportSection::escape(j.at("initial_heading").at("text").get<std::string>()) << ".</p>\n";
   if (j.contains("imu_vibration") && j.at("imu_vibration").at("detector_speed_error_mps").is_number()) {

@@ -17,7 +17,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr char kTitle[] = "What the wheel odometry gets wrong";
+constexpr char kOdometryTitle[] = "What the wheel odometry gets wrong";
 
 // How its result is shown.
 class OdometryPresentation : public Presentation {
@@ -38,7 +38,7 @@ class OdometryAnalysis : public Analysis {
   OdometryAnalysis()
       : Analysis({"odometry",
                   "discrepancy odometry",
-                  kTitle,
+                  kOdometryTitle,
                   "Wheel-odometry dead reckoning against the GPS track: cause of the disagreement, fitted correction, "
                   "gain",
                   "Log with wheels and gps streams",
@@ -316,7 +316,7 @@ void residual_plots(const json& j, ReportSection& s) {
 
 void OdometryPresentation::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
-  s.html << "<h2>" << kTitle << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
+  s.html << "<h2>" << kOdometryTitle << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
          << "</p>\n";
   for (const ResultTable& t : tables(j)) s.table(t);
   std::string csv = "candidate,fit_rmse_m,delta_bic,held_out_rmse_m,held_out_final_m,significant\n";

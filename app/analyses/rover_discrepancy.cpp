@@ -98,7 +98,7 @@ void residual_plots(const json& j, const std::vector<double>& t, const std::vect
          << plot_svg(by_time) << plot_svg(by_slip) << "\n";
 }
 
-constexpr char kTitle[] = "What the rover simulation gets wrong";
+constexpr char kRoverTitle[] = "What the rover simulation gets wrong";
 
 // How its result is shown.
 class RoverDiscrepancyPresentation : public Presentation {
@@ -125,7 +125,7 @@ class RoverDiscrepancyAnalysis : public Analysis {
   RoverDiscrepancyAnalysis()
       : Analysis({"rover-discrepancy",
                   "discrepancy rover",
-                  kTitle,
+                  kRoverTitle,
                   "Planar rocker-bogie log against its scenario's simulation: residuals, the cause or causes, the gain",
                   "Planar rocker-bogie log (joints, imu, velocimeter, forces, commands), e.g. from roverlab simulate",
                   {analysis::rover_streams::kPrefix},
@@ -464,7 +464,7 @@ std::vector<ResultTable> RoverDiscrepancyPresentation::tables(const json& j) con
 
 void RoverDiscrepancyPresentation::report(const json& j, ReportSection& s) const {
   const auto n = [](const json& v, const char* f) { return ReportSection::number(v, f); };
-  s.html << "<h2>" << kTitle << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
+  s.html << "<h2>" << kRoverTitle << "</h2>\n<p>" << ReportSection::escape(j.at("what_is_wrong").get<std::string>())
          << "</p>\n<p>"
          << ReportSection::escape(j.at("slip_regime").at("stuck").get<bool>()
                                       ? std::string()

@@ -26,8 +26,6 @@ namespace roverlab::gui {
 
 namespace {
 
-QString q(const std::string& s) { return QString::fromStdString(s); }
-
 constexpr const char* kPlotsName = "pane/timeseries";
 
 }  // namespace
@@ -70,7 +68,7 @@ QDockWidget* MainWindow::new_plot_pane(const QString& name, const QString& title
   if (input_ && !input_->is_wheel_test()) {
     rebuild_view(view_tabs_.back());
   } else if (input_) {
-    tab.why->setText("Nothing to show: " + q(input_->file) + " is a single-wheel test table.");
+    tab.why->setText("Nothing to show: " + QString::fromStdString(input_->file) + " is a single-wheel test table.");
   } else {
     tab.why->setText("Nothing to show yet: open a log, then drag channels from the Streams tree onto this pane.");
   }
@@ -241,7 +239,8 @@ void MainWindow::apply_layout(const QString& path) {
   const LayoutFile layout = read_layout(path.toStdString());
   // Qt restores docks by object name: every plot pane of the layout exists first.
   for (const auto& p : layout.plot_panes) {
-    if (plot_tab_named(p.name) == nullptr) new_plot_pane(q(p.name), q(p.title));
+    if (plot_tab_named(p.name) == nullptr)
+      new_plot_pane(QString::fromStdString(p.name), QString::fromStdString(p.title));
   }
   if (!layout.window_state.isEmpty()) {
     if (!restoreState(layout.window_state)) {
@@ -256,7 +255,7 @@ void MainWindow::apply_layout(const QString& path) {
       if (p.name == tab.dock->objectName().toStdString()) tab.wanted = p.channels;
     }
   }
-  for (const auto& title : layout.panes_in_front) select_tab(q(title));
+  for (const auto& title : layout.panes_in_front) select_tab(QString::fromStdString(title));
   if (input_ && !input_->is_wheel_test()) {
     if (const QString missing = plot_layout_channels(); !missing.isEmpty()) status_->setText(missing);
     rebuild_views();
@@ -275,7 +274,7 @@ QString MainWindow::plot_layout_channels() {
       if (s != nullptr && s->find_channel(channel) != nullptr) {
         tab.channels.emplace_back(stream, channel);
       } else {
-        missing << tab.dock->windowTitle() + ": " + q(stream + ":" + channel);
+        missing << tab.dock->windowTitle() + ": " + QString::fromStdString(stream + ":" + channel);
       }
     }
   }
