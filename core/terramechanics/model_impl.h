@@ -152,7 +152,9 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
     // in the front zone th_eq is th, whose cosine is known.
     const bool front_zone = th >= theta_m;
     const T th_eq = front_zone ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
-    sigma = modulus * power(T(r / b) * ((front_zone ? ct : T(cos(th_eq))) - cos0), n);
+    // At theta_r, th_eq is theta0 exactly (its cosine is cos0).
+    const T c_eq = front_zone ? ct : th == theta_r ? cos0 : T(cos(th_eq));
+    sigma = modulus * power(T(r / b) * (c_eq - cos0), n);
     const T j = rs * ((theta0 - th) - (1.0 - s) * (sin0 - st));                                     // Eq. 2.18
     tau = (c + sigma * tan_phi) * shear_fraction(peak, j / shear_modulus, p.shear_residual_ratio);  // Eq. 2.19
   };
@@ -170,7 +172,8 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   if (o.integration == Integration::simpson) {
     // Eq. 2.25: Simpson on [theta_m, theta_0] and on [theta_r, theta_m].
     const T front = (theta0 - theta_m) / 6.0, rear = (theta_m - theta_r) / 6.0;
-    add(theta0, front);
+    // The node at theta0 adds exactly 0 (sigma and j are 0 there, their
+    // derivatives too): skipped.
     add((theta0 + theta_m) * 0.5, 4.0 * front);
     add(theta_m, front + rear);
     add((theta_m + theta_r) * 0.5, 4.0 * rear);

@@ -108,12 +108,16 @@ Integrals integrate(const Setup& u, const ModelOptions& o, const LateralOptions&
   nodes(o, theta0, theta_m, theta_r, buffer);
   for (const Node& node : buffer) {
     const double th = node.theta;
+    // At the entry angle sigma and both shear displacements are exactly 0, so
+    // is every term below: the node is skipped (the same sums, bit for bit).
+    if (th == theta0) continue;
     // Eq. 2.11 and 2.14, seed 003 (Eq. 3 of Ishigami 2007 with Wong's moduli).
-    // In the front zone th_eq is th, whose cosine is ct.
+    // In the front zone th_eq is th, whose cosine is ct; at theta_r it is theta0.
     const double ct = std::cos(th), st = std::sin(th);
     const bool front_zone = th >= theta_m;
     const double th_eq = front_zone ? th : theta0 - (th - theta_r) / (theta_m - theta_r) * (theta0 - theta_m);
-    const double sigma = u.modulus * detail::power(u.r / u.b * ((front_zone ? ct : std::cos(th_eq)) - cos0), u.n);
+    const double c_eq = front_zone ? ct : th == theta_r ? cos0 : std::cos(th_eq);
+    const double sigma = u.modulus * detail::power(u.r / u.b * (c_eq - cos0), u.n);
     const double strength = u.c + sigma * u.tan_phi;
     const double j_x = u.rs * ((theta0 - th) - (1.0 - s) * (sin0 - st));  // Eq. 6
     const double j_y = u.rs * lateral * (theta0 - th);                    // Eq. 8: r (1 - s)(theta0 - theta) tan(beta)
@@ -160,20 +164,14 @@ struct Solved {
 // normal force rising from 0: secant steps on log F_z against log theta0
 // (nearly linear, as in the Wong-Reece solver), kept inside the bracket,
 // bisection when a step leaves it.
-Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const LateralOptions& lat, double s,
-             double lateral, double load) {
-  const Setup u = setup(soil, w, o.extensions, s);
-  std::vector<Node> buffer;
-  auto at = [&](double th) { return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2, buffer); };
-  auto normal_at = [&](double th) {
-    return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2, buffer, true).normal;
-  };
-  Solved out;
+template <class Normal>
+bool cold_root(const Normal& normal_at, double n, double load, double& root) {
   double lo = 0.0, hi = kPi / 2.0;
   const double n_hi = normal_at(hi);
-  if (!(n_hi >= load)) return out;
-  double th = hi * std::pow(load / n_hi, 1.0 / (2.0 * u.n + 1.0));  // small-angle power law
-  double prev_th = hi, prev_n = n_hi, root = th;
+  if (!(n_hi >= load)) return false;
+  double th = hi * std::pow(load / n_hi, 1.0 / (2.0 * n + 1.0));  // small-angle power law
+  double prev_th = hi, prev_n = n_hi;
+  root = th;
   for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
     if (!(th > lo && th < hi)) th = 0.5 * (lo + hi);
     const double nv = normal_at(th);
@@ -188,9 +186,48 @@ Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const Late
     prev_n = nv;
     th = next;
   }
+  return true;  // the last angle evaluated: within the tolerance or the bracket's width
+}
+
+// The same root from a previous one: a step along the power law F_z ~
+// theta0^(2n+1), then secant steps on the logs, at most 4 evaluations, each
+// inside (0, pi/2). False (start cold) unless one meets the tolerance.
+template <class Normal>
+bool warm_root(const Normal& normal_at, double n, double load, double hint, double& root) {
+  double th = hint, prev_th = 0.0, prev_n = 0.0;
+  for (int it = 0; it < 4; ++it) {
+    if (!(th > 0.0 && th < kPi / 2.0)) return false;
+    const double nv = normal_at(th);
+    if (std::abs(nv - load) <= 1e-13 * load) {
+      root = th;
+      return true;
+    }
+    if (!(nv > 0.0)) return false;
+    const double slope =
+        it == 0 || nv == prev_n || th == prev_th ? 2.0 * n + 1.0 : std::log(nv / prev_n) / std::log(th / prev_th);
+    if (!(slope > 0.0)) return false;
+    prev_th = th;
+    prev_n = nv;
+    th = th * std::exp(std::log(load / nv) / slope);
+  }
+  return false;
+}
+
+Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const LateralOptions& lat, double s,
+             double lateral, double load, double* hint) {
+  const Setup u = setup(soil, w, o.extensions, s);
+  thread_local std::vector<Node> buffer;  // the nodes, without an allocation per solve
+  auto normal_at = [&](double th) {
+    return integrate(u, o, lat, s, lateral, th, soil.c1, soil.c2, buffer, true).normal;
+  };
+  Solved out;
+  double root = 0.0;
+  const bool warm = hint != nullptr && *hint > 0.0 && warm_root(normal_at, u.n, load, *hint, root);
+  if (!warm && !cold_root(normal_at, u.n, load, root)) return out;
+  if (hint != nullptr) *hint = root;
   out.status = TractionStatus::ok;
-  out.theta0 = root;  // the last angle evaluated: within the tolerance or the bracket's width
-  out.in = at(root);
+  out.theta0 = root;
+  out.in = integrate(u, o, lat, s, lateral, root, soil.c1, soil.c2, buffer);
   return out;
 }
 
@@ -207,7 +244,7 @@ double sidewall_resistance(const Soil& soil, double soil_strength, double depth)
 }
 
 SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, double load, double slip, double slip_angle,
-                                      const ModelOptions& options, const LateralOptions& lateral) {
+                                      const ModelOptions& options, const LateralOptions& lateral, SlipAngleHint* hint) {
   if (options.kind == ModelKind::rft) return evaluate_rft(soil, wheel, load, slip, slip_angle, options);
   SlipAngleTraction t;
   t.slip_angle = slip_angle;
@@ -229,7 +266,7 @@ SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, doub
   const bool lateral_of_travel = travel && s_x >= 0.0;
   auto lateral_ratio = [&](double s_used) { return lateral_of_travel ? v_y : (1.0 - s_used) * std::tan(slip_angle); };
   const double s = std::abs(s_x);
-  const Solved main = solve(soil, wheel, options, lateral, s, lateral_ratio(s), load);
+  const Solved main = solve(soil, wheel, options, lateral, s, lateral_ratio(s), load, hint ? &hint->entry : nullptr);
   t.status = main.status;
   if (main.status != TractionStatus::ok) return t;
   const auto p = detail::make_params<double>(soil, options.extensions);
@@ -243,7 +280,8 @@ SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, doub
   if (s_x < 0.0) {
     // Skid by anti-symmetry about the s = 0 values (Eq. 2.26-2.27, seed 003),
     // at the same slip angle; entry angle and lateral force of the mirrored slip.
-    const Solved zero = solve(soil, wheel, options, lateral, 0.0, lateral_ratio(0.0), load);
+    const Solved zero =
+        solve(soil, wheel, options, lateral, 0.0, lateral_ratio(0.0), load, hint ? &hint->zero_slip_entry : nullptr);
     t.status = zero.status;
     if (zero.status != TractionStatus::ok) return t;
     drawbar = -drawbar + 2.0 * bulldozed(zero.in.drawbar, zero.theta0);

@@ -163,14 +163,16 @@ struct PointCost {
 };
 
 // The slip-angle model's values of the four quantities (NaN: not carried).
-std::array<double, 4> predict(const Soil& soil, const ModelOptions& model, const WheelTestPoint& point) {
+std::array<double, 4> predict(const Soil& soil, const ModelOptions& model, const WheelTestPoint& point,
+                              SlipAngleHint* hint = nullptr) {
   std::array<double, 4> out{NAN, NAN, NAN, NAN};
   if (!has_lateral_force(model.kind)) {
     const Traction t = evaluate(soil, point.wheel, point.load, point.slip, model);
     if (t.ok()) out = {t.drawbar_pull, t.resistive_torque, t.sinkage, NAN};
     return out;
   }
-  const SlipAngleTraction t = evaluate_slip_angle(soil, point.wheel, point.load, point.slip, point.slip_angle, model);
+  const SlipAngleTraction t =
+      evaluate_slip_angle(soil, point.wheel, point.load, point.slip, point.slip_angle, model, {}, hint);
   if (t.ok()) out = {t.drawbar_pull, t.resistive_torque, t.sinkage, t.lateral_force};
   return out;
 }
@@ -183,12 +185,16 @@ struct SlipAnglePointCost {
   const WheelTestPoint* point;
   const std::vector<Parameter>* free;
   MeasurementSigma sigma;
+  // The point's last entry angles, where its next solve starts (slip_angle_model.h).
+  // A fit evaluates its problem on one thread, in an order that does not depend on
+  // the study's threads, so the results do not either.
+  mutable SlipAngleHint hint;
 
   bool operator()(double const* const* x, double* residual) const {
     Soil s = *soil;
     ModelOptions m = *model;
     for (std::size_t k = 0; k < free->size(); ++k) set_parameter(s, m.extensions, (*free)[k], x[0][k]);
-    const auto predicted = predict(s, m, *point);
+    const auto predicted = predict(s, m, *point, &hint);
     int r = 0;
     for (Quantity q : kQuantities) {
       const auto measured = point->measured(q);
@@ -379,7 +385,7 @@ void add_point_residuals(ceres::Problem& problem, const Soil& soil, const std::v
     ceres::DynamicCostFunction* cost = nullptr;
     if (has_lateral_force(options.model.kind)) {
       cost = new ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>(
-          new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma});
+          new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     } else {
       cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
           new PointCost{&soil, &options.model, &point, &options.free, options.sigma});

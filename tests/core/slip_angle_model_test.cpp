@@ -271,3 +271,35 @@ TEST(SlipAngleModel, ATravelSlipIsTheLongitudinalSlipOfItsVelocity) {
   EXPECT_NEAR(side.lateral_force, limit.lateral_force, 1e-3 * std::abs(limit.lateral_force));
   EXPECT_LT(side.lateral_force, -1.0);
 }
+
+// A hint (the entry angles of a previous evaluation) changes where the
+// sinkage solve starts, not what it finds: from the point's own last
+// solution, from another load's and from nonsense, skidding, driving and
+// sideways, the values are the cold start's within the solve's tolerance.
+TEST(SlipAngleModel, AHintChangesWhereTheSolveStartsNotWhatItFinds) {
+  ModelOptions o;
+  o.kind = ModelKind::ishigami;
+  o.slip_definition = SlipDefinition::travel;
+  for (const double deg : {0.0, 30.0, 90.0}) {
+    for (const double slip : {-0.6, 0.0, 0.4, 0.9}) {
+      const auto cold = evaluate_slip_angle(dry_sand(), kapvik_wheel(), 40.0, slip, deg * kDeg, o);
+      ASSERT_TRUE(cold.ok());
+      SlipAngleHint own, other, nonsense{1e-9, 1e-9};
+      evaluate_slip_angle(dry_sand(), kapvik_wheel(), 40.0 * (1.0 + 1e-6), slip, deg * kDeg, o, {}, &own);
+      evaluate_slip_angle(dry_sand(), kapvik_wheel(), 90.0, slip, deg * kDeg, o, {}, &other);
+      EXPECT_GT(own.entry, 0.0);  // the hint was written
+      for (SlipAngleHint* h : {&own, &other, &nonsense}) {
+        const auto warm = evaluate_slip_angle(dry_sand(), kapvik_wheel(), 40.0, slip, deg * kDeg, o, {}, h);
+        ASSERT_TRUE(warm.ok());
+        EXPECT_NEAR(warm.sinkage, cold.sinkage, 1e-12 * cold.sinkage) << slip << " at " << deg << " deg";
+        EXPECT_NEAR(warm.drawbar_pull, cold.drawbar_pull, 1e-9 * (1.0 + std::abs(cold.drawbar_pull)));
+        EXPECT_NEAR(warm.lateral_force, cold.lateral_force, 1e-9 * (1.0 + std::abs(cold.lateral_force)));
+        EXPECT_NEAR(warm.resistive_torque, cold.resistive_torque, 1e-9 * (1.0 + std::abs(cold.resistive_torque)));
+      }
+    }
+  }
+  // A load the wheel cannot carry is refused with a hint as without.
+  SlipAngleHint h{0.3, 0.3};
+  EXPECT_EQ(evaluate_slip_angle(dry_sand(), kapvik_wheel(), 1e7, 0.2, 0.0, o, {}, &h).status,
+            TractionStatus::unsupported_load);
+}
