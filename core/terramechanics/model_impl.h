@@ -284,21 +284,52 @@ bool entry_angle_root(const Normal& normal, double load, double n, double& root)
   return true;
 }
 
+// The same root from a previous one (a fit evaluates each point again and
+// again at nearby parameters): a step along the power law F_z ~
+// theta0^(2n+1), then secant steps on the logs, at most 4 evaluations, each
+// inside (0, pi/2). False (start cold) unless one is within tol x load.
+template <class Normal>
+bool warm_root(const Normal& normal_at, double n, double load, double hint, double tol, double& root) {
+  double th = hint, prev_th = 0.0, prev_n = 0.0;
+  for (int it = 0; it < 4; ++it) {
+    if (!(th > 0.0 && th < kPi / 2.0)) return false;
+    const double nv = normal_at(th);
+    if (std::abs(nv - load) <= tol * load) {
+      root = th;
+      return true;
+    }
+    if (!(nv > 0.0)) return false;
+    const double slope =
+        it == 0 || nv == prev_n || th == prev_th ? 2.0 * n + 1.0 : std::log(nv / prev_n) / std::log(th / prev_th);
+    if (!(slope > 0.0)) return false;
+    prev_th = th;
+    prev_n = nv;
+    th = th * std::exp(std::log(load / nv) / slope);
+  }
+  return false;
+}
+
 // Entry angle theta0 from vertical equilibrium (Eq. 2.24) and the traction
 // at slip s >= 0. The root is bracketed in (0, pi/2] and found by secant
 // steps on log(normal force) against log(theta0), which is nearly linear,
 // safeguarded by bisection. For Jets, one Newton step from the converged
-// root carries d theta0 / d parameters (implicit function theorem).
+// root carries d theta0 / d parameters (implicit function theorem). With a
+// hint (the last entry angle of the same point, 0 if none), the root is
+// first sought from there (warm_root) and the hint updated.
 template <typename T>
-Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load) {
+Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load,
+                  double* hint = nullptr) {
   Solution<T> out;
   const Params<double> pv = value_params(p);
   auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
   double root = 0.0;
-  if (!entry_angle_root(normal, load, value_of(pv.n), root)) {
+  const double n = value_of(pv.n);
+  const bool warm = hint != nullptr && *hint > 0.0 && warm_root(normal, n, load, *hint, 1e-10, root);
+  if (!warm && !entry_angle_root(normal, load, n, root)) {
     out.status = TractionStatus::unsupported_load;
     return out;
   }
+  if (hint != nullptr) *hint = root;
   T theta0 = T(root);
   if constexpr (!std::is_same_v<T, double>) {
     const double h = 1e-7 * std::max(root, 1e-3);
@@ -325,12 +356,14 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
 // Any slip in [-1, 1]: skid by anti-symmetry about the s = 0 value
 // (Eq. 2.26-2.27, seed 003). Entry angle and sinkage of a skidding wheel are
 // those of the mirrored slip.
+// hints: the slip's and zero slip's last entry angles (solve), or null.
 template <typename T>
-Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load) {
-  if (s >= 0.0) return solve(p, w, o, s, load);
-  Solution<T> mirrored = solve(p, w, o, -s, load);
+Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load,
+                           double* hints = nullptr) {
+  if (s >= 0.0) return solve(p, w, o, s, load, hints);
+  Solution<T> mirrored = solve(p, w, o, -s, load, hints);
   if (mirrored.status != TractionStatus::ok) return mirrored;
-  Solution<T> zero = solve(p, w, o, 0.0, load);
+  Solution<T> zero = solve(p, w, o, 0.0, load, hints == nullptr ? nullptr : hints + 1);
   if (zero.status != TractionStatus::ok) return zero;
   mirrored.drawbar = -mirrored.drawbar + 2.0 * zero.drawbar;  // Eq. 2.26
   mirrored.torque = -mirrored.torque + 2.0 * zero.torque;     // Eq. 2.27

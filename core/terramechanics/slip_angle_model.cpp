@@ -189,30 +189,6 @@ bool cold_root(const Normal& normal_at, double n, double load, double& root) {
   return true;  // the last angle evaluated: within the tolerance or the bracket's width
 }
 
-// The same root from a previous one: a step along the power law F_z ~
-// theta0^(2n+1), then secant steps on the logs, at most 4 evaluations, each
-// inside (0, pi/2). False (start cold) unless one meets the tolerance.
-template <class Normal>
-bool warm_root(const Normal& normal_at, double n, double load, double hint, double& root) {
-  double th = hint, prev_th = 0.0, prev_n = 0.0;
-  for (int it = 0; it < 4; ++it) {
-    if (!(th > 0.0 && th < kPi / 2.0)) return false;
-    const double nv = normal_at(th);
-    if (std::abs(nv - load) <= 1e-13 * load) {
-      root = th;
-      return true;
-    }
-    if (!(nv > 0.0)) return false;
-    const double slope =
-        it == 0 || nv == prev_n || th == prev_th ? 2.0 * n + 1.0 : std::log(nv / prev_n) / std::log(th / prev_th);
-    if (!(slope > 0.0)) return false;
-    prev_th = th;
-    prev_n = nv;
-    th = th * std::exp(std::log(load / nv) / slope);
-  }
-  return false;
-}
-
 Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const LateralOptions& lat, double s,
              double lateral, double load, double* hint) {
   const Setup u = setup(soil, w, o.extensions, s);
@@ -222,7 +198,7 @@ Solved solve(const Soil& soil, const Wheel& w, const ModelOptions& o, const Late
   };
   Solved out;
   double root = 0.0;
-  const bool warm = hint != nullptr && *hint > 0.0 && warm_root(normal_at, u.n, load, *hint, root);
+  const bool warm = hint != nullptr && *hint > 0.0 && detail::warm_root(normal_at, u.n, load, *hint, 1e-13, root);
   if (!warm && !cold_root(normal_at, u.n, load, root)) return out;
   if (hint != nullptr) *hint = root;
   out.status = TractionStatus::ok;

@@ -144,12 +144,15 @@ struct PointCost {
   const WheelTestPoint* point;
   const std::vector<Parameter>* free;
   MeasurementSigma sigma;
+  // The point's last entry angles at its slip and at zero slip, where its next
+  // solves start (model_impl.h solve): see SlipAnglePointCost::hint.
+  mutable std::array<double, 2> hints;
 
   template <typename T>
   bool operator()(T const* const* x, T* residual) const {
     detail::Params<T> p = detail::make_params<T>(*soil, model->extensions);
     for (std::size_t k = 0; k < free->size(); ++k) assign(p, (*free)[k], x[0][k]);
-    const auto sol = detail::solve_any_slip(p, point->wheel, *model, point->slip, point->load);
+    const auto sol = detail::solve_any_slip(p, point->wheel, *model, point->slip, point->load, hints.data());
     if (sol.status != TractionStatus::ok) return false;
     int r = 0;
     for (Quantity q : kQuantities) {
@@ -388,7 +391,7 @@ void add_point_residuals(ceres::Problem& problem, const Soil& soil, const std::v
           new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     } else {
       cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
-          new PointCost{&soil, &options.model, &point, &options.free, options.sigma});
+          new PointCost{&soil, &options.model, &point, &options.free, options.sigma, {0.0, 0.0}});
     }
     cost->AddParameterBlock(static_cast<int>(k));
     cost->SetNumResiduals(m);
