@@ -121,31 +121,52 @@ Integrals<T> bekker_integrals(const Wheel& w, const ModelOptions& o, const T& c,
   return out;
 }
 
-// Stress integrals for entry angle theta0 and slip s >= 0.
+// The soil's and wheel's values at slip s that do not depend on the entry
+// angle: computed once per solve, not at every integral of its root search.
 template <typename T>
-Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, const T& theta0) {
-  const double r = w.radius, b = w.width;
+struct SlipTerms {
+  T c, tan_phi, kc, kphi, n, rs, modulus, shear_modulus;
+};
+
+template <typename T>
+SlipTerms<T> slip_terms(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s) {
+  const double b = w.width;
   const T f = p.soil_strength;
-  const T c = f * p.cohesion, tan_phi = f * p.tan_phi;
-  const T kc = f * p.kc, kphi = f * p.kphi;
-  const T n = p.n + p.slip_sinkage_n1 * s;  // slip-sinkage, Ding et al. 2011
+  SlipTerms<T> k;
+  k.c = f * p.cohesion;
+  k.tan_phi = f * p.tan_phi;
+  k.kc = f * p.kc;
+  k.kphi = f * p.kphi;
+  k.n = p.n + p.slip_sinkage_n1 * s;  // slip-sinkage, Ding et al. 2011
   const bool grousers = o.extensions.grousers && w.grouser_count > 0 && w.grouser_height > 0.0;
-  const T rs = grousers ? r + p.grouser_effectiveness * w.grouser_height : T(r);
+  k.rs = grousers ? w.radius + p.grouser_effectiveness * w.grouser_height : T(w.radius);
+  k.modulus = o.kind == ModelKind::bekker ? T(0.0) : (k.kc + k.kphi * b) * pow(T(b), k.n - 1.0);  // Eq. 2.12-2.13
+  // Slip-dependent shear deformation modulus K = K_0 (1 + k_s s) (Ding et al. 2015, doi:10.1002/rob.21533).
+  // The hump curve's K_w takes K_0's place.
+  k.shear_modulus =
+      (o.extensions.shear_peak ? p.shear_peak_displacement : p.shear_modulus) * (1.0 + p.shear_modulus_slip * s);
+  return k;
+}
+
+// Stress integrals for entry angle theta0 and slip s >= 0, with s's terms k.
+template <typename T>
+Integrals<T> integrals(const Params<T>& p, const SlipTerms<T>& k, const Wheel& w, const ModelOptions& o, double s,
+                       const T& theta0) {
+  const double r = w.radius, b = w.width;
+  const T &c = k.c, &tan_phi = k.tan_phi, &n = k.n, &rs = k.rs;
   const T cos0 = cos(theta0), sin0 = sin(theta0);
   Integrals<T> out{T(0.0), T(0.0), T(0.0), T(0.0)};
 
-  if (o.kind == ModelKind::bekker) return bekker_integrals(w, o, c, tan_phi, kc, kphi, n, theta0);
+  if (o.kind == ModelKind::bekker) return bekker_integrals(w, o, c, tan_phi, k.kc, k.kphi, n, theta0);
 
   // Wong-Reece.
-  const T modulus = (kc + kphi * b) * pow(T(b), n - 1.0);  // k1 + k2 b, Eq. 2.12-2.13
-  const T theta_m = theta0 * (p.c1 + p.c2 * s);            // Eq. 2.10
+  const T& modulus = k.modulus;
+  const T theta_m = theta0 * (p.c1 + p.c2 * s);  // Eq. 2.10
   // Rear angle (rebound): contact down to theta_r = -kappa theta_0 behind
   // the bottom dead centre (Wong & Reece 1967; Ishigami et al. 2007 Eq. 6).
   const T theta_r = -p.rear_angle_ratio * theta0;
-  // Slip-dependent shear deformation modulus K = K_0 (1 + k_s s) (Ding et al. 2015, doi:10.1002/rob.21533).
-  // The hump curve's K_w takes K_0's place.
   const bool peak = o.extensions.shear_peak;
-  const T shear_modulus = (peak ? p.shear_peak_displacement : p.shear_modulus) * (1.0 + p.shear_modulus_slip * s);
+  const T& shear_modulus = k.shear_modulus;
   // sigma and tau at angle th, whose cosine and sine are ct and st.
   auto sample = [&](const T& th, const T& ct, const T& st, T& sigma, T& tau) {
     // Eq. 2.11 (front zone) and 2.14 (rear zone, mirrored onto the front);
@@ -187,6 +208,11 @@ Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o
   out.torque = b * rs * rs * i_tau;                      // Eq. 2.22
   out.resistance = b * r * i_sigma_sin;
   return out;
+}
+
+template <typename T>
+Integrals<T> integrals(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, const T& theta0) {
+  return integrals(p, slip_terms(p, w, o, s), w, o, s, theta0);
 }
 
 // Bulldozing resistance for sinkage z (Bekker; Wong, Theory of Ground
@@ -321,7 +347,8 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
                   double* hint = nullptr) {
   Solution<T> out;
   const Params<double> pv = value_params(p);
-  auto normal = [&](double th) { return integrals<double>(pv, w, o, s, th).normal; };
+  const SlipTerms<double> kv = slip_terms(pv, w, o, s);
+  auto normal = [&](double th) { return integrals<double>(pv, kv, w, o, s, th).normal; };
   double root = 0.0;
   const double n = value_of(pv.n);
   const bool warm = hint != nullptr && *hint > 0.0 && warm_root(normal, n, load, *hint, 1e-10, root);
@@ -331,13 +358,24 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
   }
   if (hint != nullptr) *hint = root;
   T theta0 = T(root);
+  Integrals<T> in;
   if constexpr (!std::is_same_v<T, double>) {
+    // At the root with the parameters' derivatives (theta0 held), then the
+    // chain rule: d theta0 / dp from one Newton step, d/d theta0 of each
+    // integral by central differences (one Jet integral, not two).
     const double h = 1e-7 * std::max(root, 1e-3);
-    const double dn = (normal(root + h) - normal(root - h)) / (2.0 * h);
-    const Integrals<T> at = integrals<T>(p, w, o, s, theta0);
-    theta0 = theta0 - (at.normal - load) / dn;
+    const Integrals<double> plus = integrals<double>(pv, kv, w, o, s, root + h);
+    const Integrals<double> minus = integrals<double>(pv, kv, w, o, s, root - h);
+    const double dn = (plus.normal - minus.normal) / (2.0 * h);
+    in = integrals<T>(p, slip_terms(p, w, o, s), w, o, s, theta0);
+    theta0 = theta0 - (in.normal - load) / dn;
+    const T step = theta0 - root;
+    in.drawbar += (plus.drawbar - minus.drawbar) / (2.0 * h) * step;
+    in.torque += (plus.torque - minus.torque) / (2.0 * h) * step;
+    in.resistance += (plus.resistance - minus.resistance) / (2.0 * h) * step;
+  } else {
+    in = integrals<T>(p, kv, w, o, s, theta0);
   }
-  const Integrals<T> in = integrals<T>(p, w, o, s, theta0);
   out.status = TractionStatus::ok;
   out.theta0 = theta0;
   out.theta_m = theta0 * (p.c1 + p.c2 * s);
