@@ -675,19 +675,26 @@ TEST(NewSurfaces, AReportReplacesTheReportBeforeIt) {
 TEST(NewSurfaces, SnakemakeDiesWithTheCampaign) {
   if (test::run_command("command -v snakemake").exit_code != 0) GTEST_SKIP() << "no snakemake";
   TempDir dir;
+  // 100 runs: a campaign far longer than the wait below (8 s for 4 runs on an idle machine), so
+  // that a Snakemake left running would still be there at its end.
+  std::string seeds;
+  for (int i = 1; i <= 100; ++i) seeds += (i > 1 ? ", " : "") + std::to_string(i);
   test::write_text(dir.file("c.json"), R"({"format": "roverlab-campaign", "version": 1,
-      "simulations": [{"simulate": "flat_60s", "seeds": [1, 2, 3, 4], "duration": 30}]})");
+      "simulations": [{"simulate": "flat_60s", "seeds": [)" +
+                                           seeds + R"(], "duration": 30}]})");
   const std::string out = dir.file("out");
-  // RoverLab killed 3 s in (Snakemake is running its first steps), then 12 s for its child to go;
-  // an orphan is a snakemake of this folder whose parent is now init.
+  // RoverLab killed 3 s in (Snakemake is running its first steps), then up to 40 s for its child to
+  // go (SIGTERM: it stops its jobs and frees the folder's lock first, which took over 12 s on a
+  // loaded machine); an orphan is a snakemake of this folder whose parent is now init.
+  const std::string orphans = "ps -eo pid=,ppid=,args= | awk -v d=" + quote("--directory " + out + " ") +
+                              " 'index($0, d) && $2 == 1 {print $1}'";
   test::write_text(dir.file("kill.sh"), "cd " + quote(dir.path().string()) + "\nenv -u DISPLAY " + quote(kExe) +
                                             " campaign c.json -o " + quote(out) +
                                             " > log.txt 2>&1 &\npid=$!\nsleep 3\nkill -KILL $pid\nwait $pid\n"
-                                            "sleep 12\nps -eo pid=,ppid=,args= | awk -v d=" +
-                                            quote("--directory " + out + " ") +
-                                            " 'index($0, d) && $2 == 1 {print $1}'\n");
+                                            "i=0\nwhile [ $i -lt 40 ] && [ -n \"$(" +
+                                            orphans + ")\" ]; do sleep 1; i=$((i + 1)); done\n" + orphans + "\n");
   const CommandResult killed = test::run_command("sh " + quote(dir.file("kill.sh")));
-  EXPECT_TRUE(contains(test::read_text(dir.file("log.txt")), "campaign: 4 runs"))
+  EXPECT_TRUE(contains(test::read_text(dir.file("log.txt")), "campaign: 100 runs"))
       << test::read_text(dir.file("log.txt"));
   std::string left = killed.out;
   std::replace(left.begin(), left.end(), '\n', ' ');
