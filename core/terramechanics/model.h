@@ -92,6 +92,16 @@ enum class TractionStatus {
   invalid_input,     // non-finite or non-positive load, slip outside [-1, 1]
 };
 
+// Where the last evaluation of one point found its entry angles (the
+// slip's and, for a skidding wheel, zero slip's): a fit evaluates each point
+// again and again at nearby parameters, and the next sinkage solve starts
+// there (2-3 integrals instead of about 7). The root meets the same
+// tolerance as from a cold start; a solve that does not converge from the
+// hint in 4 steps starts cold. Used by the fits (soil_identification.cpp).
+struct EntryAngleHint {
+  double entry = 0.0, zero_slip_entry = 0.0;  // 0: none yet
+};
+
 struct Traction {
   TractionStatus status = TractionStatus::invalid_input;
   double entry_angle = 0.0;       // theta_0, rad

@@ -394,14 +394,15 @@ Solution<T> solve(const Params<T>& p, const Wheel& w, const ModelOptions& o, dou
 // Any slip in [-1, 1]: skid by anti-symmetry about the s = 0 value
 // (Eq. 2.26-2.27, seed 003). Entry angle and sinkage of a skidding wheel are
 // those of the mirrored slip.
-// hints: the slip's and zero slip's last entry angles (solve), or null.
+// With a hint (model.h), each solve starts from it.
 template <typename T>
 Solution<T> solve_any_slip(const Params<T>& p, const Wheel& w, const ModelOptions& o, double s, double load,
-                           double* hints = nullptr) {
-  if (s >= 0.0) return solve(p, w, o, s, load, hints);
-  Solution<T> mirrored = solve(p, w, o, -s, load, hints);
+                           EntryAngleHint* hint = nullptr) {
+  double* entry = hint != nullptr ? &hint->entry : nullptr;
+  if (s >= 0.0) return solve(p, w, o, s, load, entry);
+  Solution<T> mirrored = solve(p, w, o, -s, load, entry);
   if (mirrored.status != TractionStatus::ok) return mirrored;
-  Solution<T> zero = solve(p, w, o, 0.0, load, hints == nullptr ? nullptr : hints + 1);
+  Solution<T> zero = solve(p, w, o, 0.0, load, hint != nullptr ? &hint->zero_slip_entry : nullptr);
   if (zero.status != TractionStatus::ok) return zero;
   mirrored.drawbar = -mirrored.drawbar + 2.0 * zero.drawbar;  // Eq. 2.26
   mirrored.torque = -mirrored.torque + 2.0 * zero.torque;     // Eq. 2.27

@@ -220,7 +220,8 @@ double sidewall_resistance(const Soil& soil, double soil_strength, double depth)
 }
 
 SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, double load, double slip, double slip_angle,
-                                      const ModelOptions& options, const LateralOptions& lateral, SlipAngleHint* hint) {
+                                      const ModelOptions& options, const LateralOptions& lateral,
+                                      EntryAngleHint* hint) {
   if (options.kind == ModelKind::rft) return evaluate_rft(soil, wheel, load, slip, slip_angle, options);
   SlipAngleTraction t;
   t.slip_angle = slip_angle;

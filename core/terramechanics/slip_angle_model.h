@@ -37,23 +37,13 @@ struct SlipAngleTraction : Traction {
   double sidewall = 0.0;       // the sidewall bulldozing part of F_y, N, same sign as F_y
 };
 
-// Where the last evaluation of one point found its entry angles (the
-// slip's and, for a skidding wheel, zero slip's): a fit evaluates each point
-// again and again at nearby parameters, and the next sinkage solve starts
-// there (2-3 integrals instead of about 7). The root meets the same
-// tolerance as from a cold start, so values agree to about 1e-13; a solve
-// that does not converge from the hint in 4 steps starts cold.
-struct SlipAngleHint {
-  double entry = 0.0, zero_slip_entry = 0.0;  // 0: none yet
-};
-
 // Traction at normal load W (N), slip s in [-1, 1] and slip angle beta in
 // [-pi/2, pi/2] rad, with the Wong-Reece options (kind wong_reece or
-// ishigami; extensions as in model.h) and the lateral options. With a hint,
-// the sinkage solves start from it and update it.
+// ishigami; extensions as in model.h) and the lateral options. With a hint
+// (model.h), the sinkage solves start from it and update it.
 SlipAngleTraction evaluate_slip_angle(const Soil& soil, const Wheel& wheel, double load, double slip, double slip_angle,
                                       const ModelOptions& options = {}, const LateralOptions& lateral = {},
-                                      SlipAngleHint* hint = nullptr);
+                                      EntryAngleHint* hint = nullptr);
 
 // k_y: the soil's lateral shear-deformation modulus, K_s when not given.
 double lateral_shear_modulus(const Soil& soil);

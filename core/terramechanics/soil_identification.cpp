@@ -144,15 +144,15 @@ struct PointCost {
   const WheelTestPoint* point;
   const std::vector<Parameter>* free;
   MeasurementSigma sigma;
-  // The point's last entry angles at its slip and at zero slip, where its next
-  // solves start (model_impl.h solve): see SlipAnglePointCost::hint.
-  mutable std::array<double, 2> hints;
+  // The point's last entry angles, where its next solves start (model.h): see
+  // SlipAnglePointCost::hint.
+  mutable EntryAngleHint hint;
 
   template <typename T>
   bool operator()(T const* const* x, T* residual) const {
     detail::Params<T> p = detail::make_params<T>(*soil, model->extensions);
     for (std::size_t k = 0; k < free->size(); ++k) assign(p, (*free)[k], x[0][k]);
-    const auto sol = detail::solve_any_slip(p, point->wheel, *model, point->slip, point->load, hints.data());
+    const auto sol = detail::solve_any_slip(p, point->wheel, *model, point->slip, point->load, &hint);
     if (sol.status != TractionStatus::ok) return false;
     int r = 0;
     for (Quantity q : kQuantities) {
@@ -167,7 +167,7 @@ struct PointCost {
 
 // The slip-angle model's values of the four quantities (NaN: not carried).
 std::array<double, 4> predict(const Soil& soil, const ModelOptions& model, const WheelTestPoint& point,
-                              SlipAngleHint* hint = nullptr) {
+                              EntryAngleHint* hint = nullptr) {
   std::array<double, 4> out{NAN, NAN, NAN, NAN};
   if (!has_lateral_force(model.kind)) {
     const Traction t = evaluate(soil, point.wheel, point.load, point.slip, model);
@@ -188,10 +188,10 @@ struct SlipAnglePointCost {
   const WheelTestPoint* point;
   const std::vector<Parameter>* free;
   MeasurementSigma sigma;
-  // The point's last entry angles, where its next solve starts (slip_angle_model.h).
+  // The point's last entry angles, where its next solves start (model.h).
   // A fit evaluates its problem on one thread, in an order that does not depend on
   // the study's threads, so the results do not either.
-  mutable SlipAngleHint hint;
+  mutable EntryAngleHint hint;
 
   bool operator()(double const* const* x, double* residual) const {
     Soil s = *soil;
@@ -391,7 +391,7 @@ void add_point_residuals(ceres::Problem& problem, const Soil& soil, const std::v
           new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     } else {
       cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
-          new PointCost{&soil, &options.model, &point, &options.free, options.sigma, {0.0, 0.0}});
+          new PointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     }
     cost->AddParameterBlock(static_cast<int>(k));
     cost->SetNumResiduals(m);

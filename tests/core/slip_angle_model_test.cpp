@@ -284,11 +284,11 @@ TEST(SlipAngleModel, AHintChangesWhereTheSolveStartsNotWhatItFinds) {
     for (const double slip : {-0.6, 0.0, 0.4, 0.9}) {
       const auto cold = evaluate_slip_angle(dry_sand(), kapvik_wheel(), 40.0, slip, deg * kDeg, o);
       ASSERT_TRUE(cold.ok());
-      SlipAngleHint own, other, nonsense{1e-9, 1e-9};
+      EntryAngleHint own, other, nonsense{1e-9, 1e-9};
       evaluate_slip_angle(dry_sand(), kapvik_wheel(), 40.0 * (1.0 + 1e-6), slip, deg * kDeg, o, {}, &own);
       evaluate_slip_angle(dry_sand(), kapvik_wheel(), 90.0, slip, deg * kDeg, o, {}, &other);
       EXPECT_GT(own.entry, 0.0);  // the hint was written
-      for (SlipAngleHint* h : {&own, &other, &nonsense}) {
+      for (EntryAngleHint* h : {&own, &other, &nonsense}) {
         const auto warm = evaluate_slip_angle(dry_sand(), kapvik_wheel(), 40.0, slip, deg * kDeg, o, {}, h);
         ASSERT_TRUE(warm.ok());
         EXPECT_NEAR(warm.sinkage, cold.sinkage, 1e-12 * cold.sinkage) << slip << " at " << deg << " deg";
@@ -299,7 +299,7 @@ TEST(SlipAngleModel, AHintChangesWhereTheSolveStartsNotWhatItFinds) {
     }
   }
   // A load the wheel cannot carry is refused with a hint as without.
-  SlipAngleHint h{0.3, 0.3};
+  EntryAngleHint h{0.3, 0.3};
   EXPECT_EQ(evaluate_slip_angle(dry_sand(), kapvik_wheel(), 1e7, 0.2, 0.0, o, {}, &h).status,
             TractionStatus::unsupported_load);
 }
