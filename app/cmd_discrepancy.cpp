@@ -98,6 +98,7 @@ json report_json(const std::string& file, const Soil& soil, const analysis::Disc
       {"points", r.points},
       {"measurements", r.measurements},
       {"held_out_method", r.held_out_method},
+      {"step_screen_points", r.step_screen_points},
       {"unsupported", r.unsupported},
       {"baseline", {{"residuals", stats_json(r.baseline)}, {"score_sigma", r.baseline_score}, {"bic", r.baseline_bic}}},
       {"significant", r.significant},
@@ -329,6 +330,12 @@ void print_report(const std::string& path, const Soil& soil, const analysis::Dis
   std::printf("\n");
   if (!r.selection.empty()) {
     std::printf("\nforward selection (each step refits the chain with one more cause):\n");
+    if (r.step_screen_points > 0) {
+      std::printf(
+          "  (each step's candidates ranked on a random subset of %zu of the %zu points, the best there "
+          "refitted on all of them)\n",
+          r.step_screen_points, r.points);
+    }
     std::printf("  %-48s %12s %14s %7s  %s\n", "model", "delta BIC", "held-out sigma", "share", "role");
     for (const auto& c : r.selection) {
       std::printf("  %-48s %12s %14.3f %5.3g %%  %s\n", c.name.c_str(), analysis::format_delta_bic(c.delta_bic).c_str(),

@@ -390,7 +390,7 @@ void add_point_residuals(ceres::Problem& problem, const Soil& soil, const std::v
       cost = new ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>(
           new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     } else {
-      cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 4>(
+      cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 8>(
           new PointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     }
     cost->AddParameterBlock(static_cast<int>(k));
@@ -438,6 +438,11 @@ void fit_free_parameters(const Soil& soil, const std::vector<WheelTestPoint>& po
   so.max_num_iterations = options.max_iterations;
   so.function_tolerance = options.tolerance;
   so.parameter_tolerance = options.tolerance;
+  // A step projected onto the bounds is searched along by the cost alone:
+  // Ceres' default (cubic) interpolation takes the gradient at every trial
+  // step, a whole Jacobian (2k + 1 evaluations of every point by numeric
+  // differences) each time.
+  so.line_search_interpolation_type = ceres::QUADRATIC;
   so.logging_type = ceres::SILENT;
   so.minimizer_progress_to_stdout = false;
   ceres::Solver::Summary summary;

@@ -332,6 +332,29 @@ TEST(FamilyScreen, OnALongFileTheLosingFamilyIsStudiedOnASubsetOnly) {
   EXPECT_EQ(screened.selection.back().held_out_score, full.selection.back().held_out_score);
 }
 
+// Issue 46: on a long file each forward step ranks its trials on a random
+// subset and fits only the best there on all points; the steps it takes,
+// their fits and held-out scores are those of trials fitted on all points.
+TEST(StepScreen, TheStepsRankedOnASubsetAreTheStepsTakenOnAllPoints) {
+  const auto points = ding_resampled(240);
+  analysis::DiscrepancyOptions o;
+  o.step_screen_points = 0;  // every trial on all points
+  const auto full = analysis::study_single_wheel(test::ding_tyii(), points, o);
+  o.step_screen_points = 60;
+  const auto screened = analysis::study_single_wheel(test::ding_tyii(), points, o);
+  EXPECT_EQ(full.step_screen_points, 0u);
+  EXPECT_EQ(screened.step_screen_points, 60u);
+  ASSERT_GE(full.selection.size(), 2u) << full.verdict;  // a step after the first: the screen ranked it
+  ASSERT_EQ(screened.selection.size(), full.selection.size()) << screened.final_model << " / " << full.final_model;
+  for (std::size_t i = 0; i < full.selection.size(); ++i) {
+    EXPECT_EQ(screened.selection[i].name, full.selection[i].name);
+    EXPECT_NEAR(screened.selection[i].bic, full.selection[i].bic, 1e-6 * std::abs(full.selection[i].bic));
+    EXPECT_NEAR(screened.selection[i].held_out_score, full.selection[i].held_out_score,
+                1e-4 * full.selection[i].held_out_score);
+  }
+  EXPECT_EQ(screened.verdict, full.verdict);
+}
+
 // Issue 29: on the 34 real measurements the verdict per quantity agrees with
 // the trend statistics the study prints (sinkage's slip trend t = -15).
 TEST(RealDingData, TheVerdictPerQuantityAgreesWithItsTrendStatistics) {

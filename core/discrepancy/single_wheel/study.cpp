@@ -239,6 +239,24 @@ bool any_at_bound(const CandidateResult& c) {
   return std::any_of(c.fit.parameters.begin(), c.fit.parameters.end(), [](const auto& p) { return p.at_bound; });
 }
 
+// m of the points drawn at random (a fixed seed: the same subset on every
+// run), in file order. Not every k-th: a file ordered by slip angle and slip,
+// or of rows repeated, would give a stride's few conditions only.
+std::vector<WheelTestPoint> random_subset(const std::vector<WheelTestPoint>& points, std::size_t m) {
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::mt19937_64 rng(46);
+  for (std::size_t i = 0; i < m && i + 1 < order.size(); ++i) {  // Fisher-Yates, the first m places
+    std::swap(order[i], order[i + rng() % (order.size() - i)]);
+  }
+  order.resize(std::min(m, order.size()));
+  std::sort(order.begin(), order.end());
+  std::vector<WheelTestPoint> out;
+  out.reserve(order.size());
+  for (const std::size_t j : order) out.push_back(points[j]);
+  return out;
+}
+
 // The study's steps: the baseline's residuals, each candidate's fit and
 // held-out score, the winner, and the sentences on what is wrong and why.
 class SingleWheelStudy {
@@ -252,7 +270,9 @@ class SingleWheelStudy {
   void find_quantities();
   void score_baseline();
   CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set,
-                          const CandidateResult* start_from = nullptr, bool with_held_out = true) const;
+                          const CandidateResult* start_from = nullptr, bool with_held_out = true,
+                          const IdentificationResult* resume = nullptr,
+                          const std::vector<WheelTestPoint>* on = nullptr) const;
   void select_forward();
   struct Steps;  // select_forward's hooks (study.h)
   // The best partner of a weak first step, by BIC.
@@ -297,6 +317,8 @@ class SingleWheelStudy {
   DiscrepancyReport report_;
   std::vector<std::size_t> fold_of_;  // held-out fold of each point
   std::size_t folds_ = 0;
+  // The step screen's subset (DiscrepancyOptions::step_screen_points); empty: no screen.
+  std::vector<WheelTestPoint> step_screen_;
 };
 
 // A candidate fitted and held out needs a few points, at two slips at least:
@@ -341,6 +363,9 @@ DiscrepancyReport SingleWheelStudy::run() {
                                                     [&](std::size_t i) { return fit_set({candidates_[i].get()}); }))
     report_.candidates.push_back(std::move(c));
   choose_best();
+  if (o_.step_screen_points > 0 && points_.size() > o_.step_screen_points)
+    step_screen_ = random_subset(points_, o_.step_screen_points);
+  report_.step_screen_points = step_screen_.size();
   report_.selection.reserve(candidates_.size());  // select_forward keeps pointers into it
   select_forward();
   weigh_steps();
@@ -458,7 +483,9 @@ void SingleWheelStudy::score_baseline() {
 // `start`, a previous fit's soil and extensions, when given), then scores the
 // extended model on held-out points.
 CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCandidate*>& set,
-                                          const CandidateResult* start_from, bool with_held_out) const {
+                                          const CandidateResult* start_from, bool with_held_out,
+                                          const IdentificationResult* resume,
+                                          const std::vector<WheelTestPoint>* on) const {
   CandidateResult c;
   for (const auto* candidate : set) {
     c.name += (c.name.empty() ? "" : " + ") + std::string(candidate->name());
@@ -501,14 +528,27 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
       if (value >= 0.0 && !fitted_before) set_parameter(start, io.model.extensions, parameter, value);
     }
   }
+  if (resume != nullptr) {
+    // The same objective (start_from's weights) as the trial that stopped at
+    // `resume`: its fit goes on from there instead of starting again.
+    start = resume->soil;
+    io.model.extensions = resume->extensions;
+  }
   // A step of forward selection is first judged by its BIC alone: at most
   // 10 steps, no covariance; the step that passes is fitted again in full.
   if (!with_held_out) {
     io.max_iterations = 10;
     io.covariance = false;
   }
-  c.fit = identify_soil(start, points_, io);
-  meter_.done(kFitUnits * units(set.size()));
+  // A trial on the step screen's subset (`on`, without its held-out score):
+  // its BIC ranks it among the step's trials and nothing else.
+  const std::vector<WheelTestPoint>& points = on != nullptr && !with_held_out ? *on : points_;
+  c.fit = identify_soil(start, points, io);
+  meter_.done(kFitUnits * units(set.size()) * static_cast<double>(points.size()) / static_cast<double>(points_.size()));
+  if (&points != &points_) {
+    c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
+    return c;
+  }
   if (with_held_out) {
     // Second pass at the solution's own per-quantity scales (the profile
     // likelihood's weights there): its sigmas are in the right units.
@@ -564,7 +604,8 @@ struct SingleWheelStudy::Steps {
   const CandidateResult* at = nullptr;  // the chain's fit
   double bic;
   const std::vector<double>* held_rmse;
-  int partner = -1;  // a weak first step's partner, joining with it
+  int partner = -1;                                 // a weak first step's partner, joining with it
+  const std::vector<std::size_t>* chain = nullptr;  // select_forward's chain
 
   std::vector<const SingleWheelCandidate*> set(const std::vector<std::size_t>& chain, std::size_t i) const {
     std::vector<const SingleWheelCandidate*> out;
@@ -580,17 +621,16 @@ struct SingleWheelStudy::Steps {
   void with_held_out(CandidateResult& fit, const std::vector<const SingleWheelCandidate*>& set,
                      const CandidateResult* from) const {
     if (fit.held_out_rmse.empty() && fit.applicable && std::isfinite(fit.bic) && fit.bic - bic < s.o_.bic_threshold)
-      fit = s.fit_set(set, from, true);
+      fit = s.fit_set(set, from, true, from != nullptr ? &fit.fit : nullptr);
   }
   bool open(const std::vector<std::size_t>& /*chain*/, std::size_t i) const {
     return s.report_.candidates[i].applicable;
   }
   CandidateResult trial(const std::vector<std::size_t>& chain, std::size_t i) const {
-    return chain.empty() ? s.report_.candidates[i] : s.fit_set(set(chain, i), at, false);
+    if (chain.empty()) return s.report_.candidates[i];
+    return s.fit_set(set(chain, i), at, false, nullptr, s.step_screen_.empty() ? nullptr : &s.step_screen_);
   }
-  int best(const std::vector<std::size_t>& open, const std::vector<CandidateResult>& trials) const {
-    return best_trial(open, trials, [](const CandidateResult& a, const CandidateResult& b) { return a.bic < b.bic; });
-  }
+  int best(const std::vector<std::size_t>& open, std::vector<CandidateResult>& trials) const;
   bool accept(const std::vector<std::size_t>& chain, std::size_t best, CandidateResult& fit);
   void join(std::vector<std::size_t>& chain, std::size_t i, CandidateResult&& fit) {
     if (partner >= 0) {
@@ -605,6 +645,27 @@ struct SingleWheelStudy::Steps {
     held_rmse = &at->held_out_rmse;
   }
 };
+
+// The lowest BIC. With the step screen (trials on its subset), the
+// `step_screen_keep` best there are fitted again on all points, from where
+// their trials stopped, and the lowest BIC among them on all points is taken.
+int SingleWheelStudy::Steps::best(const std::vector<std::size_t>& open, std::vector<CandidateResult>& trials) const {
+  const auto lower_bic = [](const CandidateResult& a, const CandidateResult& b) { return a.bic < b.bic; };
+  if (chain->empty() || s.step_screen_.empty()) return best_trial(open, trials, lower_bic);
+  std::vector<std::size_t> ranked;
+  for (std::size_t i : open) {
+    if (trials[i].applicable && std::isfinite(trials[i].bic)) ranked.push_back(i);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [&](std::size_t a, std::size_t b) { return lower_bic(trials[a], trials[b]); });
+  ranked.resize(std::min(ranked.size(), std::max<std::size_t>(s.o_.step_screen_keep, 1)));
+  std::sort(ranked.begin(), ranked.end());  // candidate order, as without the screen
+  shared_thread_pool().for_each_index(ranked.size(), [&](std::size_t k) {
+    CandidateResult& t = trials[ranked[k]];
+    t = s.fit_set(set(*chain, ranked[k]), at, false, &t.fit);
+  });
+  return best_trial(ranked, trials, lower_bic);
+}
 
 bool SingleWheelStudy::Steps::accept(const std::vector<std::size_t>& chain, std::size_t best, CandidateResult& fit) {
   // The step's fits still to come: the partner search's, the next step's.
@@ -631,7 +692,7 @@ bool SingleWheelStudy::Steps::accept(const std::vector<std::size_t>& chain, std:
 
 void SingleWheelStudy::select_forward() {
   std::vector<std::size_t> chain;
-  Steps steps{*this, nullptr, report_.baseline_bic, &report_.baseline_held_out_rmse};
+  Steps steps{*this, nullptr, report_.baseline_bic, &report_.baseline_held_out_rmse, -1, &chain};
   analysis::select_forward(steps, candidates_.size(), candidates_.size(), chain);
 }
 
@@ -998,6 +1059,13 @@ namespace {
 // the baseline).
 double final_bic(const DiscrepancyReport& r) { return r.selection.empty() ? r.baseline_bic : r.selection.back().bic; }
 
+// A family baseline's held-out folds: as many as the study's own on a long
+// file (DiscrepancyOptions::large_folds), at least 2.
+std::size_t family_folds(const DiscrepancyOptions& o, std::size_t n) {
+  const std::size_t asked = n > o.large_points ? std::min(o.folds, o.large_folds) : o.folds;
+  return std::min<std::size_t>(std::max<std::size_t>(asked, 2), n);
+}
+
 // A family's baseline on all points: its parameters fitted (with their
 // sigmas) and, when it fits any, its held-out error by `folds` folds (point
 // j in fold j mod folds); nothing fitted: its in-sample error. `fitted` gets
@@ -1017,7 +1085,7 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
   std::vector<PointResidual> held = all.residuals;
   f.held_out_method = "in-sample";
   if (!io.free.empty() && o.leave_one_out) {
-    const std::size_t folds = std::min<std::size_t>(std::max<std::size_t>(o.folds, 2), points.size());
+    const std::size_t folds = family_folds(o, points.size());
     f.held_out_method = std::to_string(folds) + "-fold";
     held.clear();
     io.covariance = false;
@@ -1032,7 +1100,8 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
       }
       IdentificationOptions predict = io;
       predict.free.clear();
-      for (auto r : identify_soil(identify_soil(soil, train, io).soil, test, predict).residuals) {
+      // Each fold's fit starts from the fit on all points (the same optimum, fewer steps).
+      for (auto r : identify_soil(identify_soil(all.soil, train, io).soil, test, predict).residuals) {
         r.point = index[r.point];
         per_fold[fold].push_back(r);
       }
@@ -1055,24 +1124,6 @@ FamilyBaseline family_baseline(const Soil& soil, const std::vector<WheelTestPoin
 // or the family's baseline's when no step passed.
 double final_score(const DiscrepancyReport& r, const FamilyBaseline& f) {
   return r.selection.empty() ? f.held_out_score : r.selection.back().held_out_score;
-}
-
-// m of the points drawn at random (a fixed seed: the same subset on every
-// run), in file order. Not every k-th: a file ordered by slip angle and slip,
-// or of rows repeated, would give a stride's few conditions only.
-std::vector<WheelTestPoint> random_subset(const std::vector<WheelTestPoint>& points, std::size_t m) {
-  std::vector<std::size_t> order(points.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::mt19937_64 rng(46);
-  for (std::size_t i = 0; i < m && i + 1 < order.size(); ++i) {  // Fisher-Yates, the first m places
-    std::swap(order[i], order[i + rng() % (order.size() - i)]);
-  }
-  order.resize(std::min(m, order.size()));
-  std::sort(order.begin(), order.end());
-  std::vector<WheelTestPoint> out;
-  out.reserve(order.size());
-  for (const std::size_t j : order) out.push_back(points[j]);
-  return out;
 }
 
 // A final model whose held-out residuals are no larger than the stated
@@ -1156,12 +1207,9 @@ DiscrepancyReport run_in_family(const Soil& soil, const std::vector<WheelTestPoi
                                 const DiscrepancyOptions& o) {
   WorkMeter meter(o.progress);
   check_points_can_tell_candidates_apart(points);  // before any family is fitted to them
-  // A family's baseline: one fit on all points and one afresh per fold.
+  // A family's baseline: one fit on all points and one per fold.
   const double family_fits =
-      kFitUnits *
-      (1.0 + (o.leave_one_out
-                  ? static_cast<double>(std::min<std::size_t>(std::max<std::size_t>(o.folds, 2), points.size()))
-                  : 0.0));
+      kFitUnits * (1.0 + (o.leave_one_out ? static_cast<double>(family_folds(o, points.size())) : 0.0));
   if (o.compare_families) {
     meter.expect(2.0 * family_fits);
     DiscrepancyReport r = compare_families(soil, points, o, meter);

@@ -120,6 +120,12 @@ struct DiscrepancyOptions {
   // final model on all points (a screen: on long files the second family's
   // study would cost as much as the first's). 0: no screen.
   std::size_t family_screen_points = 400;
+  // With more points than this, each forward-selection step (after the
+  // first) tries every open candidate on a random subset (fixed seed) of this
+  // many points, and fits only the `step_screen_keep` best there (by BIC) on
+  // all points, the lower BIC on all points taken. 0: every trial on all points.
+  std::size_t step_screen_points = 1000;
+  std::size_t step_screen_keep = 2;
 };
 
 // One model family as the study's baseline (compare_families).
@@ -165,6 +171,10 @@ struct DiscrepancyReport {
   // Forward selection (several causes): each step the chain so far plus one
   // more candidate, all refitted together; empty when no step passes.
   std::vector<CandidateResult> selection;
+  // The step screen (DiscrepancyOptions::step_screen_points): each step's
+  // trials ranked on a random subset of this many points, its best ones
+  // fitted on all; 0: every trial on all points.
+  std::size_t step_screen_points = 0;
   // When the first step alone does not pass: the best pair with it, as tried.
   std::optional<CandidateResult> best_pair;
   std::vector<QuantityVerdict> quantity_verdicts;  // one per measured quantity
