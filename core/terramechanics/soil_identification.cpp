@@ -6,8 +6,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "core/common/error.h"
+#include "core/common/thread_pool.h"
 #include "core/terramechanics/model_impl.h"
 #include "core/terramechanics/slip_angle_model.h"
 
@@ -378,25 +380,98 @@ bool finite_jacobian(ceres::Problem& problem) {
 
 namespace {
 
-// One residual block per point with a measured quantity (Ceres's examples).
-void add_point_residuals(ceres::Problem& problem, const Soil& soil, const std::vector<WheelTestPoint>& points,
-                         const IdentificationOptions& options, std::vector<double>& x) {
+// Every point's residuals (and Jacobian) computed before Ceres asks for
+// them, in chunks on the shared thread pool (core/common/thread_pool.h),
+// from Ceres' evaluation callback; each point's block then copies its own
+// (the callback's documented use). A point is computed by its own cost
+// function, called as Ceres would call it, and Ceres sums the blocks in
+// their order: a fit is the same on any number of threads.
+class PointEvaluations : public ceres::EvaluationCallback {
+ public:
+  PointEvaluations(const double* x, std::size_t k) : x_(x), at_(k) {}
+  // Point j's cost function (m residuals); returns j.
+  std::size_t add(std::unique_ptr<ceres::CostFunction> cost, int m) {
+    const auto rows = static_cast<std::size_t>(m);
+    points_.push_back(Point{std::move(cost), std::vector<double>(rows), std::vector<double>(rows * at_.size())});
+    return points_.size() - 1;
+  }
+  void PrepareForEvaluation(bool evaluate_jacobians, bool /*new_evaluation_point*/) override {
+    std::copy(x_, x_ + at_.size(), at_.begin());
+    const std::size_t chunks = (points_.size() + kChunk - 1) / kChunk;
+    shared_thread_pool().for_each_index(chunks, [&](std::size_t c) {
+      for (std::size_t j = c * kChunk; j < std::min(points_.size(), (c + 1) * kChunk); ++j) {
+        Point& p = points_[j];
+        const double* parameters[1] = {at_.data()};
+        double* jacobian[1] = {p.jacobian.data()};
+        p.ok = p.cost->Evaluate(parameters, p.residuals.data(), evaluate_jacobians ? jacobian : nullptr);
+        p.has_jacobian = evaluate_jacobians;
+      }
+    });
+  }
+  // Point j at x: what PrepareForEvaluation computed, or (asked at another
+  // point, or for a Jacobian it did not compute) its cost function's answer.
+  bool evaluate(std::size_t j, double const* const* x, double* residuals, double** jacobians) const {
+    const Point& p = points_[j];
+    const bool wants_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+    if (!std::equal(at_.begin(), at_.end(), x[0]) || (wants_jacobian && !p.has_jacobian))
+      return p.cost->Evaluate(x, residuals, jacobians);
+    if (!p.ok) return false;
+    std::copy(p.residuals.begin(), p.residuals.end(), residuals);
+    if (wants_jacobian) std::copy(p.jacobian.begin(), p.jacobian.end(), jacobians[0]);
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t kChunk = 16;  // points a task
+  struct Point {
+    std::unique_ptr<ceres::CostFunction> cost;
+    std::vector<double> residuals, jacobian;  // jacobian: m x k, row-major (Ceres' layout)
+    bool ok = false, has_jacobian = false;
+  };
+  const double* x_;         // the parameters Ceres evaluates at (the user's block)
+  std::vector<double> at_;  // ... as they were when PrepareForEvaluation ran
+  std::vector<Point> points_;
+};
+
+// A point's residual block: what PointEvaluations computed for it.
+class EvaluatedPoint : public ceres::CostFunction {
+ public:
+  EvaluatedPoint(const PointEvaluations* all, std::size_t j, int m, int k) : all_(all), j_(j) {
+    set_num_residuals(m);
+    mutable_parameter_block_sizes()->push_back(k);
+  }
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    return all_->evaluate(j_, x, residuals, jacobians);
+  }
+
+ private:
+  const PointEvaluations* all_;
+  std::size_t j_;
+};
+
+// One residual block per point with a measured quantity (Ceres's examples),
+// each evaluated through `evaluations` (the problem's evaluation callback).
+void add_point_residuals(ceres::Problem& problem, PointEvaluations& evaluations, const Soil& soil,
+                         const std::vector<WheelTestPoint>& points, const IdentificationOptions& options,
+                         std::vector<double>& x) {
   const std::size_t k = options.free.size();
   for (const auto& point : points) {
     const int m = measured_count(point, options.model);
     if (m == 0) continue;
-    ceres::DynamicCostFunction* cost = nullptr;
+    std::unique_ptr<ceres::DynamicCostFunction> cost;
     if (has_lateral_force(options.model.kind)) {
-      cost = new ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>(
+      cost = std::make_unique<ceres::DynamicNumericDiffCostFunction<SlipAnglePointCost, ceres::CENTRAL>>(
           new SlipAnglePointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     } else {
-      cost = new ceres::DynamicAutoDiffCostFunction<PointCost, 8>(
+      // Stride 8: a fit of up to 8 parameters differentiates each point in one pass (one sinkage solve).
+      cost = std::make_unique<ceres::DynamicAutoDiffCostFunction<PointCost, 8>>(
           new PointCost{&soil, &options.model, &point, &options.free, options.sigma, {}});
     }
     cost->AddParameterBlock(static_cast<int>(k));
     cost->SetNumResiduals(m);
+    const std::size_t j = evaluations.add(std::move(cost), m);
     ceres::LossFunction* loss = options.huber_sigmas > 0.0 ? new ceres::HuberLoss(options.huber_sigmas) : nullptr;
-    problem.AddResidualBlock(cost, loss, x.data());
+    problem.AddResidualBlock(new EvaluatedPoint(&evaluations, j, m, static_cast<int>(k)), loss, x.data());
   }
   if (problem.NumResidualBlocks() == 0) throw DataError("no measured quantities to fit");
   for (std::size_t i = 0; i < k; ++i) {
@@ -431,8 +506,11 @@ void fit_free_parameters(const Soil& soil, const std::vector<WheelTestPoint>& po
   const std::size_t k = options.free.size();
   std::vector<double> x(k);
   for (std::size_t i = 0; i < k; ++i) x[i] = get_parameter(soil, result.extensions, options.free[i]);
-  ceres::Problem problem;
-  add_point_residuals(problem, soil, points, options, x);
+  PointEvaluations evaluations(x.data(), k);
+  ceres::Problem::Options po;
+  po.evaluation_callback = &evaluations;
+  ceres::Problem problem(po);
+  add_point_residuals(problem, evaluations, soil, points, options, x);
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
   so.max_num_iterations = options.max_iterations;

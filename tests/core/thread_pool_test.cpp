@@ -152,6 +152,44 @@ TEST(ThreadPool, TheSingleWheelStudyIsTheSameOnOneThreadAndOnThree) {
   EXPECT_EQ(one.verdict, three.verdict);
 }
 
+// A fit's points are evaluated in chunks on the pool (soil_identification.cpp,
+// PointEvaluations): the same fit, bit for bit, on one thread and on three,
+// by autodiff (Wong-Reece) and by numeric differences (RFT at a slip angle).
+TEST(ThreadPool, AFitIsTheSameOnOneThreadAndOnThree) {
+  auto points = test::resampled_wheel_test(
+      io::read_wheel_test_csv(std::string(ROVERLAB_TEST_DATA) + "/single_wheel/ding2011_tyii.csv"), 200);
+  for (const terramechanics::ModelKind kind : {terramechanics::ModelKind::wong_reece, terramechanics::ModelKind::rft}) {
+    terramechanics::IdentificationOptions io;
+    io.model.kind = kind;
+    io.free = kind == terramechanics::ModelKind::rft
+                  ? std::vector<terramechanics::Parameter>{terramechanics::Parameter::rft_scale}
+                  : std::vector<terramechanics::Parameter>{terramechanics::Parameter::n,
+                                                           terramechanics::Parameter::friction_angle};
+    if (kind == terramechanics::ModelKind::rft) {
+      for (auto& p : points) p.slip_angle = 0.2;
+    }
+    terramechanics::IdentificationResult one, three;
+    {
+      const Threads t(1);
+      one = terramechanics::identify_soil(test::ding_tyii(), points, io);
+    }
+    {
+      const Threads t(3);
+      three = terramechanics::identify_soil(test::ding_tyii(), points, io);
+    }
+    ASSERT_EQ(one.parameters.size(), io.free.size());
+    ASSERT_EQ(three.parameters.size(), io.free.size());
+    for (std::size_t i = 0; i < io.free.size(); ++i) {
+      EXPECT_EQ(one.parameters[i].value, three.parameters[i].value);
+      EXPECT_EQ(comparable(one.parameters[i].sigma), comparable(three.parameters[i].sigma));
+    }
+    ASSERT_EQ(one.residuals.size(), three.residuals.size());
+    for (std::size_t i = 0; i < one.residuals.size(); ++i)
+      EXPECT_EQ(comparable(one.residuals[i].predicted), comparable(three.residuals[i].predicted));
+    EXPECT_TRUE(one.converged) << one.message;
+  }
+}
+
 // The family step: the two families' baselines side by side, their folds in
 // parallel, then each family's study (on a long file the second one's on a
 // random subset first).
