@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "core/common/error.h"
+#include "core/common/thread_pool.h"
 #include "core/discrepancy/study.h"
 
 namespace roverlab::analysis::rover {
@@ -95,19 +96,24 @@ class SimulationCost final : public ceres::CostFunction {
     memo_.r = r;
     return true;
   }
-  // Forward differences (backward at an upper bound): one simulation per parameter.
-  void forward_differences(std::vector<FitParameter>& p, const std::vector<double>& r) const {
+  // Forward differences (backward at an upper bound): one simulation per
+  // parameter, in parallel on the pool, each on a fork of the predictor
+  // (absorbed in parameter order: the same cache on any number of threads).
+  void forward_differences(const std::vector<FitParameter>& p, const std::vector<double>& r) const {
     const std::size_t n = r.size(), m = free_.size();
     memo_.raw.assign(n * m, 0.0);
-    for (std::size_t j = 0; j < m; ++j) {
-      FitParameter& q = p[free_[j]];
-      const double v = q.value;
-      const double h = v + q.spec.step <= q.spec.upper ? q.spec.step : -q.spec.step;
-      q.value = v + h;
-      const std::vector<double> r2 = predictor_.residuals(effects_of(predictor_.scenario_effects(), p), Part::fit);
-      q.value = v;
+    std::vector<Predictor> forks;
+    forks.reserve(m);
+    for (std::size_t j = 0; j < m; ++j) forks.push_back(predictor_.fork());
+    shared_thread_pool().for_each_index(m, [&](std::size_t j) {
+      std::vector<FitParameter> moved = p;
+      FitParameter& q = moved[free_[j]];
+      const double h = q.value + q.spec.step <= q.spec.upper ? q.spec.step : -q.spec.step;
+      q.value += h;
+      const std::vector<double> r2 = forks[j].residuals(effects_of(predictor_.scenario_effects(), moved), Part::fit);
       for (std::size_t i = 0; i < n; ++i) memo_.raw[i * m + j] = (r2[i] - r[i]) / h;
-    }
+    });
+    for (const Predictor& fork : forks) predictor_.absorb(fork);
     memo_.x = last_x_;
     memo_.r = r;
   }
@@ -224,19 +230,25 @@ void grid_start(Predictor& pr, std::vector<FitParameter>& parameters) {
       p.value = best;
       continue;
     }
-    double best = p.value;
-    double best_f = profile_at(pr, parameters, {}, {});
-    for (double v = p.spec.lower; v <= p.spec.upper + 1e-12; v += p.spec.grid) {
-      const double keep = p.value;
-      p.value = v;
-      const double f = profile_at(pr, parameters, {}, {});
-      p.value = keep;
-      if (f < best_f) {
-        best_f = f;
-        best = v;
-      }
-    }
-    p.value = best;
+    // The start and every grid value, each on its own fork of the predictor
+    // in parallel (absorbed in order: the same cache on any number of
+    // threads); the first lowest is taken, as in a walk up the grid.
+    std::vector<double> values{p.value};
+    for (double v = p.spec.lower; v <= p.spec.upper + 1e-12; v += p.spec.grid) values.push_back(v);
+    std::vector<Predictor> forks;
+    forks.reserve(values.size());
+    for (std::size_t k = 0; k < values.size(); ++k) forks.push_back(pr.fork());
+    std::vector<double> f(values.size());
+    const auto at = static_cast<std::size_t>(&p - parameters.data());
+    shared_thread_pool().for_each_index(values.size(), [&](std::size_t k) {
+      std::vector<FitParameter> q = parameters;
+      q[at].value = values[k];
+      f[k] = profile_at(forks[k], q, {}, {});
+    });
+    for (const Predictor& fork : forks) pr.absorb(fork);
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < values.size(); ++k) best = f[k] < f[best] ? k : best;
+    p.value = values[best];
   }
 }
 
