@@ -257,6 +257,15 @@ std::vector<WheelTestPoint> random_subset(const std::vector<WheelTestPoint>& poi
   return out;
 }
 
+// How SingleWheelStudy::fit_set fits a set (the default: afresh on all points, held out).
+struct FitHow {
+  const CandidateResult* start_from = nullptr;      // a previous fit: its soil, extensions and weights
+  bool with_held_out = true;                        // false: judged by its BIC alone (a step's trial)
+  const IdentificationResult* resume = nullptr;     // where a trial on the same objective stopped
+  const std::vector<WheelTestPoint>* on = nullptr;  // a trial on the step screen's subset
+  bool unless_at_bound = false;  // no held-out folds when a parameter ends at its bound: such a step cannot pass
+};
+
 // The study's steps: the baseline's residuals, each candidate's fit and
 // held-out score, the winner, and the sentences on what is wrong and why.
 class SingleWheelStudy {
@@ -269,10 +278,7 @@ class SingleWheelStudy {
  private:
   void find_quantities();
   void score_baseline();
-  CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set,
-                          const CandidateResult* start_from = nullptr, bool with_held_out = true,
-                          const IdentificationResult* resume = nullptr,
-                          const std::vector<WheelTestPoint>* on = nullptr) const;
+  CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set, const FitHow& how = FitHow{}) const;
   void select_forward();
   struct Steps;  // select_forward's hooks (study.h)
   // The best partner of a weak first step, by BIC.
@@ -483,9 +489,9 @@ void SingleWheelStudy::score_baseline() {
 // `start`, a previous fit's soil and extensions, when given), then scores the
 // extended model on held-out points.
 CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCandidate*>& set,
-                                          const CandidateResult* start_from, bool with_held_out,
-                                          const IdentificationResult* resume,
-                                          const std::vector<WheelTestPoint>* on) const {
+                                          const FitHow& how) const {
+  const CandidateResult* start_from = how.start_from;
+  const bool with_held_out = how.with_held_out;
   CandidateResult c;
   for (const auto* candidate : set) {
     c.name += (c.name.empty() ? "" : " + ") + std::string(candidate->name());
@@ -528,11 +534,11 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
       if (value >= 0.0 && !fitted_before) set_parameter(start, io.model.extensions, parameter, value);
     }
   }
-  if (resume != nullptr) {
+  if (how.resume != nullptr) {
     // The same objective (start_from's weights) as the trial that stopped at
     // `resume`: its fit goes on from there instead of starting again.
-    start = resume->soil;
-    io.model.extensions = resume->extensions;
+    start = how.resume->soil;
+    io.model.extensions = how.resume->extensions;
   }
   // A step of forward selection is first judged by its BIC alone: at most
   // 10 steps, no covariance; the step that passes is fitted again in full.
@@ -542,7 +548,7 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   }
   // A trial on the step screen's subset (`on`, without its held-out score):
   // its BIC ranks it among the step's trials and nothing else.
-  const std::vector<WheelTestPoint>& points = on != nullptr && !with_held_out ? *on : points_;
+  const std::vector<WheelTestPoint>& points = how.on != nullptr && !with_held_out ? *how.on : points_;
   c.fit = identify_soil(start, points, io);
   meter_.done(kFitUnits * units(set.size()) * static_cast<double>(points.size()) / static_cast<double>(points_.size()));
   if (&points != &points_) {
@@ -561,7 +567,8 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
   c.in_sample = residual_statistics(c.fit.residuals, points_);
   c.bic = bic_of(c.fit.residuals, io.free.size(), o_.sigma);
   c.delta_bic = c.bic - report_.baseline_bic;
-  if (!with_held_out) return c;  // held_out_rmse empty: no held-out test passes
+  // held_out_rmse empty: no held-out test passes
+  if (!with_held_out || (how.unless_at_bound && any_at_bound(c))) return c;
   const std::vector<PointResidual> predicted = o_.leave_one_out ? held_out(io, c.fit, set) : c.fit.residuals;
   const auto held_stats = residual_statistics(predicted, points_);
   for (Quantity q : report_.quantities) c.held_out_rmse.push_back(quantity_rmse(held_stats, q));
@@ -580,7 +587,8 @@ int SingleWheelStudy::best_partner(int first, CandidateResult& pair_fit) const {
   // The pairs fitted in parallel, then compared in candidate order.
   std::vector<CandidateResult> pair_fits(partners.size());
   shared_thread_pool().for_each_index(partners.size(), [&](std::size_t k) {
-    pair_fits[k] = fit_set({candidates_[best].get(), candidates_[partners[k]].get()}, &report_.candidates[best], false);
+    pair_fits[k] =
+        fit_set({candidates_[best].get(), candidates_[partners[k]].get()}, FitHow{&report_.candidates[best], false});
   });
   for (std::size_t k = 0; k < partners.size(); ++k) {
     if (partner < 0 || pair_fits[k].bic < pair_fit.bic) {
@@ -618,17 +626,19 @@ struct SingleWheelStudy::Steps {
     return c.applicable && std::isfinite(c.bic) && c.bic - than_bic < s.o_.bic_threshold && !any_at_bound(c) &&
            s.held_out_gain(c.held_out_rmse, *held_rmse);
   }
+  // A trial whose BIC passes, fitted on (from where it stopped) and held
+  // out; a chain's step (`step`) not when it ends at a bound (it cannot pass).
   void with_held_out(CandidateResult& fit, const std::vector<const SingleWheelCandidate*>& set,
-                     const CandidateResult* from) const {
+                     const CandidateResult* from, bool step) const {
     if (fit.held_out_rmse.empty() && fit.applicable && std::isfinite(fit.bic) && fit.bic - bic < s.o_.bic_threshold)
-      fit = s.fit_set(set, from, true, from != nullptr ? &fit.fit : nullptr);
+      fit = s.fit_set(set, FitHow{from, true, from != nullptr ? &fit.fit : nullptr, nullptr, step});
   }
   bool open(const std::vector<std::size_t>& /*chain*/, std::size_t i) const {
     return s.report_.candidates[i].applicable;
   }
   CandidateResult trial(const std::vector<std::size_t>& chain, std::size_t i) const {
     if (chain.empty()) return s.report_.candidates[i];
-    return s.fit_set(set(chain, i), at, false, nullptr, s.step_screen_.empty() ? nullptr : &s.step_screen_);
+    return s.fit_set(set(chain, i), FitHow{at, false, nullptr, s.step_screen_.empty() ? nullptr : &s.step_screen_});
   }
   int best(const std::vector<std::size_t>& open, std::vector<CandidateResult>& trials) const;
   bool accept(const std::vector<std::size_t>& chain, std::size_t best, CandidateResult& fit);
@@ -662,7 +672,7 @@ int SingleWheelStudy::Steps::best(const std::vector<std::size_t>& open, std::vec
   std::sort(ranked.begin(), ranked.end());  // candidate order, as without the screen
   shared_thread_pool().for_each_index(ranked.size(), [&](std::size_t k) {
     CandidateResult& t = trials[ranked[k]];
-    t = s.fit_set(set(*chain, ranked[k]), at, false, &t.fit);
+    t = s.fit_set(set(*chain, ranked[k]), FitHow{at, false, &t.fit});
   });
   return best_trial(ranked, trials, lower_bic);
 }
@@ -674,7 +684,7 @@ bool SingleWheelStudy::Steps::accept(const std::vector<std::size_t>& chain, std:
   s.meter_.done(0.0,
                 std::max(0.0, open - static_cast<double>(chain.size()) - 1.0) * kFitUnits * units(chain.size() + 2) +
                     s.held_out_fits(chain.size() + 1));
-  with_held_out(fit, set(chain, best), at);
+  with_held_out(fit, set(chain, best), at, !chain.empty());
   if (passes(fit, bic)) return true;
   if (!chain.empty()) return false;
   // Look one step further: the weak first step with its best partner.
@@ -682,7 +692,7 @@ bool SingleWheelStudy::Steps::accept(const std::vector<std::size_t>& chain, std:
   const int found = s.best_partner(static_cast<int>(best), pair_fit);
   if (found >= 0)
     with_held_out(pair_fit, {s.candidates_[best].get(), s.candidates_[static_cast<std::size_t>(found)].get()},
-                  &s.report_.candidates[best]);
+                  &s.report_.candidates[best], false);  // reported: held out even at a bound
   s.report_.best_pair = pair_fit;
   if (found < 0 || !passes(pair_fit, bic)) return false;
   partner = found;
@@ -1333,7 +1343,7 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
   if (lateral && o.baseline.kind == ModelKind::wong_reece) o.baseline.kind = ModelKind::ishigami;
   const bool at_angle = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.slip_angle != 0.0; });
   if (!at_angle) return run_in_family(soil, points, o);
-  // How the slip is read (SlipDefinition, model.h): given; the longitudinal
+  // FitHow the slip is read (SlipDefinition, model.h): given; the longitudinal
   // one when the readings differ by < 0.01 in slip at every point; else the
   // whole study under each (a hidden effect can mimic the other reading in
   // the baseline), keeping the one whose model carries more measurements;
