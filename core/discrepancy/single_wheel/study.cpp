@@ -278,6 +278,7 @@ class SingleWheelStudy {
  private:
   void find_quantities();
   void score_baseline();
+  CandidateResult named_set(const std::vector<const SingleWheelCandidate*>& set) const;
   CandidateResult fit_set(const std::vector<const SingleWheelCandidate*>& set, const FitHow& how = FitHow{}) const;
   void select_forward();
   struct Steps;  // select_forward's hooks (study.h)
@@ -485,6 +486,25 @@ void SingleWheelStudy::score_baseline() {
   for (Quantity q : report_.quantities) report_.baseline_held_out_rmse.push_back(quantity_rmse(report_.baseline, q));
 }
 
+// The set's name and cause, and whether it applies to the data and family.
+CandidateResult SingleWheelStudy::named_set(const std::vector<const SingleWheelCandidate*>& set) const {
+  CandidateResult c;
+  for (const auto* candidate : set) {
+    c.name += (c.name.empty() ? "" : " + ") + std::string(candidate->name());
+    c.cause += (c.cause.empty() ? "" : "; ") + std::string(candidate->cause());
+    if (!c.applicable) continue;
+    if (candidate->needs_grousers() && !any_grousers_) {
+      c.not_applicable_because = "no wheel in the data has grousers (columns grouser_count and grouser_height_m)";
+    } else if (!candidate->belongs_to(o_.baseline.kind)) {
+      c.not_applicable_because = "not an extension of the " + family_name(o_.baseline.kind) + " family";
+    } else if (candidate->needs_lateral_force() && !has_lateral_force(o_.baseline.kind)) {
+      c.not_applicable_because = "no point has a slip angle or a measured lateral force";
+    }
+    c.applicable = c.not_applicable_because.empty();
+  }
+  return c;
+}
+
 // Fits the candidates' parameters together on all points (started from
 // `start`, a previous fit's soil and extensions, when given), then scores the
 // extended model on held-out points.
@@ -492,26 +512,8 @@ CandidateResult SingleWheelStudy::fit_set(const std::vector<const SingleWheelCan
                                           const FitHow& how) const {
   const CandidateResult* start_from = how.start_from;
   const bool with_held_out = how.with_held_out;
-  CandidateResult c;
-  for (const auto* candidate : set) {
-    c.name += (c.name.empty() ? "" : " + ") + std::string(candidate->name());
-    c.cause += (c.cause.empty() ? "" : "; ") + std::string(candidate->cause());
-    if (candidate->needs_grousers() && !any_grousers_) {
-      c.applicable = false;
-      c.not_applicable_because = "no wheel in the data has grousers (columns grouser_count and grouser_height_m)";
-      return not_applicable(std::move(c), with_held_out);
-    }
-    if (!candidate->belongs_to(o_.baseline.kind)) {
-      c.applicable = false;
-      c.not_applicable_because = "not an extension of the " + family_name(o_.baseline.kind) + " family";
-      return not_applicable(std::move(c), with_held_out);
-    }
-    if (candidate->needs_lateral_force() && !has_lateral_force(o_.baseline.kind)) {
-      c.applicable = false;
-      c.not_applicable_because = "no point has a slip angle or a measured lateral force";
-      return not_applicable(std::move(c), with_held_out);
-    }
-  }
+  CandidateResult c = named_set(set);
+  if (!c.applicable) return not_applicable(std::move(c), with_held_out);
   IdentificationOptions io;
   io.model = o_.baseline;
   io.free = family_parameters(o_.baseline.kind);  // refitted with every candidate (RFT: its material scale)
