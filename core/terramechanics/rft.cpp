@@ -1,8 +1,10 @@
 #include "core/terramechanics/rft.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <unordered_map>
 
@@ -158,9 +160,9 @@ WheelMotion rft_wheel_motion(double slip, double slip_angle, SlipDefinition defi
 
 namespace {
 
-// The meshes of the last wheels evaluated on this thread (geometry and
-// grouser height scale; a study's file may hold several wheels), each with a
-// generation that names it in the motion cache below.
+// The meshes of the last wheels evaluated (geometry and grouser height
+// scale; a study's file may hold several wheels), shared by every thread,
+// each with a generation that names it in the motion caches below.
 struct MeshCache {
   double radius = -1, width = -1, height = -1, thickness = -1;
   int count = -1;
@@ -193,21 +195,35 @@ std::vector<RftElement> merged_across(const std::vector<RftElement>& mesh) {
   return out;
 }
 
-const MeshCache& cached_mesh(const Wheel& w, double grouser_height_scale) {
-  thread_local std::vector<std::unique_ptr<MeshCache>> cache;
-  thread_local unsigned long generations = 0;
+// The mesh of wheel w at this grouser height scale, shared by every thread
+// (a mutex around the list; a mesh is immutable and held by whoever uses it,
+// so that the list starting over never frees a mesh in use). Built outside
+// the lock; of two threads that built the same mesh, the first one's is kept.
+std::shared_ptr<const MeshCache> cached_mesh(const Wheel& w, double grouser_height_scale) {
+  static std::mutex mutex;
+  static std::vector<std::shared_ptr<const MeshCache>> cache;
+  static std::atomic<unsigned long> generations{0};
   const double height = grouser_height_scale * w.grouser_height;
-  for (const auto& c : cache) {
-    if (c->radius == w.radius && c->width == w.width && c->height == height && c->thickness == w.grouser_thickness &&
-        c->count == w.grouser_count) {
-      return *c;
+  const auto find = [&]() -> std::shared_ptr<const MeshCache> {
+    for (const auto& c : cache) {
+      if (c->radius == w.radius && c->width == w.width && c->height == height && c->thickness == w.grouser_thickness &&
+          c->count == w.grouser_count)
+        return c;
     }
+    return nullptr;
+  };
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (auto found = find()) return found;
   }
+  auto built = std::make_shared<const MeshCache>(MeshCache{w.radius, w.width, height, w.grouser_thickness,
+                                                           w.grouser_count, ++generations,
+                                                           merged_across(rft_wheel_mesh(w, grouser_height_scale))});
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (auto found = find()) return found;
   if (cache.size() >= kCachedMeshes) cache.clear();
-  cache.push_back(
-      std::make_unique<MeshCache>(MeshCache{w.radius, w.width, height, w.grouser_thickness, w.grouser_count,
-                                            ++generations, merged_across(rft_wheel_mesh(w, grouser_height_scale))}));
-  return *cache.back();
+  cache.push_back(built);
+  return built;
 }
 
 // An element that carries stress at this motion: its force per unit depth
@@ -291,12 +307,14 @@ void repile(std::vector<Loaded>& list, double pileup) {
 
 // The stresses depend on the mesh and the motion, not on the load, the
 // material scale, the depth scale or the pile-up: a fit evaluates the same
-// rows again and again with other values of those. So each thread keeps the
-// stressed elements of the motions it met, their sorted list without a
-// pile-up, and their sorted list at the last pile-up asked for (up to
-// kCachedElements in all; then it starts over; an entry of a mesh no longer
-// cached is never matched again, as its generation is gone). Results are
-// those of a fresh computation, bit for bit (the sort's order is total).
+// rows again and again with other values of those. So the stressed elements
+// of the motions met and their sorted list without a pile-up are kept for
+// every thread (SharedLists), and each thread keeps its sorted lists at the
+// last pile-up it asked for (a pile-up re-sorts its list in place). Each
+// starts over past kCachedElements; an entry of a mesh no longer cached is
+// never matched again, as its generation is gone. Results are those of a
+// fresh computation, bit for bit (the sort's order is total), whichever
+// thread computed them.
 struct MotionKey {
   unsigned long generation;
   double cx, cy, cz, rim, radius;
@@ -313,60 +331,96 @@ struct MotionKeyHash {
     return h;
   }
 };
-constexpr std::size_t kCachedElements = std::size_t{1} << 21;  // about 120 MB per thread at most
+constexpr std::size_t kCachedElements = std::size_t{1} << 21;  // about 120 MB at most, and as much per thread
 
-// A motion's sorted list at the pile-up it was last asked for.
+// The lists every thread shares: a mutex around the maps, each list
+// immutable and held by whoever uses it (starting over frees none in use).
+// Computed outside the lock; of two threads that computed the same list, the
+// first one's is kept.
+class SharedLists {
+ public:
+  std::shared_ptr<const std::vector<Stressed>> stressed(const MotionKey& key, const MeshCache& mesh, const Wheel& w,
+                                                        const WheelMotion& motion) {
+    if (auto found = find(stressed_, key)) return found;
+    return keep(stressed_, key, std::make_shared<const std::vector<Stressed>>(stressed_elements(mesh.mesh, w, motion)));
+  }
+  std::shared_ptr<const std::vector<Loaded>> sorted(const MotionKey& key, const MeshCache& mesh, const Wheel& w,
+                                                    const WheelMotion& motion) {
+    if (auto found = find(sorted_, key)) return found;
+    return keep(sorted_, key,
+                std::make_shared<const std::vector<Loaded>>(loaded_elements(*stressed(key, mesh, w, motion), 0.0)));
+  }
+
+ private:
+  template <class T>
+  using Map = std::unordered_map<MotionKey, std::shared_ptr<const std::vector<T>>, MotionKeyHash>;
+  template <class T>
+  std::shared_ptr<const std::vector<T>> find(const Map<T>& map, const MotionKey& key) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto found = map.find(key);
+    return found == map.end() ? nullptr : found->second;
+  }
+  template <class T>
+  std::shared_ptr<const std::vector<T>> keep(Map<T>& map, const MotionKey& key,
+                                             std::shared_ptr<const std::vector<T>> list) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto found = map.find(key);
+    if (found != map.end()) return found->second;
+    if (elements_ + list->size() > kCachedElements) {
+      stressed_.clear();
+      sorted_.clear();
+      elements_ = 0;
+    }
+    elements_ += list->size();
+    return map.emplace(key, std::move(list)).first->second;
+  }
+  std::mutex mutex_;
+  Map<Stressed> stressed_;
+  Map<Loaded> sorted_;  // without a pile-up
+  std::size_t elements_ = 0;
+};
+
+// A motion's sorted list at the pile-up it was last asked for (this thread's).
 struct Piled {
   double pileup;
   std::vector<Loaded> list;
 };
-
-struct MotionCache {
-  std::unordered_map<MotionKey, std::vector<Stressed>, MotionKeyHash> stressed;
-  std::unordered_map<MotionKey, std::vector<Loaded>, MotionKeyHash> sorted;  // without a pile-up
-  std::unordered_map<MotionKey, Piled, MotionKeyHash> piled;                 // with one
+struct PiledCache {
+  std::unordered_map<MotionKey, Piled, MotionKeyHash> piled;
   std::size_t elements = 0;
-  // Room for n more elements: when they would pass the budget, everything
-  // cached is dropped (a reference returned before is not used after).
-  void make_room(std::size_t n) {
-    if (elements + n > kCachedElements) {
-      stressed.clear();
-      sorted.clear();
-      piled.clear();
-      elements = 0;
-    }
-    elements += n;
-  }
 };
 
-const std::vector<Stressed>& cached_stressed(MotionCache& cache, const MotionKey& key, const MeshCache& mesh,
-                                             const Wheel& w, const WheelMotion& motion) {
-  const auto found = cache.stressed.find(key);
-  if (found != cache.stressed.end()) return found->second;
-  std::vector<Stressed> fresh = stressed_elements(mesh.mesh, w, motion);
-  cache.make_room(fresh.size());
-  return cache.stressed.emplace(key, std::move(fresh)).first->second;
-}
+// The sorted list of a motion at a pile-up: `list`, which `shared` (when
+// set) keeps alive; a list at a pile-up is this thread's and stays valid
+// until its next call.
+struct LoadedList {
+  std::shared_ptr<const std::vector<Loaded>> shared;
+  const std::vector<Loaded>* list = nullptr;
+};
 
-const std::vector<Loaded>& cached_loaded(const MeshCache& mesh, const Wheel& w, const WheelMotion& motion,
-                                         double pileup) {
-  thread_local MotionCache cache;
+LoadedList cached_loaded(const MeshCache& mesh, const Wheel& w, const WheelMotion& motion, double pileup) {
+  static SharedLists shared;
+  thread_local PiledCache cache;
   const MotionKey key{mesh.generation, motion.centre.x, motion.centre.y, motion.centre.z, motion.rim_speed, w.radius};
   if (pileup == 0.0) {
-    const auto found = cache.sorted.find(key);
-    if (found != cache.sorted.end()) return found->second;
-  } else {
-    const auto found = cache.piled.find(key);
-    if (found != cache.piled.end()) {
-      if (found->second.pileup != pileup) repile(found->second.list, pileup);
-      found->second.pileup = pileup;
-      return found->second.list;
-    }
+    LoadedList out;
+    out.shared = shared.sorted(key, mesh, w, motion);
+    out.list = out.shared.get();
+    return out;
   }
-  std::vector<Loaded> list = loaded_elements(cached_stressed(cache, key, mesh, w, motion), pileup);
-  cache.make_room(list.size());  // may drop the stressed list above: the sorted one no longer needs it
-  if (pileup == 0.0) return cache.sorted.emplace(key, std::move(list)).first->second;
-  return cache.piled.emplace(key, Piled{pileup, std::move(list)}).first->second.list;
+  const auto found = cache.piled.find(key);
+  if (found != cache.piled.end()) {
+    if (found->second.pileup != pileup) repile(found->second.list, pileup);
+    found->second.pileup = pileup;
+    return {nullptr, &found->second.list};
+  }
+  std::vector<Loaded> list = loaded_elements(*shared.stressed(key, mesh, w, motion), pileup);
+  if (cache.elements + list.size() > kCachedElements) {
+    cache.piled.clear();
+    cache.elements = 0;
+  }
+  cache.elements += list.size();
+  return {nullptr, &cache.piled.emplace(key, Piled{pileup, std::move(list)}).first->second.list};
 }
 
 // Sinkage s from F_z(s) = W. With the depth-dependent scale zeta (1 + k d /
@@ -412,9 +466,10 @@ SlipAngleTraction evaluate_rft(const Soil& soil, const Wheel& wheel, double load
     t.status = TractionStatus::invalid_input;
     return t;
   }
-  const MeshCache& mesh = cached_mesh(wheel, e.grousers ? e.grouser_effectiveness : 1.0);
+  const std::shared_ptr<const MeshCache> mesh = cached_mesh(wheel, e.grousers ? e.grouser_effectiveness : 1.0);
   const WheelMotion motion = rft_wheel_motion(slip, slip_angle, options.slip_definition);
-  const std::vector<Loaded>& loaded = cached_loaded(mesh, wheel, motion, e.rft_pileup);
+  const LoadedList held = cached_loaded(*mesh, wheel, motion, e.rft_pileup);
+  const std::vector<Loaded>& loaded = *held.list;
   const double s = solve_sinkage(loaded, zeta, load, wheel.radius, e.rft_depth_scale);
   if (!std::isfinite(s)) {
     t.status = TractionStatus::unsupported_load;
