@@ -191,14 +191,22 @@ struct SlipAnglePointCost {
   const std::vector<Parameter>* free;
   MeasurementSigma sigma;
   // The point's last entry angles, where its next solves start (model.h).
-  // A fit evaluates its problem on one thread, in an order that does not depend on
-  // the study's threads, so the results do not either.
+  // A point is evaluated by one thread at a time, in the order of Ceres'
+  // evaluations (PointEvaluations), so its hints, and the results, do not
+  // depend on the threads.
   mutable EntryAngleHint hint;
 
   bool operator()(double const* const* x, double* residual) const {
     Soil s = *soil;
     ModelOptions m = *model;
-    for (std::size_t k = 0; k < free->size(); ++k) set_parameter(s, m.extensions, (*free)[k], x[0][k]);
+    // A central difference at a bound steps past it, where the model may not
+    // exist (a pile-up or a grouser scale below 0): the model there is the
+    // one at the bound (a one-sided slope, half as steep, in the right
+    // direction), instead of a failed evaluation that ends the fit.
+    for (std::size_t k = 0; k < free->size(); ++k) {
+      const Bounds b = default_bounds((*free)[k]);
+      set_parameter(s, m.extensions, (*free)[k], std::clamp(x[0][k], b.lower, b.upper));
+    }
     const auto predicted = predict(s, m, *point, &hint);
     int r = 0;
     for (Quantity q : kQuantities) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/terramechanics/rft.h"
 #include "core/terramechanics/soil_identification.h"
 #include "terramechanics_soils.h"
 
@@ -86,4 +87,43 @@ TEST(SoilIdentification, RobustLossResistsAnOutlier) {
   const double without = identify_soil(truth, points, plain).parameters[0].value;
   EXPECT_LT(std::abs(with_huber - 0.8), std::abs(without - 0.8));
   EXPECT_NEAR(with_huber, 0.8, 0.01);
+}
+
+// A fit by numeric differences (RFT) whose parameter ends at a bound past
+// which the model does not exist (a pile-up below 0): its central
+// difference there used to fail the evaluation, and Ceres ended the fit
+// with the start value (on the Ding rows, a pile-up of 0.3 reported with a
+// delta BIC of +18). Now the fit reaches the bound.
+TEST(SoilIdentification, ANumericFitReachesABoundWhereTheModelEnds) {
+  const Soil soil = roverlab::test::dry_sand();
+  ModelOptions model;
+  model.kind = ModelKind::rft;
+  std::vector<WheelTestPoint> points;
+  for (double load : {40.0, 80.0}) {
+    for (double angle : {0.0, 0.5, 1.0}) {
+      for (double slip : {0.1, 0.4, 0.7}) {
+        WheelTestPoint p;
+        p.wheel = {0.1, 0.1, 0, 0.0};
+        p.load = load;
+        p.slip = slip;
+        p.slip_angle = angle;
+        const SlipAngleTraction t = evaluate_rft(soil, p.wheel, load, slip, angle, model);
+        ASSERT_TRUE(t.ok());
+        p.drawbar_pull = t.drawbar_pull * (1.0 + 0.01 * std::sin(7.0 * slip + angle));  // a little misfit
+        p.sinkage = t.sinkage;
+        p.lateral_force = t.lateral_force;
+        points.push_back(p);
+      }
+    }
+  }
+  IdentificationOptions io;
+  io.model = model;
+  io.model.extensions.rft_pileup = 0.3;  // the pile-up candidate's start
+  io.free = {Parameter::rft_scale, Parameter::rft_pileup};
+  const IdentificationResult r = identify_soil(soil, points, io);
+  EXPECT_TRUE(r.converged) << r.message;
+  ASSERT_EQ(r.parameters.size(), 2u);
+  EXPECT_LT(r.parameters[1].value, 1e-3) << r.message;
+  EXPECT_TRUE(r.parameters[1].at_bound);
+  EXPECT_NEAR(r.parameters[0].value, soil.rft_scale, 0.05 * soil.rft_scale);
 }
