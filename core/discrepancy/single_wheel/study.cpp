@@ -1345,7 +1345,7 @@ DiscrepancyReport study_single_wheel(const Soil& soil, const std::vector<WheelTe
   if (lateral && o.baseline.kind == ModelKind::wong_reece) o.baseline.kind = ModelKind::ishigami;
   const bool at_angle = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.slip_angle != 0.0; });
   if (!at_angle) return run_in_family(soil, points, o);
-  // FitHow the slip is read (SlipDefinition, model.h): given; the longitudinal
+  // How the slip is read (SlipDefinition, model.h): given; the longitudinal
   // one when the readings differ by < 0.01 in slip at every point; else the
   // whole study under each (a hidden effect can mimic the other reading in
   // the baseline), keeping the one whose model carries more measurements;
