@@ -22,12 +22,15 @@ struct Batch {
   std::size_t n = 0;
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
-  std::condition_variable all_done;
   std::size_t finished = 0;
+  std::atomic<bool> done{false};
   std::vector<std::exception_ptr> errors;
 
-  // Runs the next unclaimed part; false when every part is claimed.
-  bool run_one() {
+  bool unclaimed() const { return next.load() < n; }
+  // Runs the next unclaimed part; false when every part is claimed. True
+  // from the part that ends the batch is returned as `last`.
+  bool run_one(bool& last) {
+    last = false;
     const std::size_t i = next.fetch_add(1);
     if (i >= n) return false;
     std::exception_ptr error;
@@ -38,12 +41,11 @@ struct Batch {
     }
     const std::lock_guard<std::mutex> lock(mutex);
     errors[i] = error;
-    if (++finished == n) all_done.notify_all();
+    if (++finished == n) {
+      done = true;
+      last = true;
+    }
     return true;
-  }
-  void wait() {
-    std::unique_lock<std::mutex> lock(mutex);
-    all_done.wait(lock, [this] { return finished == n; });
   }
 };
 
@@ -53,10 +55,24 @@ struct ThreadPool::State {
   std::size_t threads = 1;
   std::vector<std::thread> workers;
   std::mutex mutex;
-  std::condition_variable wake;
+  std::condition_variable wake;  // work queued, a batch ended, or stopping
   std::deque<std::shared_ptr<Batch>> queue;
   bool stopping = false;
 
+  // Runs one part of `batch`; when it was the batch's last, wakes the
+  // threads waiting for it (under the pool's mutex: no wake-up is lost).
+  bool run_part(const std::shared_ptr<Batch>& batch) {
+    bool last = false;
+    if (!batch->run_one(last)) {
+      retire(batch);
+      return false;
+    }
+    if (last) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      wake.notify_all();
+    }
+    return true;
+  }
   void work_loop() {
     for (;;) {
       std::shared_ptr<Batch> batch;
@@ -66,7 +82,29 @@ struct ThreadPool::State {
         if (stopping) return;
         batch = queue.front();
       }
-      if (!batch->run_one()) retire(batch);
+      run_part(batch);
+    }
+  }
+  // Until `batch` has ended: runs the parts of other batches (the newest
+  // first: the nested ones, whose caller waits for them), else sleeps. A
+  // thread whose own parts are all claimed so helps the others' instead of
+  // idling (a fit's evaluations while the fit beside it ends).
+  void wait_helping(const std::shared_ptr<Batch>& batch) {
+    for (;;) {
+      std::shared_ptr<Batch> other;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        for (;;) {
+          if (batch->done) return;
+          const auto open = std::find_if(queue.rbegin(), queue.rend(), [](const auto& b) { return b->unclaimed(); });
+          if (open != queue.rend()) {
+            other = *open;
+            break;
+          }
+          wake.wait(lock);
+        }
+      }
+      run_part(other);
     }
   }
   void retire(const std::shared_ptr<Batch>& batch) {
@@ -106,11 +144,16 @@ void ThreadPool::for_each_index(std::size_t n, const std::function<void(std::siz
   batch->work = &work;
   batch->n = n;
   batch->errors.resize(n);
-  if (state_->threads > 1 && n > 1) state_->submit(batch);
-  while (batch->run_one()) {
+  if (state_->threads == 1 || n == 1) {
+    bool last = false;
+    while (batch->run_one(last)) {
+    }
+  } else {
+    state_->submit(batch);
+    while (state_->run_part(batch)) {
+    }
+    state_->wait_helping(batch);
   }
-  state_->retire(batch);
-  batch->wait();
   for (const auto& e : batch->errors) {
     if (e) std::rethrow_exception(e);
   }
@@ -134,9 +177,9 @@ void ThreadPool::run_beside(const std::function<void()>& background, const std::
   } catch (...) {
     error = std::current_exception();
   }
-  batch->run_one();  // not started yet: the caller runs it
+  state_->run_part(batch);  // not started yet: the caller runs it
   state_->retire(batch);
-  batch->wait();
+  state_->wait_helping(batch);
   if (error) std::rethrow_exception(error);
   if (batch->errors[0]) std::rethrow_exception(batch->errors[0]);
 }

@@ -4,8 +4,9 @@
 // readings). Each part writes only its own result and results are combined
 // in index order afterwards, so a study gives bit-identical results on any
 // number of threads. The calling thread works too, and a part may itself
-// run parts on the pool (a thread waits only for parts other threads are
-// running, so nesting cannot deadlock).
+// run parts on the pool: a thread whose call still waits for parts other
+// threads are running runs the pool's other open parts meanwhile (the
+// newest first), so nesting neither deadlocks nor idles a thread.
 
 #include <cstddef>
 #include <functional>

@@ -57,6 +57,45 @@ TEST(ThreadPool, EveryPartRunsOnceAndNestedCallsFinish) {
   EXPECT_EQ(alone, 5);
 }
 
+// A thread whose own parts have ended runs the parts another thread's part
+// has put on the pool, instead of idling until that part ends (the slower of
+// two fits sets a study's pace otherwise).
+TEST(ThreadPool, AThreadWaitingForAPartHelpsWithThePartsItRunsOnThePool) {
+  ThreadPool pool(2);
+  std::atomic<int> inner{0};
+  std::atomic<bool> worker_started{false};
+  std::vector<std::thread::id> ran_by(16);
+  const auto caller = std::this_thread::get_id();
+  pool.for_each_index(2, [&](std::size_t) {
+    if (std::this_thread::get_id() == caller) {  // the quick part, once the other has started on the worker
+      while (!worker_started) std::this_thread::yield();
+      return;
+    }
+    worker_started = true;
+    pool.for_each_index(ran_by.size(), [&](std::size_t j) {
+      ran_by[j] = std::this_thread::get_id();
+      ++inner;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    });
+  });
+  EXPECT_EQ(inner.load(), 16);
+  std::sort(ran_by.begin(), ran_by.end());
+  EXPECT_EQ(std::unique(ran_by.begin(), ran_by.end()) - ran_by.begin(), 2)
+      << "part 1's parts ran on one thread: the other idled";
+  // The same beside run_beside: the foreground's thread helps the background's parts.
+  std::vector<std::thread::id> beside(16);
+  pool.run_beside(
+      [&] {
+        pool.for_each_index(beside.size(), [&](std::size_t j) {
+          beside[j] = std::this_thread::get_id();
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        });
+      },
+      [] {});
+  std::sort(beside.begin(), beside.end());
+  EXPECT_EQ(std::unique(beside.begin(), beside.end()) - beside.begin(), 2);
+}
+
 TEST(ThreadPool, TheLowestFailingPartsErrorComesBackAfterAllHaveRun) {
   ThreadPool pool(2);
   std::atomic<int> ran{0};
