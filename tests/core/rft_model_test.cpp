@@ -244,4 +244,43 @@ TEST(RftWheel, AnEvaluationIsTheSameAfterOthersAsOnAFreshThread) {
   EXPECT_NE(fresh[0].sinkage, fresh[2].sinkage);
 }
 
+// Past their budgets the caches drop what was used least recently (issue 46:
+// starting over made two fits side by side build each other's lists again):
+// after 40 grouser heights (the mesh cache holds 16) and 3,000 motions
+// (more elements than the lists' budget of 2^21), each point asked for
+// between them is still what a fresh thread computes.
+TEST(RftWheel, AnEvaluationIsTheSameAfterTheCachesMadeRoom) {
+  Wheel g = smooth();
+  g.grouser_count = 12;
+  g.grouser_height = 0.005;
+  ModelOptions grousered = rft();
+  grousered.extensions.grousers = true;
+  const auto point = [&](const Wheel& w, const ModelOptions& o) {
+    return evaluate_slip_angle(sand(2.3e6), w, 21.0, 0.35, deg(40.0), o);
+  };
+  SlipAngleTraction fresh[2];
+  std::thread([&] {
+    fresh[0] = point(smooth(), rft());
+    fresh[1] = point(g, grousered);
+  }).join();
+  for (int i = 0; i < 3000; ++i) {
+    ModelOptions o = grousered;
+    o.extensions.grouser_effectiveness = 0.5 + (i % 40) * 0.025;  // 40 meshes of the grousered wheel
+    (void)evaluate_slip_angle(sand(), i % 2 != 0 ? g : smooth(), 20.0, -0.9 + 0.0006 * i, deg(i % 91), o);
+    if (i % 500 == 0) {
+      EXPECT_EQ(point(g, grousered).drawbar_pull, fresh[1].drawbar_pull) << i;
+      EXPECT_EQ(point(smooth(), rft()).sinkage, fresh[0].sinkage) << i;
+    }
+  }
+  const SlipAngleTraction again[2] = {point(smooth(), rft()), point(g, grousered)};
+  for (int k = 0; k < 2; ++k) {
+    ASSERT_TRUE(fresh[k].ok() && again[k].ok());
+    EXPECT_EQ(again[k].drawbar_pull, fresh[k].drawbar_pull) << k;
+    EXPECT_EQ(again[k].lateral_force, fresh[k].lateral_force) << k;
+    EXPECT_EQ(again[k].resistive_torque, fresh[k].resistive_torque) << k;
+    EXPECT_EQ(again[k].sinkage, fresh[k].sinkage) << k;
+  }
+  EXPECT_NE(fresh[0].drawbar_pull, fresh[1].drawbar_pull);
+}
+
 }  // namespace
