@@ -207,6 +207,10 @@ void single_wheel_section(ReportSection& section, const std::filesystem::path& f
        << (r.slip_definition.empty() ? ""
                                      : ", " + esc(r.slip_definition) + " slip (" + esc(r.slip_definition_reason) + ")")
        << "; final model: " << esc(r.final_model) << ".</p>\n";
+  if (r.step_screen_points > 0) {  // the CLI's and the JSON's note, here too
+    html << "<p>Each forward step's candidates were ranked on a random subset of " << r.step_screen_points << " of the "
+         << r.points << " rows; the best there were refitted on all of them.</p>\n";
+  }
   json families;
   family_table(section, r, families);
   json errors = json::object();
@@ -233,6 +237,7 @@ void single_wheel_section(ReportSection& section, const std::filesystem::path& f
                              {"final_model", r.final_model},
                              {"curves", final_model.name},
                              {"held_out_method", r.held_out_method},
+                             {"step_screen_points", r.step_screen_points},
                              {"held_out_rmse", errors}};
 }
 

@@ -10,7 +10,10 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
 #include <tuple>
+#include <vector>
 
 #include <sys/stat.h>
 
@@ -320,6 +323,51 @@ TEST(Report, SingleWheelReportHasBothSurfacesAndTheirCoefficients) {
             families[1].at("final_held_out_score_sigma").get<double>());
   EXPECT_EQ(metrics.at("single_wheel").at("baseline_model"), "Wong-Reece");
   EXPECT_NE(html.find("Model families: family Wong-Reece: its final model"), std::string::npos);
+  // 12 rows: every step's candidates fitted on all of them, and no note of a subset.
+  EXPECT_EQ(metrics.at("single_wheel").at("step_screen_points").get<int>(), 0);
+  EXPECT_EQ(html.find("random subset"), std::string::npos);
+}
+
+// Issue 46: a long file's forward steps are ranked on a subset of its rows
+// (DiscrepancyOptions::step_screen_points); the report says so, as the CLI
+// and its JSON do.
+TEST(Report, ALongSingleWheelFileSaysItsStepsWereRankedOnASubset) {
+  TempDir dir;
+  const std::string ding = read_text(kData + "/single_wheel/ding2011_tyii.csv");
+  std::istringstream lines(ding);
+  std::string header, line;
+  std::getline(lines, header);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(lines, line)) {
+    if (line.empty()) continue;
+    std::vector<std::string> cells;
+    std::istringstream cell(line);
+    for (std::string c; std::getline(cell, c, ',');) cells.push_back(c);
+    cells.resize(10);  // an empty last cell (a quantity not measured) reads as none
+    rows.push_back(cells);
+  }
+  ASSERT_EQ(rows.size(), 12u);
+  // 1,104 rows: Ding's 12 at loads of 60-100 N with +-3 % on the measured forces and sinkage.
+  std::string csv = header + "\n";
+  for (int i = 0; i < 1104; ++i) {
+    std::vector<std::string> r = rows[static_cast<std::size_t>(i) % rows.size()];
+    r[5] = std::to_string(60.0 + (i * 37 % 41));
+    for (std::size_t k = 7; k < r.size(); ++k) {
+      if (!r[k].empty()) r[k] = std::to_string(std::stod(r[k]) * (1.0 + 0.03 * std::sin(1.7 * i + k)));
+    }
+    for (std::size_t k = 0; k < r.size(); ++k) csv += (k ? "," : "") + r[k];
+    csv += "\n";
+  }
+  write_text(dir.file("long.csv"), csv);
+  const std::string folder = dir.file("r");
+  const CommandResult r =
+      run_roverlab("report " + quote(dir.file("long.csv")) + " --soil ding_tyii --size 320x240 -o " + quote(folder));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto metrics = nlohmann::json::parse(read_text(folder + "/metrics.json"));
+  EXPECT_EQ(metrics.at("single_wheel").at("test").at("rows").get<int>(), 1104);
+  EXPECT_EQ(metrics.at("single_wheel").at("step_screen_points").get<int>(), 1000);
+  const std::string html = read_text(folder + "/index.html");
+  EXPECT_NE(html.find("ranked on a random subset of 1000 of the 1104 rows"), std::string::npos);
 }
 
 TEST(Render, ContactAnglesPointWhereTheWheelsMove) {
