@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/common/thread_pool.h"
@@ -82,6 +84,18 @@ std::vector<Result> screen_candidates(std::size_t count, const Fit& fit) {
 //       // the study's stopping rule: false ends the selection
 //   void join(std::vector<std::size_t>& chain, std::size_t i, Trial&& t);
 //       // appends i (or more) to the chain and keeps the step
+// and may supply
+//   double expected_cost(std::size_t i) const;
+//       // how long candidate i's trial is expected to take (any unit): the
+//       // trials start longest first, so that a long one does not start last
+//       // and run alone at the round's end. Only the order they start in
+//       // changes, not what they compute.
+template <class Study, class = void>
+struct HasExpectedCost : std::false_type {};
+template <class Study>
+struct HasExpectedCost<Study, std::void_t<decltype(std::declval<const Study&>().expected_cost(std::size_t{}))>>
+    : std::true_type {};
+
 template <class Study>
 void select_forward(Study& study, std::size_t count, std::size_t max_steps, std::vector<std::size_t>& chain) {
   using Trial = typename Study::Trial;
@@ -91,9 +105,14 @@ void select_forward(Study& study, std::size_t count, std::size_t max_steps, std:
       if (std::find(chain.begin(), chain.end(), i) == chain.end() && study.open(chain, i)) open.push_back(i);
     }
     if (open.empty()) return;
+    std::vector<std::size_t> start = open;  // the order the trials start in
+    if constexpr (HasExpectedCost<Study>::value) {
+      std::stable_sort(start.begin(), start.end(),
+                       [&](std::size_t a, std::size_t b) { return study.expected_cost(a) > study.expected_cost(b); });
+    }
     std::vector<Trial> trials(count);
-    shared_thread_pool().for_each_index(open.size(),
-                                        [&](std::size_t k) { trials[open[k]] = study.trial(chain, open[k]); });
+    shared_thread_pool().for_each_index(start.size(),
+                                        [&](std::size_t k) { trials[start[k]] = study.trial(chain, start[k]); });
     const int best = study.best(open, trials);
     if (best < 0) return;
     const auto b = static_cast<std::size_t>(best);

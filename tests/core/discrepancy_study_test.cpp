@@ -171,6 +171,32 @@ TEST(StudySkeleton, ForwardSelectionIsTheSameOnOneAndThreeThreads) {
   EXPECT_EQ(bics[0], bics[1]);  // bit-identical
 }
 
+// A study that says how long its trials take (expected_cost): on one thread
+// they start longest first, ties in candidate order, and the selection is
+// the same as without the hook.
+struct CostedToyStudy : ToyStudy {
+  std::vector<double> cost{1.0, 5.0, 1.0};  // candidate 1's trial is the long one
+  mutable std::vector<std::size_t> started;
+  double expected_cost(std::size_t i) const { return cost[i]; }
+  Trial trial(const std::vector<std::size_t>& chain, std::size_t i) const {
+    started.push_back(i);  // one thread: no race
+    return ToyStudy::trial(chain, i);
+  }
+};
+
+TEST(StudySkeleton, TrialsStartLongestFirstWhenTheStudySaysHowLongTheyTake) {
+  set_thread_count(1);
+  CostedToyStudy s;
+  static_cast<ToyStudy&>(s) = toy_study();
+  std::vector<std::size_t> chain;
+  select_forward(s, 3, 3, chain);
+  set_thread_count(default_thread_count());
+  EXPECT_EQ(chain, (std::vector<std::size_t>{2, 0}));
+  // Round 1: 1 (cost 5), then 0 and 2; round 2: 1, then 0; round 3: 1.
+  EXPECT_EQ(s.started, (std::vector<std::size_t>{1, 0, 2, 1, 0, 1}));
+  EXPECT_EQ(s.tried, (std::vector<std::size_t>{0, 1, 2, 0, 1, 1}));  // opened in candidate order
+}
+
 struct ToyStep {
   std::string name;
   double error = 0;  // held-out, after this step

@@ -307,6 +307,7 @@ struct CauseSteps {
   double ln_n;
   std::vector<std::unique_ptr<Predictor>> forks;  // the round's, one per open candidate
   bool first_round = true;
+  std::vector<int> screen_simulations;  // each candidate's screen in the round before (0: not yet screened)
 
   // Sigmas for the first round's table; the chain's once, at its end.
   RoundSetting setting() const { return {f, chain, current, ln_n, o.min_delta_bic, first_round}; }
@@ -315,12 +316,25 @@ struct CauseSteps {
     forks[i] = std::make_unique<Predictor>(pr.fork());
     return true;
   }
+  // A screen's simulations, as in the round before; in the first round one
+  // per parameter and step, and a grid's walk for a grid_screen parameter
+  // (the slip angle: 10 simulations in sequence, half a round's screens).
+  double expected_cost(std::size_t i) const {
+    if (screen_simulations[i] > 0) return screen_simulations[i];
+    double cost = 1;
+    for (const RoverCandidateParameter& p : candidates[i]->parameters(f)) {
+      cost += 1;
+      if (p.grid_screen && p.grid > 0) cost += (p.upper - p.lower) / p.grid;
+    }
+    return cost;
+  }
   Trial trial(const std::vector<std::size_t>& /*used*/, std::size_t i) const {
     Trial t;
     screen_trial(*forks[i], *candidates[i], setting(), t);
     return t;
   }
   int best(const std::vector<std::size_t>& open, std::vector<Trial>& trials) {
+    for (std::size_t i : open) screen_simulations[i] = trials[i].simulations;
     const int b = fit_round(pr, forks, open, trials, setting());
     forks = std::vector<std::unique_ptr<Predictor>>(candidates.size());
     if (!first_round) return b;
@@ -369,8 +383,17 @@ void select_causes(Predictor& pr, const RoverResidualFeatures& f, const RoverStu
   r.baseline_test = current.test;
   const std::size_t max_causes = o.max_causes > 0 ? static_cast<std::size_t>(o.max_causes) : 0;
   if (o.progress && max_causes > 0) o.progress(0.0);
-  CauseSteps steps{
-      pr, candidates, f, o, r, chain, current, ln_n, std::vector<std::unique_ptr<Predictor>>(candidates.size())};
+  CauseSteps steps{pr,
+                   candidates,
+                   f,
+                   o,
+                   r,
+                   chain,
+                   current,
+                   ln_n,
+                   std::vector<std::unique_ptr<Predictor>>(candidates.size()),
+                   true,
+                   std::vector<int>(candidates.size(), 0)};
   std::vector<std::size_t> used;
   select_forward(steps, candidates.size(), max_causes, used);
   const bool refitted = r.selection.size() > 1;
