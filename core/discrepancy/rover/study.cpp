@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/common/error.h"
+#include "core/common/thread_pool.h"
 #include "core/discrepancy/rover/candidates.h"
 #include "core/discrepancy/rover/fit.h"
 #include "core/discrepancy/rover/prediction.h"
@@ -229,7 +230,12 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   std::snprintf(method, sizeof method, "alternating blocks of %.3g s: even blocks fit, odd blocks test", options.block);
   r.held_out_method = method;
   const simulation::RockerBogieEffects& none = predictor.scenario_effects();  // the nominal model
-  const Prediction p0 = predictor.predict(none);
+  // The baseline simulation and the net-traction check (an estimator over
+  // the log, as long as a simulation) share nothing: side by side.
+  Prediction p0;
+  std::vector<RoverRedundancyCheck> traction;
+  shared_thread_pool().run_beside([&] { traction = traction_checks(lg, model); },
+                                  [&] { p0 = predictor.predict(none); });
   set_noise(predictor.channels(), p0);
   const Simulated& base = predictor.simulate(none);
   const std::vector<double> slip = sensor_slip(predictor.channels(), model.geometry.wheel_radius);
@@ -240,7 +246,7 @@ RoverDiscrepancyReport study_rover(const log::Log& lg, const RoverScenarioModel&
   r.slip_regime = slip_regime(predictor.channels(), model.geometry.wheel_radius);
   r.checks.push_back(slip_check(predictor.channels(), r.slip_regime, p0, model.geometry.wheel_radius));
   const double slip_check_model = r.checks.back().expected;
-  for (auto& c : traction_checks(lg, model)) r.checks.push_back(std::move(c));
+  for (auto& c : traction) r.checks.push_back(std::move(c));
   r.fit_residuals = predictor.count(Part::fit);
   r.test_residuals = predictor.count(Part::test);
   RoverResidualFeatures f = features(predictor.channels(), p0, base);
