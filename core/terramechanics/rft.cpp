@@ -401,6 +401,7 @@ class SharedLists {
     for (const auto& [key, list] : stressed_) held[key.generation] += list->size();
     for (const auto& [key, list] : sorted_) held[key.generation] += list->size();
     std::vector<std::pair<unsigned long, unsigned long>> by_use;  // (last use, generation)
+    by_use.reserve(held.size());
     for (const auto& [generation, elements] : held) by_use.emplace_back(used_[generation], generation);
     std::sort(by_use.begin(), by_use.end());
     std::unordered_set<unsigned long> dropped;
