@@ -107,8 +107,9 @@ void select_forward(Study& study, std::size_t count, std::size_t max_steps, std:
     if (open.empty()) return;
     std::vector<std::size_t> start = open;  // the order the trials start in
     if constexpr (HasExpectedCost<Study>::value) {
-      std::stable_sort(start.begin(), start.end(),
-                       [&](std::size_t a, std::size_t b) { return study.expected_cost(a) > study.expected_cost(b); });
+      std::vector<double> cost(count);  // asked once per candidate, not at every comparison
+      for (std::size_t i : open) cost[i] = study.expected_cost(i);
+      std::stable_sort(start.begin(), start.end(), [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
     }
     std::vector<Trial> trials(count);
     shared_thread_pool().for_each_index(start.size(),
