@@ -199,6 +199,15 @@ TEST(RftWheel, BadInputIsAStatusNotACrash) {
   EXPECT_EQ(evaluate_slip_angle(sand(1e4), smooth(), 500.0, 0.2, 0.0, rft()).status, TractionStatus::unsupported_load);
 }
 
+// An evaluation that is bit for bit another (both ok): every output.
+void expect_bit_identical(const SlipAngleTraction& again, const SlipAngleTraction& fresh, int k) {
+  ASSERT_TRUE(fresh.ok() && again.ok()) << k;
+  EXPECT_EQ(again.drawbar_pull, fresh.drawbar_pull) << k;
+  EXPECT_EQ(again.lateral_force, fresh.lateral_force) << k;
+  EXPECT_EQ(again.resistive_torque, fresh.resistive_torque) << k;
+  EXPECT_EQ(again.sinkage, fresh.sinkage) << k;
+}
+
 // Each thread keeps the stresses of the motions it met (rft.cpp): a point
 // evaluated after many others, other wheels, pile-ups and depth scales among
 // them, is bit for bit what a fresh thread computes for it.
@@ -233,13 +242,7 @@ TEST(RftWheel, AnEvaluationIsTheSameAfterOthersAsOnAFreshThread) {
     (void)point(smooth(), o);
   }
   const SlipAngleTraction again[3] = {point(smooth(), rft()), point(g, rft()), point(smooth(), piled)};
-  for (int k = 0; k < 3; ++k) {
-    ASSERT_TRUE(fresh[k].ok() && again[k].ok());
-    EXPECT_EQ(again[k].drawbar_pull, fresh[k].drawbar_pull) << k;
-    EXPECT_EQ(again[k].lateral_force, fresh[k].lateral_force) << k;
-    EXPECT_EQ(again[k].resistive_torque, fresh[k].resistive_torque) << k;
-    EXPECT_EQ(again[k].sinkage, fresh[k].sinkage) << k;
-  }
+  for (int k = 0; k < 3; ++k) expect_bit_identical(again[k], fresh[k], k);
   EXPECT_NE(fresh[0].drawbar_pull, fresh[1].drawbar_pull);  // the three points differ
   EXPECT_NE(fresh[0].sinkage, fresh[2].sinkage);
 }
@@ -273,13 +276,7 @@ TEST(RftWheel, AnEvaluationIsTheSameAfterTheCachesMadeRoom) {
     }
   }
   const SlipAngleTraction again[2] = {point(smooth(), rft()), point(g, grousered)};
-  for (int k = 0; k < 2; ++k) {
-    ASSERT_TRUE(fresh[k].ok() && again[k].ok());
-    EXPECT_EQ(again[k].drawbar_pull, fresh[k].drawbar_pull) << k;
-    EXPECT_EQ(again[k].lateral_force, fresh[k].lateral_force) << k;
-    EXPECT_EQ(again[k].resistive_torque, fresh[k].resistive_torque) << k;
-    EXPECT_EQ(again[k].sinkage, fresh[k].sinkage) << k;
-  }
+  for (int k = 0; k < 2; ++k) expect_bit_identical(again[k], fresh[k], k);
   EXPECT_NE(fresh[0].drawbar_pull, fresh[1].drawbar_pull);
 }
 
