@@ -10,6 +10,7 @@
 #include "core/common/error.h"
 #include "core/common/thread_pool.h"
 #include "core/discrepancy/study.h"
+#include "core/simulation/effects.h"
 
 namespace roverlab::analysis::rover {
 
@@ -392,42 +393,85 @@ void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vect
     // Inside the bounds on both sides where it can be.
     if (q.value + h[j] > q.spec.upper) h[j] = -h[j];
   }
-  auto at = [&](std::size_t a, double sa, std::size_t b, double sb) {
+  auto at = [&](Predictor& on, std::size_t a, double sa, std::size_t b, double sb) {
     std::vector<double> dx(m, 0.0);
     dx[a] += sa * h[a];
     if (b < m) dx[b] += sb * h[b];
-    return profile_at(pr, p, free, dx);
+    return profile_at(on, p, free, dx);
   };
+  // The evaluations run in parallel on the pool, each task on its own fork
+  // of the predictor (absorbed in task order: the same cache on any number
+  // of threads): first each parameter's own curvature (its step shrunk in
+  // sequence), then every pair's cross term.
   Eigen::MatrixXd H(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
   std::vector<double> plus(m), minus(m);
   std::vector<char> two_sided(m, 0);
-  for (std::size_t j = 0; j < m; ++j) {
+  // A sensor parameter's steps all need the run at the centre: simulated
+  // once here (as the first step would), not once in each fork.
+  const bool sensor = std::any_of(free.begin(), free.end(), [&](std::size_t j) {
+    const simulation::EffectSpec* e = simulation::find_effect(p[j].spec.effect);
+    return e != nullptr && !e->physical;
+  });
+  if (sensor) pr.simulate(effects_of(pr.scenario_effects(), p));
+  std::vector<Predictor> forks;
+  forks.reserve(m);
+  for (std::size_t j = 0; j < m; ++j) forks.push_back(pr.fork());
+  shared_thread_pool().for_each_index(m, [&](std::size_t j) {
+    Predictor& on = forks[j];
     const FitParameter& q = p[free[j]];
     two_sided[j] = q.value - std::abs(h[j]) >= q.spec.lower && q.value + std::abs(h[j]) <= q.spec.upper ? 1 : 0;
     const auto jj = static_cast<Eigen::Index>(j);
-    plus[j] = at(j, 1, m, 0);
+    plus[j] = at(on, j, 1, m, 0);
     if (two_sided[j]) {
-      minus[j] = at(j, -1, m, 0);
+      minus[j] = at(on, j, -1, m, 0);
       // A step far outside the quadratic region (a rise of more than 50 where
       // one sigma is a rise of 1) is shrunk towards a rise of 9, up to 3 times.
       for (int shrink = 0; shrink < 3; ++shrink) {
         const double rise = 0.5 * (plus[j] + minus[j]) - f0;
         if (!(rise > 50) || std::abs(h[j]) < q.spec.step / 1000) break;
         h[j] *= std::sqrt(9 / rise);
-        plus[j] = at(j, 1, m, 0);
-        minus[j] = at(j, -1, m, 0);
+        plus[j] = at(on, j, 1, m, 0);
+        minus[j] = at(on, j, -1, m, 0);
       }
       H(jj, jj) = (plus[j] - 2 * f0 + minus[j]) / (h[j] * h[j]);
     } else {  // f(x), f(x+h), f(x+2h)
-      H(jj, jj) = (at(j, 2, m, 0) - 2 * plus[j] + f0) / (h[j] * h[j]);
+      H(jj, jj) = (at(on, j, 2, m, 0) - 2 * plus[j] + f0) / (h[j] * h[j]);
     }
-  }
+  });
+  for (const Predictor& fork : forks) pr.absorb(fork);
+  // Cross terms: central where both can step both ways (four evaluations), else forward (h points into the bounds).
+  struct Cross {
+    std::size_t j, k;
+    double sj, sk;
+  };
+  std::vector<Cross> cross;
   for (std::size_t j = 0; j < m; ++j) {
     for (std::size_t k = j + 1; k < m; ++k) {
-      // Central where both can step both ways, else forward (h points into the bounds).
-      const double v = two_sided[j] && two_sided[k]
-                           ? (at(j, 1, k, 1) - at(j, 1, k, -1) - at(j, -1, k, 1) + at(j, -1, k, -1)) / (4 * h[j] * h[k])
-                           : (at(j, 1, k, 1) - plus[j] - plus[k] + f0) / (h[j] * h[k]);
+      if (two_sided[j] && two_sided[k]) {
+        for (const auto& [sj, sk] : {std::pair{1.0, 1.0}, {1.0, -1.0}, {-1.0, 1.0}, {-1.0, -1.0}})
+          cross.push_back({j, k, sj, sk});
+      } else {
+        cross.push_back({j, k, 1.0, 1.0});
+      }
+    }
+  }
+  std::vector<double> f(cross.size());
+  forks.clear();
+  for (std::size_t t = 0; t < cross.size(); ++t) forks.push_back(pr.fork());
+  shared_thread_pool().for_each_index(
+      cross.size(), [&](std::size_t t) { f[t] = at(forks[t], cross[t].j, cross[t].sj, cross[t].k, cross[t].sk); });
+  for (const Predictor& fork : forks) pr.absorb(fork);
+  std::size_t t = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    for (std::size_t k = j + 1; k < m; ++k) {
+      double v = 0;
+      if (two_sided[j] && two_sided[k]) {
+        v = (f[t] - f[t + 1] - f[t + 2] + f[t + 3]) / (4 * h[j] * h[k]);
+        t += 4;
+      } else {
+        v = (f[t] - plus[j] - plus[k] + f0) / (h[j] * h[k]);
+        t += 1;
+      }
       H(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) = v;
       H(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = v;
     }

@@ -98,10 +98,10 @@ const Simulated& Predictor::simulate(const simulation::RockerBogieEffects& fx) {
   physical.slip_angle_deg = fx.slip_angle_deg;
   const std::array<double, 6> key{physical.soil_strength,      physical.slip_sinkage_n1, physical.grouser_height,
                                   physical.wheel_radius_scale, physical.effect_start_x,  physical.slip_angle_deg};
+  used_.push_back(key);
   auto it = cache_.find(key);
   if (it != cache_.end()) {
-    cache_order_.erase(std::find(cache_order_.begin(), cache_order_.end(), key));
-    cache_order_.push_back(key);
+    touch(key);
     return *it->second;
   }
   simulation::RockerBogieRun run = model_.run;
@@ -143,15 +143,28 @@ void Predictor::remember(const Key& key, std::shared_ptr<const Simulated> run) {
   cache_.emplace(key, std::move(run));
 }
 
+void Predictor::touch(const Key& key) {
+  cache_order_.erase(std::find(cache_order_.begin(), cache_order_.end(), key));
+  cache_order_.push_back(key);
+}
+
 Predictor Predictor::fork() const {
   Predictor copy = *this;
   copy.simulations_ = 0;
+  copy.used_.clear();
   return copy;
 }
 
 void Predictor::absorb(const Predictor& other) {
-  for (const Key& key : other.cache_order_) {
-    if (cache_.count(key) == 0) remember(key, other.cache_.at(key));
+  for (const Key& key : other.used_) {
+    if (cache_.count(key) != 0) {
+      touch(key);
+    } else if (const auto it = other.cache_.find(key); it != other.cache_.end()) {
+      remember(key, it->second);
+    } else {
+      continue;  // the fork let it go too
+    }
+    used_.push_back(key);
   }
   simulations_ += other.simulations_;
 }

@@ -55,9 +55,11 @@ class Predictor {
   // on its own thread): it shares the runs simulated so far (read-only) and
   // counts only its own simulations.
   Predictor fork() const;
-  // Takes the runs `other` (a fork) simulated that this one lacks, in their
-  // order, and counts its simulations: forks absorbed in a fixed order leave
-  // the same cache on any number of threads.
+  // Replays the runs `other` (a fork) used, in their order: one this
+  // predictor lacks is taken, one it has becomes as recent as there (not
+  // the runs the fork only inherited: those this one may have let go since);
+  // and counts its simulations. Forks absorbed in a fixed order leave the
+  // same cache on any number of threads.
   void absorb(const Predictor& other);
 
   // The simulation under `effects` (physical part cached).
@@ -81,6 +83,8 @@ class Predictor {
   void remember(const Key& key, std::shared_ptr<const Simulated> run);
   std::map<Key, std::shared_ptr<const Simulated>> cache_;
   std::deque<std::array<double, 6>> cache_order_;  // least recently used first
+  std::vector<Key> used_;                          // every run asked for (since the fork), in order
+  void touch(const Key& key);                      // key (cached) becomes the most recently used
   std::map<Part, GroupedLikelihood> likelihoods_;
 };
 
