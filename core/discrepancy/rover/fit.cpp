@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include <Eigen/Dense>
 
@@ -15,6 +16,18 @@
 namespace roverlab::analysis::rover {
 
 namespace {
+
+// work(fork, 0) .. work(fork, n - 1) in parallel on the pool, each on its
+// own fork of `pr`; the forks are absorbed in index order, so that the cache
+// is the same on any number of threads.
+template <class Work>
+void on_forks(Predictor& pr, std::size_t n, const Work& work) {
+  std::vector<Predictor> forks;
+  forks.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) forks.push_back(pr.fork());
+  shared_thread_pool().for_each_index(n, [&](std::size_t k) { work(forks[k], k); });
+  for (const Predictor& fork : forks) pr.absorb(fork);
+}
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -103,18 +116,14 @@ class SimulationCost final : public ceres::CostFunction {
   void forward_differences(const std::vector<FitParameter>& p, const std::vector<double>& r) const {
     const std::size_t n = r.size(), m = free_.size();
     memo_.raw.assign(n * m, 0.0);
-    std::vector<Predictor> forks;
-    forks.reserve(m);
-    for (std::size_t j = 0; j < m; ++j) forks.push_back(predictor_.fork());
-    shared_thread_pool().for_each_index(m, [&](std::size_t j) {
+    on_forks(predictor_, m, [&](Predictor& fork, std::size_t j) {
       std::vector<FitParameter> moved = p;
       FitParameter& q = moved[free_[j]];
       const double h = q.value + q.spec.step <= q.spec.upper ? q.spec.step : -q.spec.step;
       q.value += h;
-      const std::vector<double> r2 = forks[j].residuals(effects_of(predictor_.scenario_effects(), moved), Part::fit);
+      const std::vector<double> r2 = fork.residuals(effects_of(predictor_.scenario_effects(), moved), Part::fit);
       for (std::size_t i = 0; i < n; ++i) memo_.raw[i * m + j] = (r2[i] - r[i]) / h;
     });
-    for (const Predictor& fork : forks) predictor_.absorb(fork);
     memo_.x = last_x_;
     memo_.r = r;
   }
@@ -236,17 +245,13 @@ void grid_start(Predictor& pr, std::vector<FitParameter>& parameters) {
     // threads); the first lowest is taken, as in a walk up the grid.
     std::vector<double> values{p.value};
     for (double v = p.spec.lower; v <= p.spec.upper + 1e-12; v += p.spec.grid) values.push_back(v);
-    std::vector<Predictor> forks;
-    forks.reserve(values.size());
-    for (std::size_t k = 0; k < values.size(); ++k) forks.push_back(pr.fork());
     std::vector<double> f(values.size());
     const auto at = static_cast<std::size_t>(&p - parameters.data());
-    shared_thread_pool().for_each_index(values.size(), [&](std::size_t k) {
+    on_forks(pr, values.size(), [&](Predictor& fork, std::size_t k) {
       std::vector<FitParameter> q = parameters;
       q[at].value = values[k];
-      f[k] = profile_at(forks[k], q, {}, {});
+      f[k] = profile_at(fork, q, {}, {});
     });
-    for (const Predictor& fork : forks) pr.absorb(fork);
     std::size_t best = 0;
     for (std::size_t k = 1; k < values.size(); ++k) best = f[k] < f[best] ? k : best;
     p.value = values[best];
@@ -399,46 +404,46 @@ void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vect
     if (b < m) dx[b] += sb * h[b];
     return profile_at(on, p, free, dx);
   };
-  // The evaluations run in parallel on the pool, each task on its own fork
-  // of the predictor (absorbed in task order: the same cache on any number
-  // of threads): first each parameter's own curvature (its step shrunk in
-  // sequence), then every pair's cross term.
+  // The evaluations run in parallel (on_forks): first every parameter's two
+  // steps (plus and minus; plus and twice plus at a bound), then each
+  // step shrunk in sequence where it must be, then every pair's cross terms.
   Eigen::MatrixXd H(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
-  std::vector<double> plus(m), minus(m);
+  std::vector<double> plus(m), second(m);  // second: minus; f(x + 2h) one-sided
   std::vector<char> two_sided(m, 0);
-  // A sensor parameter's steps all need the run at the centre: simulated
-  // once here (as the first step would), not once in each fork.
-  const bool sensor = std::any_of(free.begin(), free.end(), [&](std::size_t j) {
-    const simulation::EffectSpec* e = simulation::find_effect(p[j].spec.effect);
-    return e != nullptr && !e->physical;
-  });
-  if (sensor) pr.simulate(effects_of(pr.scenario_effects(), p));
-  std::vector<Predictor> forks;
-  forks.reserve(m);
-  for (std::size_t j = 0; j < m; ++j) forks.push_back(pr.fork());
-  shared_thread_pool().for_each_index(m, [&](std::size_t j) {
-    Predictor& on = forks[j];
+  for (std::size_t j = 0; j < m; ++j) {
     const FitParameter& q = p[free[j]];
     two_sided[j] = q.value - std::abs(h[j]) >= q.spec.lower && q.value + std::abs(h[j]) <= q.spec.upper ? 1 : 0;
-    const auto jj = static_cast<Eigen::Index>(j);
-    plus[j] = at(on, j, 1, m, 0);
-    if (two_sided[j]) {
-      minus[j] = at(on, j, -1, m, 0);
-      // A step far outside the quadratic region (a rise of more than 50 where
-      // one sigma is a rise of 1) is shrunk towards a rise of 9, up to 3 times.
-      for (int shrink = 0; shrink < 3; ++shrink) {
-        const double rise = 0.5 * (plus[j] + minus[j]) - f0;
-        if (!(rise > 50) || std::abs(h[j]) < q.spec.step / 1000) break;
-        h[j] *= std::sqrt(9 / rise);
-        plus[j] = at(on, j, 1, m, 0);
-        minus[j] = at(on, j, -1, m, 0);
+  }
+  const auto steps = [&](const std::vector<std::size_t>& of) {  // both steps of each, in parallel
+    on_forks(pr, 2 * of.size(), [&](Predictor& fork, std::size_t t) {
+      const std::size_t i = of[t / 2];
+      if (t % 2 == 0) {
+        plus[i] = at(fork, i, 1, m, 0);
+      } else {
+        second[i] = at(fork, i, two_sided[i] ? -1 : 2, m, 0);
       }
-      H(jj, jj) = (plus[j] - 2 * f0 + minus[j]) / (h[j] * h[j]);
-    } else {  // f(x), f(x+h), f(x+2h)
-      H(jj, jj) = (at(on, j, 2, m, 0) - 2 * plus[j] + f0) / (h[j] * h[j]);
+    });
+  };
+  std::vector<std::size_t> all(m);
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  steps(all);
+  for (std::size_t j = 0; j < m; ++j) {
+    const FitParameter& q = p[free[j]];
+    const auto jj = static_cast<Eigen::Index>(j);
+    if (!two_sided[j]) {  // f(x), f(x+h), f(x+2h)
+      H(jj, jj) = (second[j] - 2 * plus[j] + f0) / (h[j] * h[j]);
+      continue;
     }
-  });
-  for (const Predictor& fork : forks) pr.absorb(fork);
+    // A step far outside the quadratic region (a rise of more than 50 where
+    // one sigma is a rise of 1) is shrunk towards a rise of 9, up to 3 times.
+    for (int shrink = 0; shrink < 3; ++shrink) {
+      const double rise = 0.5 * (plus[j] + second[j]) - f0;
+      if (!(rise > 50) || std::abs(h[j]) < q.spec.step / 1000) break;
+      h[j] *= std::sqrt(9 / rise);
+      steps({j});
+    }
+    H(jj, jj) = (plus[j] - 2 * f0 + second[j]) / (h[j] * h[j]);
+  }
   // Cross terms: central where both can step both ways (four evaluations), else forward (h points into the bounds).
   struct Cross {
     std::size_t j, k;
@@ -456,11 +461,8 @@ void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vect
     }
   }
   std::vector<double> f(cross.size());
-  forks.clear();
-  for (std::size_t t = 0; t < cross.size(); ++t) forks.push_back(pr.fork());
-  shared_thread_pool().for_each_index(
-      cross.size(), [&](std::size_t t) { f[t] = at(forks[t], cross[t].j, cross[t].sj, cross[t].k, cross[t].sk); });
-  for (const Predictor& fork : forks) pr.absorb(fork);
+  on_forks(pr, cross.size(),
+           [&](Predictor& fork, std::size_t t) { f[t] = at(fork, cross[t].j, cross[t].sj, cross[t].k, cross[t].sk); });
   std::size_t t = 0;
   for (std::size_t j = 0; j < m; ++j) {
     for (std::size_t k = j + 1; k < m; ++k) {
