@@ -379,6 +379,49 @@ Eigen::MatrixXd block_robust_covariance(Predictor& pr, const std::vector<FitPara
   return Ai * (small_sample * score.transpose() * score) * Ai;
 }
 
+// The profile curvature's cross terms H_jk (j < k), every evaluation in
+// parallel (on_forks): central where both parameters can step both ways (four
+// evaluations), else forward (h points into the bounds). at(predictor, j,
+// sj, k, sk): -2 ln L with parameter j moved by sj h_j and k by sk h_k.
+template <class At>
+void cross_curvatures(Predictor& pr, const At& at, const std::vector<char>& two_sided, const std::vector<double>& plus,
+                      const std::vector<double>& h, double f0, Eigen::MatrixXd& H) {
+  struct Cross {
+    std::size_t j, k;
+    double sj, sk;
+  };
+  const std::size_t m = plus.size();
+  std::vector<Cross> cross;
+  for (std::size_t j = 0; j < m; ++j) {
+    for (std::size_t k = j + 1; k < m; ++k) {
+      if (two_sided[j] && two_sided[k]) {
+        for (const auto& [sj, sk] : {std::pair{1.0, 1.0}, {1.0, -1.0}, {-1.0, 1.0}, {-1.0, -1.0}})
+          cross.push_back({j, k, sj, sk});
+      } else {
+        cross.push_back({j, k, 1.0, 1.0});
+      }
+    }
+  }
+  std::vector<double> f(cross.size());
+  on_forks(pr, cross.size(),
+           [&](Predictor& fork, std::size_t t) { f[t] = at(fork, cross[t].j, cross[t].sj, cross[t].k, cross[t].sk); });
+  std::size_t t = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    for (std::size_t k = j + 1; k < m; ++k) {
+      double v = 0;
+      if (two_sided[j] && two_sided[k]) {
+        v = (f[t] - f[t + 1] - f[t + 2] + f[t + 3]) / (4 * h[j] * h[k]);
+        t += 4;
+      } else {
+        v = (f[t] - plus[j] - plus[k] + f0) / (h[j] * h[k]);
+        t += 1;
+      }
+      H(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) = v;
+      H(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = v;
+    }
+  }
+}
+
 // +-1 sigma from the curvature of the profile likelihood itself (central
 // second differences of -2 ln L, noise scales and autocorrelations
 // re-profiled at every point): cov = 2 H^-1. Steps of three Gauss-Newton
@@ -444,40 +487,7 @@ void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vect
     }
     H(jj, jj) = (plus[j] - 2 * f0 + second[j]) / (h[j] * h[j]);
   }
-  // Cross terms: central where both can step both ways (four evaluations), else forward (h points into the bounds).
-  struct Cross {
-    std::size_t j, k;
-    double sj, sk;
-  };
-  std::vector<Cross> cross;
-  for (std::size_t j = 0; j < m; ++j) {
-    for (std::size_t k = j + 1; k < m; ++k) {
-      if (two_sided[j] && two_sided[k]) {
-        for (const auto& [sj, sk] : {std::pair{1.0, 1.0}, {1.0, -1.0}, {-1.0, 1.0}, {-1.0, -1.0}})
-          cross.push_back({j, k, sj, sk});
-      } else {
-        cross.push_back({j, k, 1.0, 1.0});
-      }
-    }
-  }
-  std::vector<double> f(cross.size());
-  on_forks(pr, cross.size(),
-           [&](Predictor& fork, std::size_t t) { f[t] = at(fork, cross[t].j, cross[t].sj, cross[t].k, cross[t].sk); });
-  std::size_t t = 0;
-  for (std::size_t j = 0; j < m; ++j) {
-    for (std::size_t k = j + 1; k < m; ++k) {
-      double v = 0;
-      if (two_sided[j] && two_sided[k]) {
-        v = (f[t] - f[t + 1] - f[t + 2] + f[t + 3]) / (4 * h[j] * h[k]);
-        t += 4;
-      } else {
-        v = (f[t] - plus[j] - plus[k] + f0) / (h[j] * h[k]);
-        t += 1;
-      }
-      H(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) = v;
-      H(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = v;
-    }
-  }
+  cross_curvatures(pr, at, two_sided, plus, h, f0, H);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
   const bool curved = eig.info() == Eigen::Success && eig.eigenvalues().minCoeff() > 0;
   const Eigen::MatrixXd cov = curved ? Eigen::MatrixXd(2 * H.inverse()) : Eigen::MatrixXd();
