@@ -11,7 +11,6 @@
 #include "core/common/error.h"
 #include "core/common/thread_pool.h"
 #include "core/discrepancy/study.h"
-#include "core/simulation/effects.h"
 
 namespace roverlab::analysis::rover {
 
