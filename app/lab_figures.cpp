@@ -29,7 +29,7 @@ std::string number(double v, const char* format = "%g") {
   return text;
 }
 
-double degrees(double rad) { return std::round(rad * 180.0 / M_PI * 100.0) / 100.0; }
+double degrees_2dp(double rad) { return std::round(rad * 180.0 / M_PI * 100.0) / 100.0; }
 
 // The model's value of `q` (NaN where it cannot carry the load).
 double value_of(const terramechanics::SlipAngleTraction& t, Quantity q) {
@@ -169,7 +169,7 @@ Groups groups_of(const std::vector<WheelTestPoint>& points) {
 std::set<double> angles_measuring(const std::vector<WheelTestPoint>& points, Quantity q) {
   std::set<double> angles;
   for (const auto& p : points) {
-    if (p.measured(q)) angles.insert(degrees(p.slip_angle));
+    if (p.measured(q)) angles.insert(degrees_2dp(p.slip_angle));
   }
   return angles;
 }
@@ -194,7 +194,7 @@ views::PanelRow slip_row(const std::vector<WheelTestPoint>& points, const Single
       s.band = band;
       for (std::size_t i = 0; i < points.size(); ++i) {
         const auto v = points[i].measured(q);
-        if (!v || groups.of_point[i] != s.group || degrees(points[i].slip_angle) != angle) continue;
+        if (!v || groups.of_point[i] != s.group || degrees_2dp(points[i].slip_angle) != angle) continue;
         s.x.push_back(points[i].slip);
         s.y.push_back(*v);
       }
@@ -224,7 +224,7 @@ views::PanelRow residual_row(const std::vector<WheelTestPoint>& points, const Si
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& r : m.held_out) {
     if (r.quantity != q || r.point >= points.size() || !std::isfinite(r.predicted)) continue;
-    const double x = by_slip ? points[r.point].slip : degrees(points[r.point].slip_angle);
+    const double x = by_slip ? points[r.point].slip : degrees_2dp(points[r.point].slip_angle);
     views::PanelSeries& s = by_group[static_cast<std::size_t>(groups.of_point[r.point])];
     s.group = groups.of_point[r.point];
     s.x.push_back(x);
@@ -330,7 +330,7 @@ views::LabFigures single_wheel_figures(const std::vector<WheelTestPoint>& points
   // At one slip angle the residuals are drawn against slip: against the
   // angle they would stand in one vertical line.
   std::set<double> angles;
-  for (const auto& p : points) angles.insert(degrees(p.slip_angle));
+  for (const auto& p : points) angles.insert(degrees_2dp(p.slip_angle));
   const bool by_slip = angles.size() < 2;
   for (Quantity q : {Quantity::drawbar_pull, Quantity::lateral_force}) {
     if (angles_measuring(points, q).empty()) continue;

@@ -25,7 +25,7 @@ namespace roverlab::app {
 namespace {
 
 using nlohmann::json;
-constexpr double kDeg = 180.0 / M_PI;
+constexpr double kDegPerRad = 180.0 / M_PI;
 // A rover whose forward speed never exceeds this has not moved.
 
 json vec(const Eigen::Vector3d& v, double scale = 1.0) {
@@ -291,7 +291,7 @@ json NetTractionAnalysis::fits(const log::Log& lg, const estimation::NetTraction
                            {"drawbar_pull_N", vec(errors.drawbar_pull)},
                            {"resistive_torque_Nm", vec(errors.resistive_torque)},
                            {"slip", vec(errors.slip)},
-                           {"contact_angle_deg", vec(errors.contact_angle, kDeg)},
+                           {"contact_angle_deg", vec(errors.contact_angle, kDegPerRad)},
                            {"samples", errors.samples}};
     }
     out[e.name] = j;
@@ -378,7 +378,7 @@ AnalysisResult NetTractionAnalysis::run(const AnalysisInput& in) {
   return out;
 }
 
-void print_rms(const json& t, std::FILE* out) {
+void print_tracking_rms(const json& t, std::FILE* out) {
   std::fprintf(out, "  %-6s %10s %10s %12s %8s %12s\n", "wheel", "W (N)", "DP (N)", "tau_R (N m)", "slip",
                "gamma (deg)");
   for (std::size_t w = 0; w < 3; ++w) {
@@ -479,7 +479,7 @@ void NetTractionPresentation::print(const json& j, std::FILE* out) const {
     if (e.contains("tracking_rms")) {
       std::fprintf(out, " RMS error per wheel over %zu samples:\n",
                    e.at("tracking_rms").at("samples").get<std::size_t>());
-      print_rms(e.at("tracking_rms"), out);
+      print_tracking_rms(e.at("tracking_rms"), out);
     }
     if (e.contains("error")) {
       std::fprintf(out, " no surfaces: %s\n", e.at("error").get<std::string>().c_str());

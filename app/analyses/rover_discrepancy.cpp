@@ -41,7 +41,7 @@ json parameters_json(const std::vector<analysis::RoverParameterFit>& ps) {
 
 // "effect value +- sigma" for each parameter; a screened candidate's values
 // are its one Gauss-Newton step's, with no sigma: "~value".
-std::string parameters_text(const json& ps, bool screened = false) {
+std::string rover_parameters_text(const json& ps, bool screened = false) {
   std::string t;
   for (const auto& p : ps) {
     const json& sigma = p.at("sigma");
@@ -74,8 +74,8 @@ double rms(const std::vector<double>& v) {
 
 // The residual before and after the named causes, overlaid, against time and
 // against slip; log y: before a cause is named it can be thousands of sigmas.
-void residual_plots(const json& j, const std::vector<double>& t, const std::vector<double>& slip,
-                    const std::vector<double>& before, const std::vector<double>& after, ReportSection& s) {
+void rover_residual_plots(const json& j, const std::vector<double>& t, const std::vector<double>& slip,
+                          const std::vector<double>& before, const std::vector<double>& after, ReportSection& s) {
   const std::string causes = j.at("causes_text").get<std::string>();
   const std::vector<PlotSeries> series = {{"nominal model", "#888888", before},
                                           {causes == "none" ? "no cause named" : "with " + causes, "#1f77b4", after}};
@@ -386,7 +386,7 @@ void RoverDiscrepancyPresentation::print(const json& j, std::FILE* out) const {
   std::fprintf(out, "  %-22s %-44s %10s %9.3g\n", "(nominal)", "", "0", j.at("baseline").at("held_out").get<double>());
   bool undetermined = false;
   for (const auto& c : j.at("candidates")) {
-    std::string p = parameters_text(c.at("parameters"), c.at("screened").get<bool>());
+    std::string p = rover_parameters_text(c.at("parameters"), c.at("screened").get<bool>());
     // The column is narrow: "(not determined by the data)" as "(undetermined)", said below the table.
     for (std::size_t at; p.size() > 44 && (at = p.find(" (not determined by the data)")) != std::string::npos;) {
       p.replace(at, 29, " (undetermined)");
@@ -434,7 +434,7 @@ std::vector<ResultTable> RoverDiscrepancyPresentation::tables(const json& j) con
   for (const json* cp : order) {
     const json& c = *cp;
     std::vector<ResultTable::Cell> row{{c.at("name").get<std::string>()},
-                                       {parameters_text(c.at("parameters"), c.at("screened").get<bool>())},
+                                       {rover_parameters_text(c.at("parameters"), c.at("screened").get<bool>())},
                                        {roverlab::analysis::format_delta_bic(c.at("delta_bic").get<double>())},
                                        {n(c.at("held_out"), "%.3g")},
                                        {candidate_status(c, named)}};
@@ -502,7 +502,7 @@ void RoverDiscrepancyPresentation::report(const json& j, ReportSection& s) const
     for (const auto& x : j.at("plot").at(key)) v.push_back(x.is_number() ? x.get<double>() : NAN);
     return v;
   };
-  residual_plots(j, series("time"), series("slip"), series("before"), series("after"), s);
+  rover_residual_plots(j, series("time"), series("slip"), series("before"), series("after"), s);
   s.write_csv("rover_discrepancy_channels.csv", csv);
 }
 

@@ -13,8 +13,6 @@ namespace roverlab::terramechanics {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Li, Zhang, Goldman 2013 (Science 339:1408, supplementary Table S2), the
 // generic Fourier coefficients, N/cm^3 per unit zeta (alpha_z(0, pi/2) = 1).
 constexpr double kA00 = 0.206, kA10 = 0.169, kB11 = 0.212, kB01 = 0.358, kBm11 = 0.055;
@@ -32,9 +30,9 @@ Alpha alpha_of(double cos2b, double sin2b, double cosg, double sing) {
 }
 
 void add_rim(std::vector<RftElement>& out, const Wheel& w, const RftResolution& res) {
-  const double r = w.radius, b = w.width, dth = kPi / res.angles, dy = b / res.across;
+  const double r = w.radius, b = w.width, dth = M_PI / res.angles, dy = b / res.across;
   for (int i = 0; i < res.angles; ++i) {
-    const double th = -kPi / 2.0 + (i + 0.5) * dth;  // from the bottom, positive forward
+    const double th = -M_PI / 2.0 + (i + 0.5) * dth;  // from the bottom, positive forward
     const double s = std::sin(th), c = std::cos(th);
     for (int k = 0; k < res.across; ++k) {
       const double y = -b / 2.0 + (k + 0.5) * dy;
@@ -44,10 +42,10 @@ void add_rim(std::vector<RftElement>& out, const Wheel& w, const RftResolution& 
 }
 
 void add_sides(std::vector<RftElement>& out, const Wheel& w, const RftResolution& res) {
-  const double r = w.radius, dth = kPi / res.angles, dr = r / res.rings;
+  const double r = w.radius, dth = M_PI / res.angles, dr = r / res.rings;
   for (int side = -1; side <= 1; side += 2) {
     for (int i = 0; i < res.angles; ++i) {
-      const double th = -kPi / 2.0 + (i + 0.5) * dth;
+      const double th = -M_PI / 2.0 + (i + 0.5) * dth;
       const double s = std::sin(th), c = std::cos(th);
       for (int k = 0; k < res.rings; ++k) {
         const double rho = (k + 0.5) * dr;
@@ -85,13 +83,13 @@ void add_grouser(std::vector<RftElement>& out, const Wheel& w, double height, do
 
 void add_grousers(std::vector<RftElement>& out, const Wheel& w, double height, const RftResolution& res) {
   if (w.grouser_count <= 0 || !(height > 0.0)) return;
-  const double pitch = 2.0 * kPi / w.grouser_count;
+  const double pitch = 2.0 * M_PI / w.grouser_count;
   const int phases = std::max(1, res.grouser_phases);
   for (int g = 0; g < w.grouser_count; ++g) {
     for (int p = 0; p < phases; ++p) {
       // Angle from the bottom wrapped into (-pi, pi]; the lower half only.
-      double th = std::remainder(g * pitch + (p + 0.5) * pitch / phases, 2.0 * kPi);
-      if (std::abs(th) > kPi / 2.0) continue;
+      double th = std::remainder(g * pitch + (p + 0.5) * pitch / phases, 2.0 * M_PI);
+      if (std::abs(th) > M_PI / 2.0) continue;
       add_grouser(out, w, height, th, 1.0 / phases, res);
     }
   }
@@ -505,9 +503,9 @@ SlipAngleTraction evaluate_rft(const Soil& soil, const Wheel& wheel, double load
   const Extensions& e = options.extensions;
   const double zeta = soil.rft_scale * e.soil_strength;
   if (!std::isfinite(load) || load <= 0.0 || !std::isfinite(slip) || std::abs(slip) > 1.0 ||
-      !std::isfinite(slip_angle) || std::abs(slip_angle) > kPi / 2.0 || !(wheel.radius > 0.0) || !(wheel.width > 0.0) ||
-      !(zeta > 0.0) || !std::isfinite(zeta) || !(e.rft_pileup >= 0.0) || !(e.rft_depth_scale > -1.0) ||
-      !(e.grouser_effectiveness >= 0.0)) {
+      !std::isfinite(slip_angle) || std::abs(slip_angle) > M_PI / 2.0 || !(wheel.radius > 0.0) ||
+      !(wheel.width > 0.0) || !(zeta > 0.0) || !std::isfinite(zeta) || !(e.rft_pileup >= 0.0) ||
+      !(e.rft_depth_scale > -1.0) || !(e.grouser_effectiveness >= 0.0)) {
     t.status = TractionStatus::invalid_input;
     return t;
   }

@@ -49,7 +49,7 @@ Difference compare(const std::vector<TractionPoint>& points, const simulation::r
 
 // Consistent within 3 standard errors or `tolerance`, the net-traction
 // estimator's own accuracy (its bias on runs with no effect).
-RoverRedundancyCheck check(const char* name, const char* unit, const Difference& d, double tolerance) {
+RoverRedundancyCheck traction_check(const char* name, const char* unit, const Difference& d, double tolerance) {
   RoverRedundancyCheck c{name, d.estimated, d.model, std::max(d.sigma, tolerance / 3), unit, "", true};
   c.consistent = std::abs(d.estimated - d.model) <= 3 * c.sigma;
   c.verdict = c.consistent ? "the traction the rover's sensors show is the model's"
@@ -75,10 +75,10 @@ std::vector<RoverRedundancyCheck> traction_checks(const log::Log& lg, const Rove
     const Difference tau = compare(nm.estimated_points, traction, true);
     // Tolerances: 1 % of the mean wheel load for the drawbar pull (the estimator's
     // bias with no effect is about 0.1 N at 49 N), 5 % of the torque.
-    return {check("net-traction drawbar pull (mean of the steady points) vs the scenario's traction model", "N", dp,
-                  0.01 * dp.load),
-            check("net-traction resistive torque (mean of the steady points) vs the scenario's traction model", "N*m",
-                  tau, 0.05 * std::abs(tau.model))};
+    return {traction_check("net-traction drawbar pull (mean of the steady points) vs the scenario's traction model",
+                           "N", dp, 0.01 * dp.load),
+            traction_check("net-traction resistive torque (mean of the steady points) vs the scenario's traction model",
+                           "N*m", tau, 0.05 * std::abs(tau.model))};
   } catch (const std::exception& e) {
     RoverRedundancyCheck c{"net-traction estimates vs the scenario's traction model",
                            NAN,

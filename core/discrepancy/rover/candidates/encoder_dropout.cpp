@@ -4,7 +4,7 @@ namespace roverlab::analysis {
 
 namespace {
 
-class Candidate final : public RoverCandidate {
+class EncoderDropoutCandidate final : public RoverCandidate {
  public:
   const char* name() const override { return "encoder dropout"; }
   const char* cause() const override { return "the wheel encoders stopped updating for 2 s (held their last value)"; }
@@ -22,6 +22,8 @@ class Candidate final : public RoverCandidate {
 
 }  // namespace
 
-std::unique_ptr<RoverCandidate> make_encoder_dropout_rover_candidate() { return std::make_unique<Candidate>(); }
+std::unique_ptr<RoverCandidate> make_encoder_dropout_rover_candidate() {
+  return std::make_unique<EncoderDropoutCandidate>();
+}
 
 }  // namespace roverlab::analysis

@@ -4,7 +4,7 @@ namespace roverlab::analysis {
 
 namespace {
 
-class Candidate final : public RoverCandidate {
+class SoilStrengthCandidate final : public RoverCandidate {
  public:
   const char* name() const override { return "soil strength change"; }
   const char* cause() const override {
@@ -33,6 +33,8 @@ class Candidate final : public RoverCandidate {
 
 }  // namespace
 
-std::unique_ptr<RoverCandidate> make_soil_strength_rover_candidate() { return std::make_unique<Candidate>(); }
+std::unique_ptr<RoverCandidate> make_soil_strength_rover_candidate() {
+  return std::make_unique<SoilStrengthCandidate>();
+}
 
 }  // namespace roverlab::analysis
