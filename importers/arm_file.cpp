@@ -11,14 +11,14 @@ namespace roverlab::io {
 namespace {
 
 // A lab arm is a metre or two across: a 1e3 m link is a typo.
-constexpr double kMaxLink = 5.0;
+constexpr double kMaxArmLink = 5.0;
 
 kinematics::ArmLink arm_link(const JsonNode& l) {
   kinematics::ArmLink link;
   link.joint = required_string(l, "joint");
   link.theta = required_number_in(l, "theta", -2 * M_PI, 2 * M_PI);
-  link.d = required_number_in(l, "d", -kMaxLink, kMaxLink);
-  link.a = required_number_in(l, "a", -kMaxLink, kMaxLink);
+  link.d = required_number_in(l, "d", -kMaxArmLink, kMaxArmLink);
+  link.a = required_number_in(l, "a", -kMaxArmLink, kMaxArmLink);
   link.alpha = required_number_in(l, "alpha", -2 * M_PI, 2 * M_PI);
   return link;
 }
@@ -45,7 +45,7 @@ kinematics::ArmModel load_arm(const std::string& path) {
   if (j.has("tool_m")) {
     const std::vector<double> tool = required_numbers(j, "tool_m", 3);
     for (double v : tool) {
-      if (!(std::abs(v) <= kMaxLink)) j.fail("tool_m", "must be within 5 m of the flange");
+      if (!(std::abs(v) <= kMaxArmLink)) j.fail("tool_m", "must be within 5 m of the flange");
     }
     arm.tool = Eigen::Vector3d(tool[0], tool[1], tool[2]);
   }

@@ -11,12 +11,12 @@ namespace roverlab::io {
 namespace {
 
 // The longest link of a rover description, m.
-constexpr double kMaxLink = 20.0;
+constexpr double kMaxRoverLink = 20.0;
 
 double positive_number(const JsonNode& j, const char* key) {
   const double v = required_number(j, key);
   if (!(v > 0)) j.fail(key, "must be positive");
-  if (!(v <= kMaxLink)) j.fail(key, "must be at most 20 (m)");
+  if (!(v <= kMaxRoverLink)) j.fail(key, "must be at most 20 (m)");
   return v;
 }
 
@@ -40,8 +40,8 @@ kinematics::DhLink dh_link(const JsonNode& l, const kinematics::RoverModel& m) {
   link.to = required_string(l, "to");
   // A rover is metres across and angles are radians: a 1e300 m link is a typo.
   link.theta = required_number_in(l, "theta", -2 * M_PI, 2 * M_PI);
-  link.d = required_number_in(l, "d", -kMaxLink, kMaxLink);
-  link.a = required_number_in(l, "a", -kMaxLink, kMaxLink);
+  link.d = required_number_in(l, "d", -kMaxRoverLink, kMaxRoverLink);
+  link.a = required_number_in(l, "a", -kMaxRoverLink, kMaxRoverLink);
   link.alpha = required_number_in(l, "alpha", -2 * M_PI, 2 * M_PI);
   if (l.has("joint")) {
     const std::string joint = required_string(l, "joint");

@@ -43,7 +43,7 @@ const char* const kFields[] = {"format",
                                "effects"};
 
 // A field the reader does not know is a misspelling, never ignored.
-void require_known_fields(const JsonNode& j) {
+void require_known_scenario_fields(const JsonNode& j) {
   if (!j.value().is_object()) return;
   for (const auto& item : j.value().items()) {
     if (std::find(std::begin(kFields), std::end(kFields), item.key()) != std::end(kFields)) continue;
@@ -56,7 +56,7 @@ void require_known_fields(const JsonNode& j) {
 ScenarioFile read_scenario(const JsonResource& file) {
   const JsonNode j = file.root();
   require_format(j, "roverlab-scenario", "scenario");
-  require_known_fields(j);
+  require_known_scenario_fields(j);
   ScenarioFile s;
   s.file = file.file();
   s.document = j.value().dump();

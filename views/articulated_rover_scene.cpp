@@ -68,7 +68,7 @@ void set_lines(vtkActor* actor, const std::vector<Vector3d>& points) {
   vtkPolyDataMapper::SafeDownCast(actor->GetMapper())->SetInputData(polyline(points));
 }
 
-double value_at(const log::Stream* s, const std::string& channel, std::size_t k) {
+double value_at_sample(const log::Stream* s, const std::string& channel, std::size_t k) {
   const log::Channel* c = s != nullptr ? s->find_channel(channel) : nullptr;
   return c != nullptr ? c->values[k] : NAN;
 }
@@ -214,7 +214,7 @@ void ArticulatedRoverScene::set_time(double t) {
   p.attitude_shown.setIdentity();
   if (p.attitude != nullptr) {  // roll and pitch only: the camera follows the heading
     const std::size_t ka = p.attitude->nearest_index(t);
-    const double roll = value_at(p.attitude, "roll", ka), pitch = value_at(p.attitude, "pitch", ka);
+    const double roll = value_at_sample(p.attitude, "roll", ka), pitch = value_at_sample(p.attitude, "pitch", ka);
     if (std::isfinite(roll) && std::isfinite(pitch)) {
       p.attitude_shown =
           (Eigen::AngleAxisd(pitch, Vector3d::UnitY()) * Eigen::AngleAxisd(roll, Vector3d::UnitX())).toRotationMatrix();
@@ -274,10 +274,10 @@ void ArticulatedRoverScene::pose_wheel(std::size_t w, const std::vector<double>&
   if (f.dot(attitude * Vector3d::UnitX()) < 0.0) f = -f;
   Vector3d u = axle.cross(f);
   if (u.z() < 0.0) u = -u;
-  const double gamma = value_at(p.estimate_stream, "contact_angle_" + name, ke);
-  const double gamma_truth = value_at(p.truth_stream, "contact_angle_" + name, kt);
-  const double beta = value_at(p.estimate_stream, "side_slip_" + name, ke);
-  const double sigma = value_at(p.estimate_stream, "contact_angle_" + name + "_sigma", ke);
+  const double gamma = value_at_sample(p.estimate_stream, "contact_angle_" + name, ke);
+  const double gamma_truth = value_at_sample(p.truth_stream, "contact_angle_" + name, kt);
+  const double beta = value_at_sample(p.estimate_stream, "side_slip_" + name, ke);
+  const double sigma = value_at_sample(p.estimate_stream, "contact_angle_" + name + "_sigma", ke);
   const double at = std::isfinite(gamma) ? gamma : std::isfinite(gamma_truth) ? gamma_truth : 0.0;
   // Seed 000 Fig. 5.1: the velocity at angle gamma above the wheel's forward
   // direction; the contact point lies at r along the normal to it.
@@ -307,8 +307,8 @@ void ArticulatedRoverScene::pose_wheel(std::size_t w, const std::vector<double>&
     fan.push_back(contact);
     set_lines(p.sigma[w], fan);
   }
-  double slip = value_at(p.estimate_stream, "slip_" + name, ke);
-  if (!std::isfinite(slip)) slip = value_at(p.truth_stream, "slip_" + name, kt);
+  double slip = value_at_sample(p.estimate_stream, "slip_" + name, ke);
+  if (!std::isfinite(slip)) slip = value_at_sample(p.truth_stream, "slip_" + name, kt);
   const double redness = std::isfinite(slip) ? std::min(std::abs(slip) / 0.5, 1.0) : 0.0;
   p.wheels[w]->GetProperty()->SetColor(0.6 + 0.3 * redness, 0.6 - 0.45 * redness, 0.62 - 0.45 * redness);
 }

@@ -191,7 +191,7 @@ void PlanarRoverScene::add_contact_arrows() {
 
 namespace {
 
-double value_at(const log::Stream* s, const std::string& channel, double t) {
+double value_at_time(const log::Stream* s, const std::string& channel, double t) {
   const log::Channel* c = s != nullptr ? s->find_channel(channel) : nullptr;
   return c != nullptr ? c->values[s->nearest_index(t)] : NAN;
 }
@@ -206,9 +206,9 @@ void PlanarRoverScene::place_contact_arrows(double t) {
   const auto along = [](double angle) { return Eigen::Vector2d(std::cos(angle), std::sin(angle)); };
   for (int i = 0; i < 3; ++i) {
     const std::string n = std::to_string(i + 1);
-    const double gamma = value_at(p.estimates, "contact_angle_" + n, t);
-    const double sigma = value_at(p.estimates, "contact_angle_sigma_" + n, t);
-    const double gamma_truth = value_at(p.wheels, "contact_angle_" + n, t);
+    const double gamma = value_at_time(p.estimates, "contact_angle_" + n, t);
+    const double sigma = value_at_time(p.estimates, "contact_angle_sigma_" + n, t);
+    const double gamma_truth = value_at_time(p.wheels, "contact_angle_" + n, t);
     p.direction[0][i] = std::isfinite(gamma) ? along(gamma) : Eigen::Vector2d::Constant(NAN);
     p.direction[1][i] = std::isfinite(gamma_truth) ? along(gamma_truth) : Eigen::Vector2d::Constant(NAN);
     const double at = std::isfinite(gamma) ? gamma : std::isfinite(gamma_truth) ? gamma_truth : 0.0;
