@@ -369,45 +369,6 @@ void ContactAngleEstimator::filter_step(std::size_t i, const Inputs& in, double 
   }
 }
 
-template <int NA>
-void ContactAngleEstimator::fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const Inputs& in, double ts, bool update) {
-  if (i == 0) {
-    fe.x = x0_;
-    fe.P = p0_.asDiagonal();
-  }
-  if (i > 0) {
-    if (smooth_) companion_predict(fe, i, in, ts);                              // from the state before this predict
-    fe.predict(process_, process_noise(i), in, ts, o_.reset_cross_covariance);  // with the reset P is diagonal here
-    if (smooth_) record_prediction(i, fe.x.data());
-  }
-  // With the reset, P is blockdiag(P11, diag) after the predict.
-  if (i == 0 && smooth_) {
-    companion<NA>().x = x0_;
-    companion<NA>().P = p0_.asDiagonal();
-  }
-  if (update) {
-    fe.gate = health_.gate(FastEkf<NA>::NY);
-    fe.effective_dof = o_.effective_dof;
-    if (fe.update(measurement_, rdiag_, in, o_.reset_cross_covariance, o_.reset_cross_covariance)) {
-      health_.record(imu_->time()[i], fe.nis, FastEkf<NA>::NY);
-      innovations_.add(fe.nis, fe.log_det_s, FastEkf<NA>::NY, fe.dof_used);
-    }
-  }
-  // The diagonal evaluated first: P = P.diagonal().asDiagonal() zeroes P (Eigen sets it to 0, then copies the
-  // diagonal).
-  if ((!update || fe.rejected) && o_.reset_cross_covariance)
-    fe.P = Eigen::Matrix<double, FastEkf<NA>::NX, 1>(fe.P.diagonal()).asDiagonal();
-  x_ = fe.x;
-  if (smooth_) {
-    if (update && !fe.rejected) {
-      FastEkf<NA>& ff = companion<NA>();
-      ff.gate = HUGE_VAL;
-      ff.update(measurement_, rdiag_, in, false, false);
-    }
-    record_filtered(i, fe.x.data(), i == 0);
-  }
-}
-
 // The fast EKF's reference: Jacobians by ceres::Jet, dense algebra.
 void ContactAngleEstimator::generic_ekf_step(std::size_t i, const Inputs& in, double ts, bool update) {
   if (i > 0) ekf_.predict_diagonal(process_.linearize(ekf_.x, in, ts), process_noise(i));
@@ -453,25 +414,6 @@ void ContactAngleEstimator::ukf_step(std::size_t i, const Inputs& in, double ts,
   }
   if (o_.reset_cross_covariance) ukf_.reset_cross_covariance();
   x_ = ukf_.x;
-}
-
-// The same on the fixed-size filter of the model (the same estimates).
-template <int NA>
-void ContactAngleEstimator::fixed_ukf_step(ContactAngleUkf<NA>& u, std::size_t i, const Inputs& in, double ts,
-                                           bool update) {
-  if (i > 0 && update) {
-    constexpr int ny = ContactAngleUkf<NA>::NY;
-    u.filter.gate = health_.gate(ny);
-    if (u.step(process_, measurement_, in, ts, y_meas_)) {
-      health_.record(imu_->time()[i], u.filter.nis, ny);
-      innovations_.add(u.filter.nis, u.filter.log_det_pyy, ny);
-    }
-  } else if (i > 0) {
-    u.predict(process_, in, ts);
-  }
-  using Covariance = typename ContactAngleUkf<NA>::Filter::Covariance;
-  if (o_.reset_cross_covariance) u.filter.P = Covariance(u.filter.P.diagonal().asDiagonal());
-  x_ = u.filter.x;
 }
 
 // After each step: P finite and positive definite, the state finite and
@@ -530,23 +472,6 @@ void ContactAngleEstimator::reset_filter(std::size_t i) {
     full6_.P = P;
     full12_.P = P;
   }  // a new segment: no smoothing across the reset
-}
-
-// The smoother's companion filter: the fast EKF's predict and update at the
-// same linearisation points, without the reset, so that its full P holds the
-// couplings the reset drops; from it the RTS gain C_k = P_k|k F^T P_k+1|k^-1.
-template <int NA>
-void ContactAngleEstimator::companion_predict(const FastEkf<NA>& fe, std::size_t i, const Inputs& in, double ts) {
-  constexpr int NX = FastEkf<NA>::NX;
-  FastEkf<NA>& ff = companion<NA>();
-  const Eigen::Matrix<double, NX, NX> Pf = ff.P;
-  ff.x = fe.x;
-  ff.predict(process_, process_noise(i), in, ts);
-  Eigen::Matrix<double, NX, NX> F = Eigen::Matrix<double, NX, NX>::Zero();
-  F.template topLeftCorner<6, 6>() = ff.last_A;
-  for (int j = 6; j < NX; ++j) F(j, j) = j < 12 ? ff.last_slip_keep : ff.last_angle_keep;
-  Eigen::Map<Eigen::Matrix<float, NX, NX>> gain(&sm_c_[(i - 1) * NX * NX]);
-  gain = ff.P.ldlt().solve(F * Pf).transpose().template cast<float>();  // P symmetric: (P_k+1|k^-1 F P_k|k)^T
 }
 
 void ContactAngleEstimator::record_prediction(std::size_t i, const double* x) {
