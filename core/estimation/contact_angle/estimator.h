@@ -65,8 +65,8 @@ class ContactAngleEstimator {
   // `update` false: prediction only (standstill, a bridged IMU sample, a
   // missing joint or wheel sample). Updates pass the health monitor's gate.
   void filter_step(std::size_t i, const contact::Inputs& in, double ts, bool update);
-  // The fixed-size steps (and companion_predict): estimator_steps.h, compiled for NA = 0, 6
-  // and 12 in estimator_steps_na*.cpp.
+  // The fixed-size steps (and companion_predict): steps/steps.h, compiled for NA = 0, 6 and
+  // 12 in steps/na*.cpp.
   template <int NA>
   void fast_ekf_step(FastEkf<NA>& fe, std::size_t i, const contact::Inputs& in, double ts, bool update);
   void generic_ekf_step(std::size_t i, const contact::Inputs& in, double ts, bool update);

@@ -1,8 +1,8 @@
 #pragma once
 // The fixed-size filter steps of ContactAngleEstimator (seed 000, Eq.
 // 2.14-2.17: the fast EKF, its smoother's companion, the fixed-size UKF), for
-// one number of angle states NA each. Included only by estimator_steps_na0.cpp,
-// _na6.cpp and _na12.cpp, which instantiate them: g++ takes 35-40 s for each
+// one number of angle states NA each. Included only by na0.cpp, na6.cpp and
+// na12.cpp beside it, which instantiate them: g++ takes 35-40 s for each
 // NA, and in estimator.cpp the three made one 120 s unit that an edit of any
 // part recompiled whole (docs/performance.md, "The contact-angle estimator in
 // four units").
@@ -93,3 +93,12 @@ void ContactAngleEstimator::companion_predict(const FastEkf<NA>& fe, std::size_t
 }
 
 }  // namespace roverlab::estimation
+
+// The steps' explicit instantiations for NA angle states, one line in each
+// na*.cpp (at namespace scope).
+#define ROVERLAB_CONTACT_ANGLE_STEPS(NA)                                                                             \
+  template void roverlab::estimation::ContactAngleEstimator::fast_ekf_step<NA>(                                      \
+      roverlab::estimation::FastEkf<NA>&, std::size_t, const roverlab::estimation::contact::Inputs&, double, bool);  \
+  template void roverlab::estimation::ContactAngleEstimator::fixed_ukf_step<NA>(                                     \
+      roverlab::estimation::ContactAngleUkf<NA>&, std::size_t, const roverlab::estimation::contact::Inputs&, double, \
+      bool)
