@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "core/common/error.h"
+#include "core/discrepancy/dense_algebra.h"
 #include "core/discrepancy/likelihood.h"
 #include "core/discrepancy/odometry/candidates.h"
 #include "core/discrepancy/study.h"
@@ -426,10 +427,9 @@ std::vector<double> OdometryStudy::parameter_sigmas(ceres::Problem& problem, std
     for (std::size_t i = 0; i < w.size(); ++i) Jw(static_cast<Eigen::Index>(i), c) = w[i];
   }
   const Eigen::MatrixXd info = Jw.transpose() * Jw;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(info);
-  if (eig.info() != Eigen::Success || !(eig.eigenvalues().minCoeff() > 1e-12 * eig.eigenvalues().maxCoeff()))
-    return sigma;
-  const Eigen::MatrixXd cov = info.inverse();
+  const std::optional<EigenvalueRange> eigenvalues = symmetric_eigenvalue_range(info);
+  if (!eigenvalues || !(eigenvalues->min > 1e-12 * eigenvalues->max)) return sigma;
+  const Eigen::MatrixXd cov = lu_inverse(info);
   for (int i = 0; i < k; ++i) sigma[static_cast<std::size_t>(i)] = std::sqrt(std::max(0.0, cov(i, i)));
   return sigma;
 }

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <numeric>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/common/error.h"
 #include "core/common/thread_pool.h"
+#include "core/discrepancy/dense_algebra.h"
+#include "core/discrepancy/least_squares.h"
 #include "core/discrepancy/study.h"
 
 namespace roverlab::analysis::rover {
@@ -28,7 +30,7 @@ void on_forks(Predictor& pr, std::size_t n, const Work& work) {
   for (const Predictor& fork : forks) pr.absorb(fork);
 }
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using RowMajor = RowMajorMatrix;
 
 // The whitened Jacobian (n_eff x m, row-major) of raw columns at a profile.
 RowMajor whitened(const GroupedLikelihood& l, const LikelihoodProfile& at, const std::vector<double>& raw,
@@ -154,10 +156,9 @@ void set_sigmas(Predictor& pr, const SimulationCost& cost, std::vector<FitParame
   }
   const RowMajor J = whitened(pr.likelihood(Part::fit), at, raw, m);
   const Eigen::MatrixXd info = J.transpose() * J;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(info);
-  cod.setThreshold(1e-10);
-  const bool full_rank = cod.rank() == static_cast<Eigen::Index>(m);
-  const Eigen::MatrixXd cov = cod.pseudoInverse();
+  const PseudoInverse pinv = pseudo_inverse(info, 1e-10);
+  const bool full_rank = pinv.rank == static_cast<Eigen::Index>(m);
+  const Eigen::MatrixXd& cov = pinv.matrix;
   for (std::size_t j = 0; j < m; ++j) {
     const auto jj = static_cast<Eigen::Index>(j);
     const double v = cov(jj, jj);
@@ -273,7 +274,7 @@ double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameter
   if (m == 0) return l.minus_two_log_l(raw);
   const Eigen::Map<const Eigen::VectorXd> r(rw.data(), static_cast<Eigen::Index>(n));
   const Eigen::Map<const RowMajor> J(jac.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
-  const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
+  const Eigen::VectorXd step = least_squares(J, -r);
   Eigen::VectorXd clamped(static_cast<Eigen::Index>(m));
   for (std::size_t j = 0; j < m; ++j) {
     FitParameter& p = parameters[free[j]];
@@ -371,9 +372,9 @@ Eigen::MatrixXd block_robust_covariance(Predictor& pr, const std::vector<FitPara
     if (!(squares > 0) || total * total / squares < 20) return {};
   }
   const Eigen::MatrixXd A = J.transpose() * J;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
-  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0)) return {};
-  const Eigen::MatrixXd Ai = ldlt.solve(Eigen::MatrixXd::Identity(mi, mi));
+  const std::optional<Eigen::MatrixXd> inverse = positive_definite_inverse(A);
+  if (!inverse) return {};
+  const Eigen::MatrixXd& Ai = *inverse;
   const double small_sample = static_cast<double>(g) / static_cast<double>(g - 1);
   return Ai * (small_sample * score.transpose() * score) * Ai;
 }
@@ -487,9 +488,9 @@ void profile_sigmas(Predictor& pr, std::vector<FitParameter>& p, const std::vect
     H(jj, jj) = (plus[j] - 2 * f0 + second[j]) / (h[j] * h[j]);
   }
   cross_curvatures(pr, at, two_sided, plus, h, f0, H);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
-  const bool curved = eig.info() == Eigen::Success && eig.eigenvalues().minCoeff() > 0;
-  const Eigen::MatrixXd cov = curved ? Eigen::MatrixXd(2 * H.inverse()) : Eigen::MatrixXd();
+  const std::optional<EigenvalueRange> eigenvalues = symmetric_eigenvalue_range(H);
+  const bool curved = eigenvalues && eigenvalues->min > 0;
+  const Eigen::MatrixXd cov = curved ? Eigen::MatrixXd(2 * lu_inverse(H)) : Eigen::MatrixXd();
   Eigen::MatrixXd use = cov;
   if (curved) {
     const Eigen::MatrixXd robust = block_robust_covariance(pr, p, free, h, two_sided);
