@@ -6,11 +6,14 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "core/common/thread_pool.h"
+#include "core/discrepancy/dense_algebra.h"
+#include "core/discrepancy/least_squares.h"
 
 namespace roverlab::analysis {
 namespace {
@@ -231,6 +234,43 @@ TEST(StudySkeleton, StepsWeighedByTheirShareOfTheHeldOutGain) {
   const StepLists apart = list_steps(steps, text, ", then ", true);
   EXPECT_EQ(apart.also, "b (0.769 % of the held-out gain)");
   EXPECT_EQ(apart.bound, "c (6.92 % of the held-out gain)");
+}
+
+// The decompositions the studies weigh their fits with, compiled once (dense_algebra.h, least_squares.h).
+TEST(DenseAlgebra, EigenvalueRangeAndInversesOfKnownMatrices) {
+  // R diag(1, 4, 9) R^T with R a rotation: eigenvalues 1 and 9 at the ends.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::MatrixXd A = R * Eigen::Vector3d(1, 4, 9).asDiagonal() * R.transpose();
+  const std::optional<EigenvalueRange> range = symmetric_eigenvalue_range(A);
+  ASSERT_TRUE(range.has_value());
+  EXPECT_NEAR(range->min, 1.0, 1e-12);
+  EXPECT_NEAR(range->max, 9.0, 1e-12);
+  EXPECT_TRUE((A * lu_inverse(A)).isIdentity(1e-12));
+  const std::optional<Eigen::MatrixXd> pd = positive_definite_inverse(A);
+  ASSERT_TRUE(pd.has_value());
+  EXPECT_TRUE((A * *pd).isIdentity(1e-12));
+  // Indefinite (eigenvalues 1 and -1) and singular: no positive-definite inverse.
+  EXPECT_FALSE(positive_definite_inverse(Eigen::Vector2d(1, -1).asDiagonal().toDenseMatrix()).has_value());
+  EXPECT_FALSE(positive_definite_inverse(Eigen::MatrixXd::Zero(2, 2)).has_value());
+}
+
+TEST(DenseAlgebra, PseudoInverseFindsTheRankAndLeastSquaresTheMinimumNorm) {
+  // Rank 2 in 3 dimensions: u u^T + v v^T.
+  const Eigen::Vector3d u(1, 0, 1), v(0, 2, -1);
+  const Eigen::MatrixXd A = u * u.transpose() + v * v.transpose();
+  const PseudoInverse p = pseudo_inverse(A, 1e-10);
+  EXPECT_EQ(p.rank, 2);
+  EXPECT_TRUE((A * p.matrix * A).isApprox(A, 1e-12));
+  EXPECT_TRUE(p.matrix.isApprox(p.matrix.transpose(), 1e-12));
+  EXPECT_EQ(pseudo_inverse(Eigen::MatrixXd::Identity(4, 4), 1e-10).rank, 4);
+  // Over-determined and consistent: the exact solution.
+  RowMajorMatrix J(4, 2);
+  J << 1, 0, 0, 1, 1, 1, 2, -1;
+  const Eigen::Vector2d x(0.3, -1.2);
+  EXPECT_TRUE(least_squares(J, J * x).isApprox(x, 1e-12));
+  // Under-determined (x1 + x2 + x3 = 3): the minimum-norm solution (1, 1, 1).
+  const RowMajorMatrix row = RowMajorMatrix::Ones(1, 3);
+  EXPECT_TRUE(least_squares(row, Eigen::VectorXd::Constant(1, 3.0)).isApprox(Eigen::Vector3d(1, 1, 1), 1e-12));
 }
 
 }  // namespace
