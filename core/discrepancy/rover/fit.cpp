@@ -30,13 +30,11 @@ void on_forks(Predictor& pr, std::size_t n, const Work& work) {
   for (const Predictor& fork : forks) pr.absorb(fork);
 }
 
-using RowMajor = RowMajorMatrix;
-
 // The whitened Jacobian (n_eff x m, row-major) of raw columns at a profile.
-RowMajor whitened(const GroupedLikelihood& l, const LikelihoodProfile& at, const std::vector<double>& raw,
-                  std::size_t m) {
+RowMajorMatrix whitened(const GroupedLikelihood& l, const LikelihoodProfile& at, const std::vector<double>& raw,
+                        std::size_t m) {
   const std::size_t n = l.effective_count();
-  RowMajor J(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+  RowMajorMatrix J(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
   std::vector<double> column(n);
   for (std::size_t j = 0; j < m; ++j) {
     l.whiten(at, raw.data() + j, column.data(), m);
@@ -80,7 +78,7 @@ class SimulationCost final : public ceres::CostFunction {
     const std::size_t m = free_.size();
     last_x_.assign(x[0], x[0] + m);
     if (!carry_jacobian(r)) forward_differences(p, r);
-    const RowMajor J = whitened(likelihood_, weights_, memo_.raw, m);
+    const RowMajorMatrix J = whitened(likelihood_, weights_, memo_.raw, m);
     std::copy(J.data(), J.data() + J.size(), jacobians[0]);
     return true;
   }
@@ -154,7 +152,7 @@ void set_sigmas(Predictor& pr, const SimulationCost& cost, std::vector<FitParame
     cost.Evaluate(xs, r.data(), js);
     raw = *cost.raw_jacobian_at(x);
   }
-  const RowMajor J = whitened(pr.likelihood(Part::fit), at, raw, m);
+  const RowMajorMatrix J = whitened(pr.likelihood(Part::fit), at, raw, m);
   const Eigen::MatrixXd info = J.transpose() * J;
   const PseudoInverse pinv = pseudo_inverse(info, 1e-10);
   const bool full_rank = pinv.rank == static_cast<Eigen::Index>(m);
@@ -273,7 +271,7 @@ double linearised_fit(Predictor& predictor, std::vector<FitParameter>& parameter
   const std::vector<double> raw = predictor.residuals(effects_of(predictor.scenario_effects(), parameters), Part::fit);
   if (m == 0) return l.minus_two_log_l(raw);
   const Eigen::Map<const Eigen::VectorXd> r(rw.data(), static_cast<Eigen::Index>(n));
-  const Eigen::Map<const RowMajor> J(jac.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+  const Eigen::Map<const RowMajorMatrix> J(jac.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
   const Eigen::VectorXd step = least_squares(J, -r);
   Eigen::VectorXd clamped(static_cast<Eigen::Index>(m));
   for (std::size_t j = 0; j < m; ++j) {
@@ -358,7 +356,7 @@ Eigen::MatrixXd block_robust_covariance(Predictor& pr, const std::vector<FitPara
     const double span = two_sided[j] != 0 ? 2 * h[j] : h[j];
     for (std::size_t i = 0; i < r0.size(); ++i) raw[i * m + j] = (a[i] - b[i]) / span;
   }
-  const RowMajor J = whitened(l, at, raw, m);
+  const RowMajorMatrix J = whitened(l, at, raw, m);
   Eigen::MatrixXd score = Eigen::MatrixXd::Zero(gi, mi), info = Eigen::MatrixXd::Zero(gi, mi);
   for (std::size_t k = 0; k < n; ++k) {
     const auto bk = static_cast<Eigen::Index>(block[k]);
