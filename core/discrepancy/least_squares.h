@@ -7,7 +7,7 @@
 namespace roverlab::analysis {
 
 // The complete orthogonal decompositions of dense_algebra.h's note, in a unit
-// of their own (two decompositions, 25 s of g++).
+// of their own (two decompositions, 20 s of g++).
 
 // The pseudo-inverse of a by complete orthogonal decomposition, pivots below
 // threshold (relative) counted as zero, and the rank found.
