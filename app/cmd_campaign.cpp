@@ -4,6 +4,8 @@
 // writes the runs it stands for to DIR/items.json and runs snakemake there;
 // snakemake decides what is missing or out of date, so a second run does
 // nothing and an interrupted one resumes. docs/campaigns.md.
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,10 +17,12 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -339,11 +343,7 @@ class SnakemakeOutput {
   SnakemakeOutput(const SnakemakeOutput&) = delete;
   SnakemakeOutput& operator=(const SnakemakeOutput&) = delete;
 
-  // Snakemake said another run holds the folder's lock.
-  bool locked() const { return locked_; }
-
   void line(const std::string& text) {
-    if (text.find("Directory cannot be locked") != std::string::npos) locked_ = true;
     if (everything_) {
       std::fprintf(stderr, "%s\n", text.c_str());
       return;
@@ -385,12 +385,11 @@ class SnakemakeOutput {
   }
 
   bool everything_, terminal_;
-  bool in_error_ = false, in_block_ = false, progress_shown_ = false, locked_ = false;
+  bool in_error_ = false, in_block_ = false, progress_shown_ = false;
 };
 
-// Runs snakemake with `argv`, its output shortened; its exit status. `locked`
-// is set when it refused because the folder is locked.
-int run_snakemake(const std::vector<std::string>& argv, bool everything, bool* locked) {
+// Runs snakemake with `argv`, its output shortened; its exit status.
+int run_snakemake(const std::vector<std::string>& argv, bool everything) {
   std::vector<char*> args;
   args.reserve(argv.size() + 1);
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));  // NOLINT: execv takes char* const*
@@ -402,8 +401,11 @@ int run_snakemake(const std::vector<std::string>& argv, bool everything, bool* l
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("cannot start snakemake (fork failed)");
   if (pid == 0) {
-    // Snakemake dies with RoverLab (killed, even by SIGKILL): an orphan would hold the folder's lock for good.
-    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    // Snakemake dies with RoverLab, even killed by SIGKILL. Not by SIGTERM: Snakemake 7.21's handler takes
+    // the scheduler's lock, which the main thread it interrupts may hold (scheduler.py, exit_gracefully), and
+    // then it never exits (3 of 22 kills here, docs/robustness.md). The steps it was running finish on their own;
+    // a rerun does again those left incomplete.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(1);
     close(fds[0]);
     dup2(fds[1], STDOUT_FILENO);
@@ -435,7 +437,6 @@ int run_snakemake(const std::vector<std::string>& argv, bool everything, bool* l
       }
     }
     if (!pending.empty()) out.line(pending);
-    if (locked != nullptr) *locked = out.locked();
   }
   close(fds[0]);
   int status = 0;
@@ -445,6 +446,37 @@ int run_snakemake(const std::vector<std::string>& argv, bool everything, bool* l
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
+
+// The campaign folder's lock, DIR/.roverlab-campaign.lock, held while a run
+// lasts. An flock: the kernel frees it when this process ends, however it
+// ends, so a killed run leaves no lock behind (Snakemake's own lock, files in
+// DIR/.snakemake/locks, stayed when Snakemake was killed; it runs with
+// --nolock). Close-on-exec: Snakemake, which dies with this process, does not
+// hold it.
+class CampaignFolderLock {
+ public:
+  explicit CampaignFolderLock(const fs::path& folder) {
+    const fs::path file = folder / ".roverlab-campaign.lock";
+    fd_ = open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd_ < 0)
+      throw InputError(file.string(), std::string("cannot open the campaign's lock: ") + std::strerror(errno));
+    while (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      close(fd_);
+      if (e == EWOULDBLOCK) {
+        throw InputError(folder.string(), "another `roverlab campaign` is running in this folder; wait for it to end");
+      }
+      throw InputError(file.string(), std::string("cannot lock the campaign folder: ") + std::strerror(e));
+    }
+  }
+  ~CampaignFolderLock() { close(fd_); }
+  CampaignFolderLock(const CampaignFolderLock&) = delete;
+  CampaignFolderLock& operator=(const CampaignFolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
 
 int run_campaign(const CampaignOptions& o) {
   if (o.output.empty()) throw UsageError("--output: the campaign folder's name is empty");
@@ -463,6 +495,9 @@ int run_campaign(const CampaignOptions& o) {
   if (ec || !fs::is_directory(o.output)) {
     throw InputError(o.output, "cannot create the campaign folder" + (ec ? ": " + ec.message() : std::string()));
   }
+  // Before items.json is written: a second run would change it under the first.
+  std::optional<CampaignFolderLock> folder_lock;
+  if (!o.unlock) folder_lock.emplace(o.output);
   const json config = {{"format", "roverlab-campaign-items"},
                        {"campaign", fs::absolute(o.input).lexically_normal().string()},
                        {"roverlab", own_executable().string()},
@@ -475,6 +510,7 @@ int run_campaign(const CampaignOptions& o) {
                                    "--directory",        o.output,      "--config",
                                    "items=items.json",   "--cores",     std::to_string(cores),
                                    "--rerun-incomplete", "--keep-going"};
+  if (!o.unlock) argv.emplace_back("--nolock");  // the folder's lock is RoverLab's (CampaignFolderLock)
   if (o.profile) {
     const fs::path named = workflows / "profiles" / *o.profile;
     if (!fs::is_directory(named, ec) && !fs::is_directory(*o.profile, ec)) {
@@ -492,7 +528,7 @@ int run_campaign(const CampaignOptions& o) {
   // render, not one each; cluster jobs start their own on their node.
   if (o.unlock) {
     argv.emplace_back("--unlock");
-    const int status = run_snakemake(argv, true, nullptr);
+    const int status = run_snakemake(argv, true);
     if (status != 0) return kInternalFailure;
     std::printf("campaign: %s unlocked\n", o.output.c_str());
     return kSuccess;
@@ -500,15 +536,7 @@ int run_campaign(const CampaignOptions& o) {
   if (!o.profile && !o.dry_run) views::ensure_display();
   std::printf("campaign: %zu runs in %s, %d cores%s\n", items.size(), o.output.c_str(), cores,
               o.dry_run ? " (dry run: what would run)" : "");
-  bool locked = false;
-  const int status = run_snakemake(argv, o.dry_run, &locked);
-  if (status != 0 && locked) {
-    std::fprintf(stderr,
-                 "roverlab: %s is locked by another campaign run, or by one killed before it could unlock it; if "
-                 "none is running, run `roverlab campaign %s -o %s --unlock`, then again without --unlock\n",
-                 o.output.c_str(), o.input.c_str(), o.output.c_str());
-    return kInternalFailure;
-  }
+  const int status = run_snakemake(argv, o.dry_run);
   if (status != 0) {
     std::fprintf(stderr,
                  "roverlab: the campaign stopped (snakemake exit %d): see the failed steps above and their logs in "
@@ -536,7 +564,8 @@ Commands make_campaign_commands() {
             ->check(CLI::Range(1, 1024));
         cmd.add_flag("--dry-run,-n", o.dry_run, "List what would run, run nothing");
         cmd.add_flag("--unlock", o.unlock,
-                     "Remove the lock a killed campaign run left on the folder (run nothing); then run again");
+                     "Remove Snakemake's lock from the folder (left by an earlier RoverLab, or by Snakemake run by "
+                     "hand), run nothing");
         cmd.add_option("--profile", o.profile,
                        "Snakemake profile: slurm (workflows/profiles/slurm) or a profile folder");
       },

@@ -671,33 +671,48 @@ TEST(NewSurfaces, AReportReplacesTheReportBeforeIt) {
 }
 
 // N7: a campaign killed by SIGKILL left Snakemake running, holding the
-// folder's lock (the rerun failed with "Directory cannot be locked").
+// folder's lock (the rerun failed with "Directory cannot be locked"). Then
+// Snakemake got SIGTERM when RoverLab died, and in about 1 of 7 kills its
+// handler deadlocked and it never exited (CI's run of 30 November). Now it
+// gets SIGKILL, and the folder's lock is an flock the kernel frees: while a
+// run lasts a second is refused, and once it is killed a rerun starts at once.
 TEST(NewSurfaces, SnakemakeDiesWithTheCampaign) {
   if (test::run_command("command -v snakemake").exit_code != 0) GTEST_SKIP() << "no snakemake";
   TempDir dir;
-  // 100 runs: a campaign far longer than the wait below (8 s for 4 runs on an idle machine), so
-  // that a Snakemake left running would still be there at its end.
+  // 100 runs: a campaign far longer than the waits below (8 s for 4 runs on an idle machine, about
+  // 200 s for these), so that a Snakemake left running would still be there at their end.
   std::string seeds;
   for (int i = 1; i <= 100; ++i) seeds += (i > 1 ? ", " : "") + std::to_string(i);
   test::write_text(dir.file("c.json"), R"({"format": "roverlab-campaign", "version": 1,
       "simulations": [{"simulate": "flat_60s", "seeds": [)" +
                                            seeds + R"(], "duration": 30}]})");
   const std::string out = dir.file("out");
-  // RoverLab killed 3 s in (Snakemake is running its first steps), then up to 90 s for its child to
-  // go (SIGTERM: it stops its jobs and frees the folder's lock first, which took over 12 s on a
-  // loaded machine, and over 40 s in CI's run of 29 November beside the heavy suites; the 100 runs
-  // take about 200 s, so a Snakemake left running is still there at 90 s); an orphan is a
-  // snakemake of this folder whose parent is now init.
+  const std::string campaign = "env -u DISPLAY " + quote(kExe) + " campaign c.json -o " + quote(out);
+  // An orphan is a snakemake of this folder whose parent is now init; the script waits up to 60 s
+  // for none to be left (at once: SIGKILL).
   const std::string orphans = "ps -eo pid=,ppid=,args= | awk -v d=" + quote("--directory " + out + " ") +
                               " 'index($0, d) && $2 == 1 {print $1}'";
-  test::write_text(dir.file("kill.sh"), "cd " + quote(dir.path().string()) + "\nenv -u DISPLAY " + quote(kExe) +
-                                            " campaign c.json -o " + quote(out) +
-                                            " > log.txt 2>&1 &\npid=$!\nsleep 3\nkill -KILL $pid\nwait $pid\n"
-                                            "i=0\nwhile [ $i -lt 90 ] && [ -n \"$(" +
-                                            orphans + ")\" ]; do sleep 1; i=$((i + 1)); done\n" + orphans + "\n");
+  const std::string wait_orphans =
+      "i=0\nwhile [ $i -lt 60 ] && [ -n \"$(" + orphans + ")\" ]; do sleep 1; i=$((i + 1)); done\n";
+  // The first run killed 3 s in (Snakemake is running its first steps), a second tried while it runs;
+  // then a rerun killed 3 s in as well.
+  test::write_text(dir.file("kill.sh"),
+                   "cd " + quote(dir.path().string()) + "\n" + campaign + " > log1.txt 2>&1 &\npid=$!\nsleep 3\n" +
+                       campaign + " > log2.txt 2>&1\necho $? > rc2.txt\nkill -KILL $pid\nwait $pid\n" + wait_orphans +
+                       orphans + "\n" + campaign + " > log3.txt 2>&1 &\npid=$!\nsleep 3\nkill -KILL $pid\nwait $pid\n" +
+                       wait_orphans + orphans + "\n");
   const CommandResult killed = test::run_command("sh " + quote(dir.file("kill.sh")));
-  EXPECT_TRUE(contains(test::read_text(dir.file("log.txt")), "campaign: 100 runs"))
-      << test::read_text(dir.file("log.txt"));
+  EXPECT_TRUE(contains(test::read_text(dir.file("log1.txt")), "campaign: 100 runs"))
+      << test::read_text(dir.file("log1.txt"));
+  // The second run, while the first ran: refused in one line, exit code 3, nothing started.
+  EXPECT_EQ(test::read_text(dir.file("rc2.txt")), "3\n");
+  const std::string second = test::read_text(dir.file("log2.txt"));
+  EXPECT_TRUE(contains(second, "another `roverlab campaign` is running in this folder")) << second;
+  EXPECT_EQ(std::count(second.begin(), second.end(), '\n'), 1) << second;
+  // The rerun after the SIGKILL started at once: no lock left behind.
+  const std::string third = test::read_text(dir.file("log3.txt"));
+  EXPECT_TRUE(contains(third, "campaign: 100 runs")) << third;
+  EXPECT_FALSE(contains(third, "another")) << third;
   std::string left = killed.out;
   std::replace(left.begin(), left.end(), '\n', ' ');
   while (!left.empty() && left.back() == ' ') left.pop_back();
