@@ -694,12 +694,16 @@ TEST(NewSurfaces, SnakemakeDiesWithTheCampaign) {
                               " 'index($0, d) && $2 == 1 {print $1}'";
   const std::string wait_orphans =
       "i=0\nwhile [ $i -lt 60 ] && [ -n \"$(" + orphans + ")\" ]; do sleep 1; i=$((i + 1)); done\n";
-  // The first run killed 3 s in (Snakemake is running its first steps), a second tried while it runs;
-  // then a rerun killed 3 s in as well.
+  // The first run killed 2 s after it said it started (up to 60 s under load; Snakemake is then
+  // running its first steps), a second tried while it runs; then a rerun killed so as well.
+  const std::string started =
+      "started() { i=0; while [ $i -lt 600 ] && ! grep -q 'campaign: 100 runs' \"$1\"; do sleep 0.1; "
+      "i=$((i + 1)); done; sleep 2; }\n";
   test::write_text(dir.file("kill.sh"),
-                   "cd " + quote(dir.path().string()) + "\n" + campaign + " > log1.txt 2>&1 &\npid=$!\nsleep 3\n" +
-                       campaign + " > log2.txt 2>&1\necho $? > rc2.txt\nkill -KILL $pid\nwait $pid\n" + wait_orphans +
-                       orphans + "\n" + campaign + " > log3.txt 2>&1 &\npid=$!\nsleep 3\nkill -KILL $pid\nwait $pid\n" +
+                   "cd " + quote(dir.path().string()) + "\n" + started + campaign +
+                       " > log1.txt 2>&1 &\npid=$!\nstarted log1.txt\n" + campaign +
+                       " > log2.txt 2>&1\necho $? > rc2.txt\nkill -KILL $pid\nwait $pid\n" + wait_orphans + orphans +
+                       "\n" + campaign + " > log3.txt 2>&1 &\npid=$!\nstarted log3.txt\nkill -KILL $pid\nwait $pid\n" +
                        wait_orphans + orphans + "\n");
   const CommandResult killed = test::run_command("sh " + quote(dir.file("kill.sh")));
   EXPECT_TRUE(contains(test::read_text(dir.file("log1.txt")), "campaign: 100 runs"))
