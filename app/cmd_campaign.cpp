@@ -510,7 +510,6 @@ int run_campaign(const CampaignOptions& o) {
                                    "--directory",        o.output,      "--config",
                                    "items=items.json",   "--cores",     std::to_string(cores),
                                    "--rerun-incomplete", "--keep-going"};
-  if (!o.unlock) argv.emplace_back("--nolock");  // the folder's lock is RoverLab's (CampaignFolderLock)
   if (o.profile) {
     const fs::path named = workflows / "profiles" / *o.profile;
     if (!fs::is_directory(named, ec) && !fs::is_directory(*o.profile, ec)) {
@@ -524,8 +523,6 @@ int run_campaign(const CampaignOptions& o) {
     argv.insert(argv.end(), {"--profile", fs::is_directory(named, ec) ? named.string() : *o.profile});
   }
   if (o.dry_run) argv.emplace_back("--dry-run");
-  // One private Xvfb (when DISPLAY is unset) for every report the steps
-  // render, not one each; cluster jobs start their own on their node.
   if (o.unlock) {
     argv.emplace_back("--unlock");
     const int status = run_snakemake(argv, true);
@@ -533,6 +530,9 @@ int run_campaign(const CampaignOptions& o) {
     std::printf("campaign: %s unlocked\n", o.output.c_str());
     return kSuccess;
   }
+  argv.emplace_back("--nolock");  // the folder's lock is RoverLab's (CampaignFolderLock)
+  // One private Xvfb (when DISPLAY is unset) for every report the steps
+  // render, not one each; cluster jobs start their own on their node.
   if (!o.profile && !o.dry_run) views::ensure_display();
   std::printf("campaign: %zu runs in %s, %d cores%s\n", items.size(), o.output.c_str(), cores,
               o.dry_run ? " (dry run: what would run)" : "");
